@@ -1,0 +1,50 @@
+#pragma once
+// Dynamic-test tables (formats.md §1): one row per measured point, moduli in MPa.
+#include <string>
+#include <vector>
+
+#include "fitlib/model/test_condition.hpp"
+
+namespace fitlib::data {
+
+struct DynamicTestRow {
+  model::TestCondition condition;  // mode, orientation, frequency, temperature, amplitude, mean
+  double storage_MPa = 0.0;        // E′ or G′ (K′ for bulk)
+  double loss_MPa = 0.0;           // E″ or G″
+  double mean_modulus_MPa = 0.0;   // valid only when has_mean_modulus
+  bool has_mean_modulus = false;
+  double weight = 1.0;
+  std::string material, specimen, set;
+  std::string source_file;  // where the row came from, for messages
+  int source_line = 0;      // 1-based line in source_file
+};
+
+struct DynamicTestTable {
+  std::vector<DynamicTestRow> rows;
+  std::vector<std::string> source_files;
+  std::vector<std::string> source_sha256;  // one per source file, of the bytes read
+  std::vector<std::string> warnings;       // e.g. rows skipped with --skip-bad-rows
+};
+
+enum class TableFormat { native, pyvisco };
+
+struct ReadOptions {
+  TableFormat format = TableFormat::native;
+  // Mode for files without a `mode` column (pyvisco: uniaxial unless the columns say G).
+  bool has_default_mode = false;
+  model::TestMode default_mode = model::TestMode::shear;
+  // Turn row errors into warnings listing each skipped row (never silently).
+  bool skip_bad_rows = false;
+};
+
+// Reads one CSV file. Throws core::InputError naming file, line and column on bad input.
+DynamicTestTable read_dynamic_table(const std::string& path, const ReadOptions& options = {});
+
+// Reads several files into one table (rows in file order).
+DynamicTestTable read_dynamic_tables(const std::vector<std::string>& paths,
+                                     const ReadOptions& options = {});
+
+// Writes a table as native CSV (formats.md §1), atomically.
+void write_dynamic_table(const std::string& path, const DynamicTestTable& table);
+
+}  // namespace fitlib::data

@@ -1,0 +1,79 @@
+#pragma once
+// The one interface every constitutive law offers. The fitter, the card writer and the segment
+// solver use only this; none of them switches on a model's name.
+//
+// A model is a description (parameter specs, options) plus pure functions of a parameter vector
+// `p` in natural units (MPa, s, ...). Fitters handle transforms (log for positive scales).
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "fitlib/core/parameter.hpp"
+#include "fitlib/model/test_condition.hpp"
+
+namespace fitlib::model {
+
+// Moduli of a steady sinusoidal test, MPa: storage (dynamic elastic) E′ or G′, loss E″ or G″,
+// and the mean (static) modulus = mean stress / mean strain.
+template <typename T>
+struct Moduli {
+  T storage;
+  T loss;
+  T mean;
+};
+
+// Strain history sampled at times t_s (strictly increasing, t_s[0] = start, material at rest
+// before it). Strain is engineering strain of the test mode (shear: γ).
+struct StrainHistory {
+  std::vector<double> time_s;
+  std::vector<double> strain;
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  // Name used by --model and in cards ("prony", "zener3", ...).
+  virtual std::string kind() const = 0;
+  virtual const std::vector<core::ParameterSpec>& parameters() const = 0;
+  std::size_t size() const { return parameters().size(); }
+
+  // Model options that define its structure (term count, temperature law, ...), as stored in a
+  // card's "options" object; make_model(kind, options) rebuilds the same model.
+  virtual nlohmann::json options() const = 0;
+
+  // Complex-form moduli at one test condition.
+  virtual Moduli<double> moduli(const double* p, const TestCondition& c) const = 0;
+
+  // Same, with derivatives d(storage, loss, mean)/dp as a 3 × size() matrix.
+  virtual Moduli<double> moduli(const double* p, const TestCondition& c,
+                                Eigen::Ref<Eigen::MatrixXd> jacobian) const = 0;
+
+  // Stress history (MPa) for the imposed strain history, in the mode and at the temperature of
+  // `c` (its frequency and amplitude are ignored). The discretisation is the model's own and
+  // exact for piecewise-linear strain where the model allows it.
+  virtual std::vector<double> stress_response(const double* p, const TestCondition& c,
+                                              const StrainHistory& history) const = 0;
+
+  // Relaxation modulus M(t) (MPa) after a unit strain step, and creep compliance J(t) (1/MPa)
+  // after a unit stress step, at the mode and temperature of `c`.
+  virtual double relaxation_modulus(const double* p, const TestCondition& c, double t_s) const = 0;
+  virtual double creep_compliance(const double* p, const TestCondition& c, double t_s) const = 0;
+
+  // Default values of all parameters (a start for fitting, a sane demo card).
+  std::vector<double> default_parameters() const;
+};
+
+using ModelPtr = std::shared_ptr<const Model>;
+
+// Builds a model by name with its options (e.g. {"terms": 12}, {"temperature_law": "wlf"}).
+// Throws core::UsageError for an unknown name or option.
+ModelPtr make_model(const std::string& kind, const nlohmann::json& options);
+
+// The names make_model accepts.
+std::vector<std::string> model_kinds();
+
+}  // namespace fitlib::model

@@ -1,0 +1,29 @@
+#pragma once
+// What a dynamic test imposes: mode, orientation, frequency, temperature, amplitude, mean strain.
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace fitlib::model {
+
+enum class TestMode { shear, uniaxial, bulk };
+
+// "shear" | "uniaxial" (aliases "tension", "compression") | "bulk"; throws UsageError otherwise.
+TestMode parse_test_mode(const std::string& text);
+const char* to_string(TestMode mode);
+
+struct TestCondition {
+  TestMode mode = TestMode::shear;
+  // Thesis label ("11", "22", "33", "12", "13", "23", ...); empty = isotropic / not given.
+  std::string orientation;
+  double frequency_Hz = 1.0;
+  // NaN = the card's reference temperature.
+  double temperature_C = std::numeric_limits<double>::quiet_NaN();
+  // Amplitude of the oscillating strain (shear: engineering γ_a); 0 = small-amplitude limit.
+  double strain_amplitude = 0.0;
+  double mean_strain = 0.0;
+
+  bool has_temperature() const { return !std::isnan(temperature_C); }
+};
+
+}  // namespace fitlib::model
