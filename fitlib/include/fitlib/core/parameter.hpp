@@ -18,6 +18,9 @@ struct ParameterSpec {
   Transform transform = Transform::linear;
   std::string group;      // e.g. "elastic", "viscous", "shift", "damage"
   double default_value = 0.0;  // a sensible start when nothing better is known
+  // The complex-form moduli are linear in this parameter (a modulus weight such as a Prony
+  // coefficient): with every non-linear parameter held fixed, the fit is a linear least squares.
+  bool linear = false;
 };
 
 // Index of the parameter named `name`, or -1.

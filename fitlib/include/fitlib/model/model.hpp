@@ -32,6 +32,14 @@ struct StrainHistory {
   std::vector<double> strain;
 };
 
+// What a fitter knows about the data before fitting, for models to place a sensible start.
+struct DataSummary {
+  double omega_min_rad_s = 1.0, omega_max_rad_s = 1.0;  // angular frequency range
+  double storage_min_MPa = 1.0, storage_max_MPa = 1.0;
+  double loss_max_MPa = 0.0;
+  double temperature_min_C = 23.0, temperature_max_C = 23.0;
+};
+
 class Model {
  public:
   virtual ~Model() = default;
@@ -65,6 +73,10 @@ class Model {
 
   // Default values of all parameters (a start for fitting, a sane demo card).
   std::vector<double> default_parameters() const;
+
+  // A start for fitting placed from the data (e.g. a log-spaced τ grid over the measured
+  // frequencies). The default returns default_parameters().
+  virtual std::vector<double> initial_parameters(const DataSummary& data) const;
 };
 
 using ModelPtr = std::shared_ptr<const Model>;

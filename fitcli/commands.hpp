@@ -1,0 +1,12 @@
+#pragma once
+// fitcli is a thin front: each subcommand parses its arguments, calls fitlib and prints.
+// A subcommand registers itself on the app; errors are thrown and mapped to exit codes in main.
+#include <CLI/CLI.hpp>
+
+namespace fitcli {
+
+void register_fit(CLI::App& app);
+void register_eval(CLI::App& app);
+void register_export(CLI::App& app);
+
+}  // namespace fitcli

@@ -1,0 +1,44 @@
+#pragma once
+// Material cards (formats.md §3): a model, its parameter values with uncertainty, how the fit
+// went and where the data came from. JSON via nlohmann-json; written atomically.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitlib/model/model.hpp"
+
+namespace fitlib::card {
+
+struct ParameterEstimate {
+  double value = 0.0;
+  bool fixed = false;
+  std::optional<double> std_error;  // empty when it cannot be estimated
+  std::string std_error_reason;     // why not (rank-deficient Jacobian, fixed, ...)
+  std::optional<double> ci95_low, ci95_high;
+};
+
+struct Card {
+  static constexpr const char* kSchema = "fitlib.card/1";
+  std::string name;
+  std::string model_kind;
+  nlohmann::json model_options = nlohmann::json::object();
+  std::vector<ParameterEstimate> parameters;  // in the model's parameter order
+  nlohmann::json fit = nlohmann::json::object();         // objective, backend, metrics, ...
+  nlohmann::json provenance = nlohmann::json::object();  // data files, sha256, version, command
+
+  // The model this card describes (make_model(model_kind, model_options)).
+  model::ModelPtr model() const;
+  // Parameter values in model order.
+  std::vector<double> values() const;
+};
+
+// Reads and validates a card; InputError names the file and the offending key.
+Card load_card(const std::string& path);
+Card card_from_json(const nlohmann::json& j, const std::string& source = "card");
+nlohmann::json card_to_json(const Card& card);
+// Writes the card atomically. Output is deterministic for equal cards (fixed key order and
+// number formatting); `provenance.created_utc` is whatever the caller put there.
+void save_card(const std::string& path, const Card& card);
+
+}  // namespace fitlib::card

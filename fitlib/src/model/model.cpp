@@ -1,0 +1,34 @@
+#include "fitlib/model/model.hpp"
+
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::model {
+
+std::vector<double> Model::default_parameters() const {
+  std::vector<double> values;
+  for (const auto& spec : parameters()) values.push_back(spec.default_value);
+  return values;
+}
+
+std::vector<double> Model::initial_parameters(const DataSummary&) const {
+  return default_parameters();
+}
+
+TestMode parse_test_mode(const std::string& text) {
+  if (text == "shear") return TestMode::shear;
+  if (text == "uniaxial" || text == "tension" || text == "compression") return TestMode::uniaxial;
+  if (text == "bulk") return TestMode::bulk;
+  throw core::UsageError("unknown test mode '" + text +
+                         "' (expected shear, uniaxial, tension, compression or bulk)");
+}
+
+const char* to_string(TestMode mode) {
+  switch (mode) {
+    case TestMode::shear: return "shear";
+    case TestMode::uniaxial: return "uniaxial";
+    case TestMode::bulk: return "bulk";
+  }
+  return "?";
+}
+
+}  // namespace fitlib::model
