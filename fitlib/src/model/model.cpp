@@ -1,5 +1,7 @@
 #include "fitlib/model/model.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "fitlib/core/error.hpp"
 
 namespace fitlib::model {
@@ -12,6 +14,10 @@ std::vector<double> Model::default_parameters() const {
 
 std::vector<double> Model::initial_parameters(const DataSummary&) const {
   return default_parameters();
+}
+
+nlohmann::json Model::temperature_law(const double*) const {
+  return {{"law", "none"}};
 }
 
 TestMode parse_test_mode(const std::string& text) {

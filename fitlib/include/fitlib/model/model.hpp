@@ -40,6 +40,8 @@ struct DataSummary {
   double temperature_min_C = 23.0, temperature_max_C = 23.0;
 };
 
+struct MaxwellSeries;  // time_series.hpp
+
 class Model {
  public:
   virtual ~Model() = default;
@@ -70,6 +72,16 @@ class Model {
   // after a unit stress step, at the mode and temperature of `c`.
   virtual double relaxation_modulus(const double* p, const TestCondition& c, double t_s) const = 0;
   virtual double creep_compliance(const double* p, const TestCondition& c, double t_s) const = 0;
+
+  // Capabilities that FE exports read (they refuse what a format cannot hold):
+  // the mode whose moduli the model describes natively (a shear card, a uniaxial card, ...);
+  virtual TestMode native_mode() const = 0;
+  // the model as an exact generalized Maxwell series at the reference temperature, if it is one;
+  virtual bool maxwell_series(const double* p, MaxwellSeries* out) const { return false; }
+  // the temperature law and its constants: {"law": "none|wlf|arrhenius|...", "reference_C": …};
+  virtual nlohmann::json temperature_law(const double* p) const;
+  // true when moduli depend on strain amplitude (damage): linear FE formats cannot hold it.
+  virtual bool amplitude_dependent() const { return false; }
 
   // Default values of all parameters (a start for fitting, a sane demo card).
   std::vector<double> default_parameters() const;

@@ -1,0 +1,100 @@
+#pragma once
+// Fitting a model to a dynamic-test table: one problem description, several backends.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitlib/data/table.hpp"
+#include "fitlib/model/model.hpp"
+
+namespace fitlib::fit {
+
+enum class Backend { automatic, nnls, ceres, nlopt, staged };
+enum class ResidualKind { log10, relative };  // log10 of storage/loss (default) or relative errors
+
+Backend parse_backend(const std::string& text);      // "auto|nnls|ceres|nlopt|staged"
+const char* to_string(Backend backend);
+
+struct FitOptions {
+  Backend backend = Backend::automatic;
+  ResidualKind residual = ResidualKind::log10;
+  double storage_weight = 1.0;  // relative weights of the E′, E″ and mean-modulus residuals
+  double loss_weight = 1.0;
+  double mean_weight = 1.0;     // used only for rows that carry a mean modulus
+  std::uint64_t seed = 1;
+  int multistart = 16;          // NLopt global starts
+  double tolerance = 1e-10;     // relative function tolerance
+  int max_iterations = 500;
+  std::vector<std::string> fixed;  // parameter names held at their start value
+  bool progress = false;           // progress on stderr for multistart runs
+  // NNLS backend: after the linear solve, polish the positive moduli on the exact objective
+  // (log10 or relative) in log space with Ceres. Off = the pure linear solve.
+  bool polish = true;
+  // automatic backend: always run the NLopt multistart before Ceres (non-convex models).
+  bool global = false;
+  // staged backend: schedule file (.json or .toml, see fit/staged.hpp); empty = default schedule.
+  std::string schedule_path;
+};
+
+struct ParameterResult {
+  std::string name, unit;
+  double value = 0.0;
+  bool fixed = false;
+  std::optional<double> std_error;  // empty when not estimable; see reason
+  std::string reason;
+  std::optional<double> ci95_low, ci95_high;
+};
+
+struct FitMetrics {
+  int n_points = 0;            // rows used
+  int n_residuals = 0;
+  int n_free = 0;              // free parameters
+  double cost = 0.0;           // ½ Σ weighted residual²
+  double rms_log10_storage = 0.0, rms_log10_loss = 0.0;
+  double mean_rel_error = 0.0, max_rel_error = 0.0;
+  double aic = 0.0, bic = 0.0;
+  double wall_time_s = 0.0;
+  bool converged = false;
+  double condition_number = 0.0;
+  int rank = 0;                // numerical rank of the Jacobian at the solution
+  int iterations = 0;
+  int n_active = 0;            // parameters with a usable standard error
+};
+
+// Which parameters the data cannot pin down (SVD of the column-scaled Jacobian at the solution).
+struct Identifiability {
+  double condition_number = 0.0;  // of the column-scaled Jacobian (free parameters)
+  int rank = 0;
+  // One entry per null-space direction: the parameter names dominating it.
+  std::vector<std::vector<std::string>> null_space;
+  // Pairs of parameters whose correlation exceeds 0.99 in magnitude.
+  struct Pair {
+    std::string a, b;
+    double correlation;
+  };
+  std::vector<Pair> correlated;
+};
+
+struct FitResult {
+  model::ModelPtr model;
+  std::vector<double> values;               // in model order
+  std::vector<ParameterResult> parameters;  // in model order
+  FitMetrics metrics;
+  std::string backend_used;
+  std::vector<std::string> messages;        // warnings, notes (e.g. rank deficiency)
+  Identifiability identifiability;
+  std::string objective;                    // e.g. "sum of squared log10 errors, w(E')=10"
+};
+
+// Fits `model` to `table`. `start` overrides the model's initial_parameters(summary).
+FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
+              const FitOptions& options, const std::vector<double>* start = nullptr);
+
+// Summary of the data a model uses to place its start.
+model::DataSummary summarize(const data::DynamicTestTable& table);
+
+ResidualKind parse_residual_kind(const std::string& text);  // "log10|relative"
+const char* to_string(ResidualKind kind);
+
+}  // namespace fitlib::fit
