@@ -8,5 +8,11 @@ namespace fitcli {
 void register_fit(CLI::App& app);
 void register_eval(CLI::App& app);
 void register_export(CLI::App& app);
+void register_synth(CLI::App& app);
+void register_waveform(CLI::App& app);
+void register_surface(CLI::App& app);
+void register_belt(CLI::App& app);
+void register_accumulate(CLI::App& app);
+void register_material_point(CLI::App& app);
 
 }  // namespace fitcli

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "fitlib/core/error.hpp"
 
 int main(int argc, char** argv) {
@@ -11,6 +12,13 @@ int main(int argc, char** argv) {
   fitcli::register_fit(app);
   fitcli::register_eval(app);
   fitcli::register_export(app);
+  fitcli::register_synth(app);
+  fitcli::register_waveform(app);
+  fitcli::register_surface(app);
+  fitcli::register_belt(app);
+  fitcli::register_accumulate(app);
+  fitcli::register_material_point(app);
+  fitcli::set_command_line(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

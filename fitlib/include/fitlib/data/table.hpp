@@ -35,14 +35,26 @@ struct ReadOptions {
   model::TestMode default_mode = model::TestMode::shear;
   // Turn row errors into warnings listing each skipped row (never silently).
   bool skip_bad_rows = false;
+  // Native format: a column the contract does not know is an error (a typo such as
+  // `temprature_C` would otherwise drop data silently); true turns it into a warning.
+  // Columns named `x_...` are user notes and are always ignored without a warning.
+  bool allow_unknown_columns = false;
 };
 
 // Reads one CSV file. Throws core::InputError naming file, line and column on bad input.
 DynamicTestTable read_dynamic_table(const std::string& path, const ReadOptions& options = {});
 
+// Parses the content of a file already in memory (`file_name` is used in messages).
+DynamicTestTable parse_dynamic_table(const std::string& bytes, const std::string& file_name,
+                                     const ReadOptions& options = {});
+
 // Reads several files into one table (rows in file order).
 DynamicTestTable read_dynamic_tables(const std::vector<std::string>& paths,
                                      const ReadOptions& options = {});
+
+// The native CSV text of a table: a comment line, the header, one row per line; doubles in
+// shortest round-trip form so that reading the text back gives bit-identical values.
+std::string format_dynamic_table(const DynamicTestTable& table);
 
 // Writes a table as native CSV (formats.md §1), atomically.
 void write_dynamic_table(const std::string& path, const DynamicTestTable& table);

@@ -1,0 +1,45 @@
+#include "output.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "fitlib/core/io.hpp"
+
+namespace fitcli {
+
+namespace {
+std::string& invocation() {
+  static std::string text;
+  return text;
+}
+}  // namespace
+
+void set_command_line(int argc, char** argv) {
+  std::string& text = invocation();
+  text = "fitcli";
+  for (int i = 1; i < argc; ++i) text += std::string(" ") + argv[i];
+}
+
+const std::string& command_line() { return invocation(); }
+
+std::string exact(double x) {
+  if (std::isnan(x)) return "nan";
+  char buf[40];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
+}
+
+void emit(const std::string& path, const std::string& content) {
+  if (path.empty() || path == "-") {
+    std::cout << content;
+    std::cout.flush();
+  } else {
+    fitlib::core::write_file_atomically(path, content);
+  }
+}
+
+}  // namespace fitcli

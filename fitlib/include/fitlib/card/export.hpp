@@ -1,0 +1,25 @@
+#pragma once
+// Writers of FE-solver material keywords from a card. A writer refuses (core::UsageError with a
+// message saying why) what its format cannot hold: amplitude dependence, a model that is not an
+// exact Prony series, negative relaxation weights, more terms than the solver accepts, a
+// temperature law the solver lacks.
+#include <string>
+
+#include "fitlib/card/card.hpp"
+
+namespace fitlib::card {
+
+struct ExportOptions {
+  // Poisson ratio of the instantaneous elastic response where the card has no bulk modulus.
+  // Default 0.4995 ⇔ K ≈ 10³ G (constitutive-model.md §1.4).
+  double poisson_ratio = 0.4995;
+  int material_id = 1;
+};
+
+// format: "abaqus" | "ansys" | "lsdyna" | "calculix".
+std::string export_card(const Card& card, const std::string& format, const ExportOptions& options = {});
+
+// Largest number of Prony terms each format accepts (0 = no limit known).
+int max_prony_terms(const std::string& format);
+
+}  // namespace fitlib::card

@@ -1,0 +1,47 @@
+#pragma once
+// Small CSV building blocks shared by the dynamic-test table and the waveform reader.
+// Lines come from fast-cpp-csv-parser's io::LineReader (UTF-8 BOM stripped, CRLF handled);
+// fields are split here because both formats have optional and alternative columns, which
+// io::CSVReader (fixed column count known at compile time) cannot express.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitlib/model/test_condition.hpp"
+
+namespace fitlib::data {
+
+struct CsvLine {
+  int number = 0;    // 1-based line in the file
+  std::string text;  // without the line end
+};
+
+// All lines of `bytes` (the file's content). Throws InputError(file, line) for a NUL byte.
+std::vector<CsvLine> split_csv_lines(const std::string& bytes, const std::string& file_name);
+
+// True for lines that carry no data: blank (spaces only) or starting with `#`.
+bool is_blank_or_comment(const std::string& text);
+
+// Fields of one line: split at commas, spaces and tabs around each field trimmed; a field may be
+// double-quoted ("a, b"; "" is a literal quote). Throws InputError for an unterminated quote.
+std::vector<std::string> split_csv_fields(const std::string& text, const std::string& file_name,
+                                          int line);
+
+// A finite number filling the whole field (C locale; a leading '+' is allowed). Throws
+// InputError(file, line, column) naming `what` for empty text, a non-number, NaN or Inf.
+double parse_csv_number(const std::string& text, const std::string& what,
+                        const std::string& file_name, int line, int column);
+
+// Text of `value` that reads back to the same double (17 significant digits).
+std::string format_exact(double value);
+
+// Quotes a label for CSV output when it holds a comma, quote or surrounding space.
+std::string quote_csv_field(const std::string& text);
+
+// Test-mode labels: shear, uniaxial (aliases tension, compression), bulk; nullopt otherwise.
+// (model::parse_test_mode says the same, but the data module links only core.)
+std::optional<model::TestMode> mode_from_label(const std::string& text);
+const char* mode_label(model::TestMode mode);
+constexpr const char* kModeLabels = "shear, uniaxial, tension, compression or bulk";
+
+}  // namespace fitlib::data

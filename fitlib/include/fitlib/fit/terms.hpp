@@ -1,0 +1,67 @@
+#pragma once
+// Term-count selection for series models (Prony, retardation spectra): fit N = min..max terms
+// and rank them by AIC, BIC and pyvisco's rule (smallest N whose cost ≤ 1.5 × the minimum).
+// The table doubles as the accuracy-versus-time table of the benchmarks.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fitlib/fit/fit.hpp"
+
+namespace fitlib::fit {
+
+enum class TermRule { bic, aic, residual_ratio };
+TermRule parse_term_rule(const std::string& text);  // "bic|aic|ratio"
+const char* to_string(TermRule rule);
+
+struct TermOptions {
+  int min_terms = 1;
+  int max_terms = 0;     // 0: one per decade of the data's frequency span + 2, at most 40
+  int solver_cap = 0;    // e.g. 13 (Abaqus), 6 (LS-DYNA hyperelastic); 0 = none
+  TermRule rule = TermRule::bic;
+  double residual_ratio = 1.5;  // pyvisco's rule: smallest N with cost ≤ ratio × minimum
+};
+
+struct TermRow {
+  int terms = 0;
+  double wall_time_s = 0.0;
+  double rms_log10_storage = 0.0, rms_log10_loss = 0.0;
+  double cost = 0.0, aic = 0.0, bic = 0.0;
+  int n_free = 0;
+  bool converged = false;
+  bool failed = false;  // the fit threw; the message says why
+  std::string message;
+};
+
+struct TermSelection {
+  std::vector<TermRow> rows;  // one per N tried, increasing
+  int by_aic = 0, by_bic = 0, by_ratio = 0;  // N chosen by each rule (over all N tried)
+  TermRule rule = TermRule::bic;
+  int unconstrained = 0;  // N chosen by `rule`
+  int chosen = 0;         // N chosen by `rule` among N ≤ solver_cap (= unconstrained without cap)
+  // Cost of the cap: chosen vs unconstrained (1 = no penalty).
+  double cap_cost_ratio = 1.0, cap_storage_rms_ratio = 1.0, cap_loss_rms_ratio = 1.0;
+  FitResult result;       // the fit with `chosen` terms
+  std::vector<std::string> messages;
+};
+
+// `make(N)` builds the model with N terms. Throws NumericalError if every N fails.
+TermSelection select_terms(const std::function<model::ModelPtr(int)>& make,
+                           const data::DynamicTestTable& table, const FitOptions& options,
+                           const TermOptions& terms);
+
+// Same with model::make_model(kind, options + {"terms": N}).
+TermSelection select_terms(const std::string& kind, const nlohmann::json& model_options,
+                           const data::DynamicTestTable& table, const FitOptions& options,
+                           const TermOptions& terms);
+
+// N chosen by `rule` among the usable rows with N ≤ cap (cap ≤ 0: no cap); 0 if none.
+int choose_terms(const std::vector<TermRow>& rows, TermRule rule, double residual_ratio = 1.5,
+                 int cap = 0);
+
+// Human table (N, time, rms, cost, AIC, BIC, marks for each rule) for the CLI and benchmarks.
+std::string format_term_table(const TermSelection& selection);
+
+}  // namespace fitlib::fit

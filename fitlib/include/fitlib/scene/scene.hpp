@@ -1,0 +1,77 @@
+#pragma once
+// Scenes (formats.md §5): one drive, its belt, the conditions, the effects asked for and the
+// outputs wanted, read from TOML with full validation. Every unknown key, wrong type, value
+// outside its range or impossible geometry is a core::InputError naming the file, line, column
+// and key path.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitlib/belt/drive.hpp"
+#include "fitlib/belt/load_cycle.hpp"
+
+namespace fitlib::scene {
+
+struct PulleySpec {
+  std::string name;
+  double pitch_diameter_mm = 0.0;
+  belt::PulleyRole role = belt::PulleyRole::driven;
+  std::optional<double> speed_rpm;             // the driver's speed sets the belt speed
+  std::optional<std::pair<double, double>> center_mm;  // multi-pulley drives
+  double torque_Nm = 0.0;                      // driven pulleys (0 = share of the remainder)
+};
+
+// Strain accumulation request ([accumulation], Zupancic–Emri).
+struct AccumulationSpec {
+  double shear_stress_MPa = 1.0;   // τ0 of the tooth-like loading
+  long cycles = 10000;             // N_max of the map
+  int cycle_points = 50;           // N values (log-spaced 1 … N_max)
+  double omega_min_rad_s = 1.0, omega_max_rad_s = 1e4;
+  int omega_points = 100;
+  std::optional<double> kappa;     // l/R; default from the drive: centre distance / driver radius
+  std::string spectrum = "material:bottom";  // a shape name, or "material:<role>" for a card
+  std::optional<double> strain_limit;        // critical angular-velocity area
+};
+
+// Sorge 2-D CVT thrust request ([cvt]); defaults are the paper's example.
+struct CvtSpec {
+  double tight_tension_N = 0.0, slack_tension_N = 0.0;  // 0: take from the drive
+  double groove_half_angle_deg = 12.8;
+  double driver_wrap_rad = 0.0, driven_wrap_rad = 0.0;  // 0: take from the drive
+};
+
+struct Scene {
+  std::string name;
+  std::string path;  // file it came from (errors, relative card paths)
+  // [drive]
+  std::vector<PulleySpec> pulleys;
+  std::optional<double> center_distance_mm;
+  std::optional<double> torque_Nm, power_kW;
+  belt::TensionRule tension_rule = belt::TensionRule::slack;
+  double tension_N = 0.0;
+  // [belt]
+  std::string section;
+  belt::BeltSection belt;  // geometry resolved from the section and overrides
+  double cord_area_mm2 = 5.0, bending_inertia_mm4 = 834.0;
+  std::map<std::string, double> extra_geometry_mm;  // cog_pitch_mm, cog_depth_mm, ... (kept)
+  std::optional<double> c_N, k1_MPa, EI_Nmm2;        // [belt.stiffness] overrides
+  std::map<std::string, std::string> materials;      // role → card path (resolved)
+  // [conditions]
+  double temperature_C = 20.0;
+  double friction = 0.8;
+  // [effects], [outputs]: exactly the keys listed
+  std::map<std::string, bool> effects;
+  std::map<std::string, bool> outputs;
+  std::optional<AccumulationSpec> accumulation;
+  std::optional<CvtSpec> cvt;
+};
+
+Scene load_scene(const std::string& path);
+Scene parse_scene(const std::string& toml_text, const std::string& source_name = "scene");
+
+// Names the scene format accepts.
+const std::vector<std::string>& effect_names();
+const std::vector<std::string>& output_names();
+
+}  // namespace fitlib::scene

@@ -1,0 +1,143 @@
+#include "fitlib/card/card.hpp"
+
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+
+namespace fitlib::card {
+
+using nlohmann::json;
+
+model::ModelPtr Card::model() const { return model::make_model(model_kind, model_options); }
+
+std::vector<double> Card::values() const {
+  std::vector<double> v;
+  for (const auto& p : parameters) v.push_back(p.value);
+  return v;
+}
+
+json card_to_json(const Card& card) {
+  const auto m = card.model();
+  const auto& specs = m->parameters();
+  json params = json::array();
+  for (size_t i = 0; i < card.parameters.size(); ++i) {
+    const auto& e = card.parameters[i];
+    json p = json::object();
+    p["name"] = specs[i].name;
+    p["value"] = e.value;
+    p["unit"] = specs[i].unit;
+    p["group"] = specs[i].group;
+    p["fixed"] = e.fixed;
+    p["std_error"] = e.std_error ? json(*e.std_error) : json(nullptr);
+    if (!e.std_error && !e.std_error_reason.empty()) p["std_error_reason"] = e.std_error_reason;
+    if (e.ci95_low && e.ci95_high) p["ci95"] = json::array({*e.ci95_low, *e.ci95_high});
+    params.push_back(p);
+  }
+  const auto values = card.values();
+  json j = json::object();
+  j["schema"] = Card::kSchema;
+  j["name"] = card.name;
+  j["model"] = card.model_kind;
+  j["options"] = m->options();
+  j["parameters"] = params;
+  j["temperature"] = m->temperature_law(values.data());
+  j["fit"] = card.fit;
+  j["provenance"] = card.provenance;
+  return j;
+}
+
+namespace {
+
+template <typename T>
+T required(const json& j, const std::string& key, const std::string& source, const std::string& path) {
+  if (!j.contains(key)) throw core::InputError("missing required key", source, 0, 0, path + key);
+  try {
+    return j.at(key).get<T>();
+  } catch (const json::exception&) {
+    throw core::InputError("wrong type", source, 0, 0, path + key);
+  }
+}
+
+}  // namespace
+
+Card card_from_json(const json& j, const std::string& source) {
+  if (!j.is_object()) throw core::InputError("a card must be a JSON object", source);
+  Card card;
+  const auto schema = required<std::string>(j, "schema", source, "");
+  if (schema != Card::kSchema)
+    throw core::InputError("unsupported schema '" + schema + "' (expected " + Card::kSchema + ")",
+                           source, 0, 0, "schema");
+  card.name = j.value("name", std::string());
+  card.model_kind = required<std::string>(j, "model", source, "");
+  card.model_options = j.value("options", json::object());
+  model::ModelPtr m;
+  try {
+    m = card.model();
+  } catch (const core::UsageError& e) {
+    throw core::InputError(e.what(), source, 0, 0, "options");
+  }
+  if (!j.contains("parameters") || !j.at("parameters").is_array())
+    throw core::InputError("missing parameter list", source, 0, 0, "parameters");
+  const auto& list = j.at("parameters");
+  const auto& specs = m->parameters();
+  if (list.size() != specs.size())
+    throw core::InputError("model '" + card.model_kind + "' with these options has " +
+                               std::to_string(specs.size()) + " parameters, the card lists " +
+                               std::to_string(list.size()),
+                           source, 0, 0, "parameters");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "parameters[" + std::to_string(i) + "].";
+    const auto name = required<std::string>(list[i], "name", source, path);
+    if (name != specs[i].name)
+      throw core::InputError("expected parameter '" + specs[i].name + "', found '" + name + "'",
+                             source, 0, 0, path + "name");
+    ParameterEstimate e;
+    e.value = required<double>(list[i], "value", source, path);
+    const auto& spec = specs[i];
+    if (!std::isfinite(e.value) || e.value < spec.lower || e.value > spec.upper ||
+        (spec.transform == core::Transform::log && !(e.value > 0.0)))
+      throw core::InputError("value " + std::to_string(e.value) + " outside the admissible range of " +
+                                 spec.name,
+                             source, 0, 0, path + "value");
+    e.fixed = list[i].value("fixed", false);
+    if (list[i].contains("std_error") && list[i]["std_error"].is_number())
+      e.std_error = list[i]["std_error"].get<double>();
+    e.std_error_reason = list[i].value("std_error_reason", std::string());
+    if (list[i].contains("ci95") && list[i]["ci95"].is_array() && list[i]["ci95"].size() == 2) {
+      e.ci95_low = list[i]["ci95"][0].get<double>();
+      e.ci95_high = list[i]["ci95"][1].get<double>();
+    }
+    card.parameters.push_back(e);
+  }
+  card.fit = j.value("fit", json::object());
+  card.provenance = j.value("provenance", json::object());
+  return card;
+}
+
+Card load_card(const std::string& path) {
+  const std::string text = core::read_file(path);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann reports a byte offset; turn it into line and column.
+    int line = 1, column = 1;
+    for (size_t k = 0; k + 1 < e.byte && k < text.size(); ++k) {
+      if (text[k] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    throw core::InputError("invalid JSON", path, line, column);
+  }
+  return card_from_json(j, path);
+}
+
+void save_card(const std::string& path, const Card& card) {
+  core::write_file_atomically(path, card_to_json(card).dump(2) + "\n");
+}
+
+}  // namespace fitlib::card

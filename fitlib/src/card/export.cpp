@@ -1,0 +1,173 @@
+#include "fitlib/card/export.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/model/time_series.hpp"
+
+namespace fitlib::card {
+namespace {
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+// What every linear-FE format needs: relative Prony weights α_i = M_i/M_0 with times, the
+// instantaneous Young's modulus and Poisson ratio, and how the weights apply to shear and bulk.
+struct PronyExport {
+  std::vector<double> alpha, tau_s;
+  double young0_MPa = 0.0, shear0_MPa = 0.0, bulk_MPa = 0.0, poisson = 0.0;
+  bool bulk_relaxes = false;  // uniaxial card: same α for bulk (constant Poisson ratio)
+  nlohmann::json temperature;
+};
+
+PronyExport prepare(const Card& card, const std::string& format, const ExportOptions& o) {
+  const auto m = card.model();
+  const auto values = card.values();
+  if (m->amplitude_dependent())
+    throw core::UsageError(format + " Prony input cannot hold amplitude dependence (damage) of model '" +
+                           card.model_kind + "'");
+  model::MaxwellSeries s;
+  if (!m->maxwell_series(values.data(), &s))
+    throw core::UsageError("model '" + card.model_kind + "' is not an exact Prony series; " + format +
+                           " export needs one (fit a prony card)");
+  const int cap = max_prony_terms(format);
+  if (cap > 0 && static_cast<int>(s.moduli.size()) > cap)
+    throw core::UsageError(format + " accepts at most " + std::to_string(cap) + " Prony terms, the card has " +
+                           std::to_string(s.moduli.size()) + " (refit with --max-terms " + std::to_string(cap) + ")");
+  const double m0 = s.glassy();
+  PronyExport e;
+  for (size_t i = 0; i < s.moduli.size(); ++i) {
+    if (s.moduli[i] < 0.0)
+      throw core::UsageError(format + " needs non-negative Prony weights; term " + std::to_string(i + 1) +
+                             " is negative (e.g. a three-parameter solid with tau_eps < tau_T)");
+    e.alpha.push_back(s.moduli[i] / m0);
+    e.tau_s.push_back(s.times_s[i]);
+  }
+  e.temperature = m->temperature_law(values.data());
+  const std::string law = e.temperature.value("law", "none");
+  if (law != "none" && law != "wlf")
+    throw core::UsageError(format + " export supports only the WLF shift; the card uses '" + law + "'");
+  if (e.temperature.value("vertical_shift", false) || e.temperature.contains("c_T_per_C"))
+    throw core::UsageError(format + " Prony input cannot hold a vertical shift or a linear temperature factor");
+  const auto bulk_index = core::find_parameter(m->parameters(), "K");
+  const auto mode = m->native_mode();
+  if (mode == model::TestMode::bulk) throw core::UsageError("a bulk card cannot be exported as a Prony material");
+  if (mode == model::TestMode::shear) {
+    e.shear0_MPa = m0;
+    e.bulk_MPa = bulk_index >= 0 ? values[bulk_index]
+                                 : 2.0 * m0 * (1.0 + o.poisson_ratio) / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
+    e.young0_MPa = 9.0 * e.bulk_MPa * m0 / (3.0 * e.bulk_MPa + m0);
+  } else {
+    e.young0_MPa = m0;
+    e.bulk_MPa = bulk_index >= 0 ? values[bulk_index] : m0 / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
+    e.shear0_MPa = 3.0 * e.bulk_MPa * m0 / (9.0 * e.bulk_MPa - m0);
+    e.bulk_relaxes = bulk_index < 0;
+  }
+  e.poisson = (3.0 * e.bulk_MPa - 2.0 * e.shear0_MPa) / (2.0 * (3.0 * e.bulk_MPa + e.shear0_MPa));
+  return e;
+}
+
+std::string header(const Card& card, const char* comment, const PronyExport& e) {
+  std::ostringstream out;
+  out << comment << " fitlib export of card '" << card.name << "' (model " << card.model_kind << ", "
+      << e.alpha.size() << " Prony terms); units MPa, s, degC\n";
+  out << comment << (e.bulk_relaxes ? " uniaxial card: the same relative weights relax shear and bulk (constant Poisson ratio)\n"
+                                    : " shear card: bulk response elastic\n");
+  return out.str();
+}
+
+std::string abaqus(const Card& card, const PronyExport& e) {
+  std::ostringstream out;
+  out << header(card, "**", e);
+  out << "*MATERIAL, NAME=" << (card.name.empty() ? "FITLIB" : card.name) << "\n";
+  out << "*ELASTIC, MODULI=INSTANTANEOUS\n" << num(e.young0_MPa) << ", " << num(e.poisson) << "\n";
+  out << "*VISCOELASTIC, TIME=PRONY\n";
+  for (size_t i = 0; i < e.alpha.size(); ++i)
+    out << num(e.alpha[i]) << ", " << num(e.bulk_relaxes ? e.alpha[i] : 0.0) << ", " << num(e.tau_s[i]) << "\n";
+  if (e.temperature.value("law", "none") == "wlf")
+    out << "*TRS, DEFINITION=WLF\n" << num(e.temperature["reference_C"].get<double>()) << ", "
+        << num(e.temperature["C1"].get<double>()) << ", " << num(e.temperature["C2_K"].get<double>()) << "\n";
+  return out.str();
+}
+
+void tbdata(std::ostringstream& out, const std::vector<double>& v) {
+  for (size_t i = 0; i < v.size(); i += 6) {
+    out << "TBDATA," << i + 1;
+    for (size_t k = i; k < v.size() && k < i + 6; ++k) out << "," << num(v[k]);
+    out << "\n";
+  }
+}
+
+std::string ansys(const Card& card, const PronyExport& e, int id) {
+  std::ostringstream out;
+  out << header(card, "!", e);
+  out << "MP,EX," << id << "," << num(e.young0_MPa) << "\n";
+  out << "MP,PRXY," << id << "," << num(e.poisson) << "\n";
+  std::vector<double> pairs;
+  for (size_t i = 0; i < e.alpha.size(); ++i) {
+    pairs.push_back(e.alpha[i]);
+    pairs.push_back(e.tau_s[i]);
+  }
+  out << "TB,PRONY," << id << ",," << e.alpha.size() << ",SHEAR\n";
+  tbdata(out, pairs);
+  if (e.bulk_relaxes) {
+    out << "TB,PRONY," << id << ",," << e.alpha.size() << ",BULK\n";
+    tbdata(out, pairs);
+  }
+  if (e.temperature.value("law", "none") == "wlf") {
+    out << "TB,SHIFT," << id << ",,3,WLF\n";
+    tbdata(out, {e.temperature["reference_C"].get<double>(), e.temperature["C1"].get<double>(),
+                 e.temperature["C2_K"].get<double>()});
+  }
+  return out.str();
+}
+
+std::string lsdyna(const Card& card, const PronyExport& e, int id) {
+  // *MAT_GENERAL_VISCOELASTIC (MAT_076), free format: G(t) = Σ G_i exp(−β_i t), the long-term
+  // modulus as a term with β = 0; TREF, A, B are the WLF constants.
+  std::ostringstream out;
+  out << header(card, "$", e);
+  out << "*MAT_GENERAL_VISCOELASTIC\n";
+  out << "$ MID, RO, BULK, PCF, EF, TREF, A, B\n";
+  const bool wlf = e.temperature.value("law", "none") == "wlf";
+  out << id << ",0.0," << num(e.bulk_MPa) << ",0.0,0.0,"
+      << (wlf ? num(e.temperature["reference_C"].get<double>()) : "0.0") << ","
+      << (wlf ? num(e.temperature["C1"].get<double>()) : "0.0") << ","
+      << (wlf ? num(e.temperature["C2_K"].get<double>()) : "0.0") << "\n";
+  out << "$ LCID, NT, BSTART, TRAMP, LCIDK, NTK, BSTARTK, TRAMPK\n0,0,0.0,0.0,0,0,0.0,0.0\n";
+  out << "$ GI, BETAI, KI, BETAKI\n";
+  double sum_alpha = 0.0;
+  for (double a : e.alpha) sum_alpha += a;
+  out << num(e.shear0_MPa * (1.0 - sum_alpha)) << ",0.0,0.0,0.0\n";
+  for (size_t i = 0; i < e.alpha.size(); ++i)
+    out << num(e.shear0_MPa * e.alpha[i]) << "," << num(1.0 / e.tau_s[i]) << ","
+        << num(e.bulk_relaxes ? e.bulk_MPa * e.alpha[i] : 0.0) << ","
+        << num(e.bulk_relaxes ? 1.0 / e.tau_s[i] : 0.0) << "\n";
+  return out.str();
+}
+
+}  // namespace
+
+int max_prony_terms(const std::string& format) {
+  if (format == "lsdyna") return 5;  // six rows of MAT_076, one taken by the long-term modulus
+  if (format == "ansys") return 100;
+  return 0;
+}
+
+std::string export_card(const Card& card, const std::string& format, const ExportOptions& options) {
+  if (format == "calculix")
+    throw core::UsageError("CalculiX has no built-in Prony viscoelasticity (it needs a user material); "
+                           "use abaqus, ansys or lsdyna");
+  if (format != "abaqus" && format != "ansys" && format != "lsdyna")
+    throw core::UsageError("unknown export format '" + format + "' (abaqus, ansys, lsdyna, calculix)");
+  const PronyExport e = prepare(card, format, options);
+  if (format == "abaqus") return abaqus(card, e);
+  if (format == "ansys") return ansys(card, e, options.material_id);
+  return lsdyna(card, e, options.material_id);
+}
+
+}  // namespace fitlib::card

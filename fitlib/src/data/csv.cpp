@@ -1,0 +1,135 @@
+#include "fitlib/data/csv.hpp"
+
+// The library copies file names with strncpy into fixed buffers; GCC warns about that inside it.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wstringop-truncation"
+#include <libfccp/csv.h>
+#pragma GCC diagnostic pop
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::data {
+
+std::vector<CsvLine> split_csv_lines(const std::string& bytes, const std::string& file_name) {
+  const auto nul = bytes.find('\0');
+  if (nul != std::string::npos) {
+    const int line = 1 + static_cast<int>(std::count(bytes.begin(), bytes.begin() + nul, '\n'));
+    throw core::InputError("NUL byte: not a text file", file_name, line);
+  }
+  std::vector<CsvLine> lines;
+  try {
+    io::LineReader reader(file_name, bytes.data(), bytes.data() + bytes.size());
+    while (const char* text = reader.next_line())
+      lines.push_back({static_cast<int>(reader.get_file_line()), text});
+  } catch (const io::error::base& e) {
+    throw core::InputError(e.what(), file_name);
+  }
+  return lines;
+}
+
+bool is_blank_or_comment(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t");
+  return first == std::string::npos || text[first] == '#';
+}
+
+std::vector<std::string> split_csv_fields(const std::string& text, const std::string& file_name,
+                                          int line) {
+  std::vector<std::string> fields;
+  std::size_t i = 0;
+  const auto skip_space = [&] {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+  };
+  for (;;) {
+    skip_space();
+    std::string field;
+    if (i < text.size() && text[i] == '"') {
+      const int column = static_cast<int>(fields.size()) + 1;
+      ++i;
+      for (;;) {
+        if (i >= text.size()) throw core::InputError("unterminated quote", file_name, line, column);
+        if (text[i] == '"') {
+          if (i + 1 < text.size() && text[i + 1] == '"') {
+            field += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        field += text[i++];
+      }
+      skip_space();
+      if (i < text.size() && text[i] != ',')
+        throw core::InputError("text after closing quote", file_name, line, column);
+    } else {
+      const auto end = text.find(',', i);
+      field = text.substr(i, end == std::string::npos ? std::string::npos : end - i);
+      const auto last = field.find_last_not_of(" \t");
+      field.erase(last == std::string::npos ? 0 : last + 1);
+      i = end == std::string::npos ? text.size() : end;
+    }
+    fields.push_back(std::move(field));
+    if (i >= text.size()) break;
+    ++i;  // the comma
+  }
+  return fields;
+}
+
+double parse_csv_number(const std::string& text, const std::string& what,
+                        const std::string& file_name, int line, int column) {
+  if (text.empty()) throw core::InputError("empty " + what, file_name, line, column);
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  if (*begin == '+') ++begin;
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec == std::errc::result_out_of_range)
+    throw core::InputError(what + " '" + text + "' is out of range", file_name, line, column);
+  if (ec != std::errc() || ptr != end)
+    throw core::InputError(what + " '" + text + "' is not a number", file_name, line, column);
+  if (!std::isfinite(value))
+    throw core::InputError(what + " is " + text + " (NaN/Inf not allowed)", file_name, line,
+                           column);
+  return value;
+}
+
+std::string format_exact(double value) {
+  char buffer[32];
+  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, ptr);
+}
+
+std::string quote_csv_field(const std::string& text) {
+  const bool needs_quotes = text.find_first_of(",\"") != std::string::npos ||
+                            (!text.empty() && (text.front() == ' ' || text.back() == ' ' ||
+                                               text.front() == '#'));
+  if (!needs_quotes) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+std::optional<model::TestMode> mode_from_label(const std::string& text) {
+  if (text == "shear") return model::TestMode::shear;
+  if (text == "uniaxial" || text == "tension" || text == "compression") return model::TestMode::uniaxial;
+  if (text == "bulk") return model::TestMode::bulk;
+  return std::nullopt;
+}
+
+const char* mode_label(model::TestMode mode) {
+  switch (mode) {
+    case model::TestMode::shear: return "shear";
+    case model::TestMode::uniaxial: return "uniaxial";
+    case model::TestMode::bulk: return "bulk";
+  }
+  return "?";
+}
+
+}  // namespace fitlib::data

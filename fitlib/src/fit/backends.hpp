@@ -1,0 +1,37 @@
+#pragma once
+// Backends working on one Problem (private to the fit module). Each updates problem.natural()
+// for the problem's current free set and says how it went.
+#include <string>
+#include <vector>
+
+#include "fitlib/fit/problem.hpp"
+
+namespace fitlib::fit::detail {
+
+struct StageOutcome {
+  bool converged = false;
+  int iterations = 0;
+  std::string note;  // one line for FitResult::messages (empty = nothing to say)
+};
+
+// Linear least squares with non-negativity for the free parameters flagged linear (the other
+// free parameters are held). Rows are weighted by 1/(|data|·ln 10) (log10 residuals) or 1/|data|
+// (relative), the first-order form of the exact objective. Throws NumericalError when the
+// linear solve fails its check.
+StageOutcome run_nnls(Problem& problem);
+
+// Levenberg–Marquardt (dense QR, one thread) on the free parameters in fitted coordinates.
+StageOutcome run_ceres(Problem& problem, int max_iterations);
+
+// Multistart LN_BOBYQA from the current point and `starts − 1` seeded points (scaled to O(1)
+// in fitted coordinates); keeps the best.
+StageOutcome run_nlopt(Problem& problem, int starts, int max_iterations);
+
+// The free set restricted to parameters that can move: log-transformed parameters sitting at 0
+// (inactive terms after NNLS) are left out.
+std::vector<int> movable(const Problem& problem, const std::vector<int>& candidates);
+
+// Standard errors, 95 % intervals, identifiability and metrics at problem.natural().
+void assess(const Problem& problem, FitResult& result);
+
+}  // namespace fitlib::fit::detail

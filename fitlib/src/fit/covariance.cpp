@@ -1,0 +1,190 @@
+// Standard errors, 95 % intervals and identifiability from the Jacobian at the solution.
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <sstream>
+
+#include "backends.hpp"
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::fit::detail {
+
+namespace {
+
+constexpr double kRankTolerance = 1e-8;    // σ_i / σ_max below this: a null-space direction
+constexpr double kNullShare = 0.01;        // a parameter with this much weight in the null space
+constexpr double kDominant = 0.3;          // |v_k| naming a parameter in a null-space vector
+constexpr double kHighCorrelation = 0.99;
+
+}  // namespace
+
+void assess(const Problem& problem, FitResult& result) {
+  const auto& specs = problem.specs();
+  const int n = problem.num_parameters(), m = problem.num_residuals(), nf = problem.num_free();
+  const std::vector<double>& p = problem.natural();
+
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMatrix jac(m, std::max(nf, 1));
+  Eigen::VectorXd r(m);
+  if (!problem.evaluate(p, r.data(), nf ? jac.data() : nullptr))
+    throw core::NumericalError("fit: residuals or Jacobian not finite at the solution of model '" +
+                               problem.model().kind() + "'");
+  const double cost = 0.5 * r.squaredNorm();
+
+  result.values = p;
+  result.parameters.assign(n, ParameterResult{});
+  for (int i = 0; i < n; ++i) {
+    auto& pr = result.parameters[i];
+    pr.name = specs[i].name;
+    pr.unit = specs[i].unit;
+    pr.value = p[i];
+    pr.fixed = problem.user_fixed()[i];
+    if (pr.fixed) pr.reason = "fixed by the user";
+    else if (problem.is_log(i) && p[i] <= 0.0)
+      pr.reason = "inactive: held at 0 by the non-negativity constraint";
+    else pr.reason = "not fitted in the final stage";
+  }
+
+  FitMetrics& metrics = result.metrics;
+  metrics.n_residuals = m;
+  metrics.n_free = nf;
+  metrics.cost = cost;
+  const double variance_per_residual = std::max(2.0 * cost / m, 1e-300);
+  metrics.aic = m * std::log(variance_per_residual) + 2.0 * nf;
+  metrics.bic = m * std::log(variance_per_residual) + nf * std::log(static_cast<double>(m));
+  problem.measure(p, metrics);
+  metrics.n_active = 0;
+  Identifiability& ident = result.identifiability;
+  ident = Identifiability{};
+  if (nf == 0) return;
+
+  // Column scaling makes the rank test and the condition number independent of units.
+  Eigen::VectorXd norms(nf);
+  for (int k = 0; k < nf; ++k) norms[k] = jac.col(k).norm();
+  Eigen::MatrixXd scaled(m, nf);
+  for (int k = 0; k < nf; ++k)
+    scaled.col(k) = norms[k] > 0.0 ? Eigen::VectorXd(jac.col(k) / norms[k])
+                                   : Eigen::VectorXd::Zero(m);
+  // SVD of the small triangular factor instead of the tall matrix.
+  Eigen::MatrixXd small;
+  if (m > nf) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(scaled);
+    small = qr.matrixQR().topRows(nf).triangularView<Eigen::Upper>();
+  } else {
+    small = scaled;
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(small, Eigen::ComputeFullV);
+  const Eigen::VectorXd sigma = svd.singularValues();
+  const Eigen::MatrixXd v = svd.matrixV();
+  const double sigma_max = sigma.size() ? sigma[0] : 0.0;
+  Eigen::VectorXd full_sigma = Eigen::VectorXd::Zero(nf);
+  full_sigma.head(sigma.size()) = sigma;
+  int rank = 0;
+  for (int k = 0; k < nf; ++k)
+    if (sigma_max > 0.0 && full_sigma[k] > kRankTolerance * sigma_max) ++rank;
+  const double sigma_min = std::max(full_sigma[nf - 1], sigma_max * 1e-16);
+  ident.rank = rank;
+  ident.condition_number = sigma_max > 0.0 ? sigma_max / sigma_min : 0.0;
+  metrics.rank = rank;
+  metrics.condition_number = ident.condition_number;
+
+  Eigen::VectorXd null_share = Eigen::VectorXd::Zero(nf);
+  for (int d = rank; d < nf; ++d) {
+    std::vector<std::pair<double, std::string>> members;
+    for (int k = 0; k < nf; ++k) {
+      null_share[k] += v(k, d) * v(k, d);
+      if (std::abs(v(k, d)) >= kDominant)
+        members.emplace_back(std::abs(v(k, d)), specs[problem.free()[k]].name);
+    }
+    std::sort(members.begin(), members.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<std::string> names;
+    for (const auto& mbr : members) names.push_back(mbr.second);
+    ident.null_space.push_back(names);
+    std::string joined;
+    for (const auto& nm : names) joined += (joined.empty() ? "" : ", ") + nm;
+    result.messages.push_back("not identifiable from these data (null-space direction " +
+                              std::to_string(d - rank + 1) + "): " + joined);
+  }
+
+  const int dof = m - nf;
+  if (dof <= 0) {
+    for (int k = 0; k < nf; ++k)
+      result.parameters[problem.free()[k]].reason =
+          "no residual degrees of freedom (" + std::to_string(m) + " residuals, " +
+          std::to_string(nf) + " free parameters)";
+    result.messages.push_back("standard errors not estimable: " + std::to_string(m) +
+                              " residuals for " + std::to_string(nf) + " free parameters");
+    return;
+  }
+  const double s2 = 2.0 * cost / dof;
+  const double t = boost::math::quantile(boost::math::students_t(dof), 0.975);
+
+  // Pseudo-inverse on the identifiable subspace: Cov_x = s² D⁻¹ V Σ⁻² Vᵀ D⁻¹.
+  Eigen::MatrixXd cov_scaled = Eigen::MatrixXd::Zero(nf, nf);
+  for (int d = 0; d < rank; ++d)
+    cov_scaled += v.col(d) * v.col(d).transpose() / (full_sigma[d] * full_sigma[d]);
+  Eigen::MatrixXd cov_x(nf, nf);
+  for (int a = 0; a < nf; ++a)
+    for (int b = 0; b < nf; ++b) {
+      const double da = norms[a] > 0.0 ? 1.0 / norms[a] : 0.0;
+      const double db = norms[b] > 0.0 ? 1.0 / norms[b] : 0.0;
+      cov_x(a, b) = s2 * da * db * cov_scaled(a, b);
+    }
+
+  std::vector<bool> usable(nf, false);
+  for (int k = 0; k < nf; ++k) {
+    const int i = problem.free()[k];
+    auto& pr = result.parameters[i];
+    const double x = problem.is_log(i) ? std::log(p[i]) : p[i];
+    const double tol = 1e-9 * (1.0 + std::abs(x));
+    if (norms[k] == 0.0) {
+      pr.reason = "not identifiable: no effect on the residuals";
+      continue;
+    }
+    if (null_share[k] > kNullShare) {
+      pr.reason = "not identifiable: rank-deficient Jacobian (see the null-space messages)";
+      continue;
+    }
+    if (std::abs(x - problem.lower_x(k)) < tol || std::abs(x - problem.upper_x(k)) < tol) {
+      pr.reason = "at its bound: the linear interval does not apply";
+      continue;
+    }
+    const double se_x = std::sqrt(std::max(cov_x(k, k), 0.0));
+    if (!std::isfinite(se_x)) {
+      pr.reason = "variance not finite";
+      continue;
+    }
+    usable[k] = true;
+    pr.reason.clear();
+    if (problem.is_log(i)) {  // interval in log space, exponentiated: stays positive
+      pr.std_error = p[i] * se_x;
+      pr.ci95_low = std::exp(x - t * se_x);
+      pr.ci95_high = std::exp(x + t * se_x);
+    } else {
+      pr.std_error = se_x;
+      pr.ci95_low = x - t * se_x;
+      pr.ci95_high = x + t * se_x;
+    }
+    ++metrics.n_active;
+  }
+  for (int a = 0; a < nf; ++a)
+    for (int b = a + 1; b < nf; ++b) {
+      if (!usable[a] || !usable[b]) continue;
+      const double denom = std::sqrt(cov_x(a, a) * cov_x(b, b));
+      if (!(denom > 0.0)) continue;
+      const double corr = cov_x(a, b) / denom;
+      if (std::abs(corr) > kHighCorrelation) {
+        const std::string na = specs[problem.free()[a]].name, nb = specs[problem.free()[b]].name;
+        ident.correlated.push_back({na, nb, corr});
+        std::ostringstream s;
+        s << "correlation " << corr << " between " << na << " and " << nb
+          << " (their intervals are not independent)";
+        result.messages.push_back(s.str());
+      }
+    }
+}
+
+}  // namespace fitlib::fit::detail

@@ -1,0 +1,278 @@
+#include "fitlib/fit/fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "backends.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/timer.hpp"
+#include "fitlib/core/units.hpp"
+#include "fitlib/fit/problem.hpp"
+#include "fitlib/fit/staged.hpp"
+
+namespace fitlib::fit {
+
+Backend parse_backend(const std::string& text) {
+  if (text == "auto" || text == "automatic") return Backend::automatic;
+  if (text == "nnls") return Backend::nnls;
+  if (text == "ceres") return Backend::ceres;
+  if (text == "nlopt") return Backend::nlopt;
+  if (text == "staged") return Backend::staged;
+  throw core::UsageError("unknown backend '" + text + "' (expected auto, nnls, ceres, nlopt, staged)");
+}
+
+const char* to_string(Backend backend) {
+  switch (backend) {
+    case Backend::automatic: return "auto";
+    case Backend::nnls: return "nnls";
+    case Backend::ceres: return "ceres";
+    case Backend::nlopt: return "nlopt";
+    case Backend::staged: return "staged";
+  }
+  return "?";
+}
+
+ResidualKind parse_residual_kind(const std::string& text) {
+  if (text == "log10" || text == "log") return ResidualKind::log10;
+  if (text == "relative") return ResidualKind::relative;
+  throw core::UsageError("unknown residual kind '" + text + "' (expected log10 or relative)");
+}
+
+const char* to_string(ResidualKind kind) {
+  return kind == ResidualKind::log10 ? "log10" : "relative";
+}
+
+model::DataSummary summarize(const data::DynamicTestTable& table) {
+  model::DataSummary s;
+  if (table.rows.empty()) return s;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  s.omega_min_rad_s = s.storage_min_MPa = s.temperature_min_C = inf;
+  s.omega_max_rad_s = s.storage_max_MPa = s.temperature_max_C = -inf;
+  s.loss_max_MPa = 0.0;
+  for (const auto& row : table.rows) {
+    const double omega = core::angular_frequency(row.condition.frequency_Hz);
+    s.omega_min_rad_s = std::min(s.omega_min_rad_s, omega);
+    s.omega_max_rad_s = std::max(s.omega_max_rad_s, omega);
+    s.storage_min_MPa = std::min(s.storage_min_MPa, row.storage_MPa);
+    s.storage_max_MPa = std::max(s.storage_max_MPa, row.storage_MPa);
+    s.loss_max_MPa = std::max(s.loss_max_MPa, row.loss_MPa);
+    if (row.condition.has_temperature()) {
+      s.temperature_min_C = std::min(s.temperature_min_C, row.condition.temperature_C);
+      s.temperature_max_C = std::max(s.temperature_max_C, row.condition.temperature_C);
+    }
+  }
+  if (!std::isfinite(s.temperature_min_C)) s.temperature_min_C = s.temperature_max_C = 23.0;
+  return s;
+}
+
+namespace {
+
+using detail::movable;
+using detail::StageOutcome;
+
+std::string describe_objective(const FitOptions& o) {
+  std::ostringstream s;
+  s << (o.residual == ResidualKind::log10 ? "sum of squared log10 errors"
+                                          : "sum of squared relative errors")
+    << " of storage, loss and mean moduli; weights storage " << o.storage_weight << ", loss "
+    << o.loss_weight << ", mean " << o.mean_weight
+    << " (mean only where measured), times per-row weights; loss with tan delta < 1e-6 as an "
+       "absolute error on the storage scale";
+  return s.str();
+}
+
+void note(FitResult& result, const std::string& prefix, const StageOutcome& outcome) {
+  if (!outcome.note.empty()) result.messages.push_back(prefix + outcome.note);
+}
+
+std::vector<int> all_free(const Problem& problem) {
+  std::vector<int> out;
+  for (int i = 0; i < problem.num_parameters(); ++i)
+    if (!problem.user_fixed()[i]) out.push_back(i);
+  return out;
+}
+
+bool has_free_nonlinear(const Problem& problem) {
+  for (int i : all_free(problem))
+    if (!problem.specs()[i].linear) return true;
+  return false;
+}
+
+bool has_free_linear(const Problem& problem) {
+  for (int i : all_free(problem))
+    if (problem.specs()[i].linear) return true;
+  return false;
+}
+
+// Linear solve with the non-linear parameters held; then (polish) the positive linear
+// parameters on the exact objective in log space.
+StageOutcome linear_stage(Problem& problem, FitResult& result, bool polish) {
+  problem.set_free(all_free(problem));
+  StageOutcome out = detail::run_nnls(problem);
+  note(result, "", out);
+  if (!polish) return out;
+  std::vector<int> linear;
+  for (int i : all_free(problem))
+    if (problem.specs()[i].linear) linear.push_back(i);
+  problem.set_free(movable(problem, linear));
+  const std::vector<double> before = problem.natural();
+  const double cost_before = problem.cost(before);
+  StageOutcome polished = detail::run_ceres(problem, problem.options().max_iterations);
+  if (!(problem.cost(problem.natural()) <= cost_before)) problem.natural() = before;
+  note(result, "polish ", polished);
+  polished.converged = polished.converged && out.converged;
+  return polished;
+}
+
+StageOutcome ceres_stage(Problem& problem, FitResult& result) {
+  problem.set_free(movable(problem, all_free(problem)));
+  StageOutcome out = detail::run_ceres(problem, problem.options().max_iterations);
+  note(result, "", out);
+  return out;
+}
+
+StageOutcome nlopt_stage(Problem& problem, FitResult& result, int starts, int max_iterations) {
+  problem.set_free(movable(problem, all_free(problem)));
+  StageOutcome out = detail::run_nlopt(problem, starts, max_iterations);
+  note(result, "", out);
+  return out;
+}
+
+// Ceres; on failure (no usable solution or no convergence) an NLopt multistart from the same
+// start and a Ceres finish, keeping the better of the two.
+StageOutcome ceres_with_fallback(Problem& problem, FitResult& result, std::string& used) {
+  const std::vector<double> start = problem.natural();
+  StageOutcome out;
+  try {
+    out = ceres_stage(problem, result);
+  } catch (const core::NumericalError& e) {
+    result.messages.push_back(std::string("ceres failed: ") + e.what());
+  }
+  if (out.converged) return out;
+  const std::vector<double> ceres_point = problem.natural();
+  const double ceres_cost = problem.cost(ceres_point);
+  problem.natural() = start;
+  result.messages.push_back("auto: ceres did not converge; trying an nlopt multistart");
+  nlopt_stage(problem, result, problem.options().multistart, problem.options().max_iterations);
+  StageOutcome finish = ceres_stage(problem, result);
+  if (problem.cost(problem.natural()) <= ceres_cost || !std::isfinite(ceres_cost)) {
+    used += "+nlopt+ceres";
+    return finish;
+  }
+  problem.natural() = ceres_point;
+  return out;
+}
+
+StageOutcome run_schedule(Problem& problem, FitResult& result) {
+  const FitOptions& o = problem.options();
+  const Schedule schedule =
+      o.schedule_path.empty() ? default_schedule() : load_schedule(o.schedule_path);
+  StageOutcome last;
+  for (std::size_t s = 0; s < schedule.stages.size(); ++s) {
+    const Stage& st = schedule.stages[s];
+    const std::string key = "stages[" + std::to_string(s) + "]";
+    std::vector<int> chosen = select_parameters(problem.specs(), st.free, key + ".free");
+    if (!st.lock.empty()) {
+      const std::vector<int> locked = select_parameters(problem.specs(), st.lock, key + ".lock");
+      chosen.erase(std::remove_if(chosen.begin(), chosen.end(),
+                                  [&](int i) {
+                                    return std::find(locked.begin(), locked.end(), i) !=
+                                           locked.end();
+                                  }),
+                   chosen.end());
+    }
+    problem.set_free(movable(problem, chosen));
+    const int iterations = st.max_iterations > 0 ? st.max_iterations : o.max_iterations;
+    if (st.backend == "nnls") last = detail::run_nnls(problem);
+    else if (st.backend == "nlopt")
+      last = detail::run_nlopt(problem, st.multistart > 0 ? st.multistart : o.multistart,
+                               iterations);
+    else last = detail::run_ceres(problem, iterations);
+    note(result, "stage '" + st.name + "': ", last);
+  }
+  return last;
+}
+
+}  // namespace
+
+FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
+              const FitOptions& options, const std::vector<double>* start) {
+  if (!model) throw core::UsageError("fit: no model");
+  const core::Stopwatch clock;
+  std::vector<double> natural_start =
+      start ? *start : model->initial_parameters(summarize(table));
+  Problem problem(model, table, options, std::move(natural_start));
+  FitResult result;
+  result.model = model;
+  result.objective = describe_objective(options);
+  for (const auto& n : problem.notes()) result.messages.push_back(n);
+  if (!std::isfinite(problem.cost(problem.natural())))
+    throw core::NumericalError("fit: model '" + model->kind() +
+                               "' gives non-finite or unusable moduli at the start" +
+                               (problem.last_refusal().empty() ? std::string()
+                                                               : ": " + problem.last_refusal()));
+
+  StageOutcome outcome;
+  bool linear_only = false;
+  Backend backend = options.backend;
+  if (backend == Backend::automatic && !has_free_nonlinear(problem)) backend = Backend::nnls;
+  std::string used = to_string(backend);
+  switch (backend) {
+    case Backend::nnls:
+      outcome = linear_stage(problem, result, options.polish);
+      linear_only = true;
+      if (has_free_nonlinear(problem))
+        result.messages.push_back("nnls: non-linear parameters held at their start values");
+      break;
+    case Backend::ceres:
+      if (has_free_linear(problem)) linear_stage(problem, result, false);
+      outcome = ceres_stage(problem, result);
+      break;
+    case Backend::nlopt:
+      if (has_free_linear(problem)) linear_stage(problem, result, false);
+      nlopt_stage(problem, result, options.multistart, options.max_iterations);
+      outcome = ceres_stage(problem, result);
+      used = "nlopt+ceres";
+      break;
+    case Backend::staged:
+      outcome = run_schedule(problem, result);
+      break;
+    case Backend::automatic:
+      used = "nnls+ceres";
+      if (has_free_linear(problem)) linear_stage(problem, result, false);
+      else used = "ceres";
+      if (options.global) {
+        nlopt_stage(problem, result, options.multistart, options.max_iterations);
+        used += "+nlopt";
+      }
+      outcome = ceres_with_fallback(problem, result, used);
+      break;
+  }
+  result.backend_used = used;
+
+  // Covariance over what was fitted: the positive linear parameters (nnls) or every movable one.
+  std::vector<int> fitted = movable(problem, all_free(problem));
+  if (linear_only)
+    fitted.erase(std::remove_if(fitted.begin(), fitted.end(),
+                                [&](int i) { return !problem.specs()[i].linear; }),
+                 fitted.end());
+  problem.set_free(fitted);
+  detail::assess(problem, result);
+  if (linear_only)
+    for (int i : all_free(problem))
+      if (!problem.specs()[i].linear) {
+        result.parameters[i].fixed = true;
+        result.parameters[i].reason = "held at its start (the nnls backend fits linear parameters)";
+      }
+  for (const auto& pr : result.parameters)
+    if (!std::isfinite(pr.value))
+      throw core::NumericalError("fit: parameter " + pr.name + " is not finite after the fit");
+  result.metrics.converged = outcome.converged;
+  result.metrics.iterations = outcome.iterations;
+  result.metrics.wall_time_s = clock.seconds();
+  return result;
+}
+
+}  // namespace fitlib::fit

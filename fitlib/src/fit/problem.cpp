@@ -1,0 +1,284 @@
+#include "fitlib/fit/problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::fit {
+
+namespace {
+
+constexpr double kLn10 = 2.302585092994046;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double component_value(const model::Moduli<double>& m, int component) {
+  return component == 0 ? m.storage : component == 1 ? m.loss : m.mean;
+}
+
+// log10 of a model value; a non-positive value is floored at 1e-12 × the data so the residual
+// stays finite and pushes the value back up.
+double floored(double value, double data) { return std::max(value, 1e-12 * data); }
+
+}  // namespace
+
+const char* component_name(int component) {
+  return component == 0 ? "storage" : component == 1 ? "loss" : "mean";
+}
+
+Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, FitOptions options,
+                 std::vector<double> natural_start)
+    : model_(std::move(model)), table_(&table), options_(std::move(options)),
+      natural_(std::move(natural_start)) {
+  const auto& sp = specs();
+  const int n = static_cast<int>(sp.size());
+  if (static_cast<int>(natural_.size()) != n)
+    throw core::UsageError("fit: start vector has " + std::to_string(natural_.size()) +
+                           " values, model '" + model_->kind() + "' has " + std::to_string(n) +
+                           " parameters");
+  if (table.rows.empty()) throw core::UsageError("fit: the data table has no rows");
+  const double weights[3] = {options_.storage_weight, options_.loss_weight, options_.mean_weight};
+  for (double w : weights)
+    if (!(w >= 0.0) || !std::isfinite(w))
+      throw core::UsageError("fit: storage/loss/mean weights must be finite and >= 0");
+
+  for (int r = 0; r < static_cast<int>(table.rows.size()); ++r) {
+    const auto& row = table.rows[r];
+    if (!(row.weight >= 0.0) || !std::isfinite(row.weight))
+      throw core::InputError("row weight must be finite and >= 0", row.source_file,
+                             row.source_line, 0, "weight");
+    if (!(row.storage_MPa > 0.0) || !std::isfinite(row.storage_MPa))
+      throw core::InputError("storage modulus must be positive and finite", row.source_file,
+                             row.source_line, 0, "storage");
+    if (!(row.loss_MPa >= 0.0) || !std::isfinite(row.loss_MPa))
+      throw core::InputError("loss modulus must be >= 0 and finite", row.source_file,
+                             row.source_line, 0, "loss");
+    const double values[3] = {row.storage_MPa, row.loss_MPa, row.mean_modulus_MPa};
+    for (int c = 0; c < 3; ++c) {
+      if (c == 2 && !row.has_mean_modulus) continue;
+      const double w = row.weight * weights[c];
+      if (w == 0.0) continue;
+      ResidualEntry e;
+      e.row = r;
+      e.component = c;
+      e.data = values[c];
+      e.sqrt_weight = std::sqrt(w);
+      // Loss below tan δ = 1e-6, or a non-positive mean modulus: absolute residual on E′'s scale.
+      const bool tiny = c == 1 ? values[c] < kLossFloor * row.storage_MPa : !(values[c] > 0.0);
+      if (tiny || options_.residual == ResidualKind::relative) {
+        e.absolute = true;
+        const double ref = tiny ? row.storage_MPa : values[c];
+        e.scale = options_.residual == ResidualKind::log10 ? ref * kLn10 : ref;
+      }
+      entries_.push_back(e);
+    }
+  }
+  if (entries_.empty()) throw core::UsageError("fit: every residual has zero weight");
+
+  lower_.resize(n);
+  upper_.resize(n);
+  user_fixed_.assign(n, false);
+  for (int i = 0; i < n; ++i) {
+    lower_[i] = sp[i].lower;
+    upper_[i] = sp[i].upper;
+    if (sp[i].transform == core::Transform::log) lower_[i] = std::max(lower_[i], 0.0);
+  }
+  for (const auto& name : options_.fixed) {
+    const int i = core::find_parameter(sp, name);
+    if (i < 0) throw core::UsageError("fit: no parameter named '" + name + "' to fix in model '" +
+                                      model_->kind() + "'");
+    user_fixed_[i] = true;
+  }
+  for (int i = 0; i < n; ++i)
+    if (!user_fixed_[i]) free_.push_back(i);
+  tighten_temperature_bounds();
+  clamp_start();
+}
+
+void Problem::set_free(std::vector<int> free) { free_ = std::move(free); }
+
+bool Problem::is_log(int i) const { return specs()[i].transform == core::Transform::log; }
+
+// WLF: log aT = −C1 (T − Tref)/(C2 + T − Tref) has a pole at T = Tref − C2. Keep every data
+// temperature on the physical side: C2 > max(Tref − T_i) (+1 °C margin).
+void Problem::tighten_temperature_bounds() {
+  const nlohmann::json opts = model_->options();
+  if (!opts.is_object() || opts.value("temperature_law", std::string()) != "wlf") return;
+  int c2 = -1;
+  for (int i = 0; i < num_parameters(); ++i) {
+    const std::string& name = specs()[i].name;
+    if (name == "C2" || (name.size() > 3 && name.compare(name.size() - 3, 3, "_C2") == 0)) c2 = i;
+  }
+  if (c2 < 0 || !opts.contains("reference_C")) return;
+  const double t_ref = opts["reference_C"].get<double>();
+  double max_gap = -kInf;
+  for (const auto& row : table_->rows)
+    if (row.condition.has_temperature())
+      max_gap = std::max(max_gap, t_ref - row.condition.temperature_C);
+  if (!std::isfinite(max_gap)) return;
+  const double bound = max_gap + 1.0;
+  if (bound > lower_[c2]) {
+    lower_[c2] = bound;
+    std::ostringstream s;
+    s << "WLF: lower bound of " << specs()[c2].name << " set to " << bound
+      << " degC so the pole T_ref - C2 stays below the coldest data (T_ref - T_min = " << max_gap
+      << " degC, margin 1 degC)";
+    notes_.push_back(s.str());
+  }
+}
+
+// Starts strictly inside the bounds (a log parameter cannot start at 0).
+void Problem::clamp_start() {
+  for (int i = 0; i < num_parameters(); ++i) {
+    double& v = natural_[i];
+    const double lo = lower_[i], hi = upper_[i];
+    if (!std::isfinite(v))
+      throw core::UsageError("fit: start value of '" + specs()[i].name + "' is not finite");
+    double clamped = v;
+    if (is_log(i) && clamped <= 0.0)
+      clamped = std::isfinite(hi) ? std::min(1e-3 * hi, 1.0) : std::max(lo, 1.0);
+    if (clamped <= lo) {
+      const double span = std::isfinite(hi) ? hi - lo : std::max(std::abs(lo), 1.0);
+      clamped = is_log(i) && lo > 0 ? lo * 1.01 : lo + 0.01 * span;
+    }
+    if (clamped >= hi) {
+      const double span = std::isfinite(lo) ? hi - lo : std::max(std::abs(hi), 1.0);
+      clamped = is_log(i) ? hi * 0.99 : hi - 0.01 * span;
+    }
+    if (clamped != v && !user_fixed_[i]) {
+      std::ostringstream s;
+      s << "start of " << specs()[i].name << " moved from " << v << " to " << clamped
+        << " (inside its bounds [" << lo << ", " << hi << "])";
+      notes_.push_back(s.str());
+      v = clamped;
+    }
+  }
+}
+
+Eigen::VectorXd Problem::to_x(const std::vector<double>& natural) const {
+  Eigen::VectorXd x(num_free());
+  for (int k = 0; k < num_free(); ++k) {
+    const int i = free_[k];
+    x[k] = is_log(i) ? std::log(natural[i]) : natural[i];
+  }
+  return x;
+}
+
+void Problem::from_x(const double* x, std::vector<double>& natural) const {
+  for (int k = 0; k < num_free(); ++k) {
+    const int i = free_[k];
+    natural[i] = is_log(i) ? std::exp(x[k]) : x[k];
+  }
+}
+
+double Problem::lower_x(int k) const {
+  const int i = free_[k];
+  if (is_log(i)) return lower_[i] > 0.0 ? std::log(lower_[i]) : -kInf;
+  return lower_[i];
+}
+
+double Problem::upper_x(int k) const {
+  const int i = free_[k];
+  if (is_log(i)) return std::isfinite(upper_[i]) ? std::log(upper_[i]) : kInf;
+  return upper_[i];
+}
+
+bool Problem::evaluate(const std::vector<double>& natural, double* residuals,
+                       double* jacobian) const {
+  // A model may refuse a point (e.g. a temperature beyond the WLF pole): that point is simply
+  // not usable, the optimiser backs off; the reason is kept for the diagnostic.
+  try {
+    return evaluate_unchecked(natural, residuals, jacobian);
+  } catch (const core::InputError& e) {
+    last_refusal_ = e.what();
+  } catch (const core::NumericalError& e) {
+    last_refusal_ = e.what();
+  }
+  return false;
+}
+
+bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* residuals,
+                                 double* jacobian) const {
+  const int n = num_parameters(), nf = num_free();
+  Eigen::MatrixXd jac(3, n);
+  model::Moduli<double> m{};
+  int current_row = -1;
+  for (int e = 0; e < num_residuals(); ++e) {
+    const ResidualEntry& en = entries_[e];
+    if (en.row != current_row) {
+      current_row = en.row;
+      const auto& c = table_->rows[en.row].condition;
+      m = jacobian ? model_->moduli(natural.data(), c, jac) : model_->moduli(natural.data(), c);
+    }
+    const double value = component_value(m, en.component);
+    double r, dr_dm;
+    if (en.absolute) {
+      r = (value - en.data) / en.scale;
+      dr_dm = 1.0 / en.scale;
+    } else {
+      const double v = floored(value, en.data);
+      r = std::log10(v / en.data);
+      dr_dm = 1.0 / (v * kLn10);
+    }
+    residuals[e] = en.sqrt_weight * r;
+    if (!std::isfinite(residuals[e])) return false;
+    if (jacobian) {
+      double* jrow = jacobian + static_cast<std::ptrdiff_t>(e) * nf;
+      for (int k = 0; k < nf; ++k) {
+        const int i = free_[k];
+        const double chain = is_log(i) ? natural[i] : 1.0;  // dp/dx for p = exp(x)
+        jrow[k] = en.sqrt_weight * dr_dm * jac(en.component, i) * chain;
+        if (!std::isfinite(jrow[k])) return false;
+      }
+    }
+  }
+  return true;
+}
+
+double Problem::cost(const std::vector<double>& natural) const {
+  std::vector<double> r(num_residuals());
+  if (!evaluate(natural, r.data(), nullptr)) return kInf;
+  double s = 0.0;
+  for (double v : r) s += v * v;
+  return 0.5 * s;
+}
+
+void Problem::measure(const std::vector<double>& natural, FitMetrics& metrics) const {
+  double sum_storage = 0.0, sum_loss = 0.0, sum_rel = 0.0, max_rel = 0.0;
+  int n_storage = 0, n_loss = 0, n_rel = 0;
+  for (const auto& row : table_->rows) {
+    const auto m = model_->moduli(natural.data(), row.condition);
+    const double ds = std::log10(floored(m.storage, row.storage_MPa) / row.storage_MPa);
+    sum_storage += ds * ds;
+    ++n_storage;
+    const double rel_s = std::abs(m.storage - row.storage_MPa) / row.storage_MPa;
+    sum_rel += rel_s;
+    max_rel = std::max(max_rel, rel_s);
+    ++n_rel;
+    if (row.loss_MPa >= kLossFloor * row.storage_MPa) {
+      const double dl = std::log10(floored(m.loss, row.loss_MPa) / row.loss_MPa);
+      sum_loss += dl * dl;
+      ++n_loss;
+      const double rel_l = std::abs(m.loss - row.loss_MPa) / row.loss_MPa;
+      sum_rel += rel_l;
+      max_rel = std::max(max_rel, rel_l);
+      ++n_rel;
+    }
+    if (row.has_mean_modulus && row.mean_modulus_MPa > 0.0) {
+      const double rel_m = std::abs(m.mean - row.mean_modulus_MPa) / row.mean_modulus_MPa;
+      sum_rel += rel_m;
+      max_rel = std::max(max_rel, rel_m);
+      ++n_rel;
+    }
+  }
+  metrics.n_points = static_cast<int>(table_->rows.size());
+  metrics.rms_log10_storage = n_storage ? std::sqrt(sum_storage / n_storage) : 0.0;
+  metrics.rms_log10_loss = n_loss ? std::sqrt(sum_loss / n_loss) : 0.0;
+  metrics.mean_rel_error = n_rel ? sum_rel / n_rel : 0.0;
+  metrics.max_rel_error = max_rel;
+}
+
+}  // namespace fitlib::fit

@@ -1,0 +1,163 @@
+#include "fitlib/fit/terms.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/timer.hpp"
+
+namespace fitlib::fit {
+
+TermRule parse_term_rule(const std::string& text) {
+  if (text == "bic") return TermRule::bic;
+  if (text == "aic") return TermRule::aic;
+  if (text == "ratio" || text == "pyvisco") return TermRule::residual_ratio;
+  throw core::UsageError("unknown term rule '" + text + "' (expected bic, aic or ratio)");
+}
+
+const char* to_string(TermRule rule) {
+  switch (rule) {
+    case TermRule::bic: return "bic";
+    case TermRule::aic: return "aic";
+    case TermRule::residual_ratio: return "ratio";
+  }
+  return "?";
+}
+
+namespace {
+
+const TermRow* row_for(const std::vector<TermRow>& rows, int terms) {
+  for (const auto& r : rows)
+    if (r.terms == terms) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+int choose_terms(const std::vector<TermRow>& rows, TermRule rule, double ratio, int cap) {
+  double best = std::numeric_limits<double>::infinity();
+  int chosen = 0;
+  double min_cost = best;
+  for (const auto& r : rows)
+    if (!r.failed && (cap <= 0 || r.terms <= cap)) min_cost = std::min(min_cost, r.cost);
+  for (const auto& r : rows) {
+    if (r.failed || (cap > 0 && r.terms > cap)) continue;
+    if (rule == TermRule::residual_ratio) {
+      if (r.cost <= ratio * min_cost) return r.terms;
+      continue;
+    }
+    const double score = rule == TermRule::aic ? r.aic : r.bic;
+    if (score < best) {
+      best = score;
+      chosen = r.terms;
+    }
+  }
+  return chosen;
+}
+
+TermSelection select_terms(const std::function<model::ModelPtr(int)>& make,
+                           const data::DynamicTestTable& table, const FitOptions& options,
+                           const TermOptions& terms) {
+  TermSelection sel;
+  sel.rule = terms.rule;
+  int max_terms = terms.max_terms;
+  if (max_terms <= 0) {
+    const auto s = summarize(table);
+    const double decades = std::log10(s.omega_max_rad_s / s.omega_min_rad_s);
+    max_terms = std::clamp(static_cast<int>(std::ceil(decades)) + 2, 1, 40);
+  }
+  const int min_terms = std::max(terms.min_terms, 1);
+  if (max_terms < min_terms)
+    throw core::UsageError("select_terms: max terms " + std::to_string(max_terms) +
+                           " below min terms " + std::to_string(min_terms));
+  std::vector<FitResult> results;
+  for (int n = min_terms; n <= max_terms; ++n) {
+    TermRow row;
+    row.terms = n;
+    const core::Stopwatch clock;
+    try {
+      FitResult r = fit(make(n), table, options);
+      row.rms_log10_storage = r.metrics.rms_log10_storage;
+      row.rms_log10_loss = r.metrics.rms_log10_loss;
+      row.cost = r.metrics.cost;
+      row.aic = r.metrics.aic;
+      row.bic = r.metrics.bic;
+      row.n_free = r.metrics.n_free;
+      row.converged = r.metrics.converged;
+      results.push_back(std::move(r));
+    } catch (const core::NumericalError& e) {
+      row.failed = true;
+      row.message = e.what();
+      results.emplace_back();
+      sel.messages.push_back("terms " + std::to_string(n) + ": " + e.what());
+    }
+    row.wall_time_s = clock.seconds();
+    sel.rows.push_back(row);
+  }
+  sel.by_aic = choose_terms(sel.rows, TermRule::aic, terms.residual_ratio, 0);
+  sel.by_bic = choose_terms(sel.rows, TermRule::bic, terms.residual_ratio, 0);
+  sel.by_ratio = choose_terms(sel.rows, TermRule::residual_ratio, terms.residual_ratio, 0);
+  sel.unconstrained = terms.rule == TermRule::aic ? sel.by_aic
+                      : terms.rule == TermRule::bic ? sel.by_bic
+                                                    : sel.by_ratio;
+  if (sel.unconstrained == 0)
+    throw core::NumericalError("select_terms: every term count from " + std::to_string(min_terms) +
+                               " to " + std::to_string(max_terms) + " failed");
+  sel.chosen = choose_terms(sel.rows, terms.rule, terms.residual_ratio, terms.solver_cap);
+  if (sel.chosen == 0)
+    throw core::NumericalError("select_terms: no usable fit within the solver cap of " +
+                               std::to_string(terms.solver_cap) + " terms");
+  const TermRow* chosen = row_for(sel.rows, sel.chosen);
+  const TermRow* free = row_for(sel.rows, sel.unconstrained);
+  auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 1.0; };
+  sel.cap_cost_ratio = ratio(chosen->cost, free->cost);
+  sel.cap_storage_rms_ratio = ratio(chosen->rms_log10_storage, free->rms_log10_storage);
+  sel.cap_loss_rms_ratio = ratio(chosen->rms_log10_loss, free->rms_log10_loss);
+  if (sel.chosen != sel.unconstrained) {
+    std::ostringstream s;
+    s << "solver cap " << terms.solver_cap << " terms: " << sel.chosen << " terms instead of "
+      << sel.unconstrained << "; cost x" << sel.cap_cost_ratio << ", rms log10 storage x"
+      << sel.cap_storage_rms_ratio << ", loss x" << sel.cap_loss_rms_ratio;
+    sel.messages.push_back(s.str());
+  }
+  sel.result = std::move(results[sel.chosen - min_terms]);
+  return sel;
+}
+
+TermSelection select_terms(const std::string& kind, const nlohmann::json& model_options,
+                           const data::DynamicTestTable& table, const FitOptions& options,
+                           const TermOptions& terms) {
+  return select_terms(
+      [&](int n) {
+        nlohmann::json o = model_options.is_object() ? model_options : nlohmann::json::object();
+        o["terms"] = n;
+        return model::make_model(kind, o);
+      },
+      table, options, terms);
+}
+
+std::string format_term_table(const TermSelection& sel) {
+  std::ostringstream s;
+  char line[256];
+  std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms",
+                "rms_E'", "rms_E''", "cost", "AIC", "BIC", "chosen by");
+  s << line;
+  for (const auto& r : sel.rows) {
+    std::string marks;
+    if (r.terms == sel.by_aic) marks += " aic";
+    if (r.terms == sel.by_bic) marks += " bic";
+    if (r.terms == sel.by_ratio) marks += " ratio";
+    if (r.terms == sel.chosen) marks += " <- chosen";
+    if (r.failed) marks += " FAILED: " + r.message;
+    std::snprintf(line, sizeof line, "%5d %10.3f %10.5f %10.5f %12.6g %12.6g %12.6g %s\n",
+                  r.terms, 1e3 * r.wall_time_s, r.rms_log10_storage, r.rms_log10_loss, r.cost,
+                  r.aic, r.bic, marks.c_str());
+    s << line;
+  }
+  return s.str();
+}
+
+}  // namespace fitlib::fit

@@ -1,0 +1,308 @@
+// Fritzson's model: parameter specs and the complex (steady sinusoidal) form for every test.
+// Derivation and line references: docs/fritzson.md §2–3.
+#include "fitlib/model/fritzson.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/model/autodiff_model.hpp"
+#include "fitlib/model/fritzson_point.hpp"
+
+namespace fitlib::model::fritzson {
+namespace {
+
+using core::ParameterSpec;
+using core::Transform;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The 12 constants of one deviatoric part, in PartIndex order.
+void add_part(std::vector<ParameterSpec>& specs, const std::string& suffix,
+              const std::string& modulus_prefix, bool isotropic, double mean, double dynamic,
+              double viscous) {
+  auto group = [&](const char* iso_group) { return isotropic ? std::string(iso_group) : suffix; };
+  const std::string m = modulus_prefix;
+  const std::string mod_suffix = isotropic ? "_I" : "_A";
+  specs.push_back({m + mod_suffix + "m", "MPa", 1e-6, 1e4, Transform::log, group("mean"), mean, true});
+  specs.push_back({m + mod_suffix + "d", "MPa", 1e-6, 1e4, Transform::log, group("dynamic"), dynamic, true});
+  specs.push_back({m + mod_suffix + "v", "MPa", 1e-6, 1e4, Transform::log, group("viscous"), viscous, true});
+  const std::string s = "_" + suffix;
+  specs.push_back({"tau" + s, "s", 1e-7, 1e3, Transform::log, group("viscous"), 0.01, false});
+  specs.push_back({"k" + s, "-", 1.0, 100.0, Transform::log, group("viscous"), 3.0, false});
+  specs.push_back({"beta1" + s, "-", 0.0, 1.0, Transform::linear, group("damage"), 0.4, false});
+  specs.push_back({"alpha1" + s, "-", 0.05, 3.0, Transform::log, group("damage"), 0.6, false});
+  specs.push_back({"mu" + s, "-", -5.0, 0.0, Transform::linear, group("damage"), -2.0, false});
+  specs.push_back({"beta2" + s, "-", 0.0, 1.0, Transform::linear, group("damage"), 0.5, false});
+  specs.push_back({"alpha2" + s, "-", 0.05, 3.0, Transform::log, group("damage"), 0.6, false});
+  specs.push_back({"c1" + s, "1/degC", -0.01, 0.01, Transform::linear, group("temperature"), 0.0, false});
+  specs.push_back({"c2" + s, "1/degC", -0.01, 0.01, Transform::linear, group("temperature"), 0.0, false});
+}
+
+// Orientation of a test in material axes (1 radial, 2 along the belt, 3 axial = fibres).
+struct Orientation {
+  int uniaxial_axis = 1;   // 0, 1, 2 for 11, 22, 33
+  bool fibre_shear = false;  // shear 13/23 (the A2 part acts)
+};
+
+Orientation parse_orientation(const TestCondition& c, bool anisotropic) {
+  Orientation o;
+  if (c.mode == TestMode::bulk) return o;
+  const std::string& label = c.orientation;
+  if (label.empty()) {
+    if (anisotropic)
+      throw core::UsageError(
+          "model fritzson (transversely isotropic) needs the orientation of every " +
+          std::string(to_string(c.mode)) + " test (11, 22, 33 uniaxial; 12, 13, 23 shear)");
+    return o;
+  }
+  const bool two_digits = label.size() == 2 && label[0] >= '1' && label[0] <= '3' &&
+                          label[1] >= '1' && label[1] <= '3';
+  if (!two_digits)
+    throw core::UsageError("model fritzson: orientation '" + label +
+                           "' is not one of 11, 22, 33, 12, 13, 23 (21, 31, 32 accepted)");
+  const int i = label[0] - '1', j = label[1] - '1';
+  if (c.mode == TestMode::uniaxial) {
+    if (i != j)
+      throw core::UsageError("model fritzson: a uniaxial test needs orientation 11, 22 or 33, not '" +
+                             label + "'");
+    o.uniaxial_axis = i;
+  } else {
+    if (i == j)
+      throw core::UsageError("model fritzson: a shear test needs orientation 12, 13 or 23, not '" +
+                             label + "'");
+    o.fibre_shear = (i == 2 || j == 2);
+  }
+  if (!anisotropic) o = Orientation{};
+  return o;
+}
+
+template <typename T>
+T complex_abs(const std::complex<T>& z) {
+  return safe_sqrt(z.real() * z.real() + z.imag() * z.imag());
+}
+
+// Uniaxial stress along `axis`. With M_I the isotropic and M_A the A1 modulus, the deviatoric
+// stiffness on normal strains is 2M_I m̂m̂ᵀ + 2(M_I + M_A) n̂n̂ᵀ (m̂ = (1,−1,0)/√2,
+// n̂ = (−½,−½,1)/√1.5) and the volumetric one K 11ᵀ act on orthogonal subspaces, so the
+// compliance is S = 11ᵀ/(9K) + m̂m̂ᵀ/(2M_I) + n̂n̂ᵀ/(2(M_I + M_A)): no cancellation for any K/G.
+template <typename T, typename M>
+struct UniaxialSolution {
+  M modulus;      // σ_axis / ε_axis
+  M deviatoric[3];  // deviatoric normal strains per unit ε_axis
+};
+
+template <typename T, typename M>
+UniaxialSolution<T, M> uniaxial(const T& K, const M& M_I, const M& M_A, int axis) {
+  static const double m_hat[3] = {0.70710678118654752, -0.70710678118654752, 0.0};
+  static const double n_hat[3] = {-0.40824829046386302, -0.40824829046386302, 0.81649658092772603};
+  const M cm = T(m_hat[axis]) / (T(2.0) * M_I);
+  const M cn = T(n_hat[axis]) / (T(2.0) * (M_I + M_A));
+  const M compliance = M(T(1.0) / (9.0 * K)) + T(m_hat[axis]) * cm + T(n_hat[axis]) * cn;
+  UniaxialSolution<T, M> out;
+  out.modulus = M(T(1.0)) / compliance;
+  for (int k = 0; k < 3; ++k)
+    out.deviatoric[k] = (T(m_hat[k]) * cm + T(n_hat[k]) * cn) / compliance;
+  return out;
+}
+
+class FritzsonModel final : public AutodiffModel<FritzsonModel> {
+ public:
+  FritzsonModel(bool anisotropic, double reference_C)
+      : anisotropic_(anisotropic), reference_C_(reference_C), specs_(parameter_specs(anisotropic)) {}
+
+  std::string kind() const override { return anisotropic_ ? "fritzson" : "fritzson-iso"; }
+  const std::vector<ParameterSpec>& parameters() const override { return specs_; }
+  nlohmann::json options() const override { return {{"reference_C", reference_C_}}; }
+  // Describes shear, uniaxial (all orientations) and bulk alike; shear is its natural card.
+  TestMode native_mode() const override { return TestMode::shear; }
+  bool amplitude_dependent() const override { return true; }
+  nlohmann::json temperature_law(const double* p) const override {
+    nlohmann::json law = {{"law", "linear-factors"}, {"reference_C", reference_C_},
+                          {"c1_I", p[kPartI + kC1]}, {"c2_I", p[kPartI + kC2]}};
+    if (anisotropic_)
+      for (const auto& [name, index] : {std::pair<const char*, int>{"c1_A1", kPartA1 + kC1},
+                                        {"c2_A1", kPartA1 + kC2}, {"c1_A2", kPartA2 + kC1},
+                                        {"c2_A2", kPartA2 + kC2}})
+        law[name] = p[index];
+    return law;
+  }
+
+  template <typename T>
+  Moduli<T> evaluate(const T* p, const TestCondition& c) const {
+    if (!(c.frequency_Hz > 0.0) || !std::isfinite(c.frequency_Hz))
+      throw core::UsageError("model fritzson: the frequency must be positive and finite");
+    if (!(c.strain_amplitude >= 0.0) || !std::isfinite(c.strain_amplitude))
+      throw core::UsageError("model fritzson: the strain amplitude must be ≥ 0 and finite");
+    const Orientation o = parse_orientation(c, anisotropic_);
+    const double omega = 2.0 * kPi * c.frequency_Hz;
+    const double amplitude = c.strain_amplitude;
+    const T& K = p[kK];
+    if (c.mode == TestMode::bulk) return {K, T(0.0), K};  // purely elastic (4.39, L2224)
+
+    if (c.mode == TestMode::shear) {
+      // Steady driver e^o = γ_a/√2 for I and, in 13/23, for A2 (4.32, 4.78).
+      const double driver = amplitude / std::sqrt(2.0);
+      PartModuli<T> m = part(p + kPartI, driver, omega, c);
+      if (o.fibre_shear) {
+        const PartModuli<T> a2 = part(p + kPartA2, driver, omega, c);
+        m.dynamic += a2.dynamic;
+        m.mean += a2.mean;
+      }
+      return {m.dynamic.real(), m.dynamic.imag(), m.mean};
+    }
+
+    // Uniaxial: damage drivers depend on the lateral strains, which depend on the damaged
+    // moduli; iterate to the fixed point (the thesis iterated too, L2260). Start incompressible.
+    using C = std::complex<T>;
+    T driver_I = T(std::sqrt(1.5) * amplitude), driver_A = T(std::sqrt(2.0) * amplitude);
+    PartModuli<T> mi{}, ma{C(T(0.0), T(0.0)), T(0.0)};
+    UniaxialSolution<T, C> steady{};
+    for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
+      mi = part(p + kPartI, driver_I, omega, c);
+      if (anisotropic_) ma = part(p + kPartA1, driver_A, omega, c);
+      steady = uniaxial<T, C>(K, mi.dynamic, ma.dynamic, o.uniaxial_axis);
+      // Peak over a cycle of |Re(ê e^{iωt})|: √(½(Σ|ê_k|² + |Σ ê_k²|)) (tensor norm, 4.32).
+      T sum_abs2(0.0);
+      C sum_sq(T(0.0), T(0.0));
+      for (const C& e : steady.deviatoric) {
+        const C ea = e * T(amplitude);
+        sum_abs2 += ea.real() * ea.real() + ea.imag() * ea.imag();
+        sum_sq += ea * ea;
+      }
+      const T next_I = safe_sqrt(0.5 * (sum_abs2 + complex_abs(sum_sq)));
+      const T next_A = std::sqrt(2.0) * complex_abs(steady.deviatoric[2] * T(amplitude));
+      const double change = std::abs(scalar_part(next_I) - scalar_part(driver_I)) +
+                            std::abs(scalar_part(next_A) - scalar_part(driver_A));
+      driver_I = next_I;
+      driver_A = next_A;
+      if (change <= 1e-14 * (amplitude + 1e-300) && iteration > 0) break;
+    }
+    mi = part(p + kPartI, driver_I, omega, c);
+    if (anisotropic_) ma = part(p + kPartA1, driver_A, omega, c);
+    steady = uniaxial<T, C>(K, mi.dynamic, ma.dynamic, o.uniaxial_axis);
+    const UniaxialSolution<T, T> mean = uniaxial<T, T>(K, mi.mean, ma.mean, o.uniaxial_axis);
+    return {steady.modulus.real(), steady.modulus.imag(), mean.modulus};
+  }
+
+  std::vector<double> stress_response(const double* p, const TestCondition& c,
+                                      const StrainHistory& history) const override {
+    const MaterialPoint point(std::vector<double>(p, p + size()), anisotropic_, reference_C_,
+                              Scheme::exponential);
+    return drive_test(point, c, history).stress;
+  }
+
+  // Shear and bulk: a strain step leaves the running mean equal to the strain (e^o = 0), so no
+  // dynamic stress and no damage arise and the model is linear: closed form. Uniaxial: the lateral
+  // strains creep, so it is integrated numerically with a fine log grid.
+  double relaxation_modulus(const double* p, const TestCondition& c, double t_s) const override {
+    if (c.mode == TestMode::bulk) return p[kK];
+    const Orientation o = parse_orientation(c, anisotropic_);
+    auto relax = [&](const double* part) {
+      const double g1 = temperature_factor(part[kC1], c.temperature_C, reference_C_);
+      const double g2 = temperature_factor(part[kC2], c.temperature_C, reference_C_);
+      double times[5];
+      maxwell_times(part[kTau], part[kK_ratio], times);
+      double sum = 0.0;
+      for (double tau : times) sum += std::exp(-t_s / tau);
+      return g1 * part[kMean] + g2 * part[kBeta2] * part[kViscous] * sum;  // h1 = 1, h2 = β2
+    };
+    if (c.mode == TestMode::shear)
+      return relax(p + kPartI) + (o.fibre_shear ? relax(p + kPartA2) : 0.0);
+    const double strain = 1e-6;  // small: the lateral creep is what matters, damage stays at 0
+    StrainHistory h;
+    h.time_s.push_back(0.0);
+    h.strain.push_back(strain);
+    if (t_s > 0.0) {
+      const double t_first = std::min(t_s, 1e-9);
+      const int n = 400;
+      for (int k = 0; k <= n; ++k) {
+        h.time_s.push_back(t_first * std::pow(t_s / t_first, double(k) / n));
+        h.strain.push_back(strain);
+      }
+    }
+    return stress_response(p, c, h).back() / strain;
+  }
+
+  double creep_compliance(const double*, const TestCondition&, double) const override {
+    throw core::UsageError(
+        "model fritzson: creep compliance is not provided: under a stress step the strain moves "
+        "away from its running mean, so the rate-independent dynamic part and the amplitude damage "
+        "make the response path dependent; integrate the stress history with a mixed-control "
+        "driver (fritzson::drive_test) instead");
+  }
+
+  std::vector<double> initial_parameters(const DataSummary& data) const override {
+    std::vector<double> p = default_parameters();
+    // Loss peak in the middle of the measured frequencies; moduli from the storage level.
+    const double tau = 1.0 / std::sqrt(data.omega_min_rad_s * data.omega_max_rad_s);
+    const double storage = std::sqrt(data.storage_min_MPa * data.storage_max_MPa);
+    const double shear_scale = std::max(storage / 3.0, 1e-3);  // data may be uniaxial
+    p[kPartI + kTau] = tau;
+    p[kPartI + kMean] = 0.5 * shear_scale;
+    p[kPartI + kDynamic] = 0.3 * shear_scale;
+    p[kPartI + kViscous] = std::max(0.2 * shear_scale, data.loss_max_MPa / 2.0);
+    p[kK] = 1e3 * shear_scale;
+    if (anisotropic_) {
+      p[kPartA1 + kTau] = tau;
+      p[kPartA2 + kTau] = tau;
+    }
+    return p;
+  }
+
+ private:
+  static constexpr int kMaxFixedPointIterations = 100;
+
+  template <typename T, typename D>
+  PartModuli<T> part(const T* part_p, const D& driver, double omega, const TestCondition& c) const {
+    const PartFactors<T> f = part_factors(part_p, driver, c.temperature_C, reference_C_);
+    return part_moduli(part_p, f, omega);
+  }
+
+  bool anisotropic_;
+  double reference_C_;
+  std::vector<ParameterSpec> specs_;
+};
+
+}  // namespace
+
+std::vector<core::ParameterSpec> parameter_specs(bool anisotropic) {
+  std::vector<ParameterSpec> specs;
+  specs.push_back({"K", "MPa", 1.0, 1e7, Transform::log, "volumetric", 2000.0, true});
+  add_part(specs, "I", "G", true, 2.0, 1.0, 1.0);
+  specs.push_back({"C_d", "-", 1e-3, 1e4, Transform::log, "damage", 0.6, false});
+  if (anisotropic) {
+    add_part(specs, "A1", "C33", false, 4.0, 2.0, 1.0);
+    add_part(specs, "A2", "C44", false, 1.0, 0.5, 0.3);
+  }
+  // Linear in the moduli only for shear tests: uniaxial tests combine K, G and C' non-linearly
+  // (E = 9KM/(3K + M), E22 = 12G(G+C')/(4G+3C') when incompressible), so no flag is set.
+  for (auto& s : specs) s.linear = false;
+  return specs;
+}
+
+bool is_fritzson_kind(const std::string& kind) {
+  return kind == "fritzson" || kind == "fritzson-iso";
+}
+
+ModelPtr make_fritzson_model(const std::string& kind, const nlohmann::json& options) {
+  if (!is_fritzson_kind(kind))
+    throw core::UsageError("make_fritzson_model: unknown kind '" + kind + "'");
+  double reference_C = 23.0;
+  if (!options.is_null()) {
+    if (!options.is_object())
+      throw core::UsageError("model " + kind + ": options must be a JSON object");
+    for (const auto& [key, value] : options.items()) {
+      if (key == "reference_C" && value.is_number()) {
+        reference_C = value.get<double>();
+      } else {
+        throw core::UsageError("model " + kind + ": unknown option '" + key +
+                               "' (known: reference_C, a number in degC)");
+      }
+    }
+  }
+  return std::make_shared<FritzsonModel>(kind == "fritzson", reference_C);
+}
+
+}  // namespace fitlib::model::fritzson

@@ -1,0 +1,357 @@
+// Fritzson's model in the time domain at one material point: backward Euler (or exponential)
+// update, consistent tangent by forward-mode differentiation of the same code, running-mean
+// strain, damage evolution; and a driver for the dynamic-test loadings.
+#include "fitlib/model/fritzson_point.hpp"
+
+#include <ceres/jet.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/model/fritzson.hpp"
+
+namespace fitlib::model::fritzson {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Jet6 = ceres::Jet<double, 6>;
+
+// Deviatoric tensor components (Voigt order, shear as ε_ij) of an engineering Voigt strain.
+template <typename T>
+void deviatoric(const T* strain, T* e) {
+  const T mean = (strain[0] + strain[1] + strain[2]) / 3.0;
+  for (int i = 0; i < 3; ++i) e[i] = strain[i] - mean;
+  for (int i = 3; i < 6; ++i) e[i] = 0.5 * strain[i];
+}
+
+// One part's constants in the scalar type of the update (derivatives flow through h and g).
+template <typename T>
+std::array<T, kPartSize> part_as(const double* part) {
+  std::array<T, kPartSize> out;
+  for (int i = 0; i < kPartSize; ++i) out[i] = T(part[i]);
+  return out;
+}
+
+}  // namespace
+
+MaterialState::MaterialState() {
+  for (auto& v : viscous_I) v.setZero();
+  for (auto& v : viscous_A2) v.setZero();
+  viscous_A1.fill(0.0);
+}
+
+MaterialPoint::MaterialPoint(std::vector<double> parameters, bool anisotropic, double reference_C,
+                             Scheme scheme)
+    : p_(std::move(parameters)), anisotropic_(anisotropic), reference_C_(reference_C),
+      scheme_(scheme) {
+  const size_t expected = anisotropic ? kAnisotropicCount : kIsotropicCount;
+  if (p_.size() != expected)
+    throw core::UsageError("fritzson material point: expected " + std::to_string(expected) +
+                           " parameters, got " + std::to_string(p_.size()));
+}
+
+template <typename T>
+void MaterialPoint::update_impl(const MaterialState& state, const T* strain, double dt,
+                                double temperature_C, MaterialState& next, T* stress) const {
+  if (!(dt >= 0.0) || !std::isfinite(dt))
+    throw core::UsageError("fritzson material point: the time step must be finite and ≥ 0");
+  const double* p = p_.data();
+  // Deviatoric strain now and at the start of the step (tensor components).
+  T e[6];
+  deviatoric(strain, e);
+  double e_n[6];
+  deviatoric(state.strain.data(), e_n);
+
+  // Running mean (4.29) and oscillating part (4.30). At t = 0 the mean is the strain itself
+  // (the limit of (1/t)∫e), so a jump at the start leaves e^o = 0.
+  const double t_next = state.time_s + dt;
+  T integral[6], e_osc[6];
+  for (int i = 0; i < 6; ++i) {
+    integral[i] = scheme_ == Scheme::exponential
+                      ? T(state.dev_strain_integral[i]) + 0.5 * dt * (e[i] + e_n[i])
+                      : T(state.dev_strain_integral[i]) + dt * e[i];
+    e_osc[i] = t_next > 0.0 ? e[i] - integral[i] / t_next : T(0.0);
+  }
+
+  // Damage drivers (4.32, 4.77, 4.78); shear components count twice in the tensor norm.
+  T osc[3];
+  osc[0] = safe_sqrt(e_osc[0] * e_osc[0] + e_osc[1] * e_osc[1] + e_osc[2] * e_osc[2] +
+                     2.0 * (e_osc[3] * e_osc[3] + e_osc[4] * e_osc[4] + e_osc[5] * e_osc[5]));
+  osc[1] = safe_sqrt(2.0 * e_osc[2] * e_osc[2]);
+  osc[2] = safe_sqrt(2.0 * (e_osc[2] * e_osc[2] + e_osc[3] * e_osc[3] + e_osc[4] * e_osc[4]));
+  T amplitude[3];
+  const int parts = anisotropic_ ? 3 : 1;
+  for (int j = 0; j < parts; ++j)
+    amplitude[j] = evolve_damage_driver(state.driver_amplitude[j], state.driver_oscillating[j], osc[j],
+                                 p[kCd]);
+
+  // Maxwell coefficients: s_{n+1} = decay·s_n + gain·(2M h2 g2)·Δe.
+  auto coefficients = [&](const double* part, double decay[5], double gain[5]) {
+    double times[5];
+    maxwell_times(part[kTau], part[kK_ratio], times);
+    for (int n = 0; n < 5; ++n) {
+      const double x = dt / times[n];
+      if (scheme_ == Scheme::exponential) {
+        decay[n] = std::exp(-x);
+        gain[n] = one_minus_exp_over(x);
+      } else {
+        decay[n] = 1.0 / (1.0 + x);
+        gain[n] = decay[n];
+      }
+    }
+  };
+  double decay[5], gain[5];
+
+  // Volumetric part (4.39): σ_p = K tr ε.
+  const T pressure = p[kK] * (strain[0] + strain[1] + strain[2]);
+  T s[6];
+
+  // Isotropic deviatoric part (4.40–4.50).
+  {
+    const double* part = p + kPartI;
+    const PartFactors<T> f = part_factors(part_as<T>(part).data(), amplitude[0], temperature_C,
+                                          reference_C_);
+    const T elastic = f.h1 * f.g1 * 2.0;
+    const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
+    coefficients(part, decay, gain);
+    for (int i = 0; i < 6; ++i) s[i] = elastic * (part[kMean] * e[i] + part[kDynamic] * e_osc[i]);
+    for (int n = 0; n < 5; ++n) {
+      for (int i = 0; i < 6; ++i) {
+        const T sn = decay[n] * state.viscous_I[n][i] + gain[n] * viscous * (e[i] - e_n[i]);
+        s[i] += sn;
+        next.viscous_I[n][i] = scalar_part(sn);
+      }
+    }
+  }
+
+  if (anisotropic_) {
+    // A1: uniaxial along the fibres (4.51, 4.56, 4.62–4.69), spread as (−½, −½, 1).
+    {
+      const double* part = p + kPartA1;
+      const PartFactors<T> f = part_factors(part_as<T>(part).data(), amplitude[1], temperature_C,
+                                            reference_C_);
+      const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
+      coefficients(part, decay, gain);
+      T s3 = f.h1 * f.g1 * 2.0 * (part[kMean] * e[2] + part[kDynamic] * e_osc[2]);
+      for (int n = 0; n < 5; ++n) {
+        const T sn = decay[n] * state.viscous_A1[n] + gain[n] * viscous * (e[2] - e_n[2]);
+        s3 += sn;
+        next.viscous_A1[n] = scalar_part(sn);
+      }
+      s[0] -= 0.5 * s3;
+      s[1] -= 0.5 * s3;
+      s[2] += s3;
+    }
+    // A2: shear along the fibres, 23 and 13 (4.53–4.54, 4.58–4.59, 4.70–4.76); s = C'44 γ.
+    {
+      const double* part = p + kPartA2;
+      const PartFactors<T> f = part_factors(part_as<T>(part).data(), amplitude[2], temperature_C,
+                                            reference_C_);
+      const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
+      coefficients(part, decay, gain);
+      for (int c = 0; c < 2; ++c) {
+        const int i = 3 + c;  // Voigt 23, 13
+        T sc = f.h1 * f.g1 * 2.0 * (part[kMean] * e[i] + part[kDynamic] * e_osc[i]);
+        for (int n = 0; n < 5; ++n) {
+          const T sn = decay[n] * state.viscous_A2[n][c] + gain[n] * viscous * (e[i] - e_n[i]);
+          sc += sn;
+          next.viscous_A2[n][c] = scalar_part(sn);
+        }
+        s[i] += sc;
+      }
+    }
+  }
+
+  for (int i = 0; i < 3; ++i) stress[i] = pressure + s[i];
+  for (int i = 3; i < 6; ++i) stress[i] = s[i];
+
+  next.time_s = t_next;
+  for (int i = 0; i < 6; ++i) {
+    next.strain[i] = scalar_part(strain[i]);
+    next.dev_strain_integral[i] = scalar_part(integral[i]);
+  }
+  for (int j = 0; j < 3; ++j) {
+    next.driver_amplitude[j] = j < parts ? scalar_part(amplitude[j]) : 0.0;
+    next.driver_oscillating[j] = j < parts ? scalar_part(osc[j]) : 0.0;
+  }
+}
+
+Vector6 MaterialPoint::update(const MaterialState& state, const Vector6& strain, double dt_s,
+                              double temperature_C, MaterialState& next, Matrix6* tangent) const {
+  Vector6 stress;
+  if (!tangent) {
+    update_impl<double>(state, strain.data(), dt_s, temperature_C, next, stress.data());
+    return stress;
+  }
+  Jet6 strain_jet[6], stress_jet[6];
+  for (int i = 0; i < 6; ++i) strain_jet[i] = Jet6(strain[i], i);
+  update_impl<Jet6>(state, strain_jet, dt_s, temperature_C, next, stress_jet);
+  for (int i = 0; i < 6; ++i) {
+    stress[i] = stress_jet[i].a;
+    for (int j = 0; j < 6; ++j) (*tangent)(i, j) = stress_jet[i].v[j];
+  }
+  return stress;
+}
+
+Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation) {
+  if (!(F.determinant() > 0.0))
+    throw core::NumericalError("fritzson: deformation gradient with det F ≤ 0");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(F.transpose() * F);
+  const Eigen::Vector3d lambda = eig.eigenvalues().cwiseSqrt();
+  const Eigen::Matrix3d Q = eig.eigenvectors();
+  const Eigen::Matrix3d lnU = Q * lambda.array().log().matrix().asDiagonal() * Q.transpose();
+  if (rotation) {
+    const Eigen::Matrix3d U_inv = Q * lambda.cwiseInverse().asDiagonal() * Q.transpose();
+    *rotation = F * U_inv;
+  }
+  Vector6 e;
+  e << lnU(0, 0), lnU(1, 1), lnU(2, 2), 2.0 * lnU(1, 2), 2.0 * lnU(0, 2), 2.0 * lnU(0, 1);
+  return e;
+}
+
+Eigen::Matrix3d MaterialPoint::update_deformation(const MaterialState& state,
+                                                  const Eigen::Matrix3d& F, double dt_s,
+                                                  double temperature_C, MaterialState& next,
+                                                  Vector6* stress_unrotated,
+                                                  Matrix6* tangent) const {
+  Eigen::Matrix3d R;
+  const Vector6 strain = log_strain(F, &R);
+  const Vector6 s = update(state, strain, dt_s, temperature_C, next, tangent);
+  if (stress_unrotated) *stress_unrotated = s;
+  Eigen::Matrix3d S;
+  S << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
+  return R * S * R.transpose();
+}
+
+PointLoading loading_for(const TestCondition& c, bool anisotropic) {
+  PointLoading l;
+  l.mode = c.mode;
+  if (c.mode == TestMode::bulk) return l;
+  const std::string& o = c.orientation;
+  int i = c.mode == TestMode::uniaxial ? 1 : 0, j = 1;  // isotropic defaults: 22 and 12
+  if (!o.empty()) {
+    if (o.size() != 2 || o[0] < '1' || o[0] > '3' || o[1] < '1' || o[1] > '3')
+      throw core::UsageError("fritzson: orientation '" + o + "' is not 11, 22, 33, 12, 13 or 23");
+    i = o[0] - '1';
+    j = o[1] - '1';
+  } else if (anisotropic) {
+    throw core::UsageError("fritzson (transversely isotropic) needs the test orientation");
+  }
+  if (c.mode == TestMode::uniaxial) {
+    if (i != j) throw core::UsageError("fritzson: uniaxial orientation must be 11, 22 or 33");
+    l.component = i;
+  } else {
+    if (i == j) throw core::UsageError("fritzson: shear orientation must be 12, 13 or 23");
+    l.component = (i + j == 3) ? 3 : (i + j == 2) ? 4 : 5;  // 23, 13, 12
+  }
+  return l;
+}
+
+DriveResult drive(const MaterialPoint& point, const PointLoading& loading,
+                  const StrainHistory& history, double temperature_C) {
+  if (history.time_s.size() != history.strain.size())
+    throw core::UsageError("strain history: time and strain have different lengths");
+  for (size_t n = 1; n < history.time_s.size(); ++n)
+    if (!(history.time_s[n] > history.time_s[n - 1]))
+      throw core::UsageError("strain history: times must increase strictly (sample " +
+                             std::to_string(n) + ")");
+  DriveResult out;
+  MaterialState state, next;
+  Vector6 strain = Vector6::Zero();
+  Vector6 previous_strain = Vector6::Zero();
+  Matrix6 tangent;
+  const int axis = loading.component;
+  const int lateral[2] = {(axis + 1) % 3, (axis + 2) % 3};
+  for (size_t n = 0; n < history.time_s.size(); ++n) {
+    const double dt = n == 0 ? 0.0 : history.time_s[n] - history.time_s[n - 1];
+    const double value = history.strain[n];
+    Vector6 stress;
+    double test_stress = 0.0;
+    if (loading.mode == TestMode::shear) {
+      strain.setZero();
+      strain[axis] = value;
+      stress = point.update(state, strain, dt, temperature_C, next);
+      test_stress = stress[axis];
+    } else if (loading.mode == TestMode::bulk) {
+      strain.setZero();
+      strain.head<3>().setConstant(value / 3.0);
+      stress = point.update(state, strain, dt, temperature_C, next);
+      test_stress = stress.head<3>().mean();
+    } else {
+      // Lateral normal stresses zero: Newton on the two lateral strains, starting from the last
+      // ones plus the incompressible guess for the increment.
+      const double increment = value - previous_strain[axis];
+      strain = previous_strain;
+      strain[axis] = value;
+      for (int l : lateral) strain[l] -= 0.5 * increment;
+      bool converged = false;
+      for (int iteration = 0; iteration < 30; ++iteration) {
+        stress = point.update(state, strain, dt, temperature_C, next, &tangent);
+        const Eigen::Vector2d residual(stress[lateral[0]], stress[lateral[1]]);
+        const double scale = 1.0 + std::abs(stress[axis]);
+        if (residual.cwiseAbs().maxCoeff() <= 1e-10 * scale) {
+          converged = true;
+          break;
+        }
+        Eigen::Matrix2d J;
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) J(a, b) = tangent(lateral[a], lateral[b]);
+        const Eigen::Vector2d step = J.partialPivLu().solve(-residual);
+        strain[lateral[0]] += step[0];
+        strain[lateral[1]] += step[1];
+      }
+      if (!converged)
+        throw core::NumericalError("fritzson: uniaxial lateral-stress iteration did not converge at t = " +
+                                   std::to_string(history.time_s[n]) + " s");
+      test_stress = stress[axis];
+    }
+    state = next;
+    previous_strain = strain;
+    out.stress.push_back(test_stress);
+    out.strain.push_back(strain);
+    out.driver_amplitude.push_back(state.driver_amplitude);
+  }
+  return out;
+}
+
+DriveResult drive_test(const MaterialPoint& point, const TestCondition& c,
+                       const StrainHistory& history) {
+  return drive(point, loading_for(c, point.anisotropic()), history, c.temperature_C);
+}
+
+Moduli<double> cycle_moduli(const std::vector<double>& t, const std::vector<double>& strain,
+                            const std::vector<double>& stress, double frequency_Hz) {
+  const double period = 1.0 / frequency_Hz, omega = 2.0 * kPi * frequency_Hz;
+  const double t_end = t.back(), t_start = t_end - period;
+  std::complex<double> eps_hat(0.0), sig_hat(0.0);
+  double eps_mean = 0.0, sig_mean = 0.0;
+  for (size_t n = 1; n < t.size(); ++n) {
+    if (t[n - 1] < t_start - 1e-12 * period) continue;
+    const double h = 0.5 * (t[n] - t[n - 1]);
+    const std::complex<double> w0 = std::exp(std::complex<double>(0.0, -omega * t[n - 1]));
+    const std::complex<double> w1 = std::exp(std::complex<double>(0.0, -omega * t[n]));
+    eps_hat += h * (strain[n - 1] * w0 + strain[n] * w1);
+    sig_hat += h * (stress[n - 1] * w0 + stress[n] * w1);
+    eps_mean += h * (strain[n - 1] + strain[n]);
+    sig_mean += h * (stress[n - 1] + stress[n]);
+  }
+  const std::complex<double> modulus = sig_hat / eps_hat;
+  return {modulus.real(), modulus.imag(), sig_mean / eps_mean};
+}
+
+StrainHistory cyclic_history(double amplitude, double mean_strain, double frequency_Hz,
+                             int cycles, int steps_per_cycle) {
+  StrainHistory h;
+  const int n = cycles * steps_per_cycle;
+  h.time_s.reserve(n + 1);
+  h.strain.reserve(n + 1);
+  for (int k = 0; k <= n; ++k) {
+    const double phase = 2.0 * kPi * double(k) / steps_per_cycle;
+    h.time_s.push_back(double(k) / steps_per_cycle / frequency_Hz);
+    h.strain.push_back(mean_strain - amplitude * std::cos(phase));
+  }
+  return h;
+}
+
+}  // namespace fitlib::model::fritzson

@@ -1,0 +1,286 @@
+#include "fitlib/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/core/units.hpp"
+
+namespace fitlib::scene {
+namespace {
+using core::InputError;
+using core::kPi;
+
+// Reads one TOML table: every key must be consumed; typed getters name the key path on error.
+class Reader {
+ public:
+  Reader(const toml::table& t, std::string prefix, const std::string& file)
+      : t_(t), prefix_(std::move(prefix)), file_(file) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& msg,
+                         const toml::source_region& where) const {
+    throw InputError(msg, file_, static_cast<int>(where.begin.line),
+                     static_cast<int>(where.begin.column), path(key));
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& msg) const {
+    const toml::node* n = t_.get(key);
+    fail(key, msg, n ? n->source() : t_.source());
+  }
+  std::string path(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+
+  bool has(const std::string& key) const { return t_.contains(key); }
+  const toml::node* node(const std::string& key) {
+    seen_.insert(key);
+    return t_.get(key);
+  }
+  std::optional<double> number(const std::string& key, double lo = -INFINITY, double hi = INFINITY,
+                               bool lo_open = false) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    std::optional<double> v;
+    if (auto f = n->as_floating_point()) v = f->get();
+    if (auto i = n->as_integer()) v = static_cast<double>(i->get());
+    if (!v) fail(key, "expects a number in the unit its name ends with");
+    if (!std::isfinite(*v) || *v < lo || *v > hi || (lo_open && *v == lo)) {
+      std::ostringstream m;
+      m << "value " << *v << " out of range " << (lo_open ? "(" : "[") << lo << ", " << hi << "]";
+      fail(key, m.str());
+    }
+    return v;
+  }
+  double number_or(const std::string& key, double fallback, double lo = -INFINITY,
+                   double hi = INFINITY, bool lo_open = false) {
+    return number(key, lo, hi, lo_open).value_or(fallback);
+  }
+  std::optional<std::string> string(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (auto s = n->as_string()) return s->get();
+    fail(key, "expects a string");
+  }
+  std::optional<bool> boolean(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (auto b = n->as_boolean()) return b->get();
+    fail(key, "expects true or false");
+  }
+  const toml::table* table(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (auto t = n->as_table()) return t;
+    fail(key, "expects a table");
+  }
+  // Unknown keys are errors.
+  void finish() const {
+    for (auto&& [k, v] : t_) {
+      const std::string key(k.str());
+      if (seen_.count(key)) continue;
+      fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see formats.md §5)",
+           v.source());
+    }
+  }
+  const toml::table& raw() const { return t_; }
+
+ private:
+  const toml::table& t_;
+  std::string prefix_;
+  const std::string& file_;
+  std::set<std::string> seen_;
+};
+
+belt::PulleyRole parse_role(Reader& r, const std::string& key) {
+  const auto s = r.string(key);
+  if (!s) r.fail(key, "missing: role = \"driver\", \"driven\" or \"idler\"");
+  if (*s == "driver") return belt::PulleyRole::driver;
+  if (*s == "driven") return belt::PulleyRole::driven;
+  if (*s == "idler") return belt::PulleyRole::idler;
+  r.fail(key, "role must be \"driver\", \"driven\" or \"idler\", not \"" + *s + "\"");
+}
+
+void apply_section(Scene& s, Reader& r) {
+  s.section = r.string("section").value_or("cogged-0.500");
+  if (s.section != "cogged-0.500")
+    r.fail("section", "unknown section '" + s.section + "' (known: cogged-0.500)");
+  // Defaults of the 0.500 in cogged belt (Report I §6.1, Eqs 6.2–6.3).
+  s.belt = belt::BeltSection{};
+  s.belt.height_mm = r.number_or("height_mm", 6.5862, 0.0, 1e3, true);
+  s.belt.width_mm = r.number_or("width_mm", 11.1542, 0.0, 1e3, true);
+  s.belt.area_mm2 = r.number_or("area_mm2", s.belt.height_mm * s.belt.width_mm, 0.0, 1e6, true);
+  s.belt.density_kg_m3 = r.number_or("density_kg_m3", 1200.0, 0.0, 1e5);
+  s.belt.wedge_half_angle_rad = r.number_or("wedge_half_angle_deg", 19.0, 0.0, 90.0, true) * kPi / 180.0;
+  if (s.belt.wedge_half_angle_rad >= kPi / 2) r.fail("wedge_half_angle_deg", "must be below 90 deg");
+  s.cord_area_mm2 = r.number_or("cord_area_mm2", 5.0, 0.0, 1e4, true);
+  s.bending_inertia_mm4 = r.number_or("bending_inertia_mm4", 834.0, 0.0, 1e9, true);
+  for (const char* k : {"cog_pitch_mm", "cog_depth_mm", "cushion_mm", "length_mm"})
+    if (auto v = r.number(k, 0.0, 1e6, true)) s.extra_geometry_mm[k] = *v;
+}
+}  // namespace
+
+const std::vector<std::string>& effect_names() {
+  static const std::vector<std::string> names{"bending_zones", "inertia", "full_ode",
+                                              "driver_exit_ramp", "viscoelastic_tension"};
+  return names;
+}
+const std::vector<std::string>& output_names() {
+  static const std::vector<std::string> names{"load_history", "strain_accumulation", "cvt_thrust",
+                                              "life"};
+  return names;
+}
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw InputError(std::string(e.description()), source, static_cast<int>(e.source().begin.line),
+                     static_cast<int>(e.source().begin.column));
+  }
+  Scene s;
+  s.path = source;
+  const std::filesystem::path base = std::filesystem::path(source).parent_path();
+  Reader top(root, "", source);
+  s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
+
+  // [drive]
+  const toml::table* drive_t = top.table("drive");
+  if (!drive_t) top.fail("drive", "missing [drive] table", root.source());
+  Reader drive(*drive_t, "drive", source);
+  const toml::node* pulleys_n = drive.node("pulleys");
+  if (!pulleys_n || !pulleys_n->as_array())
+    drive.fail("pulleys", "expects an array of pulley tables {name, pitch_diameter_mm, role, ...}");
+  std::size_t index = 0;
+  for (const toml::node& pn : *pulleys_n->as_array()) {
+    const std::string key = "pulleys[" + std::to_string(index) + "]";
+    if (!pn.as_table()) drive.fail("pulleys", key + " must be a table", pn.source());
+    Reader pr(*pn.as_table(), "drive." + key, source);
+    PulleySpec p;
+    p.name = pr.string("name").value_or("pulley" + std::to_string(index + 1));
+    const auto d = pr.number("pitch_diameter_mm", 0.0, 1e5, true);
+    if (!d) pr.fail("pitch_diameter_mm", "missing (pitch diameter in mm)", pn.source());
+    p.pitch_diameter_mm = *d;
+    p.role = parse_role(pr, "role");
+    p.speed_rpm = pr.number("speed_rpm", 0.0, 1e6);
+    p.torque_Nm = pr.number_or("torque_Nm", 0.0, 0.0, 1e7);
+    if (const toml::node* c = pr.node("center_mm")) {
+      const toml::array* a = c->as_array();
+      if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
+        pr.fail("center_mm", "expects [x, y] in mm");
+      p.center_mm = std::make_pair((*a)[0].value<double>().value(), (*a)[1].value<double>().value());
+    }
+    pr.finish();
+    s.pulleys.push_back(p);
+    ++index;
+  }
+  if (s.pulleys.size() < 2) drive.fail("pulleys", "a drive needs at least two pulleys");
+  s.center_distance_mm = drive.number("center_distance_mm", 0.0, 1e6, true);
+  const bool all_centres = std::all_of(s.pulleys.begin(), s.pulleys.end(),
+                                       [](const PulleySpec& p) { return p.center_mm.has_value(); });
+  if (s.pulleys.size() == 2 && !s.center_distance_mm && !all_centres)
+    drive.fail("center_distance_mm", "missing (or give every pulley center_mm = [x, y])", drive_t->source());
+  if (s.pulleys.size() > 2 && !all_centres)
+    drive.fail("pulleys", "drives with more than two pulleys need center_mm = [x, y] on every pulley");
+  s.torque_Nm = drive.number("torque_Nm", 0.0, 1e7);
+  s.power_kW = drive.number("power_kW", 0.0, 1e6);
+  if (s.torque_Nm && s.power_kW) drive.fail("power_kW", "give torque_Nm or power_kW, not both");
+  int rules = 0;
+  for (auto [key, rule] : {std::pair{"slack_tension_N", belt::TensionRule::slack},
+                           std::pair{"tight_tension_N", belt::TensionRule::tight},
+                           std::pair{"initial_tension_N", belt::TensionRule::initial}}) {
+    if (auto v = drive.number(key, 0.0, 1e7)) {
+      if (++rules > 1) drive.fail(key, "give one tensioning rule: slack_, tight_ or initial_tension_N");
+      s.tension_rule = rule;
+      s.tension_N = *v;
+    }
+  }
+  if (rules == 0)
+    drive.fail("slack_tension_N", "missing tensioning rule (slack_tension_N, tight_tension_N or initial_tension_N)",
+               drive_t->source());
+  drive.finish();
+
+  // [belt]
+  const toml::table* belt_t = top.table("belt");
+  toml::table empty;
+  Reader br(belt_t ? *belt_t : empty, "belt", source);
+  apply_section(s, br);
+  if (const toml::table* mt = br.table("materials")) {
+    Reader mr(*mt, "belt.materials", source);
+    for (const char* role : {"bottom", "cushion", "cord"})
+      if (auto p = mr.string(role)) {
+        std::filesystem::path f(*p);
+        s.materials[role] = (f.is_absolute() ? f : base / f).lexically_normal().string();
+      }
+    mr.finish();
+  }
+  if (const toml::table* st = br.table("stiffness")) {
+    Reader sr(*st, "belt.stiffness", source);
+    s.c_N = sr.number("c_N", 0.0, 1e12, true);
+    s.k1_MPa = sr.number("k1_MPa", 0.0, 1e9, true);
+    s.EI_Nmm2 = sr.number("EI_Nmm2", 0.0, 1e12);
+    sr.finish();
+  }
+  br.finish();
+
+  // [conditions]
+  if (const toml::table* ct = top.table("conditions")) {
+    Reader cr(*ct, "conditions", source);
+    s.temperature_C = cr.number_or("temperature_C", 20.0, -273.15, 1000.0);
+    s.friction = cr.number_or("friction", 0.8, 0.0, 100.0);
+    cr.finish();
+  }
+
+  // [effects], [outputs]
+  auto flags = [&](const char* table, const std::vector<std::string>& names,
+                   std::map<std::string, bool>& out) {
+    if (const toml::table* t = top.table(table)) {
+      Reader fr(*t, table, source);
+      for (const auto& n : names)
+        if (auto b = fr.boolean(n)) out[n] = *b;
+      fr.finish();
+    }
+  };
+  flags("effects", effect_names(), s.effects);
+  flags("outputs", output_names(), s.outputs);
+  if (!top.has("outputs")) s.outputs["load_history"] = true;
+
+  // [accumulation]
+  if (const toml::table* at = top.table("accumulation")) {
+    Reader ar(*at, "accumulation", source);
+    AccumulationSpec a;
+    a.shear_stress_MPa = ar.number_or("shear_stress_MPa", a.shear_stress_MPa, 0.0, 1e6, true);
+    a.cycles = static_cast<long>(ar.number_or("cycles", 10000, 1, 1e12));
+    a.cycle_points = static_cast<int>(ar.number_or("cycle_points", 50, 1, 1e5));
+    a.omega_min_rad_s = ar.number_or("omega_min_rad_s", a.omega_min_rad_s, 0.0, 1e9, true);
+    a.omega_max_rad_s = ar.number_or("omega_max_rad_s", a.omega_max_rad_s, 0.0, 1e9, true);
+    if (a.omega_max_rad_s < a.omega_min_rad_s) ar.fail("omega_max_rad_s", "must be >= omega_min_rad_s");
+    a.omega_points = static_cast<int>(ar.number_or("omega_points", 100, 1, 1e5));
+    a.kappa = ar.number("kappa", 0.0, 1e6);
+    a.spectrum = ar.string("spectrum").value_or(a.spectrum);
+    a.strain_limit = ar.number("strain_limit", 0.0, 1e6, true);
+    ar.finish();
+    s.accumulation = a;
+  }
+  // [cvt]
+  if (const toml::table* vt = top.table("cvt")) {
+    Reader vr(*vt, "cvt", source);
+    CvtSpec c;
+    c.tight_tension_N = vr.number_or("tight_tension_N", 0.0, 0.0, 1e7);
+    c.slack_tension_N = vr.number_or("slack_tension_N", 0.0, 0.0, 1e7);
+    c.groove_half_angle_deg = vr.number_or("groove_half_angle_deg", c.groove_half_angle_deg, 0.0, 90.0, true);
+    c.driver_wrap_rad = vr.number_or("driver_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
+    c.driven_wrap_rad = vr.number_or("driven_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
+    vr.finish();
+    s.cvt = c;
+  }
+  top.finish();
+  return s;
+}
+
+Scene load_scene(const std::string& path) { return parse_scene(core::read_file(path), path); }
+
+}  // namespace fitlib::scene

@@ -1,0 +1,372 @@
+// Bezier surface: axes, evaluation (value, gradient), JSON (formats.md §4).
+#include "fitlib/surface/surface.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/surface/bernstein.hpp"
+
+namespace fitlib::surface {
+
+const char* to_string(Transform t) { return t == Transform::log10 ? "log10" : "linear"; }
+
+Transform parse_transform(const std::string& text) {
+  if (text == "linear" || text == "lin") return Transform::linear;
+  if (text == "log10" || text == "log") return Transform::log10;
+  throw core::UsageError("unknown axis transform '" + text + "' (use linear or log10)");
+}
+
+Transform default_transform(const std::string& axis_name) {
+  std::string lower = axis_name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower.find("frequency") != std::string::npos ? Transform::log10 : Transform::linear;
+}
+
+double Axis::coordinate(double x) const {
+  if (transform == Transform::linear) return x;
+  if (!(x > 0.0)) {
+    std::ostringstream msg;
+    msg << "axis '" << name << "' is log10, so its values must be positive; got " << x;
+    throw core::InputError(msg.str(), {}, 0, 0, name);
+  }
+  return std::log10(x);
+}
+
+double Axis::parameter(double x) const {
+  const double c0 = coordinate(start), c1 = coordinate(end);
+  return c1 == c0 ? 0.0 : (coordinate(x) - c0) / (c1 - c0);
+}
+
+double Axis::parameter_derivative(double x) const {
+  const double c0 = coordinate(start), c1 = coordinate(end);
+  if (c1 == c0) return 0.0;
+  const double dcoord_dx = transform == Transform::linear ? 1.0 : 1.0 / (x * std::log(10.0));
+  return dcoord_dx / (c1 - c0);
+}
+
+bool Axis::contains(double x) const {
+  if (transform == Transform::log10 && !(x > 0.0)) return false;
+  const double c0 = coordinate(start), c1 = coordinate(end), c = coordinate(x);
+  const double tolerance = 1e-9 * std::max({std::abs(c1 - c0), std::abs(c0), std::abs(c1), 1e-300});
+  return c >= c0 - tolerance && c <= c1 + tolerance;
+}
+
+std::size_t Surface::size() const {
+  std::size_t p = 1;
+  for (const auto& a : axes) p *= static_cast<std::size_t>(a.degree + 1);
+  return p;
+}
+
+std::size_t Surface::flat_index(const std::vector<int>& index) const {
+  std::size_t flat = 0;
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    flat = flat * static_cast<std::size_t>(axes[k].degree + 1) + static_cast<std::size_t>(index[k]);
+  return flat;
+}
+
+std::vector<int> Surface::multi_index(std::size_t flat) const {
+  std::vector<int> index(axes.size());
+  for (std::size_t k = axes.size(); k-- > 0;) {
+    const auto n = static_cast<std::size_t>(axes[k].degree + 1);
+    index[k] = static_cast<int>(flat % n);
+    flat /= n;
+  }
+  return index;
+}
+
+namespace {
+
+// Contracts the control points with one basis vector per axis, last axis first, in a scratch
+// buffer: about p (1 + 1/(d+1) + ...) multiply-adds, no allocation after the first call.
+double contract(const Surface& s, const std::vector<const double*>& basis,
+                std::vector<double>& scratch) {
+  const std::size_t n = s.axes.size();
+  if (n == 0) return s.control_points.size() ? s.control_points[0] : 0.0;
+  std::size_t length = static_cast<std::size_t>(s.control_points.size());
+  const double* source = s.control_points.data();
+  scratch.resize(std::max<std::size_t>(length, 1));
+  double* work = scratch.data();
+  for (std::size_t k = n; k-- > 0;) {
+    const std::size_t width = static_cast<std::size_t>(s.axes[k].degree + 1);
+    const double* b = basis[k];
+    const std::size_t outer = length / width;
+    for (std::size_t q = 0; q < outer; ++q) {  // in place is safe: q <= q * width
+      const double* row = source + q * width;
+      double sum = 0.0;
+      for (std::size_t l = 0; l < width; ++l) sum += row[l] * b[l];
+      work[q] = sum;
+    }
+    source = work;
+    length = outer;
+  }
+  return work[0];
+}
+
+struct Scratch {
+  std::vector<double> basis, derivative, work;
+  std::vector<const double*> pointers;
+};
+
+Scratch& scratch_for(const Surface& s) {
+  thread_local Scratch scratch;
+  std::size_t total = 0;
+  for (const auto& a : s.axes) total += static_cast<std::size_t>(a.degree + 1);
+  scratch.basis.resize(total);
+  scratch.derivative.resize(total);
+  scratch.pointers.resize(s.axes.size());
+  return scratch;
+}
+
+}  // namespace
+
+double evaluate_at_parameters(const Surface& s, const double* u, double* gradient_du) {
+  Scratch& w = scratch_for(s);
+  std::size_t offset = 0;
+  for (std::size_t k = 0; k < s.axes.size(); ++k) {
+    const int d = s.axes[k].degree;
+    if (gradient_du)
+      bernstein_with_derivative(d, u[k], &w.basis[offset], &w.derivative[offset]);
+    else
+      bernstein(d, u[k], &w.basis[offset]);
+    w.pointers[k] = &w.basis[offset];
+    offset += static_cast<std::size_t>(d + 1);
+  }
+  const double value = contract(s, w.pointers, w.work);
+  if (gradient_du) {
+    offset = 0;
+    for (std::size_t k = 0; k < s.axes.size(); ++k) {
+      w.pointers[k] = &w.derivative[offset];
+      gradient_du[k] = contract(s, w.pointers, w.work);
+      w.pointers[k] = &w.basis[offset];
+      offset += static_cast<std::size_t>(s.axes[k].degree + 1);
+    }
+  }
+  return value;
+}
+
+bool Surface::contains(const double* x) const {
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    if (!axes[k].contains(x[k])) return false;
+  return true;
+}
+
+namespace {
+void check_inside(const Surface& s, const double* x, bool allow, bool* extrapolated) {
+  bool outside = false;
+  for (std::size_t k = 0; k < s.axes.size(); ++k) {
+    if (s.axes[k].contains(x[k])) continue;
+    outside = true;
+    if (!allow) {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << "axis '" << s.axes[k].name << "' = " << x[k] << " lies outside the surface's interval ["
+          << s.axes[k].start << ", " << s.axes[k].end
+          << "]; a fitted surface interpolates only (Report V §5.1); pass allow_extrapolation "
+             "(--allow-extrapolation) to evaluate anyway";
+      throw core::InputError(msg.str(), {}, 0, 0, s.axes[k].name);
+    }
+  }
+  if (extrapolated) *extrapolated = outside;
+}
+}  // namespace
+
+double Surface::value(const double* x, bool allow_extrapolation, bool* extrapolated) const {
+  check_inside(*this, x, allow_extrapolation, extrapolated);
+  thread_local std::vector<double> u;
+  u.resize(axes.size());
+  for (std::size_t k = 0; k < axes.size(); ++k) u[k] = axes[k].parameter(x[k]);
+  return evaluate_at_parameters(*this, u.data(), nullptr);
+}
+
+Evaluation Surface::evaluate(const double* x, bool allow_extrapolation) const {
+  Evaluation e;
+  check_inside(*this, x, allow_extrapolation, &e.extrapolated);
+  const std::size_t n = axes.size();
+  std::vector<double> u(n), du(n);
+  for (std::size_t k = 0; k < n; ++k) u[k] = axes[k].parameter(x[k]);
+  e.value = evaluate_at_parameters(*this, u.data(), du.data());
+  e.gradient.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t k = 0; k < n; ++k)
+    e.gradient[static_cast<Eigen::Index>(k)] = du[k] * axes[k].parameter_derivative(x[k]);
+  return e;
+}
+
+// ---- JSON ----
+
+namespace {
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json equation_to_json(const Surface& s, const LinearConstraint& c) {
+  nlohmann::json terms = nlohmann::json::array();
+  for (const auto& [flat, coefficient] : c.terms)
+    terms.push_back({{"index", s.multi_index(flat)}, {"coefficient", coefficient}});
+  return {{"terms", terms}, {"rhs", c.rhs}};
+}
+
+template <typename T>
+T required(const nlohmann::json& j, const char* key, const std::string& source,
+           const std::string& path) {
+  if (!j.is_object() || !j.contains(key))
+    throw core::InputError("missing key", source, 0, 0, path + key);
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception& e) {
+    throw core::InputError(std::string("wrong type: ") + e.what(), source, 0, 0, path + key);
+  }
+}
+}  // namespace
+
+nlohmann::json surface_to_json(const Surface& s) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const auto& a : s.axes)
+    axes.push_back({{"name", a.name},
+                    {"unit", a.unit},
+                    {"transform", to_string(a.transform)},
+                    {"interval", {a.start, a.end}},
+                    {"degree", a.degree},
+                    {"levels", a.levels},
+                    {"scattered", a.scattered}});
+  nlohmann::json constraints = nlohmann::json::array();
+  for (const auto& g : s.constraints) {
+    nlohmann::json equations = nlohmann::json::array();
+    for (const auto& c : g.equations) equations.push_back(equation_to_json(s, c));
+    constraints.push_back({{"origin", g.origin},
+                           {"description", g.description},
+                           {"cells", g.cells},
+                           {"equations", equations}});
+  }
+  const Statistics& st = s.statistics;
+  return {{"schema", Surface::kSchema},
+          {"name", s.name},
+          {"dependent", {{"name", s.dependent_name}, {"unit", s.dependent_unit}}},
+          {"axes", axes},
+          {"control_points",
+           {{"order", "row-major over (i_1, ..., i_n), last axis fastest"},
+            {"values", std::vector<double>(s.control_points.data(),
+                                           s.control_points.data() + s.control_points.size())}}},
+          {"level_grid", s.level_grid},
+          {"missing_cells", s.missing_cells},
+          {"constraints", constraints},
+          {"statistics",
+           {{"N", st.n_points},
+            {"p", st.n_parameters},
+            {"residual_dof", st.residual_dof},
+            {"R", number_or_null(st.R)},
+            {"s", number_or_null(st.s)},
+            {"max_relative_error", number_or_null(st.max_relative_error)},
+            {"max_relative_error_row", st.max_relative_error_row},
+            {"ss_residual", st.ss_residual},
+            {"ss_total", st.ss_total},
+            {"occupied_cells", st.n_occupied_cells}}},
+          {"provenance", s.provenance}};
+}
+
+Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
+  Surface s;
+  const auto schema = required<std::string>(j, "schema", source, "");
+  if (schema != Surface::kSchema)
+    throw core::InputError("unknown schema '" + schema + "' (expected " + Surface::kSchema + ")",
+                           source, 0, 0, "schema");
+  s.name = j.value("name", "");
+  if (j.contains("dependent")) {
+    s.dependent_name = j["dependent"].value("name", "");
+    s.dependent_unit = j["dependent"].value("unit", "");
+  }
+  const auto axes = required<nlohmann::json>(j, "axes", source, "");
+  if (!axes.is_array() || axes.empty())
+    throw core::InputError("must be a non-empty array", source, 0, 0, "axes");
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    const std::string path = "axes[" + std::to_string(k) + "].";
+    Axis a;
+    a.name = required<std::string>(axes[k], "name", source, path);
+    a.unit = axes[k].value("unit", "");
+    a.transform = parse_transform(required<std::string>(axes[k], "transform", source, path));
+    const auto interval = required<std::vector<double>>(axes[k], "interval", source, path);
+    if (interval.size() != 2 || !(interval[0] <= interval[1]))
+      throw core::InputError("must be [start, end] with start <= end", source, 0, 0,
+                             path + "interval");
+    a.start = interval[0];
+    a.end = interval[1];
+    if (a.transform == Transform::log10 && !(a.start > 0.0))
+      throw core::InputError("a log10 axis needs a positive interval", source, 0, 0,
+                             path + "interval");
+    a.degree = required<int>(axes[k], "degree", source, path);
+    if (a.degree < 0 || a.degree > kMaxDegree)
+      throw core::InputError("degree must be 0.." + std::to_string(kMaxDegree), source, 0, 0,
+                             path + "degree");
+    if (axes[k].contains("levels")) a.levels = axes[k]["levels"].get<std::vector<double>>();
+    a.scattered = axes[k].value("scattered", false);
+    s.axes.push_back(a);
+  }
+  const auto cp = required<nlohmann::json>(j, "control_points", source, "");
+  const auto values = required<std::vector<double>>(cp, "values", source, "control_points.");
+  if (values.size() != s.size())
+    throw core::InputError("has " + std::to_string(values.size()) + " values; the degrees need " +
+                               std::to_string(s.size()),
+                           source, 0, 0, "control_points.values");
+  s.control_points = Eigen::Map<const Eigen::VectorXd>(values.data(),
+                                                       static_cast<Eigen::Index>(values.size()));
+  s.level_grid = j.value("level_grid", false);
+  if (j.contains("missing_cells"))
+    s.missing_cells = j["missing_cells"].get<std::vector<std::vector<int>>>();
+  if (j.contains("constraints")) {
+    for (const auto& g : j["constraints"]) {
+      ConstraintGroup group;
+      group.origin = g.value("origin", "");
+      group.description = g.value("description", "");
+      if (g.contains("cells")) group.cells = g["cells"].get<std::vector<std::vector<int>>>();
+      for (const auto& e : g.value("equations", nlohmann::json::array())) {
+        LinearConstraint c;
+        c.rhs = e.value("rhs", 0.0);
+        for (const auto& t : e.value("terms", nlohmann::json::array()))
+          c.terms.emplace_back(s.flat_index(t.at("index").get<std::vector<int>>()),
+                               t.at("coefficient").get<double>());
+        group.equations.push_back(c);
+      }
+      s.constraints.push_back(group);
+    }
+  }
+  if (j.contains("statistics")) {
+    const auto& st = j["statistics"];
+    auto number = [&](const char* key) {
+      return st.contains(key) && st[key].is_number() ? st[key].get<double>()
+                                                      : std::numeric_limits<double>::quiet_NaN();
+    };
+    s.statistics.n_points = st.value("N", std::size_t{0});
+    s.statistics.n_parameters = st.value("p", std::size_t{0});
+    s.statistics.residual_dof = st.value("residual_dof", std::size_t{0});
+    s.statistics.R = number("R");
+    s.statistics.s = number("s");
+    s.statistics.max_relative_error = number("max_relative_error");
+    s.statistics.max_relative_error_row = st.value("max_relative_error_row", std::size_t{0});
+    s.statistics.ss_residual = number("ss_residual");
+    s.statistics.ss_total = number("ss_total");
+    s.statistics.n_occupied_cells = st.value("occupied_cells", std::size_t{0});
+  }
+  if (j.contains("provenance")) s.provenance = j["provenance"];
+  return s;
+}
+
+Surface load_surface(const std::string& path) {
+  const std::string text = core::read_file(path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw core::InputError(std::string("not valid JSON: ") + e.what(), path);
+  }
+  return surface_from_json(j, path);
+}
+
+void save_surface(const std::string& path, const Surface& s) {
+  core::write_file_atomically(path, surface_to_json(s).dump(2) + "\n");
+}
+
+}  // namespace fitlib::surface

@@ -1,0 +1,114 @@
+// End to end: fit → card → eval → export, exit codes and determinism, as a user runs them.
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "fitlib/card/card.hpp"
+
+namespace {
+const std::string kMaster = source_path("datasets/materials/pyvisco-freq-master.csv");
+const std::string kSynthetic = source_path("datasets/materials/synthetic-prony-shear.csv");
+}  // namespace
+
+TEST(FitCli, PyviscoMasterCurveToCardAndEvalReproducesTheCardExactly) {
+  const auto card_path = temp_file("master.json");
+  const auto r = run_fitcli("fit --data " + kMaster + " --format pyvisco --model prony --terms auto --out " + card_path);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("BIC"), std::string::npos) << r.out;  // the term table is printed
+  const auto card = fitlib::card::load_card(card_path);
+  EXPECT_EQ(card.model_kind, "prony");
+  EXPECT_EQ(card.model_options["mode"], "uniaxial");
+  EXPECT_EQ(card.fit["n_points"], 206);
+  for (const auto& p : card.parameters) EXPECT_GT(p.value, 0.0);
+
+  const auto e = run_fitcli("eval --card " + card_path + " --mode uniaxial --frequency-hz 1e-10,0.001,1,1000,1e12");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  const auto model = card.model();
+  const auto p = card.values();
+  std::istringstream lines(e.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "mode,orientation,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa,tan_delta,mean_modulus_MPa");
+  int n = 0;
+  for (double f : {1e-10, 0.001, 1.0, 1000.0, 1e12}) {
+    ASSERT_TRUE(std::getline(lines, line));
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    fitlib::model::TestCondition c;
+    c.mode = fitlib::model::TestMode::uniaxial;
+    c.frequency_Hz = f;
+    const auto m = model->moduli(p.data(), c);
+    EXPECT_EQ(std::stod(cells[5]), m.storage) << line;  // bit-exact
+    EXPECT_EQ(std::stod(cells[6]), m.loss) << line;
+    ++n;
+  }
+  EXPECT_EQ(n, 5);
+}
+
+TEST(FitCli, SameInputAndSeedGiveIdenticalCardBytes) {
+  const auto a = temp_file("det_a.json"), b = temp_file("det_b.json");
+  for (const auto& out : {a, b}) {
+    const auto r = run_fitcli("fit --data " + kSynthetic + " --model prony --terms 6 --backend ceres --seed 7 --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  // The command line differs only in the output path; compare everything else.
+  auto ja = nlohmann::json::parse(slurp(a)), jb = nlohmann::json::parse(slurp(b));
+  ja["provenance"].erase("command");
+  jb["provenance"].erase("command");
+  EXPECT_EQ(ja.dump(), jb.dump());
+}
+
+TEST(FitCli, SyntheticTableRecoversTheTrueParameters) {
+  const auto truth = fitlib::card::load_card(source_path("datasets/cards/synthetic-prony-shear-true.json"));
+  const auto out = temp_file("synthetic.json");
+  const auto r = run_fitcli("fit --data " + kSynthetic + " --model prony --terms 6 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto fitted = fitlib::card::load_card(out);
+  ASSERT_EQ(fitted.parameters.size(), truth.parameters.size());
+  int inside = 0;
+  for (size_t i = 0; i < truth.parameters.size(); ++i) {
+    const auto& f = fitted.parameters[i];
+    ASSERT_TRUE(f.ci95_low && f.ci95_high) << i;
+    if (*f.ci95_low <= truth.parameters[i].value && truth.parameters[i].value <= *f.ci95_high) ++inside;
+    EXPECT_NEAR(f.value, truth.parameters[i].value, 0.25 * truth.parameters[i].value) << i;
+  }
+  EXPECT_GE(inside, 10);  // of 13: 95 % intervals, 1 % noise
+}
+
+TEST(FitCli, BundledSyntheticTableIsReproducedByteForByte) {
+  const auto out = temp_file("regenerated.csv");
+  const auto r = run_fitcli("synth --card " + source_path("datasets/cards/synthetic-prony-shear-true.json") +
+                            " --frequency-hz " + "0.001,0.00316227766016838,0.01,0.0316227766016838,0.1,0.316227766016838,1,3.16227766016838,10,31.6227766016838,100,316.227766016838,1000" +
+                            " --specimens 3 --noise 0.01 --seed 42 --material synthetic-prony-shear --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(out), slurp(kSynthetic));
+}
+
+TEST(FitCli, ExitCodesFollowTheContract) {
+  const auto bad_dir = source_path("tests/data/malformed");
+  auto r = run_fitcli("fit --data " + kSynthetic + " --model no-such-model");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("unknown model"), std::string::npos) << r.err;
+  r = run_fitcli("fit --model prony");  // missing --data
+  EXPECT_EQ(r.exit_code, 2);
+  const auto broken_card = temp_file("broken-card.json");
+  std::ofstream(broken_card) << R"({"schema": "fitlib.card/1", "model": "prony", "options": {"terms": 1},
+  "parameters": [{"name": "G_inf", "value": 1}, {"name": "G_1", "value": 1}, {"name": "tau_1", "value": -2}]})";
+  r = run_fitcli("eval --card " + broken_card + " --frequency-hz 1");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("parameters[2].value"), std::string::npos) << r.err;
+}
+
+TEST(FitCli, ExportWritesSolverKeywordsOrRefusesClearly) {
+  const auto card_path = temp_file("export.json");
+  ASSERT_EQ(run_fitcli("fit --data " + kSynthetic + " --model prony --terms 6 --out " + card_path).exit_code, 0);
+  const auto inp = temp_file("mat.inp");
+  auto r = run_fitcli("export --card " + card_path + " --format abaqus --out " + inp);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(slurp(inp).find("*VISCOELASTIC, TIME=PRONY"), std::string::npos);
+  r = run_fitcli("export --card " + card_path + " --format lsdyna --out " + temp_file("mat.k"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("at most 5 Prony terms"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(temp_file("mat.k")).good());  // nothing half-written
+}
