@@ -117,6 +117,12 @@ void run_fit(FitArgs a) {
                   {"unconstrained", selection.unconstrained}, {"cap_cost_ratio", selection.cap_cost_ratio},
                   {"cap_storage_rms_ratio", selection.cap_storage_rms_ratio},
                   {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio}};
+    terms_json["rows"] = nlohmann::json::array();
+    for (const auto& row : selection.rows)
+      terms_json["rows"].push_back({{"terms", row.terms}, {"wall_time_s", row.wall_time_s},
+                                    {"rms_log10_storage", row.rms_log10_storage},
+                                    {"rms_log10_loss", row.rms_log10_loss}, {"cost", row.cost},
+                                    {"aic", row.aic}, {"bic", row.bic}, {"failed", row.failed}});
     for (const auto& m : selection.messages) result.messages.push_back(m);
     auto msgs = result.messages;
     result = selection.result;

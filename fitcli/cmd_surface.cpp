@@ -35,7 +35,7 @@ std::string stats_text(const surface::Surface& s) {
   out << "surface of " << s.dependent_name << " over";
   for (const auto& a : s.axes)
     out << " " << a.name << " (" << surface::to_string(a.transform) << ", degree " << a.degree << ", "
-        << a.levels.size() << (a.scattered ? " distinct values" : " levels") << ", [" << a.start << ", "
+        << a.level_count << (a.scattered ? " distinct values" : " levels") << ", [" << a.start << ", "
         << a.end << "])";
   out << "\nN = " << st.n_points << ", p = " << st.n_parameters << ", residual dof = " << st.residual_dof
       << ", R = " << st.R << ", s = " << st.s << ", max relative error = " << 100 * st.max_relative_error

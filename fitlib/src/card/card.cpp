@@ -95,8 +95,11 @@ Card card_from_json(const json& j, const std::string& source) {
     ParameterEstimate e;
     e.value = required<double>(list[i], "value", source, path);
     const auto& spec = specs[i];
+    // A positive scale must stay positive; a linear weight (a Prony modulus) may be exactly 0,
+    // an inactive term held there by the non-negativity constraint.
+    const bool must_be_positive = spec.transform == core::Transform::log && !spec.linear;
     if (!std::isfinite(e.value) || e.value < spec.lower || e.value > spec.upper ||
-        (spec.transform == core::Transform::log && !(e.value > 0.0)))
+        (must_be_positive && !(e.value > 0.0)))
       throw core::InputError("value " + std::to_string(e.value) + " outside the admissible range of " +
                                  spec.name,
                              source, 0, 0, path + "value");

@@ -116,20 +116,4 @@ std::string quote_csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
-std::optional<model::TestMode> mode_from_label(const std::string& text) {
-  if (text == "shear") return model::TestMode::shear;
-  if (text == "uniaxial" || text == "tension" || text == "compression") return model::TestMode::uniaxial;
-  if (text == "bulk") return model::TestMode::bulk;
-  return std::nullopt;
-}
-
-const char* mode_label(model::TestMode mode) {
-  switch (mode) {
-    case model::TestMode::shear: return "shear";
-    case model::TestMode::uniaxial: return "uniaxial";
-    case model::TestMode::bulk: return "bulk";
-  }
-  return "?";
-}
-
 }  // namespace fitlib::data

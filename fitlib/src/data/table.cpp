@@ -301,7 +301,7 @@ class TableParser {
     model::TestCondition& c = row.condition;
 
     if (given(kMode)) {
-      const auto mode = mode_from_label(text(kMode));
+      const auto mode = model::test_mode_from_label(text(kMode));
       if (!mode)
         throw fail(kMode, "unknown test mode '" + text(kMode) + "' (expected " + kModeLabels + ")");
       c.mode = *mode;
@@ -422,7 +422,7 @@ std::string format_dynamic_table(const DynamicTestTable& table) {
          "loss_MPa,mean_modulus_MPa,weight,material,specimen,set\n";
   for (const auto& row : table.rows) {
     const auto& c = row.condition;
-    out << mode_label(c.mode) << ',' << c.orientation << ',' << format_exact(c.frequency_Hz)
+    out << model::to_string(c.mode) << ',' << c.orientation << ',' << format_exact(c.frequency_Hz)
         << ',' << (c.has_temperature() ? format_exact(c.temperature_C) : "") << ','
         << format_exact(c.strain_amplitude) << ',' << format_exact(c.mean_strain) << ','
         << format_exact(row.storage_MPa) << ',' << format_exact(row.loss_MPa) << ','

@@ -408,7 +408,7 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
     throw error("'" + key + "' must be a string");
   }
   if (kind == KeyKind::mode) {
-    const auto mode = mode_from_label(value.get<std::string>());
+    const auto mode = model::test_mode_from_label(value.get<std::string>());
     if (!mode)
       throw error("unknown test mode '" + value.get<std::string>() + "' (expected " + kModeLabels + ")");
     info.mode = *mode;

@@ -88,10 +88,10 @@ StageOutcome run_nnls(Problem& problem) {
     const ResidualEntry& en = problem.entries()[e];
     if (en.row != current_row) {
       current_row = en.row;
-      mod = problem.model().moduli(p.data(), problem.table().rows[en.row].condition, jac);
+      mod = problem.linear_columns(p, problem.table().rows[en.row].condition, linear, jac);
     }
     const double value = en.component == 0 ? mod.storage : en.component == 1 ? mod.loss : mod.mean;
-    // The Jacobian is exact for linear parameters: value = offset + Σ jac·p over them.
+    // Linear parameters: value = offset + Σ jac·p over them, exactly.
     double offset = value;
     for (int i : linear) offset -= jac(en.component, i) * p[i];
     const double row_scale = en.sqrt_weight / (en.absolute ? en.scale : en.data * kLn10);
@@ -164,6 +164,7 @@ StageOutcome run_ceres(Problem& problem, int max_iterations) {
   ceres::Solver::Summary summary;
   ceres::Solve(so, &cp, &summary);
   if (!summary.IsSolutionUsable() || !x.allFinite()) {
+    outcome.usable = false;
     outcome.note = "ceres: no usable solution (" + summary.message + ")";
     return outcome;
   }
@@ -226,7 +227,7 @@ StageOutcome run_nlopt(Problem& problem, int starts, int max_iterations) {
     opt.set_min_objective(+trampoline, &objective);
     opt.set_xtol_rel(1e-8);
     opt.set_ftol_rel(problem.options().tolerance);
-    opt.set_maxeval(std::max(max_iterations, 1) * (nf + 1));
+    opt.set_maxeval(std::max(4 * max_iterations, 10 * (nf + 1)));
     std::vector<double> step(nf);
     for (int k = 0; k < nf; ++k) step[k] = std::min(0.5, 0.25 * (hi[k] - lo[k]));
     opt.set_initial_step(step);

@@ -10,6 +10,7 @@ namespace fitlib::fit::detail {
 
 struct StageOutcome {
   bool converged = false;
+  bool usable = true;  // false: the stage left the point unchanged (no usable solution)
   int iterations = 0;
   std::string note;  // one line for FitResult::messages (empty = nothing to say)
 };
@@ -24,7 +25,8 @@ StageOutcome run_nnls(Problem& problem);
 StageOutcome run_ceres(Problem& problem, int max_iterations);
 
 // Multistart LN_BOBYQA from the current point and `starts − 1` seeded points (scaled to O(1)
-// in fitted coordinates); keeps the best.
+// in fitted coordinates); keeps the best. Budget per start: max(4·max_iterations, 10·(n + 1))
+// evaluations.
 StageOutcome run_nlopt(Problem& problem, int starts, int max_iterations);
 
 // The free set restricted to parameters that can move: log-transformed parameters sitting at 0

@@ -126,6 +126,29 @@ StageOutcome linear_stage(Problem& problem, FitResult& result, bool polish) {
   return polished;
 }
 
+// Before a free-τ stage: moduli the NNLS start left at exactly 0 would stay there in log space
+// (and their τ would have no effect); restart them at 1e-3 × the mean positive modulus.
+void revive_zero_moduli(Problem& problem, FitResult& result) {
+  std::vector<double>& p = problem.natural();
+  double sum = 0.0;
+  int positive = 0;
+  std::vector<int> zeros;
+  for (int i : all_free(problem)) {
+    if (!problem.specs()[i].linear || !problem.is_log(i)) continue;
+    if (p[i] > 0.0) {
+      sum += p[i];
+      ++positive;
+    } else {
+      zeros.push_back(i);
+    }
+  }
+  if (zeros.empty() || positive == 0) return;
+  const double restart = 1e-3 * sum / positive;
+  for (int i : zeros) p[i] = std::max(restart, problem.lower(i) > 0.0 ? problem.lower(i) * 1.01 : 0.0);
+  result.messages.push_back("nnls start: " + std::to_string(zeros.size()) +
+                            " zero moduli restarted at 1e-3 x the mean modulus for the free stage");
+}
+
 StageOutcome ceres_stage(Problem& problem, FitResult& result) {
   problem.set_free(movable(problem, all_free(problem)));
   StageOutcome out = detail::run_ceres(problem, problem.options().max_iterations);
@@ -140,24 +163,28 @@ StageOutcome nlopt_stage(Problem& problem, FitResult& result, int starts, int ma
   return out;
 }
 
-// Ceres; on failure (no usable solution or no convergence) an NLopt multistart from the same
-// start and a Ceres finish, keeping the better of the two.
+// Ceres; when it fails (no usable solution, or no decrease from the start) an NLopt
+// multistart from the same start and a Ceres finish, keeping the better of the two. Reaching
+// the iteration limit with a lower cost is not a failure (converged = false, said so).
 StageOutcome ceres_with_fallback(Problem& problem, FitResult& result, std::string& used) {
   const std::vector<double> start = problem.natural();
+  const double start_cost = problem.cost(start);
   StageOutcome out;
+  bool usable = false;
   try {
     out = ceres_stage(problem, result);
+    usable = out.usable;
   } catch (const core::NumericalError& e) {
     result.messages.push_back(std::string("ceres failed: ") + e.what());
   }
-  if (out.converged) return out;
-  const std::vector<double> ceres_point = problem.natural();
-  const double ceres_cost = problem.cost(ceres_point);
+  const double ceres_cost = usable ? problem.cost(problem.natural()) : start_cost;
+  if (usable && (ceres_cost < start_cost || out.converged)) return out;
+  const std::vector<double> ceres_point = usable ? problem.natural() : start;
   problem.natural() = start;
-  result.messages.push_back("auto: ceres did not converge; trying an nlopt multistart");
+  result.messages.push_back("auto: ceres failed; trying an nlopt multistart");
   nlopt_stage(problem, result, problem.options().multistart, problem.options().max_iterations);
   StageOutcome finish = ceres_stage(problem, result);
-  if (problem.cost(problem.natural()) <= ceres_cost || !std::isfinite(ceres_cost)) {
+  if (problem.cost(problem.natural()) <= ceres_cost) {
     used += "+nlopt+ceres";
     return finish;
   }
@@ -210,12 +237,11 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   for (const auto& n : problem.notes()) result.messages.push_back(n);
   if (!std::isfinite(problem.cost(problem.natural())))
     throw core::NumericalError("fit: model '" + model->kind() +
-                               "' gives non-finite or unusable moduli at the start" +
-                               (problem.last_refusal().empty() ? std::string()
-                                                               : ": " + problem.last_refusal()));
+                               "' cannot be evaluated at the start: " +
+                               problem.diagnose(problem.natural()));
 
   StageOutcome outcome;
-  bool linear_only = false;
+  bool linear_only = false, last_stage_set = false;
   Backend backend = options.backend;
   if (backend == Backend::automatic && !has_free_nonlinear(problem)) backend = Backend::nnls;
   std::string used = to_string(backend);
@@ -227,22 +253,33 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
         result.messages.push_back("nnls: non-linear parameters held at their start values");
       break;
     case Backend::ceres:
-      if (has_free_linear(problem)) linear_stage(problem, result, false);
+      if (has_free_linear(problem)) {
+        linear_stage(problem, result, false);
+        revive_zero_moduli(problem, result);
+      }
       outcome = ceres_stage(problem, result);
       break;
     case Backend::nlopt:
-      if (has_free_linear(problem)) linear_stage(problem, result, false);
+      if (has_free_linear(problem)) {
+        linear_stage(problem, result, false);
+        revive_zero_moduli(problem, result);
+      }
       nlopt_stage(problem, result, options.multistart, options.max_iterations);
       outcome = ceres_stage(problem, result);
       used = "nlopt+ceres";
       break;
     case Backend::staged:
       outcome = run_schedule(problem, result);
+      last_stage_set = true;
       break;
     case Backend::automatic:
       used = "nnls+ceres";
-      if (has_free_linear(problem)) linear_stage(problem, result, false);
-      else used = "ceres";
+      if (has_free_linear(problem)) {
+        linear_stage(problem, result, false);
+        revive_zero_moduli(problem, result);
+      } else {
+        used = "ceres";
+      }
       if (options.global) {
         nlopt_stage(problem, result, options.multistart, options.max_iterations);
         used += "+nlopt";
@@ -252,8 +289,9 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   }
   result.backend_used = used;
 
-  // Covariance over what was fitted: the positive linear parameters (nnls) or every movable one.
-  std::vector<int> fitted = movable(problem, all_free(problem));
+  // Covariance over what was fitted: the positive linear parameters (nnls), the last stage's
+  // set (staged) or every movable parameter.
+  std::vector<int> fitted = movable(problem, last_stage_set ? problem.free() : all_free(problem));
   if (linear_only)
     fitted.erase(std::remove_if(fitted.begin(), fitted.end(),
                                 [&](int i) { return !problem.specs()[i].linear; }),

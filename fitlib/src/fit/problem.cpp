@@ -92,13 +92,40 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
                                       model_->kind() + "'");
     user_fixed_[i] = true;
   }
+  std::vector<int> free;
   for (int i = 0; i < n; ++i)
-    if (!user_fixed_[i]) free_.push_back(i);
+    if (!user_fixed_[i]) free.push_back(i);
+  set_free(std::move(free));
   tighten_temperature_bounds();
   clamp_start();
 }
 
-void Problem::set_free(std::vector<int> free) { free_ = std::move(free); }
+void Problem::set_free(std::vector<int> free) {
+  free_ = std::move(free);
+  all_free_linear_ = true;
+  for (int i : free_) all_free_linear_ = all_free_linear_ && specs()[i].linear;
+}
+
+// The moduli are linear in a `linear` parameter, so a unit step gives its Jacobian column
+// exactly (up to rounding) from plain evaluations: much cheaper than an autodiff pass over all
+// parameters when only the linear ones are free (NNLS polish and its covariance).
+model::Moduli<double> Problem::linear_columns(const std::vector<double>& natural,
+                                              const model::TestCondition& c,
+                                              const std::vector<int>& linear,
+                                              Eigen::MatrixXd& jac) const {
+  const model::Moduli<double> m0 = model_->moduli(natural.data(), c);
+  std::vector<double> p = natural;
+  for (int i : linear) {
+    const double step = std::max(std::abs(natural[i]), 1e-3);
+    p[i] = natural[i] + step;
+    const model::Moduli<double> m1 = model_->moduli(p.data(), c);
+    p[i] = natural[i];
+    jac(0, i) = (m1.storage - m0.storage) / step;
+    jac(1, i) = (m1.loss - m0.loss) / step;
+    jac(2, i) = (m1.mean - m0.mean) / step;
+  }
+  return m0;
+}
 
 bool Problem::is_log(int i) const { return specs()[i].transform == core::Transform::log; }
 
@@ -120,6 +147,15 @@ void Problem::tighten_temperature_bounds() {
       max_gap = std::max(max_gap, t_ref - row.condition.temperature_C);
   if (!std::isfinite(max_gap)) return;
   const double bound = max_gap + 1.0;
+  if (natural_[c2] <= bound && !user_fixed_[c2]) {
+    // A start just inside the bound would put the coldest rows next to the pole (a_T → ∞).
+    const double start = 1.5 * max_gap + 10.0;
+    std::ostringstream s;
+    s << "WLF: start of " << specs()[c2].name << " moved from " << natural_[c2] << " to " << start
+      << " degC, clear of the pole at the coldest data";
+    notes_.push_back(s.str());
+    natural_[c2] = start;
+  }
   if (bound > lower_[c2]) {
     lower_[c2] = bound;
     std::ostringstream s;
@@ -189,13 +225,11 @@ double Problem::upper_x(int k) const {
 bool Problem::evaluate(const std::vector<double>& natural, double* residuals,
                        double* jacobian) const {
   // A model may refuse a point (e.g. a temperature beyond the WLF pole): that point is simply
-  // not usable, the optimiser backs off; the reason is kept for the diagnostic.
+  // not usable and the optimiser backs off; diagnose() says why.
   try {
     return evaluate_unchecked(natural, residuals, jacobian);
-  } catch (const core::InputError& e) {
-    last_refusal_ = e.what();
-  } catch (const core::NumericalError& e) {
-    last_refusal_ = e.what();
+  } catch (const core::InputError&) {
+  } catch (const core::NumericalError&) {
   }
   return false;
 }
@@ -211,7 +245,9 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
     if (en.row != current_row) {
       current_row = en.row;
       const auto& c = table_->rows[en.row].condition;
-      m = jacobian ? model_->moduli(natural.data(), c, jac) : model_->moduli(natural.data(), c);
+      m = !jacobian ? model_->moduli(natural.data(), c)
+          : all_free_linear_ ? linear_columns(natural, c, free_, jac)
+                             : model_->moduli(natural.data(), c, jac);
     }
     const double value = component_value(m, en.component);
     double r, dr_dm;
@@ -236,6 +272,28 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
     }
   }
   return true;
+}
+
+std::string Problem::diagnose(const std::vector<double>& natural) const {
+  for (const auto& row : table_->rows) {
+    std::string why;
+    try {
+      const auto m = model_->moduli(natural.data(), row.condition);
+      if (!std::isfinite(m.storage) || !std::isfinite(m.loss) || !std::isfinite(m.mean))
+        why = "non-finite moduli";
+    } catch (const core::InputError& e) {
+      why = e.what();
+    } catch (const core::NumericalError& e) {
+      why = e.what();
+    }
+    if (why.empty()) continue;
+    std::ostringstream s;
+    s << why << " at frequency " << row.condition.frequency_Hz << " Hz";
+    if (row.condition.has_temperature()) s << ", temperature " << row.condition.temperature_C << " degC";
+    if (!row.source_file.empty()) s << " (" << row.source_file << ":" << row.source_line << ")";
+    return s.str();
+  }
+  return "a residual is not finite";
 }
 
 double Problem::cost(const std::vector<double>& natural) const {

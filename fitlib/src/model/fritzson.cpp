@@ -296,9 +296,20 @@ ModelPtr make_fritzson_model(const std::string& kind, const nlohmann::json& opti
     for (const auto& [key, value] : options.items()) {
       if (key == "reference_C" && value.is_number()) {
         reference_C = value.get<double>();
+      } else if (key == "mode" && value.is_string()) {
+        parse_test_mode(value.get<std::string>());  // the model answers every mode
+      } else if (key == "bulk_modulus" && value.is_boolean()) {
+        // K is always part of the model.
+      } else if (key == "temperature_law" && value.is_string()) {
+        const std::string law = value.get<std::string>();
+        if (law != "none" && law != "linear" && law != "linear-factors")
+          throw core::UsageError("model " + kind + ": temperature law '" + law +
+                                 "' is not available; the model has its own linear factors "
+                                 "g = 1 - c (T - T_ref) (use none or linear)");
       } else {
         throw core::UsageError("model " + kind + ": unknown option '" + key +
-                               "' (known: reference_C, a number in degC)");
+                               "' (known: reference_C in degC; mode, bulk_modulus and "
+                               "temperature_law none|linear are accepted and built in)");
       }
     }
   }

@@ -21,20 +21,9 @@ nlohmann::json Model::temperature_law(const double*) const {
 }
 
 TestMode parse_test_mode(const std::string& text) {
-  if (text == "shear") return TestMode::shear;
-  if (text == "uniaxial" || text == "tension" || text == "compression") return TestMode::uniaxial;
-  if (text == "bulk") return TestMode::bulk;
+  if (const auto mode = test_mode_from_label(text)) return *mode;
   throw core::UsageError("unknown test mode '" + text +
                          "' (expected shear, uniaxial, tension, compression or bulk)");
-}
-
-const char* to_string(TestMode mode) {
-  switch (mode) {
-    case TestMode::shear: return "shear";
-    case TestMode::uniaxial: return "uniaxial";
-    case TestMode::bulk: return "bulk";
-  }
-  return "?";
 }
 
 }  // namespace fitlib::model

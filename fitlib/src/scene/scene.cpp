@@ -76,7 +76,17 @@ class Reader {
     if (auto t = n->as_table()) return t;
     fail(key, "expects a table");
   }
-  // Unknown keys are errors.
+  // Unknown keys are errors, checked before any value so that a misspelt key is reported as such
+  // (not as the missing key it was meant to be).
+  Reader& allow(std::initializer_list<const char*> keys) {
+    for (auto&& [k, v] : t_) {
+      const std::string key(k.str());
+      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return key == a; }))
+        fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see formats.md §5)",
+             v.source());
+    }
+    return *this;
+  }
   void finish() const {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
@@ -145,12 +155,15 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   s.path = source;
   const std::filesystem::path base = std::filesystem::path(source).parent_path();
   Reader top(root, "", source);
+  top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt"});
   s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
 
   // [drive]
   const toml::table* drive_t = top.table("drive");
   if (!drive_t) top.fail("drive", "missing [drive] table", root.source());
   Reader drive(*drive_t, "drive", source);
+  drive.allow({"pulleys", "center_distance_mm", "torque_Nm", "power_kW", "slack_tension_N",
+               "tight_tension_N", "initial_tension_N"});
   const toml::node* pulleys_n = drive.node("pulleys");
   if (!pulleys_n || !pulleys_n->as_array())
     drive.fail("pulleys", "expects an array of pulley tables {name, pitch_diameter_mm, role, ...}");
@@ -159,6 +172,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     const std::string key = "pulleys[" + std::to_string(index) + "]";
     if (!pn.as_table()) drive.fail("pulleys", key + " must be a table", pn.source());
     Reader pr(*pn.as_table(), "drive." + key, source);
+    pr.allow({"name", "pitch_diameter_mm", "role", "speed_rpm", "torque_Nm", "center_mm"});
     PulleySpec p;
     p.name = pr.string("name").value_or("pulley" + std::to_string(index + 1));
     const auto d = pr.number("pitch_diameter_mm", 0.0, 1e5, true);
@@ -207,9 +221,13 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   const toml::table* belt_t = top.table("belt");
   toml::table empty;
   Reader br(belt_t ? *belt_t : empty, "belt", source);
+  br.allow({"section", "height_mm", "width_mm", "area_mm2", "density_kg_m3", "wedge_half_angle_deg",
+            "cord_area_mm2", "bending_inertia_mm4", "cog_pitch_mm", "cog_depth_mm", "cushion_mm",
+            "length_mm", "materials", "stiffness"});
   apply_section(s, br);
   if (const toml::table* mt = br.table("materials")) {
     Reader mr(*mt, "belt.materials", source);
+    mr.allow({"bottom", "cushion", "cord"});
     for (const char* role : {"bottom", "cushion", "cord"})
       if (auto p = mr.string(role)) {
         std::filesystem::path f(*p);
@@ -219,6 +237,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   }
   if (const toml::table* st = br.table("stiffness")) {
     Reader sr(*st, "belt.stiffness", source);
+    sr.allow({"c_N", "k1_MPa", "EI_Nmm2"});
     s.c_N = sr.number("c_N", 0.0, 1e12, true);
     s.k1_MPa = sr.number("k1_MPa", 0.0, 1e9, true);
     s.EI_Nmm2 = sr.number("EI_Nmm2", 0.0, 1e12);
@@ -229,6 +248,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   // [conditions]
   if (const toml::table* ct = top.table("conditions")) {
     Reader cr(*ct, "conditions", source);
+    cr.allow({"temperature_C", "friction"});
     s.temperature_C = cr.number_or("temperature_C", 20.0, -273.15, 1000.0);
     s.friction = cr.number_or("friction", 0.8, 0.0, 100.0);
     cr.finish();
@@ -251,6 +271,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   // [accumulation]
   if (const toml::table* at = top.table("accumulation")) {
     Reader ar(*at, "accumulation", source);
+    ar.allow({"shear_stress_MPa", "cycles", "cycle_points", "omega_min_rad_s", "omega_max_rad_s",
+              "omega_points", "kappa", "spectrum", "strain_limit"});
     AccumulationSpec a;
     a.shear_stress_MPa = ar.number_or("shear_stress_MPa", a.shear_stress_MPa, 0.0, 1e6, true);
     a.cycles = static_cast<long>(ar.number_or("cycles", 10000, 1, 1e12));
@@ -268,6 +290,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   // [cvt]
   if (const toml::table* vt = top.table("cvt")) {
     Reader vr(*vt, "cvt", source);
+    vr.allow({"tight_tension_N", "slack_tension_N", "groove_half_angle_deg", "driver_wrap_deg",
+              "driven_wrap_deg"});
     CvtSpec c;
     c.tight_tension_N = vr.number_or("tight_tension_N", 0.0, 0.0, 1e7);
     c.slack_tension_N = vr.number_or("slack_tension_N", 0.0, 0.0, 1e7);

@@ -387,8 +387,10 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
     a.start = data.x.col(static_cast<Eigen::Index>(k)).minCoeff();
     a.end = data.x.col(static_cast<Eigen::Index>(k)).maxCoeff();
     a.scattered = levels[k].scattered;
-    for (double c : levels[k].centres)
-      a.levels.push_back(a.transform == Transform::log10 ? std::pow(10.0, c) : c);
+    a.level_count = levels[k].centres.size();
+    if (!a.scattered)
+      for (double c : levels[k].centres)
+        a.levels.push_back(a.transform == Transform::log10 ? std::pow(10.0, c) : c);
     const int L = static_cast<int>(levels[k].centres.size());
     if (options.axes[k].degree) {
       const int d = *options.axes[k].degree;
@@ -399,7 +401,7 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
         std::ostringstream msg;
         msg << "axis '" << a.name << "': degree " << d << " needs at least " << d + 1
             << " distinct levels, but the data hold " << L << " level(s)";
-        if (L <= 10) {
+        if (!a.levels.empty() && L <= 10) {
           msg << " (";
           for (int l = 0; l < L; ++l) msg << (l ? ", " : "") << a.levels[static_cast<std::size_t>(l)];
           msg << ")";

@@ -7,9 +7,11 @@
 namespace fitlib::surface {
 namespace {
 
-// A level spanning more than this fraction of the axis range means the values do not form levels
-// (e.g. uniformly scattered data): then every distinct value is its own level.
+// A level spanning more than this fraction of the axis range, or more levels than this, means the
+// values do not form test levels (e.g. uniformly scattered data): the axis is "scattered", every
+// distinct value is its own level, and it takes no part in the missing-cell analysis.
 constexpr double kMaxLevelSpan = 0.25;
+constexpr std::size_t kMaxLevels = 64;
 
 // Single-linkage clustering of sorted values: a gap wider than `gap` starts a new level.
 LevelAxis cluster(const std::vector<double>& sorted, double gap, double* widest_span) {
@@ -52,10 +54,9 @@ std::vector<LevelAxis> find_levels(const SampleSet& data, const std::vector<Tran
     const double range = sorted.back() - sorted.front();
     double widest = 0.0;
     LevelAxis axis = cluster(sorted, level_tolerance * range, &widest);
-    if (range > 0.0 && widest > kMaxLevelSpan * range) {
-      axis = cluster(sorted, 0.0, &widest);
-      axis.scattered = true;
-    }
+    const bool wide_level = range > 0.0 && widest > kMaxLevelSpan * range;
+    if (wide_level) axis = cluster(sorted, 0.0, &widest);
+    axis.scattered = wide_level || axis.centres.size() > kMaxLevels;
     levels.push_back(std::move(axis));
   }
   return levels;

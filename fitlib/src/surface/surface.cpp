@@ -232,6 +232,7 @@ nlohmann::json surface_to_json(const Surface& s) {
                     {"interval", {a.start, a.end}},
                     {"degree", a.degree},
                     {"levels", a.levels},
+                    {"level_count", a.level_count},
                     {"scattered", a.scattered}});
   nlohmann::json constraints = nlohmann::json::array();
   for (const auto& g : s.constraints) {
@@ -302,6 +303,7 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
       throw core::InputError("degree must be 0.." + std::to_string(kMaxDegree), source, 0, 0,
                              path + "degree");
     if (axes[k].contains("levels")) a.levels = axes[k]["levels"].get<std::vector<double>>();
+    a.level_count = axes[k].value("level_count", a.levels.size());
     a.scattered = axes[k].value("scattered", false);
     s.axes.push_back(a);
   }

@@ -83,6 +83,10 @@ TEST(FritzsonSpecs, RegistryOptionsRoundTripAndErrors) {
   EXPECT_EQ(again->options(), m->options());
   EXPECT_TRUE(m->amplitude_dependent());
   EXPECT_THROW(make_model("fritzson", {{"reference_temperature", 40.0}}), fitlib::core::UsageError);
+  // The fitter's generic options are accepted where the model has them built in.
+  EXPECT_NO_THROW(make_model("fritzson-iso", {{"mode", "uniaxial"}, {"temperature_law", "none"},
+                                              {"bulk_modulus", true}, {"reference_C", 23.0}}));
+  EXPECT_THROW(make_model("fritzson", {{"temperature_law", "wlf"}}), fitlib::core::UsageError);
   const auto kinds = model_kinds();
   EXPECT_NE(std::find(kinds.begin(), kinds.end(), "fritzson-iso"), kinds.end());
 }
@@ -342,6 +346,28 @@ TEST(FritzsonModel, CreepComplianceIsRefusedWithAReason) {
     FAIL() << "expected UsageError";
   } catch (const fitlib::core::UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("path dependent"), std::string::npos);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(FritzsonModel, InitialParametersAreInsideTheBoundsAndPlacedFromTheData) {
+  fitlib::model::DataSummary d;
+  d.omega_min_rad_s = 2 * kPi * 3;
+  d.omega_max_rad_s = 2 * kPi * 60;
+  d.storage_min_MPa = 1.0;
+  d.storage_max_MPa = 50.0;
+  d.loss_max_MPa = 4.0;
+  for (const auto& m : {model1(), model2()}) {
+    const auto p = m->initial_parameters(d);
+    ASSERT_EQ(p.size(), m->size());
+    for (size_t k = 0; k < p.size(); ++k) {
+      EXPECT_GE(p[k], m->parameters()[k].lower) << m->parameters()[k].name;
+      EXPECT_LE(p[k], m->parameters()[k].upper) << m->parameters()[k].name;
+    }
+    EXPECT_NEAR(p[kPartI + kTau], 1.0 / std::sqrt(d.omega_min_rad_s * d.omega_max_rad_s), 1e-15);
   }
 }
 

@@ -199,3 +199,50 @@ INSTANTIATE_TEST_SUITE_P(
                       Caption{"6.31 cord 32", 2, 3, 3, false, 18, 0, 18},
                       Caption{"6.33 4.2 22", 1, 3, 2, false, 6, 0, 6},
                       Caption{"6.35 4.1 22", 1, 3, 1, false, 3, 0, 3}));
+
+TEST(MissingCells, SingleInteriorCellGetsOneLineConstraint) {
+  // Only the centre cell (1,1,1) is empty: a line constraint along amplitude through the middle
+  // frequency and temperature levels is cheaper (1 equation) than a face (3 equations).
+  const auto data = make_design(levels(3, 3, 3),
+                                [](const std::vector<int>& i) { return !(i[0] == 1 && i[1] == 1 && i[2] == 1); },
+                                [](std::size_t) { return 2; }, 0.01, 17);
+  const Surface s = fit_surface(data, rubber_options());
+  EXPECT_EQ(s.statistics.n_parameters, 26u);
+  ASSERT_EQ(s.constraints.size(), 1u);
+  EXPECT_NE(s.constraints[0].description.find("line through"), std::string::npos) << s.constraints[0].description;
+  EXPECT_EQ(s.constraints[0].equations.size(), 1u);
+  // Along that line the surface is linear in the amplitude parameter (three collinear points).
+  const double f = 34.0, T = s.axes[2].levels[1];
+  auto y = [&](double amplitude) {
+    const double x[3] = {amplitude, f, T};
+    return s.value(x);
+  };
+  EXPECT_NEAR(y(0.025), 0.5 * (y(0.005) + y(0.045)), 1e-10);  // amplitude parameter 0.5
+}
+
+TEST(MissingCells, CornerOfAFullGridInTwoAxesGetsOneEquation) {
+  // 3 × 3 levels, corner (2,2) empty: ∂²/∂u² = 0 on the face of the later axis at its end.
+  const std::vector<std::vector<double>> lv{{0.005, 0.015, 0.045}, {23.0, 60.0, 100.0}};
+  const auto data = make_design(lv, [](const std::vector<int>& i) { return !(i[0] == 2 && i[1] == 2); },
+                                [](std::size_t) { return 2; }, 0.01, 3,
+                                [](const double* x) { return rubber_storage_MPa(x[0], 10.0, x[1]); });
+  FitOptions o;
+  o.axes = {{"strain_amplitude", "", {}, {}}, {"temperature_C", "C", {}, {}}};
+  const Surface s = fit_surface(data, o);
+  EXPECT_EQ(s.statistics.n_parameters, 8u);
+  ASSERT_EQ(s.constraints.size(), 1u);
+  ASSERT_EQ(s.constraints[0].equations.size(), 1u);
+  std::map<std::size_t, double> terms(s.constraints[0].equations[0].terms.begin(),
+                                      s.constraints[0].equations[0].terms.end());
+  EXPECT_EQ(terms.at(s.flat_index({0, 2})), 1.0);
+  EXPECT_EQ(terms.at(s.flat_index({1, 2})), -2.0);
+  EXPECT_EQ(terms.at(s.flat_index({2, 2})), 1.0);
+}
+
+TEST(MissingCells, TooManyEmptyCellsAreRefused) {
+  // Only the diagonal-free corner block holds data: more undetermined than occupied cells.
+  const auto data = make_design(levels(3, 3, 3),
+                                [](const std::vector<int>& i) { return i[0] + i[1] + i[2] <= 2; },
+                                [](std::size_t) { return 2; });
+  EXPECT_THROW(fit_surface(data, rubber_options()), fitlib::core::UsageError);
+}

@@ -237,6 +237,8 @@ TEST(SurfaceFit, ScatteredDataRecoverAPolynomial) {
   o.axes = {{"a", "", {}, 2}, {"b", "", {}, 3}, {"c", "", {}, 1}};
   const Surface s = fit_surface(data, o);
   EXPECT_TRUE(s.axes[0].scattered);
+  EXPECT_EQ(s.axes[0].level_count, 2000u);
+  EXPECT_TRUE(s.axes[0].levels.empty()) << "no per-value level list for scattered axes";
   EXPECT_FALSE(s.level_grid);
   EXPECT_EQ(s.statistics.n_parameters, 24u);
   EXPECT_LT(s.statistics.ss_residual, 1e-20);

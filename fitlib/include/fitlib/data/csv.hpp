@@ -38,10 +38,6 @@ std::string format_exact(double value);
 // Quotes a label for CSV output when it holds a comma, quote or surrounding space.
 std::string quote_csv_field(const std::string& text);
 
-// Test-mode labels: shear, uniaxial (aliases tension, compression), bulk; nullopt otherwise.
-// (model::parse_test_mode says the same, but the data module links only core.)
-std::optional<model::TestMode> mode_from_label(const std::string& text);
-const char* mode_label(model::TestMode mode);
 constexpr const char* kModeLabels = "shear, uniaxial, tension, compression or bulk";
 
 }  // namespace fitlib::data

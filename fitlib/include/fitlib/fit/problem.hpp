@@ -72,6 +72,13 @@ class Problem {
   // Residuals at `natural`, and if `jacobian` is non-null the row-major (residuals × free)
   // derivatives with respect to x. Returns false if anything is not finite.
   bool evaluate(const std::vector<double>& natural, double* residuals, double* jacobian) const;
+  // Moduli at `natural` and their exact derivatives (columns of the 3 × size() `jac`) with
+  // respect to the `linear` parameters, by unit steps: cheaper than an autodiff pass.
+  model::Moduli<double> linear_columns(const std::vector<double>& natural,
+                                       const model::TestCondition& c,
+                                       const std::vector<int>& linear, Eigen::MatrixXd& jac) const;
+  // Why evaluation fails at `natural`: the first row whose moduli are refused or not finite.
+  std::string diagnose(const std::vector<double>& natural) const;
   // ½ Σ r²; +inf when evaluation fails.
   double cost(const std::vector<double>& natural) const;
 
@@ -80,12 +87,11 @@ class Problem {
 
   // Notes gathered while setting up (bounds tightened, starts clamped).
   const std::vector<std::string>& notes() const { return notes_; }
-  // Why the model last refused to evaluate a point (InputError/NumericalError text), if ever.
-  const std::string& last_refusal() const { return last_refusal_; }
 
  private:
   bool evaluate_unchecked(const std::vector<double>& natural, double* residuals,
                           double* jacobian) const;
+
   void tighten_temperature_bounds();
   void clamp_start();
 
@@ -94,10 +100,10 @@ class Problem {
   FitOptions options_;
   std::vector<ResidualEntry> entries_;
   std::vector<int> free_;
+  bool all_free_linear_ = false;  // Jacobian columns by unit steps (exact for linear parameters)
   std::vector<bool> user_fixed_;
   std::vector<double> natural_, lower_, upper_;
   std::vector<std::string> notes_;
-  mutable std::string last_refusal_;
 };
 
 // "storage" / "loss" / "mean" for messages.

@@ -2,15 +2,32 @@
 // What a dynamic test imposes: mode, orientation, frequency, temperature, amplitude, mean strain.
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace fitlib::model {
 
 enum class TestMode { shear, uniaxial, bulk };
 
-// "shear" | "uniaxial" (aliases "tension", "compression") | "bulk"; throws UsageError otherwise.
+// "shear" | "uniaxial" (aliases "tension", "compression") | "bulk"; nullopt otherwise.
+inline std::optional<TestMode> test_mode_from_label(const std::string& text) {
+  if (text == "shear") return TestMode::shear;
+  if (text == "uniaxial" || text == "tension" || text == "compression") return TestMode::uniaxial;
+  if (text == "bulk") return TestMode::bulk;
+  return std::nullopt;
+}
+
+// Same, throwing core::UsageError for anything else.
 TestMode parse_test_mode(const std::string& text);
-const char* to_string(TestMode mode);
+
+inline const char* to_string(TestMode mode) {
+  switch (mode) {
+    case TestMode::shear: return "shear";
+    case TestMode::uniaxial: return "uniaxial";
+    case TestMode::bulk: return "bulk";
+  }
+  return "?";
+}
 
 struct TestCondition {
   TestMode mode = TestMode::shear;

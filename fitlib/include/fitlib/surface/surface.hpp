@@ -37,7 +37,8 @@ struct Axis {
   Transform transform = Transform::linear;
   double start = 0.0, end = 1.0;  // interval in the variable's own units (from the data)
   int degree = 0;
-  std::vector<double> levels;  // level centres found in the data, own units (informative)
+  std::vector<double> levels;  // level centres found in the data, own units (empty if scattered)
+  std::size_t level_count = 0; // number of levels (distinct values if scattered)
   bool scattered = false;      // values did not form levels (each distinct value is a level)
 
   // The transformed coordinate T(x); InputError for x <= 0 on a log10 axis.

@@ -1,0 +1,160 @@
+// Scene parsing and validation, the planner (only the effects the outputs need run), the outputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/scene.hpp"
+
+using namespace fitlib;
+using fitlib::core::InputError;
+
+namespace {
+const std::string kData = FITLIB_TEST_DATA_DIR "/scenes/";
+
+std::string minimal_text() { return core::read_file(kData + "minimal.toml"); }
+
+// Replaces the first occurrence of `from` in the minimal scene and returns the error key.
+InputError parse_error(const std::string& text) {
+  try {
+    scene::parse_scene(text, "test.toml");
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError for:\n" << text;
+  return InputError("none");
+}
+std::string with(const std::string& from, const std::string& to) {
+  std::string t = minimal_text();
+  const auto at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return t.replace(at, from.size(), to);
+}
+}  // namespace
+
+TEST(SceneParse, MinimalSceneDefaults) {
+  const auto s = scene::load_scene(kData + "minimal.toml");
+  EXPECT_EQ(s.pulleys.size(), 2u);
+  EXPECT_EQ(s.section, "cogged-0.500");
+  EXPECT_NEAR(s.belt.height_mm, 6.5862, 1e-12);
+  EXPECT_NEAR(s.belt.width_mm, 11.1542, 1e-12);
+  EXPECT_TRUE(s.outputs.at("load_history"));  // no [outputs]: the load history
+  EXPECT_TRUE(s.effects.empty());             // no [effects]: none of the refinements
+  EXPECT_EQ(*s.c_N, 44000.0);
+}
+
+TEST(SceneParse, UnknownKeysAndWrongUnitsNameTheKeyAndLine) {
+  auto e = parse_error(with("center_distance_mm = 300", "center_distance_m = 0.3"));
+  EXPECT_EQ(e.key(), "drive.center_distance_m");
+  EXPECT_EQ(e.line(), 3);
+  e = parse_error(with("torque_Nm = 15", "torque_Nm = \"15 Nm\""));
+  EXPECT_EQ(e.key(), "drive.torque_Nm");
+  e = parse_error(with("friction = 0.5", "friction = 0.5\nfrictoin = 0.3"));
+  EXPECT_EQ(e.key(), "conditions.frictoin");
+  e = parse_error(with("role = \"driven\"", "role = \"follower\""));
+  EXPECT_EQ(e.key(), "drive.pulleys[1].role");
+  e = parse_error(with("pitch_diameter_mm = 100, role = \"driver\"", "pitch_diameter_mm = -100, role = \"driver\""));
+  EXPECT_EQ(e.key(), "drive.pulleys[0].pitch_diameter_mm");
+  e = parse_error(with("slack_tension_N = 300", "slack_tension_N = -5"));
+  EXPECT_EQ(e.key(), "drive.slack_tension_N");
+  e = parse_error(with("slack_tension_N = 300", "slack_tension_N = 300\ninitial_tension_N = 400"));
+  EXPECT_EQ(e.key(), "drive.initial_tension_N");
+  e = parse_error(minimal_text() + "[effects]\nwarp_drive = true\n");
+  EXPECT_EQ(e.key(), "effects.warp_drive");
+  e = parse_error(minimal_text() + "[outputs]\nlife = \"yes\"\n");
+  EXPECT_EQ(e.key(), "outputs.life");
+  e = parse_error("[drive\n");
+  EXPECT_EQ(e.line(), 1);
+}
+
+TEST(SceneParse, ImpossibleGeometryIsAnInputError) {
+  const auto s = scene::parse_scene(with("center_distance_mm = 300", "center_distance_mm = 90"), "x.toml");
+  try {
+    scene::run_scene(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "drive.center_distance_mm");
+    EXPECT_NE(std::string(e.what()).find("overlap"), std::string::npos);
+  }
+}
+
+TEST(Planner, RunsOnlyWhatTheOutputsNeed) {
+  auto s = scene::load_scene(kData + "minimal.toml");
+  auto plan = scene::make_plan(s);
+  EXPECT_TRUE(plan.will_run("contact_arcs"));
+  for (const char* off : {"bending_zones", "inertia", "full_ode", "driver_exit_ramp", "strain_accumulation", "cvt_thrust"})
+    EXPECT_FALSE(plan.will_run(off)) << off;
+  const auto r = scene::run_scene(s);
+  for (const auto& e : r.plan.effects) EXPECT_EQ(e.ran, plan.will_run(e.name)) << e.name;
+  EXPECT_EQ(r.cycle->centrifugal_tension_N, 0.0);  // inertia not asked for
+  // Nothing requested: nothing runs.
+  s.outputs = {{"load_history", false}};
+  s.effects = {{"inertia", true}};
+  const auto none = scene::run_scene(s);
+  for (const auto& e : none.plan.effects) EXPECT_FALSE(e.ran) << e.name;
+  EXPECT_FALSE(none.cycle.has_value());
+}
+
+TEST(Planner, FullSceneRunsEveryAvailableEffectAndListsLifeAsNotAvailable) {
+  const auto s = scene::load_scene(kData + "full.toml");
+  const auto r = scene::run_scene(s);
+  for (const char* on : {"stiffness", "drive", "contact_arcs", "bending_zones", "inertia", "full_ode",
+                         "driver_exit_ramp", "viscoelastic_tension", "strain_accumulation", "cvt_thrust"}) {
+    auto it = std::find_if(r.plan.effects.begin(), r.plan.effects.end(), [&](const auto& e) { return e.name == on; });
+    ASSERT_NE(it, r.plan.effects.end()) << on;
+    EXPECT_TRUE(it->ran) << on;
+    EXPECT_GE(it->wall_s, 0.0);
+  }
+  ASSERT_EQ(r.plan.unavailable_outputs, std::vector<std::string>{"life"});
+  auto fe = std::find_if(r.plan.effects.begin(), r.plan.effects.end(), [](const auto& e) { return e.name == "segment_fe"; });
+  ASSERT_NE(fe, r.plan.effects.end());
+  EXPECT_FALSE(fe->ran);
+  EXPECT_NE(fe->reason.find("not available in this version"), std::string::npos);
+  // Power → torque: 4 kW at 3000 rpm = 12.73 N·m on R = 50 mm → ΔF = 254.6 N.
+  const auto& F = r.drive->span_tension_N;
+  EXPECT_NEAR(F[1] - F[0], 4000.0 / (3000 * 2 * M_PI / 60) * 1000 / 50, 1e-9);
+  EXPECT_NEAR(F[1] + F[0], 1000.0, 1e-9);
+  // Accumulation map and its critical area.
+  ASSERT_TRUE(r.accumulation.has_value());
+  EXPECT_EQ(r.accumulation->omega_rad_s.size(), 30u);
+  EXPECT_NEAR(r.accumulation->kappa, 500.0 / 50.0, 1e-12);
+  const auto j = scene::summary_json(s, r);
+  EXPECT_TRUE(j.contains("cvt_thrust"));
+  EXPECT_GT(j["viscoelastic_tension"]["driver"]["main_sliding_deg"].get<double>(), 0.0);
+  EXPECT_GT(j["cvt_thrust"]["driver_axial_thrust_N"].get<double>(), 0.0);
+  EXPECT_TRUE(j["load_cycle"]["pulleys"][0]["sliding_ode_deg"].get<double>() > 0.0);
+}
+
+TEST(Planner, ThreePulleyDrive) {
+  const auto s = scene::load_scene(kData + "three_pulley.toml");
+  const auto r = scene::run_scene(s);
+  ASSERT_EQ(r.cycle->pulleys.size(), 3u);
+  double wraps = 0;
+  for (const auto& p : r.cycle->pulleys) wraps += p.wrap_rad;
+  EXPECT_NEAR(wraps, 2 * M_PI, 1e-9);
+  // The pump takes 20 N·m on R = 80 mm = 250 N; the driver supplies 11.25 N·m / 45 mm = 250 N.
+  const auto& F = r.drive->span_tension_N;
+  EXPECT_NEAR(F[1] - F[0], 250.0, 1e-9);
+  EXPECT_NEAR(F[2], F[1], 1e-12);  // the idler passes the tension on
+}
+
+TEST(Outputs, WritesCsvAndJsonAtomically) {
+  const auto s = scene::load_scene(kData + "full.toml");
+  const auto r = scene::run_scene(s);
+  const auto dir = std::filesystem::temp_directory_path() / "fitlib_test_scene_out";
+  std::filesystem::remove_all(dir);
+  const auto files = scene::write_outputs(s, r, dir.string());
+  EXPECT_EQ(files.size(), 3u);
+  const std::string csv = core::read_file((dir / "load_history.csv").string());
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "s_mm,t_s,pulley,zone,F_N,K_1_per_mm,p_MPa,gamma_deg,sliding_velocity_mm_s,friction_used");
+  EXPECT_EQ(csv.find("nan"), std::string::npos);
+  EXPECT_EQ(csv.find("inf"), std::string::npos);
+  const auto j = nlohmann::json::parse(core::read_file((dir / "summary.json").string()));
+  EXPECT_EQ(j["outputs_not_available"][0], "life");
+  std::filesystem::remove_all(dir);
+}
