@@ -1,5 +1,6 @@
 // End to end: fit → card → eval → export, exit codes and determinism, as a user runs them.
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
@@ -111,4 +112,18 @@ TEST(FitCli, ExportWritesSolverKeywordsOrRefusesClearly) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("at most 5 Prony terms"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(temp_file("mat.k")).good());  // nothing half-written
+}
+
+TEST(FitCli, EveryMalformedTableExitsWithThreeAndNamesFileAndLine) {
+  const std::string dir = source_path("tests/data/malformed");
+  int checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const auto name = entry.path().filename().string();
+    if (name.rfind("accepted_", 0) == 0 || entry.path().extension() != ".csv") continue;
+    const auto r = run_fitcli("fit --data " + entry.path().string() + " --model prony --terms 1 --mode shear");
+    EXPECT_EQ(r.exit_code, 3) << name << ": " << r.err;
+    EXPECT_NE(r.err.find(name + ":"), std::string::npos) << name << ": " << r.err;  // file:line[:column]
+    ++checked;
+  }
+  EXPECT_GE(checked, 15);
 }

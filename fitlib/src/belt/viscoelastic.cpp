@@ -1,7 +1,12 @@
 #include "fitlib/belt/viscoelastic.hpp"
 
+#include <array>
+#include <functional>
 #include <cmath>
+
+#include <ceres/ceres.h>
 #include <string>
+#include <vector>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
@@ -46,6 +51,109 @@ std::vector<double> integrate_three_parameter(const ThreeParameterBelt& m, const
     T[n] = a * T[n - 1] + m.S_N * forced;
   }
   return T;
+}
+
+namespace {
+// τ ε̇ + ε = g(t) over a step h with g linear from g0 with slope k (exact).
+double relax_step(double eps0, double g0, double k, double h, double tau) {
+  if (tau <= 0.0) return g0 + k * h;
+  const double a = std::exp(-h / tau);
+  return a * eps0 + g0 * (1 - a) + k * (h - tau * (1 - a));
+}
+}  // namespace
+
+TensionTestResult simulate_tension_test(const TensionTestInput& in) {
+  const ThreeParameterBelt& m = in.belt;
+  if (!(in.d0_mm > 0 && in.r_mm > 0 && in.f >= 0 && in.v_mm_s > 0 && in.load_time_s > 0 && in.nodes >= 2 &&
+        in.steps_per_phase >= 1 && m.S_N > 0 && m.tau_T_s >= 0 && m.tau_eps_s >= 0))
+    throw InputError("tension test: positive geometry, rate, times and sizes needed", {}, 0, 0, "tension_test");
+  const int M = in.nodes;
+  std::vector<double> theta(M), weight(M);
+  for (int i = 0; i < M; ++i) {  // Simpson-free trapezoid on a fine grid: ∫0^{π/2} ε dθ
+    theta[i] = 0.5 * kPi * i / (M - 1);
+    weight[i] = 0.5 * kPi / (M - 1) * ((i == 0 || i == M - 1) ? 0.5 : 1.0);
+  }
+  std::vector<double> eps(M, 0.0), T(M, 0.0);
+  double eps_fs = 0.0, T_fs = 0.0;
+  TensionTestResult out;
+  // Advances one step to span tension T1 under a sliding sign per element (−1 outward, +1 inward,
+  // 0 adhering); returns the elongation d − d0 it implies and writes the new state to the outs.
+  auto advance = [&](double T1, double h, const std::vector<int>& sign, const std::vector<double>& T_adh1,
+                     std::vector<double>& eps1, std::vector<double>& Tn, double& eps_fs1) {
+    const double k_fs = (T1 - T_fs) / h;
+    eps_fs1 = relax_step(eps_fs, (T_fs + m.tau_T_s * k_fs) / m.S_N, k_fs / m.S_N, h, m.tau_eps_s);
+    double integral = 0.0;
+    for (int i = 0; i < M; ++i) {
+      if (sign[i] == 0) {
+        eps1[i] = eps[i];
+        Tn[i] = T_adh1[i];
+      } else {
+        Tn[i] = T1 * std::exp(sign[i] * in.f * theta[i]);
+        const double k = (Tn[i] - T[i]) / h;
+        eps1[i] = relax_step(eps[i], (T[i] + m.tau_T_s * k) / m.S_N, k / m.S_N, h, m.tau_eps_s);
+      }
+      integral += weight[i] * eps1[i];
+    }
+    return in.d0_mm * eps_fs1 + 2.0 * in.r_mm * integral;
+  };
+  // Bisection on the span tension for the imposed elongation (monotone in T1).
+  auto solve_step = [&](double target, double h, const std::function<std::vector<int>(double)>& signs,
+                        const std::function<std::vector<double>(double)>& adhesion, double& t_b) {
+    std::vector<double> eps1(M), Tn(M);
+    double e_fs1 = 0.0;
+    double lo = T_fs - 1e3 - std::abs(T_fs), hi = T_fs + 1e3 + std::abs(T_fs);
+    auto residual = [&](double T1) { return advance(T1, h, signs(T1), adhesion(T1), eps1, Tn, e_fs1) - target; };
+    while (residual(lo) > 0) lo -= 2 * (hi - lo);
+    while (residual(hi) < 0) hi += 2 * (hi - lo);
+    for (int k = 0; k < 80; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (residual(mid) > 0 ? hi : lo) = mid;
+    }
+    const double T1 = 0.5 * (lo + hi);
+    const auto sg = signs(T1);
+    advance(T1, h, sg, adhesion(T1), eps1, Tn, e_fs1);
+    eps = eps1;
+    T = Tn;
+    eps_fs = e_fs1;
+    T_fs = T1;
+    int last = -1;
+    for (int i = 0; i < M; ++i)
+      if (sg[i] != 0) last = i;
+    t_b = last < 0 ? 0.0 : theta[last];
+  };
+  // Loading: all elements slide outward.
+  const double h_load = in.load_time_s / in.steps_per_phase;
+  const std::vector<int> outward(M, -1);
+  const std::vector<double> none(M, 0.0);
+  out.loading.push_back({0.0, 0.0, 0.0, 0.5 * kPi});
+  for (int n = 1; n <= in.steps_per_phase; ++n) {
+    double tb = 0.0;
+    solve_step(in.v_mm_s * n * h_load, h_load, [&](double) { return outward; }, [&](double) { return none; }, tb);
+    out.loading.push_back({n * h_load, in.v_mm_s * n * h_load, T_fs, 0.5 * kPi});
+  }
+  // Unloading: frozen elongation and relaxing tension in the adhesion arc (closed form of (1)).
+  const std::vector<double> eps_x = eps, T_x = T;
+  std::vector<bool> sliding(M, false);
+  const double h = in.load_time_s / in.steps_per_phase;
+  out.unloading.push_back({0.0, in.v_mm_s * in.load_time_s, T_fs, 0.0});
+  for (int n = 1; n <= in.steps_per_phase; ++n) {
+    const double t = n * h;
+    std::vector<double> T_adh(M);
+    for (int i = 0; i < M; ++i)
+      T_adh[i] = m.S_N * eps_x[i] + (T_x[i] - m.S_N * eps_x[i]) * (m.tau_T_s > 0 ? std::exp(-t / m.tau_T_s) : 0.0);
+    // Element i slides once T_fs e^{fθ_i} ≤ its adhesion tension (θ ≤ θ_b, Eq 6); it stays sliding.
+    auto signs = [&](double T1) {
+      std::vector<int> s(M, 0);
+      for (int i = 0; i < M; ++i) s[i] = (sliding[i] || T1 * std::exp(in.f * theta[i]) <= T_adh[i]) ? 1 : 0;
+      return s;
+    };
+    double tb = 0.0;
+    solve_step(in.v_mm_s * (in.load_time_s - t), h, signs, [&](double) { return T_adh; }, tb);
+    for (int i = 0; i < M; ++i) sliding[i] = sliding[i] || theta[i] <= tb;
+    out.unloading.push_back({t, in.v_mm_s * (in.load_time_s - t), T_fs, tb});
+    if (T_fs <= 0.0) break;  // a belt carries no compression
+  }
+  return out;
 }
 
 namespace {
@@ -144,6 +252,93 @@ ViscoelasticDrive solve_viscoelastic_drive(const ViscoelasticDriveInput& in) {
     eps = next;
   }
   throw core::NumericalError("viscoelastic drive: elongation loop did not close in 500 passes");
+}
+
+namespace {
+// Residuals of (17a,b), (19a,b), (20a,b) in N. Unknowns: θ_eR, θ_sR, θ_eN, θ_sN, u_R = Sε_R, u_N = Sε_N.
+struct SixEquations {
+  double TT, TS, f, pT, pe, tT_over_te, E, wrap;  // E = e^{−s_fs/(vτ_ε)}
+  std::array<bool, 2> use_entrance_eq{true, true};
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    using std::exp;
+    const T eR = x[0], sR = x[1], eN = x[2], sN = x[3], uR = x[4], uN = x[5];
+    const T aR = T(wrap) - eR - sR, aN = T(wrap) - eN - sN;
+    // (17a,b): tension leaving each pulley.
+    r[0] = (uR + (TT * exp(-f * eR) - uR) * exp(-f * pT * aR)) * exp(-f * sR) - TS;
+    r[1] = (uN + (TS * exp(f * eN) - uN) * exp(-f * pT * aN)) * exp(f * sN) - TT;
+    // (19a): S ε entering the driver from (12a) at θ = 0 equals S ε leaving the tight span (18b).
+    const double kd = tT_over_te * (pT - 1) / (pe - 1), kn = tT_over_te * (pT + 1) / (pe + 1);
+    const T lhsR = TT * kd * (T(1) - exp(f * eR * (pe - 1))) + uR * exp(f * pe * eR);
+    const T rhsR = TT * (T(1) + (-(1 - tT_over_te) / (pe + 1) - kn * exp(-f * (pe + 1) * sN)) * E) +
+                   uN * exp(-f * pe * sN) * E;
+    r[2] = lhsR - rhsR;
+    // (19b): the same at the driven pulley, fed by the slack span from the driver.
+    const T lhsN = TS * kn * (T(1) - exp(f * eN * (pe + 1))) + uN * exp(f * pe * eN);
+    const T rhsN = TS * (T(1) + ((1 - tT_over_te) / (pe - 1) - kd * exp(-f * (pe - 1) * sR)) * E) +
+                   uR * exp(-f * pe * sR) * E;
+    r[3] = lhsN - rhsN;
+    // (20a,b): adhesion starts where |T'| = fT.
+    r[4] = use_entrance_eq[0] ? TT * exp(-f * eR) - uR * pT / (pT - 1) : T(0);
+    r[5] = use_entrance_eq[1] ? TS * exp(f * eN) - uN * pT / (pT + 1) : T(0);
+    return true;
+  }
+};
+}  // namespace
+
+ViscoelasticEquations solve_viscoelastic_equations(const ViscoelasticDriveInput& in) {
+  const double f = in.friction, w = in.omega_rad_s;
+  if (!(in.belt.tau_T_s > 0 && in.belt.tau_eps_s > 0))
+    throw InputError("the six-equation form needs tau_T, tau_eps > 0", {}, 0, 0, "viscoelastic");
+  SixEquations eq{in.tight_N, in.slack_N, f, 1.0 / (f * in.belt.tau_T_s * w), 1.0 / (f * in.belt.tau_eps_s * w),
+                  in.belt.tau_T_s / in.belt.tau_eps_s,
+                  std::exp(-(in.center_distance_mm / in.radius_mm) / (w * in.belt.tau_eps_s)), kPi};
+  const double euler = std::log(in.tight_N / in.slack_N) / f;
+  std::array<double, 6> x{};
+  auto solve = [&] {
+    x = {0.0, euler, 0.0, euler, in.tight_N, in.slack_N};
+    ceres::Problem problem;
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SixEquations, 6, 6>(new SixEquations(eq)), nullptr,
+                             x.data());
+    for (int i : {0, 1, 2, 3}) {
+      problem.SetParameterLowerBound(x.data(), i, 0.0);
+      problem.SetParameterUpperBound(x.data(), i, kPi);
+    }
+    std::vector<int> held;  // an entrance arc without its equation (20) is held at θ_e = 0
+    for (int k : {0, 1})
+      if (!eq.use_entrance_eq[k]) held.push_back(2 * k);
+    if (!held.empty()) problem.SetManifold(x.data(), new ceres::SubsetManifold(6, held));
+    ceres::Solver::Options o;
+    o.max_num_iterations = 500;
+    o.function_tolerance = o.parameter_tolerance = o.gradient_tolerance = 1e-16;
+    ceres::Solver::Summary summary;
+    ceres::Solve(o, &problem, &summary);
+  };
+  // Complementarity θ_e ≥ 0 ⟂ (20): try the four active sets; keep the one that solves its
+  // equations and, where θ_e = 0, admits adhesion at the entrance (|Sε − T| ≤ fωτ_T T, i.e. the
+  // belt would not need to slide there).
+  std::array<double, 6> r{};
+  bool found = false;
+  for (int set = 0; set < 4 && !found; ++set) {
+    eq.use_entrance_eq = {(set & 1) == 0, (set & 2) == 0};
+    solve();
+    eq(x.data(), r.data());
+    double worst = 0;
+    for (double ri : r) worst = std::max(worst, std::abs(ri));
+    bool ok = worst < 1e-6 * in.tight_N;
+    const double T_in[2] = {in.tight_N, in.slack_N};
+    for (int k : {0, 1})
+      if (!eq.use_entrance_eq[k])
+        ok = ok && std::abs(x[4 + k] - T_in[k]) <= f * w * in.belt.tau_T_s * T_in[k] * (1 + 1e-9);
+    found = ok;
+  }
+  ViscoelasticEquations out{x[0], x[1], x[2], x[3], x[4] / in.belt.S_N, x[5] / in.belt.S_N, 0.0};
+  for (double ri : r) out.max_residual_N = std::max(out.max_residual_N, std::abs(ri));
+  if (!found)
+    throw core::NumericalError("viscoelastic drive equations (17, 19, 20): no admissible solution "
+                               "for any entrance-arc active set (last residual " +
+                               std::to_string(out.max_residual_N) + " N)");
+  return out;
 }
 
 }  // namespace fitlib::belt

@@ -31,7 +31,8 @@ void add_part(std::vector<ParameterSpec>& specs, const std::string& suffix,
   const std::string s = "_" + suffix;
   specs.push_back({"tau" + s, "s", 1e-7, 1e3, Transform::log, group("viscous"), 0.01, false});
   specs.push_back({"k" + s, "-", 1.0, 100.0, Transform::log, group("viscous"), 3.0, false});
-  specs.push_back({"beta1" + s, "-", 0.0, 1.0, Transform::linear, group("damage"), 0.4, false});
+  // β1 > 0 keeps the elastic moduli positive at any amplitude (uniaxial compliance 1/(2M)).
+  specs.push_back({"beta1" + s, "-", 0.01, 1.0, Transform::linear, group("damage"), 0.4, false});
   specs.push_back({"alpha1" + s, "-", 0.05, 3.0, Transform::log, group("damage"), 0.6, false});
   specs.push_back({"mu" + s, "-", -5.0, 0.0, Transform::linear, group("damage"), -2.0, false});
   specs.push_back({"beta2" + s, "-", 0.0, 1.0, Transform::linear, group("damage"), 0.5, false});

@@ -26,17 +26,22 @@ bool flag(const std::map<std::string, bool>& m, const std::string& k) {
   return it != m.end() && it->second;
 }
 
-double storage_modulus_MPa(const card::Card& c, const char* orientation, double f_Hz, double amplitude,
-                           double T_C) {
-  const auto model = c.model();
-  const auto values = c.values();
-  model::TestCondition tc;
-  tc.mode = model::TestMode::uniaxial;
-  tc.orientation = orientation;
-  tc.frequency_Hz = f_Hz;
-  tc.temperature_C = T_C;
-  tc.strain_amplitude = amplitude;
-  return model->moduli(values.data(), tc).storage;
+double storage_modulus_MPa(const card::Card& c, const std::string& role, const char* orientation,
+                           double f_Hz, double amplitude, double T_C) {
+  try {
+    const auto model = c.model();
+    const auto values = c.values();
+    model::TestCondition tc;
+    tc.mode = model::TestMode::uniaxial;
+    tc.orientation = orientation;
+    tc.frequency_Hz = f_Hz;
+    tc.temperature_C = T_C;
+    tc.strain_amplitude = amplitude;
+    return model->moduli(values.data(), tc).storage;
+  } catch (const std::exception& e) {  // e.g. a shear card asked for a uniaxial modulus
+    throw InputError(std::string("card cannot give the uniaxial storage modulus the belt needs: ") + e.what(),
+                     {}, 0, 0, "belt.materials." + role);
+  }
 }
 
 // Largest relative change of a column between two load cycles sampled at the same s.
@@ -171,7 +176,7 @@ Stiffness resolve_stiffness(const Scene& s) {
     k.c_N = *s.c_N, k.c_source = "belt.stiffness.c_N";
   } else if (cord) {
     // Cord data at ε_a = 0.0025, 5 Hz (Report I §6.1): c = A_c E′.
-    k.c_N = s.cord_area_mm2 * storage_modulus_MPa(*cord, "", 5.0, 0.0025, T);
+    k.c_N = s.cord_area_mm2 * storage_modulus_MPa(*cord, "cord", "", 5.0, 0.0025, T);
     k.c_source = "card " + s.materials.at("cord") + " (A_c E', 5 Hz, 0.0025)";
   } else {
     k.c_N = belt::cord_stiffness_N(T, s.cord_area_mm2), k.c_source = "Fritzson (6.1), E1 = 100 MPa";
@@ -181,7 +186,7 @@ Stiffness resolve_stiffness(const Scene& s) {
     k.k1_MPa = *s.k1_MPa, k.k1_source = "belt.stiffness.k1_MPa";
   } else {
     if (bottom) {
-      E33 = storage_modulus_MPa(*bottom, "33", 34.0, 0.005, T);
+      E33 = storage_modulus_MPa(*bottom, "bottom", "33", 34.0, 0.005, T);
       k.k1_source = "card " + s.materials.at("bottom") + " (E33', 34 Hz, 0.005) and (A.37)";
     } else {
       E33 = belt::axial_modulus_MPa(T);
@@ -192,7 +197,7 @@ Stiffness resolve_stiffness(const Scene& s) {
   if (s.EI_Nmm2) {
     k.EI_Nmm2 = *s.EI_Nmm2, k.EI_source = "belt.stiffness.EI_Nmm2";
   } else if (bottom) {
-    k.EI_Nmm2 = s.bending_inertia_mm4 * storage_modulus_MPa(*bottom, "22", 34.0, 0.045, T);
+    k.EI_Nmm2 = s.bending_inertia_mm4 * storage_modulus_MPa(*bottom, "bottom", "22", 34.0, 0.045, T);
     k.EI_source = "card " + s.materials.at("bottom") + " (I E22', 34 Hz, 0.045)";
   } else {
     k.EI_Nmm2 = belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 / belt::FritzsonConstants::bending_inertia_mm4;

@@ -117,7 +117,9 @@ TEST(LoadCycle, ReferenceDriveZonesAndContinuity) {
     EXPECT_GE(x.F_N, F1 - 1e-9);
     EXPECT_LE(x.F_N, F2 + 1e-9);
     EXPECT_LE(x.K_1_mm, 1.0 / 50.0 + 1e-12);
-    if (x.zone == Zone::non_sliding) EXPECT_DOUBLE_EQ(x.gamma_rad, kPi);
+    if (x.zone == Zone::non_sliding) {
+      EXPECT_DOUBLE_EQ(x.gamma_rad, kPi);
+    }
   }
   // Sliding arcs end at the outgoing span force.
   for (const auto& p : lc.pulleys) {
@@ -137,8 +139,9 @@ TEST(LoadCycle, ReferenceDriveZonesAndContinuity) {
   for (std::size_t k = 1; k < lc.samples.size(); ++k) {
     const auto& a = lc.samples[k - 1];
     const auto& b = lc.samples[k];
-    if (a.zone == Zone::free_span_in && b.zone == Zone::entrance)
+    if (a.zone == Zone::free_span_in && b.zone == Zone::entrance) {
       EXPECT_NEAR(b.K_1_mm * 50.0, ZoneConstants::K0C_in, 1e-12);
+    }
   }
 }
 
@@ -148,10 +151,11 @@ TEST(LoadCycle, PressureIsRadialEquilibriumInNonSlidingArc) {
   auto lc = compute_load_cycle(c);
   const double beta = c.belt.wedge_half_angle_rad;
   for (const auto& x : lc.samples)
-    if (x.zone == Zone::non_sliding)
+    if (x.zone == Zone::non_sliding) {
       EXPECT_NEAR(x.p_MPa, x.F_N * std::cos(beta) /
                                (2 * c.belt.height_mm * 50.0 * (std::sin(beta) + 0.8 * std::cos(beta))),
                   1e-12);
+    }
 }
 
 TEST(LoadCycle, ClosedFormsAndOdeGiveNearlyTheSameCycle) {
@@ -223,7 +227,9 @@ TEST(LoadCycle, EffectsSwitchOff) {
   for (const auto& x : lc.samples) {
     EXPECT_NE(x.zone, Zone::entrance);
     EXPECT_NE(x.zone, Zone::exit);
-    if (x.zone == Zone::free_span_in || x.zone == Zone::free_span_out) EXPECT_EQ(x.K_1_mm, 0.0);
+    if (x.zone == Zone::free_span_in || x.zone == Zone::free_span_out) {
+      EXPECT_EQ(x.K_1_mm, 0.0);
+    }
   }
 }
 

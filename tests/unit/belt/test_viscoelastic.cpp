@@ -79,3 +79,58 @@ TEST(ViscoelasticDrive, ViscousCordLowersSlidingSpeed) {
   EXPECT_LT(viscous.driver.max_relative_slip, 0.8 * elastic.driver.max_relative_slip);
   EXPECT_LT(viscous.driven.max_relative_slip, 0.8 * elastic.driven.max_relative_slip);
 }
+
+// The paper's six equations (17, 19, 20) solved with Ceres under θ_e ≥ 0 agree with the march
+// through the regions (an independent route to the same steady state).
+TEST(ViscoelasticDrive, SixEquationsWithCeresMatchTheMarch) {
+  for (auto [tT, te] : {std::pair{0.2, 0.3}, std::pair{0.2, 3.0}, std::pair{0.01, 3.0}, std::pair{0.05, 1.0}}) {
+    auto in = fig5(tT, te);
+    in.steps_per_rad = 20000;
+    const auto m = solve_viscoelastic_drive(in);
+    const auto e = solve_viscoelastic_equations(in);
+    const double h = 2.0 / in.steps_per_rad;  // the march resolves entrance arcs to a step
+    EXPECT_NEAR(e.entrance_R, m.driver.entrance_sliding_rad, h) << tT << " " << te;
+    EXPECT_NEAR(e.entrance_N, m.driven.entrance_sliding_rad, h) << tT << " " << te;
+    EXPECT_NEAR(e.sliding_R, m.driver.main_sliding_rad, 1e-3) << tT << " " << te;
+    EXPECT_NEAR(e.sliding_N, m.driven.main_sliding_rad, 1e-3) << tT << " " << te;
+    EXPECT_NEAR(e.eps_R, m.driver.adhesion_elongation, 1e-3 * e.eps_R) << tT << " " << te;
+    EXPECT_NEAR(e.eps_N, m.driven.adhesion_elongation, 1e-3 * e.eps_N) << tT << " " << te;
+  }
+}
+
+// The time simulation of the tension test reproduces the loading closed form (Eqs 3, 4 corrected)
+// and shows the paper's unloading facts.
+TEST(TensionTest, SimulatedLoadingMatchesClosedFormAndUnloadingSpreadsTheSlidingArc) {
+  TensionTestInput in;
+  in.belt = {60000.0, 27.0, 40.0};
+  const auto r = simulate_tension_test(in);
+  const double b = tension_test_b_mm(in.d0_mm, in.r_mm, in.f);
+  for (std::size_t k = 1; k < r.loading.size(); k += 100)
+    EXPECT_NEAR(r.loading[k].span_tension_N / tension_test_loading_N(in.belt, in.v_mm_s, b, r.loading[k].t_s, 0, in.f),
+                1.0, 2e-4) << r.loading[k].t_s;
+  // Unloading: the sliding/adhesion boundary moves monotonically inward from the span end.
+  ASSERT_GT(r.unloading.size(), 10u);
+  EXPECT_EQ(r.unloading.front().boundary_rad, 0.0);
+  for (std::size_t k = 1; k < r.unloading.size(); ++k)
+    EXPECT_GE(r.unloading[k].boundary_rad, r.unloading[k - 1].boundary_rad);
+  EXPECT_NEAR(r.unloading.back().boundary_rad, kPi / 2, 1e-12);
+  // Hysteresis: at the same elongation the unloading tension is below the loading one.
+  const auto& u = r.unloading[r.unloading.size() / 2];
+  const double T_load = tension_test_loading_N(in.belt, in.v_mm_s, b, u.elongation_mm / in.v_mm_s, 0, in.f);
+  EXPECT_LT(u.span_tension_N, T_load);
+}
+
+TEST(TensionTest, InitialUnloadingSlopeIsTheFreeSpansAlone) {
+  // At the start of unloading only the free spans relax, so the initial slope dT/dd does not
+  // depend on friction (V-belt and overturned flat belt alike, Sec. 3).
+  auto slope = [](double f) {
+    TensionTestInput in;
+    in.f = f;
+    in.steps_per_phase = 2400;
+    const auto r = simulate_tension_test(in);
+    const auto& a = r.unloading[0];
+    const auto& c = r.unloading[1];
+    return (c.span_tension_N - a.span_tension_N) / (c.elongation_mm - a.elongation_mm);
+  };
+  EXPECT_NEAR(slope(0.3) / slope(0.12), 1.0, 0.02);
+}

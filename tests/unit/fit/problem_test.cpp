@@ -48,9 +48,10 @@ TEST(Residuals, Log10WithRowAndComponentWeightsByHand) {
     const auto m = model->moduli(p.data(), rr.condition);
     EXPECT_NEAR(r[e++], std::sqrt(rr.weight * 9.0) * std::log10(m.storage / rr.storage_MPa), 1e-14);
     EXPECT_NEAR(r[e++], std::sqrt(rr.weight * 1.0) * std::log10(m.loss / rr.loss_MPa), 1e-14);
-    if (rr.has_mean_modulus)
+    if (rr.has_mean_modulus) {
       EXPECT_NEAR(r[e++], std::sqrt(rr.weight * 0.25) * std::log10(m.mean / rr.mean_modulus_MPa),
                   1e-14);
+    }
   }
 }
 

@@ -101,7 +101,9 @@ TEST(Staged, ScheduleFileAndDefaultScheduleRecoverTheTruth) {
   EXPECT_EQ(by_file.backend_used, "staged");
   for (std::size_t i = 0; i < truth.size(); ++i) {
     EXPECT_NEAR(by_default.values[i], truth[i], 1e-4 * truth[i]) << i;
-    if (i > 0) EXPECT_NEAR(by_file.values[i], truth[i], 0.1 * truth[i]) << i;
+    if (i > 0) {
+      EXPECT_NEAR(by_file.values[i], truth[i], 0.1 * truth[i]) << i;
+    }
   }
   int stages = 0;
   for (const auto& m : by_file.messages) stages += m.rfind("stage '", 0) == 0;

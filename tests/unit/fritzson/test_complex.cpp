@@ -7,6 +7,7 @@
 #include <cmath>
 #include <complex>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 
 #include "fitlib/core/error.hpp"
@@ -369,6 +370,42 @@ TEST(FritzsonModel, InitialParametersAreInsideTheBoundsAndPlacedFromTheData) {
     }
     EXPECT_NEAR(p[kPartI + kTau], 1.0 / std::sqrt(d.omega_min_rad_s * d.omega_max_rad_s), 1e-15);
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Anywhere inside the bounds (and on them) the moduli and Jacobians are finite: what a fitter
+// that walks to the bounds needs. Includes the far tail of h1 (β1 at its floor, μ = −5, α = 0.05).
+TEST(FritzsonHardCases, FiniteEverywhereInsideTheBounds) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const auto& m : {model1(), model2()}) {
+    const auto& specs = m->parameters();
+    for (int trial = 0; trial < 150; ++trial) {
+      std::vector<double> p(specs.size());
+      for (size_t k = 0; k < p.size(); ++k) {
+        double x = u(rng);
+        if (trial % 3 == 0) x = x < 0.5 ? 0.0 : 1.0;
+        const auto& s = specs[k];
+        p[k] = s.transform == fitlib::core::Transform::log
+                   ? std::exp(std::log(s.lower) + x * (std::log(s.upper) - std::log(s.lower)))
+                   : s.lower + x * (s.upper - s.lower);
+      }
+      for (const TestCondition& c : seven_tests(100.0)) {
+        Eigen::MatrixXd J(3, m->size());
+        const auto v = m->moduli(p.data(), c, J);
+        ASSERT_TRUE(std::isfinite(v.storage) && std::isfinite(v.loss) && std::isfinite(v.mean) &&
+                    J.allFinite())
+            << m->kind() << " trial " << trial << " " << to_string(c.mode) << " " << c.orientation;
+        EXPECT_GT(v.mean, 0.0);
+      }
+    }
+  }
+  // h1's upper tail stays above β1: 1 − Φ(8) ≈ 6e-16 would cancel to 0 in the printed form.
+  EXPECT_GT(damage_h1(1e2, 0.0, 0.5, -2.0), 0.0);
+  EXPECT_LT(damage_h1(1e2, 0.0, 0.5, -2.0), 1e-14);
 }
 
 }  // namespace

@@ -158,3 +158,86 @@ TEST(Outputs, WritesCsvAndJsonAtomically) {
   EXPECT_EQ(j["outputs_not_available"][0], "life");
   std::filesystem::remove_all(dir);
 }
+
+#include "fitlib/belt/stiffness.hpp"
+#include "fitlib/card/card.hpp"
+#include "fitlib/model/model.hpp"
+
+namespace {
+std::string write_card(const std::string& file, const std::string& kind, const nlohmann::json& options,
+                       const std::vector<double>& values) {
+  card::Card c;
+  c.name = file;
+  c.model_kind = kind;
+  c.model_options = options;
+  for (double v : values) {
+    card::ParameterEstimate e;
+    e.value = v;
+    c.parameters.push_back(e);
+  }
+  const auto path = (std::filesystem::temp_directory_path() / file).string();
+  card::save_card(path, c);
+  return path;
+}
+}  // namespace
+
+// Stiffnesses from cards: k1 = 10 tan β E33′ H/B (A.37), EI = I E22′, c = A_c E′cord, each at the
+// test condition Report I names; the values come straight from the cards' models.
+TEST(Stiffness, FromMaterialCards) {
+  const std::vector<double> zener{8.0, 0.01, 0.05};  // relaxed modulus, τ_T, τ_ε (zener3)
+  const std::string bottom = write_card("fitlib_bottom.json", "zener3", {{"mode", "uniaxial"}}, zener);
+  const std::string cord = write_card("fitlib_cord.json", "zener3", {{"mode", "uniaxial"}}, {5000.0, 0.01, 0.012});
+  auto s = scene::load_scene(kData + "minimal.toml");
+  s.c_N.reset();
+  s.k1_MPa.reset();
+  s.EI_Nmm2.reset();
+  s.materials = {{"bottom", bottom}, {"cord", cord}};
+  const auto k = scene::resolve_stiffness(s);
+  auto storage = [&](const std::string& path, double f_Hz, double amp) {
+    const auto c = card::load_card(path);
+    const auto v = c.values();
+    model::TestCondition tc;
+    tc.mode = model::TestMode::uniaxial;
+    tc.frequency_Hz = f_Hz;
+    tc.temperature_C = s.temperature_C;
+    tc.strain_amplitude = amp;
+    return c.model()->moduli(v.data(), tc).storage;
+  };
+  EXPECT_NEAR(k.c_N, 5.0 * storage(cord, 5.0, 0.0025), 1e-9 * k.c_N);
+  EXPECT_NEAR(k.k1_MPa, belt::radial_stiffness_MPa(s.belt.wedge_half_angle_rad, storage(bottom, 34.0, 0.005),
+                                                   s.belt.height_mm, s.belt.width_mm), 1e-9 * k.k1_MPa);
+  EXPECT_NEAR(k.EI_Nmm2, 834.0 * storage(bottom, 34.0, 0.045), 1e-9 * k.EI_Nmm2);
+  EXPECT_NE(k.k1_source.find("card"), std::string::npos);
+  // Without cards or overrides: the Fritzson laws with the project's E0, E1.
+  s.materials.clear();
+  const auto f = scene::resolve_stiffness(s);
+  EXPECT_NEAR(f.EI_Nmm2, belt::bending_stiffness_Nmm2(80.0), 1e-9);
+  // A shear-only card cannot give E33: an InputError naming the material.
+  s.materials = {{"bottom", write_card("fitlib_shear.json", "zener3", nlohmann::json::object(), zener)}};
+  try {
+    scene::resolve_stiffness(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "belt.materials.bottom");
+  }
+}
+
+TEST(Accumulation, SpectrumFromARetardationCard) {
+  const std::string path = write_card("fitlib_ret.json", "retardation", {{"terms", 2}}, {1e-3, 2e-3, 5e-3, 0.01, 1.0});
+  auto s = scene::load_scene(kData + "minimal.toml");
+  s.materials = {{"bottom", path}};
+  const auto spec = scene::scene_spectrum(s, "material:bottom");
+  ASSERT_EQ(spec.L_1_MPa.size(), 2u);
+  EXPECT_DOUBLE_EQ(spec.J_g_1_MPa, 1e-3);
+  EXPECT_DOUBLE_EQ(spec.L_1_MPa[1], 5e-3);
+  EXPECT_DOUBLE_EQ(spec.lambda_s[1], 1.0);
+  // A card without a retardation spectrum is a clear error naming the key.
+  const std::string z = write_card("fitlib_z.json", "zener3", nlohmann::json::object(), {8.0, 0.01, 0.05});
+  s.materials = {{"bottom", z}};
+  try {
+    scene::scene_spectrum(s, "material:bottom");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "accumulation.spectrum");
+  }
+}

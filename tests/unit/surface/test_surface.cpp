@@ -271,6 +271,15 @@ TEST(SurfaceJson, RoundTripKeepsEverything) {
   bad = j;
   bad["axes"][0]["degree"] = 9;
   EXPECT_THROW(surface_from_json(bad, "x.json"), InputError);
+  bad = j;
+  bad["axes"][0]["transform"] = "sqrt";
+  EXPECT_THROW(surface_from_json(bad, "x.json"), InputError);
+  bad = j;
+  bad["constraints"][0]["equations"][0]["terms"][0]["index"] = {0, 7};
+  EXPECT_THROW(surface_from_json(bad, "x.json"), InputError);
+  bad = j;
+  bad["axes"][0]["levels"] = "many";
+  EXPECT_THROW(surface_from_json(bad, "x.json"), InputError);
 }
 
 TEST(SampleColumns, ReadsTheTableConventionsAndNamesBadCells) {

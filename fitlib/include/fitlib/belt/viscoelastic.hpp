@@ -29,6 +29,28 @@ std::vector<double> integrate_three_parameter(const ThreeParameterBelt& m,
                                               const std::vector<double>& t_s,
                                               const std::vector<double>& eps, double T0_N = 0.0);
 
+// Load/unload test simulated in time (Eqs 2–9): a quarter wrap θ ∈ [0, π/2] (θ from the span
+// end) on `nodes` points, the free span, and the geometric condition (2)/(8) solved for the span
+// tension at every step. Loading (rate +v for load_time_s): every element slides outward,
+// T = T_fs e^{−fθ}. Unloading (rate −v until the span tension reaches zero or d = d0): a sliding
+// arc θ < θ_b(t) with T = T_fs e^{+fθ} spreads from the span end while the rest adheres with its
+// elongation frozen and its tension relaxing by (1); θ_b is where the two tensions meet (6).
+// Each element's elongation follows (1) exactly for piecewise-linear tension.
+struct TensionTestInput {
+  ThreeParameterBelt belt;
+  double d0_mm = 250.0, r_mm = 39.0, f = 0.12;
+  double v_mm_s = 10.0 / 60.0;  // 10 mm/min
+  double load_time_s = 120.0;
+  int nodes = 400, steps_per_phase = 1200;
+};
+struct TensionTestPoint {
+  double t_s = 0.0, elongation_mm = 0.0, span_tension_N = 0.0, boundary_rad = 0.0;
+};
+struct TensionTestResult {
+  std::vector<TensionTestPoint> loading, unloading;
+};
+TensionTestResult simulate_tension_test(const TensionTestInput& in);
+
 // Steady drive on two equal pulleys (the paper's Fig 5 case by default), belt speed v, pulley
 // angular speed ω = v/r. Per pulley: entrance sliding arc θ_e (≥ 0), adhesion arc θ_a, main
 // sliding arc θ_s; regions solved piecewise with Eqs (10a,b), matched in T and ε, and the loop
@@ -52,5 +74,16 @@ struct ViscoelasticDrive {
 };
 // InputError (key viscoelastic...) for a belt that slips or non-positive data.
 ViscoelasticDrive solve_viscoelastic_drive(const ViscoelasticDriveInput& in);
+
+// The paper's route: the six matching equations (17a,b) tension at the exits, (19a,b) elongation
+// continuity at the entrances through the free spans, (20a,b) |T'| = fT where adhesion starts, in
+// θ_eR, θ_sR, θ_eN, θ_sN, ε_R, ε_N, solved with Ceres under θ_e ≥ 0. An entrance arc that ends on
+// its bound θ_e = 0 drops its equation (20) (the paper sets negative widths to zero) and the rest
+// is solved again. Independent of the march above; tests compare the two.
+struct ViscoelasticEquations {
+  double entrance_R = 0, sliding_R = 0, entrance_N = 0, sliding_N = 0, eps_R = 0, eps_N = 0;
+  double max_residual_N = 0;  // largest residual of the equations kept, in N
+};
+ViscoelasticEquations solve_viscoelastic_equations(const ViscoelasticDriveInput& in);
 
 }  // namespace fitlib::belt

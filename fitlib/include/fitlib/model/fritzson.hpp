@@ -70,15 +70,21 @@ T safe_sqrt(const T& x) {
 // Smallest damage driver taken into log10; below it h1 = 1 and h2 = β2 (their limits).
 constexpr double kDriverFloor = 1e-30;
 
-// Pólya's complement ½[1 − (1 − e^{−(2/π)y²})^½ sgn y] (4.33–4.35), written as
-// ½[1 − y·√((2/π)·f((2/π)y²))] with f(u) = (1 − e^{−u})/u: analytic in y, so sgn(0) = 0 and
-// the derivative at y = 0 are exact (no √0).
+// Pólya's complement ½[1 − (1 − e^{−(2/π)y²})^½ sgn y] (4.33–4.35). Near y = 0 it is evaluated as
+// ½[1 − y·√((2/π)·f((2/π)y²))] with f(u) = (1 − e^{−u})/u: analytic in y, so sgn(0) = 0 and the
+// derivative at y = 0 are exact (no √0). In the upper tail it is ½e^{−u}/(1 + √(1 − e^{−u})),
+// which stays positive and accurate (no cancellation to 0 or below).
 template <typename T>
 T polya_complement(const T& y) {
+  using std::exp;
+  using std::expm1;
   using std::sqrt;
   constexpr double kTwoOverPi = 0.63661977236758134;
   const T u = kTwoOverPi * y * y;
-  return 0.5 * (T(1.0) - y * sqrt(kTwoOverPi * one_minus_exp_over(u)));
+  const double ys = scalar_part(y);
+  if (ys > -0.5 && ys < 0.5) return 0.5 * (T(1.0) - y * sqrt(kTwoOverPi * one_minus_exp_over(u)));
+  const T upper_tail = 0.5 * exp(-u) / (T(1.0) + sqrt(-expm1(-u)));
+  return ys > 0.0 ? upper_tail : T(1.0) - upper_tail;
 }
 
 // Elastic damage h1 (4.35): 1 at small driver, β1 at large; x = log10(driver).
