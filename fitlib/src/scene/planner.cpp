@@ -126,10 +126,12 @@ Plan make_plan(const Scene& s) {
   const bool history = flag(s.outputs, "load_history");
   const bool accumulation = flag(s.outputs, "strain_accumulation");
   const bool cvt = flag(s.outputs, "cvt_thrust");
+  const bool tension_test = flag(s.outputs, "tension_test");
   const bool life = flag(s.outputs, "life");
   p.load_cycle_needed = history || life;
   p.accumulation = accumulation;
   p.cvt = cvt;
+  p.tension_test = tension_test;
   p.viscoelastic = flag(s.effects, "viscoelastic_tension");
   // Reasons of effects that do not run start with "not" (Plan::will_run relies on it).
   auto add = [&](const std::string& name, bool run, const std::string& why,
@@ -137,7 +139,7 @@ Plan make_plan(const Scene& s) {
     p.effects.push_back({name, false, 0.0, run ? why : why_not});
   };
   const std::string needed = history ? "needed by load_history" : "needed by life";
-  const bool drive = p.load_cycle_needed || cvt || accumulation || p.viscoelastic;
+  const bool drive = p.load_cycle_needed || cvt || accumulation || p.viscoelastic || tension_test;
   add("stiffness", drive, "needed by the drive (belt c, k1, EI)");
   add("drive", drive, "geometry and span tensions, needed by the requested outputs");
   add("contact_arcs", p.load_cycle_needed, needed);
@@ -153,6 +155,7 @@ Plan make_plan(const Scene& s) {
   add("viscoelastic_tension", p.viscoelastic, "[effects] viscoelastic_tension = true");
   add("strain_accumulation", accumulation, "needed by strain_accumulation");
   add("cvt_thrust", cvt, "needed by cvt_thrust");
+  add("tension_test", tension_test, "needed by tension_test");
   if (life) {
     p.unavailable_outputs.push_back("life");
     const std::string why = "not available in this version: segment FE and fatigue life come later";
@@ -394,6 +397,26 @@ SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options_in) 
     r.accumulation->spectrum_source = source;
   });
   timed("cvt_thrust", [&] { r.extra["cvt_thrust"] = cvt_thrust_json(*r.drive, s.cvt.value_or(CvtSpec{})); });
+  timed("tension_test", [&] {
+    const TensionTestSpec t = s.tension_test.value_or(TensionTestSpec{});
+    const auto& g = r.drive->geometry;
+    const std::size_t d = belt::driver_index(g);
+    belt::TensionTestInput in;
+    in.belt = {t.S_N.value_or(r.drive->belt.c_N), t.tau_T_s, t.tau_eps_s};
+    in.d0_mm = g.spans[d].center_distance_mm;
+    in.r_mm = g.pulleys[d].pitch_radius_mm;
+    in.f = s.friction;
+    in.v_mm_s = t.rate_mm_min / 60.0;
+    in.load_time_s = t.load_time_s;
+    in.nodes = t.nodes;
+    in.steps_per_phase = t.steps;
+    r.tension_test = belt::simulate_tension_test(in);
+    const auto& u = r.tension_test->unloading.back();
+    r.extra["tension_test"] = {{"peak_tension_N", r.tension_test->loading.back().span_tension_N},
+                               {"end_of_unloading_tension_N", u.span_tension_N},
+                               {"residual_elongation_mm", u.elongation_mm},
+                               {"S_N", in.belt.S_N}, {"tau_T_s", in.belt.tau_T_s}, {"tau_eps_s", in.belt.tau_eps_s}};
+  });
   r.total_wall_s = total.seconds();
   return r;
 }
@@ -418,6 +441,16 @@ std::string accumulation_csv(const AccumulationMap& m) {
   for (std::size_t i = 0; i < m.omega_rad_s.size(); ++i)
     for (std::size_t j = 0; j < m.cycles.size(); ++j)
       o << m.omega_rad_s[i] << ',' << m.cycles[j] << ',' << m.gamma[i * m.cycles.size() + j] << '\n';
+  return o.str();
+}
+
+std::string tension_test_csv(const belt::TensionTestResult& t) {
+  std::ostringstream o;
+  o << std::setprecision(10) << "phase,t_s,elongation_mm,span_tension_N,boundary_deg\n";
+  for (const auto& [phase, pts] : {std::pair{"loading", &t.loading}, std::pair{"unloading", &t.unloading}})
+    for (const auto& q : *pts)
+      o << phase << ',' << q.t_s << ',' << q.elongation_mm << ',' << q.span_tension_N << ','
+        << q.boundary_rad * 180.0 / kPi << '\n';
   return o.str();
 }
 
@@ -499,6 +532,7 @@ std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, con
   };
   if (r.cycle && flag(s.outputs, "load_history")) put("load_history.csv", load_history_csv(r));
   if (r.accumulation) put("accumulation.csv", accumulation_csv(*r.accumulation));
+  if (r.tension_test) put("tension_test.csv", tension_test_csv(*r.tension_test));
   put("summary.json", summary_json(s, r).dump(2) + "\n");
   return written;
 }

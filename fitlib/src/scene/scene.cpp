@@ -83,7 +83,7 @@ class Reader {
       const std::string key(k.str());
       if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return key == a; }))
         fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see formats.md §5)",
-             v.source());
+             k.source());
     }
     return *this;
   }
@@ -139,7 +139,7 @@ const std::vector<std::string>& effect_names() {
 }
 const std::vector<std::string>& output_names() {
   static const std::vector<std::string> names{"load_history", "strain_accumulation", "cvt_thrust",
-                                              "life"};
+                                              "tension_test", "life"};
   return names;
 }
 
@@ -155,7 +155,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   s.path = source;
   const std::filesystem::path base = std::filesystem::path(source).parent_path();
   Reader top(root, "", source);
-  top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt"});
+  top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt",
+             "tension_test"});
   s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
 
   // [drive]
@@ -300,6 +301,20 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     c.driven_wrap_rad = vr.number_or("driven_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
     vr.finish();
     s.cvt = c;
+  }
+  // [tension_test]
+  if (const toml::table* tt = top.table("tension_test")) {
+    Reader tr(*tt, "tension_test", source);
+    tr.allow({"rate_mm_min", "load_time_s", "S_N", "tau_T_s", "tau_eps_s", "nodes", "steps"});
+    TensionTestSpec t;
+    t.rate_mm_min = tr.number_or("rate_mm_min", t.rate_mm_min, 0.0, 1e6, true);
+    t.load_time_s = tr.number_or("load_time_s", t.load_time_s, 0.0, 1e7, true);
+    t.S_N = tr.number("S_N", 0.0, 1e12, true);
+    t.tau_T_s = tr.number_or("tau_T_s", t.tau_T_s, 0.0, 1e9);
+    t.tau_eps_s = tr.number_or("tau_eps_s", t.tau_eps_s, 0.0, 1e9);
+    t.nodes = static_cast<int>(tr.number_or("nodes", t.nodes, 2, 1e5));
+    t.steps = static_cast<int>(tr.number_or("steps", t.steps, 1, 1e7));
+    s.tension_test = t;
   }
   top.finish();
   return s;

@@ -11,6 +11,7 @@
 
 #include "fitlib/belt/accumulation.hpp"
 #include "fitlib/belt/load_cycle.hpp"
+#include "fitlib/belt/viscoelastic.hpp"
 #include "fitlib/scene/scene.hpp"
 
 namespace fitlib::scene {
@@ -26,7 +27,7 @@ struct Plan {
   std::vector<EffectReport> effects;  // in run order, each with ran = false until run
   belt::LoadCycleEffects load_cycle;
   bool load_cycle_needed = false;
-  bool accumulation = false, cvt = false, viscoelastic = false;
+  bool accumulation = false, cvt = false, viscoelastic = false, tension_test = false;
   std::vector<std::string> unavailable_outputs;  // requested but not in this version
   bool will_run(const std::string& effect) const;
 };
@@ -65,6 +66,7 @@ struct SceneResult {
   std::optional<belt::DriveCase> drive;
   std::optional<belt::LoadCycle> cycle;
   std::optional<AccumulationMap> accumulation;
+  std::optional<belt::TensionTestResult> tension_test;
   nlohmann::json extra = nlohmann::json::object();  // CVT thrust, viscoelastic drive, ...
   double total_wall_s = 0.0;
 };
@@ -75,8 +77,9 @@ SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options 
 // and the JSON summary (plan, effects with wall times, per-pulley results).
 std::string load_history_csv(const SceneResult& r);
 std::string accumulation_csv(const AccumulationMap& m);
+std::string tension_test_csv(const belt::TensionTestResult& t);
 nlohmann::json summary_json(const Scene& scene, const SceneResult& r);
-// Writes load_history.csv (if run), accumulation.csv (if run) and summary.json into `dir`
+// Writes load_history.csv, accumulation.csv, tension_test.csv (each if run) and summary.json into `dir`
 // atomically; returns the files written.
 std::vector<std::string> write_outputs(const Scene& scene, const SceneResult& r, const std::string& dir);
 

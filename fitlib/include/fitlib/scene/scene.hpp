@@ -41,6 +41,15 @@ struct CvtSpec {
   double driver_wrap_rad = 0.0, driven_wrap_rad = 0.0;  // 0: take from the drive
 };
 
+// Sorge–Cammalleri load/unload test on the scene's two pulleys ([tension_test]); the centre
+// distance is d0, the driver's radius r, the friction f.
+struct TensionTestSpec {
+  double rate_mm_min = 10.0, load_time_s = 120.0;
+  std::optional<double> S_N;  // default: the belt's c
+  double tau_T_s = 27.0, tau_eps_s = 40.0;
+  int nodes = 200, steps = 1200;
+};
+
 struct Scene {
   std::string name;
   std::string path;  // file it came from (errors, relative card paths)
@@ -65,6 +74,7 @@ struct Scene {
   std::map<std::string, bool> outputs;
   std::optional<AccumulationSpec> accumulation;
   std::optional<CvtSpec> cvt;
+  std::optional<TensionTestSpec> tension_test;
 };
 
 Scene load_scene(const std::string& path);
