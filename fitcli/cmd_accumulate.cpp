@@ -33,7 +33,7 @@ void register_accumulate(CLI::App& app) {
   cmd->add_option("--strain-limit", a->limit, "Strain limit for the critical angular-velocity area");
   cmd->add_option("--out", a->out, "CSV file (default stdout)");
   cmd->add_flag("--json", a->json, "Print a JSON summary on stdout (the CSV goes to --out)");
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     using namespace fitlib;
     if (a->card.empty() == a->spectrum.empty() && a->scene.empty())
       throw core::UsageError("give exactly one of --card or --spectrum (or a --scene with [accumulation])");
@@ -49,19 +49,17 @@ void register_accumulate(CLI::App& app) {
     } else if (!a->spectrum.empty()) {
       spec.spectrum = a->spectrum;
     }
-    spec.shear_stress_MPa = a->tau0;
-    spec.cycles = a->cycles;
-    spec.cycle_points = a->cycle_points;
-    spec.omega_min_rad_s = a->omega_min;
-    spec.omega_max_rad_s = a->omega_max;
-    spec.omega_points = a->omega_points;
+    // Options given on the command line override the scene's [accumulation].
+    auto given = [cmd](const char* name) { return cmd->count(name) > 0; };
+    if (given("--shear-stress-mpa") || a->scene.empty()) spec.shear_stress_MPa = a->tau0;
+    if (given("--cycles") || a->scene.empty()) spec.cycles = a->cycles;
+    if (given("--cycle-points") || a->scene.empty()) spec.cycle_points = a->cycle_points;
+    if (given("--omega-min") || a->scene.empty()) spec.omega_min_rad_s = a->omega_min;
+    if (given("--omega-max") || a->scene.empty()) spec.omega_max_rad_s = a->omega_max;
+    if (given("--omega-points") || a->scene.empty()) spec.omega_points = a->omega_points;
     if (a->limit > 0) spec.strain_limit = a->limit;
     double kappa = a->kappa >= 0 ? a->kappa : spec.kappa.value_or(3.14159265358979323846);
-    if (a->kappa < 0 && !spec.kappa && !a->scene.empty()) {
-      const auto d = scene::make_drive(sc, scene::Stiffness{1.0, 1.0, 0.0, "", "", ""});
-      const std::size_t i = belt::driver_index(d.geometry);
-      kappa = d.geometry.spans[i].center_distance_mm / d.geometry.pulleys[i].pitch_radius_mm;
-    }
+    if (a->kappa < 0 && !spec.kappa && !a->scene.empty()) kappa = scene::drive_kappa(sc);
     std::string source;
     const auto spectrum = scene::scene_spectrum(sc, spec.spectrum, &source);
     const auto map = scene::accumulation_map(spectrum, spec, kappa);

@@ -50,8 +50,14 @@ fitlib::card::Card make_card(const FitArgs& a, const fitlib::fit::FitResult& r,
     card.parameters.push_back(e);
   }
   const auto& m = r.metrics;
-  card.fit = {{"objective", a.residual == "log10" ? "sum of squared log10 errors of storage and loss modulus"
-                                                  : "sum of squared relative errors"},
+  nlohmann::json identifiability = {{"rank", r.identifiability.rank},
+                                    {"condition_number", r.identifiability.condition_number},
+                                    {"not_identifiable", r.identifiability.null_space},
+                                    {"correlated", nlohmann::json::array()}};
+  for (const auto& pair : r.identifiability.correlated)
+    identifiability["correlated"].push_back({pair.a, pair.b, pair.correlation});
+  card.fit = {{"objective", r.objective},
+              {"identifiability", identifiability},
               {"residual", a.residual},
               {"weights", {{"storage", a.fit.storage_weight}, {"loss", a.fit.loss_weight}, {"mean", a.fit.mean_weight}}},
               {"backend", r.backend_used},
@@ -203,6 +209,10 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--tolerance", a->fit.tolerance, "Relative function tolerance")->capture_default_str();
   cmd->add_option("--max-iterations", a->fit.max_iterations, "Iteration limit per solve")->capture_default_str();
   cmd->add_option("--seed", a->fit.seed, "Random seed (multistart)")->capture_default_str();
+  cmd->add_option("--schedule", a->fit.schedule_path, "Staged backend: schedule of parameter groups (JSON or TOML)")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--global", a->fit.global, "auto backend: run the NLopt multistart before Ceres");
+  cmd->add_flag("!--no-polish", a->fit.polish, "nnls backend: keep the pure linear solve (no log-space polish)");
   cmd->add_flag("--skip-bad-rows", a->skip_bad_rows, "Skip bad rows with a listed warning instead of failing");
   cmd->add_option("--out", a->out, "Card file to write (atomically)");
   cmd->add_option("--name", a->name, "Material name in the card");

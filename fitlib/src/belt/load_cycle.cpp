@@ -299,4 +299,18 @@ LoadCycle compute_load_cycle(const DriveCase& drive, const LoadCycleOptions& o) 
   return out;
 }
 
+double axial_thrust_N(const LoadCycle& cycle, const BeltSection& belt, int pulley) {
+  const double beta = belt.wedge_half_angle_rad;
+  auto q = [&](const LoadSample& x) {  // axial force per unit length at a sample
+    const double bs = std::atan(std::tan(beta) * std::cos(x.gamma_rad));
+    return x.p_MPa * belt.height_mm / std::cos(beta) * (std::cos(beta) + x.friction_used * std::sin(bs));
+  };
+  double thrust = 0.0;
+  const auto& xs = cycle.samples;
+  for (std::size_t k = 1; k < xs.size(); ++k)  // trapezoid over the pulley's samples
+    if (xs[k].pulley == pulley && xs[k - 1].pulley == pulley)
+      thrust += 0.5 * (q(xs[k]) + q(xs[k - 1])) * (xs[k].s_mm - xs[k - 1].s_mm);
+  return thrust;
+}
+
 }  // namespace fitlib::belt

@@ -193,6 +193,7 @@ StageOutcome ceres_with_fallback(Problem& problem, FitResult& result, std::strin
 }
 
 StageOutcome run_schedule(Problem& problem, FitResult& result) {
+  const core::Stopwatch clock;
   const FitOptions& o = problem.options();
   const Schedule schedule =
       o.schedule_path.empty() ? default_schedule() : load_schedule(o.schedule_path);
@@ -217,9 +218,48 @@ StageOutcome run_schedule(Problem& problem, FitResult& result) {
       last = detail::run_nlopt(problem, st.multistart > 0 ? st.multistart : o.multistart,
                                iterations);
     else last = detail::run_ceres(problem, iterations);
+    // Accuracy and time reached after each stage: what a user tunes a schedule by.
+    FitMetrics reached;
+    problem.measure(problem.natural(), reached);
+    std::ostringstream s;
+    s << "; mean relative error " << 100.0 * reached.mean_rel_error << " % after "
+      << clock.seconds() << " s";
+    last.note += s.str();
     note(result, "stage '" + st.name + "': ", last);
   }
   return last;
+}
+
+// Series terms (a "viscous" modulus paired with a "time" constant, in the same order) are
+// exchangeable: a fit may return them in any order. Sort them by time constant so that cards
+// read naturally, and keep the sorted vector only if the cost is unchanged (the permutation is
+// then the same model).
+void sort_series_terms(Problem& problem, FitResult& result) {
+  std::vector<int> moduli, times;
+  for (int i = 0; i < problem.num_parameters(); ++i) {
+    if (problem.specs()[i].group == "viscous") moduli.push_back(i);
+    if (problem.specs()[i].group == "time") times.push_back(i);
+  }
+  if (moduli.size() != times.size() || times.size() < 2) return;
+  for (std::size_t k = 0; k < times.size(); ++k)
+    if (problem.user_fixed()[times[k]] || problem.user_fixed()[moduli[k]]) return;
+  std::vector<double>& p = problem.natural();
+  std::vector<std::size_t> order(times.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return p[times[a]] < p[times[b]]; });
+  bool identity = true;
+  for (std::size_t k = 0; k < order.size(); ++k) identity = identity && order[k] == k;
+  if (identity) return;
+  std::vector<double> sorted = p;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    sorted[times[k]] = p[times[order[k]]];
+    sorted[moduli[k]] = p[moduli[order[k]]];
+  }
+  const double before = problem.cost(p), after = problem.cost(sorted);
+  if (!(std::abs(after - before) <= 1e-10 * (before + 1e-300))) return;
+  p = sorted;
+  result.messages.push_back("series terms sorted by time constant (same model, same cost)");
 }
 
 }  // namespace
@@ -289,6 +329,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   }
   result.backend_used = used;
 
+  sort_series_terms(problem, result);
   // Covariance over what was fitted: the positive linear parameters (nnls), the last stage's
   // set (staged) or every movable parameter.
   std::vector<int> fitted = movable(problem, last_stage_set ? problem.free() : all_free(problem));

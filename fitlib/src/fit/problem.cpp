@@ -19,6 +19,14 @@ double component_value(const model::Moduli<double>& m, int component) {
   return component == 0 ? m.storage : component == 1 ? m.loss : m.mean;
 }
 
+// Same imposed test (NaN temperatures equal): the model's moduli are a pure function of it.
+bool same_condition(const model::TestCondition& a, const model::TestCondition& b) {
+  auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+  return a.mode == b.mode && a.orientation == b.orientation &&
+         same(a.frequency_Hz, b.frequency_Hz) && same(a.temperature_C, b.temperature_C) &&
+         same(a.strain_amplitude, b.strain_amplitude) && same(a.mean_strain, b.mean_strain);
+}
+
 // log10 of a model value; a non-positive value is floored at 1e-12 × the data so the residual
 // stays finite and pushes the value back up.
 double floored(double value, double data) { return std::max(value, 1e-12 * data); }
@@ -77,6 +85,18 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
     }
   }
   if (entries_.empty()) throw core::UsageError("fit: every residual has zero weight");
+  condition_of_row_.assign(table.rows.size(), -1);
+  for (int r = 0; r < static_cast<int>(table.rows.size()); ++r) {
+    for (int d = 0; d < static_cast<int>(distinct_rows_.size()); ++d)
+      if (same_condition(table.rows[distinct_rows_[d]].condition, table.rows[r].condition)) {
+        condition_of_row_[r] = d;
+        break;
+      }
+    if (condition_of_row_[r] < 0) {
+      condition_of_row_[r] = static_cast<int>(distinct_rows_.size());
+      distinct_rows_.push_back(r);
+    }
+  }
 
   lower_.resize(n);
   upper_.resize(n);
@@ -237,19 +257,25 @@ bool Problem::evaluate(const std::vector<double>& natural, double* residuals,
 bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* residuals,
                                  double* jacobian) const {
   const int n = num_parameters(), nf = num_free();
-  Eigen::MatrixXd jac(3, n);
-  model::Moduli<double> m{};
-  int current_row = -1;
+  const int nd = static_cast<int>(distinct_rows_.size());
+  // One model evaluation per distinct condition, shared by the rows that repeat it.
+  std::vector<model::Moduli<double>> moduli(nd);
+  Eigen::MatrixXd jacs(3, jacobian ? static_cast<Eigen::Index>(n) * nd : 0);
+  for (int d = 0; d < nd; ++d) {
+    const auto& c = table_->rows[distinct_rows_[d]].condition;
+    if (!jacobian) {
+      moduli[d] = model_->moduli(natural.data(), c);
+      continue;
+    }
+    Eigen::MatrixXd jac(3, n);
+    moduli[d] = all_free_linear_ ? linear_columns(natural, c, free_, jac)
+                                 : model_->moduli(natural.data(), c, jac);
+    jacs.middleCols(static_cast<Eigen::Index>(d) * n, n) = jac;
+  }
   for (int e = 0; e < num_residuals(); ++e) {
     const ResidualEntry& en = entries_[e];
-    if (en.row != current_row) {
-      current_row = en.row;
-      const auto& c = table_->rows[en.row].condition;
-      m = !jacobian ? model_->moduli(natural.data(), c)
-          : all_free_linear_ ? linear_columns(natural, c, free_, jac)
-                             : model_->moduli(natural.data(), c, jac);
-    }
-    const double value = component_value(m, en.component);
+    const int d = condition_of_row_[en.row];
+    const double value = component_value(moduli[d], en.component);
     double r, dr_dm;
     if (en.absolute) {
       r = (value - en.data) / en.scale;
@@ -266,7 +292,7 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
       for (int k = 0; k < nf; ++k) {
         const int i = free_[k];
         const double chain = is_log(i) ? natural[i] : 1.0;  // dp/dx for p = exp(x)
-        jrow[k] = en.sqrt_weight * dr_dm * jac(en.component, i) * chain;
+        jrow[k] = en.sqrt_weight * dr_dm * jacs(en.component, static_cast<Eigen::Index>(d) * n + i) * chain;
         if (!std::isfinite(jrow[k])) return false;
       }
     }

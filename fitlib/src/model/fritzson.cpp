@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <initializer_list>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/autodiff_model.hpp"
@@ -154,37 +155,41 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
       return {m.dynamic.real(), m.dynamic.imag(), m.mean};
     }
 
-    // Uniaxial: damage drivers depend on the lateral strains, which depend on the damaged
-    // moduli; iterate to the fixed point (the thesis iterated too, L2260). Start incompressible.
-    using C = std::complex<T>;
-    T driver_I = T(std::sqrt(1.5) * amplitude), driver_A = T(std::sqrt(2.0) * amplitude);
-    PartModuli<T> mi{}, ma{C(T(0.0), T(0.0)), T(0.0)};
-    UniaxialSolution<T, C> steady{};
+    // Uniaxial: the damage drivers depend on the lateral strains, which depend on the damaged
+    // moduli; iterate to the fixed point (the thesis iterated too, L2260).
+    T driver_I, driver_A;
+    uniaxial_start(amplitude, driver_I, driver_A);
     for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
-      mi = part(p + kPartI, driver_I, omega, c);
-      if (anisotropic_) ma = part(p + kPartA1, driver_A, omega, c);
-      steady = uniaxial<T, C>(K, mi.dynamic, ma.dynamic, o.uniaxial_axis);
-      // Peak over a cycle of |Re(ê e^{iωt})|: √(½(Σ|ê_k|² + |Σ ê_k²|)) (tensor norm, 4.32).
-      T sum_abs2(0.0);
-      C sum_sq(T(0.0), T(0.0));
-      for (const C& e : steady.deviatoric) {
-        const C ea = e * T(amplitude);
-        sum_abs2 += ea.real() * ea.real() + ea.imag() * ea.imag();
-        sum_sq += ea * ea;
-      }
-      const T next_I = safe_sqrt(0.5 * (sum_abs2 + complex_abs(sum_sq)));
-      const T next_A = std::sqrt(2.0) * complex_abs(steady.deviatoric[2] * T(amplitude));
-      const double change = std::abs(scalar_part(next_I) - scalar_part(driver_I)) +
-                            std::abs(scalar_part(next_A) - scalar_part(driver_A));
-      driver_I = next_I;
-      driver_A = next_A;
-      if (change <= 1e-14 * (amplitude + 1e-300) && iteration > 0) break;
+      const UniaxialStep<T> next = uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, false);
+      const bool done = converged(driver_I, driver_A, next, amplitude) && iteration > 0;
+      driver_I = next.driver_I;
+      driver_A = next.driver_A;
+      if (done) break;
     }
-    mi = part(p + kPartI, driver_I, omega, c);
-    if (anisotropic_) ma = part(p + kPartA1, driver_A, omega, c);
-    steady = uniaxial<T, C>(K, mi.dynamic, ma.dynamic, o.uniaxial_axis);
-    const UniaxialSolution<T, T> mean = uniaxial<T, T>(K, mi.mean, ma.mean, o.uniaxial_axis);
-    return {steady.modulus.real(), steady.modulus.imag(), mean.modulus};
+    return uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, true).moduli;
+  }
+
+  using AutodiffModel<FritzsonModel>::moduli;
+
+  // Jacobian by one forward-mode pass over only the parameters the test depends on (shear 12:
+  // part I; 13/23: I and A2; uniaxial: K, I and A1; bulk: K), instead of the generic passes of
+  // 8 over all 38. Uniaxial: the damage drivers d solve d = F(d, p) (found in doubles); the
+  // implicit function theorem gives dd/dp = (1 − ∂F/∂d)⁻¹ ∂F/∂p from one pass that also seeds d,
+  // so no iteration runs on jets.
+  Moduli<double> moduli(const double* p, const TestCondition& c,
+                        Eigen::Ref<Eigen::MatrixXd> jacobian) const override {
+    jacobian.setZero();
+    const Orientation o = parse_orientation(c, anisotropic_);
+    if (c.mode == TestMode::bulk) {
+      jacobian(0, kK) = jacobian(2, kK) = 1.0;
+      return evaluate<double>(p, c);
+    }
+    if (c.mode == TestMode::shear) {
+      if (o.fibre_shear) return jet_pass<2 * kPartSize>(p, c, o, {kPartI, kPartA2}, jacobian);
+      return jet_pass<kPartSize>(p, c, o, {kPartI}, jacobian);
+    }
+    if (anisotropic_) return jet_pass<2 * kPartSize + 3>(p, c, o, {kPartI, kPartA1}, jacobian);
+    return jet_pass<kPartSize + 3>(p, c, o, {kPartI}, jacobian);
   }
 
   std::vector<double> stress_response(const double* p, const TestCondition& c,
@@ -254,6 +259,115 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
 
  private:
   static constexpr int kMaxFixedPointIterations = 100;
+
+  // Moduli at given uniaxial damage drivers, and the drivers they imply (the fixed-point map).
+  template <typename T>
+  struct UniaxialStep {
+    Moduli<T> moduli;  // mean modulus only when asked for
+    T driver_I, driver_A;
+  };
+
+  // Incompressible start of the uniaxial drivers.
+  template <typename T>
+  static void uniaxial_start(double amplitude, T& driver_I, T& driver_A) {
+    driver_I = T(std::sqrt(1.5) * amplitude);
+    driver_A = T(std::sqrt(2.0) * amplitude);
+  }
+
+  template <typename T>
+  static bool converged(const T& driver_I, const T& driver_A, const UniaxialStep<T>& next,
+                        double amplitude) {
+    const double change = std::abs(scalar_part(next.driver_I) - scalar_part(driver_I)) +
+                          std::abs(scalar_part(next.driver_A) - scalar_part(driver_A));
+    return change <= 1e-14 * (amplitude + 1e-300);
+  }
+
+  template <typename T>
+  UniaxialStep<T> uniaxial_step(const T* p, const TestCondition& c, int axis, const T& driver_I,
+                                const T& driver_A, bool with_mean) const {
+    using C = std::complex<T>;
+    const double omega = 2.0 * kPi * c.frequency_Hz;
+    const double amplitude = c.strain_amplitude;
+    const PartModuli<T> mi = part(p + kPartI, driver_I, omega, c);
+    PartModuli<T> ma{C(T(0.0), T(0.0)), T(0.0)};
+    if (anisotropic_) ma = part(p + kPartA1, driver_A, omega, c);
+    const UniaxialSolution<T, C> steady = uniaxial<T, C>(p[kK], mi.dynamic, ma.dynamic, axis);
+    // Peak over a cycle of |Re(ê e^{iωt})|: √(½(Σ|ê_k|² + |Σ ê_k²|)) (tensor norm, 4.32).
+    T sum_abs2(0.0);
+    C sum_sq(T(0.0), T(0.0));
+    for (const C& e : steady.deviatoric) {
+      const C ea = e * T(amplitude);
+      sum_abs2 += ea.real() * ea.real() + ea.imag() * ea.imag();
+      sum_sq += ea * ea;
+    }
+    UniaxialStep<T> out;
+    out.driver_I = safe_sqrt(0.5 * (sum_abs2 + complex_abs(sum_sq)));
+    out.driver_A = std::sqrt(2.0) * complex_abs(steady.deviatoric[2] * T(amplitude));
+    out.moduli.storage = steady.modulus.real();
+    out.moduli.loss = steady.modulus.imag();
+    out.moduli.mean =
+        with_mean ? uniaxial<T, T>(p[kK], mi.mean, ma.mean, axis).modulus : T(0.0);
+    return out;
+  }
+
+  // One forward-mode pass with N derivative slots: the parts starting at `part_offsets` (and K
+  // for uniaxial tests) take the first slots, the two uniaxial drivers the last two.
+  template <int N>
+  Moduli<double> jet_pass(const double* p, const TestCondition& c, const Orientation& o,
+                          std::initializer_list<int> part_offsets,
+                          Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+    using Jet = ceres::Jet<double, N>;
+    const bool uni = c.mode == TestMode::uniaxial;
+    const int n = static_cast<int>(size());
+    std::vector<Jet> pj(n);
+    for (int i = 0; i < n; ++i) pj[i] = Jet(p[i]);
+    int columns[N];
+    int slots = 0;
+    auto seed = [&](int i) {
+      pj[i].v[slots] = 1.0;
+      columns[slots++] = i;
+    };
+    if (uni) seed(kK);
+    for (int offset : part_offsets)
+      for (int k = 0; k < kPartSize; ++k) seed(offset + k);
+    if (!uni) {
+      const Moduli<Jet> m = evaluate<Jet>(pj.data(), c);
+      for (int s = 0; s < slots; ++s) {
+        jacobian(0, columns[s]) = m.storage.v[s];
+        jacobian(1, columns[s]) = m.loss.v[s];
+        jacobian(2, columns[s]) = m.mean.v[s];
+      }
+      return {m.storage.a, m.loss.a, m.mean.a};
+    }
+    // Drivers at the fixed point (doubles), then one pass seeding them too.
+    double d_I, d_A;
+    uniaxial_start(c.strain_amplitude, d_I, d_A);
+    for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
+      const UniaxialStep<double> next = uniaxial_step(p, c, o.uniaxial_axis, d_I, d_A, false);
+      const bool done = converged(d_I, d_A, next, c.strain_amplitude) && iteration > 0;
+      d_I = next.driver_I;
+      d_A = next.driver_A;
+      if (done) break;
+    }
+    const int sI = N - 2, sA = N - 1;
+    Jet driver_I(d_I), driver_A(d_A);
+    driver_I.v[sI] = 1.0;
+    driver_A.v[sA] = 1.0;
+    const UniaxialStep<Jet> step = uniaxial_step(pj.data(), c, o.uniaxial_axis, driver_I,
+                                                 driver_A, true);
+    // (1 − ∂F/∂d) dd/dp = ∂F/∂p, a 2 × 2 system.
+    const double a11 = 1.0 - step.driver_I.v[sI], a12 = -step.driver_I.v[sA];
+    const double a21 = -step.driver_A.v[sI], a22 = 1.0 - step.driver_A.v[sA];
+    const double det = a11 * a22 - a12 * a21;
+    const Jet* out[3] = {&step.moduli.storage, &step.moduli.loss, &step.moduli.mean};
+    for (int s = 0; s < slots; ++s) {
+      const double fI = step.driver_I.v[s], fA = step.driver_A.v[s];
+      const double dI = (a22 * fI - a12 * fA) / det, dA = (a11 * fA - a21 * fI) / det;
+      for (int r = 0; r < 3; ++r)
+        jacobian(r, columns[s]) = out[r]->v[s] + out[r]->v[sI] * dI + out[r]->v[sA] * dA;
+    }
+    return {step.moduli.storage.a, step.moduli.loss.a, step.moduli.mean.a};
+  }
 
   template <typename T, typename D>
   PartModuli<T> part(const T* part_p, const D& driver, double omega, const TestCondition& c) const {

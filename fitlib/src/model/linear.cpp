@@ -253,6 +253,18 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     if (o.linear_factor) specs_.push_back({"c_T", "1/degC", -1.0, 1.0, Transform::linear, "temperature", 0.0, false});
   }
 
+  using AutodiffModel<LinearModel<Kernel>>::moduli;
+
+  // Prony in its own mode has a cheap closed-form Jacobian (the fitter's hot path); everything
+  // else goes through automatic differentiation.
+  Moduli<double> moduli(const double* p, const TestCondition& c,
+                        Eigen::Ref<Eigen::MatrixXd> jacobian) const override {
+    if constexpr (std::is_same_v<Kernel, Prony>) {
+      if (c.mode == o_.mode) return prony_with_jacobian(p, c, jacobian);
+    }
+    return AutodiffModel<LinearModel<Kernel>>::moduli(p, c, jacobian);
+  }
+
   std::string kind() const override { return Kernel::kKind; }
   const std::vector<ParameterSpec>& parameters() const override { return specs_; }
   TestMode native_mode() const override { return o_.mode; }
@@ -356,6 +368,47 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
 
  private:
   int terms() const { return Kernel::kHasTerms ? o_.terms : 0; }
+
+  Moduli<double> prony_with_jacobian(const double* p, const TestCondition& c,
+                                     Eigen::Ref<Eigen::MatrixXd> J) const {
+    // Temperature parameters (at most three, after the kernel and K) by forward differentiation.
+    using Jet = ceres::Jet<double, 3>;
+    const size_t n = specs_.size();
+    std::vector<Jet> pj(n);
+    for (size_t i = 0; i < n; ++i) {
+      pj[i] = Jet(p[i]);
+      if (i >= shift_index_) pj[i].v[i - shift_index_] = 1.0;
+    }
+    Jet shift_factor, scale;
+    temperature_factors(pj.data(), c, shift_factor, scale);
+    const double omega0 = core::angular_frequency(c.frequency_Hz);
+    const double omega = omega0 * shift_factor.a, g = scale.a;
+    const int N = terms();
+    double re = p[0], im = 0.0, dre_domega = 0.0, dim_domega = 0.0;
+    J.setZero();
+    J(0, 0) = g;
+    J(2, 0) = g;
+    for (int i = 0; i < N; ++i) {
+      const double M = p[1 + i], tau = p[1 + N + i], w = omega * tau, d = 1.0 + w * w;
+      re += M * w * w / d;
+      im += M * w / d;
+      J(0, 1 + i) = g * w * w / d;
+      J(1, 1 + i) = g * w / d;
+      const double dre_dw = 2.0 * M * w / (d * d), dim_dw = M * (1.0 - w * w) / (d * d);
+      J(0, 1 + N + i) = g * dre_dw * omega;
+      J(1, 1 + N + i) = g * dim_dw * omega;
+      dre_domega += dre_dw * tau;
+      dim_domega += dim_dw * tau;
+    }
+    for (size_t i = shift_index_; i < n; ++i) {
+      const int k = static_cast<int>(i - shift_index_);
+      const double domega = omega0 * shift_factor.v[k];
+      J(0, i) = g * dre_domega * domega + re * scale.v[k];
+      J(1, i) = g * dim_domega * domega + im * scale.v[k];
+      J(2, i) = p[0] * scale.v[k];
+    }
+    return {g * re, g * im, g * p[0]};
+  }
 
   void require_native(const TestCondition& c, const char* what) const {
     if (c.mode != o_.mode)

@@ -299,6 +299,13 @@ belt::RetardationSpectrum scene_spectrum(const Scene& s, const std::string& spec
   return r;
 }
 
+double drive_kappa(const Scene& scene) {
+  // Geometry only: the stiffness does not enter.
+  const belt::DriveCase d = make_drive(scene, Stiffness{1.0, 1.0, 0.0, "", "", ""});
+  const std::size_t i = belt::driver_index(d.geometry);
+  return d.geometry.spans[i].center_distance_mm / d.geometry.pulleys[i].pitch_radius_mm;
+}
+
 AccumulationMap accumulation_map(const belt::RetardationSpectrum& s, const AccumulationSpec& a, double kappa) {
   AccumulationMap m;
   m.kappa = kappa;
@@ -385,18 +392,20 @@ SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options_in) 
     const AccumulationSpec a = s.accumulation.value_or(AccumulationSpec{});
     std::string source;
     const auto spectrum = scene_spectrum(s, a.spectrum, &source);
-    double kappa = 0.0;
-    if (a.kappa) {
-      kappa = *a.kappa;
-    } else {
-      const auto& g = r.drive->geometry;
-      const std::size_t d = belt::driver_index(g);
-      kappa = g.spans[d].center_distance_mm / g.pulleys[d].pitch_radius_mm;
-    }
-    r.accumulation = accumulation_map(spectrum, a, kappa);
+    r.accumulation = accumulation_map(spectrum, a, a.kappa ? *a.kappa : drive_kappa(s));
     r.accumulation->spectrum_source = source;
   });
-  timed("cvt_thrust", [&] { r.extra["cvt_thrust"] = cvt_thrust_json(*r.drive, s.cvt.value_or(CvtSpec{})); });
+  timed("cvt_thrust", [&] {
+    auto j = cvt_thrust_json(*r.drive, s.cvt.value_or(CvtSpec{}));
+    if (r.cycle) {  // the 1-D thrust of the load cycle next to the formulary
+      const auto& g = r.drive->geometry;
+      const int drv = static_cast<int>(belt::driver_index(g));
+      const int dvn = (drv + 1) % static_cast<int>(g.pulleys.size());
+      j["load_cycle_driver_axial_thrust_N"] = belt::axial_thrust_N(*r.cycle, r.drive->belt, drv);
+      j["load_cycle_driven_axial_thrust_N"] = belt::axial_thrust_N(*r.cycle, r.drive->belt, dvn);
+    }
+    r.extra["cvt_thrust"] = j;
+  });
   timed("tension_test", [&] {
     const TensionTestSpec t = s.tension_test.value_or(TensionTestSpec{});
     const auto& g = r.drive->geometry;

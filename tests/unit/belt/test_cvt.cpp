@@ -42,3 +42,57 @@ TEST(CvtFormulary, DrivenUnseatingBumpReachesHalfTheTightTension) {
 TEST(CvtFormulary, ShortWrapIsAnError) {
   EXPECT_THROW(driver_axial_thrust_N(100, 0.2, 0.5), fitlib::core::InputError);
 }
+
+#include "fitlib/belt/drive.hpp"
+#include "fitlib/belt/load_cycle.hpp"
+
+namespace {
+// The CVT of the paper (§IV): S_l = 59000 N, S_f = 6500 N·mm², E_z h/w = 21 N/mm², α = 12.8°, μ = 0.4,
+// equal wrap radii 39.5 mm from the belt length 758 mm and centre distance 255 mm.
+DriveCase sorge_cvt(double torque_Nm, double slack_N) {
+  DriveCase c;
+  c.geometry = make_two_pulley_geometry({"driver", 39.5, PulleyRole::driver}, {"driven", 39.5, PulleyRole::driven}, 255.0);
+  c.span_tension_N = span_tensions(c.geometry, {torque_Nm, TensionRule::slack, slack_N});
+  c.friction = 0.4;
+  c.belt.wedge_half_angle_rad = 12.8 * kPi / 180;
+  c.belt.width_mm = 15.5;
+  c.belt.height_mm = 8.0;
+  c.belt.c_N = 59000;
+  c.belt.EI_Nmm2 = 6500;
+  c.belt.k1_MPa = 10 * std::tan(c.belt.wedge_half_angle_rad) * 21.0;
+  c.belt.density_kg_m3 = 0.0;
+  return c;
+}
+}  // namespace
+
+TEST(CvtThrust, OneDimensionalThrustWithoutSlidingIsHalfFPThetaCot) {
+  // No torque, no bending zones: F and γ = 180° are constant over the wrap, so the thrust is
+  // ½ F cot(α + arctan μ) Θ exactly.
+  auto c = sorge_cvt(0.0, 400.0);
+  LoadCycleOptions o;
+  o.effects = {false, false, false, false};
+  const auto cycle = compute_load_cycle(c, o);
+  const double expected = 0.5 * 400.0 / std::tan(12.8 * kPi / 180 + std::atan(0.4)) * kPi;
+  EXPECT_NEAR(axial_thrust_N(cycle, c.belt, 0), expected, 1e-3 * expected);
+}
+
+// How far the formulary (12a,b), fitted to Sorge's 2-D solutions, is from the project's 1-D
+// V-belt solution (full ODE arcs, bending zones) for the paper's CVT: printed, and bounded.
+TEST(CvtThrust, FormularyAgainstOneDimensionalSolution) {
+  const double alpha = 12.8 * kPi / 180;
+  for (double torque : {5.0, 10.0, 15.0}) {
+    auto c = sorge_cvt(torque, 250.0);
+    LoadCycleOptions o;
+    o.effects = {true, false, true, true};
+    const auto cycle = compute_load_cycle(c, o);
+    const double T_S = c.span_tension_N[0], T_T = c.span_tension_N[1];
+    const double ode_R = axial_thrust_N(cycle, c.belt, 0), ode_N = axial_thrust_N(cycle, c.belt, 1);
+    const double fR = driver_axial_thrust_N(T_T, alpha, kPi), fN = driven_axial_thrust_N(T_T, T_S, alpha, kPi);
+    std::printf("  torque %4.1f N·m: driver formulary %7.1f N, 1-D %7.1f N (%+.0f %%); driven %7.1f N, 1-D %7.1f N (%+.0f %%)\n",
+                torque, fR, ode_R, 100 * (fR / ode_R - 1), fN, ode_N, 100 * (fN / ode_N - 1));
+    EXPECT_GT(fR / ode_R, 0.5);
+    EXPECT_LT(fR / ode_R, 2.0);
+    EXPECT_GT(fN / ode_N, 0.5);
+    EXPECT_LT(fN / ode_N, 2.0);
+  }
+}

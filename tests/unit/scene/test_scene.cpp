@@ -241,3 +241,14 @@ TEST(Accumulation, SpectrumFromARetardationCard) {
     EXPECT_EQ(e.key(), "accumulation.spectrum");
   }
 }
+
+TEST(Planner, TensionTestOutputRunsOnlyTheSimulation) {
+  const auto s = scene::load_scene(kData + "tension_test.toml");
+  const auto r = scene::run_scene(s);
+  EXPECT_FALSE(r.cycle.has_value());  // no load history asked for
+  ASSERT_TRUE(r.tension_test.has_value());
+  EXPECT_GT(r.tension_test->loading.back().span_tension_N, 0.0);
+  EXPECT_LE(r.tension_test->unloading.back().span_tension_N, 1e-9 + r.tension_test->unloading.front().span_tension_N);
+  const std::string csv = scene::tension_test_csv(*r.tension_test);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "phase,t_s,elongation_mm,span_tension_N,boundary_deg");
+}

@@ -95,6 +95,11 @@ LoadCycle compute_load_cycle(const DriveCase& drive, const LoadCycleOptions& opt
 double side_pressure_MPa(double effective_force_N, double radius_mm, const BeltSection& belt,
                          double friction, double gamma_rad);
 
+// Axial thrust on one pulley (both flanks' axial components, N): the axial force per unit length
+// (pH/cos β)(cos β + μ sin β_s) of (A.4) integrated over the pulley's contact zones along s.
+// The 1-D counterpart of Sorge's CVT formulary (cvt.hpp).
+double axial_thrust_N(const LoadCycle& cycle, const BeltSection& belt, int pulley);
+
 // Entrance/exit polynomial constants (4.21–4.39).
 struct ZoneConstants {
   static constexpr double A1_in = 2.6613038, A2_in = -2.3055004;

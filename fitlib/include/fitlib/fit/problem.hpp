@@ -99,6 +99,9 @@ class Problem {
   const data::DynamicTestTable* table_;
   FitOptions options_;
   std::vector<ResidualEntry> entries_;
+  // Rows with the same test condition (repeat specimens) share one model evaluation.
+  std::vector<int> condition_of_row_;  // index into distinct_rows_
+  std::vector<int> distinct_rows_;     // first row of each distinct condition
   std::vector<int> free_;
   bool all_free_linear_ = false;  // Jacobian columns by unit steps (exact for linear parameters)
   std::vector<bool> user_fixed_;

@@ -57,6 +57,8 @@ struct AccumulationMap {
 // The spectrum a scene names: a shape, or the retardation card of a material role.
 belt::RetardationSpectrum scene_spectrum(const Scene& scene, const std::string& spec,
                                          std::string* source = nullptr);
+// κ = l/R of the scene's drive: centre distance to the next pulley over the driver's radius.
+double drive_kappa(const Scene& scene);
 AccumulationMap accumulation_map(const belt::RetardationSpectrum& s, const AccumulationSpec& a,
                                  double kappa);
 
