@@ -4,14 +4,16 @@
 // (baseline, same run) and the staged fit with the shipped schedule; wall times (best of
 // `repeats`), their ratio, the mean relative error reached per stage, and the recovery of the
 // true parameters (identifiable ones inside their 95 % intervals).
-// Plain main; usage: bench_fritzson_fit [repeats=3]
+// Plain main; usage: bench_fritzson_fit [repeats=3] [schedule_dir=datasets/schedules]
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "fitlib/card/card.hpp"
+#include "fitlib/core/rng.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/model/model.hpp"
@@ -38,7 +40,8 @@ Timed best_of(int repeats, const model::ModelPtr& model, const data::DynamicTest
   return best;
 }
 
-void run(const char* material, const char* kind, const char* schedule, int repeats) {
+void run(const char* material, const char* kind, const std::string& schedule_dir,
+         const char* schedule, int repeats) {
   const std::string root = FITLIB_SOURCE_DIR;
   const auto table =
       data::read_dynamic_table(root + "/datasets/materials/" + material + ".csv");
@@ -52,7 +55,7 @@ void run(const char* material, const char* kind, const char* schedule, int repea
   options.backend = fit::Backend::ceres;
   const Timed plain = best_of(repeats, model, table, options);
   options.backend = fit::Backend::staged;
-  options.schedule_path = root + "/datasets/schedules/" + schedule;
+  options.schedule_path = schedule_dir + "/" + schedule;
   const Timed staged = best_of(repeats, model, table, options);
 
   std::printf("\n%s (%s, %zu rows, %d values, %zu parameters), default start, relative residuals\n",
@@ -69,6 +72,68 @@ void run(const char* material, const char* kind, const char* schedule, int repea
   for (const auto& m : staged.result.messages)
     if (m.rfind("stage '", 0) == 0) std::printf("  %s\n", m.c_str());
 
+  // The CLI's default objective (log10 errors) with the same schedule.
+  fit::FitOptions log_options = options;
+  log_options.residual = fit::ResidualKind::log10;
+  const Timed logged = best_of(repeats, model, table, log_options);
+  std::printf("%-28s %10.3f %14.2f %12d\n", "staged, log10 residuals", logged.seconds,
+              100 * logged.result.metrics.mean_rel_error, logged.result.metrics.iterations);
+
+  // Robustness: starts scattered around the default (log parameters × e^U(−1,1), others
+  // U(−½, ½) of their range), same schedule vs plain Ceres.
+  const auto start = model->initial_parameters(fit::summarize(table));
+  core::Rng rng(7);
+  int staged_ok = 0, plain_ok = 0;
+  double staged_s = 0.0, plain_s = 0.0;
+  std::string staged_errors, plain_errors;
+  constexpr int kStarts = 10;
+  fit::FitOptions plain_options = options;
+  plain_options.backend = fit::Backend::ceres;
+  for (int k = 0; k < kStarts; ++k) {
+    std::vector<double> p = start;
+    const auto& specs = model->parameters();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p[i] = specs[i].transform == core::Transform::log
+                 ? p[i] * std::exp(rng.uniform(-1.0, 1.0))
+                 : p[i] + rng.uniform(-0.5, 0.5) * 0.5 * (specs[i].upper - specs[i].lower);
+    for (auto* opts : {&options, &plain_options}) {
+      const auto t0 = Clock::now();
+      double error = 1.0;
+      try {
+        error = fit::fit(model, table, *opts, &p).metrics.mean_rel_error;
+      } catch (const std::exception&) {
+      }
+      const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+      char text[16];
+      std::snprintf(text, sizeof text, " %.2f", 100 * error);
+      (opts == &options ? staged_errors : plain_errors) += text;
+      if (opts == &options) {
+        staged_ok += error <= 0.02;
+        staged_s += s;
+      } else {
+        plain_ok += error <= 0.02;
+        plain_s += s;
+      }
+    }
+  }
+  std::printf("perturbed starts reaching <= 2 %% mean relative error: staged %d of %d (mean %.3f s),"
+              " plain ceres %d of %d (mean %.3f s)\n", staged_ok, kStarts, staged_s / kStarts,
+              plain_ok, kStarts, plain_s / kStarts);
+  std::printf("  mean relative errors %%: staged%s; plain ceres%s\n", staged_errors.c_str(),
+              plain_errors.c_str());
+
+  std::printf("%-10s %12s %12s %12s %12s  %s\n", "parameter", "true", "fitted", "ci95_low",
+              "ci95_high", "note");
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const auto& pr = staged.result.parameters[i];
+    if (pr.ci95_low)
+      std::printf("%-10s %12.5g %12.5g %12.5g %12.5g  %s\n", pr.name.c_str(), truth[i], pr.value,
+                  *pr.ci95_low, *pr.ci95_high,
+                  *pr.ci95_low <= truth[i] && truth[i] <= *pr.ci95_high ? "" : "MISSED");
+    else
+      std::printf("%-10s %12.5g %12.5g %12s %12s  %s\n", pr.name.c_str(), truth[i], pr.value, "-",
+                  "-", pr.reason.c_str());
+  }
   int with_interval = 0, covered = 0;
   std::string missed, unnamed;
   for (std::size_t i = 0; i < truth.size(); ++i) {
@@ -97,7 +162,9 @@ void run(const char* material, const char* kind, const char* schedule, int repea
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  run("material-1", "fritzson", "fritzson.json", repeats);
-  run("material-2", "fritzson-iso", "fritzson-iso.json", repeats);
+  const std::string schedules =
+      argc > 2 ? argv[2] : std::string(FITLIB_SOURCE_DIR) + "/datasets/schedules";
+  run("material-1", "fritzson", schedules, "fritzson.json", repeats);
+  run("material-2", "fritzson-iso", schedules, "fritzson-iso.json", repeats);
   return 0;
 }

@@ -109,6 +109,16 @@ void assess(const Problem& problem, FitResult& result) {
                               std::to_string(d - rank + 1) + "): " + joined);
   }
 
+  std::string unidentified;
+  for (int k = 0; k < nf; ++k)
+    if (norms[k] == 0.0 || null_share[k] > kNullShare) {
+      ident.not_identifiable.push_back(specs[problem.free()[k]].name);
+      unidentified += (unidentified.empty() ? "" : ", ") + ident.not_identifiable.back();
+    }
+  if (!unidentified.empty())
+    result.messages.push_back("not identifiable from these data (no effect, or > 1 % in the null "
+                              "space): " + unidentified);
+
   const int dof = m - nf;
   if (dof <= 0) {
     for (int k = 0; k < nf; ++k)

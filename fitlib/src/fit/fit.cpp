@@ -221,10 +221,10 @@ StageOutcome run_schedule(Problem& problem, FitResult& result) {
     // Accuracy and time reached after each stage: what a user tunes a schedule by.
     FitMetrics reached;
     problem.measure(problem.natural(), reached);
-    std::ostringstream s;
-    s << "; mean relative error " << 100.0 * reached.mean_rel_error << " % after "
-      << clock.seconds() << " s";
-    last.note += s.str();
+    std::ostringstream reached_note;
+    reached_note << "; mean relative error " << 100.0 * reached.mean_rel_error << " % after "
+                 << clock.seconds() << " s";
+    last.note += reached_note.str();
     note(result, "stage '" + st.name + "': ", last);
   }
   return last;

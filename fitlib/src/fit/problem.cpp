@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "fitlib/core/error.hpp"
 
@@ -19,12 +21,13 @@ double component_value(const model::Moduli<double>& m, int component) {
   return component == 0 ? m.storage : component == 1 ? m.loss : m.mean;
 }
 
-// Same imposed test (NaN temperatures equal): the model's moduli are a pure function of it.
-bool same_condition(const model::TestCondition& a, const model::TestCondition& b) {
-  auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
-  return a.mode == b.mode && a.orientation == b.orientation &&
-         same(a.frequency_Hz, b.frequency_Hz) && same(a.temperature_C, b.temperature_C) &&
-         same(a.strain_amplitude, b.strain_amplitude) && same(a.mean_strain, b.mean_strain);
+// The imposed test as an ordered key (NaN, e.g. "reference temperature", as −inf so that equal
+// conditions compare equal): the model's moduli are a pure function of it.
+using ConditionKey = std::tuple<int, std::string, double, double, double, double>;
+ConditionKey condition_key(const model::TestCondition& c) {
+  auto key = [](double x) { return std::isnan(x) ? -kInf : x; };
+  return {static_cast<int>(c.mode), c.orientation, key(c.frequency_Hz), key(c.temperature_C),
+          key(c.strain_amplitude), key(c.mean_strain)};
 }
 
 // log10 of a model value; a non-positive value is floored at 1e-12 × the data so the residual
@@ -85,17 +88,13 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
     }
   }
   if (entries_.empty()) throw core::UsageError("fit: every residual has zero weight");
-  condition_of_row_.assign(table.rows.size(), -1);
+  std::map<ConditionKey, int> distinct;
+  condition_of_row_.resize(table.rows.size());
   for (int r = 0; r < static_cast<int>(table.rows.size()); ++r) {
-    for (int d = 0; d < static_cast<int>(distinct_rows_.size()); ++d)
-      if (same_condition(table.rows[distinct_rows_[d]].condition, table.rows[r].condition)) {
-        condition_of_row_[r] = d;
-        break;
-      }
-    if (condition_of_row_[r] < 0) {
-      condition_of_row_[r] = static_cast<int>(distinct_rows_.size());
-      distinct_rows_.push_back(r);
-    }
+    const auto [it, added] = distinct.try_emplace(condition_key(table.rows[r].condition),
+                                                  static_cast<int>(distinct_rows_.size()));
+    if (added) distinct_rows_.push_back(r);
+    condition_of_row_[r] = it->second;
   }
 
   lower_.resize(n);
@@ -292,7 +291,8 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
       for (int k = 0; k < nf; ++k) {
         const int i = free_[k];
         const double chain = is_log(i) ? natural[i] : 1.0;  // dp/dx for p = exp(x)
-        jrow[k] = en.sqrt_weight * dr_dm * jacs(en.component, static_cast<Eigen::Index>(d) * n + i) * chain;
+        const double dm_dp = jacs(en.component, static_cast<Eigen::Index>(d) * n + i);
+        jrow[k] = en.sqrt_weight * dr_dm * dm_dp * chain;
         if (!std::isfinite(jrow[k])) return false;
       }
     }

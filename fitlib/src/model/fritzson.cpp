@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <type_traits>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/autodiff_model.hpp"
@@ -133,22 +134,16 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
 
   template <typename T>
   Moduli<T> evaluate(const T* p, const TestCondition& c) const {
-    if (!(c.frequency_Hz > 0.0) || !std::isfinite(c.frequency_Hz))
-      throw core::UsageError("model fritzson: the frequency must be positive and finite");
-    if (!(c.strain_amplitude >= 0.0) || !std::isfinite(c.strain_amplitude))
-      throw core::UsageError("model fritzson: the strain amplitude must be ≥ 0 and finite");
-    const Orientation o = parse_orientation(c, anisotropic_);
+    const Orientation o = checked_orientation(c);
     const double omega = 2.0 * kPi * c.frequency_Hz;
     const double amplitude = c.strain_amplitude;
     const T& K = p[kK];
     if (c.mode == TestMode::bulk) return {K, T(0.0), K};  // purely elastic (4.39, L2224)
 
     if (c.mode == TestMode::shear) {
-      // Steady driver e^o = γ_a/√2 for I and, in 13/23, for A2 (4.32, 4.78).
-      const double driver = amplitude / std::sqrt(2.0);
-      PartModuli<T> m = part(p + kPartI, driver, omega, c);
+      PartModuli<T> m = part(p + kPartI, shear_driver(c), omega, c);
       if (o.fibre_shear) {
-        const PartModuli<T> a2 = part(p + kPartA2, driver, omega, c);
+        const PartModuli<T> a2 = part(p + kPartA2, shear_driver(c), omega, c);
         m.dynamic += a2.dynamic;
         m.mean += a2.mean;
       }
@@ -157,6 +152,11 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
 
     // Uniaxial: the damage drivers depend on the lateral strains, which depend on the damaged
     // moduli; iterate to the fixed point (the thesis iterated too, L2260).
+    if constexpr (std::is_same_v<T, double>) {
+      double driver_I, driver_A;
+      solve_drivers(p, c, o.uniaxial_axis, driver_I, driver_A);
+      return uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, true).moduli;
+    }
     T driver_I, driver_A;
     uniaxial_start(amplitude, driver_I, driver_A);
     for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
@@ -171,25 +171,30 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
 
   using AutodiffModel<FritzsonModel>::moduli;
 
-  // Jacobian by one forward-mode pass over only the parameters the test depends on (shear 12:
-  // part I; 13/23: I and A2; uniaxial: K, I and A1; bulk: K), instead of the generic passes of
-  // 8 over all 38. Uniaxial: the damage drivers d solve d = F(d, p) (found in doubles); the
+  // Jacobian by forward-mode passes over only the parameters the test depends on (shear 12:
+  // part I; 13/23: I and A2, one pass each; uniaxial: K, I and A1; bulk: K), instead of the
+  // generic passes of 8 over all 38 (most columns of a row are zero). Uniaxial: the damage drivers d solve d = F(d, p) (found in doubles); the
   // implicit function theorem gives dd/dp = (1 − ∂F/∂d)⁻¹ ∂F/∂p from one pass that also seeds d,
   // so no iteration runs on jets.
   Moduli<double> moduli(const double* p, const TestCondition& c,
                         Eigen::Ref<Eigen::MatrixXd> jacobian) const override {
     jacobian.setZero();
-    const Orientation o = parse_orientation(c, anisotropic_);
+    const Orientation o = checked_orientation(c);
     if (c.mode == TestMode::bulk) {
       jacobian(0, kK) = jacobian(2, kK) = 1.0;
       return evaluate<double>(p, c);
     }
-    if (c.mode == TestMode::shear) {
-      if (o.fibre_shear) return jet_pass<2 * kPartSize>(p, c, o, {kPartI, kPartA2}, jacobian);
-      return jet_pass<kPartSize>(p, c, o, {kPartI}, jacobian);
+    if (c.mode == TestMode::shear) {  // the parts add: one pass of 12 per part
+      Moduli<double> m = shear_part_pass(p, c, kPartI, jacobian);
+      if (o.fibre_shear) {
+        const Moduli<double> a2 = shear_part_pass(p, c, kPartA2, jacobian);
+        m = {m.storage + a2.storage, m.loss + a2.loss, m.mean + a2.mean};
+      }
+      return m;
     }
-    if (anisotropic_) return jet_pass<2 * kPartSize + 3>(p, c, o, {kPartI, kPartA1}, jacobian);
-    return jet_pass<kPartSize + 3>(p, c, o, {kPartI}, jacobian);
+    if (anisotropic_)
+      return uniaxial_pass<2 * kPartSize + 3>(p, c, o, {kPartI, kPartA1}, jacobian);
+    return uniaxial_pass<kPartSize + 3>(p, c, o, {kPartI}, jacobian);
   }
 
   std::vector<double> stress_response(const double* p, const TestCondition& c,
@@ -310,14 +315,69 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     return out;
   }
 
-  // One forward-mode pass with N derivative slots: the parts starting at `part_offsets` (and K
-  // for uniaxial tests) take the first slots, the two uniaxial drivers the last two.
+  Orientation checked_orientation(const TestCondition& c) const {
+    if (!(c.frequency_Hz > 0.0) || !std::isfinite(c.frequency_Hz))
+      throw core::UsageError("model fritzson: the frequency must be positive and finite");
+    if (!(c.strain_amplitude >= 0.0) || !std::isfinite(c.strain_amplitude))
+      throw core::UsageError("model fritzson: the strain amplitude must be ≥ 0 and finite");
+    return parse_orientation(c, anisotropic_);
+  }
+
+  // Uniaxial damage drivers at the fixed point d = F(d): Newton's method on F(d) − d with the
+  // 2 × 2 Jacobian from a two-slot jet (3–4 steps where plain iteration takes ~20); a plain
+  // step wherever Newton's would leave d ≥ 0 or is not finite.
+  void solve_drivers(const double* p, const TestCondition& c, int axis, double& d_I,
+                     double& d_A) const {
+    using Jet2 = ceres::Jet<double, 2>;
+    const int n = static_cast<int>(size());
+    std::vector<Jet2> pj(n);
+    for (int i = 0; i < n; ++i) pj[i] = Jet2(p[i]);
+    const double amplitude = c.strain_amplitude;
+    uniaxial_start(amplitude, d_I, d_A);
+    for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
+      const UniaxialStep<Jet2> f =
+          uniaxial_step(pj.data(), c, axis, Jet2(d_I, 0), Jet2(d_A, 1), false);
+      const double r_I = f.driver_I.a - d_I, r_A = f.driver_A.a - d_A;
+      const double a11 = f.driver_I.v[0] - 1.0, a12 = f.driver_I.v[1];
+      const double a21 = f.driver_A.v[0], a22 = f.driver_A.v[1] - 1.0;
+      const double det = a11 * a22 - a12 * a21;
+      double step_I = -(a22 * r_I - a12 * r_A) / det, step_A = -(a11 * r_A - a21 * r_I) / det;
+      if (!std::isfinite(step_I) || !std::isfinite(step_A) || d_I + step_I < 0.0 ||
+          d_A + step_A < 0.0) {
+        step_I = r_I;
+        step_A = r_A;
+      }
+      d_I += step_I;
+      d_A += step_A;
+      if (std::abs(step_I) + std::abs(step_A) <= 1e-14 * (amplitude + 1e-300)) break;
+    }
+  }
+
+  // Steady shear driver e^o = γ_a/√2 of I and, in 13/23, of A2 (4.32, 4.78).
+  static double shear_driver(const TestCondition& c) { return c.strain_amplitude / std::sqrt(2.0); }
+
+  // Shear moduli of one part and their derivatives (columns offset … offset + 11).
+  Moduli<double> shear_part_pass(const double* p, const TestCondition& c, int offset,
+                                 Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+    using Jet = ceres::Jet<double, kPartSize>;
+    Jet q[kPartSize];
+    for (int k = 0; k < kPartSize; ++k) q[k] = Jet(p[offset + k], k);
+    const PartModuli<Jet> m = part(q, shear_driver(c), 2.0 * kPi * c.frequency_Hz, c);
+    for (int k = 0; k < kPartSize; ++k) {
+      jacobian(0, offset + k) = m.dynamic.real().v[k];
+      jacobian(1, offset + k) = m.dynamic.imag().v[k];
+      jacobian(2, offset + k) = m.mean.v[k];
+    }
+    return {m.dynamic.real().a, m.dynamic.imag().a, m.mean.a};
+  }
+
+  // Uniaxial moduli and derivatives in one forward-mode pass with N slots: K and the parts at
+  // `part_offsets` take the first, the two damage drivers the last two.
   template <int N>
-  Moduli<double> jet_pass(const double* p, const TestCondition& c, const Orientation& o,
-                          std::initializer_list<int> part_offsets,
-                          Eigen::Ref<Eigen::MatrixXd> jacobian) const {
+  Moduli<double> uniaxial_pass(const double* p, const TestCondition& c, const Orientation& o,
+                               std::initializer_list<int> part_offsets,
+                               Eigen::Ref<Eigen::MatrixXd> jacobian) const {
     using Jet = ceres::Jet<double, N>;
-    const bool uni = c.mode == TestMode::uniaxial;
     const int n = static_cast<int>(size());
     std::vector<Jet> pj(n);
     for (int i = 0; i < n; ++i) pj[i] = Jet(p[i]);
@@ -327,28 +387,12 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
       pj[i].v[slots] = 1.0;
       columns[slots++] = i;
     };
-    if (uni) seed(kK);
+    seed(kK);
     for (int offset : part_offsets)
       for (int k = 0; k < kPartSize; ++k) seed(offset + k);
-    if (!uni) {
-      const Moduli<Jet> m = evaluate<Jet>(pj.data(), c);
-      for (int s = 0; s < slots; ++s) {
-        jacobian(0, columns[s]) = m.storage.v[s];
-        jacobian(1, columns[s]) = m.loss.v[s];
-        jacobian(2, columns[s]) = m.mean.v[s];
-      }
-      return {m.storage.a, m.loss.a, m.mean.a};
-    }
     // Drivers at the fixed point (doubles), then one pass seeding them too.
     double d_I, d_A;
-    uniaxial_start(c.strain_amplitude, d_I, d_A);
-    for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
-      const UniaxialStep<double> next = uniaxial_step(p, c, o.uniaxial_axis, d_I, d_A, false);
-      const bool done = converged(d_I, d_A, next, c.strain_amplitude) && iteration > 0;
-      d_I = next.driver_I;
-      d_A = next.driver_A;
-      if (done) break;
-    }
+    solve_drivers(p, c, o.uniaxial_axis, d_I, d_A);
     const int sI = N - 2, sA = N - 1;
     Jet driver_I(d_I), driver_A(d_A);
     driver_I.v[sI] = 1.0;

@@ -68,6 +68,9 @@ struct Identifiability {
   int rank = 0;
   // One entry per null-space direction: the parameter names dominating it.
   std::vector<std::vector<std::string>> null_space;
+  // Every free parameter the data cannot determine: no effect on the residuals, or more than
+  // 1 % of its weight in the null space (a superset of the names in null_space).
+  std::vector<std::string> not_identifiable;
   // Pairs of parameters whose correlation exceeds 0.99 in magnitude.
   struct Pair {
     std::string a, b;

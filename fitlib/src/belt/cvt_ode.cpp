@@ -1,0 +1,310 @@
+// Sorge's 2-D contact-region ODE system (seeds/sorge-2d-vbelt-cvt.txt Eqs 3–11), shooting from the
+// exit. Reconstruction notes ([DERIVED] = not printed legibly in the source, derived from the
+// paper's own definitions; docs/belt.md "Sorge 2-D CVT: contact-region ODE" lists them):
+//  - Sliding direction (4): γ(Z) is the direction of the belt's sliding velocity in the plane
+//    (radially inward, forward), a = (1 + ε) sin χ, b = (1 + ε) cos χ − κ(1 − x)[1 + ZH(m − 1)]:
+//    tan γ = b/a is Eq (4) with χ' + sσ' = m − 1 from (10); the quadrant is that of (a, b)
+//    [DERIVED: the friction terms of (5–6) then oppose the sliding, checked in the tests].
+//  - Wall kernels (8–9): 1/(1 − tan β/(cos²α tan γ)) = (sin α + f cos γ_w cos α)/(tan α(cos α −
+//    f cos γ_w sin α)) [DERIVED from (5–7)], which is regular at γ = 0°, 90°, 180°; γ_w has the
+//    direction (a, b cos α) (tan γ_w = cos α tan γ, same quadrant).
+//  - Eq (11) [DERIVED, garbled in the source]: from m = (M/S_f + 1/r_fact) g, g = dc/dθ =
+//    r∞(1 − x)/cos χ, g'/g = tan χ (χ' − 1) by (3), and dM/dc = S − M_f with the friction moment
+//    M_f = ∫ z (dF'_w)_∥ cos χ/r̄ (the paper's text):
+//      m' = m tan χ (χ' − 1) + (1/P)((1 − x)/cos χ)² [σ − H k x cos χ ∫₀¹ Z w(Z) K_∥(Z) dZ],
+//    P = S_f/(S_l r∞²) (the figures' "S_f/(S_l r²)").
+//  - (9) and (10) are linear in χ', σ': σ' = (εm − R)/(1 + sε), χ' = m − 1 − sσ' [DERIVED].
+//  - End shear (b5–b6): with x = 0, R = 0, so 1 + χ' = m/(1 + sε) and σ = ±√(Pε(1 + sε))(1 + x'')
+//    becomes σ = ±m √(Pε/(1 + sε)) [DERIVED; x'' ≈ χ' at x = 0 to the paper's order].
+//  - κ from the exit (the paper: "calculable ... at the exit point"): at x = 0, Z = 0,
+//    κ = (1 + ε_out)(cos χ_out − sin χ_out tan γ_out) [DERIVED from (4)].
+#include "fitlib/belt/cvt_ode.hpp"
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <cstdio>
+#include <cstdlib>
+
+#include <Eigen/Dense>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/numeric/odeint.hpp>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/units.hpp"
+
+namespace fitlib::belt {
+namespace {
+using core::kPi;
+using State = std::array<double, 6>;  // x, χ, ε, σ, m, ∫F'_axial dθ / S_l
+struct Blowup {};                     // a shot left the physical range (|χ| → 90°, x ≫ 0)
+
+// Gauss–Legendre on [z0, z1] for the five smooth pieces of the Z-integrands.
+template <typename F>
+void gauss_on(double z0, double z1, F&& add) {
+  using G = boost::math::quadrature::gauss<double, 8>;
+  const double half = 0.5 * (z1 - z0), mid = 0.5 * (z0 + z1);
+  const auto& xs = G::abscissa();
+  const auto& ws = G::weights();
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    add(mid - half * xs[i], half * ws[i]);
+    add(mid + half * xs[i], half * ws[i]);
+  }
+}
+}  // namespace
+
+CvtWallKernels cvt_wall_kernels(const CvtContactBelt& b, double x, double chi, double eps, double m,
+                                double kappa) {
+  const double f = b.friction, al = b.groove_half_angle_rad;
+  const double ca = std::cos(al), sa = std::sin(al), ta = std::tan(al);
+  const double cc = std::cos(chi), tc = std::tan(chi);
+  const double a = (1 + eps) * std::sin(chi);
+  const double b0 = (1 + eps) * cc - kappa * (1 - x), b1 = kappa * (1 - x) * b.H * (m - 1);
+  CvtWallKernels k{0, 0, 0, 0};
+  auto add = [&](double Z, double wq) {
+    const double bz = b0 - b1 * Z;
+    const double rho = std::hypot(a, bz * ca);
+    // No sliding at this Z (a = b = 0): the friction direction is undefined; it is a single point.
+    const double cw = rho > 0 ? a / rho : 0.0, sw = rho > 0 ? bz * ca / rho : 0.0;
+    const double den = ta * (ca - f * cw * sa);
+    const double w = (1 - Z * b.H * cc / (1 - x)) / (1 - 2 * Z * b.W * ta);
+    const double par = (sa * tc + f * (cw * ca * tc + sw)) / den;
+    k.parallel += wq * w * par;
+    k.perpendicular += wq * w * (sa + f * (cw * ca - sw * tc)) / den;
+    k.moment += wq * Z * w * par;
+    k.axial += wq * (1 - x - Z * b.H * cc) / (2 * ta * cc * (1 - 2 * Z * b.W * ta));
+  };
+  // The friction direction turns where b(Z) changes sign (b is linear in Z): split there so each
+  // piece is smooth.
+  const double z_star = b1 != 0 ? b0 / b1 : -1.0;
+  if (z_star > 0 && z_star < 1) {
+    gauss_on(0, z_star, add);
+    gauss_on(z_star, 1, add);
+  } else {
+    gauss_on(0, 1, add);
+  }
+  return k;
+}
+
+namespace {
+struct Contact {
+  CvtContactBelt b;
+  double kappa;
+  // d/dθ of the state (θ from entrance to exit).
+  State rates(const State& y) const {
+    const double x = y[0], chi = y[1], eps = y[2], sig = y[3], m = y[4];
+    if (!(std::abs(chi) < 1.2 && x > -0.2 && x < 0.5 && std::abs(m) < 1e4 && std::abs(eps) < 1 &&
+          std::isfinite(sig)))
+      throw Blowup{};
+    const auto K = cvt_wall_kernels(b, x, chi, eps, m, kappa);
+    const double R = b.k * x * (1 - x) * K.perpendicular, Q = b.k * x * (1 - x) * K.parallel;
+    const double cc = std::cos(chi), tc = std::tan(chi);
+    const double dsig = (eps * m - R) / (1 + b.s * eps);                         // (9) with (10)
+    const double dchi = m - 1 - b.s * dsig;                                       // (10)
+    const double deps = Q - sig * (1 + dchi);                                     // (8)
+    const double g = (1 - x) / cc;
+    const double dm = m * tc * (dchi - 1) + g * g / b.P * (sig - b.H * b.k * x * cc * K.moment);  // (11)
+    return {(1 - x) * tc, dchi, deps, dsig, dm, b.k * x * K.axial};              // (3), (7)
+  }
+};
+
+double end_shear(const CvtContactBelt& b, double eps, double m) {
+  return m * std::sqrt(b.P * eps / (1 + b.s * eps));
+}
+
+using Vec = Eigen::VectorXd;
+using Path = std::vector<std::pair<double, State>>;  // (θ, state)
+
+struct Shooter {
+  CvtContactBelt b;
+  CvtContactCase c;
+  CvtOdeOptions o;
+  int shots = 0;
+
+  double kappa(double chi_out) const {
+    return (1 + c.exit_strain) * (std::cos(chi_out) - std::sin(chi_out) * std::tan(c.exit_sliding_angle_rad));
+  }
+  // Integrates the contact ODE from θ0 over `length` (backward when `backward`): the state y is
+  // advanced in place; the path (θ, state) is appended when asked.
+  void integrate(State& y, double kappa, double theta0, double length, bool backward, Path* path) {
+    namespace odeint = boost::numeric::odeint;
+    ++shots;
+    const Contact sys{b, kappa};
+    const double dir = backward ? -1.0 : 1.0;
+    auto rhs = [&](const State& s, State& d, double) {
+      d = sys.rates(s);
+      if (backward)
+        for (double& v : d) v = -v;
+    };
+    auto observe = [&](const State& s, double t) {
+      if (path) path->emplace_back(theta0 + dir * t, s);
+    };
+    auto stepper = odeint::make_controlled(o.tolerance, o.tolerance, odeint::runge_kutta_dopri5<State>());
+    odeint::integrate_adaptive(stepper, rhs, y, 0.0, length, 1e-3, observe);
+  }
+  // Shot from the exit with u = (χ_out, m_out): state at θ = Θ − length (the last slot holds −∫F').
+  State from_exit(double chi_out, double m_out, double length, Path* path = nullptr) {
+    if (!(chi_out < 0)) throw Blowup{};  // γ_out in (90°, 270°): the belt leaves the groove
+    State y{0.0, chi_out, c.exit_strain, -end_shear(b, c.exit_strain, m_out), m_out, 0.0};
+    integrate(y, kappa(chi_out), c.wrap_rad, length, true, path);
+    return y;
+  }
+  // Shot from the entrance with (χ_in, m_in, ε_in) and the exit's κ: state at θ = length.
+  State from_entry(double chi_in, double m_in, double eps_in, double kap, double length, Path* path = nullptr) {
+    if (!(chi_in > 0 && eps_in > 0)) throw Blowup{};  // the belt enters the groove under tension
+    State y{0.0, chi_in, eps_in, end_shear(b, eps_in, m_in), m_in, 0.0};
+    integrate(y, kap, 0.0, length, false, path);
+    return y;
+  }
+  // Single shooting from the exit over the whole wrap, u = (χ_out, m_out): entrance conditions
+  // x = 0 (per ε_out/k) and σ matching (per √(P ε_out)).
+  Vec single(const Vec& u, double wrap) {
+    const State y = from_exit(u[0], u[1], wrap);
+    Vec r(2);
+    r << y[0] * b.k / c.exit_strain, (y[3] - end_shear(b, y[2], y[4])) / std::sqrt(b.P * c.exit_strain);
+    return r;
+  }
+  // Two-sided shooting, u = (χ_out, m_out, χ_in, m_in, ε_in): the exit shot and the entrance
+  // shot meet at mid-wrap, where all five state components must agree (scaled).
+  Vec matched(const Vec& u) {
+    const double half = 0.5 * c.wrap_rad;
+    const State e = from_exit(u[0], u[1], half), i = from_entry(u[2], u[3], u[4], kappa(u[0]), half);
+    const double scale[5] = {c.exit_strain / b.k, 1.0, c.exit_strain, std::sqrt(b.P * c.exit_strain), 1.0};
+    Vec r(5);
+    for (int j = 0; j < 5; ++j) r[j] = (i[j] - e[j]) / scale[j];
+    return r;
+  }
+  // Damped Newton with a forward-difference Jacobian; returns the residual norm reached.
+  template <typename F>
+  double newton(Vec& u, F&& residual) {
+    Vec r = residual(u);
+    for (int it = 0; it < o.max_newton_iterations && r.norm() > o.shooting_tolerance; ++it) {
+      Eigen::MatrixXd J(r.size(), u.size());
+      for (int j = 0; j < u.size(); ++j) {
+        Vec up = u;
+        const double h = 1e-7 * std::max(std::abs(u[j]), 1e-2);
+        up[j] += h;
+        J.col(j) = (residual(up) - r) / h;
+      }
+      const Vec d = J.fullPivLu().solve(-r);
+      if (!d.allFinite()) break;
+      bool improved = false;
+      for (double lam = 1.0; lam > 1e-6 && !improved; lam *= 0.5) {
+        try {
+          const Vec t = u + lam * d;
+          const Vec rt = residual(t);
+          if (rt.norm() < r.norm()) u = t, r = rt, improved = true;
+        } catch (const Blowup&) {
+        }
+      }
+      if (!improved) break;
+    }
+    return r.norm();
+  }
+};
+
+void check_inputs(const CvtContactBelt& b, const CvtContactCase& c) {
+  auto bad = [](const std::string& what, const char* key) { throw core::InputError(what, {}, 0, 0, key); };
+  if (!(b.groove_half_angle_rad > 0 && b.groove_half_angle_rad < kPi / 2)) bad("groove half-angle must lie in (0, 90) deg", "cvt.groove_half_angle_deg");
+  if (!(b.friction >= 0 && b.friction * std::tan(b.groove_half_angle_rad) < 1)) bad("friction must lie in [0, cot α): self-locking groove", "cvt.friction");
+  if (!(b.k > 0 && b.P > 0 && b.s >= 0 && b.H >= 0 && b.H < 1 && b.W >= 0 && 2 * b.W * std::tan(b.groove_half_angle_rad) < 1))
+    bad("belt groups need k > 0, P > 0, s >= 0, 0 <= H < 1 and a positive bottom width", "cvt.belt");
+  if (!(c.exit_strain > 0 && c.exit_strain < 0.5)) bad("exit strain must lie in (0, 0.5)", "cvt.exit_strain");
+  if (!(c.exit_sliding_angle_rad > kPi / 2 && c.exit_sliding_angle_rad < 1.5 * kPi)) bad("exit sliding angle must lie in (90, 270) deg", "cvt.exit_sliding_angle_deg");
+  if (!(c.wrap_rad > 0.05 && c.wrap_rad < 2 * kPi)) bad("wrap must lie in (0.05, 2π) rad", "cvt.wrap_deg");
+}
+}  // namespace
+
+CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCase& c, const CvtOdeOptions& o) {
+  check_inputs(b, c);
+  auto fail = [&](double wrap, double res) {
+    throw core::NumericalError("CVT contact shooting did not converge at wrap " + std::to_string(wrap * 180 / kPi) +
+                               " deg (residual " + std::to_string(res) + ")");
+  };
+  // 1. Short wrap, single shooting from the exit (the paper's method): a coarse grid over
+  //    (χ_out, m_out) gives Newton's first guess.
+  CvtContactCase short_case = c;
+  short_case.wrap_rad = std::min(c.wrap_rad, 0.5);
+  Shooter sh{b, short_case, o};
+  Vec u2(2);
+  u2 << -0.1, 1.0;
+  double best = HUGE_VAL;
+  for (int i = 0; i < 9; ++i) {
+    for (int j = 0; j < 9; ++j) {
+      Vec t(2);
+      t << -0.01 * std::pow(1.6, i), -2.0 + 1.0 * j;
+      try {
+        const double n = sh.single(t, short_case.wrap_rad).norm();
+        if (n < best) best = n, u2 = t;
+      } catch (const Blowup&) {
+      }
+    }
+  }
+  double res = sh.newton(u2, [&](const Vec& u) { return sh.single(u, short_case.wrap_rad); });
+  if (!(res <= o.accept_residual)) fail(short_case.wrap_rad, res);
+  // 2. Two-sided shooting (exit shot matched at mid-wrap with an entrance shot; single shooting
+  //    loses all digits once e^{λΘ} nears 1e15), continued in the wrap with a secant predictor;
+  //    the step halves when Newton fails.
+  Path path;
+  const State in = sh.from_exit(u2[0], u2[1], short_case.wrap_rad, &path);
+  Vec u(5);
+  u << u2[0], u2[1], path.back().second[1], in[4], in[2];
+  Vec u_prev = u;
+  double wrap = short_case.wrap_rad, wrap_prev = wrap, step = o.continuation_step_rad;
+  while (wrap < c.wrap_rad) {
+    const double next = std::min(c.wrap_rad, wrap + step);
+    Vec t = u;
+    if (wrap > wrap_prev) t += (u - u_prev) * (next - wrap) / (wrap - wrap_prev);
+    sh.c.wrap_rad = next;
+    double r = HUGE_VAL;
+    try {
+      r = sh.newton(t, [&](const Vec& v) { return sh.matched(v); });
+    } catch (const Blowup&) {
+    }
+    if (r <= o.accept_residual) {
+      u_prev = u, wrap_prev = wrap, u = t, wrap = next, res = r;
+      step = std::min(step * 1.5, o.continuation_step_rad);
+    } else if ((step *= 0.5) < 1e-4) {
+      fail(next, r);
+    }
+  }
+  if (c.wrap_rad <= short_case.wrap_rad) {  // short wrap: the single shot is the solution
+    u[2] = path.back().second[1], u[3] = in[4], u[4] = in[2];
+  }
+  CvtContactSolution sol;
+  sol.exit_penetration_angle_rad = u[0];
+  sol.exit_moment = u[1];
+  sol.kappa = sh.kappa(u[0]);
+  sol.entry_strain = u[4];
+  sol.residual = res;
+  // Final profile: entrance half forward, exit half backward, joined at mid-wrap.
+  sh.c.wrap_rad = c.wrap_rad;
+  Path entry_path, exit_path;
+  const double half = 0.5 * c.wrap_rad;
+  Path* ep = o.keep_profile ? &entry_path : nullptr;
+  Path* xp = o.keep_profile ? &exit_path : nullptr;
+  const State yi = sh.from_entry(u[2], u[3], u[4], sol.kappa, half, ep);
+  const State ye = sh.from_exit(u[0], u[1], half, xp);
+  sol.axial_thrust_per_Sl = yi[5] - ye[5];  // the exit half integrates against θ
+  for (const auto& p : entry_path) sol.theta.push_back(p.first), sol.x.push_back(p.second[0]), sol.chi.push_back(p.second[1]),
+      sol.eps.push_back(p.second[2]), sol.sigma.push_back(p.second[3]), sol.m.push_back(p.second[4]);
+  for (auto it = exit_path.rbegin(); it != exit_path.rend(); ++it) {
+    if (it == exit_path.rbegin()) continue;  // mid-wrap point is already in
+    const auto& p = *it;
+    sol.theta.push_back(p.first), sol.x.push_back(p.second[0]), sol.chi.push_back(p.second[1]),
+        sol.eps.push_back(p.second[2]), sol.sigma.push_back(p.second[3]), sol.m.push_back(p.second[4]);
+  }
+  sol.shots = sh.shots;
+  return sol;
+}
+
+CvtContactBelt sorge_example_belt() { return {}; }
+
+CvtContactCase sorge_example_case(bool driver) {
+  CvtContactCase c;
+  c.exit_strain = (driver ? 250.0 : 500.0) / 59000.0;
+  c.exit_sliding_angle_rad = (driver ? 191.0 : 184.0) * kPi / 180;
+  return c;
+}
+
+}  // namespace fitlib::belt
