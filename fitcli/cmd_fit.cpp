@@ -2,18 +2,46 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/terms.hpp"
 #include "output.hpp"
 
 namespace fitcli {
 namespace {
+
+// ---- --master-curve (fit/master_curve.hpp): raw isotherms → free per-isotherm shifts → the
+// model is fitted to the master table at --reference-c; the card gets the WLF law fitted to the
+// shifts (C1, C2 fixed). Shift table on stdout (stderr with --json), CSV with --shifts-out.
+struct MasterCurveArgs {
+  bool enabled = false;
+  std::string shifts_out;
+  std::optional<fitlib::fit::MasterCurve> curve;
+};
+
+fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double reference_C, bool json,
+                                                  const std::string& temperature_law,
+                                                  fitlib::data::DynamicTestTable raw) {
+  if (!m.enabled) return raw;
+  if (temperature_law != "none")
+    throw fitlib::core::UsageError("--master-curve sets the card's temperature law (WLF fitted to the shifts); "
+                                   "drop --temperature-law");
+  fitlib::fit::MasterCurveOptions options;
+  options.reference_C = reference_C;
+  m.curve = fitlib::fit::build_master_curve(raw, options);
+  (json ? std::cerr : std::cout) << fitlib::fit::format_shift_table(*m.curve) << "\n";
+  if (!m.shifts_out.empty()) fitlib::core::write_file_atomically(m.shifts_out, fitlib::fit::shift_table_csv(*m.curve));
+  return m.curve->master;
+}
+// ---- end --master-curve
 
 struct FitArgs {
   std::vector<std::string> data;
@@ -24,6 +52,7 @@ struct FitArgs {
   int max_terms = 0, term_search_max = 0;
   fitlib::fit::FitOptions fit;
   std::string command_line;
+  MasterCurveArgs master;  // --master-curve
 };
 
 std::string join(const std::vector<std::string>& v) {
@@ -95,7 +124,8 @@ void run_fit(FitArgs a) {
     read.has_default_mode = true;
     read.default_mode = model::parse_test_mode(a.mode);
   }
-  const auto table = data::read_dynamic_tables(a.data, read);
+  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law,
+                                        data::read_dynamic_tables(a.data, read));
   for (const auto& w : table.warnings) std::cerr << "fitcli: warning: " << w << "\n";
   if (table.rows.empty()) throw core::InputError("no usable rows", join(a.data));
 
@@ -147,6 +177,7 @@ void run_fit(FitArgs a) {
     }
     result = fit::fit(model::make_model(a.model, options), table, a.fit);
   }
+  if (a.master.curve) result = fit::with_wlf_from_shifts(result, *a.master.curve);  // --master-curve
   const auto card = make_card(a, result, table);
   if (!a.out.empty()) card::save_card(a.out, card);
 
@@ -219,6 +250,9 @@ void register_fit(CLI::App& app) {
   cmd->add_flag("--record-timing", a->record_timing, "Store the wall time in the card (breaks byte-identity)");
   cmd->add_flag("--progress", a->fit.progress, "Show progress of multistart runs on stderr");
   cmd->add_flag("--json", a->json, "Print the card and run figures as one JSON document");
+  cmd->add_flag("--master-curve", a->master.enabled,
+                "Data are raw isotherms: shift them to --reference-c first; the card gets WLF fitted to the shifts");
+  cmd->add_option("--shifts-out", a->master.shifts_out, "--master-curve: write the shift table (CSV)");
   cmd->callback([a] {
     FitArgs args = *a;
     args.command_line = command_line();

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job on the bundled data: installs what is missing, builds fitcli, then
 #   fit → card → plot → FE export   (pyvisco's master curve and a synthetic WLF table)
+#   staged fit of the thesis's damage model → card → modulus surface
 #   belt load cycle of a reference drive
 # Results land in OUT_DIR (default out/).
 set -euo pipefail
@@ -31,4 +32,16 @@ echo "== 2. Prony + WLF card from a synthetic shear table of known truth"
 "$fitcli" eval --card "$out/synthetic-prony-wlf.json" --frequency-hz "$grid" --temperature-c 23 \
   --out "$out/synthetic-prony-wlf-curve.csv"
 
-echo "== done: cards, curves and plots in $out"
+echo "== 3. The thesis's damage model: staged fit of material 2 (isotropic cushion rubber)"
+"$fitcli" fit --data "$data/material-2.csv" --model fritzson-iso --backend staged \
+  --schedule "$root/datasets/schedules/fritzson-iso.json" --name material-2 --out "$out/material-2.json"
+
+echo "== 4. Modulus surface over (amplitude, frequency, temperature) from that card"
+"$fitcli" surface grid --card "$out/material-2.json" --mode shear --orientation 12 \
+  --amplitude 0.005,0.015,0.045 --frequency-hz 3,34,60 --temperature-c 23,60,100 \
+  --out "$out/material-2-grid.csv" --surface-out "$out/material-2-surface.json"
+
+echo "== 5. Belt load cycle of the reference drive (only the effects the scene asks for)"
+"$fitcli" belt --scene "$root/datasets/drives/ref-0500-medium.toml" --out "$out/belt"
+
+echo "== done: cards, curves, plots, surface and load history in $out"

@@ -51,7 +51,12 @@ model::DataSummary summarize(const data::DynamicTestTable& table) {
   s.omega_min_rad_s = s.storage_min_MPa = s.temperature_min_C = inf;
   s.omega_max_rad_s = s.storage_max_MPa = s.temperature_max_C = -inf;
   s.loss_max_MPa = 0.0;
+  // Bulk rows (K, orders of magnitude above the deviatoric moduli and without a loss peak) would
+  // stretch the ranges a start is placed from; they count only in an all-bulk table.
+  bool all_bulk = true;
+  for (const auto& row : table.rows) all_bulk = all_bulk && row.condition.mode == model::TestMode::bulk;
   for (const auto& row : table.rows) {
+    if (!all_bulk && row.condition.mode == model::TestMode::bulk) continue;
     const double omega = core::angular_frequency(row.condition.frequency_Hz);
     s.omega_min_rad_s = std::min(s.omega_min_rad_s, omega);
     s.omega_max_rad_s = std::max(s.omega_max_rad_s, omega);
