@@ -81,7 +81,8 @@ fitlib::card::Card make_card(const FitArgs& a, const fitlib::fit::FitResult& r,
   const auto& m = r.metrics;
   nlohmann::json identifiability = {{"rank", r.identifiability.rank},
                                     {"condition_number", r.identifiability.condition_number},
-                                    {"not_identifiable", r.identifiability.null_space},
+                                    {"not_identifiable", r.identifiability.not_identifiable},
+                                    {"null_space_directions", r.identifiability.null_space},
                                     {"correlated", nlohmann::json::array()}};
   for (const auto& pair : r.identifiability.correlated)
     identifiability["correlated"].push_back({pair.a, pair.b, pair.correlation});

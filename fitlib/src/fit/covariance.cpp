@@ -14,7 +14,10 @@ namespace fitlib::fit::detail {
 namespace {
 
 constexpr double kRankTolerance = 1e-8;    // σ_i / σ_max below this: a null-space direction
-constexpr double kNullShare = 0.01;        // a parameter with this much weight in the null space
+// A parameter with more than this weight in the null space moves along a direction the data do
+// not see: its interval would be conditional on the unseen coordinate (structural components
+// are O(0.01–1), numerical noise in exact null vectors O(1e-12)).
+constexpr double kNullShare = 1e-6;
 constexpr double kDominant = 0.3;          // |v_k| naming a parameter in a null-space vector
 constexpr double kHighCorrelation = 0.99;
 
@@ -116,8 +119,8 @@ void assess(const Problem& problem, FitResult& result) {
       unidentified += (unidentified.empty() ? "" : ", ") + ident.not_identifiable.back();
     }
   if (!unidentified.empty())
-    result.messages.push_back("not identifiable from these data (no effect, or > 1 % in the null "
-                              "space): " + unidentified);
+    result.messages.push_back("not identifiable from these data (no effect, or a component in a "
+                              "null-space direction): " + unidentified);
 
   const int dof = m - nf;
   if (dof <= 0) {

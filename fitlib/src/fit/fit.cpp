@@ -54,7 +54,8 @@ model::DataSummary summarize(const data::DynamicTestTable& table) {
   // Bulk rows (K, orders of magnitude above the deviatoric moduli and without a loss peak) would
   // stretch the ranges a start is placed from; they count only in an all-bulk table.
   bool all_bulk = true;
-  for (const auto& row : table.rows) all_bulk = all_bulk && row.condition.mode == model::TestMode::bulk;
+  for (const auto& row : table.rows)
+    all_bulk = all_bulk && row.condition.mode == model::TestMode::bulk;
   for (const auto& row : table.rows) {
     if (!all_bulk && row.condition.mode == model::TestMode::bulk) continue;
     const double omega = core::angular_frequency(row.condition.frequency_Hz);

@@ -151,20 +151,22 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     }
 
     // Uniaxial: the damage drivers depend on the lateral strains, which depend on the damaged
-    // moduli; iterate to the fixed point (the thesis iterated too, L2260).
-    if constexpr (std::is_same_v<T, double>) {
-      double driver_I, driver_A;
-      solve_drivers(p, c, o.uniaxial_axis, driver_I, driver_A);
-      return uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, true).moduli;
-    }
+    // moduli: solve for the fixed point (the thesis iterated, L2260). Doubles: Newton. Other
+    // scalars (only the generic AutodiffModel passes use them): plain iteration, which carries
+    // the derivatives along.
     T driver_I, driver_A;
-    uniaxial_start(amplitude, driver_I, driver_A);
-    for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
-      const UniaxialStep<T> next = uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, false);
-      const bool done = converged(driver_I, driver_A, next, amplitude) && iteration > 0;
-      driver_I = next.driver_I;
-      driver_A = next.driver_A;
-      if (done) break;
+    if constexpr (std::is_same_v<T, double>) {
+      solve_drivers(p, c, o.uniaxial_axis, driver_I, driver_A);
+    } else {
+      uniaxial_start(amplitude, driver_I, driver_A);
+      for (int iteration = 0; iteration < kMaxFixedPointIterations; ++iteration) {
+        const UniaxialStep<T> next =
+            uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, false);
+        const bool done = converged(driver_I, driver_A, next, amplitude) && iteration > 0;
+        driver_I = next.driver_I;
+        driver_A = next.driver_A;
+        if (done) break;
+      }
     }
     return uniaxial_step(p, c, o.uniaxial_axis, driver_I, driver_A, true).moduli;
   }
@@ -173,9 +175,9 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
 
   // Jacobian by forward-mode passes over only the parameters the test depends on (shear 12:
   // part I; 13/23: I and A2, one pass each; uniaxial: K, I and A1; bulk: K), instead of the
-  // generic passes of 8 over all 38 (most columns of a row are zero). Uniaxial: the damage drivers d solve d = F(d, p) (found in doubles); the
-  // implicit function theorem gives dd/dp = (1 − ∂F/∂d)⁻¹ ∂F/∂p from one pass that also seeds d,
-  // so no iteration runs on jets.
+  // generic passes of 8 over all 38 (most columns of a row are zero). Uniaxial: the damage
+  // drivers d solve d = F(d, p) (found in doubles); the implicit function theorem gives
+  // dd/dp = (1 − ∂F/∂d)⁻¹ ∂F/∂p from one pass that also seeds d, so no iteration runs on jets.
   Moduli<double> moduli(const double* p, const TestCondition& c,
                         Eigen::Ref<Eigen::MatrixXd> jacobian) const override {
     jacobian.setZero();
