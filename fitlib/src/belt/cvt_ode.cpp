@@ -25,6 +25,8 @@
 #include <string>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdio>
+#include <cstdlib>
 
 #include <Eigen/Dense>
 #include <boost/math/quadrature/gauss.hpp>
@@ -197,11 +199,14 @@ struct Shooter {
         } catch (const Blowup&) {
         }
       }
+      if (std::getenv("CVT_DEBUG")) std::fprintf(stderr, "  newton n=%d it %d |r| %.3g improved %d r=%s\n", int(u.size()), it, r.norm(), improved, "");
       if (!improved) break;
     }
     return r.norm();
   }
 };
+
+CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const CvtOdeOptions& o);
 
 void check_inputs(const CvtContactBelt& b, const CvtContactCase& c) {
   auto bad = [](const std::string& what, const char* key) { throw core::InputError(what, {}, 0, 0, key); };
@@ -217,6 +222,15 @@ void check_inputs(const CvtContactBelt& b, const CvtContactCase& c) {
 
 CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCase& c, const CvtOdeOptions& o) {
   check_inputs(b, c);
+  try {
+    return solve(b, c, o);
+  } catch (const Blowup&) {
+    throw core::NumericalError("CVT contact shooting left the physical range (|χ| → 90° or x ≫ 0)");
+  }
+}
+
+namespace {
+CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const CvtOdeOptions& o) {
   auto fail = [&](double wrap, double res) {
     throw core::NumericalError("CVT contact shooting did not converge at wrap " + std::to_string(wrap * 180 / kPi) +
                                " deg (residual " + std::to_string(res) + ")");
@@ -242,15 +256,21 @@ CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCa
   }
   double res = sh.newton(u2, [&](const Vec& u) { return sh.single(u, short_case.wrap_rad); });
   if (!(res <= o.accept_residual)) fail(short_case.wrap_rad, res);
-  // 2. Two-sided shooting (exit shot matched at mid-wrap with an entrance shot; single shooting
-  //    loses all digits once e^{λΘ} nears 1e15), continued in the wrap with a secant predictor;
-  //    the step halves when Newton fails.
-  Path path;
-  const State in = sh.from_exit(u2[0], u2[1], short_case.wrap_rad, &path);
-  Vec u(5);
-  u << u2[0], u2[1], path.back().second[1], in[4], in[2];
-  Vec u_prev = u;
+  // 2. Continuation in the wrap with a secant predictor; the step halves when Newton fails.
+  //    Single shooting from the exit while it converges; once e^{λΘ} nears 1e15 it loses all
+  //    digits (the driven example beyond ~120°), and the exit shot is matched at mid-wrap with
+  //    an entrance shot (two-sided shooting on (χ_out, m_out, χ_in, m_in, ε_in)).
+  auto to_matched = [&](const Vec& v, double wrap) {
+    Path p;
+    sh.c.wrap_rad = wrap;
+    const State y = sh.from_exit(v[0], v[1], wrap, &p);
+    Vec w(5);
+    w << v[0], v[1], p.back().second[1], y[4], y[2];
+    return w;
+  };
+  Vec u = u2, u_prev = u2;
   double wrap = short_case.wrap_rad, wrap_prev = wrap, step = o.continuation_step_rad;
+  bool matched = false;
   while (wrap < c.wrap_rad) {
     const double next = std::min(c.wrap_rad, wrap + step);
     Vec t = u;
@@ -258,19 +278,22 @@ CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCa
     sh.c.wrap_rad = next;
     double r = HUGE_VAL;
     try {
-      r = sh.newton(t, [&](const Vec& v) { return sh.matched(v); });
+      r = matched ? sh.newton(t, [&](const Vec& v) { return sh.matched(v); })
+                  : sh.newton(t, [&](const Vec& v) { return sh.single(v, next); });
     } catch (const Blowup&) {
     }
     if (r <= o.accept_residual) {
       u_prev = u, wrap_prev = wrap, u = t, wrap = next, res = r;
       step = std::min(step * 1.5, o.continuation_step_rad);
+    } else if (!matched && step < 0.05) {
+      if (std::getenv("CVT_DEBUG")) std::fprintf(stderr, "switch to matched at %.4f\n", wrap);
+      matched = true, u = to_matched(u, wrap), u_prev = wrap > wrap_prev ? to_matched(u_prev, wrap_prev) : u;
+      step = 0.05;
     } else if ((step *= 0.5) < 1e-4) {
       fail(next, r);
     }
   }
-  if (c.wrap_rad <= short_case.wrap_rad) {  // short wrap: the single shot is the solution
-    u[2] = path.back().second[1], u[3] = in[4], u[4] = in[2];
-  }
+  if (!matched) u = to_matched(u, c.wrap_rad);
   CvtContactSolution sol;
   sol.exit_penetration_angle_rad = u[0];
   sol.exit_moment = u[1];
@@ -297,6 +320,7 @@ CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCa
   sol.shots = sh.shots;
   return sol;
 }
+}  // namespace
 
 CvtContactBelt sorge_example_belt() { return {}; }
 
