@@ -23,10 +23,6 @@
 #include <array>
 #include <cmath>
 #include <string>
-#include <cstdio>
-#include <cstdlib>
-#include <cstdio>
-#include <cstdlib>
 
 #include <Eigen/Dense>
 #include <boost/math/quadrature/gauss.hpp>
@@ -151,13 +147,6 @@ struct Shooter {
     integrate(y, kappa(chi_out), c.wrap_rad, length, true, path);
     return y;
   }
-  // Shot from the entrance with (χ_in, m_in, ε_in) and the exit's κ: state at θ = length.
-  State from_entry(double chi_in, double m_in, double eps_in, double kap, double length, Path* path = nullptr) {
-    if (!(chi_in > 0 && eps_in > 0)) throw Blowup{};  // the belt enters the groove under tension
-    State y{0.0, chi_in, eps_in, end_shear(b, eps_in, m_in), m_in, 0.0};
-    integrate(y, kap, 0.0, length, false, path);
-    return y;
-  }
   // Single shooting from the exit over the whole wrap, u = (χ_out, m_out): entrance conditions
   // x = 0 (per ε_out/k) and σ matching (per √(P ε_out)).
   Vec single(const Vec& u, double wrap) {
@@ -166,15 +155,48 @@ struct Shooter {
     r << y[0] * b.k / c.exit_strain, (y[3] - end_shear(b, y[2], y[4])) / std::sqrt(b.P * c.exit_strain);
     return r;
   }
-  // Two-sided shooting, u = (χ_out, m_out, χ_in, m_in, ε_in): the exit shot and the entrance
-  // shot meet at mid-wrap, where all five state components must agree (scaled).
-  Vec matched(const Vec& u) {
-    const double half = 0.5 * c.wrap_rad;
-    const State e = from_exit(u[0], u[1], half), i = from_entry(u[2], u[3], u[4], kappa(u[0]), half);
-    const double scale[5] = {c.exit_strain / b.k, 1.0, c.exit_strain, std::sqrt(b.P * c.exit_strain), 1.0};
-    Vec r(5);
-    for (int j = 0; j < 5; ++j) r[j] = (i[j] - e[j]) / scale[j];
+  // Multiple shooting, every segment integrated backward (the stable direction): u = (χ_out,
+  // m_out, then the states (x, χ, ε, σ, m) at the nodes θ_j = Θ(1 − j/N), j = 1..N−1); the
+  // residuals are the jumps at the nodes (scaled) and the entrance conditions.
+  State node_state(const Vec& u, int j) const {
+    return {u[2 + 5 * (j - 1)], u[3 + 5 * (j - 1)], u[4 + 5 * (j - 1)], u[5 + 5 * (j - 1)], u[6 + 5 * (j - 1)], 0.0};
+  }
+  Vec multi(const Vec& u, int N, std::vector<Path>* paths = nullptr, double* thrust = nullptr) {
+    const double seg = c.wrap_rad / N, kap = kappa(u[0]);
+    const double scale[5] = {c.exit_strain / b.k, 0.1, c.exit_strain, std::sqrt(b.P * c.exit_strain), 1.0};
+    Vec r(2 + 5 * (N - 1));
+    if (thrust) *thrust = 0;
+    for (int j = 0; j < N; ++j) {
+      Path* p = paths ? &(*paths)[j] : nullptr;
+      State y;
+      if (j == 0) {
+        if (!(u[0] < 0)) throw Blowup{};
+        y = {0.0, u[0], c.exit_strain, -end_shear(b, c.exit_strain, u[1]), u[1], 0.0};
+      } else {
+        y = node_state(u, j);
+      }
+      integrate(y, kap, c.wrap_rad - j * seg, seg, true, p);
+      if (thrust) *thrust -= y[5];
+      if (j + 1 < N) {
+        const State n = node_state(u, j + 1);
+        for (int i = 0; i < 5; ++i) r[5 * j + i] = (y[i] - n[i]) / scale[i];
+      } else {
+        r[5 * j] = y[0] * b.k / c.exit_strain;
+        r[5 * j + 1] = (y[3] - end_shear(b, y[2], y[4])) / std::sqrt(b.P * c.exit_strain);
+      }
+    }
     return r;
+  }
+  // Nodes of an N-segment shot from the exit unknowns (χ_out, m_out).
+  Vec to_nodes(const Vec& v, int N) {
+    Vec w(2 + 5 * (N - 1));
+    w[0] = v[0], w[1] = v[1];
+    State y{0.0, v[0], c.exit_strain, -end_shear(b, c.exit_strain, v[1]), v[1], 0.0};
+    for (int j = 1; j < N; ++j) {
+      integrate(y, kappa(v[0]), c.wrap_rad - (j - 1) * c.wrap_rad / N, c.wrap_rad / N, true, nullptr);
+      for (int i = 0; i < 5; ++i) w[2 + 5 * (j - 1) + i] = y[i];
+    }
+    return w;
   }
   // Damped Newton with a forward-difference Jacobian; returns the residual norm reached.
   template <typename F>
@@ -199,7 +221,6 @@ struct Shooter {
         } catch (const Blowup&) {
         }
       }
-      if (std::getenv("CVT_DEBUG")) std::fprintf(stderr, "  newton n=%d it %d |r| %.3g improved %d r=%s\n", int(u.size()), it, r.norm(), improved, "");
       if (!improved) break;
     }
     return r.norm();
@@ -258,19 +279,11 @@ CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const
   if (!(res <= o.accept_residual)) fail(short_case.wrap_rad, res);
   // 2. Continuation in the wrap with a secant predictor; the step halves when Newton fails.
   //    Single shooting from the exit while it converges; once e^{λΘ} nears 1e15 it loses all
-  //    digits (the driven example beyond ~120°), and the exit shot is matched at mid-wrap with
-  //    an entrance shot (two-sided shooting on (χ_out, m_out, χ_in, m_in, ε_in)).
-  auto to_matched = [&](const Vec& v, double wrap) {
-    Path p;
-    sh.c.wrap_rad = wrap;
-    const State y = sh.from_exit(v[0], v[1], wrap, &p);
-    Vec w(5);
-    w << v[0], v[1], p.back().second[1], y[4], y[2];
-    return w;
-  };
+  //    digits (the driven example beyond ~120°), and the wrap is cut into N segments, each shot
+  //    backward from its end (multiple shooting; forward shots from the entrance diverge).
+  int N = 1;
   Vec u = u2, u_prev = u2;
   double wrap = short_case.wrap_rad, wrap_prev = wrap, step = o.continuation_step_rad;
-  bool matched = false;
   while (wrap < c.wrap_rad) {
     const double next = std::min(c.wrap_rad, wrap + step);
     Vec t = u;
@@ -278,44 +291,40 @@ CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const
     sh.c.wrap_rad = next;
     double r = HUGE_VAL;
     try {
-      r = matched ? sh.newton(t, [&](const Vec& v) { return sh.matched(v); })
-                  : sh.newton(t, [&](const Vec& v) { return sh.single(v, next); });
+      r = sh.newton(t, [&](const Vec& v) { return sh.multi(v, N); });
     } catch (const Blowup&) {
     }
     if (r <= o.accept_residual) {
       u_prev = u, wrap_prev = wrap, u = t, wrap = next, res = r;
       step = std::min(step * 1.5, o.continuation_step_rad);
-    } else if (!matched && step < 0.05) {
-      if (std::getenv("CVT_DEBUG")) std::fprintf(stderr, "switch to matched at %.4f\n", wrap);
-      matched = true, u = to_matched(u, wrap), u_prev = wrap > wrap_prev ? to_matched(u_prev, wrap_prev) : u;
-      step = 0.05;
+    } else if (N == 1 && step < 0.05) {
+      N = std::max(2, static_cast<int>(std::ceil(c.wrap_rad / 0.8)));
+      sh.c.wrap_rad = wrap;
+      u = sh.to_nodes(u, N), u_prev = u, wrap_prev = wrap, step = 0.05;
     } else if ((step *= 0.5) < 1e-4) {
       fail(next, r);
     }
   }
-  if (!matched) u = to_matched(u, c.wrap_rad);
   CvtContactSolution sol;
   sol.exit_penetration_angle_rad = u[0];
   sol.exit_moment = u[1];
   sol.kappa = sh.kappa(u[0]);
-  sol.entry_strain = u[4];
   sol.residual = res;
-  // Final profile: entrance half forward, exit half backward, joined at mid-wrap.
   sh.c.wrap_rad = c.wrap_rad;
-  Path entry_path, exit_path;
-  const double half = 0.5 * c.wrap_rad;
-  Path* ep = o.keep_profile ? &entry_path : nullptr;
-  Path* xp = o.keep_profile ? &exit_path : nullptr;
-  const State yi = sh.from_entry(u[2], u[3], u[4], sol.kappa, half, ep);
-  const State ye = sh.from_exit(u[0], u[1], half, xp);
-  sol.axial_thrust_per_Sl = yi[5] - ye[5];  // the exit half integrates against θ
-  for (const auto& p : entry_path) sol.theta.push_back(p.first), sol.x.push_back(p.second[0]), sol.chi.push_back(p.second[1]),
-      sol.eps.push_back(p.second[2]), sol.sigma.push_back(p.second[3]), sol.m.push_back(p.second[4]);
-  for (auto it = exit_path.rbegin(); it != exit_path.rend(); ++it) {
-    if (it == exit_path.rbegin()) continue;  // mid-wrap point is already in
-    const auto& p = *it;
-    sol.theta.push_back(p.first), sol.x.push_back(p.second[0]), sol.chi.push_back(p.second[1]),
-        sol.eps.push_back(p.second[2]), sol.sigma.push_back(p.second[3]), sol.m.push_back(p.second[4]);
+  std::vector<Path> paths(N);
+  sh.multi(u, N, o.keep_profile ? &paths : nullptr, &sol.axial_thrust_per_Sl);
+  {  // ε_in: end of the last segment
+    State y = N == 1 ? State{0.0, u[0], c.exit_strain, -end_shear(b, c.exit_strain, u[1]), u[1], 0.0} : sh.node_state(u, N - 1);
+    sh.integrate(y, sol.kappa, c.wrap_rad / N, c.wrap_rad / N, true, nullptr);
+    sol.entry_strain = y[2];
+  }
+  for (int j = N - 1; j >= 0; --j) {  // profile entrance → exit
+    const Path& p = paths[j];
+    for (auto it = p.rbegin(); it != p.rend(); ++it) {
+      if (!sol.theta.empty() && std::abs(it->first - sol.theta.back()) < 1e-14) continue;
+      sol.theta.push_back(it->first), sol.x.push_back(it->second[0]), sol.chi.push_back(it->second[1]),
+          sol.eps.push_back(it->second[2]), sol.sigma.push_back(it->second[3]), sol.m.push_back(it->second[4]);
+    }
   }
   sol.shots = sh.shots;
   return sol;

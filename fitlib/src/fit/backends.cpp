@@ -154,6 +154,7 @@ StageOutcome run_ceres(Problem& problem, int max_iterations) {
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   so.linear_solver_type = ceres::DENSE_QR;
+  so.use_nonmonotonic_steps = true;
   so.num_threads = 1;  // determinism
   so.max_num_iterations = max_iterations;
   so.function_tolerance = problem.options().tolerance;

@@ -131,7 +131,7 @@ void Problem::set_free(std::vector<int> free) {
 model::Moduli<double> Problem::linear_columns(const std::vector<double>& natural,
                                               const model::TestCondition& c,
                                               const std::vector<int>& linear,
-                                              Eigen::MatrixXd& jac) const {
+                                              Eigen::Ref<Eigen::MatrixXd> jac) const {
   const model::Moduli<double> m0 = model_->moduli(natural.data(), c);
   std::vector<double> p = natural;
   for (int i : linear) {
@@ -266,11 +266,13 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
       moduli[d] = model_->moduli(natural.data(), c);
       continue;
     }
-    Eigen::MatrixXd jac(3, n);
+    auto jac = jacs.middleCols(static_cast<Eigen::Index>(d) * n, n);
     moduli[d] = all_free_linear_ ? linear_columns(natural, c, free_, jac)
                                  : model_->moduli(natural.data(), c, jac);
-    jacs.middleCols(static_cast<Eigen::Index>(d) * n, n) = jac;
   }
+  // dp/dx of each free parameter (p = exp(x) for log-transformed ones), once per evaluation.
+  std::vector<double> chain(nf);
+  for (int k = 0; k < nf; ++k) chain[k] = is_log(free_[k]) ? natural[free_[k]] : 1.0;
   for (int e = 0; e < num_residuals(); ++e) {
     const ResidualEntry& en = entries_[e];
     const int d = condition_of_row_[en.row];
@@ -288,13 +290,14 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
     if (!std::isfinite(residuals[e])) return false;
     if (jacobian) {
       double* jrow = jacobian + static_cast<std::ptrdiff_t>(e) * nf;
+      const double factor = en.sqrt_weight * dr_dm;
+      const double* dm_dp = &jacs(en.component, static_cast<Eigen::Index>(d) * n);
+      bool finite = true;
       for (int k = 0; k < nf; ++k) {
-        const int i = free_[k];
-        const double chain = is_log(i) ? natural[i] : 1.0;  // dp/dx for p = exp(x)
-        const double dm_dp = jacs(en.component, static_cast<Eigen::Index>(d) * n + i);
-        jrow[k] = en.sqrt_weight * dr_dm * dm_dp * chain;
-        if (!std::isfinite(jrow[k])) return false;
+        jrow[k] = factor * dm_dp[3 * free_[k]] * chain[k];
+        finite &= std::isfinite(jrow[k]);
       }
+      if (!finite) return false;
     }
   }
   return true;

@@ -371,18 +371,31 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
 
   Moduli<double> prony_with_jacobian(const double* p, const TestCondition& c,
                                      Eigen::Ref<Eigen::MatrixXd> J) const {
-    // Temperature parameters (at most three, after the kernel and K) by forward differentiation.
-    using Jet = ceres::Jet<double, 3>;
+    // Temperature parameters (at most three, after the kernel and K) by forward differentiation,
+    // only when the model has any.
     const size_t n = specs_.size();
-    std::vector<Jet> pj(n);
-    for (size_t i = 0; i < n; ++i) {
-      pj[i] = Jet(p[i]);
-      if (i >= shift_index_) pj[i].v[i - shift_index_] = 1.0;
+    double a_T, g_T;
+    double da_T[3] = {0.0, 0.0, 0.0}, dg_T[3] = {0.0, 0.0, 0.0};
+    if (shift_index_ < n) {
+      using Jet = ceres::Jet<double, 3>;
+      std::vector<Jet> pj(n);
+      for (size_t i = 0; i < n; ++i) {
+        pj[i] = Jet(p[i]);
+        if (i >= shift_index_) pj[i].v[i - shift_index_] = 1.0;
+      }
+      Jet shift_jet, scale_jet;
+      temperature_factors(pj.data(), c, shift_jet, scale_jet);
+      a_T = shift_jet.a;
+      g_T = scale_jet.a;
+      for (int k = 0; k < 3; ++k) {
+        da_T[k] = shift_jet.v[k];
+        dg_T[k] = scale_jet.v[k];
+      }
+    } else {
+      temperature_factors(p, c, a_T, g_T);
     }
-    Jet shift_factor, scale;
-    temperature_factors(pj.data(), c, shift_factor, scale);
     const double omega0 = core::angular_frequency(c.frequency_Hz);
-    const double omega = omega0 * shift_factor.a, g = scale.a;
+    const double omega = omega0 * a_T, g = g_T;
     const int N = terms();
     double re = p[0], im = 0.0, dre_domega = 0.0, dim_domega = 0.0;
     J.setZero();
@@ -402,10 +415,10 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     }
     for (size_t i = shift_index_; i < n; ++i) {
       const int k = static_cast<int>(i - shift_index_);
-      const double domega = omega0 * shift_factor.v[k];
-      J(0, i) = g * dre_domega * domega + re * scale.v[k];
-      J(1, i) = g * dim_domega * domega + im * scale.v[k];
-      J(2, i) = p[0] * scale.v[k];
+      const double domega = omega0 * da_T[k];
+      J(0, i) = g * dre_domega * domega + re * dg_T[k];
+      J(1, i) = g * dim_domega * domega + im * dg_T[k];
+      J(2, i) = p[0] * dg_T[k];
     }
     return {g * re, g * im, g * p[0]};
   }

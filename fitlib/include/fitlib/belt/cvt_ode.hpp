@@ -50,8 +50,9 @@ struct CvtContactSolution {
 CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCase& c,
                                      const CvtOdeOptions& o = {});
 
-// Local wall-force kernels at one section (the Z-integrals of Eqs 7–9 and of the friction moment
-// in Eq 11), per k x (1 − x) except `axial` (per k x S_l... see .cpp) — exposed for tests.
+// Z-integrals at one section: parallel, perpendicular = ∫ w K dZ of (8), (9) (wall force per
+// k x (1 − x) S_l), moment = ∫ Z w K_∥ dZ of (11), axial = ∫ (1 − x − ZH cos χ)/(2 tan α cos χ
+// (1 − 2ZW tan α)) dZ of (7) (axial force per k x S_l). Exposed for tests.
 struct CvtWallKernels { double parallel, perpendicular, moment, axial; };
 CvtWallKernels cvt_wall_kernels(const CvtContactBelt& b, double x, double chi, double eps,
                                 double m, double kappa);

@@ -76,7 +76,7 @@ class Problem {
   // respect to the `linear` parameters, by unit steps: cheaper than an autodiff pass.
   model::Moduli<double> linear_columns(const std::vector<double>& natural,
                                        const model::TestCondition& c,
-                                       const std::vector<int>& linear, Eigen::MatrixXd& jac) const;
+                                       const std::vector<int>& linear, Eigen::Ref<Eigen::MatrixXd> jac) const;
   // Why evaluation fails at `natural`: the first row whose moduli are refused or not finite.
   std::string diagnose(const std::vector<double>& natural) const;
   // ½ Σ r²; +inf when evaluation fails.
