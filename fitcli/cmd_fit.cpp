@@ -249,7 +249,8 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--out", a->out, "Card file to write (atomically)");
   cmd->add_option("--name", a->name, "Material name in the card");
   cmd->add_flag("--record-timing", a->record_timing, "Store the wall time in the card (breaks byte-identity)");
-  cmd->add_flag("--progress", a->fit.progress, "Show progress of multistart runs on stderr");
+  a->fit.progress = true;  // shown only when stderr is a terminal
+  cmd->add_flag("!--no-progress", a->fit.progress, "Hide the progress of multistart runs on stderr");
   cmd->add_flag("--json", a->json, "Print the card and run figures as one JSON document");
   cmd->add_flag("--master-curve", a->master.enabled,
                 "Data are raw isotherms: shift them to --reference-c first; the card gets WLF fitted to the shifts");

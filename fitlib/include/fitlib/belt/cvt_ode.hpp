@@ -14,7 +14,7 @@ struct CvtContactBelt {          // dimensionless groups of the contact region
   double groove_half_angle_rad = 13.0 * 3.14159265358979323846 / 180;  // α
   double P = 4e-5;               // S_f/(S_l r∞²)
   double s = 59000.0 / 105.0;    // S_l/S_s
-  double H = 8.0 / 44.5;         // h/r∞
+  double H = 8.0 / 44.57;        // h/r∞; r∞ from k with E_z h/w̄ = 21 N/mm² (docs/belt.md)
   double W = 8.0 / 15.5;         // h/w̄
 };
 
@@ -27,7 +27,8 @@ struct CvtContactCase {
 struct CvtOdeOptions {
   double tolerance = 1e-9;          // abs = rel tolerance of the Dormand–Prince 5(4) stepper
   double shooting_tolerance = 1e-9; // Newton stops below this scaled entrance residual
-  double accept_residual = 1e-5;    // and accepts a wrap step below this one: x_in ≤ 1e-5 ε_out/k
+  double accept_residual = 1e-5;    // and accepts a wrap step below max(this, 30·tolerance):
+                                    // x_in ≤ 1e-5 ε_out/k
   int max_newton_iterations = 60;
   double continuation_step_rad = 0.3;  // wrap continuation from the short-wrap start
   bool keep_profile = true;
