@@ -88,7 +88,7 @@ StageOutcome run_nnls(Problem& problem) {
     const ResidualEntry& en = problem.entries()[e];
     if (en.row != current_row) {
       current_row = en.row;
-      mod = problem.linear_columns(p, problem.table().rows[en.row].condition, linear, jac);
+      mod = problem.model().moduli(p.data(), problem.table().rows[en.row].condition, jac);
     }
     const double value = en.component == 0 ? mod.storage : en.component == 1 ? mod.loss : mod.mean;
     // Linear parameters: value = offset + Σ jac·p over them, exactly.

@@ -121,29 +121,6 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
 
 void Problem::set_free(std::vector<int> free) {
   free_ = std::move(free);
-  all_free_linear_ = true;
-  for (int i : free_) all_free_linear_ = all_free_linear_ && specs()[i].linear;
-}
-
-// The moduli are linear in a `linear` parameter, so a unit step gives its Jacobian column
-// exactly (up to rounding) from plain evaluations: much cheaper than an autodiff pass over all
-// parameters when only the linear ones are free (NNLS polish and its covariance).
-model::Moduli<double> Problem::linear_columns(const std::vector<double>& natural,
-                                              const model::TestCondition& c,
-                                              const std::vector<int>& linear,
-                                              Eigen::Ref<Eigen::MatrixXd> jac) const {
-  const model::Moduli<double> m0 = model_->moduli(natural.data(), c);
-  std::vector<double> p = natural;
-  for (int i : linear) {
-    const double step = std::max(std::abs(natural[i]), 1e-3);
-    p[i] = natural[i] + step;
-    const model::Moduli<double> m1 = model_->moduli(p.data(), c);
-    p[i] = natural[i];
-    jac(0, i) = (m1.storage - m0.storage) / step;
-    jac(1, i) = (m1.loss - m0.loss) / step;
-    jac(2, i) = (m1.mean - m0.mean) / step;
-  }
-  return m0;
 }
 
 bool Problem::is_log(int i) const { return specs()[i].transform == core::Transform::log; }
@@ -267,8 +244,7 @@ bool Problem::evaluate_unchecked(const std::vector<double>& natural, double* res
       continue;
     }
     auto jac = jacs.middleCols(static_cast<Eigen::Index>(d) * n, n);
-    moduli[d] = all_free_linear_ ? linear_columns(natural, c, free_, jac)
-                                 : model_->moduli(natural.data(), c, jac);
+    moduli[d] = model_->moduli(natural.data(), c, jac);
   }
   // dp/dx of each free parameter (p = exp(x) for log-transformed ones), once per evaluation.
   std::vector<double> chain(nf);

@@ -72,11 +72,6 @@ class Problem {
   // Residuals at `natural`, and if `jacobian` is non-null the row-major (residuals × free)
   // derivatives with respect to x. Returns false if anything is not finite.
   bool evaluate(const std::vector<double>& natural, double* residuals, double* jacobian) const;
-  // Moduli at `natural` and their exact derivatives (columns of the 3 × size() `jac`) with
-  // respect to the `linear` parameters, by unit steps: cheaper than an autodiff pass.
-  model::Moduli<double> linear_columns(const std::vector<double>& natural,
-                                       const model::TestCondition& c,
-                                       const std::vector<int>& linear, Eigen::Ref<Eigen::MatrixXd> jac) const;
   // Why evaluation fails at `natural`: the first row whose moduli are refused or not finite.
   std::string diagnose(const std::vector<double>& natural) const;
   // ½ Σ r²; +inf when evaluation fails.
@@ -103,7 +98,6 @@ class Problem {
   std::vector<int> condition_of_row_;  // index into distinct_rows_
   std::vector<int> distinct_rows_;     // first row of each distinct condition
   std::vector<int> free_;
-  bool all_free_linear_ = false;  // Jacobian columns by unit steps (exact for linear parameters)
   std::vector<bool> user_fixed_;
   std::vector<double> natural_, lower_, upper_;
   std::vector<std::string> notes_;
