@@ -55,7 +55,7 @@ TEST(FritzsonDatasets, CommittedTablesAreReproducedByteForByte) {
   for (int m : {1, 2}) {
     const std::string name = "material-" + std::to_string(m) + ".csv";
     const std::string text = table_text(m);
-    core::write_file_atomically(name, text);  // into the build (working) directory
+    core::write_file_atomically(::testing::TempDir() + name, text);  // for inspection
     const std::string committed = kRoot + "/datasets/materials/" + name;
     if (regenerate()) core::write_file_atomically(committed, text);
     EXPECT_EQ(core::read_file(committed), text) << committed << " differs from the generator";
