@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "fitlib/card/card.hpp"
+#include "fitlib/card/from_fit.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/data/table.hpp"
@@ -61,61 +61,6 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
-fitlib::card::Card make_card(const FitArgs& a, const fitlib::fit::FitResult& r,
-                             const fitlib::data::DynamicTestTable& table) {
-  using nlohmann::json;
-  fitlib::card::Card card;
-  card.name = a.name.empty() ? a.model + "-fit" : a.name;
-  card.model_kind = r.model->kind();
-  card.model_options = r.model->options();
-  for (const auto& p : r.parameters) {
-    fitlib::card::ParameterEstimate e;
-    e.value = p.value;
-    e.fixed = p.fixed;
-    e.std_error = p.std_error;
-    e.std_error_reason = p.reason;
-    e.ci95_low = p.ci95_low;
-    e.ci95_high = p.ci95_high;
-    card.parameters.push_back(e);
-  }
-  const auto& m = r.metrics;
-  nlohmann::json identifiability = {{"rank", r.identifiability.rank},
-                                    {"condition_number", r.identifiability.condition_number},
-                                    {"not_identifiable", r.identifiability.not_identifiable},
-                                    {"null_space_directions", r.identifiability.null_space},
-                                    {"correlated", nlohmann::json::array()}};
-  for (const auto& pair : r.identifiability.correlated)
-    identifiability["correlated"].push_back({pair.a, pair.b, pair.correlation});
-  card.fit = {{"objective", r.objective},
-              {"identifiability", identifiability},
-              {"residual", a.residual},
-              {"weights", {{"storage", a.fit.storage_weight}, {"loss", a.fit.loss_weight}, {"mean", a.fit.mean_weight}}},
-              {"backend", r.backend_used},
-              {"seed", a.fit.seed},
-              {"n_points", m.n_points},
-              {"n_residuals", m.n_residuals},
-              {"n_free", m.n_free},
-              {"rms_log10_storage", m.rms_log10_storage},
-              {"rms_log10_loss", m.rms_log10_loss},
-              {"mean_rel_error", m.mean_rel_error},
-              {"max_rel_error", m.max_rel_error},
-              {"aic", m.aic},
-              {"bic", m.bic},
-              {"converged", m.converged},
-              {"condition_number", m.condition_number},
-              {"rank", m.rank},
-              {"iterations", m.iterations},
-              {"messages", r.messages}};
-  // Wall time differs run to run; it enters the card only on request so that the same input
-  // and seed give the same bytes (docs/decisions.md).
-  if (a.record_timing) card.fit["wall_time_s"] = m.wall_time_s;
-  card.provenance = {{"data_files", table.source_files},
-                     {"data_sha256", table.source_sha256},
-                     {"fitlib_version", FITLIB_VERSION},
-                     {"command", a.command_line}};
-  return card;
-}
-
 void run_fit(FitArgs a) {
   using namespace fitlib;
   data::ReadOptions read;
@@ -136,7 +81,7 @@ void run_fit(FitArgs a) {
   options["mode"] = model::to_string(mode);
   if (a.bulk_modulus) options["bulk_modulus"] = true;
   a.fit.backend = fit::parse_backend(a.backend);
-  a.fit.residual = a.residual == "relative" ? fit::ResidualKind::relative : fit::ResidualKind::log10;
+  a.fit.residual = fit::parse_residual_kind(a.residual);
 
   fit::FitResult result;
   std::string term_table;
@@ -179,7 +124,8 @@ void run_fit(FitArgs a) {
     result = fit::fit(model::make_model(a.model, options), table, a.fit);
   }
   if (a.master.curve) result = fit::with_wlf_from_shifts(result, *a.master.curve);  // --master-curve
-  const auto card = make_card(a, result, table);
+  const auto card = card::card_from_fit(
+      result, a.fit, table, {a.name.empty() ? a.model + "-fit" : a.name, a.command_line, a.record_timing});
   if (!a.out.empty()) card::save_card(a.out, card);
 
   if (a.json) {

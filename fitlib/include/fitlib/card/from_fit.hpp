@@ -1,0 +1,23 @@
+#pragma once
+// A material card from a finished fit: values with their uncertainty, the fit's figures and
+// identifiability, and provenance of the data.
+#include <string>
+
+#include "fitlib/card/card.hpp"
+#include "fitlib/data/table.hpp"
+#include "fitlib/fit/fit.hpp"
+
+namespace fitlib::card {
+
+struct CardProvenance {
+  std::string name;     // material name in the card
+  std::string command;  // the invocation, as typed
+  // Wall time differs run to run; it enters the card only on request so that the same input
+  // and seed give the same bytes (docs/decisions.md).
+  bool record_timing = false;
+};
+
+Card card_from_fit(const fit::FitResult& result, const fit::FitOptions& options,
+                   const data::DynamicTestTable& table, const CardProvenance& provenance);
+
+}  // namespace fitlib::card

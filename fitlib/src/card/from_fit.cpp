@@ -1,0 +1,52 @@
+#include "fitlib/card/from_fit.hpp"
+
+namespace fitlib::card {
+
+Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,
+                   const data::DynamicTestTable& table, const CardProvenance& provenance) {
+  using nlohmann::json;
+  Card card;
+  card.name = provenance.name;
+  card.model_kind = r.model->kind();
+  card.model_options = r.model->options();
+  for (const auto& p : r.parameters)
+    card.parameters.push_back({p.value, p.fixed, p.std_error, p.reason, p.ci95_low, p.ci95_high});
+  const auto& m = r.metrics;
+  json identifiability = {{"rank", r.identifiability.rank},
+                          {"condition_number", r.identifiability.condition_number},
+                          {"not_identifiable", r.identifiability.not_identifiable},
+                          {"null_space_directions", r.identifiability.null_space},
+                          {"correlated", json::array()}};
+  for (const auto& pair : r.identifiability.correlated)
+    identifiability["correlated"].push_back({pair.a, pair.b, pair.correlation});
+  card.fit = {{"objective", r.objective},
+              {"identifiability", identifiability},
+              {"residual", fit::to_string(options.residual)},
+              {"weights", {{"storage", options.storage_weight},
+                           {"loss", options.loss_weight},
+                           {"mean", options.mean_weight}}},
+              {"backend", r.backend_used},
+              {"seed", options.seed},
+              {"n_points", m.n_points},
+              {"n_residuals", m.n_residuals},
+              {"n_free", m.n_free},
+              {"rms_log10_storage", m.rms_log10_storage},
+              {"rms_log10_loss", m.rms_log10_loss},
+              {"mean_rel_error", m.mean_rel_error},
+              {"max_rel_error", m.max_rel_error},
+              {"aic", m.aic},
+              {"bic", m.bic},
+              {"converged", m.converged},
+              {"condition_number", m.condition_number},
+              {"rank", m.rank},
+              {"iterations", m.iterations},
+              {"messages", r.messages}};
+  if (provenance.record_timing) card.fit["wall_time_s"] = m.wall_time_s;
+  card.provenance = {{"data_files", table.source_files},
+                     {"data_sha256", table.source_sha256},
+                     {"fitlib_version", FITLIB_VERSION},
+                     {"command", provenance.command}};
+  return card;
+}
+
+}  // namespace fitlib::card
