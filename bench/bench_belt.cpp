@@ -15,12 +15,13 @@
 #include "fitlib/belt/drive.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/belt/stiffness.hpp"
+#include "fitlib/core/units.hpp"
 
 using namespace fitlib::belt;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using fitlib::core::kPi;
 
 DriveCase reference_drive() {
   Pulley a{"driver", 50.0, PulleyRole::driver}, b{"driven", 50.0, PulleyRole::driven};

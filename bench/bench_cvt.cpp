@@ -9,12 +9,14 @@
 #include "fitlib/belt/cvt.hpp"
 #include "fitlib/belt/cvt_ode.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/units.hpp"
 
 using namespace fitlib::belt;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846, kSl = 59000.0;
+using fitlib::core::kPi;
+constexpr double kSl = 59000.0;
 
 template <typename F>
 double seconds_per_call(F f, double min_total_s = 0.2) {

@@ -7,6 +7,7 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace fitcli {
 
@@ -58,7 +59,7 @@ void register_accumulate(CLI::App& app) {
     if (given("--omega-max") || a->scene.empty()) spec.omega_max_rad_s = a->omega_max;
     if (given("--omega-points") || a->scene.empty()) spec.omega_points = a->omega_points;
     if (a->limit > 0) spec.strain_limit = a->limit;
-    double kappa = a->kappa >= 0 ? a->kappa : spec.kappa.value_or(3.14159265358979323846);
+    double kappa = a->kappa >= 0 ? a->kappa : spec.kappa.value_or(core::kPi);
     if (a->kappa < 0 && !spec.kappa && !a->scene.empty()) kappa = scene::drive_kappa(sc);
     std::string source;
     const auto spectrum = scene::scene_spectrum(sc, spec.spectrum, &source);

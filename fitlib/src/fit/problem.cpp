@@ -312,30 +312,27 @@ double Problem::cost(const std::vector<double>& natural) const {
 void Problem::measure(const std::vector<double>& natural, FitMetrics& metrics) const {
   double sum_storage = 0.0, sum_loss = 0.0, sum_rel = 0.0, max_rel = 0.0;
   int n_storage = 0, n_loss = 0, n_rel = 0;
+  auto relative = [&](double model, double data) {
+    const double rel = std::abs(model - data) / data;
+    sum_rel += rel;
+    max_rel = std::max(max_rel, rel);
+    ++n_rel;
+  };
+  auto log_error = [](double model, double data) {
+    const double d = std::log10(floored(model, data) / data);
+    return d * d;
+  };
   for (const auto& row : table_->rows) {
     const auto m = model_->moduli(natural.data(), row.condition);
-    const double ds = std::log10(floored(m.storage, row.storage_MPa) / row.storage_MPa);
-    sum_storage += ds * ds;
+    sum_storage += log_error(m.storage, row.storage_MPa);
     ++n_storage;
-    const double rel_s = std::abs(m.storage - row.storage_MPa) / row.storage_MPa;
-    sum_rel += rel_s;
-    max_rel = std::max(max_rel, rel_s);
-    ++n_rel;
+    relative(m.storage, row.storage_MPa);
     if (row.loss_MPa >= kLossFloor * row.storage_MPa) {
-      const double dl = std::log10(floored(m.loss, row.loss_MPa) / row.loss_MPa);
-      sum_loss += dl * dl;
+      sum_loss += log_error(m.loss, row.loss_MPa);
       ++n_loss;
-      const double rel_l = std::abs(m.loss - row.loss_MPa) / row.loss_MPa;
-      sum_rel += rel_l;
-      max_rel = std::max(max_rel, rel_l);
-      ++n_rel;
+      relative(m.loss, row.loss_MPa);
     }
-    if (row.has_mean_modulus && row.mean_modulus_MPa > 0.0) {
-      const double rel_m = std::abs(m.mean - row.mean_modulus_MPa) / row.mean_modulus_MPa;
-      sum_rel += rel_m;
-      max_rel = std::max(max_rel, rel_m);
-      ++n_rel;
-    }
+    if (row.has_mean_modulus && row.mean_modulus_MPa > 0.0) relative(m.mean, row.mean_modulus_MPa);
   }
   metrics.n_points = static_cast<int>(table_->rows.size());
   metrics.rms_log10_storage = n_storage ? std::sqrt(sum_storage / n_storage) : 0.0;

@@ -11,6 +11,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/autodiff_model.hpp"
 #include "fitlib/model/fritzson_point.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace fitlib::model::fritzson {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 using core::ParameterSpec;
 using core::Transform;
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 // The 12 constants of one deviatoric part, in PartIndex order.
 void add_part(std::vector<ParameterSpec>& specs, const std::string& suffix,

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace fitlib::model::fritzson {
 
@@ -28,7 +29,7 @@ const ThesisCase& thesis_case(const std::string& id) {
 
 CaseLoops run_thesis_case(const MaterialPoint& point, const ThesisCase& c, int steps_per_cycle) {
   if (steps_per_cycle < 4) throw core::UsageError("steps per cycle must be at least 4");
-  constexpr double kPi = 3.14159265358979323846;
+  using core::kPi;
   CaseLoops out;
   StrainHistory h;
   if (c.ramp_rate_per_s > 0.0) {

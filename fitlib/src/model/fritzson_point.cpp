@@ -10,11 +10,12 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/fritzson.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace fitlib::model::fritzson {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 using Jet6 = ceres::Jet<double, 6>;
 
 // Deviatoric tensor components (Voigt order, shear as ε_ij) of an engineering Voigt strain.
@@ -250,12 +251,7 @@ PointLoading loading_for(const TestCondition& c, bool anisotropic) {
 
 DriveResult drive(const MaterialPoint& point, const PointLoading& loading,
                   const StrainHistory& history, double temperature_C) {
-  if (history.time_s.size() != history.strain.size())
-    throw core::UsageError("strain history: time and strain have different lengths");
-  for (size_t n = 1; n < history.time_s.size(); ++n)
-    if (!(history.time_s[n] > history.time_s[n - 1]))
-      throw core::UsageError("strain history: times must increase strictly (sample " +
-                             std::to_string(n) + ")");
+  check_strain_history(history);
   DriveResult out;
   MaterialState state, next;
   Vector6 strain = Vector6::Zero();

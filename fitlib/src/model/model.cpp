@@ -16,6 +16,15 @@ std::vector<double> Model::initial_parameters(const DataSummary&) const {
   return default_parameters();
 }
 
+void check_strain_history(const StrainHistory& h) {
+  if (h.time_s.size() != h.strain.size())
+    throw core::UsageError("strain history: time and strain have different lengths");
+  for (size_t n = 1; n < h.time_s.size(); ++n)
+    if (!(h.time_s[n] > h.time_s[n - 1]))
+      throw core::UsageError("strain history: times must increase strictly (sample " +
+                             std::to_string(n) + ")");
+}
+
 nlohmann::json Model::temperature_law(const double*) const {
   return {{"law", "none"}};
 }

@@ -13,15 +13,6 @@ namespace {
 // (1 − e^{−x})/x without cancellation for small x.
 double one_minus_exp_over(double x) { return x < 1e-8 ? 1.0 - 0.5 * x : -std::expm1(-x) / x; }
 
-void check_history(const StrainHistory& h) {
-  if (h.time_s.size() != h.strain.size())
-    throw core::UsageError("strain history: time and strain have different lengths");
-  for (size_t n = 1; n < h.time_s.size(); ++n)
-    if (!(h.time_s[n] > h.time_s[n - 1]))
-      throw core::UsageError("strain history: times must increase strictly (sample " +
-                             std::to_string(n) + ")");
-}
-
 // Log-spaced grid from 0 to t: first step to t_first, then `per_decade` points per decade.
 std::vector<double> log_grid(double t_first, double t_end, int per_decade) {
   std::vector<double> grid{0.0};
@@ -48,7 +39,7 @@ double MaxwellSeries::relaxation(double t_s) const {
 }
 
 std::vector<double> MaxwellSeries::stress(const StrainHistory& history) const {
-  check_history(history);
+  check_strain_history(history);
   std::vector<double> sigma(history.time_s.size());
   if (sigma.empty()) return sigma;
   std::vector<double> h(moduli.size());
@@ -136,7 +127,7 @@ struct KelvinStep {
 }  // namespace
 
 std::vector<double> KelvinSeries::stress(const StrainHistory& history) const {
-  check_history(history);
+  check_strain_history(history);
   if (!(glassy_compliance > 0.0))
     throw core::NumericalError("retardation spectrum: glassy compliance J_g must be positive");
   std::vector<double> sigma(history.time_s.size());

@@ -9,6 +9,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/data/table.hpp"
+#include "fitlib/core/units.hpp"
 
 using fitlib::core::InputError;
 using fitlib::data::DynamicTestTable;
@@ -22,7 +23,7 @@ namespace {
 
 const std::string kMalformed = std::string(FITLIB_TEST_DATA_DIR) + "/malformed/";
 const std::string kPyvisco = std::string(FITLIB_SHARED_DIR) + "/external/pyvisco/examples/";
-constexpr double kPi = 3.14159265358979323846;
+using fitlib::core::kPi;
 
 struct MalformedCase {
   const char* file;

@@ -10,6 +10,7 @@
 #include "fitlib/core/rng.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/data/waveform.hpp"
+#include "fitlib/core/units.hpp"
 
 using fitlib::core::InputError;
 using fitlib::data::analyse_waveform;
@@ -18,7 +19,7 @@ using fitlib::data::WaveformReport;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using fitlib::core::kPi;
 const std::string kWaveforms = std::string(FITLIB_TEST_DATA_DIR) + "/waveforms/";
 
 // ε = ε_m + ε_a sin θ, σ = σ_m + ε_a (E′ sin θ + E″ cos θ) + extra(θ), θ = 2π f t + phase;

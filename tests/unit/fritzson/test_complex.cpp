@@ -13,6 +13,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/fritzson.hpp"
 #include "materials.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace {
 
@@ -21,7 +22,7 @@ using namespace fitlib::model::fritzson;
 using fritzson_test::material1_parameters;
 using fritzson_test::material2_parameters;
 
-constexpr double kPi = 3.14159265358979323846;
+using fitlib::core::kPi;
 
 ModelPtr model1() { return make_model("fritzson", {{"reference_C", 23.0}}); }
 ModelPtr model2() { return make_model("fritzson-iso", {{"reference_C", 23.0}}); }

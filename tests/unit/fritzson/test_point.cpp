@@ -12,6 +12,7 @@
 #include "fitlib/model/fritzson.hpp"
 #include "fitlib/model/fritzson_point.hpp"
 #include "materials.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace {
 
@@ -20,7 +21,7 @@ using namespace fitlib::model::fritzson;
 using fritzson_test::material1_parameters;
 using fritzson_test::material2_parameters;
 
-constexpr double kPi = 3.14159265358979323846;
+using fitlib::core::kPi;
 
 TestCondition condition(TestMode mode, const std::string& orientation, double f, double T,
                         double amplitude, double mean) {

@@ -6,6 +6,7 @@
 // Two solutions: the closed forms (A.25–A.35) and the full ODE (A.15, A.17, A.22) integrated
 // with Boost.Odeint from a series start at P. The ODE depends only on μ, β and c0.
 #include <vector>
+#include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
 
@@ -64,7 +65,7 @@ class ClosedFormArc {
 };
 
 // Sliding angle limit of the driver (A.35): 273°.
-constexpr double kDriverSlidingAngleLimit_rad = 273.0 * 3.14159265358979323846 / 180.0;
+constexpr double kDriverSlidingAngleLimit_rad = 273.0 * core::kPi / 180.0;
 
 // The full ODE from P: integrates until κ reaches kappa_end or φ reaches phi_max, whichever comes
 // first, with relative/absolute tolerance `tolerance`. The driver's γ is held at γ_Lim once it

@@ -2,12 +2,14 @@
 // Axial thrust of a rubber V-belt CVT pulley: Sorge's practical formulary (belt-mechanics.md §7,
 // seeds/sorge-2d-vbelt-cvt.txt Eqs 11–12). Forces N, angles rad; α is the groove half-angle.
 // R = driver, N = driven; T_T, T_S = tight and slack dynamic tensions (N − μv²).
+#include "fitlib/core/units.hpp"
+
 namespace fitlib::belt {
 
 struct CvtFormulary {  // the paper's constants for its CVT belt
   double xi_R = 2.2, xi_N = 1.5, xi_N_unseat = 2.0;
   int n = 5;
-  double seat_rad = 3.14159265358979323846 / 6, unseat_rad = 3.14159265358979323846 / 18;
+  double seat_rad = core::kPi / 6, unseat_rad = core::kPi / 18;
 };
 
 // Axial force per unit wrap angle at θ from the entrance (Eq 11), for wrap Θ.

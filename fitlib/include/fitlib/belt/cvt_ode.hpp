@@ -5,13 +5,14 @@
 // dimensionless: x = penetration Δr/r∞, χ = penetration angle, ε = T/S_l, σ = S/S_l,
 // m = (M/S_f + 1/r_fact) r∞(1 − x)/cos χ, thrust per S_l. See docs/belt.md for the equations.
 #include <vector>
+#include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
 
 struct CvtContactBelt {          // dimensionless groups of the contact region
   double friction = 0.4;         // f
   double k = 0.15;               // 4 tan²α E_axial h r∞²/(w̄ S_l)
-  double groove_half_angle_rad = 13.0 * 3.14159265358979323846 / 180;  // α
+  double groove_half_angle_rad = 13.0 * core::kPi / 180;  // α
   double P = 4e-5;               // S_f/(S_l r∞²)
   double s = 59000.0 / 105.0;    // S_l/S_s
   double H = 8.0 / 44.57;        // h/r∞; r∞ from k with E_z h/w̄ = 21 N/mm² (docs/belt.md)
@@ -20,8 +21,8 @@ struct CvtContactBelt {          // dimensionless groups of the contact region
 
 struct CvtContactCase {
   double exit_strain = 250.0 / 59000.0;                               // ε_out
-  double exit_sliding_angle_rad = 191.0 * 3.14159265358979323846 / 180;  // γ_out(Z = 0), in (90°, 270°)
-  double wrap_rad = 3.14159265358979323846;                           // Θ
+  double exit_sliding_angle_rad = 191.0 * core::kPi / 180;  // γ_out(Z = 0), in (90°, 270°)
+  double wrap_rad = core::kPi;                           // Θ
 };
 
 struct CvtOdeOptions {

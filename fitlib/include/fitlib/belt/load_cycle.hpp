@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fitlib/belt/drive.hpp"
+#include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
 
@@ -17,7 +18,7 @@ struct BeltSection {
   double width_mm = 11.1542;          // B (mean width, Eq 6.3)
   double area_mm2 = 6.5862 * 11.1542;  // A for the centrifugal tension (4.53)
   double density_kg_m3 = 1200.0;
-  double wedge_half_angle_rad = 19.0 * 3.14159265358979323846 / 180.0;  // β
+  double wedge_half_angle_rad = 19.0 * core::kPi / 180.0;  // β
   double c_N = 44000.0;       // longitudinal stiffness F/ε (A.3)
   double k1_MPa = 450.0;      // radial spring stiffness (A.37)
   double EI_Nmm2 = 7500.0;    // bending stiffness

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <random>
 
+#include "fitlib/core/units.hpp"
+
 namespace fitlib::core {
 
 class Rng {
@@ -22,9 +24,9 @@ class Rng {
     double u1 = uniform(), u2 = uniform();
     if (u1 < 1e-300) u1 = 1e-300;
     const double r = std::sqrt(-2.0 * std::log(u1));
-    spare_ = r * std::sin(2.0 * 3.14159265358979323846 * u2);
+    spare_ = r * std::sin(2.0 * kPi * u2);
     has_spare_ = true;
-    return r * std::cos(2.0 * 3.14159265358979323846 * u2);
+    return r * std::cos(2.0 * kPi * u2);
   }
   std::uint64_t next() { return engine_(); }
 

@@ -32,6 +32,9 @@ struct StrainHistory {
   std::vector<double> strain;
 };
 
+// Throws core::UsageError unless time and strain have equal lengths and times increase strictly.
+void check_strain_history(const StrainHistory& history);
+
 // What a fitter knows about the data before fitting, for models to place a sensible start.
 struct DataSummary {
   double omega_min_rad_s = 1.0, omega_max_rad_s = 1.0;  // angular frequency range
