@@ -18,6 +18,7 @@
 #include "fitlib/fit/relaxation.hpp"
 #include "fitlib/fit/shift_laws.hpp"
 #include "fitlib/fit/terms.hpp"
+#include "inputs.hpp"
 #include "output.hpp"
 
 namespace fitcli {
@@ -168,35 +169,7 @@ void finish(const FitArgs& a, const fitlib::fit::FitResult& result, const fitlib
   if (!a.out.empty()) std::cout << "card written to " << a.out << "\n";
 }
 
-// Frequency-domain rows of every --data file: native or pyvisco CSV, or EPLEXOR .xls (recognised
-// by its OLE signature whatever --format says).
-fitlib::data::DynamicTestTable read_tables(const FitArgs& a, const fitlib::data::ReadOptions& read) {
-  using namespace fitlib;
-  data::DynamicTestTable all;
-  for (const auto& path : a.data) {
-    data::DynamicTestTable one;
-    if (a.format == "eplexor" || data::is_ole_compound_file(core::read_file(path))) {
-      auto x = data::read_eplexor(path, read);
-      if (x.has_shift_list)
-        std::cerr << "fitcli: note: " << path << ": EPLEXOR master export, Ref.Temp. " << x.shifts.reference_C
-                  << " degC, WLF C1 " << x.wlf_C1 << ", C2 " << x.wlf_C2_K << " K (" << x.shifts.factors.size()
-                  << " shifts)\n";
-      one = std::move(x.table);
-    } else {
-      one = data::read_dynamic_table(path, read);
-    }
-    all.rows.insert(all.rows.end(), one.rows.begin(), one.rows.end());
-    all.source_files.insert(all.source_files.end(), one.source_files.begin(), one.source_files.end());
-    all.source_sha256.insert(all.source_sha256.end(), one.source_sha256.begin(), one.source_sha256.end());
-    all.warnings.insert(all.warnings.end(), one.warnings.begin(), one.warnings.end());
-  }
-  return all;
-}
-
-bool relaxation_data(const FitArgs& a) {
-  return a.format == "pyvisco" && !a.data.empty() &&
-         fitlib::data::looks_like_relaxation_csv(fitlib::core::read_file(a.data.front()));
-}
+bool relaxation_data(const FitArgs& a) { return is_relaxation_data(a.data, a.format); }
 
 void run_fit_relaxation(FitArgs a);
 
@@ -210,7 +183,7 @@ void run_fit(FitArgs a) {
     read.has_default_mode = true;
     read.default_mode = model::parse_test_mode(a.mode);
   }
-  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law, read_tables(a, read));
+  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law, read_tables(a.data, a.format, read));
   for (const auto& w : table.warnings) std::cerr << "fitcli: warning: " << w << "\n";
   if (table.rows.empty()) throw core::InputError("no usable rows", join(a.data));
 
@@ -239,13 +212,7 @@ void run_fit(FitArgs a) {
 void run_fit_relaxation(FitArgs a) {
   using namespace fitlib;
   if (a.master.enabled) throw core::UsageError("--master-curve needs frequency data; give relaxation isotherms --shifts");
-  data::RelaxationTable table;
-  for (const auto& path : a.data) {
-    auto one = data::read_relaxation_table(path);
-    table.rows.insert(table.rows.end(), one.rows.begin(), one.rows.end());
-    table.source_files.insert(table.source_files.end(), one.source_files.begin(), one.source_files.end());
-    table.source_sha256.insert(table.source_sha256.end(), one.source_sha256.begin(), one.source_sha256.end());
-  }
+  data::RelaxationTable table = read_relaxation_tables(a.data);
   std::optional<fit::MasterCurve> shifts;  // only the isotherm list is used, for the card's law
   if (!a.master.shifts_in.empty()) {
     const auto given = data::read_shift_factors(a.master.shifts_in);
