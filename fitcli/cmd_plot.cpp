@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -165,8 +166,11 @@ std::string relaxation_script(const fitlib::data::RelaxationTable& t, const fitl
 void run_gnuplot(const std::string& script, const std::string& tmp, const std::string& out) {
   FILE* pipe = popen("gnuplot 2>&1", "w");
   if (!pipe) throw fitlib::core::NumericalError("plot: cannot start gnuplot");
+  // A shell that finds no gnuplot exits at once: writing must not kill us with SIGPIPE.
+  const auto previous = std::signal(SIGPIPE, SIG_IGN);
   std::fwrite(script.data(), 1, script.size(), pipe);
   const int status = pclose(pipe);
+  std::signal(SIGPIPE, previous);
   if (status != 0) {
     std::remove(tmp.c_str());
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)

@@ -80,7 +80,7 @@ FitResult with_law_from_shifts(const FitResult& result, const std::vector<double
   std::vector<std::pair<std::string, double>> constants;
   std::string summary;
   double rms = 0.0;
-  auto options = result.model->options();
+  int degree_option = 0;
   if (law == "wlf") {
     const WlfFit w = fit_wlf(temperatures_C, log10_aT, reference_C);
     if (std::isnan(w.C1)) throw core::UsageError("shift law: no WLF fit (it needs at least 3 isotherms)");
@@ -94,11 +94,14 @@ FitResult with_law_from_shifts(const FitResult& result, const std::vector<double
       constants.push_back({"poly_C" + std::to_string(k + 1), poly.coefficients[k]});
       summary += " C" + std::to_string(k + 1) + " = " + number(poly.coefficients[k]);
     }
-    options["polynomial_degree"] = polynomial_degree;
+    degree_option = polynomial_degree;
     rms = poly.rms_decades;
   } else {
     throw core::UsageError("shift law '" + law + "' cannot be fitted to shifts (wlf or polynomial)");
   }
+  if (!result.model) throw core::UsageError("shift law: the fit result has no model");
+  auto options = result.model->options();
+  if (degree_option > 0) options["polynomial_degree"] = degree_option;
   options["temperature_law"] = law;
   options["reference_C"] = reference_C;
   FitResult out = result;
