@@ -9,10 +9,16 @@
 #include "fitlib/card/from_fit.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/data/eplexor.hpp"
+#include "fitlib/data/relaxation.hpp"
+#include "fitlib/data/shift_factors.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/fit/master_curve.hpp"
+#include "fitlib/fit/relaxation.hpp"
+#include "fitlib/fit/shift_laws.hpp"
 #include "fitlib/fit/terms.hpp"
+#include "inputs.hpp"
 #include "output.hpp"
 
 namespace fitcli {
@@ -24,21 +30,29 @@ namespace {
 struct MasterCurveArgs {
   bool enabled = false;
   std::string shifts_out;
+  std::string shifts_in;  // --shifts: given shift factors (pyvisco file) instead of fitted ones
   std::optional<fitlib::fit::MasterCurve> curve;
 };
 
 fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double reference_C, bool json,
                                                   const std::string& temperature_law,
                                                   fitlib::data::DynamicTestTable raw) {
-  if (!m.enabled) return raw;
-  if (temperature_law != "none")
-    throw fitlib::core::UsageError("--master-curve sets the card's temperature law (WLF fitted to the shifts); "
-                                   "drop --temperature-law");
-  fitlib::fit::MasterCurveOptions options;
-  options.reference_C = reference_C;
-  m.curve = fitlib::fit::build_master_curve(raw, options);
+  if (!m.enabled && m.shifts_in.empty()) return raw;
+  if (temperature_law != "none" && temperature_law != "wlf" && temperature_law != "polynomial")
+    throw fitlib::core::UsageError("--master-curve/--shifts fit the card's temperature law to the shifts: "
+                                   "--temperature-law wlf (default) or polynomial");
+  if (!m.shifts_in.empty()) {
+    m.curve = fitlib::fit::master_curve_from_shift_factors(raw, fitlib::data::read_shift_factors(m.shifts_in),
+                                                           reference_C);
+  } else {
+    fitlib::fit::MasterCurveOptions options;
+    options.reference_C = reference_C;
+    m.curve = fitlib::fit::build_master_curve(raw, options);
+  }
   (json ? std::cerr : std::cout) << fitlib::fit::format_shift_table(*m.curve) << "\n";
-  if (!m.shifts_out.empty()) fitlib::core::write_file_atomically(m.shifts_out, fitlib::fit::shift_table_csv(*m.curve));
+  if (!m.shifts_out.empty())
+    fitlib::core::write_file_atomically(m.shifts_out,
+                                        fitlib::data::format_shift_factors(fitlib::fit::shift_factors_of(*m.curve)));
   return m.curve->master;
 }
 // ---- end --master-curve
@@ -47,6 +61,7 @@ struct FitArgs {
   std::vector<std::string> data;
   std::string model, terms = "4", backend = "auto", format = "native", mode, out, name;
   std::string temperature_law = "none", residual = "log10", term_rule = "bic";
+  int polynomial_degree = 3;
   double reference_C = 23.0;
   bool bulk_modulus = false, skip_bad_rows = false, json = false, record_timing = false;
   int max_terms = 0, term_search_max = 0;
@@ -61,69 +76,68 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
-void run_fit(FitArgs a) {
-  using namespace fitlib;
-  data::ReadOptions read;
-  read.format = a.format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
-  read.skip_bad_rows = a.skip_bad_rows;
-  if (!a.mode.empty()) {
-    read.has_default_mode = true;
-    read.default_mode = model::parse_test_mode(a.mode);
+// --terms N (not auto), checked against --max-terms.
+int fixed_terms(const FitArgs& a) {
+  int n = 0;
+  try {
+    n = std::stoi(a.terms);
+  } catch (const std::exception&) {
+    throw fitlib::core::UsageError("--terms takes a number or 'auto', got '" + a.terms + "'");
   }
-  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law,
-                                        data::read_dynamic_tables(a.data, read));
-  for (const auto& w : table.warnings) std::cerr << "fitcli: warning: " << w << "\n";
-  if (table.rows.empty()) throw core::InputError("no usable rows", join(a.data));
+  if (a.max_terms > 0 && n > a.max_terms)
+    throw fitlib::core::UsageError("--terms " + a.terms + " exceeds --max-terms " + std::to_string(a.max_terms));
+  return n;
+}
 
-  nlohmann::json options = {{"temperature_law", a.temperature_law}, {"reference_C", a.reference_C}};
-  // The model describes the mode of the data unless the data mix modes.
-  const auto mode = table.rows.front().condition.mode;
-  options["mode"] = model::to_string(mode);
-  if (a.bulk_modulus) options["bulk_modulus"] = true;
-  a.fit.backend = fit::parse_backend(a.backend);
-  a.fit.residual = fit::parse_residual_kind(a.residual);
+fitlib::fit::TermOptions term_options(const FitArgs& a) {
+  fitlib::fit::TermOptions t;
+  t.max_terms = a.term_search_max;
+  t.solver_cap = a.max_terms;
+  t.rule = fitlib::fit::parse_term_rule(a.term_rule);
+  return t;
+}
 
-  fit::FitResult result;
-  std::string term_table;
-  nlohmann::json terms_json;
-  const bool has_terms = model::make_model(a.model, options)->options().contains("terms");
-  if (has_terms && a.terms == "auto") {
-    fit::TermOptions t;
-    t.max_terms = a.term_search_max;
-    t.solver_cap = a.max_terms;
-    t.rule = fit::parse_term_rule(a.term_rule);
-    auto selection = fit::select_terms(a.model, options, table, a.fit, t);
-    term_table = fit::format_term_table(selection);
-    terms_json = {{"by_aic", selection.by_aic}, {"by_bic", selection.by_bic}, {"by_ratio", selection.by_ratio},
-                  {"rule", fit::to_string(selection.rule)}, {"chosen", selection.chosen},
-                  {"unconstrained", selection.unconstrained}, {"cap_cost_ratio", selection.cap_cost_ratio},
-                  {"cap_storage_rms_ratio", selection.cap_storage_rms_ratio},
-                  {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio}};
-    terms_json["rows"] = nlohmann::json::array();
+// The fit and, with --terms auto, the term table (text and JSON).
+struct Selection {
+  fitlib::fit::FitResult result;
+  std::string table;
+  nlohmann::json json;
+  void take(fitlib::fit::TermSelection selection) {
+    table = fitlib::fit::format_term_table(selection);
+    json = {{"by_aic", selection.by_aic}, {"by_bic", selection.by_bic}, {"by_ratio", selection.by_ratio},
+            {"rule", fitlib::fit::to_string(selection.rule)}, {"chosen", selection.chosen},
+            {"unconstrained", selection.unconstrained}, {"cap_cost_ratio", selection.cap_cost_ratio},
+            {"cap_storage_rms_ratio", selection.cap_storage_rms_ratio},
+            {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio}};
+    json["rows"] = nlohmann::json::array();
     for (const auto& row : selection.rows)
-      terms_json["rows"].push_back({{"terms", row.terms}, {"wall_time_s", row.wall_time_s},
-                                    {"rms_log10_storage", row.rms_log10_storage},
-                                    {"rms_log10_loss", row.rms_log10_loss}, {"cost", row.cost},
-                                    {"aic", row.aic}, {"bic", row.bic}, {"failed", row.failed}});
-    for (const auto& m : selection.messages) result.messages.push_back(m);
-    auto msgs = result.messages;
-    result = selection.result;
-    result.messages.insert(result.messages.end(), msgs.begin(), msgs.end());
-  } else {
-    if (has_terms) {
-      int n = 0;
-      try {
-        n = std::stoi(a.terms);
-      } catch (const std::exception&) {
-        throw core::UsageError("--terms takes a number or 'auto', got '" + a.terms + "'");
-      }
-      if (a.max_terms > 0 && n > a.max_terms)
-        throw core::UsageError("--terms " + a.terms + " exceeds --max-terms " + std::to_string(a.max_terms));
-      options["terms"] = n;
-    }
-    result = fit::fit(model::make_model(a.model, options), table, a.fit);
+      json["rows"].push_back({{"terms", row.terms}, {"wall_time_s", row.wall_time_s},
+                              {"rms_log10_storage", row.rms_log10_storage},
+                              {"rms_log10_loss", row.rms_log10_loss}, {"cost", row.cost},
+                              {"aic", row.aic}, {"bic", row.bic}, {"failed", row.failed}});
+    result = std::move(selection.result);
+    result.messages.insert(result.messages.end(), selection.messages.begin(), selection.messages.end());
   }
-  if (a.master.curve) result = fit::with_wlf_from_shifts(result, *a.master.curve);  // --master-curve
+};
+
+// --master-curve, --shifts: the card's law (WLF or polynomial) fitted to the isotherm shifts.
+fitlib::fit::FitResult with_shift_law(const FitArgs& a, fitlib::fit::FitResult result,
+                                      const std::optional<fitlib::fit::MasterCurve>& curve) {
+  if (!curve) return result;
+  std::vector<double> temperatures, log10_aT;
+  for (const auto& iso : curve->isotherms) {
+    temperatures.push_back(iso.temperature_C);
+    log10_aT.push_back(iso.log10_aT);
+  }
+  return fitlib::fit::with_law_from_shifts(result, temperatures, log10_aT, curve->reference_C,
+                                           a.temperature_law == "polynomial" ? "polynomial" : "wlf",
+                                           a.polynomial_degree);
+}
+
+// Writes the card (--out) and prints the summary or, with --json, the card and run figures.
+void finish(const FitArgs& a, const fitlib::fit::FitResult& result, const fitlib::data::DynamicTestTable& table,
+            const Selection& sel) {
+  using namespace fitlib;
   const auto card = card::card_from_fit(
       result, a.fit, table, {a.name.empty() ? a.model + "-fit" : a.name, a.command_line, a.record_timing});
   if (!a.out.empty()) card::save_card(a.out, card);
@@ -131,12 +145,12 @@ void run_fit(FitArgs a) {
   if (a.json) {
     auto j = card::card_to_json(card);
     j["fit"]["wall_time_s"] = result.metrics.wall_time_s;
-    if (!terms_json.is_null()) j["term_selection"] = terms_json;
+    if (!sel.json.is_null()) j["term_selection"] = sel.json;
     std::cout << j.dump(2) << "\n";
     return;
   }
   const auto& m = result.metrics;
-  if (!term_table.empty()) std::cout << term_table << "\n";
+  if (!sel.table.empty()) std::cout << sel.table << "\n";
   std::cout << "model " << card.model_kind << " (" << card.model_options.dump() << "), backend "
             << result.backend_used << "\n";
   std::cout << "points " << m.n_points << ", free parameters " << m.n_free << ", converged "
@@ -155,6 +169,77 @@ void run_fit(FitArgs a) {
   if (!a.out.empty()) std::cout << "card written to " << a.out << "\n";
 }
 
+bool relaxation_data(const FitArgs& a) { return is_relaxation_data(a.data, a.format); }
+
+void run_fit_relaxation(FitArgs a);
+
+void run_fit(FitArgs a) {
+  using namespace fitlib;
+  if (relaxation_data(a)) return run_fit_relaxation(a);
+  data::ReadOptions read;
+  read.format = a.format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
+  read.skip_bad_rows = a.skip_bad_rows;
+  if (!a.mode.empty()) {
+    read.has_default_mode = true;
+    read.default_mode = model::parse_test_mode(a.mode);
+  }
+  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law, read_tables(a.data, a.format, read));
+  for (const auto& w : table.warnings) std::cerr << "fitcli: warning: " << w << "\n";
+  if (table.rows.empty()) throw core::InputError("no usable rows", join(a.data));
+
+  const bool shifted = a.master.curve.has_value();
+  nlohmann::json options = {{"temperature_law", shifted ? "none" : a.temperature_law}, {"reference_C", a.reference_C}};
+  if (a.temperature_law == "polynomial" && !shifted) options["polynomial_degree"] = a.polynomial_degree;
+  // The model describes the mode of the data unless the data mix modes.
+  const auto mode = table.rows.front().condition.mode;
+  options["mode"] = model::to_string(mode);
+  if (a.bulk_modulus) options["bulk_modulus"] = true;
+  a.fit.backend = fit::parse_backend(a.backend);
+  a.fit.residual = fit::parse_residual_kind(a.residual);
+
+  Selection sel;
+  const bool has_terms = model::make_model(a.model, options)->options().contains("terms");
+  if (has_terms && a.terms == "auto") {
+    sel.take(fit::select_terms(a.model, options, table, a.fit, term_options(a)));
+  } else {
+    if (has_terms) options["terms"] = fixed_terms(a);
+    sel.result = fit::fit(model::make_model(a.model, options), table, a.fit);
+  }
+  finish(a, with_shift_law(a, std::move(sel.result), a.master.curve), table, sel);
+}
+
+// Relaxation data (pyvisco t, E_relax): master curve, or raw isotherms with --shifts.
+void run_fit_relaxation(FitArgs a) {
+  using namespace fitlib;
+  if (a.master.enabled) throw core::UsageError("--master-curve needs frequency data; give relaxation isotherms --shifts");
+  data::RelaxationTable table = read_relaxation_tables(a.data);
+  std::optional<fit::MasterCurve> shifts;  // only the isotherm list is used, for the card's law
+  if (!a.master.shifts_in.empty()) {
+    const auto given = data::read_shift_factors(a.master.shifts_in);
+    table = fit::shift_relaxation_table(table, given, a.reference_C);
+    shifts.emplace();
+    shifts->reference_C = a.reference_C;
+    for (const auto& f : given.factors)
+      shifts->isotherms.push_back({"", f.temperature_C, fit::given_log10_aT(given, f.temperature_C, a.reference_C)});
+  }
+  nlohmann::json options = {{"temperature_law", shifts ? "none" : a.temperature_law},
+                            {"reference_C", a.reference_C},
+                            {"mode", model::to_string(table.rows.front().mode)}};
+  if (!model::make_model(a.model, options)->options().contains("terms"))
+    throw core::UsageError("relaxation data: --model must be a series model (prony)");
+  Selection sel;
+  if (a.terms == "auto") {
+    sel.take(fit::select_relaxation_terms(a.model, options, table, a.fit, term_options(a)));
+  } else {
+    options["terms"] = fixed_terms(a);
+    sel.result = fit::fit_relaxation(model::make_model(a.model, options), table, a.fit);
+  }
+  data::DynamicTestTable provenance;  // a card records its data files and their sha256
+  provenance.source_files = table.source_files;
+  provenance.source_sha256 = table.source_sha256;
+  finish(a, with_shift_law(a, std::move(sel.result), shifts), provenance, sel);
+}
+
 }  // namespace
 
 void register_fit(CLI::App& app) {
@@ -170,10 +255,13 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")
       ->capture_default_str();
   cmd->add_option("--backend", a->backend, "auto | nnls | ceres | nlopt | staged")->capture_default_str();
-  cmd->add_option("--format", a->format, "native | pyvisco")->capture_default_str()
-      ->check(CLI::IsMember({"native", "pyvisco"}));
+  cmd->add_option("--format", a->format,
+                  "native | pyvisco (t, E_relax files are relaxation data) | eplexor (.xls, also recognised by content)")
+      ->capture_default_str()->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));
   cmd->add_option("--mode", a->mode, "Test mode for files without a mode column (shear | uniaxial | bulk)");
-  cmd->add_option("--temperature-law", a->temperature_law, "none | wlf | arrhenius")->capture_default_str();
+  cmd->add_option("--temperature-law", a->temperature_law, "none | wlf | arrhenius | polynomial")->capture_default_str();
+  cmd->add_option("--polynomial-degree", a->polynomial_degree, "Degree of the polynomial shift law (1..6)")
+      ->capture_default_str();
   cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")->capture_default_str();
   cmd->add_flag("--bulk-modulus", a->bulk_modulus, "Add a constant bulk modulus K (mode conversion)");
   cmd->add_option("--residual", a->residual, "log10 | relative")->capture_default_str()
@@ -200,7 +288,11 @@ void register_fit(CLI::App& app) {
   cmd->add_flag("--json", a->json, "Print the card and run figures as one JSON document");
   cmd->add_flag("--master-curve", a->master.enabled,
                 "Data are raw isotherms: shift them to --reference-c first; the card gets WLF fitted to the shifts");
-  cmd->add_option("--shifts-out", a->master.shifts_out, "--master-curve: write the shift table (CSV)");
+  cmd->add_option("--shifts-out", a->master.shifts_out,
+                  "--master-curve/--shifts: write the isotherm shifts (pyvisco format T,log_aT)");
+  cmd->add_option("--shifts", a->master.shifts_in,
+                  "Raw isotherms: shift them by these factors (pyvisco T,log_aT file) instead of fitting shifts")
+      ->check(CLI::ExistingFile);
   cmd->callback([a] {
     FitArgs args = *a;
     args.command_line = command_line();

@@ -21,8 +21,8 @@ echo "== 1. Prony card from pyvisco's master curve (terms chosen by BIC; AIC and
 grid=$(/usr/bin/python3 -c "print(','.join(repr(10**(k/10)) for k in range(-120, 141)))")
 "$fitcli" eval --card "$out/pyvisco-master.json" --mode uniaxial --frequency-hz "$grid" \
   --out "$out/pyvisco-master-curve.csv"
-/usr/bin/python3 "$root/scripts/plot_fit.py" "$data/pyvisco-freq-master.csv" pyvisco \
-  "$out/pyvisco-master-curve.csv" "$out/pyvisco-master.png" "pyvisco master curve: data and Prony card"
+"$fitcli" plot --data "$data/pyvisco-freq-master.csv" --format pyvisco --card "$out/pyvisco-master.json" \
+  --title "pyvisco master curve: data and Prony card" --out "$out/pyvisco-master.png"
 "$fitcli" export --card "$out/pyvisco-master.json" --format abaqus --out "$out/pyvisco-master.inp"
 echo "Abaqus keywords written to $out/pyvisco-master.inp"
 

@@ -1,6 +1,7 @@
 #pragma once
 // Runs fitcli as a user would and captures exit code, stdout and stderr.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -23,7 +24,7 @@ inline std::string slurp(const std::string& path) {
 
 inline CliResult run_fitcli(const std::string& args) {
   static int counter = 0;
-  const std::string base = ::testing::TempDir() + "fitcli_run_" + std::to_string(++counter);
+  const std::string base = ::testing::TempDir() + "fitcli_run_" + std::to_string(getpid()) + "_" + std::to_string(++counter);
   const std::string cmd = std::string(FITCLI_EXE) + " " + args + " >" + base + ".out 2>" + base + ".err";
   const int status = std::system(cmd.c_str());
   CliResult r;

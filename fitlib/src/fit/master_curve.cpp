@@ -1,5 +1,6 @@
 // Master curves from raw isotherms: pairwise shifts, law fits, joint refinement with a model.
 #include "fitlib/fit/master_curve.hpp"
+#include "fitlib/fit/shift_laws.hpp"
 
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
@@ -533,37 +534,12 @@ MasterFit fit_master_curve(const model::ModelPtr& model, const data::DynamicTest
 }
 
 FitResult with_wlf_from_shifts(const FitResult& result, const MasterCurve& curve) {
-  if (std::isnan(curve.wlf.C1))
-    throw core::UsageError("master curve: no WLF fit (it needs at least 3 isotherms)");
-  auto options = result.model->options();
-  options["temperature_law"] = "wlf";
-  options["reference_C"] = curve.reference_C;
-  FitResult out = result;
-  out.model = model::make_model(result.model->kind(), options);
-  out.values.clear();
-  out.parameters.clear();
-  for (const auto& spec : out.model->parameters()) {
-    const int i = core::find_parameter(result.model->parameters(), spec.name);
-    if (i >= 0) {
-      out.values.push_back(result.values[i]);
-      out.parameters.push_back(result.parameters[i]);
-      continue;
-    }
-    ParameterResult p;
-    p.name = spec.name;
-    p.unit = spec.unit;
-    p.fixed = true;
-    if (spec.name == "C1") p.value = curve.wlf.C1;
-    else if (spec.name == "C2") p.value = curve.wlf.C2_K;
-    else throw core::UsageError("with_wlf_from_shifts: parameter '" + spec.name + "' has no value");
-    p.reason = "fitted to the isotherm shifts (WLF rms " + format_number(curve.wlf.rms_decades, "%.3g") + " decades)";
-    out.values.push_back(p.value);
-    out.parameters.push_back(p);
+  std::vector<double> temperatures, log10_aT;
+  for (const auto& iso : curve.isotherms) {
+    temperatures.push_back(iso.temperature_C);
+    log10_aT.push_back(iso.log10_aT);
   }
-  out.messages.push_back("master curve: WLF C1 = " + format_number(curve.wlf.C1) + ", C2 = " +
-                         format_number(curve.wlf.C2_K) + " K at T_ref = " + format_number(curve.reference_C) +
-                         " degC, fitted to " + std::to_string(curve.isotherms.size()) + " isotherm shifts");
-  return out;
+  return with_law_from_shifts(result, temperatures, log10_aT, curve.reference_C, "wlf");
 }
 
 std::string format_shift_table(const MasterCurve& curve) {

@@ -193,13 +193,26 @@ struct FractionalZener {
   }
 };
 
-enum class ShiftLaw { none, wlf, arrhenius };
+enum class ShiftLaw { none, wlf, arrhenius, polynomial };
+
+const char* law_name(ShiftLaw law) {
+  switch (law) {
+    case ShiftLaw::wlf: return "wlf";
+    case ShiftLaw::arrhenius: return "arrhenius";
+    case ShiftLaw::polynomial: return "polynomial";
+    default: return "none";
+  }
+}
+
+// Parameter name of the polynomial law's coefficient of (T − T_ref)^k.
+std::string polynomial_name(int k) { return "poly_C" + std::to_string(k); }
 
 struct Options {
   TestMode mode = TestMode::shear;
   int terms = 4;
   ShiftLaw law = ShiftLaw::none;
   double reference_C = 23.0;
+  int polynomial_degree = 3;  // temperature_law polynomial: log10 a_T = Σ_k C_k (T − T_ref)^k
   bool vertical_shift = false, linear_factor = false, bulk_modulus = false;
 };
 
@@ -216,8 +229,10 @@ Options parse_options(const nlohmann::json& j, bool has_terms) {
         if (law == "none") o.law = ShiftLaw::none;
         else if (law == "wlf") o.law = ShiftLaw::wlf;
         else if (law == "arrhenius") o.law = ShiftLaw::arrhenius;
-        else throw core::UsageError("unknown temperature_law '" + law + "' (none, wlf, arrhenius)");
+        else if (law == "polynomial") o.law = ShiftLaw::polynomial;
+        else throw core::UsageError("unknown temperature_law '" + law + "' (none, wlf, arrhenius, polynomial)");
       } else if (key == "reference_C") o.reference_C = it->get<double>();
+      else if (key == "polynomial_degree") o.polynomial_degree = it->get<int>();
       else if (key == "vertical_shift") o.vertical_shift = it->get<bool>();
       else if (key == "linear_factor") o.linear_factor = it->get<bool>();
       else if (key == "bulk_modulus") o.bulk_modulus = it->get<bool>();
@@ -226,6 +241,9 @@ Options parse_options(const nlohmann::json& j, bool has_terms) {
       throw core::UsageError("model option '" + key + "': wrong type (" + e.what() + ")");
     }
   }
+  if (o.polynomial_degree < 1 || o.polynomial_degree > 6)
+    throw core::UsageError("model option 'polynomial_degree' must be between 1 and 6, got " +
+                           std::to_string(o.polynomial_degree));
   if (o.terms < 1 || o.terms > 200)
     throw core::UsageError("model option 'terms' must be between 1 and 200, got " + std::to_string(o.terms));
   return o;
@@ -248,6 +266,10 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
       specs_.push_back({"C2", "K", 0.0, 1e4, Transform::log, "shift", 100.0, false});
     } else if (o.law == ShiftLaw::arrhenius) {
       specs_.push_back({"activation_energy", "kJ/mol", 0.0, 1e4, Transform::log, "shift", 100.0, false});
+    } else if (o.law == ShiftLaw::polynomial) {
+      for (int k = 1; k <= o.polynomial_degree; ++k)
+        specs_.push_back({polynomial_name(k), k == 1 ? "1/K" : "1/K^" + std::to_string(k), -1e6, 1e6,
+                          Transform::linear, "shift", k == 1 ? -0.1 : 0.0, false});
     }
     factor_index_ = specs_.size();
     if (o.linear_factor) specs_.push_back({"c_T", "1/degC", -1.0, 1.0, Transform::linear, "temperature", 0.0, false});
@@ -273,8 +295,9 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     nlohmann::json j;
     j["mode"] = to_string(o_.mode);
     if (Kernel::kHasTerms) j["terms"] = o_.terms;
-    j["temperature_law"] = o_.law == ShiftLaw::wlf ? "wlf" : o_.law == ShiftLaw::arrhenius ? "arrhenius" : "none";
+    j["temperature_law"] = law_name(o_.law);
     j["reference_C"] = o_.reference_C;
+    if (o_.law == ShiftLaw::polynomial) j["polynomial_degree"] = o_.polynomial_degree;
     j["vertical_shift"] = o_.vertical_shift;
     j["linear_factor"] = o_.linear_factor;
     j["bulk_modulus"] = o_.bulk_modulus;
@@ -290,6 +313,9 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     } else if (o_.law == ShiftLaw::arrhenius) {
       j["law"] = "arrhenius";
       j["activation_energy_kJ_mol"] = p[shift_index_];
+    } else if (o_.law == ShiftLaw::polynomial) {
+      j["law"] = "polynomial";
+      j["coefficients"] = std::vector<double>(p + shift_index_, p + shift_index_ + o_.polynomial_degree);
     } else {
       j["law"] = "none";
     }
@@ -454,6 +480,11 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
       const double inv = 1.0 / core::kelvin_from_celsius(c.temperature_C) -
                          1.0 / core::kelvin_from_celsius(o_.reference_C);
       shift_factor = exp(p[shift_index_] / T(kGasConstant_kJ_molK) * T(inv));
+    } else if (o_.law == ShiftLaw::polynomial) {
+      // log10 a_T = Σ_{k=1..d} C_k (T − T_ref)^k (docs/fitting.md, "Temperature laws"); Horner.
+      T log10_aT = T(0.0);
+      for (int k = o_.polynomial_degree; k >= 1; --k) log10_aT = (log10_aT + p[shift_index_ + k - 1]) * T(dT);
+      shift_factor = exp(log10_aT * T(std::log(10.0)));
     }
     if (o_.vertical_shift)
       scale *= T(core::kelvin_from_celsius(c.temperature_C) / core::kelvin_from_celsius(o_.reference_C));

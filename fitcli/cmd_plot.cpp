@@ -1,0 +1,220 @@
+// fitcli plot: data against a card in one PNG (gnuplot, pngcairo; docs/fitting.md "Plots").
+// Frequency data: storage, loss, tan δ and relative residuals, one colour per isotherm or
+// temperature; relaxation data: M(t) and its residuals. The script and the data go to gnuplot on
+// stdin; the PNG is written to a temporary beside --out and renamed.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "fitlib/card/card.hpp"
+#include "fitlib/core/error.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
+
+namespace fitcli {
+namespace {
+
+struct PlotArgs {
+  std::vector<std::string> data;
+  std::string card, out, format = "native", title;
+};
+
+// Rows of one isotherm (or one temperature), with the card's curve over its frequency range.
+struct Group {
+  std::string label;
+  double temperature_C;
+  std::vector<int> rows;
+};
+
+std::string temperature_label(double T) {
+  char b[32];
+  if (std::isnan(T)) return "T_{ref}";
+  std::snprintf(b, sizeof b, "%.3g °C", T);
+  return b;
+}
+
+std::vector<Group> groups_of(const fitlib::data::DynamicTestTable& t) {
+  std::map<std::pair<double, std::string>, std::vector<int>> by;
+  for (int i = 0; i < static_cast<int>(t.rows.size()); ++i) {
+    const double T = t.rows[i].condition.temperature_C;
+    // Sets keep measured isotherms apart; rows without a set are grouped by rounded temperature.
+    const double key = std::isnan(T) ? -1e9 : (t.rows[i].set.empty() ? std::round(T) : 0.0);
+    by[{key, t.rows[i].set}].push_back(i);
+  }
+  std::vector<Group> out;
+  for (auto& [key, rows] : by) {
+    double mean = 0.0;
+    for (int r : rows) mean += t.rows[r].condition.temperature_C;
+    mean /= rows.size();
+    out.push_back({temperature_label(mean), mean, rows});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Group& a, const Group& b) {
+    return (std::isnan(a.temperature_C) ? -1e9 : a.temperature_C) < (std::isnan(b.temperature_C) ? -1e9 : b.temperature_C);
+  });
+  return out;
+}
+
+const char* kHeader =
+    "set terminal pngcairo size 1400,1000 enhanced font 'DejaVu Sans,11' linewidth 1.3\n"
+    "set grid lc rgb '#dddddd'\nset key outside right top box opaque font ',9'\nset logscale x\n"
+    "set format x '10^{%L}'\nset palette defined (0 '#2c7bb6', 0.5 '#ffbf00', 1 '#d7191c')\nunset colorbox\n";
+
+// Storage, loss, tan δ, residuals; `mode_letter` E or G.
+std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitlib::model::Model& model,
+                             const std::vector<double>& p, const std::string& title, const std::string& png) {
+  const auto groups = groups_of(t);
+  const std::string M = t.rows.front().condition.mode == fitlib::model::TestMode::shear ? "G" : "E";
+  std::ostringstream s;
+  s << kHeader << "set output '" << png << "'\n";
+  const int n = static_cast<int>(groups.size());
+  for (int g = 0; g < n; ++g) {
+    s << "$d" << g << " << EOD\n";
+    double fmin = HUGE_VAL, fmax = 0.0;
+    for (int r : groups[g].rows) {
+      const auto& row = t.rows[r];
+      const auto m = model.moduli(p.data(), row.condition);
+      fmin = std::min(fmin, row.condition.frequency_Hz);
+      fmax = std::max(fmax, row.condition.frequency_Hz);
+      s << exact(row.condition.frequency_Hz) << " " << exact(row.storage_MPa) << " " << exact(row.loss_MPa) << " "
+        << exact(row.loss_MPa / row.storage_MPa) << " " << exact(100.0 * (m.storage / row.storage_MPa - 1.0)) << " "
+        << exact(100.0 * (m.loss / row.loss_MPa - 1.0)) << "\n";
+    }
+    s << "EOD\n$c" << g << " << EOD\n";
+    const int points = std::max(2, static_cast<int>(20.0 * std::log10(fmax / fmin)) + 1);  // 20 per decade
+    for (int k = 0; k < points; ++k) {
+      auto c = t.rows[groups[g].rows.front()].condition;
+      c.frequency_Hz = fmin * std::pow(fmax / fmin, points == 1 ? 0.0 : double(k) / (points - 1));
+      const auto m = model.moduli(p.data(), c);
+      s << exact(c.frequency_Hz) << " " << exact(m.storage) << " " << exact(m.loss) << " " << exact(m.loss / m.storage)
+        << "\n";
+    }
+    s << "EOD\n";
+  }
+  const auto colour = [&](int g) {
+    std::ostringstream c;
+    c << "lc palette frac " << (n == 1 ? 0.0 : double(g) / (n - 1));
+    return c.str();
+  };
+  const auto panel = [&](const std::string& ylabel, int column, bool logy, int curve_column) {
+    s << (logy ? "set logscale y\nset format y '10^{%L}'\n" : "unset logscale y\nset format y '%g'\n");
+    s << "set xlabel 'frequency f [Hz]'\nset ylabel \"" << ylabel << "\"\nplot ";
+    for (int g = 0; g < n; ++g) {
+      s << (g ? ", " : "") << "$d" << g << " using 1:" << column << " with points pt 7 ps 0.6 " << colour(g)
+        << " title '" << groups[g].label << "'";
+      if (curve_column > 0)
+        s << ", $c" << g << " using 1:" << curve_column << " with lines " << colour(g) << " notitle";
+    }
+    s << "\n";
+  };
+  s << "set multiplot layout 2,2 title '" << title << " (points: data, lines: card)' font ',13'\n";
+  panel("storage modulus " + M + "' [MPa]", 2, true, 2);
+  panel("loss modulus " + M + "'' [MPa]", 3, true, 3);
+  panel("loss factor tan {/Symbol d} [-]", 4, true, 4);
+  // Residuals: filled E', open E'', coloured as above; the key names only the symbols.
+  s << "unset logscale y\nset format y '%g'\nset ylabel 'card / data - 1 [%]'\nset xlabel 'frequency f [Hz]'\nplot ";
+  for (int g = 0; g < n; ++g)
+    s << "$d" << g << " using 1:5 with points pt 7 ps 0.5 " << colour(g) << " notitle, $d" << g
+      << " using 1:6 with points pt 6 ps 0.5 " << colour(g) << " notitle, ";
+  s << "NaN with points pt 7 lc rgb 'gray30' title \"" << M << "'\", NaN with points pt 6 lc rgb 'gray30' title \""
+    << M << "''\", 0 with lines lc rgb 'black' dt 2 notitle\nunset multiplot\n";
+  return s.str();
+}
+
+std::string relaxation_script(const fitlib::data::RelaxationTable& t, const fitlib::model::Model& model,
+                              const std::vector<double>& p, const std::string& title, const std::string& png) {
+  const std::string M = t.rows.front().mode == fitlib::model::TestMode::shear ? "G" : "E";
+  std::ostringstream s;
+  s << kHeader << "set output '" << png << "'\n$d << EOD\n";
+  double tmin = HUGE_VAL, tmax = 0.0;
+  fitlib::model::TestCondition c;
+  c.mode = t.rows.front().mode;
+  for (const auto& row : t.rows) {
+    c.temperature_C = row.temperature_C;
+    const double m = model.relaxation_modulus(p.data(), c, row.time_s);
+    tmin = std::min(tmin, row.time_s);
+    tmax = std::max(tmax, row.time_s);
+    s << exact(row.time_s) << " " << exact(row.modulus_MPa) << " " << exact(100.0 * (m / row.modulus_MPa - 1.0)) << "\n";
+  }
+  s << "EOD\n$c << EOD\n";
+  c.temperature_C = t.rows.front().temperature_C;
+  const int points = std::max(2, static_cast<int>(20.0 * std::log10(tmax / tmin)) + 1);
+  for (int k = 0; k < points; ++k) {
+    const double time = tmin * std::pow(tmax / tmin, double(k) / (points - 1));
+    s << exact(time) << " " << exact(model.relaxation_modulus(p.data(), c, time)) << "\n";
+  }
+  s << "EOD\nset multiplot layout 2,1 title '" << title << "' font ',13'\nset xlabel 'time t [s]'\n"
+    << "set logscale y\nset format y '10^{%L}'\nset ylabel 'relaxation modulus " << M << "(t) [MPa]'\n"
+    << "plot $d using 1:2 with points pt 7 ps 0.6 lc rgb '#2c7bb6' title 'data', $c using 1:2 with lines lc rgb "
+       "'#d7191c' title 'card'\n"
+    << "unset logscale y\nset format y '%g'\nset ylabel 'card / data - 1 [%]'\n"
+    << "plot $d using 1:3 with points pt 7 ps 0.5 lc rgb '#2c7bb6' title 'residual', 0 with lines lc rgb 'black' dt 2 "
+       "notitle\nunset multiplot\n";
+  return s.str();
+}
+
+// Runs gnuplot on `script`; the PNG appears at `tmp`, then is renamed to `out`.
+void run_gnuplot(const std::string& script, const std::string& tmp, const std::string& out) {
+  FILE* pipe = popen("gnuplot 2>&1", "w");
+  if (!pipe) throw fitlib::core::NumericalError("plot: cannot start gnuplot");
+  // A shell that finds no gnuplot exits at once: writing must not kill us with SIGPIPE.
+  const auto previous = std::signal(SIGPIPE, SIG_IGN);
+  std::fwrite(script.data(), 1, script.size(), pipe);
+  const int status = pclose(pipe);
+  std::signal(SIGPIPE, previous);
+  if (status != 0) {
+    std::remove(tmp.c_str());
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+      throw fitlib::core::NumericalError("plot: gnuplot not found (install the Debian package gnuplot-nox)");
+    throw fitlib::core::NumericalError("plot: gnuplot failed (exit status " + std::to_string(status) + ")");
+  }
+  if (std::rename(tmp.c_str(), out.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw fitlib::core::InputError("cannot write the plot", out);
+  }
+}
+
+void run_plot(const PlotArgs& a) {
+  using namespace fitlib;
+  const auto card = card::load_card(a.card);
+  const auto model = card.model();
+  const auto p = card.values();
+  if (a.out.find('\'') != std::string::npos) throw core::UsageError("plot: --out must not contain a quote");
+  const std::string tmp = a.out + ".tmp-" + std::to_string(getpid()) + ".png";
+  const std::string title = a.title.empty() ? card.name : a.title;
+  std::string script;
+  if (is_relaxation_data(a.data, a.format)) {
+    script = relaxation_script(read_relaxation_tables(a.data), *model, p, title, tmp);
+  } else {
+    data::ReadOptions read;
+    read.format = a.format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
+    script = frequency_script(read_tables(a.data, a.format, read), *model, p, title, tmp);
+  }
+  run_gnuplot(script, tmp, a.out);
+}
+
+}  // namespace
+
+void register_plot(CLI::App& app) {
+  auto a = std::make_shared<PlotArgs>();
+  auto* cmd = app.add_subcommand("plot", "Plot data against a card (PNG via gnuplot): E', E'', tan delta, residuals");
+  cmd->add_option("--data", a->data, "Data file(s): dynamic-test CSV, pyvisco CSV (frequency or time), EPLEXOR .xls")
+      ->required()->check(CLI::ExistingFile);
+  cmd->add_option("--card", a->card, "Material card (JSON)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--out", a->out, "PNG file (written atomically)")->required();
+  cmd->add_option("--format", a->format, "native | pyvisco | eplexor")->capture_default_str()
+      ->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));
+  cmd->add_option("--title", a->title, "Figure title (default: the card's name)");
+  cmd->callback([a] { run_plot(*a); });
+}
+
+}  // namespace fitcli

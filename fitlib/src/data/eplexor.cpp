@@ -1,0 +1,242 @@
+// EPLEXOR .xls exports through libfreexl (docs/data.md §5).
+#include "fitlib/data/eplexor.hpp"
+
+#include <freexl.h>
+
+#include <charconv>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/core/units.hpp"
+
+namespace fitlib::data {
+namespace {
+
+constexpr const char* kDataSheet = "Exported Data";
+constexpr const char* kShiftSheet = "Shiftlist";
+
+// "A".."Z", "AA".. for messages (spreadsheet column of 0-based index).
+std::string column_letters(unsigned column) {
+  std::string s;
+  for (unsigned c = column + 1; c > 0; c = (c - 1) / 26) s.insert(s.begin(), static_cast<char>('A' + (c - 1) % 26));
+  return s;
+}
+
+// One open workbook; cells as text or number.
+class Workbook {
+ public:
+  explicit Workbook(const std::string& path) : path_(path) {
+    const void* handle = nullptr;
+    const int rc = freexl_open(path.c_str(), &handle);
+    handle_.reset(handle);
+    if (rc != FREEXL_OK)
+      throw core::InputError("not a readable .xls workbook (libfreexl error " + std::to_string(rc) + ")", path);
+  }
+
+  // Selects the sheet called `name`; false if there is none.
+  bool select(const std::string& name) {
+    unsigned count = 0;
+    freexl_get_info(handle_.get(), FREEXL_BIFF_SHEET_COUNT, &count);
+    for (unsigned s = 0; s < count; ++s) {
+      const char* sheet = nullptr;
+      if (freexl_get_worksheet_name(handle_.get(), static_cast<unsigned short>(s), &sheet) == FREEXL_OK && sheet &&
+          name == sheet) {
+        freexl_select_active_worksheet(handle_.get(), static_cast<unsigned short>(s));
+        unsigned short columns = 0;
+        freexl_worksheet_dimensions(handle_.get(), &rows_, &columns);
+        columns_ = columns;
+        sheet_ = name;
+        return true;
+      }
+    }
+    return false;
+  }
+  unsigned rows() const { return rows_; }
+  unsigned columns() const { return columns_; }
+
+  // Text of a cell ("" when empty); numbers as nullopt text with `number` set.
+  std::string text(unsigned row, unsigned column, std::optional<double>* number = nullptr) const {
+    FreeXL_CellValue v;
+    if (number) number->reset();
+    if (freexl_get_cell_value(handle_.get(), row, static_cast<unsigned short>(column), &v) != FREEXL_OK) return "";
+    switch (v.type) {
+      case FREEXL_CELL_INT:
+        if (number) *number = v.value.int_value;
+        return std::to_string(v.value.int_value);
+      case FREEXL_CELL_DOUBLE:
+        if (number) *number = v.value.double_value;
+        return "";
+      case FREEXL_CELL_NULL: return "";
+      default: return v.value.text_value ? v.value.text_value : "";
+    }
+  }
+
+  core::InputError error(const std::string& message, unsigned row, std::optional<unsigned> column = {},
+                         const std::string& column_name = {}) const {
+    std::string where = "sheet '" + sheet_ + "'";
+    if (column) where += ", column " + column_letters(*column) + (column_name.empty() ? "" : " '" + column_name + "'");
+    return core::InputError(where + ": " + message, path_, static_cast<int>(row) + 1,
+                            column ? static_cast<int>(*column) + 1 : 0);
+  }
+
+  // A finite number in a cell; `---`, empty or text is an error naming the cell.
+  double number(unsigned row, unsigned column, const std::string& name) const {
+    std::optional<double> value;
+    const std::string t = text(row, column, &value);
+    if (!value) {
+      double parsed = 0.0;
+      const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), parsed);
+      if (ec == std::errc() && ptr == t.data() + t.size() && !t.empty()) value = parsed;
+    }
+    if (!value)
+      throw error(t == "---" || t.empty() ? "missing value ('" + t + "')" : "'" + t + "' is not a number", row, column,
+                  name);
+    if (!std::isfinite(*value)) throw error("value is not finite", row, column, name);
+    return *value;
+  }
+
+ private:
+  struct Closer {
+    void operator()(const void* h) const {
+      if (h) freexl_close(h);
+    }
+  };
+  std::string path_, sheet_;
+  std::unique_ptr<const void, Closer> handle_;
+  unsigned rows_ = 0, columns_ = 0;
+};
+
+// Number after "<label> :" in texts such as "C1 : 13.50" or "25.0 °C"; nullopt if none.
+std::optional<double> leading_number(const std::string& text) {
+  std::size_t start = text.find(':');
+  start = start == std::string::npos ? 0 : start + 1;
+  while (start < text.size() && text[start] == ' ') ++start;
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(text.data() + start, text.data() + text.size(), value);
+  if (ec != std::errc() || ptr == text.data() + start) return std::nullopt;
+  return value;
+}
+
+void read_shift_list(Workbook& book, EplexorExport& out, const std::string& path) {
+  out.has_shift_list = true;
+  out.shifts.source_file = path;
+  unsigned row = 0;
+  for (; row < book.rows(); ++row) {
+    const std::string label = book.text(row, 0);
+    if (label == "Ref.Temp.") {
+      const auto t = leading_number(book.text(row, 1));
+      if (!t) throw book.error("reference temperature '" + book.text(row, 1) + "' is not a number", row, 1u);
+      out.shifts.reference_C = *t;
+    } else if (label == "WLF") {
+      if (const auto c1 = leading_number(book.text(row, 1))) out.wlf_C1 = *c1;
+      if (const auto c2 = leading_number(book.text(row, 2))) out.wlf_C2_K = *c2;
+    } else if (label == "Temp.") {
+      ++row;
+      break;
+    }
+  }
+  for (; row < book.rows(); ++row) {
+    if (book.text(row, 0).empty() && book.text(row, 1).empty()) {
+      std::optional<double> v;
+      book.text(row, 0, &v);
+      if (!v) continue;  // blank row
+    }
+    ShiftFactor s;
+    s.temperature_C = book.number(row, 0, "Temp.");
+    s.log10_aT = book.number(row, 1, "Shift");
+    out.shifts.factors.push_back(s);
+  }
+  if (out.shifts.factors.empty()) throw book.error("no 'Temp.' / 'Shift' rows", row);
+}
+
+}  // namespace
+
+bool is_ole_compound_file(const std::string& bytes) {
+  static const unsigned char kMagic[] = {0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1};
+  if (bytes.size() < sizeof kMagic) return false;
+  for (std::size_t i = 0; i < sizeof kMagic; ++i)
+    if (static_cast<unsigned char>(bytes[i]) != kMagic[i]) return false;
+  return true;
+}
+
+EplexorExport read_eplexor(const std::string& path, const ReadOptions& options) {
+  const std::string bytes = core::read_file(path);
+  if (!is_ole_compound_file(bytes)) throw core::InputError("not an .xls (OLE compound) file", path);
+  EplexorExport out;
+  DynamicTestTable& table = out.table;
+  table.source_files.push_back(path);
+  table.source_sha256.push_back(core::sha256_hex(bytes));
+  Workbook book(path);
+  if (book.select(kShiftSheet)) read_shift_list(book, out, path);
+  if (!book.select(kDataSheet)) throw core::InputError(std::string("no sheet '") + kDataSheet + "'", path);
+  if (book.rows() < 3) throw book.error("needs a names row, a units row and data rows", book.rows());
+
+  int f = -1, T = -1, storage = -1, loss = -1;
+  model::TestMode mode = model::TestMode::uniaxial;
+  for (unsigned c = 0; c < book.columns(); ++c) {
+    const std::string name = book.text(0, c);
+    const auto take = [&](int& slot) {
+      if (slot >= 0) throw book.error("duplicate column '" + name + "'", 0, c);
+      slot = static_cast<int>(c);
+    };
+    if (name == "f") take(f);
+    else if (name == "T") take(T);
+    else if (name == "E'" || name == "G'") take(storage), mode = name[0] == 'G' ? model::TestMode::shear : mode;
+    else if (name == "E''" || name == "G''") take(loss);
+  }
+  if (f < 0) throw book.error("missing column 'f'", 0);
+  if (storage < 0) throw book.error("missing column E' (or G')", 0);
+  if (loss < 0) throw book.error("missing column E'' (or G'')", 0);
+  const auto unit_of = [&](int c) { return book.text(1, static_cast<unsigned>(c)); };
+  if (unit_of(f) != "Hz") throw book.error("unit '" + unit_of(f) + "' of column 'f' (expected Hz)", 1, f);
+  double to_MPa[2];
+  for (int k = 0; k < 2; ++k) {
+    const int c = k == 0 ? storage : loss;
+    try {
+      to_MPa[k] = core::modulus_to_MPa(unit_of(c));
+    } catch (const core::InputError&) {
+      throw book.error("unit '" + unit_of(c) + "' (expected Pa, kPa, MPa or GPa)", 1, c);
+    }
+  }
+  if (T >= 0 && unit_of(T) != "°C") throw book.error("unit '" + unit_of(T) + "' of column 'T' (expected °C)", 1, T);
+
+  int isotherm = 0;
+  double previous_f = 0.0;
+  for (unsigned r = 2; r < book.rows(); ++r) {
+    try {
+      DynamicTestRow row;
+      row.source_file = path;
+      row.source_line = static_cast<int>(r) + 1;
+      row.condition.mode = mode;
+      row.condition.frequency_Hz = book.number(r, f, "f");
+      if (!(row.condition.frequency_Hz > 0.0)) throw book.error("non-positive frequency", r, f, "f");
+      row.storage_MPa = book.number(r, storage, book.text(0, storage)) * to_MPa[0];
+      if (!(row.storage_MPa > 0.0)) throw book.error("non-positive storage modulus", r, storage, book.text(0, storage));
+      row.loss_MPa = book.number(r, loss, book.text(0, loss)) * to_MPa[1];
+      if (row.loss_MPa < 0.0) throw book.error("negative loss modulus", r, loss, book.text(0, loss));
+      if (T >= 0) {
+        row.condition.temperature_C = book.number(r, T, "T");
+        if (!(row.condition.temperature_C > -core::kZeroCelsiusInKelvin))
+          throw book.error("temperature below absolute zero", r, T, "T");
+      }
+      if (!out.has_shift_list) {
+        // A raw temperature–frequency sweep: each isotherm starts again at the lowest frequency.
+        if (!table.rows.empty() && row.condition.frequency_Hz < previous_f) ++isotherm;
+        previous_f = row.condition.frequency_Hz;
+        row.set = std::to_string(isotherm);
+      }
+      table.rows.push_back(std::move(row));
+    } catch (const core::InputError& e) {
+      if (!options.skip_bad_rows) throw;
+      table.warnings.push_back(std::string("skipped row: ") + e.what());
+    }
+  }
+  if (table.rows.empty()) throw book.error("no valid data rows", 1);
+  return out;
+}
+
+}  // namespace fitlib::data
