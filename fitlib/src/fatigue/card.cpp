@@ -19,7 +19,7 @@ FatigueCard default_card() {
   FatigueCard c;
   c.name = "Fritzson 1988, 0.500 in raw-edge cogged V-belt, 1 % damage level";
   c.provenance = {{"source", "D. Fritzson 1988, Report I §6.5.2, Eqs 6.31 constants (L1133-1140)"},
-                  {"reference_temperature", "project decision (docs/decisions.md)"}};
+                  {"reference_temperature", "project decision (docs/decisions.md, fatigue: reference temperature)"}};
   return c;
 }
 

@@ -33,7 +33,7 @@ struct CordBreakLaw {
 struct FatigueCard {
   static constexpr const char* kSchema = "fitlib.fatigue-card/1";
   std::string name;
-  double reference_temperature_C = 20.0;  // T_ref of ΔT in (6.31) ([UNCLEAR], docs/decisions.md)
+  double reference_temperature_C = 80.0;  // T_ref of ΔT in (6.31) ([UNCLEAR], docs/decisions.md)
   LifeLaw radial_crack{104.218, 4.423, 0.02897};
   LifeLaw separation{4.21028, 11.69, 0.1466};
   double crack_sweep_deg = 25.0;  // mode 1 crack directions ±sweep from radial

@@ -40,7 +40,7 @@ struct ConstantEstimate {
 };
 
 struct LifeFitOptions {
-  double reference_temperature_C = 20.0;
+  double reference_temperature_C = 80.0;  // the card's T_ref
   LifeLaw start;              // start values
   bool fix_b = false;         // hold b at start.b_per_C (also automatic with one temperature)
 };
