@@ -61,6 +61,8 @@ PointHistory last_cycle(const PointHistory& p, double cycle_time_s) {
 std::string share_at(const std::vector<CycleShare>& shares, double t_in_cycle) {
   for (const CycleShare& c : shares)
     if (t_in_cycle >= c.t_begin_s && t_in_cycle < c.t_end_s) return c.name;
+  for (const CycleShare& c : shares)  // the cycle's last instant closes the last share
+    if (t_in_cycle == c.t_end_s) return c.name;
   return "";
 }
 
