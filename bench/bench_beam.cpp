@@ -7,32 +7,20 @@
 //    versus torque, like Report III Fig 3.3).
 // 3. Knobs: the load cycle's sampling step (4 … 0.25 mm) → time and change of life per mode;
 //    the crack sweep (0, ±25°, ±45°) and the peak threshold (10 %, 25 %, 50 %) → life change.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "fitlib/core/timer.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 
 using namespace fitlib;
-using Clock = std::chrono::steady_clock;
+using core::seconds_per_call;
 
 namespace {
-
-template <typename F>
-double seconds_per_call(F f, double min_total_s = 0.2) {
-  int n = 1;
-  for (;;) {
-    const auto t0 = Clock::now();
-    for (int k = 0; k < n; ++k) f();
-    const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (dt >= min_total_s) return dt / n;
-    n *= 2;
-  }
-}
 
 scene::Scene reference(const std::string& load) {
   return scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-" + load +
@@ -81,7 +69,7 @@ int main() {
   std::printf("\n## 2. Sweep of 1000 drives\n\n");
   scene::Scene s = reference("medium");
   int done = 0, refused = 0, governed_by_separation = 0;
-  const auto t0 = Clock::now();
+  const core::Stopwatch watch;
   for (int i = 0; i < 25; ++i)
     for (int j = 0; j < 4; ++j)
       for (int k = 0; k < 10; ++k) {
@@ -96,7 +84,7 @@ int main() {
           ++refused;  // the belt slips or lifts off: no load cycle
         }
       }
-  const double sweep_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double sweep_s = watch.seconds();
   std::printf("1000 drives in %.3f s (%.3f ms per drive): %d computed, %d refused (belt slips), "
               "%d governed by separation\n", sweep_s, sweep_s, done, refused, governed_by_separation);
 
