@@ -66,6 +66,14 @@ std::string share_at(const std::vector<CycleShare>& shares, double t_in_cycle) {
   return "";
 }
 
+// Miner: the damage per cycle of one peak added to its pulley's share.
+void add_damage(std::vector<ShareDamage>& shares, const std::string& pulley, double damage) {
+  auto it = std::find_if(shares.begin(), shares.end(),
+                         [&](const ShareDamage& s) { return s.name == pulley; });
+  if (it == shares.end()) shares.push_back({pulley, damage});
+  else it->damage_per_cycle += damage;
+}
+
 ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeConditions& c) {
   const PointHistory cycle = last_cycle(p, c.cycle_time_s);
   const Mode mode = mode_of(p.role);
@@ -85,12 +93,9 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
   }
   m.temperature_factor = temperature_factor(law, c.temperature_C, card.reference_temperature_C);
   for (const Peak& pk : m.peaks) {
-    const double d = sum_terms({pk.stress_MPa}, law) / m.temperature_factor;
-    m.sum_terms += sum_terms({pk.stress_MPa}, law);
-    auto it = std::find_if(m.shares.begin(), m.shares.end(),
-                           [&](const ShareDamage& s) { return s.name == pk.pulley; });
-    if (it == m.shares.end()) m.shares.push_back({pk.pulley, d});
-    else it->damage_per_cycle += d;
+    const double term = std::pow(pk.stress_MPa / law.sigma0_MPa, law.n);
+    m.sum_terms += term;
+    add_damage(m.shares, pk.pulley, term / m.temperature_factor);
   }
   if (m.sum_terms > 0.0) {
     m.life_cycles = m.temperature_factor / m.sum_terms;

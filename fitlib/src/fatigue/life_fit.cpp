@@ -5,7 +5,6 @@
 #include <Eigen/Dense>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
-#include <map>
 
 #include "fitlib/core/error.hpp"
 
