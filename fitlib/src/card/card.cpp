@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
-#include "fitlib/core/json.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 
 namespace fitlib::card {
 

@@ -106,6 +106,15 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
 
 }  // namespace
 
+std::vector<double> cycle_peaks_MPa(const PointHistory& p, double crack_sweep_deg,
+                                    const LifeConditions& c) {
+  const std::vector<double> se =
+      effective_stress_history(last_cycle(p, c.cycle_time_s), crack_sweep_deg);
+  std::vector<double> out;
+  for (const Extremum& e : significant_peaks(se, c.peaks)) out.push_back(e.value);
+  return out;
+}
+
 CordBreakLife cord_break_life(const std::vector<double>& force_N, const CordBreakLaw& law,
                               double temperature_C, double reference_C, double cycles_per_hour) {
   if (force_N.empty())

@@ -102,6 +102,40 @@ std::vector<ObservedLife> parse_observed_lives(const std::string& text, const st
   return out;
 }
 
+ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
+                           const std::vector<PointHistory>& points, const FatigueCard& card,
+                           const LifeConditions& conditions) {
+  ObservedLife c;
+  c.name = name;
+  c.mode = mode;
+  c.temperature_C = conditions.temperature_C;
+  c.observed_cycles = observed_cycles;
+  const Role role = mode == Mode::radial_crack ? Role::bottom : Role::cushion;
+  for (const PointHistory& p : points)
+    if (p.role == role) {
+      std::vector<double> peaks = cycle_peaks_MPa(p, card.crack_sweep_deg, conditions);
+      if (!peaks.empty()) c.point_peaks_MPa.push_back(std::move(peaks));
+    }
+  if (c.point_peaks_MPa.empty())
+    throw core::InputError("no monitored point of case '" + name + "' has a peak of mode " +
+                           to_string(mode), "", 0, 0, "points");
+  return c;
+}
+
+std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
+  std::string out = "case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa\n";
+  for (const ObservedLife& c : cases)
+    for (std::size_t k = 0; k < c.point_peaks_MPa.size(); ++k) {
+      std::string peaks;
+      for (double p : c.point_peaks_MPa[k])
+        peaks += (peaks.empty() ? "" : ";") + data::format_exact(p);
+      out += data::quote_csv_field(c.name) + "," + to_string(c.mode) + "," +
+             data::format_exact(c.temperature_C) + "," + data::format_exact(c.observed_cycles) +
+             ",p" + std::to_string(k + 1) + "," + peaks + "\n";
+    }
+  return out;
+}
+
 std::vector<ObservedLife> read_observed_lives(const std::string& path) {
   return parse_observed_lives(core::read_file(path), path);
 }

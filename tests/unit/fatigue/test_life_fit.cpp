@@ -5,6 +5,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/rng.hpp"
+#include "fitlib/fatigue/life.hpp"
 #include "fitlib/fatigue/life_fit.hpp"
 
 namespace fitlib::fatigue {
@@ -123,6 +124,72 @@ TEST(ObservedLives, ErrorsNameLineAndColumn) {
   expect_error("case,failure_mode,temperature,observed_cycles,peaks_MPa\n", 1, 3, "temperature");
   expect_error("case,failure_mode,temperature_C,peaks_MPa\n", 1, 0, "observed_cycles");
   expect_error(head, 1, 0);
+}
+
+}  // namespace
+}  // namespace fitlib::fatigue
+
+namespace fitlib::fatigue {
+namespace {
+
+// Two bottom points and one cushion point with known σ22 / σ12 signals (1 s spacing).
+std::vector<PointHistory> three_points(double scale) {
+  std::vector<PointHistory> pts(3);
+  const std::vector<std::vector<double>> v = {{0, 30, 0, 12, 0}, {0, 20, 0, 20, 0, 20, 0},
+                                              {0, 1.1, 0, 0.6, 0}};
+  for (int k = 0; k < 3; ++k) {
+    pts[k].name = "p" + std::to_string(k);
+    pts[k].role = k < 2 ? Role::bottom : Role::cushion;
+    for (std::size_t i = 0; i < v[k].size(); ++i) {
+      StressSample s;
+      s.t_s = static_cast<double>(i);
+      (k < 2 ? s.s22_MPa : s.s12_MPa) = scale * v[k][i];
+      pts[k].samples.push_back(s);
+    }
+  }
+  return pts;
+}
+
+TEST(ObservedLives, FromStressHistoriesAgreeWithTheLifeReport) {
+  // The fit's log-sum-exp life and evaluate_life are two implementations of (6.31).
+  const FatigueCard card = default_card();
+  LifeConditions c;
+  c.temperature_C = 97.0;
+  const auto pts = three_points(1.0);
+  const LifeReport r = evaluate_life(pts, card, c);
+  for (Mode mode : {Mode::radial_crack, Mode::separation}) {
+    const ObservedLife o = observed_life("x", mode, 1e6, pts, card, c);
+    const double n = r.modes[mode == Mode::radial_crack ? 0 : 1].life_cycles;
+    EXPECT_NEAR(predicted_log10_life(o, card.law(mode), card.reference_temperature_C),
+                std::log10(n), 1e-12);
+  }
+}
+
+TEST(ObservedLives, CsvRoundTripAndFitFromHistories) {
+  // Lives from a known card for loads 0.6 … 1.5 and temperatures 70 … 110 °C, written to CSV,
+  // read back, fitted: the card's mode-1 constants come back.
+  const FatigueCard card = default_card();
+  std::vector<ObservedLife> cases;
+  for (int k = 0; k < 8; ++k) {
+    LifeConditions c;
+    c.temperature_C = 70.0 + 5.0 * k;
+    const auto pts = three_points(0.6 + 0.13 * ((k * 5) % 8));
+    const double n = evaluate_life(pts, card, c).modes[0].life_cycles;
+    cases.push_back(observed_life("case " + std::to_string(k), Mode::radial_crack, n, pts, card, c));
+  }
+  const std::string text = observed_lives_csv(cases);
+  const auto back = parse_observed_lives(text, "lives.csv");
+  ASSERT_EQ(back.size(), cases.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    EXPECT_EQ(back[k].point_peaks_MPa, cases[k].point_peaks_MPa);
+    EXPECT_EQ(back[k].observed_cycles, cases[k].observed_cycles);
+  }
+  LifeFitOptions o;
+  o.start = LifeLaw{60.0, 3.0, 0.01};
+  const LifeFitResult r = fit_life_law(back, Mode::radial_crack, o);
+  EXPECT_NEAR(r.law.sigma0_MPa / 104.218, 1.0, 1e-6);
+  EXPECT_NEAR(r.law.n / 4.423, 1.0, 1e-6);
+  EXPECT_NEAR(r.law.b_per_C / 0.02897, 1.0, 1e-6);
 }
 
 }  // namespace

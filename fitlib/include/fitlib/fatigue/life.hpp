@@ -98,6 +98,11 @@ double temperature_factor(const LifeLaw& law, double temperature_C, double refer
 // longitudinal crack for cushion points.
 std::vector<double> effective_stress_history(const PointHistory& p, double crack_sweep_deg);
 
+// Significant peaks (MPa) of one point over the last cycle. They do not depend on the life
+// constants, which is why observed lives can be stored as peaks (life_fit.hpp).
+std::vector<double> cycle_peaks_MPa(const PointHistory& p, double crack_sweep_deg,
+                                    const LifeConditions& conditions);
+
 // The life report. InputError for a point without samples in the last cycle or decreasing times;
 // NumericalError naming point and time for non-finite stresses.
 LifeReport evaluate_life(const std::vector<PointHistory>& points, const FatigueCard& card,

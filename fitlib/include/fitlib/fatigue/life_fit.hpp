@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fitlib/fatigue/card.hpp"
+#include "fitlib/fatigue/life.hpp"
 
 namespace fitlib::fatigue {
 
@@ -30,6 +31,15 @@ struct ObservedLife {
 // column for anything else.
 std::vector<ObservedLife> parse_observed_lives(const std::string& text, const std::string& source);
 std::vector<ObservedLife> read_observed_lives(const std::string& path);
+
+// One observed case from computed stress histories (segment, beam level, …): the peaks of every
+// monitored point of `mode`, with the card's crack sweep and the conditions' peak options.
+ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
+                           const std::vector<PointHistory>& points, const FatigueCard& card,
+                           const LifeConditions& conditions);
+
+// The CSV parse_observed_lives reads (observed_cycles form, exact numbers: reads back equal).
+std::string observed_lives_csv(const std::vector<ObservedLife>& cases);
 
 struct ConstantEstimate {
   std::string name, unit;
