@@ -11,8 +11,11 @@ namespace fitlib::fatigue {
 
 BeamSection default_beam_section(const belt::DriveCase& drive, double temperature_C) {
   BeamSection s;
-  const double E = belt::bending_stiffness_Nmm2(temperature_C) /
-                   belt::FritzsonConstants::bending_inertia_mm4;
+  // The drive's own EI (from the bottom card's E22' when the scene has cards) over the 0.500 in
+  // belt's 834 mm⁴; the Fritzson law (6.5) when the drive carries none.
+  const double EI = drive.belt.EI_Nmm2 > 0.0 ? drive.belt.EI_Nmm2
+                                             : belt::bending_stiffness_Nmm2(temperature_C);
+  const double E = EI / belt::FritzsonConstants::bending_inertia_mm4;
   s.bottom_modulus_MPa = s.cushion_modulus_MPa = E;
   if (drive.geometry.belt_length_mm > 0.0)
     s.manufactured_curvature_1_mm = 2.0 * core::kPi / drive.geometry.belt_length_mm;

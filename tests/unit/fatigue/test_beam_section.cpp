@@ -83,6 +83,18 @@ TEST(BeamSection, PressureFrictionAndInertiaAsBodyForces) {
               30.0 / (1.0 - 0.45 * 0.45) * e + 0.45 / 0.55 * (-Br * height), 1e-12);
 }
 
+TEST(BeamSection, DefaultsFollowTheDrivesBendingStiffnessAndLength) {
+  belt::DriveCase d = drive();
+  d.belt.EI_Nmm2 = 834.0 * 12.5;
+  d.geometry.belt_length_mm = 1000.0;
+  const BeamSection s = default_beam_section(d, 80.0);
+  EXPECT_DOUBLE_EQ(s.bottom_modulus_MPa, 12.5);
+  EXPECT_DOUBLE_EQ(s.cushion_modulus_MPa, 12.5);
+  EXPECT_DOUBLE_EQ(s.manufactured_curvature_1_mm, 2.0 * 3.14159265358979323846 / 1000.0);
+  d.belt.EI_Nmm2 = 0.0;  // none: the Fritzson law E0 (1 + (20 − T)·0.001786) with E0 = 10 MPa
+  EXPECT_NEAR(default_beam_section(d, 80.0).bottom_modulus_MPa, 10.0 * (1.0 - 60.0 * 0.001786), 1e-12);
+}
+
 TEST(BeamSection, RefusesAStandingBeltAndBadSections) {
   belt::DriveCase d = drive();
   d.belt_speed_mm_s = 0.0;

@@ -33,9 +33,10 @@ struct BeamSection {
   std::vector<double> bottom_depths_mm, cushion_depths_mm;
 };
 
-// Project defaults for a drive: the §5a geometry, both layers at the rubber modulus of the belt
-// module's bending law, E(T) = EI(T)/834 mm⁴ (belt/stiffness.hpp), and the belt moulded as a
-// ring of its own length, K_m = 2π/L (docs/decisions.md "fatigue: beam level defaults").
+// Project defaults for a drive: the §5a geometry, both layers at E = EI/834 mm⁴ with the
+// drive's bending stiffness EI (the bottom card's E22' or the Fritzson law 6.5, as the load
+// cycle used; the law at `temperature_C` if the drive has none), and the belt moulded as a ring
+// of its own length, K_m = 2π/L (docs/decisions.md "fatigue: where the beam level lives").
 BeamSection default_beam_section(const belt::DriveCase& drive, double temperature_C);
 
 // Stress histories of the monitored points over one load cycle (time = s/V).
