@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
@@ -171,6 +172,38 @@ nlohmann::json finite_or_null(double x) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string life_text(double cycles, double hours) {
+  if (!std::isfinite(cycles)) return "unbounded";
+  char buf[96];
+  if (std::isfinite(hours)) std::snprintf(buf, sizeof buf, "%.4g cycles (%.4g h)", cycles, hours);
+  else std::snprintf(buf, sizeof buf, "%.4g cycles", cycles);
+  return buf;
+}
+
+}  // namespace
+
+std::string life_table(const LifeReport& r) {
+  std::string out;
+  char buf[256];
+  for (const ModeLife& m : r.modes) {
+    std::snprintf(buf, sizeof buf, "%-13s %-32s design point %s (x %.3g, y %.3g mm), %zu peaks, "
+                  "sum (s/s0)^n %.4g\n", to_string(m.mode),
+                  life_text(m.life_cycles, m.life_h).c_str(), m.design_point.c_str(), m.x_mm,
+                  m.y_mm, m.peaks.size(), m.sum_terms);
+    out += buf;
+  }
+  if (r.cord_break) {
+    const CordBreakLife& k = *r.cord_break;
+    std::snprintf(buf, sizeof buf, "%-13s %-32s mean %.4g MPa, amplitude %.4g MPa\n", "cord_break",
+                  life_text(k.life_cycles, k.life_h).c_str(), k.mean_MPa, k.amplitude_MPa);
+    out += buf;
+  }
+  out += "governing: " + r.governing + ", " + life_text(r.life_cycles, r.life_h) + "\n";
+  return out;
+}
 
 nlohmann::json life_to_json(const LifeReport& r) {
   using nlohmann::json;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/fatigue/life.hpp"
@@ -151,6 +152,20 @@ TEST(Life, NoPeakMeansUnboundedAndJsonWritesNull) {
   EXPECT_TRUE(j["unbounded"].get<bool>());
   EXPECT_EQ(j.dump().find("inf"), std::string::npos);
   EXPECT_EQ(j.dump().find("nan"), std::string::npos);
+}
+
+TEST(Life, TableNamesModesDesignPointsAndTheGoverningMode) {
+  FatigueCard card = default_card();
+  const LifeReport r = evaluate_life({point("gap", Role::bottom, {0, 20, 0}),
+                                      point("cushion", Role::cushion, {0, 0, 0})},
+                                     card, at(card.reference_temperature_C));
+  const std::string t = life_table(r);
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "%.4g cycles", std::pow(104.218 / 20.0, 4.423));
+  EXPECT_NE(t.find(std::string("radial_crack  ") + expected), std::string::npos) << t;
+  EXPECT_NE(t.find("design point gap"), std::string::npos) << t;
+  EXPECT_NE(t.find("separation    unbounded"), std::string::npos) << t;
+  EXPECT_NE(t.find("governing: radial_crack"), std::string::npos) << t;
 }
 
 TEST(Life, BadHistoriesAreRefused) {

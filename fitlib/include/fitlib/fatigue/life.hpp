@@ -112,6 +112,10 @@ LifeReport evaluate_life(const std::vector<PointHistory>& points, const FatigueC
 CordBreakLife cord_break_life(const std::vector<double>& force_N, const CordBreakLaw& law,
                               double temperature_C, double reference_C, double cycles_per_hour);
 
+// Human table: one line per mode (life in cycles and hours, design point, peaks, Σ terms), the
+// cord break when evaluated, and the governing mode; "unbounded" where there is no peak.
+std::string life_table(const LifeReport& report);
+
 // JSON of the report; unbounded lives are written as null with "unbounded": true.
 nlohmann::json life_to_json(const LifeReport& report);
 
