@@ -72,16 +72,20 @@ std::vector<Monitor> monitors(const BeamSection& s) {
   return out;
 }
 
+double running_speed_mm_s(const belt::DriveCase& drive) {
+  if (!(drive.belt_speed_mm_s > 0.0))
+    throw core::InputError("the beam level needs a running belt (belt speed > 0): a standing "
+                           "belt has no load cycle", "", 0, 0, "drive.speed_rpm");
+  return drive.belt_speed_mm_s;
+}
+
 }  // namespace
 
 std::vector<PointHistory> beam_stress_histories(const belt::LoadCycle& cycle,
                                                 const belt::DriveCase& drive,
                                                 const BeamSection& s) {
   check_section(s);
-  const double V = drive.belt_speed_mm_s;
-  if (!(V > 0.0))
-    throw core::InputError("the beam level needs a running belt (belt speed > 0): a standing "
-                           "belt has no load cycle", "", 0, 0, "drive.speed_rpm");
+  const double V = running_speed_mm_s(drive);
   const belt::BeltSection& b = drive.belt;
   const double beta = b.wedge_half_angle_rad, nu = s.poisson;
   const double rho_N_mm3 = b.density_kg_m3 * 1e-12;  // kg/m³ → N·s²/mm⁴
@@ -118,11 +122,11 @@ std::vector<PointHistory> beam_stress_histories(const belt::LoadCycle& cycle,
 
 LifeConditions cycle_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
                                 double temperature_C) {
-  const double V = drive.belt_speed_mm_s;
+  const double V = running_speed_mm_s(drive);
   LifeConditions c;
   c.temperature_C = temperature_C;
   c.cycle_time_s = 0.0;  // the load cycle is exactly one cycle
-  if (V > 0.0 && cycle.cycle_length_mm > 0.0) c.cycles_per_hour = 3600.0 * V / cycle.cycle_length_mm;
+  if (cycle.cycle_length_mm > 0.0) c.cycles_per_hour = 3600.0 * V / cycle.cycle_length_mm;
   for (const belt::PulleyCycle& p : cycle.pulleys)
     c.pulleys.push_back({p.name, p.s_start_mm / V, p.s_end_mm / V});
   for (const belt::LoadSample& x : cycle.samples) c.cord_force_N.push_back(x.F_N);

@@ -104,6 +104,7 @@ TEST(BeamSection, RefusesAStandingBeltAndBadSections) {
   } catch (const core::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("running belt"), std::string::npos);
   }
+  EXPECT_THROW(cycle_conditions(one_sample(1.0, 0.0), d, 80.0), core::InputError);
   BeamSection s = section();
   s.cushion_depths_mm = {0.7};
   EXPECT_THROW(beam_stress_histories(one_sample(1.0, 0.0), drive(), s), core::InputError);

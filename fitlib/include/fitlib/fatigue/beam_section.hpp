@@ -46,7 +46,8 @@ std::vector<PointHistory> beam_stress_histories(const belt::LoadCycle& cycle,
                                                 const belt::DriveCase& drive,
                                                 const BeamSection& section);
 
-// Cycle time, cycles per hour, the pulleys' shares and the cord force of a load cycle.
+// Cycle time, cycles per hour, the pulleys' shares and the cord force of a load cycle
+// (InputError for a standing belt).
 LifeConditions cycle_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
                                 double temperature_C);
 
