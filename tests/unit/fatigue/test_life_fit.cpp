@@ -7,6 +7,7 @@
 #include "fitlib/core/rng.hpp"
 #include "fitlib/fatigue/life.hpp"
 #include "fitlib/fatigue/life_fit.hpp"
+#include "csv_error.hpp"
 
 namespace fitlib::fatigue {
 namespace {
@@ -101,17 +102,7 @@ TEST(ObservedLives, ReadsCasesWithSeveralPoints) {
 }
 
 void expect_error(const std::string& text, int line, int column, const std::string& key = "") {
-  try {
-    parse_observed_lives(text, "lives.csv");
-    FAIL() << text;
-  } catch (const core::InputError& e) {
-    EXPECT_EQ(e.file(), "lives.csv");
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_EQ(e.column(), column) << e.what();
-    if (!key.empty()) {
-      EXPECT_EQ(e.key(), key) << e.what();
-    }
-  }
+  expect_csv_error(parse_observed_lives, text, line, column, key);
 }
 
 TEST(ObservedLives, ErrorsNameLineAndColumn) {

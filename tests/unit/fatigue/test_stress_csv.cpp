@@ -3,6 +3,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/stress_csv.hpp"
+#include "csv_error.hpp"
 
 namespace fitlib::fatigue {
 namespace {
@@ -40,14 +41,7 @@ TEST(StressCsv, InterleavedPointsAndErrorsWithLineAndColumn) {
   EXPECT_EQ(p[0].samples.size(), 2u);
   EXPECT_EQ(p[1].role, Role::cushion);
   auto expect_error = [](const std::string& text, int line, int column) {
-    try {
-      parse_stress_histories(text, "s.csv");
-      FAIL() << text;
-    } catch (const core::InputError& e) {
-      EXPECT_EQ(e.file(), "s.csv");
-      EXPECT_EQ(e.line(), line) << e.what();
-      EXPECT_EQ(e.column(), column) << e.what();
-    }
+    expect_csv_error(parse_stress_histories, text, line, column);
   };
   expect_error(head + "a,cog,0,0,0,0,0,0\n", 2, 2);
   expect_error(head + "a,bottom,0,0,0,0,nan,0\n", 2, 7);
