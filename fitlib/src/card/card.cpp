@@ -4,6 +4,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 
 namespace fitlib::card {
 
@@ -119,24 +120,7 @@ Card card_from_json(const json& j, const std::string& source) {
 }
 
 Card load_card(const std::string& path) {
-  const std::string text = core::read_file(path);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann reports a byte offset; turn it into line and column.
-    int line = 1, column = 1;
-    for (size_t k = 0; k + 1 < e.byte && k < text.size(); ++k) {
-      if (text[k] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    throw core::InputError("invalid JSON", path, line, column);
-  }
-  return card_from_json(j, path);
+  return card_from_json(core::parse_json(core::read_file(path), path), path);
 }
 
 void save_card(const std::string& path, const Card& card) {

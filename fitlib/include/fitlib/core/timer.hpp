@@ -16,4 +16,16 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
+// Mean wall time of f() in seconds: calls it 1, 2, 4, … times until one batch lasts min_total_s
+// (benchmarks).
+template <typename F>
+double seconds_per_call(F f, double min_total_s = 0.2) {
+  for (int n = 1;; n *= 2) {
+    Stopwatch watch;
+    for (int k = 0; k < n; ++k) f();
+    const double dt = watch.seconds();
+    if (dt >= min_total_s) return dt / n;
+  }
+}
+
 }  // namespace fitlib::core

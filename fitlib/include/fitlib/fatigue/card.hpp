@@ -1,0 +1,57 @@
+#pragma once
+// The fatigue card (schema fitlib.fatigue-card/1, docs/fatigue.md §4): the life constants of
+// (6.31) per failure mode, their reference temperature, and optionally Gerbert's cord-break law
+// (3.6)/(3.7). A bundled default with Report I's printed constants is datasets/cards/
+// fatigue-fritzson-1988.json; default_card() returns the same values.
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace fitlib::fatigue {
+
+enum class Mode { radial_crack = 1, separation = 2 };
+const char* to_string(Mode mode);  // "radial_crack", "separation"
+
+// N = [Σ (σ_e,i/σ0)ⁿ]⁻¹ · 2^(−b(T − T_ref)) (6.31), N in load cycles (belt revolutions).
+struct LifeLaw {
+  double sigma0_MPa = 1.0;
+  double n = 1.0;
+  double b_per_C = 0.0;
+};
+
+// Gerbert's cord break: σ_A = σ_a/(1 − σ_m/σ_U) (3.6), N = 10^(a − b σ_A) 2^(−b_T ΔT) (3.7),
+// with σ = F/A_cord from the belt force over the cycle.
+struct CordBreakLaw {
+  double a = 0.0;
+  double b_per_MPa = 0.0;
+  double ultimate_MPa = 0.0;      // σ_U
+  double cord_area_mm2 = 0.0;     // A_cord
+  double b_T_per_C = 0.1;         // Gerbert's 10 °C halving
+};
+
+struct FatigueCard {
+  static constexpr const char* kSchema = "fitlib.fatigue-card/1";
+  std::string name;
+  double reference_temperature_C = 80.0;  // T_ref of ΔT in (6.31) ([UNCLEAR], docs/decisions.md)
+  LifeLaw radial_crack{104.218, 4.423, 0.02897};
+  LifeLaw separation{4.21028, 11.69, 0.1466};
+  double crack_sweep_deg = 25.0;  // mode 1 crack directions ±sweep from radial
+  std::optional<CordBreakLaw> cord_break;
+  nlohmann::json provenance = nlohmann::json::object();
+
+  const LifeLaw& law(Mode m) const { return m == Mode::radial_crack ? radial_crack : separation; }
+  LifeLaw& law(Mode m) { return m == Mode::radial_crack ? radial_crack : separation; }
+};
+
+// Report I's printed constants (L1133–1140) at the project's reference temperature.
+FatigueCard default_card();
+
+nlohmann::json card_to_json(const FatigueCard& card);
+// InputError naming `source` and the key path (e.g. modes.separation.n) for a missing key, a
+// wrong type, a value out of range or an unknown key.
+FatigueCard card_from_json(const nlohmann::json& j, const std::string& source);
+FatigueCard load_card(const std::string& path);
+void save_card(const std::string& path, const FatigueCard& card);
+
+}  // namespace fitlib::fatigue

@@ -1,0 +1,74 @@
+#pragma once
+// Fitting the life constants σ0, n, b of (6.31) per failure mode to observed belt lives
+// (Report I §6.5.2; docs/fatigue.md §6): Ceres on log10-life residuals
+//   r = log10 N_pred − log10 N_obs,  N_pred = [max_points Σ_i (σ_i/σ0)ⁿ]⁻¹ 2^(−b(T − T_ref)),
+// the design point of each case re-chosen for the current n, with 95 % intervals from the
+// Jacobian at the solution. Each mode is fitted to the cases that failed in that mode (as the
+// thesis did: two separable problems).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitlib/fatigue/card.hpp"
+#include "fitlib/fatigue/life.hpp"
+
+namespace fitlib::fatigue {
+
+struct ObservedLife {
+  std::string name;
+  Mode mode = Mode::radial_crack;  // observed failure mode
+  double temperature_C = 20.0;
+  double observed_cycles = 0.0;
+  // Significant peaks (MPa) of each monitored point of that mode, e.g. from evaluate_life.
+  std::vector<std::vector<double>> point_peaks_MPa;
+  int line = 0;  // first line in the CSV (messages)
+};
+
+// Observed-lives CSV (docs/fatigue.md §6): one row per case and monitored point, columns
+//   case, failure_mode (radial_crack | separation), temperature_C,
+//   observed_cycles  or  observed_h and cycles_per_h,  [point],  peaks_MPa ("σ1;σ2;…")
+// Rows of one case must agree on mode, temperature and life. InputError naming file, line and
+// column for anything else.
+std::vector<ObservedLife> parse_observed_lives(const std::string& text, const std::string& source);
+std::vector<ObservedLife> read_observed_lives(const std::string& path);
+
+// One observed case from computed stress histories (segment, beam level, …): the peaks of every
+// monitored point of `mode`, with the card's crack sweep and the conditions' peak options.
+ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
+                           const std::vector<PointHistory>& points, const FatigueCard& card,
+                           const LifeConditions& conditions);
+
+// The CSV parse_observed_lives reads (observed_cycles form, exact numbers: reads back equal).
+std::string observed_lives_csv(const std::vector<ObservedLife>& cases);
+
+struct ConstantEstimate {
+  std::string name, unit;
+  double value = 0.0;
+  bool fixed = false;
+  bool has_interval = false;
+  double std_error = 0.0, ci95_low = 0.0, ci95_high = 0.0;
+};
+
+struct LifeFitOptions {
+  double reference_temperature_C = 80.0;  // the card's T_ref
+  LifeLaw start;              // start values
+  bool fix_b = false;         // hold b at start.b_per_C (also automatic with one temperature)
+};
+
+struct LifeFitResult {
+  Mode mode = Mode::radial_crack;
+  LifeLaw law;
+  std::vector<ConstantEstimate> constants;  // sigma0_MPa, n, b_per_C
+  int cases = 0;
+  double rms_log10_error = 0.0;
+  std::string note;  // why an interval or a constant is missing
+};
+
+// NumericalError when Ceres fails; InputError when there are no cases of `mode`.
+LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
+                           const LifeFitOptions& options);
+
+// log10 N_pred of one case under `law` (the design point chosen for law.n).
+double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double reference_C);
+
+}  // namespace fitlib::fatigue

@@ -1,0 +1,135 @@
+#include "fitlib/fatigue/card.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
+
+namespace fitlib::fatigue {
+
+using nlohmann::json;
+
+const char* to_string(Mode mode) {
+  return mode == Mode::radial_crack ? "radial_crack" : "separation";
+}
+
+FatigueCard default_card() {
+  FatigueCard c;
+  c.name = "Fritzson 1988, 0.500 in raw-edge cogged V-belt, 1 % damage level";
+  c.provenance = {{"source", "D. Fritzson 1988, Report I §6.5.2, Eqs 6.31 constants (L1133-1140)"},
+                  {"reference_temperature", "project decision (docs/decisions.md, fatigue: reference temperature)"}};
+  return c;
+}
+
+namespace {
+
+json law_json(const LifeLaw& l) {
+  return {{"sigma0_MPa", l.sigma0_MPa}, {"n", l.n}, {"b_per_C", l.b_per_C}};
+}
+
+// Reads one object with exactly the keys `allowed`; each value a finite number unless listed in
+// `other`.
+class Reader {
+ public:
+  Reader(const json& j, std::string source, std::string path, std::set<std::string> allowed)
+      : j_(j), source_(std::move(source)), path_(std::move(path)) {
+    if (!j_.is_object()) throw core::InputError("expected an object", source_, 0, 0, path_);
+    for (const auto& item : j_.items())
+      if (!allowed.count(item.key()))
+        throw core::InputError("unknown key", source_, 0, 0, key(item.key()));
+  }
+  std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
+  bool has(const std::string& k) const { return j_.contains(k); }
+  const json& at(const std::string& k) const {
+    if (!j_.contains(k)) throw core::InputError("missing required key", source_, 0, 0, key(k));
+    return j_.at(k);
+  }
+  // A finite number in [lo, hi] (exclusive where `open`).
+  double number(const std::string& k, double lo, double hi, bool open = false) const {
+    const json& v = at(k);
+    if (!v.is_number()) throw core::InputError("expected a number", source_, 0, 0, key(k));
+    const double x = v.get<double>();
+    const bool below = open ? x <= lo : x < lo;
+    if (!std::isfinite(x) || below || x > hi)
+      throw core::InputError("value " + v.dump() + " out of range", source_, 0, 0, key(k));
+    return x;
+  }
+  std::string text(const std::string& k) const {
+    const json& v = at(k);
+    if (!v.is_string()) throw core::InputError("expected a string", source_, 0, 0, key(k));
+    return v.get<std::string>();
+  }
+  const std::string& source() const { return source_; }
+
+ private:
+  const json& j_;
+  std::string source_, path_;
+};
+
+constexpr double kHuge = 1e300;
+
+LifeLaw read_law(const Reader& modes, const std::string& name) {
+  Reader r(modes.at(name), modes.source(), modes.key(name), {"sigma0_MPa", "n", "b_per_C"});
+  return {r.number("sigma0_MPa", 0.0, kHuge, true), r.number("n", 0.0, 1000.0, true),
+          r.number("b_per_C", -10.0, 10.0)};
+}
+
+}  // namespace
+
+json card_to_json(const FatigueCard& c) {
+  json j = {{"schema", FatigueCard::kSchema},
+            {"name", c.name},
+            {"reference_temperature_C", c.reference_temperature_C},
+            {"crack_sweep_deg", c.crack_sweep_deg},
+            {"modes", {{"radial_crack", law_json(c.radial_crack)},
+                       {"separation", law_json(c.separation)}}},
+            {"provenance", c.provenance}};
+  if (c.cord_break) {
+    const CordBreakLaw& k = *c.cord_break;
+    j["cord_break"] = {{"a", k.a}, {"b_per_MPa", k.b_per_MPa}, {"ultimate_MPa", k.ultimate_MPa},
+                       {"cord_area_mm2", k.cord_area_mm2}, {"b_T_per_C", k.b_T_per_C}};
+  }
+  return j;
+}
+
+FatigueCard card_from_json(const json& j, const std::string& source) {
+  Reader r(j, source, "",
+           {"schema", "name", "reference_temperature_C", "crack_sweep_deg", "modes", "cord_break",
+            "provenance"});
+  const std::string schema = r.text("schema");
+  if (schema != FatigueCard::kSchema)
+    throw core::InputError("unsupported schema '" + schema + "' (expected " +
+                               FatigueCard::kSchema + ")", source, 0, 0, "schema");
+  FatigueCard c;
+  c.name = r.has("name") ? r.text("name") : "";
+  c.reference_temperature_C = r.number("reference_temperature_C", -273.15, 1000.0);
+  if (r.has("crack_sweep_deg")) c.crack_sweep_deg = r.number("crack_sweep_deg", 0.0, 90.0);
+  Reader modes(r.at("modes"), source, "modes", {"radial_crack", "separation"});
+  c.radial_crack = read_law(modes, "radial_crack");
+  c.separation = read_law(modes, "separation");
+  if (r.has("cord_break")) {
+    Reader k(r.at("cord_break"), source, "cord_break",
+             {"a", "b_per_MPa", "ultimate_MPa", "cord_area_mm2", "b_T_per_C"});
+    CordBreakLaw law;
+    law.a = k.number("a", -kHuge, kHuge);
+    law.b_per_MPa = k.number("b_per_MPa", 0.0, kHuge, true);
+    law.ultimate_MPa = k.number("ultimate_MPa", 0.0, kHuge, true);
+    law.cord_area_mm2 = k.number("cord_area_mm2", 0.0, kHuge, true);
+    if (k.has("b_T_per_C")) law.b_T_per_C = k.number("b_T_per_C", -10.0, 10.0);
+    c.cord_break = law;
+  }
+  if (r.has("provenance")) c.provenance = r.at("provenance");
+  return c;
+}
+
+FatigueCard load_card(const std::string& path) {
+  return card_from_json(core::parse_json(core::read_file(path), path), path);
+}
+
+void save_card(const std::string& path, const FatigueCard& card) {
+  core::write_file_atomically(path, card_to_json(card).dump(2) + "\n");
+}
+
+}  // namespace fitlib::fatigue

@@ -1,0 +1,242 @@
+#include "fitlib/fatigue/life.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/units.hpp"
+#include "fitlib/fatigue/crack_plane.hpp"
+
+namespace fitlib::fatigue {
+
+const char* to_string(Role role) { return role == Role::bottom ? "bottom" : "cushion"; }
+
+double sum_terms(const std::vector<double>& peaks, const LifeLaw& law) {
+  double s = 0.0;
+  for (double p : peaks) s += std::pow(p / law.sigma0_MPa, law.n);
+  return s;
+}
+
+double temperature_factor(const LifeLaw& law, double temperature_C, double reference_C) {
+  return std::exp2(-law.b_per_C * (temperature_C - reference_C));
+}
+
+std::vector<double> effective_stress_history(const PointHistory& p, double sweep_deg) {
+  const double sweep = sweep_deg * core::kPi / 180.0;
+  std::vector<double> out;
+  out.reserve(p.samples.size());
+  for (const StressSample& s : p.samples) {
+    const PlaneStress ps{s.s11_MPa, s.s22_MPa, s.s12_MPa};
+    if (!std::isfinite(ps.s11_MPa) || !std::isfinite(ps.s22_MPa) || !std::isfinite(ps.s12_MPa))
+      throw core::NumericalError("fatigue: non-finite stress at point '" + p.name + "', t = " +
+                                 std::to_string(s.t_s) + " s");
+    out.push_back(p.role == Role::bottom ? worst_radial_crack_stress_MPa(ps, sweep)
+                                         : separation_stress_MPa(ps));
+  }
+  return out;
+}
+
+namespace {
+
+Mode mode_of(Role r) { return r == Role::bottom ? Mode::radial_crack : Mode::separation; }
+
+// The samples of the last load cycle.
+PointHistory last_cycle(const PointHistory& p, double cycle_time_s) {
+  for (std::size_t i = 1; i < p.samples.size(); ++i)
+    if (p.samples[i].t_s < p.samples[i - 1].t_s)
+      throw core::InputError("stress history times decrease at sample " + std::to_string(i), "",
+                             0, 0, "points." + p.name);
+  PointHistory out = p;
+  if (cycle_time_s > 0.0 && !p.samples.empty()) {
+    const double t0 = p.samples.back().t_s - cycle_time_s;
+    out.samples.clear();
+    for (const StressSample& s : p.samples)
+      if (s.t_s > t0) out.samples.push_back(s);
+  }
+  if (out.samples.empty())
+    throw core::InputError("no stress samples in the last load cycle", "", 0, 0, "points." + p.name);
+  return out;
+}
+
+std::string share_at(const std::vector<CycleShare>& shares, double t_in_cycle) {
+  for (const CycleShare& c : shares)
+    if (t_in_cycle >= c.t_begin_s && t_in_cycle < c.t_end_s) return c.name;
+  for (const CycleShare& c : shares)  // the cycle's last instant closes the last share
+    if (t_in_cycle == c.t_end_s) return c.name;
+  return "";
+}
+
+// Miner: the damage per cycle of one peak added to its pulley's share.
+void add_damage(std::vector<ShareDamage>& shares, const std::string& pulley, double damage) {
+  auto it = std::find_if(shares.begin(), shares.end(),
+                         [&](const ShareDamage& s) { return s.name == pulley; });
+  if (it == shares.end()) shares.push_back({pulley, damage});
+  else it->damage_per_cycle += damage;
+}
+
+ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeConditions& c) {
+  const PointHistory cycle = last_cycle(p, c.cycle_time_s);
+  const Mode mode = mode_of(p.role);
+  const LifeLaw& law = card.law(mode);
+  ModeLife m;
+  m.mode = mode;
+  m.design_point = p.name;
+  m.x_mm = p.x_mm;
+  m.y_mm = p.y_mm;
+  m.effective_stress_MPa = effective_stress_history(cycle, card.crack_sweep_deg);
+  const double t_start = c.cycle_time_s > 0.0 ? p.samples.back().t_s - c.cycle_time_s
+                                              : cycle.samples.front().t_s;
+  for (const StressSample& s : cycle.samples) m.t_s.push_back(s.t_s);
+  for (const Extremum& e : significant_peaks(m.effective_stress_MPa, c.peaks)) {
+    const double t = m.t_s[e.index];
+    m.peaks.push_back({t, e.value, share_at(c.pulleys, t - t_start)});
+  }
+  m.temperature_factor = temperature_factor(law, c.temperature_C, card.reference_temperature_C);
+  for (const Peak& pk : m.peaks) {
+    const double term = std::pow(pk.stress_MPa / law.sigma0_MPa, law.n);
+    m.sum_terms += term;
+    add_damage(m.shares, pk.pulley, term / m.temperature_factor);
+  }
+  if (m.sum_terms > 0.0) {
+    m.life_cycles = m.temperature_factor / m.sum_terms;
+    if (c.cycles_per_hour > 0.0) m.life_h = m.life_cycles / c.cycles_per_hour;
+  }
+  return m;
+}
+
+}  // namespace
+
+std::vector<double> cycle_peaks_MPa(const PointHistory& p, double crack_sweep_deg,
+                                    const LifeConditions& c) {
+  const std::vector<double> se =
+      effective_stress_history(last_cycle(p, c.cycle_time_s), crack_sweep_deg);
+  std::vector<double> out;
+  for (const Extremum& e : significant_peaks(se, c.peaks)) out.push_back(e.value);
+  return out;
+}
+
+CordBreakLife cord_break_life(const std::vector<double>& force_N, const CordBreakLaw& law,
+                              double temperature_C, double reference_C, double cycles_per_hour) {
+  if (force_N.empty())
+    throw core::InputError("the cord-break law needs the belt force over the cycle", "", 0, 0,
+                           "cord_break");
+  const auto [lo, hi] = std::minmax_element(force_N.begin(), force_N.end());
+  CordBreakLife r;
+  r.mean_MPa = 0.5 * (*hi + *lo) / law.cord_area_mm2;
+  r.amplitude_MPa = 0.5 * (*hi - *lo) / law.cord_area_mm2;
+  if (r.mean_MPa >= law.ultimate_MPa)
+    throw core::InputError("mean cord stress " + std::to_string(r.mean_MPa) +
+                               " MPa reaches the ultimate stress", "", 0, 0, "cord_break.ultimate_MPa");
+  r.equivalent_amplitude_MPa = r.amplitude_MPa / (1.0 - r.mean_MPa / law.ultimate_MPa);  // (3.6)
+  r.life_cycles = std::pow(10.0, law.a - law.b_per_MPa * r.equivalent_amplitude_MPa) *
+                  std::exp2(-law.b_T_per_C * (temperature_C - reference_C));  // (3.7)
+  if (cycles_per_hour > 0.0) r.life_h = r.life_cycles / cycles_per_hour;
+  return r;
+}
+
+LifeReport evaluate_life(const std::vector<PointHistory>& points, const FatigueCard& card,
+                         const LifeConditions& c) {
+  LifeReport report;
+  for (Mode mode : {Mode::radial_crack, Mode::separation}) {
+    std::optional<ModeLife> best;
+    for (const PointHistory& p : points) {
+      if (mode_of(p.role) != mode) continue;
+      ModeLife m = point_life(p, card, c);
+      if (!best || m.sum_terms > best->sum_terms) best = std::move(m);
+    }
+    if (best) report.modes.push_back(std::move(*best));
+  }
+  for (const ModeLife& m : report.modes)
+    if (m.life_cycles < report.life_cycles) {
+      report.life_cycles = m.life_cycles;
+      report.life_h = m.life_h;
+      report.governing = to_string(m.mode);
+    }
+  if (card.cord_break) {
+    report.cord_break = cord_break_life(c.cord_force_N, *card.cord_break, c.temperature_C,
+                                        card.reference_temperature_C, c.cycles_per_hour);
+    if (report.cord_break->life_cycles < report.life_cycles) {
+      report.life_cycles = report.cord_break->life_cycles;
+      report.life_h = report.cord_break->life_h;
+      report.governing = "cord_break";
+    }
+  }
+  return report;
+}
+
+namespace {
+
+nlohmann::json finite_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+namespace {
+
+std::string life_text(double cycles, double hours) {
+  if (!std::isfinite(cycles)) return "unbounded";
+  char buf[96];
+  if (std::isfinite(hours)) std::snprintf(buf, sizeof buf, "%.4g cycles (%.4g h)", cycles, hours);
+  else std::snprintf(buf, sizeof buf, "%.4g cycles", cycles);
+  return buf;
+}
+
+}  // namespace
+
+std::string life_table(const LifeReport& r) {
+  std::string out;
+  char buf[256];
+  for (const ModeLife& m : r.modes) {
+    std::snprintf(buf, sizeof buf, "%-13s %-32s design point %s (x %.3g, y %.3g mm), %zu peaks, "
+                  "sum (s/s0)^n %.4g\n", to_string(m.mode),
+                  life_text(m.life_cycles, m.life_h).c_str(), m.design_point.c_str(), m.x_mm,
+                  m.y_mm, m.peaks.size(), m.sum_terms);
+    out += buf;
+  }
+  if (r.cord_break) {
+    const CordBreakLife& k = *r.cord_break;
+    std::snprintf(buf, sizeof buf, "%-13s %-32s mean %.4g MPa, amplitude %.4g MPa\n", "cord_break",
+                  life_text(k.life_cycles, k.life_h).c_str(), k.mean_MPa, k.amplitude_MPa);
+    out += buf;
+  }
+  out += "governing: " + r.governing + ", " + life_text(r.life_cycles, r.life_h) + "\n";
+  return out;
+}
+
+nlohmann::json life_to_json(const LifeReport& r) {
+  using nlohmann::json;
+  json modes = json::array();
+  for (const ModeLife& m : r.modes) {
+    json peaks = json::array(), shares = json::array();
+    for (const Peak& p : m.peaks)
+      peaks.push_back({{"t_s", p.t_s}, {"effective_stress_MPa", p.stress_MPa}, {"pulley", p.pulley}});
+    for (const ShareDamage& s : m.shares)
+      shares.push_back({{"pulley", s.name}, {"damage_per_cycle", s.damage_per_cycle}});
+    modes.push_back({{"mode", to_string(m.mode)},
+                     {"design_point", {{"name", m.design_point}, {"x_mm", m.x_mm}, {"y_mm", m.y_mm}}},
+                     {"sum_terms", m.sum_terms},
+                     {"temperature_factor", m.temperature_factor},
+                     {"life_cycles", finite_or_null(m.life_cycles)},
+                     {"life_h", finite_or_null(m.life_h)},
+                     {"unbounded", !std::isfinite(m.life_cycles)},
+                     {"peaks", peaks},
+                     {"miner_shares", shares}});
+  }
+  json j = {{"modes", modes},
+            {"governing_mode", r.governing},
+            {"life_cycles", finite_or_null(r.life_cycles)},
+            {"life_h", finite_or_null(r.life_h)},
+            {"unbounded", !std::isfinite(r.life_cycles)}};
+  if (r.cord_break) {
+    const CordBreakLife& k = *r.cord_break;
+    j["cord_break"] = {{"mean_MPa", k.mean_MPa}, {"amplitude_MPa", k.amplitude_MPa},
+                       {"equivalent_amplitude_MPa", k.equivalent_amplitude_MPa},
+                       {"life_cycles", finite_or_null(k.life_cycles)},
+                       {"life_h", finite_or_null(k.life_h)}};
+  }
+  return j;
+}
+
+}  // namespace fitlib::fatigue

@@ -1,0 +1,139 @@
+#include "fitlib/fatigue/life_fit.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::fatigue {
+
+namespace {
+
+constexpr double kLn2 = 0.69314718055994531, kLn10 = 2.30258509299404568;
+
+// log10 N = −ln S/ln 10 − b ΔT log10 2, S = max over points of Σ exp(n (ln σ_i − ln σ0)),
+// summed by log-sum-exp so that large n do not overflow.
+template <typename T>
+T log10_life(const ObservedLife& c, const T& ln_sigma0, const T& n, const T& b, double dT) {
+  using std::exp;
+  using std::log;
+  T best_ln_sum = T(-1e300);
+  for (const std::vector<double>& peaks : c.point_peaks_MPa) {
+    if (peaks.empty()) continue;
+    T top = n * (std::log(peaks[0]) - ln_sigma0);
+    for (double p : peaks) top = std::max(top, T(n * (std::log(p) - ln_sigma0)));
+    T sum = T(0.0);
+    for (double p : peaks) sum += exp(n * (std::log(p) - ln_sigma0) - top);
+    const T ln_sum = top + log(sum);
+    if (ln_sum > best_ln_sum) best_ln_sum = ln_sum;
+  }
+  return -best_ln_sum / kLn10 - b * dT * (kLn2 / kLn10);
+}
+
+struct LogLifeResidual {
+  const ObservedLife* c;
+  double dT;
+  template <typename T>
+  bool operator()(const T* ln_sigma0, const T* n, const T* b, T* r) const {
+    r[0] = log10_life(*c, ln_sigma0[0], n[0], b[0], dT) - T(std::log10(c->observed_cycles));
+    return true;
+  }
+};
+
+}  // namespace
+
+double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double reference_C) {
+  return log10_life(c, std::log(law.sigma0_MPa), law.n, law.b_per_C, c.temperature_C - reference_C);
+}
+
+LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, const LifeFitOptions& o) {
+  std::vector<const ObservedLife*> cases;
+  for (const ObservedLife& c : all)
+    if (c.mode == mode) cases.push_back(&c);
+  if (cases.empty())
+    throw core::InputError(std::string("no observed lives with failure mode ") + to_string(mode),
+                           "", 0, 0, "failure_mode");
+  LifeFitResult result;
+  result.mode = mode;
+  result.cases = static_cast<int>(cases.size());
+  bool one_temperature = true;
+  for (const ObservedLife* c : cases)
+    one_temperature = one_temperature && c->temperature_C == cases[0]->temperature_C;
+  const bool fix_b = o.fix_b || one_temperature;
+  if (fix_b && !o.fix_b) result.note = "b held at its start value: all cases at one temperature. ";
+
+  double ln_sigma0 = std::log(o.start.sigma0_MPa), n = o.start.n, b = o.start.b_per_C;
+  ceres::Problem problem;
+  for (const ObservedLife* c : cases)
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<LogLifeResidual, 1, 1, 1, 1>(
+            new LogLifeResidual{c, c->temperature_C - o.reference_temperature_C}),
+        nullptr, &ln_sigma0, &n, &b);
+  problem.SetParameterLowerBound(&n, 0, 0.1);
+  problem.SetParameterUpperBound(&n, 0, 100.0);
+  if (fix_b) problem.SetParameterBlockConstant(&b);
+  ceres::Solver::Options options;
+  options.max_num_iterations = 200;
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-14;
+  options.parameter_tolerance = 1e-12;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost))
+    throw core::NumericalError(std::string("fatigue: life-constant fit of ") + to_string(mode) +
+                               " failed: " + summary.message);
+  result.law = {std::exp(ln_sigma0), n, b};
+
+  // Intervals: covariance s²(JᵀJ)⁻¹ of the free coordinates (ln σ0, n[, b]).
+  std::vector<double*> blocks = {&ln_sigma0, &n};
+  if (!fix_b) blocks.push_back(&b);
+  ceres::Problem::EvaluateOptions eo;
+  eo.parameter_blocks = blocks;
+  double cost = 0.0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix crs;
+  problem.Evaluate(eo, &cost, &residuals, nullptr, &crs);
+  const int m = crs.num_rows, p = crs.num_cols;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, p);
+  for (int r = 0; r < m; ++r)
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) J(r, crs.cols[k]) = crs.values[k];
+  double ss = 0.0;
+  for (double r : residuals) ss += r * r;
+  result.rms_log10_error = std::sqrt(ss / m);
+
+  std::vector<ConstantEstimate> est = {{"sigma0_MPa", "MPa", result.law.sigma0_MPa},
+                                       {"n", "1", n},
+                                       {"b_per_C", "1/°C", b, fix_b}};
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  if (m <= p) {
+    result.note += "no intervals: " + std::to_string(m) + " cases for " + std::to_string(p) +
+                   " constants.";
+  } else if (!lu.isInvertible()) {
+    result.note += "no intervals: the constants are not identifiable from these cases.";
+  } else {
+    const Eigen::MatrixXd cov = lu.inverse() * (ss / (m - p));
+    const double t = boost::math::quantile(boost::math::students_t(m - p), 0.975);
+    for (int k = 0; k < p; ++k) {
+      ConstantEstimate& e = est[k];
+      const double se = std::sqrt(std::max(cov(k, k), 0.0));
+      e.has_interval = true;
+      if (k == 0) {  // ln σ0 interval, exponentiated (stays positive); delta-method error
+        e.std_error = e.value * se;
+        e.ci95_low = std::exp(ln_sigma0 - t * se);
+        e.ci95_high = std::exp(ln_sigma0 + t * se);
+      } else {
+        e.std_error = se;
+        e.ci95_low = e.value - t * se;
+        e.ci95_high = e.value + t * se;
+      }
+    }
+  }
+  result.constants = est;
+  return result;
+}
+
+}  // namespace fitlib::fatigue

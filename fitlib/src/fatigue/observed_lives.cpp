@@ -1,0 +1,143 @@
+// Reader of the observed-lives CSV (life_fit.hpp).
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/data/csv.hpp"
+#include "fitlib/fatigue/life_fit.hpp"
+
+namespace fitlib::fatigue {
+
+namespace {
+
+const std::vector<std::string> kColumns = {"case", "failure_mode", "temperature_C",
+                                           "observed_cycles", "observed_h", "cycles_per_h",
+                                           "point", "peaks_MPa"};
+
+Mode parse_mode(const std::string& text, const std::string& file, int line, int column) {
+  if (text == "radial_crack") return Mode::radial_crack;
+  if (text == "separation") return Mode::separation;
+  throw core::InputError("failure_mode '" + text + "' is not radial_crack or separation", file,
+                         line, column, "failure_mode");
+}
+
+std::vector<double> parse_peaks(const std::string& text, const std::string& file, int line,
+                                int column) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ';')) {
+    const double v = data::parse_csv_number(item, "peaks_MPa", file, line, column);
+    if (!(v > 0.0))
+      throw core::InputError("peak stresses must be positive", file, line, column, "peaks_MPa");
+    out.push_back(v);
+  }
+  if (out.empty()) throw core::InputError("no peaks", file, line, column, "peaks_MPa");
+  return out;
+}
+
+}  // namespace
+
+std::vector<ObservedLife> parse_observed_lives(const std::string& text, const std::string& file) {
+  std::map<std::string, int> col;  // column name → 0-based index
+  std::vector<ObservedLife> out;
+  std::map<std::string, std::size_t> by_case;
+  for (const data::CsvLine& l : data::split_csv_lines(text, file)) {
+    if (data::is_blank_or_comment(l.text)) continue;
+    const std::vector<std::string> f = data::split_csv_fields(l.text, file, l.number);
+    if (col.empty()) {
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        if (std::find(kColumns.begin(), kColumns.end(), f[k]) == kColumns.end())
+          throw core::InputError("unknown column '" + f[k] + "'", file, l.number, int(k) + 1, f[k]);
+        if (col.count(f[k]))
+          throw core::InputError("duplicate column '" + f[k] + "'", file, l.number, int(k) + 1, f[k]);
+        col[f[k]] = int(k);
+      }
+      for (const char* need : {"case", "failure_mode", "temperature_C", "peaks_MPa"})
+        if (!col.count(need))
+          throw core::InputError(std::string("missing column '") + need + "'", file, l.number, 0, need);
+      const bool by_cycles = col.count("observed_cycles") > 0;
+      const bool by_hours = col.count("observed_h") && col.count("cycles_per_h");
+      if (by_cycles == by_hours)
+        throw core::InputError("give observed_cycles, or observed_h with cycles_per_h", file,
+                               l.number, 0, "observed_cycles");
+      continue;
+    }
+    if (f.size() != col.size())
+      throw core::InputError("expected " + std::to_string(col.size()) + " fields, found " +
+                                 std::to_string(f.size()), file, l.number, int(f.size()) + 1);
+    auto field = [&](const std::string& c) { return f[col.at(c)]; };
+    auto number = [&](const std::string& c) {
+      const double v = data::parse_csv_number(field(c), c, file, l.number, col.at(c) + 1);
+      if (c != "temperature_C" && !(v > 0.0))
+        throw core::InputError(c + " must be positive", file, l.number, col.at(c) + 1, c);
+      return v;
+    };
+    ObservedLife row;
+    row.name = field("case");
+    row.line = l.number;
+    row.mode = parse_mode(field("failure_mode"), file, l.number, col.at("failure_mode") + 1);
+    row.temperature_C = number("temperature_C");
+    row.observed_cycles = col.count("observed_cycles") ? number("observed_cycles")
+                                                       : number("observed_h") * number("cycles_per_h");
+    row.point_peaks_MPa.push_back(
+        parse_peaks(field("peaks_MPa"), file, l.number, col.at("peaks_MPa") + 1));
+    auto it = by_case.find(row.name);
+    if (it == by_case.end()) {
+      by_case[row.name] = out.size();
+      out.push_back(std::move(row));
+      continue;
+    }
+    ObservedLife& c = out[it->second];
+    if (c.mode != row.mode || c.temperature_C != row.temperature_C ||
+        c.observed_cycles != row.observed_cycles)
+      throw core::InputError("case '" + row.name + "' disagrees with its row on line " +
+                                 std::to_string(c.line) + " (mode, temperature or life)",
+                             file, l.number, col.at("case") + 1, "case");
+    c.point_peaks_MPa.push_back(row.point_peaks_MPa.front());
+  }
+  if (out.empty()) throw core::InputError("no observed lives", file, 1, 0);
+  return out;
+}
+
+ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
+                           const std::vector<PointHistory>& points, const FatigueCard& card,
+                           const LifeConditions& conditions) {
+  ObservedLife c;
+  c.name = name;
+  c.mode = mode;
+  c.temperature_C = conditions.temperature_C;
+  c.observed_cycles = observed_cycles;
+  const Role role = mode == Mode::radial_crack ? Role::bottom : Role::cushion;
+  for (const PointHistory& p : points)
+    if (p.role == role) {
+      std::vector<double> peaks = cycle_peaks_MPa(p, card.crack_sweep_deg, conditions);
+      if (!peaks.empty()) c.point_peaks_MPa.push_back(std::move(peaks));
+    }
+  if (c.point_peaks_MPa.empty())
+    throw core::InputError("no monitored point of case '" + name + "' has a peak of mode " +
+                           to_string(mode), "", 0, 0, "points");
+  return c;
+}
+
+std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
+  std::string out = "case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa\n";
+  for (const ObservedLife& c : cases)
+    for (std::size_t k = 0; k < c.point_peaks_MPa.size(); ++k) {
+      std::string peaks;
+      for (double p : c.point_peaks_MPa[k])
+        peaks += (peaks.empty() ? "" : ";") + data::format_exact(p);
+      out += data::quote_csv_field(c.name) + "," + to_string(c.mode) + "," +
+             data::format_exact(c.temperature_C) + "," + data::format_exact(c.observed_cycles) +
+             ",p" + std::to_string(k + 1) + "," + peaks + "\n";
+    }
+  return out;
+}
+
+std::vector<ObservedLife> read_observed_lives(const std::string& path) {
+  return parse_observed_lives(core::read_file(path), path);
+}
+
+}  // namespace fitlib::fatigue

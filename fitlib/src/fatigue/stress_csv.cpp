@@ -1,0 +1,79 @@
+#include "fitlib/fatigue/stress_csv.hpp"
+
+#include <map>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/data/csv.hpp"
+
+namespace fitlib::fatigue {
+
+namespace {
+
+const std::vector<std::string> kColumns = {"point", "role", "x_mm", "y_mm", "t_s",
+                                           "s11_MPa", "s22_MPa", "s12_MPa"};
+
+Role parse_role(const std::string& text, const std::string& file, int line, int column) {
+  if (text == "bottom") return Role::bottom;
+  if (text == "cushion") return Role::cushion;
+  throw core::InputError("role '" + text + "' is not bottom or cushion", file, line, column, "role");
+}
+
+}  // namespace
+
+std::vector<PointHistory> parse_stress_histories(const std::string& text, const std::string& file) {
+  std::vector<PointHistory> out;
+  std::map<std::string, std::size_t> index;
+  bool header = true;
+  for (const data::CsvLine& l : data::split_csv_lines(text, file)) {
+    if (data::is_blank_or_comment(l.text)) continue;
+    const std::vector<std::string> f = data::split_csv_fields(l.text, file, l.number);
+    if (header) {
+      for (std::size_t k = 0; k < kColumns.size() || k < f.size(); ++k)
+        if (k >= f.size() || k >= kColumns.size() || f[k] != kColumns[k])
+          throw core::InputError("expected the columns point, role, x_mm, y_mm, t_s, s11_MPa, "
+                                 "s22_MPa, s12_MPa", file, l.number, int(k) + 1,
+                                 k < kColumns.size() ? kColumns[k] : f[k]);
+      header = false;
+      continue;
+    }
+    if (f.size() != kColumns.size())
+      throw core::InputError("expected 8 fields, found " + std::to_string(f.size()), file,
+                             l.number, int(f.size()) + 1);
+    auto number = [&](int k) {
+      return data::parse_csv_number(f[k], kColumns[k], file, l.number, k + 1);
+    };
+    const Role role = parse_role(f[1], file, l.number, 2);
+    const double x = number(2), y = number(3);
+    const StressSample s{number(4), number(5), number(6), number(7)};
+    auto [it, added] = index.emplace(f[0], out.size());
+    if (added) out.push_back({f[0], role, x, y, {}});
+    PointHistory& p = out[it->second];
+    if (p.role != role || p.x_mm != x || p.y_mm != y)
+      throw core::InputError("point '" + f[0] + "' changes its role or position", file, l.number,
+                             1, "point");
+    if (!p.samples.empty() && !(s.t_s > p.samples.back().t_s))
+      throw core::InputError("times of point '" + f[0] + "' must increase", file, l.number, 5, "t_s");
+    p.samples.push_back(s);
+  }
+  if (out.empty()) throw core::InputError("no stress rows", file, 1, 0);
+  return out;
+}
+
+std::vector<PointHistory> read_stress_histories(const std::string& path) {
+  return parse_stress_histories(core::read_file(path), path);
+}
+
+std::string stress_histories_csv(const std::vector<PointHistory>& points) {
+  std::string out = "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa\n";
+  for (const PointHistory& p : points)
+    for (const StressSample& s : p.samples) {
+      out += data::quote_csv_field(p.name) + "," + to_string(p.role);
+      for (double v : {p.x_mm, p.y_mm, s.t_s, s.s11_MPa, s.s22_MPa, s.s12_MPa})
+        out += "," + data::format_exact(v);
+      out += "\n";
+    }
+  return out;
+}
+
+}  // namespace fitlib::fatigue

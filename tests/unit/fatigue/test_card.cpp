@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/card.hpp"
+
+namespace fitlib::fatigue {
+namespace {
+
+std::string temp_dir() {
+  const auto d = std::filesystem::path(::testing::TempDir()) /
+                 ("fatigue-card-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+std::string write(const std::string& name, const std::string& text) {
+  const std::string path = temp_dir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(FatigueCard, DefaultHoldsThePrintedConstants) {
+  const FatigueCard c = default_card();
+  EXPECT_EQ(c.radial_crack.sigma0_MPa, 104.218);
+  EXPECT_EQ(c.radial_crack.n, 4.423);
+  EXPECT_EQ(c.radial_crack.b_per_C, 0.02897);
+  EXPECT_EQ(c.separation.sigma0_MPa, 4.21028);
+  EXPECT_EQ(c.separation.n, 11.69);
+  EXPECT_EQ(c.separation.b_per_C, 0.1466);
+  EXPECT_EQ(c.reference_temperature_C, 80.0);
+  EXPECT_EQ(c.crack_sweep_deg, 25.0);
+  EXPECT_FALSE(c.cord_break);
+}
+
+TEST(FatigueCard, BundledCardIsTheDefault) {
+  const FatigueCard c =
+      load_card(std::string(FITLIB_SOURCE_DIR) + "/datasets/cards/fatigue-fritzson-1988.json");
+  EXPECT_EQ(card_to_json(c), card_to_json(default_card()));
+}
+
+TEST(FatigueCard, RoundTripWithCordBreak) {
+  FatigueCard c = default_card();
+  c.cord_break = CordBreakLaw{9.5, 0.01, 1500.0, 4.2, 0.1};
+  c.reference_temperature_C = 95.0;
+  const std::string path = temp_dir() + "/round.json";
+  save_card(path, c);
+  EXPECT_EQ(card_to_json(load_card(path)), card_to_json(c));
+}
+
+void expect_error(const std::string& text, const std::string& key, int line = 0) {
+  const std::string path = write("bad.json", text);
+  try {
+    load_card(path);
+    FAIL() << "accepted: " << text;
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.key(), key) << e.what();
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.line(), line) << e.what();
+  }
+}
+
+TEST(FatigueCard, ErrorsNameFileAndKey) {
+  nlohmann::json j = card_to_json(default_card());
+  auto without = [&](const std::string& mode, const std::string& key) {
+    nlohmann::json k = j;
+    k["modes"][mode].erase(key);
+    return k.dump();
+  };
+  expect_error(without("separation", "n"), "modes.separation.n");
+  nlohmann::json k = j;
+  k["modes"]["radial_crack"]["sigma0_MPa"] = "high";
+  expect_error(k.dump(), "modes.radial_crack.sigma0_MPa");
+  k = j;
+  k["modes"]["radial_crack"]["sigma0_MPa"] = -1.0;
+  expect_error(k.dump(), "modes.radial_crack.sigma0_MPa");
+  k = j;
+  k["modes"]["cord"] = nlohmann::json::object();
+  expect_error(k.dump(), "modes.cord");
+  k = j;
+  k.erase("reference_temperature_C");
+  expect_error(k.dump(), "reference_temperature_C");
+  k = j;
+  k["schema"] = "fitlib.card/1";
+  expect_error(k.dump(), "schema");
+  k = j;
+  k["cord_break"] = {{"a", 9.0}, {"b_per_MPa", 0.01}, {"ultimate_MPa", 1500}};
+  expect_error(k.dump(), "cord_break.cord_area_mm2");
+  expect_error("{\n  \"schema\": \"fitlib.fatigue-card/1\",\n  \"name\": oops\n}\n", "", 3);
+  EXPECT_THROW(load_card(temp_dir() + "/missing.json"), core::InputError);
+}
+
+}  // namespace
+}  // namespace fitlib::fatigue

@@ -1,0 +1,188 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/life.hpp"
+
+namespace fitlib::fatigue {
+namespace {
+
+// A point whose σ22 follows `values` at 1 s spacing (uniaxial longitudinal stress: σ_e = σ22
+// for the radial crack when positive). Cushion points carry the values as σ12 (σ11 = 0).
+PointHistory point(const std::string& name, Role role, const std::vector<double>& values,
+                   double t0 = 0.0) {
+  PointHistory p;
+  p.name = name;
+  p.role = role;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    StressSample s;
+    s.t_s = t0 + static_cast<double>(i);
+    (role == Role::bottom ? s.s22_MPa : s.s12_MPa) = values[i];
+    p.samples.push_back(s);
+  }
+  return p;
+}
+
+LifeConditions at(double temperature_C) {
+  LifeConditions c;
+  c.temperature_C = temperature_C;
+  c.cycles_per_hour = 3600.0;
+  return c;
+}
+
+TEST(Life, OnePeakAtTheReferenceTemperatureIsTheInversePowerLaw) {
+  const FatigueCard card = default_card();
+  const LifeReport r = evaluate_life({point("a", Role::bottom, {0, 20, 0})}, card,
+                                     at(card.reference_temperature_C));
+  ASSERT_EQ(r.modes.size(), 1u);
+  EXPECT_NEAR(r.life_cycles / std::pow(104.218 / 20.0, 4.423), 1.0, 1e-13);
+  EXPECT_NEAR(r.life_h, r.life_cycles / 3600.0, 1e-9 * r.life_h);
+  EXPECT_EQ(r.governing, "radial_crack");
+}
+
+TEST(Life, TemperatureFactorIsExactlyTwoToTheMinusBDeltaT) {
+  const FatigueCard card = default_card();
+  for (Role role : {Role::bottom, Role::cushion}) {
+    const std::vector<PointHistory> pts = {point("p", role, {0, 3, 0.2, 1.5, 0})};
+    const double n0 = evaluate_life(pts, card, at(card.reference_temperature_C)).life_cycles;
+    for (double dT : {-30.0, 10.0, 47.5}) {
+      const double n = evaluate_life(pts, card, at(card.reference_temperature_C + dT)).life_cycles;
+      const double b = role == Role::bottom ? 0.02897 : 0.1466;
+      EXPECT_NEAR(n / n0, std::exp2(-b * dT), 1e-13 * std::exp2(-b * dT));
+    }
+  }
+}
+
+TEST(Life, MEqualPeaksDivideTheLifeByM) {
+  const FatigueCard card = default_card();
+  const double one =
+      evaluate_life({point("p", Role::cushion, {0, 1.2, 0})}, card, at(95.0)).life_cycles;
+  for (int m : {2, 3, 7}) {
+    std::vector<double> v;
+    for (int k = 0; k < m; ++k) v.insert(v.end(), {0.0, 1.2});
+    v.push_back(0.0);
+    const LifeReport r = evaluate_life({point("p", Role::cushion, v)}, card, at(95.0));
+    EXPECT_EQ(r.modes[0].peaks.size(), static_cast<std::size_t>(m));
+    EXPECT_NEAR(r.life_cycles * m / one, 1.0, 1e-13);
+  }
+}
+
+TEST(Life, DesignPointIsTheLargestSumAndGoverningModeTheShortestLife) {
+  FatigueCard card = default_card();
+  // Point "one" has a single 30 MPa peak, point "many" four 20 MPa peaks: with n = 4.423,
+  // 30ⁿ > 4·20ⁿ (1.5ⁿ ≈ 6.0 > 4), so "one" is the design point; with
+  // n = 2, 4·20² = 1600 > 900 and "many" is.
+  const std::vector<PointHistory> pts = {point("one", Role::bottom, {0, 30, 0}),
+                                         point("many", Role::bottom, {0, 20, 0, 20, 0, 20, 0, 20, 0}),
+                                         point("cushion", Role::cushion, {0, 1.0, 0})};
+  const double T = card.reference_temperature_C;
+  LifeReport r = evaluate_life(pts, card, at(T));
+  EXPECT_EQ(r.modes[0].design_point, "one");
+  card.radial_crack.n = 2.0;
+  r = evaluate_life(pts, card, at(T));
+  EXPECT_EQ(r.modes[0].design_point, "many");
+  EXPECT_NEAR(r.modes[0].sum_terms, 4.0 * std::pow(20.0 / 104.218, 2.0), 1e-14);
+  // Mode 2 with 1 MPa: (4.21028)^11.69 ≈ 2e7 cycles; mode 1 with n = 2 ≈ 6.8: separation lives
+  // longer, the radial crack governs.
+  ASSERT_EQ(r.modes.size(), 2u);
+  EXPECT_EQ(r.governing, "radial_crack");
+  EXPECT_DOUBLE_EQ(r.life_cycles, std::min(r.modes[0].life_cycles, r.modes[1].life_cycles));
+}
+
+TEST(Life, MinersRuleOverThePulleysOfOneCycle) {
+  const FatigueCard card = default_card();
+  // One cycle of 8 s: a small pulley (peaks 25 and 18) then a large one (peak 12).
+  const std::vector<double> small = {0, 25, 0, 18}, large = {0, 12, 0, 0};
+  std::vector<double> cycle = small;
+  cycle.insert(cycle.end(), large.begin(), large.end());
+  LifeConditions c = at(90.0);
+  c.pulleys = {{"small", 0.0, 4.0}, {"large", 4.0, 8.0}};
+  const LifeReport r = evaluate_life({point("p", Role::bottom, cycle)}, card, c);
+  ASSERT_EQ(r.modes[0].shares.size(), 2u);
+  // Each pulley alone (its part repeated as the whole cycle), then 1/N = Σ 1/N_j.
+  const double n_small =
+      evaluate_life({point("p", Role::bottom, small)}, card, at(90.0)).life_cycles;
+  const double n_large =
+      evaluate_life({point("p", Role::bottom, large)}, card, at(90.0)).life_cycles;
+  EXPECT_NEAR(r.modes[0].shares[0].damage_per_cycle * n_small, 1.0, 1e-13);
+  EXPECT_NEAR(r.modes[0].shares[1].damage_per_cycle * n_large, 1.0, 1e-13);
+  EXPECT_NEAR(r.life_cycles * (1.0 / n_small + 1.0 / n_large), 1.0, 1e-13);
+}
+
+TEST(Life, OnlyTheLastCycleCounts) {
+  const FatigueCard card = default_card();
+  // Cycle 1 has a large transient peak; cycle 2 (t = 4 … 7) is the steady one.
+  PointHistory p = point("p", Role::bottom, {0, 50, 0, 0, 0, 10, 0, 0});
+  LifeConditions c = at(80.0);
+  c.cycle_time_s = 4.0;
+  const LifeReport r = evaluate_life({p}, card, c);
+  ASSERT_EQ(r.modes[0].peaks.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.modes[0].peaks[0].stress_MPa, 10.0);
+  EXPECT_DOUBLE_EQ(r.modes[0].peaks[0].t_s, 5.0);
+}
+
+TEST(Life, CordBreakByGerbert) {
+  const CordBreakLaw law{8.0, 0.02, 400.0, 5.0, 0.1};
+  // Force 500 … 1500 N on 5 mm²: σ_m = 200 = σ_U/2, σ_a = 100 → σ_A = 2σ_a (3.6).
+  const CordBreakLife k = cord_break_life({500, 1500, 1000}, law, 90.0, 80.0, 1000.0);
+  EXPECT_DOUBLE_EQ(k.mean_MPa, 200.0);
+  EXPECT_DOUBLE_EQ(k.equivalent_amplitude_MPa, 200.0);
+  EXPECT_NEAR(k.life_cycles, std::pow(10.0, 8.0 - 4.0) * 0.5, 1e-9);  // ΔT = +10 halves (3.7)
+  EXPECT_NEAR(cord_break_life({500, 1500}, law, 70.0, 80.0, 0).life_cycles, 2e4, 1e-9);
+  EXPECT_THROW(cord_break_life({2000, 2100}, law, 80.0, 80.0, 0), core::InputError);
+  // In the report it competes with the crack modes.
+  FatigueCard card = default_card();
+  card.cord_break = law;
+  LifeConditions c = at(90.0);
+  c.cord_force_N = {500, 1500};
+  const LifeReport r = evaluate_life({point("p", Role::bottom, {0, 1.0, 0})}, card, c);
+  EXPECT_EQ(r.governing, "cord_break");
+  EXPECT_DOUBLE_EQ(r.life_cycles, 5e3);
+}
+
+TEST(Life, NoPeakMeansUnboundedAndJsonWritesNull) {
+  const LifeReport r =
+      evaluate_life({point("p", Role::cushion, {0, 0, 0})}, default_card(), at(80.0));
+  EXPECT_EQ(r.governing, "none");
+  EXPECT_FALSE(std::isfinite(r.life_cycles));
+  const nlohmann::json j = life_to_json(r);
+  EXPECT_TRUE(j["life_cycles"].is_null());
+  EXPECT_TRUE(j["unbounded"].get<bool>());
+  EXPECT_EQ(j.dump().find("inf"), std::string::npos);
+  EXPECT_EQ(j.dump().find("nan"), std::string::npos);
+}
+
+TEST(Life, TableNamesModesDesignPointsAndTheGoverningMode) {
+  FatigueCard card = default_card();
+  const LifeReport r = evaluate_life({point("gap", Role::bottom, {0, 20, 0}),
+                                      point("cushion", Role::cushion, {0, 0, 0})},
+                                     card, at(card.reference_temperature_C));
+  const std::string t = life_table(r);
+  char expected[64];
+  std::snprintf(expected, sizeof expected, "%.4g cycles", std::pow(104.218 / 20.0, 4.423));
+  EXPECT_NE(t.find(std::string("radial_crack  ") + expected), std::string::npos) << t;
+  EXPECT_NE(t.find("design point gap"), std::string::npos) << t;
+  EXPECT_NE(t.find("separation    unbounded"), std::string::npos) << t;
+  EXPECT_NE(t.find("governing: radial_crack"), std::string::npos) << t;
+}
+
+TEST(Life, BadHistoriesAreRefused) {
+  PointHistory p = point("p", Role::bottom, {0, 1, 0});
+  p.samples[1].s12_MPa = std::nan("");
+  EXPECT_THROW(evaluate_life({p}, default_card(), at(80.0)), core::NumericalError);
+  PointHistory q = point("q", Role::bottom, {0, 1, 0});
+  q.samples[2].t_s = 0.5;
+  try {
+    evaluate_life({q}, default_card(), at(80.0));
+    FAIL();
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.key(), "points.q");
+  }
+  EXPECT_THROW(evaluate_life({point("e", Role::bottom, {})}, default_card(), at(80.0)),
+               core::InputError);
+}
+
+}  // namespace
+}  // namespace fitlib::fatigue

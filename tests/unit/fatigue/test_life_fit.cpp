@@ -1,0 +1,187 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/rng.hpp"
+#include "fitlib/fatigue/life.hpp"
+#include "fitlib/fatigue/life_fit.hpp"
+#include "csv_error.hpp"
+
+namespace fitlib::fatigue {
+namespace {
+
+// Synthetic cases of known constants: two monitored points per case with random peaks, random
+// temperatures, lives from (6.31) at the design point, times exp(noise) in log10.
+std::vector<ObservedLife> synthetic(Mode mode, const LifeLaw& truth, int count, double noise,
+                                    std::uint64_t seed, bool vary_temperature = true) {
+  core::Rng rng(seed);
+  std::vector<ObservedLife> out;
+  for (int k = 0; k < count; ++k) {
+    ObservedLife c;
+    c.name = "case" + std::to_string(k);
+    c.mode = mode;
+    c.temperature_C = vary_temperature ? rng.uniform(60.0, 120.0) : 90.0;
+    const double level = truth.sigma0_MPa * rng.uniform(0.05, 0.4);
+    for (int p = 0; p < 2; ++p) {
+      std::vector<double> peaks;
+      const int m = 1 + static_cast<int>(rng.uniform(0.0, 4.0));
+      for (int i = 0; i < m; ++i) peaks.push_back(level * rng.uniform(0.3, 1.0));
+      c.point_peaks_MPa.push_back(peaks);
+    }
+    c.observed_cycles = 1.0;  // placeholder for the prediction below
+    c.observed_cycles = std::pow(10.0, predicted_log10_life(c, truth, 80.0) + noise * rng.normal());
+    out.push_back(c);
+  }
+  return out;
+}
+
+TEST(LifeFit, RecoversKnownConstantsFromExactLives) {
+  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  auto cases = synthetic(Mode::separation, truth, 12, 0.0, 5);
+  // Cases of the other mode are ignored by this mode's fit.
+  auto other = synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897}, 5, 0.0, 6);
+  cases.insert(cases.end(), other.begin(), other.end());
+  LifeFitOptions o;
+  o.start = LifeLaw{8.0, 6.0, 0.05};
+  const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
+  EXPECT_EQ(r.cases, 12);
+  EXPECT_NEAR(r.law.sigma0_MPa / truth.sigma0_MPa, 1.0, 1e-7);
+  EXPECT_NEAR(r.law.n / truth.n, 1.0, 1e-7);
+  EXPECT_NEAR(r.law.b_per_C / truth.b_per_C, 1.0, 1e-7);
+  EXPECT_LT(r.rms_log10_error, 1e-8);
+}
+
+TEST(LifeFit, IntervalsCoverTheTruthWithScatter) {
+  const LifeLaw truth{104.218, 4.423, 0.02897};
+  const auto cases = synthetic(Mode::radial_crack, truth, 30, 0.15, 17);
+  LifeFitOptions o;
+  o.start = LifeLaw{50.0, 3.0, 0.0};
+  const LifeFitResult r = fit_life_law(cases, Mode::radial_crack, o);
+  ASSERT_EQ(r.constants.size(), 3u);
+  const double t[3] = {truth.sigma0_MPa, truth.n, truth.b_per_C};
+  for (int k = 0; k < 3; ++k) {
+    const ConstantEstimate& e = r.constants[k];
+    ASSERT_TRUE(e.has_interval) << e.name;
+    EXPECT_LT(e.ci95_low, t[k]) << e.name;
+    EXPECT_GT(e.ci95_high, t[k]) << e.name;
+    EXPECT_GT(e.std_error, 0.0);
+  }
+  EXPECT_NEAR(r.rms_log10_error, 0.15, 0.06);
+}
+
+TEST(LifeFit, OneTemperatureHoldsB) {
+  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  const auto cases = synthetic(Mode::separation, truth, 8, 0.0, 9, false);
+  LifeFitOptions o;
+  o.start = LifeLaw{6.0, 9.0, 0.1466};
+  const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
+  EXPECT_TRUE(r.constants[2].fixed);
+  EXPECT_NE(r.note.find("one temperature"), std::string::npos);
+  EXPECT_NEAR(r.law.n / truth.n, 1.0, 1e-7);
+  EXPECT_NEAR(r.law.sigma0_MPa / truth.sigma0_MPa, 1.0, 1e-7);
+  EXPECT_THROW(fit_life_law(cases, Mode::radial_crack, o), core::InputError);
+}
+
+TEST(ObservedLives, ReadsCasesWithSeveralPoints) {
+  const std::string text =
+      "# observed lives\n"
+      "case,failure_mode,temperature_C,observed_h,cycles_per_h,point,peaks_MPa\n"
+      "A,separation,90,120,60000,cushion-1,1.2;0.8\n"
+      "A,separation,90,120,60000,cushion-2,1.1\n"
+      "B,radial_crack,85.5,2000,60000,gap,\"5;4.5;3\"\n";
+  const auto cases = parse_observed_lives(text, "lives.csv");
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].point_peaks_MPa.size(), 2u);
+  EXPECT_EQ(cases[0].point_peaks_MPa[0], (std::vector<double>{1.2, 0.8}));
+  EXPECT_DOUBLE_EQ(cases[0].observed_cycles, 120.0 * 60000.0);
+  EXPECT_EQ(cases[1].mode, Mode::radial_crack);
+  EXPECT_EQ(cases[1].point_peaks_MPa[0].size(), 3u);
+  EXPECT_EQ(cases[1].line, 5);
+}
+
+void expect_error(const std::string& text, int line, int column, const std::string& key = "") {
+  expect_csv_error(parse_observed_lives, text, line, column, key);
+}
+
+TEST(ObservedLives, ErrorsNameLineAndColumn) {
+  const std::string head = "case,failure_mode,temperature_C,observed_cycles,peaks_MPa\n";
+  expect_error(head + "A,crack,90,1e6,1.0\n", 2, 2, "failure_mode");
+  expect_error(head + "A,separation,90,1e6,1.0;x\n", 2, 5);
+  expect_error(head + "A,separation,90,-5,1.0\n", 2, 4, "observed_cycles");
+  expect_error(head + "A,separation,90,1e6,1.0\nA,separation,91,1e6,2.0\n", 3, 1, "case");
+  expect_error(head + "A,separation,90,1e6\n", 2, 5);
+  expect_error("case,failure_mode,temperature,observed_cycles,peaks_MPa\n", 1, 3, "temperature");
+  expect_error("case,failure_mode,temperature_C,peaks_MPa\n", 1, 0, "observed_cycles");
+  expect_error(head, 1, 0);
+}
+
+}  // namespace
+}  // namespace fitlib::fatigue
+
+namespace fitlib::fatigue {
+namespace {
+
+// Two bottom points and one cushion point with known σ22 / σ12 signals (1 s spacing).
+std::vector<PointHistory> three_points(double scale) {
+  std::vector<PointHistory> pts(3);
+  const std::vector<std::vector<double>> v = {{0, 30, 0, 12, 0}, {0, 20, 0, 20, 0, 20, 0},
+                                              {0, 1.1, 0, 0.6, 0}};
+  for (int k = 0; k < 3; ++k) {
+    pts[k].name = "p" + std::to_string(k);
+    pts[k].role = k < 2 ? Role::bottom : Role::cushion;
+    for (std::size_t i = 0; i < v[k].size(); ++i) {
+      StressSample s;
+      s.t_s = static_cast<double>(i);
+      (k < 2 ? s.s22_MPa : s.s12_MPa) = scale * v[k][i];
+      pts[k].samples.push_back(s);
+    }
+  }
+  return pts;
+}
+
+TEST(ObservedLives, FromStressHistoriesAgreeWithTheLifeReport) {
+  // The fit's log-sum-exp life and evaluate_life are two implementations of (6.31).
+  const FatigueCard card = default_card();
+  LifeConditions c;
+  c.temperature_C = 97.0;
+  const auto pts = three_points(1.0);
+  const LifeReport r = evaluate_life(pts, card, c);
+  for (Mode mode : {Mode::radial_crack, Mode::separation}) {
+    const ObservedLife o = observed_life("x", mode, 1e6, pts, card, c);
+    const double n = r.modes[mode == Mode::radial_crack ? 0 : 1].life_cycles;
+    EXPECT_NEAR(predicted_log10_life(o, card.law(mode), card.reference_temperature_C),
+                std::log10(n), 1e-12);
+  }
+}
+
+TEST(ObservedLives, CsvRoundTripAndFitFromHistories) {
+  // Lives from a known card for loads 0.6 … 1.5 and temperatures 70 … 110 °C, written to CSV,
+  // read back, fitted: the card's mode-1 constants come back.
+  const FatigueCard card = default_card();
+  std::vector<ObservedLife> cases;
+  for (int k = 0; k < 8; ++k) {
+    LifeConditions c;
+    c.temperature_C = 70.0 + 5.0 * k;
+    const auto pts = three_points(0.6 + 0.13 * ((k * 5) % 8));
+    const double n = evaluate_life(pts, card, c).modes[0].life_cycles;
+    cases.push_back(observed_life("case " + std::to_string(k), Mode::radial_crack, n, pts, card, c));
+  }
+  const std::string text = observed_lives_csv(cases);
+  const auto back = parse_observed_lives(text, "lives.csv");
+  ASSERT_EQ(back.size(), cases.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    EXPECT_EQ(back[k].point_peaks_MPa, cases[k].point_peaks_MPa);
+    EXPECT_EQ(back[k].observed_cycles, cases[k].observed_cycles);
+  }
+  LifeFitOptions o;
+  o.start = LifeLaw{60.0, 3.0, 0.01};
+  const LifeFitResult r = fit_life_law(back, Mode::radial_crack, o);
+  EXPECT_NEAR(r.law.sigma0_MPa / 104.218, 1.0, 1e-6);
+  EXPECT_NEAR(r.law.n / 4.423, 1.0, 1e-6);
+  EXPECT_NEAR(r.law.b_per_C / 0.02897, 1.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace fitlib::fatigue
