@@ -23,7 +23,7 @@ std::vector<double> column_lines(const CogSection& s, const MeshKnobs& k) {
   const double x0 = -0.5 * fine - end;
   for (int i = 0; i < ne; ++i) x.push_back(x0 + end * i / ne);
   for (int i = 0; i < nf; ++i) x.push_back(-0.5 * fine + fine * i / nf);
-  for (int i = 0; i <= ne; ++i) x.push_back(0.5 * fine + end * i / ne);
+  for (int i = 0; i <= ne; ++i) x.push_back(0.5 * fine + (ne > 0 ? end * i / ne : 0.0));
   return x;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 namespace fitlib::segment {
 
