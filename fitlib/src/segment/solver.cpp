@@ -166,7 +166,8 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
     throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
   const Mesh& m = *p.mesh;
-  const Dofs d = number_dofs(p);
+  Dofs d = number_dofs(p);
+  std::vector<double> angles(p.constraints.size());
   const Assembler assembler(p, d, gauss_order(m, knobs.integration));
   LinearSolver linear(p.pressure_MPa == 0.0);
   const int nn = m.node_count();
@@ -198,6 +199,15 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   int cuts_in_row = 0;
   while (lambda < 1.0 - 1e-14) {
     const double target = std::min(1.0, lambda + dlambda);
+    if (p.rotate) {  // turn the constrained bases, keeping the displacements
+      p.rotate(target, angles);
+      for (std::size_t c = 0; c < p.constraints.size(); ++c) {
+        const int n = p.constraints[c].node;
+        const Eigen::Vector2d u = d.R[n] * q.segment<2>(2 * n);
+        d.R[n] << std::cos(angles[c]), -std::sin(angles[c]), std::sin(angles[c]), std::cos(angles[c]);
+        q.segment<2>(2 * n) = d.R[n].transpose() * u;
+      }
+    }
     const Eigen::VectorXd q_saved = q;
     const Eigen::VectorXd q_new_p = prescribed_at(target);
     Eigen::VectorXd dq_p = q_new_p - q;  // nonzero only at prescribed dofs

@@ -39,6 +39,8 @@ struct StaticProblem {
   std::array<const PlaneStrainLaw*, 2> laws{};  // indexed by Role
   std::vector<NodeConstraint> constraints;
   Prescribe prescribe;
+  // Optional: the constraints' basis angles at load level λ (a line that turns with the load).
+  std::function<void(double lambda, std::vector<double>& angles_rad)> rotate;
   double pressure_MPa = 0.0;      // on the bottom edges, scaled by λ
 };
 
