@@ -27,8 +27,8 @@ void compare_with_calculix(const std::string& name, const StaticLoad& load) {
   StaticSetup setup;
   setup.law = ElasticLaw::st_venant_kirchhoff;
   setup.materials = {IsotropicElastic{20.0, 0.4995}, IsotropicElastic{8.0, 0.4995}};
-  setup.mesh.fine_size_mm = 0.4;
-  setup.mesh.coarse_size_mm = 1.5;
+  setup.mesh.fine_size_mm = 0.6;
+  setup.mesh.coarse_size_mm = 2.0;
   setup.solver.steps = 4;
   setup.stiffness = false;
   StaticSolution ours;
