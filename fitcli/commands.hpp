@@ -14,5 +14,6 @@ void register_surface(CLI::App& app);
 void register_belt(CLI::App& app);
 void register_accumulate(CLI::App& app);
 void register_material_point(CLI::App& app);
+void register_segment(CLI::App& app);
 
 }  // namespace fitcli

@@ -7,6 +7,7 @@ packages=(
   libfccp-dev nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy jupyter-nbconvert python3-nbclient python3-ipykernel
+  calculix-ccx
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -19,8 +19,8 @@ const char* to_string(Role role);
 struct MeshKnobs {
   double central_pitches = 2.0;   // fine central section length, in cog pitches
   double end_pitches = 2.0;       // coarse leading and trailing sections, each
-  double fine_size_mm = 0.25;     // element width in the central section, and row height
-  double coarse_size_mm = 1.0;    // element width in the leading/trailing sections
+  double fine_size_mm = 0.4;      // element width in the central section, and row height
+  double coarse_size_mm = 1.5;    // element width in the leading/trailing sections
   int cushion_rows = 2;
   int nodes_per_element = 8;      // 8 (quadratic) or 4 (bilinear)
 };
