@@ -15,5 +15,6 @@ void register_belt(CLI::App& app);
 void register_accumulate(CLI::App& app);
 void register_material_point(CLI::App& app);
 void register_plot(CLI::App& app);
+void register_segment(CLI::App& app);
 
 }  // namespace fitcli

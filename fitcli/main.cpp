@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   fitcli::register_accumulate(app);
   fitcli::register_material_point(app);
   fitcli::register_plot(app);
+  fitcli::register_segment(app);
   fitcli::set_command_line(argc, argv);
   try {
     app.parse(argc, argv);

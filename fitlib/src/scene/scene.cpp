@@ -127,9 +127,95 @@ void apply_section(Scene& s, Reader& r) {
   if (s.belt.wedge_half_angle_rad >= kPi / 2) r.fail("wedge_half_angle_deg", "must be below 90 deg");
   s.cord_area_mm2 = r.number_or("cord_area_mm2", 5.0, 0.0, 1e4, true);
   s.bending_inertia_mm4 = r.number_or("bending_inertia_mm4", 834.0, 0.0, 1e9, true);
-  for (const char* k : {"cog_pitch_mm", "cog_depth_mm", "cushion_mm", "length_mm"})
+  for (const char* k : {"cog_pitch_mm", "cog_depth_mm", "cushion_mm", "length_mm", "cog_flank_angle_deg",
+                        "cog_land_half_width_mm", "cog_root_fillet_mm", "cog_tip_radius_mm"})
     if (auto v = r.number(k, 0.0, 1e6, true)) s.extra_geometry_mm[k] = *v;
 }
+// [segment]: load case, law, elastic constants per role, mesh and solver knobs, user points.
+SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
+  Reader r(t, "segment", source);
+  r.allow({"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps", "integration",
+           "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "points",
+           "materials"});
+  SegmentSpec g;
+  auto& sec = g.setup.section;
+  auto geo = [&](const char* key, double fallback) {
+    const auto it = scene.extra_geometry_mm.find(key);
+    return it == scene.extra_geometry_mm.end() ? fallback : it->second;
+  };
+  sec.height_mm = scene.belt.height_mm;
+  sec.cushion_mm = geo("cushion_mm", sec.cushion_mm);
+  sec.cog_pitch_mm = geo("cog_pitch_mm", sec.cog_pitch_mm);
+  sec.cog_depth_mm = geo("cog_depth_mm", sec.cog_depth_mm);
+  sec.flank_angle_deg = geo("cog_flank_angle_deg", sec.flank_angle_deg);
+  sec.land_half_width_mm = geo("cog_land_half_width_mm", sec.land_half_width_mm);
+  sec.root_fillet_mm = geo("cog_root_fillet_mm", sec.root_fillet_mm);
+  sec.tip_radius_mm = geo("cog_tip_radius_mm", sec.tip_radius_mm);
+  try {
+    sec.validate();
+  } catch (const InputError& e) {
+    throw InputError(e.detail().empty() ? e.what() : e.detail(), source, 0, 0, e.key());
+  }
+  g.load.strain = r.number_or("strain", 0.0, -0.5, 1.0);
+  g.load.curvature_1_mm = r.number_or("curvature_1_mm", 0.0, -10.0, 10.0);
+  if (auto R = r.number("radius_mm", 0.0, 1e9, true)) {
+    if (r.has("curvature_1_mm")) r.fail("radius_mm", "give radius_mm or curvature_1_mm, not both");
+    g.load.curvature_1_mm = 1.0 / *R;
+  }
+  g.load.pressure_MPa = r.number_or("pressure_MPa", 0.0, 0.0, 1e3);
+  const std::string law = r.string("law").value_or("neo-hookean");
+  if (law != "neo-hookean" && law != "stvk") r.fail("law", "law must be \"neo-hookean\" or \"stvk\"");
+  g.setup.law = segment::elastic_law_from_string(law);
+  const std::string ends = r.string("ends").value_or("radial");
+  if (ends != "radial" && ends != "free") r.fail("ends", "ends must be \"radial\" or \"free\"");
+  g.setup.ends = ends == "radial" ? segment::EndCondition::radial : segment::EndCondition::free;
+  const std::string integ = r.string("integration").value_or("reduced");
+  if (integ != "reduced" && integ != "full") r.fail("integration", "integration must be \"reduced\" or \"full\"");
+  g.setup.solver.integration = integ == "reduced" ? segment::Integration::reduced : segment::Integration::full;
+  g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, 1e5));
+  auto& mk = g.setup.mesh;
+  mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.01, 100.0);
+  mk.coarse_size_mm = r.number_or("coarse_size_mm", mk.coarse_size_mm, 0.01, 100.0);
+  mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 100.0, true);
+  mk.end_pitches = r.number_or("end_pitches", mk.end_pitches, 0.0, 100.0);
+  mk.cushion_rows = static_cast<int>(r.number_or("cushion_rows", mk.cushion_rows, 1, 100));
+  if (const toml::table* mt = r.table("materials")) {
+    Reader mr(*mt, "segment.materials", source);
+    mr.allow({"bottom", "cushion"});
+    for (int role = 0; role < 2; ++role) {
+      const char* name = role == 0 ? "bottom" : "cushion";
+      if (const toml::table* et = mr.table(name)) {
+        Reader er(*et, std::string("segment.materials.") + name, source);
+        er.allow({"E_MPa", "nu"});
+        g.setup.materials[role].E_MPa = er.number_or("E_MPa", g.setup.materials[role].E_MPa, 0.0, 1e7, true);
+        g.setup.materials[role].nu = er.number_or("nu", g.setup.materials[role].nu, -0.99, 0.49999);
+        er.finish();
+      }
+    }
+    mr.finish();
+  }
+  if (const toml::node* pts = r.node("points")) {
+    const toml::array* a = pts->as_array();
+    if (!a) r.fail("points", "expects an array of {name, x_mm, y_mm}");
+    std::size_t i = 0;
+    for (const toml::node& pn : *a) {
+      if (!pn.as_table()) r.fail("points", "points[" + std::to_string(i) + "] must be a table", pn.source());
+      Reader pr(*pn.as_table(), "segment.points[" + std::to_string(i) + "]", source);
+      pr.allow({"name", "x_mm", "y_mm"});
+      segment::NamedPoint p;
+      p.name = pr.string("name").value_or("point" + std::to_string(i + 1));
+      const auto x = pr.number("x_mm"), y = pr.number("y_mm");
+      if (!x || !y) pr.fail("x_mm", "a point needs x_mm and y_mm", pn.source());
+      p.x_mm = *x, p.y_mm = *y;
+      pr.finish();
+      g.setup.points.push_back(p);
+      ++i;
+    }
+  }
+  r.finish();
+  return g;
+}
+
 }  // namespace
 
 const std::vector<std::string>& effect_names() {
@@ -156,7 +242,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   const std::filesystem::path base = std::filesystem::path(source).parent_path();
   Reader top(root, "", source);
   top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt",
-             "tension_test"});
+             "tension_test", "segment"});
   s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
 
   // [drive]
@@ -224,7 +310,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   Reader br(belt_t ? *belt_t : empty, "belt", source);
   br.allow({"section", "height_mm", "width_mm", "area_mm2", "density_kg_m3", "wedge_half_angle_deg",
             "cord_area_mm2", "bending_inertia_mm4", "cog_pitch_mm", "cog_depth_mm", "cushion_mm",
-            "length_mm", "materials", "stiffness"});
+            "length_mm", "materials", "stiffness", "cog_flank_angle_deg", "cog_land_half_width_mm",
+            "cog_root_fillet_mm", "cog_tip_radius_mm"});
   apply_section(s, br);
   if (const toml::table* mt = br.table("materials")) {
     Reader mr(*mt, "belt.materials", source);
@@ -316,6 +403,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     t.steps = static_cast<int>(tr.number_or("steps", t.steps, 1, 1e7));
     s.tension_test = t;
   }
+  if (const toml::table* st = top.table("segment")) s.segment = parse_segment(s, *st, source);
   top.finish();
   return s;
 }

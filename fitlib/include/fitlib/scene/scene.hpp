@@ -10,6 +10,7 @@
 
 #include "fitlib/belt/drive.hpp"
 #include "fitlib/belt/load_cycle.hpp"
+#include "fitlib/segment/static_case.hpp"
 
 namespace fitlib::scene {
 
@@ -50,6 +51,12 @@ struct TensionTestSpec {
   int nodes = 200, steps = 1200;
 };
 
+// Static segment load case ([segment], fitcli segment); geometry from [belt].
+struct SegmentSpec {
+  segment::StaticSetup setup;
+  segment::StaticLoad load;
+};
+
 struct Scene {
   std::string name;
   std::string path;  // file it came from (errors, relative card paths)
@@ -75,6 +82,7 @@ struct Scene {
   std::optional<AccumulationSpec> accumulation;
   std::optional<CvtSpec> cvt;
   std::optional<TensionTestSpec> tension_test;
+  std::optional<SegmentSpec> segment;
 };
 
 Scene load_scene(const std::string& path);

@@ -1,0 +1,81 @@
+#pragma once
+// Quasi-static finite-strain solve of a plane-strain mesh (total Lagrangian, unit thickness):
+// Newton with the consistent tangent, the Eigen sparse direct solver with the pattern analysed
+// once, a backtracking line search and step cutting. Loads grow with a parameter λ from 0 to 1:
+// prescribed node displacements (in a per-node rotated basis, so a node can slide along a line)
+// and a follower pressure on the bottom edges. A failure throws core::NumericalError naming the
+// step, the element and the residual (exit 4).
+#include <array>
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fitlib/segment/elastic.hpp"
+#include "fitlib/segment/mesh.hpp"
+
+namespace fitlib::segment {
+
+enum class Integration { reduced, full };  // 2×2 or 3×3 Gauss (8 nodes); 2×2 or 2×2 (4 nodes)
+
+struct NodeConstraint {
+  int node = 0;
+  double angle_rad = 0.0;           // local basis: e0 = (cos a, sin a), e1 = (−sin a, cos a)
+  std::array<bool, 2> fixed{true, true};  // which local components are prescribed
+};
+// Fills the prescribed local displacement components (mm) of every constraint at load level λ.
+using Prescribe = std::function<void(double lambda, std::vector<std::array<double, 2>>& local_values)>;
+
+struct SolverKnobs {
+  int steps = 4;                  // equal load increments of λ
+  int max_iterations = 20;        // Newton iterations per increment
+  int max_cuts = 6;               // halvings of an increment before giving up
+  double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
+  Integration integration = Integration::reduced;
+};
+
+struct StaticProblem {
+  const Mesh* mesh = nullptr;
+  std::array<const PlaneStrainLaw*, 2> laws{};  // indexed by Role
+  std::vector<NodeConstraint> constraints;
+  Prescribe prescribe;
+  // Optional: the constraints' basis angles at load level λ (a line that turns with the load).
+  std::function<void(double lambda, std::vector<double>& angles_rad)> rotate;
+  double pressure_MPa = 0.0;      // on the bottom edges, scaled by λ
+};
+
+struct IntegrationPointStress {
+  Eigen::Vector2d X_mm;           // reference position
+  Eigen::Matrix2d cauchy_MPa;     // global x, y components
+  double sigma33_MPa = 0.0;
+};
+
+struct StaticSolution {
+  std::vector<Eigen::Vector2d> u_mm;                        // per node, global
+  std::vector<Eigen::Vector2d> reaction_N_mm;               // per node (zero where free)
+  std::vector<std::vector<IntegrationPointStress>> points;  // per element
+  int increments = 0, newton_iterations = 0, cuts = 0;
+  double final_residual = 0.0;
+  int equations = 0;
+};
+
+StaticSolution solve_static(const StaticProblem& problem, const SolverKnobs& knobs);
+
+// Internal force the elements with reference centroid x < x_cut exert on the nodes at x = x_cut,
+// i.e. the section force transmitted through the cut (N/mm), and its moment about `about`
+// (deformed coordinates): M = Σ (y − y0) f_x − (x − x0) f_y (positive when the bottom is compressed).
+struct SectionForce {
+  Eigen::Vector2d force_N_mm = Eigen::Vector2d::Zero();
+  double moment_N = 0.0;  // N·mm/mm
+};
+SectionForce section_force(const StaticProblem& problem, const StaticSolution& solution, double x_cut_mm,
+                           const Eigen::Vector2d& about_mm, Integration integration);
+
+// Cauchy stress at a reference point, extrapolated from the integration points of the element
+// that contains it (Lagrange interpolation through the Gauss points). Throws if outside the mesh.
+Eigen::Matrix2d stress_at(const Mesh& mesh, const StaticSolution& solution, const Eigen::Vector2d& X_mm,
+                          Integration integration, double* sigma33_MPa = nullptr);
+
+int gauss_order(const Mesh& mesh, Integration integration);
+
+}  // namespace fitlib::segment

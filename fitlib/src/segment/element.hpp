@@ -1,0 +1,44 @@
+#pragma once
+// Isoparametric quadrilaterals (4 or 8 nodes) for the total-Lagrangian plane-strain element and
+// the bottom-face follower pressure (docs/segment.md §Element).
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fitlib/segment/elastic.hpp"
+
+namespace fitlib::segment::detail {
+
+struct GaussPoint {
+  double xi, eta, weight;
+};
+// n × n Gauss–Legendre rule (n = 2 or 3).
+std::vector<GaussPoint> gauss_rule(int n);
+// 1-D Gauss abscissae of the n-point rule, ascending.
+std::vector<double> gauss_abscissae(int n);
+
+// Shape functions and their (ξ, η) derivatives; node order: corners counter-clockwise, midsides.
+void shape(int nodes, double xi, double eta, double* N, double* dN_dxi, double* dN_deta);
+
+using ElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 16, 1>;
+using ElementMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 16, 16>;
+
+struct ElementState {   // what the solver keeps per integration point after convergence
+  Eigen::Matrix2d cauchy_MPa;
+  double sigma33_MPa;
+  Eigen::Vector2d X_mm;  // reference position
+};
+
+// Internal force and tangent of one element; false (with nothing written) when an integration
+// point is inverted (J ≤ 0) or the law returns a non-finite stress.
+bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
+                      const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, ElementVector& f,
+                      ElementMatrix* K, std::vector<ElementState>* states);
+
+// Follower pressure p on a 2- or 3-node edge (a → b, midside), pushing against the outward
+// normal of the counter-clockwise element: external force and its derivative d f_ext / d u.
+void pressure_load(const std::vector<Eigen::Vector2d>& x_current, double p_MPa, ElementVector& f_ext,
+                   ElementMatrix& dfext_du);
+
+}  // namespace fitlib::segment::detail

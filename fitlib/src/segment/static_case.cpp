@@ -1,0 +1,123 @@
+#include "fitlib/segment/static_case.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "fitlib/segment/curve.hpp"
+
+namespace fitlib::segment {
+
+std::vector<NamedPoint> standard_points(const CogSection& s) {
+  return {{"gap_bottom", 0.0, s.bottom_y_mm(0.0)}, {"mid_cushion", 0.0, -0.5 * s.cushion_mm}};
+}
+
+StaticProblem static_problem(const Mesh& m, const std::array<const PlaneStrainLaw*, 2>& laws,
+                             const StaticLoad& load, EndCondition ends) {
+  StaticProblem p;
+  p.mesh = &m;
+  p.laws = laws;
+  p.pressure_MPa = load.pressure_MPa;
+  for (int n : m.top_nodes) p.constraints.push_back({n, 0.0, {true, true}});
+  const std::size_t n_top = p.constraints.size();
+  if (ends == EndCondition::radial)
+    for (const auto* side : {&m.left_nodes, &m.right_nodes})
+      for (int n : *side)
+        if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, {true, false}});
+  const double L = m.half_length_mm;
+  // Bases at full load (the CalculiX deck uses them); the solver turns them with λ (rotate).
+  const NeutralCurve full = NeutralCurve::uniform(load.curvature_1_mm, load.strain, 1.5 * L);
+  for (std::size_t c = n_top; c < p.constraints.size(); ++c) {
+    const double x_end = m.X[p.constraints[c].node].x();
+    p.constraints[c].angle_rad = -full.at(full.s_from_unstrained(x_end)).phi_rad;  // e0 = tangent
+  }
+  const Mesh* mesh = &m;
+  const std::vector<NodeConstraint> constraints = p.constraints;
+  p.prescribe = [mesh, constraints, n_top, load, L](double lambda, std::vector<std::array<double, 2>>& v) {
+    const NeutralCurve curve = NeutralCurve::uniform(lambda * load.curvature_1_mm, lambda * load.strain, 1.5 * L);
+    for (std::size_t c = 0; c < constraints.size(); ++c) {
+      const Eigen::Vector2d& X = mesh->X[constraints[c].node];
+      const CurvePoint q = curve.at(curve.s_from_unstrained(X.x()));
+      if (c < n_top) {
+        v[c] = {q.x_mm - X.x(), q.y_mm - X.y()};
+      } else {  // stay on the radial line through the cord point: (x − q)·t = 0
+        const Eigen::Vector2d t(std::cos(q.phi_rad), -std::sin(q.phi_rad));
+        const Eigen::Vector2d r = Eigen::Vector2d(q.x_mm, q.y_mm) - X;
+        v[c] = {r.dot(t), 0.0};
+      }
+    }
+  };
+  p.rotate = [mesh, constraints, n_top, load, L](double lambda, std::vector<double>& angles) {
+    const NeutralCurve curve = NeutralCurve::uniform(lambda * load.curvature_1_mm, lambda * load.strain, 1.5 * L);
+    for (std::size_t c = n_top; c < angles.size(); ++c) angles[c] = -curve.at(curve.s_from_unstrained(
+                                                           mesh->X[constraints[c].node].x())).phi_rad;
+  };
+  return p;
+}
+
+namespace {
+
+PointStress local_stress(const Mesh& m, const StaticSolution& s, const NamedPoint& pt, const NeutralCurve& curve,
+                         Integration integration) {
+  double s33 = 0.0;
+  const Eigen::Matrix2d sigma = stress_at(m, s, Eigen::Vector2d(pt.x_mm, pt.y_mm), integration, &s33);
+  const double phi = curve.at(curve.s_from_unstrained(pt.x_mm)).phi_rad;
+  const Eigen::Vector2d t(std::cos(phi), -std::sin(phi)), n(std::sin(phi), std::cos(phi));
+  PointStress r;
+  r.point = pt;
+  r.sigma11_MPa = n.dot(sigma * n);
+  r.sigma22_MPa = t.dot(sigma * t);
+  r.sigma12_MPa = n.dot(sigma * t);
+  r.sigma33_MPa = s33;
+  const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(sigma).eigenvalues();
+  r.principal_max_MPa = std::max(ev.maxCoeff(), s33);
+  return r;
+}
+
+}  // namespace
+
+StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, StaticSolution* solution_out,
+                             Mesh* mesh_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Mesh m = build_mesh(setup.section, setup.mesh);
+  const auto bottom = make_elastic(setup.law, setup.materials[0].E_MPa, setup.materials[0].nu);
+  const auto cushion = make_elastic(setup.law, setup.materials[1].E_MPa, setup.materials[1].nu);
+  const std::array<const PlaneStrainLaw*, 2> laws{bottom.get(), cushion.get()};
+  const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+
+  const StaticProblem p = static_problem(m, laws, load, setup.ends);
+  const StaticSolution s = solve_static(p, setup.solver);
+  StaticResult r;
+  const NeutralCurve curve = NeutralCurve::uniform(load.curvature_1_mm, load.strain, 1.5 * m.half_length_mm);
+  std::vector<NamedPoint> points = standard_points(setup.section);
+  points.insert(points.end(), setup.points.begin(), setup.points.end());
+  for (const auto& pt : points) r.stresses.push_back(local_stress(m, s, pt, curve, setup.solver.integration));
+  for (int n : m.top_nodes) {
+    const Eigen::Vector2d f = s.reaction_N_mm[n], x = m.X[n] + s.u_mm[n];
+    r.cord_reaction_N_mm += f;
+    r.cord_moment_N += x.y() * f.x() - x.x() * f.y();
+  }
+  r.mid_section = section_force(p, s, 0.0, origin, setup.solver.integration);
+  if (setup.stiffness) {  // small cases from the unloaded state: secants there are the tangents
+    SolverKnobs one = setup.solver;
+    one.steps = 1;
+    const double eps = 1e-5, K = 1e-6;
+    const StaticProblem ps = static_problem(m, laws, {eps, 0.0, 0.0}, setup.ends);
+    r.c_N_per_mm = section_force(ps, solve_static(ps, one), 0.0, origin, one.integration).force_N_mm.x() / eps;
+    const StaticProblem pb = static_problem(m, laws, {0.0, K, 0.0}, setup.ends);
+    r.EI_Nmm2_per_mm = section_force(pb, solve_static(pb, one), 0.0, origin, one.integration).moment_N / K;
+  }
+  r.elements = m.element_count();
+  r.nodes = m.node_count();
+  r.equations = s.equations;
+  r.increments = s.increments;
+  r.newton_iterations = s.newton_iterations;
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (solution_out) *solution_out = s;
+  if (mesh_out) *mesh_out = m;
+  return r;
+}
+
+}  // namespace fitlib::segment
