@@ -1,4 +1,5 @@
 // fitcli fit: dynamic-test tables → fitted model → material card (formats.md §3, §6).
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -46,10 +47,11 @@ fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double ref
 struct FitArgs {
   std::vector<std::string> data;
   std::string model, terms = "4", backend = "auto", format = "native", mode, out, name;
-  std::string temperature_law = "none", residual = "log10", term_rule = "bic";
+  std::string temperature_law = "none", residual = "log10", term_rule = "bic", term_method = "spectrum";
   double reference_C = 23.0;
   bool bulk_modulus = false, skip_bad_rows = false, json = false, record_timing = false;
   int max_terms = 0, term_search_max = 0;
+  double smoothness = -1.0, terms_per_decade = 2.0;  // --terms auto, method spectrum
   fitlib::fit::FitOptions fit;
   std::string command_line;
   MasterCurveArgs master;  // --master-curve
@@ -92,6 +94,11 @@ void run_fit(FitArgs a) {
     t.max_terms = a.term_search_max;
     t.solver_cap = a.max_terms;
     t.rule = fit::parse_term_rule(a.term_rule);
+    t.method = fit::parse_term_method(a.term_method);
+    t.spectrum.lambda = a.smoothness;
+    t.spectrum.per_decade = a.terms_per_decade;
+    t.spectrum.polish = a.fit.polish;
+    if (const char* g = std::getenv("FITLIB_GRID_MARGIN")) t.spectrum.grid_margin_decades = std::atof(g);
     auto selection = fit::select_terms(a.model, options, table, a.fit, t);
     term_table = fit::format_term_table(selection);
     terms_json = {{"by_aic", selection.by_aic}, {"by_bic", selection.by_bic}, {"by_ratio", selection.by_ratio},
@@ -127,6 +134,7 @@ void run_fit(FitArgs a) {
   const auto card = card::card_from_fit(
       result, a.fit, table, {a.name.empty() ? a.model + "-fit" : a.name, a.command_line, a.record_timing});
   if (!a.out.empty()) card::save_card(a.out, card);
+  for (const auto& w : result.quality.warnings) std::cerr << "fitcli: warning: " << w << "\n";
 
   if (a.json) {
     auto j = card::card_to_json(card);
@@ -143,6 +151,13 @@ void run_fit(FitArgs a) {
             << (m.converged ? "yes" : "no") << ", wall time " << m.wall_time_s * 1e3 << " ms\n";
   std::cout << "rms log10 error: storage " << m.rms_log10_storage << ", loss " << m.rms_log10_loss
             << "; relative error mean " << m.mean_rel_error << ", max " << m.max_rel_error << "\n";
+  for (const auto& f : result.quality.figures)
+    std::cout << "  " << f.modulus << " (" << f.group << "): mean relative error " << 100.0 * f.mean_rel_error
+              << " %, max " << 100.0 * f.max_rel_error << " % at " << f.max_at_frequency_Hz << " Hz\n";
+  std::cout << "verdict: "
+            << (result.quality.acceptable() ? "within the thresholds (docs/fitting.md)"
+                                            : std::to_string(result.quality.warnings.size()) + " warning(s) on stderr")
+            << "\n";
   for (const auto& p : result.parameters) {
     std::cout << "  " << p.name << " = " << exact(p.value) << " " << p.unit;
     if (p.std_error)
@@ -169,6 +184,13 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--term-search-max", a->term_search_max, "Largest N tried by --terms auto (0: from the data)");
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")
       ->capture_default_str();
+  cmd->add_option("--term-method", a->term_method,
+                  "--terms auto: spectrum (smooth spectrum, GCV; Prony without a temperature law) | sweep")
+      ->capture_default_str()->check(CLI::IsMember({"spectrum", "sweep"}));
+  cmd->add_option("--smoothness", a->smoothness,
+                  "Spectrum: second-difference penalty weight lambda (default: chosen by GCV)");
+  cmd->add_option("--terms-per-decade", a->terms_per_decade, "Spectrum: time constants per decade")
+      ->capture_default_str()->check(CLI::Range(0.25, 20.0));
   cmd->add_option("--backend", a->backend, "auto | nnls | ceres | nlopt | staged")->capture_default_str();
   cmd->add_option("--format", a->format, "native | pyvisco")->capture_default_str()
       ->check(CLI::IsMember({"native", "pyvisco"}));

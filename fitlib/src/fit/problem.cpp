@@ -123,6 +123,14 @@ void Problem::set_free(std::vector<int> free) {
   free_ = std::move(free);
 }
 
+bool Problem::restrict_bounds(int i, double lower, double upper) {
+  lower_[i] = std::max(lower, specs()[i].transform == core::Transform::log ? 0.0 : specs()[i].lower);
+  upper_[i] = std::min(upper, specs()[i].upper);
+  const double before = natural_[i];
+  natural_[i] = std::clamp(natural_[i], lower_[i], upper_[i]);
+  return natural_[i] != before;
+}
+
 bool Problem::is_log(int i) const { return specs()[i].transform == core::Transform::log; }
 
 // WLF: log aT = −C1 (T − Tref)/(C2 + T − Tref) has a pole at T = Tref − C2. Keep every data
