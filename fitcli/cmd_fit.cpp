@@ -1,5 +1,4 @@
 // fitcli fit: dynamic-test tables → fitted model → material card (formats.md §3, §6).
-#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -52,6 +51,7 @@ struct FitArgs {
   bool bulk_modulus = false, skip_bad_rows = false, json = false, record_timing = false;
   int max_terms = 0, term_search_max = 0;
   double smoothness = -1.0, terms_per_decade = 2.0;  // --terms auto, method spectrum
+  bool objective_given = false;  // --residual, --storage-weight or --loss-weight on the command line
   fitlib::fit::FitOptions fit;
   std::string command_line;
   MasterCurveArgs master;  // --master-curve
@@ -98,14 +98,25 @@ void run_fit(FitArgs a) {
     t.spectrum.lambda = a.smoothness;
     t.spectrum.per_decade = a.terms_per_decade;
     t.spectrum.polish = a.fit.polish;
-    if (const char* g = std::getenv("FITLIB_GRID_MARGIN")) t.spectrum.grid_margin_decades = std::atof(g);
+    if (t.method == fit::TermMethod::spectrum && !a.objective_given) {
+      a.fit.residual = fit::kSpectrumResidual;  // the default objective of --terms auto
+      a.fit.storage_weight = fit::kSpectrumStorageWeight;
+    }
     auto selection = fit::select_terms(a.model, options, table, a.fit, t);
     term_table = fit::format_term_table(selection);
     terms_json = {{"by_aic", selection.by_aic}, {"by_bic", selection.by_bic}, {"by_ratio", selection.by_ratio},
                   {"rule", fit::to_string(selection.rule)}, {"chosen", selection.chosen},
                   {"unconstrained", selection.unconstrained}, {"cap_cost_ratio", selection.cap_cost_ratio},
                   {"cap_storage_rms_ratio", selection.cap_storage_rms_ratio},
-                  {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio}};
+                  {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio},
+                  {"method", selection.method == fit::TermMethod::spectrum ? "spectrum" : "sweep"}};
+    if (selection.method == fit::TermMethod::spectrum) {
+      terms_json["lambda"] = selection.spectrum_lambda;
+      terms_json["lambda_path"] = nlohmann::json::array();
+      for (const auto& r : selection.spectrum_path)
+        terms_json["lambda_path"].push_back({{"lambda", r.lambda}, {"gcv", r.gcv}, {"effective_terms", r.effective_terms},
+                                             {"terms", r.terms}, {"residual_norm", r.residual_norm}});
+    }
     terms_json["rows"] = nlohmann::json::array();
     for (const auto& row : selection.rows)
       terms_json["rows"].push_back({{"terms", row.terms}, {"wall_time_s", row.wall_time_s},
@@ -198,9 +209,10 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--temperature-law", a->temperature_law, "none | wlf | arrhenius")->capture_default_str();
   cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")->capture_default_str();
   cmd->add_flag("--bulk-modulus", a->bulk_modulus, "Add a constant bulk modulus K (mode conversion)");
-  cmd->add_option("--residual", a->residual, "log10 | relative")->capture_default_str()
-      ->check(CLI::IsMember({"log10", "relative"}));
-  cmd->add_option("--storage-weight", a->fit.storage_weight, "Weight of storage-modulus residuals")
+  cmd->add_option("--residual", a->residual, "log10 | relative | complex (errors relative to |E*|)")
+      ->capture_default_str()->check(CLI::IsMember({"log10", "relative", "complex"}));
+  cmd->add_option("--storage-weight", a->fit.storage_weight,
+                  "Weight of storage-modulus residuals (--terms auto default: 80, with --residual relative)")
       ->capture_default_str();
   cmd->add_option("--loss-weight", a->fit.loss_weight, "Weight of loss-modulus residuals")->capture_default_str();
   cmd->add_option("--mean-weight", a->fit.mean_weight, "Weight of mean-modulus residuals")->capture_default_str();
@@ -223,8 +235,9 @@ void register_fit(CLI::App& app) {
   cmd->add_flag("--master-curve", a->master.enabled,
                 "Data are raw isotherms: shift them to --reference-c first; the card gets WLF fitted to the shifts");
   cmd->add_option("--shifts-out", a->master.shifts_out, "--master-curve: write the shift table (CSV)");
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     FitArgs args = *a;
+    args.objective_given = cmd->count("--residual") + cmd->count("--storage-weight") + cmd->count("--loss-weight") > 0;
     args.command_line = command_line();
     run_fit(args);
   });

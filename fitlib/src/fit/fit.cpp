@@ -39,11 +39,17 @@ const char* to_string(Backend backend) {
 ResidualKind parse_residual_kind(const std::string& text) {
   if (text == "log10" || text == "log") return ResidualKind::log10;
   if (text == "relative") return ResidualKind::relative;
-  throw core::UsageError("unknown residual kind '" + text + "' (expected log10 or relative)");
+  if (text == "complex") return ResidualKind::complex;
+  throw core::UsageError("unknown residual kind '" + text + "' (expected log10, relative or complex)");
 }
 
 const char* to_string(ResidualKind kind) {
-  return kind == ResidualKind::log10 ? "log10" : "relative";
+  switch (kind) {
+    case ResidualKind::log10: return "log10";
+    case ResidualKind::relative: return "relative";
+    case ResidualKind::complex: return "complex";
+  }
+  return "?";
 }
 
 model::DataSummary summarize(const data::DynamicTestTable& table) {
@@ -82,8 +88,9 @@ using detail::StageOutcome;
 
 std::string describe_objective(const FitOptions& o) {
   std::ostringstream s;
-  s << (o.residual == ResidualKind::log10 ? "sum of squared log10 errors"
-                                          : "sum of squared relative errors")
+  s << (o.residual == ResidualKind::log10      ? "sum of squared log10 errors"
+        : o.residual == ResidualKind::relative ? "sum of squared relative errors"
+                                               : "sum of squared errors relative to |E*| of the row")
     << " of storage, loss and mean moduli; weights storage " << o.storage_weight << ", loss "
     << o.loss_weight << ", mean " << o.mean_weight
     << " (mean only where measured), times per-row weights; loss with tan delta < 1e-6 as an "

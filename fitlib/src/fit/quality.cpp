@@ -73,7 +73,9 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
       current = e.row;
       m = problem.model().moduli(p.data(), row.condition);
     }
-    if (e.absolute || !(e.data > 0.0) || e.sqrt_weight == 0.0) continue;
+    // Elastic rows (tan δ below the loss floor) have no relative loss error.
+    const bool elastic = e.component == 1 && e.data < Problem::kLossFloor * row.storage_MPa;
+    if (elastic || !(e.data > 0.0) || e.sqrt_weight == 0.0) continue;
     const double value = e.component == 0 ? m.storage : e.component == 1 ? m.loss : m.mean;
     const double err = std::abs(value - e.data) / e.data;
     const double f = row.condition.frequency_Hz;

@@ -174,12 +174,14 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
   for (int col = 0; col < nc; ++col)
     for (int t = 0; t < n; ++t)
       if (design.column_param[col] == series.moduli[t] && design.column_sign[col] > 0) column_of_term[t] = col;
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(std::max(n - 2, 0), nc);
-  for (int t = 0; t + 2 < n; ++t)
-    if (column_of_term[t] >= 0 && column_of_term[t + 1] >= 0 && column_of_term[t + 2] >= 0) {
-      d(t, column_of_term[t]) = 1.0;
-      d(t, column_of_term[t + 1]) = -2.0;
-      d(t, column_of_term[t + 2]) = 1.0;
+  // The spectrum is taken as 0 just outside the grid (zero padding): mass piled at the window's
+  // ends, where the data cannot tell a term from the relaxed or glassy limit, is penalised too.
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n, nc);
+  const double stencil[3] = {1.0, -2.0, 1.0};
+  for (int t = -1; t + 1 < n; ++t)
+    for (int q = 0; q < 3; ++q) {
+      const int term = t + q;
+      if (term >= 0 && term < n && column_of_term[term] >= 0) d(t + 1, column_of_term[term]) = stencil[q];
     }
 
   auto solve = [&](double lambda) {
@@ -254,7 +256,9 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
   s << "smooth spectrum: " << n << " time constants (" << so.per_decade << " per decade over ["
     << tau_lo << ", " << tau_hi << "] s), second-difference penalty lambda "
     << out.lambda << (so.lambda >= 0.0 ? " (given)" : " (GCV)") << ", " << kept.size()
-    << " positive terms kept" << (so.polish ? ", polished on the exact log10 objective with the penalty (" + std::to_string(out.polish_steps) + " Gauss-Newton steps)" : "");
+    << " positive terms kept";
+  if (out.polish_steps > 0)
+    s << ", polished on the exact log10 objective with the penalty (" << out.polish_steps << " Gauss-Newton steps)";
   out.result.messages.insert(out.result.messages.begin(), s.str());
   out.result.backend_used = "spectrum+" + out.result.backend_used;
   out.wall_time_s = clock.seconds();

@@ -11,7 +11,9 @@
 namespace fitlib::fit {
 
 enum class Backend { automatic, nnls, ceres, nlopt, staged };
-enum class ResidualKind { log10, relative };  // log10 of storage/loss (default) or relative errors
+// log10 of storage/loss (default), errors relative to each modulus, or errors of E′ and E″
+// relative to the row's |E*| (how FE vendors weigh a complex-modulus fit).
+enum class ResidualKind { log10, relative, complex };
 
 Backend parse_backend(const std::string& text);      // "auto|nnls|ceres|nlopt|staged"
 const char* to_string(Backend backend);
@@ -133,7 +135,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
 // Summary of the data a model uses to place its start.
 model::DataSummary summarize(const data::DynamicTestTable& table);
 
-ResidualKind parse_residual_kind(const std::string& text);  // "log10|relative"
+ResidualKind parse_residual_kind(const std::string& text);  // "log10|relative|complex"
 const char* to_string(ResidualKind kind);
 
 }  // namespace fitlib::fit

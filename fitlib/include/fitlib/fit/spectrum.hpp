@@ -12,6 +12,12 @@
 
 namespace fitlib::fit {
 
+// Default objective of the smooth spectrum (docs/fitting.md "Default objective"): errors
+// relative to each modulus, E′ weighted 80 (E″ 1) on squared residuals. The relative error is
+// the log10 error to first order, and exact for the linear solve (no polish needed).
+constexpr double kSpectrumStorageWeight = 80.0;
+constexpr ResidualKind kSpectrumResidual = ResidualKind::relative;
+
 struct SpectrumOptions {
   double per_decade = 2.0;   // time constants per decade
   // The grid spans [10^-g / ω_max, 10^g / ω_min] of the data (g = grid_margin_decades, at most
