@@ -339,7 +339,10 @@ bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear
   std::string merged;
   for (std::size_t k = 0; k < series.times.size(); ++k) {
     const int mk = series.moduli[k], tk = series.times[k];
-    if (p[mk] == 0.0 || !(is_flagged(mk) || is_flagged(tk)) || problem.user_fixed()[mk]) continue;
+    // Only a linear modulus may be 0 (a removed term); compliances and the like stay, flagged.
+    if (!problem.specs()[mk].linear || p[mk] == 0.0 || !(is_flagged(mk) || is_flagged(tk)) ||
+        problem.user_fixed()[mk])
+      continue;
     int best = -1;
     double distance = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < series.times.size(); ++j) {
@@ -367,8 +370,13 @@ bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear
 // (alpha2_I = 3.0000000000000004 against an upper bound of 3), and a card reader refuses that.
 void clamp_to_bounds(Problem& problem) {
   std::vector<double>& p = problem.natural();
-  for (int i = 0; i < problem.num_parameters(); ++i)
-    if (!problem.user_fixed()[i]) p[i] = std::clamp(p[i], problem.lower(i), problem.upper(i));
+  for (int i = 0; i < problem.num_parameters(); ++i) {
+    if (problem.user_fixed()[i]) continue;
+    p[i] = std::clamp(p[i], problem.lower(i), problem.upper(i));
+    // exp(x) of a log parameter can underflow to 0, which only a linear modulus may hold.
+    if (problem.is_log(i) && !problem.specs()[i].linear && !(p[i] > 0.0))
+      p[i] = std::max(problem.lower(i), std::numeric_limits<double>::min());
+  }
 }
 
 }  // namespace
