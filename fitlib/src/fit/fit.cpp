@@ -317,14 +317,19 @@ void readmit(Problem& problem, FitResult& result, bool linear_only) {
   for (int round = 0; round < 3; ++round) {
     const AdmissibleWindow w = detail::admissible_window(problem, problem.natural());
     if (!w.applies) return;
+    const bool same = std::abs(std::log(w.tau_min_s / result.admissible.tau_min_s)) < 1e-9 &&
+                      std::abs(std::log(w.tau_max_s / result.admissible.tau_max_s)) < 1e-9;
     result.admissible = w;
-    if (detail::apply_admissible_bounds(problem, w) == 0) return;
+    if (detail::apply_admissible_bounds(problem, w) == 0 || same) return;
     result.messages.push_back("admissible terms: window moved with the fitted temperature law to [" +
                               std::to_string(w.tau_min_s) + ", " + std::to_string(w.tau_max_s) +
                               "] s; terms moved inside and the fit re-polished");
     repolish(problem, result, linear_only);
   }
 }
+
+// A merge is kept when the re-polished cost is within this factor of the cost before it.
+constexpr double kMergeCostSlack = 1.001;
 
 // Series terms the identifiability report flags are merged into the active term with the nearest
 // time constant (moduli summed, time constants averaged in log weighted by modulus) and the fit
@@ -336,6 +341,9 @@ bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear
     return std::find(flagged.begin(), flagged.end(), problem.specs()[i].name) != flagged.end();
   };
   std::vector<double>& p = problem.natural();
+  const std::vector<double> before = p;
+  const double cost_before = problem.cost(before);
+  std::vector<bool> received(series.times.size(), false);
   std::string merged;
   for (std::size_t k = 0; k < series.times.size(); ++k) {
     const int mk = series.moduli[k], tk = series.times[k];
@@ -343,6 +351,8 @@ bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear
     if (!problem.specs()[mk].linear || p[mk] == 0.0 || !(is_flagged(mk) || is_flagged(tk)) ||
         problem.user_fixed()[mk])
       continue;
+    if (received[k]) continue;  // merged into this round: no chains
+    // The nearest active term (pairs per round; the next round sees the merged fit).
     int best = -1;
     double distance = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < series.times.size(); ++j) {
@@ -352,6 +362,7 @@ bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear
         best = static_cast<int>(j);
       }
     }
+    if (best >= 0) received[best] = true;
     if (best < 0) continue;
     const int mj = series.moduli[best], tj = series.times[best];
     if (!linear_only && !problem.user_fixed()[tj])
@@ -361,8 +372,18 @@ bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear
     merged += (merged.empty() ? "" : ", ") + problem.specs()[mk].name + " into " + problem.specs()[mj].name;
   }
   if (merged.empty()) return false;
-  result.messages.push_back("terms the data cannot identify merged (" + merged + ") and the fit re-polished");
   repolish(problem, result, linear_only);
+  const double after = problem.cost(problem.natural());
+  // Absolute slack: an exact fit's cost is rounding noise (rms residual below 1e-5).
+  if (!(after <= kMergeCostSlack * cost_before + 1e-10 * problem.num_residuals())) {
+    problem.natural() = before;
+    std::ostringstream s;
+    s << "terms the data cannot identify kept: merging them (" << merged << ") raised the cost x"
+      << after / cost_before;
+    result.messages.push_back(s.str());
+    return false;
+  }
+  result.messages.push_back("terms the data cannot identify merged (" + merged + ") and the fit re-polished");
   return true;
 }
 
@@ -464,7 +485,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
     detail::assess(problem, result);
   };
   assess_fit();
-  for (int round = 0; round < 2 && merge_unidentifiable_terms(problem, result, linear_only); ++round)
+  for (int round = 0; round < 6 && merge_unidentifiable_terms(problem, result, linear_only); ++round)
     assess_fit();
   if (linear_only)
     for (int i : all_free(problem))
