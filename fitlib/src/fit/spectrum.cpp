@@ -260,6 +260,7 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
   if (out.polish_steps > 0)
     s << ", polished on the exact log10 objective with the penalty (" << out.polish_steps << " Gauss-Newton steps)";
   out.result.messages.insert(out.result.messages.begin(), s.str());
+  for (int i : rs.times) out.result.parameters[i].reason = "on the smooth spectrum's time grid (held)";
   out.result.backend_used = "spectrum+" + out.result.backend_used;
   out.wall_time_s = clock.seconds();
   out.result.metrics.wall_time_s = out.wall_time_s;
