@@ -295,6 +295,8 @@ void admit_start(Problem& problem, FitResult& result) {
   result.messages.push_back(s.str());
 }
 
+constexpr int kRepolishIterations = 100;
+
 // Re-solves the current free set after bounds or terms changed: the linear polish for the
 // nnls backend, Ceres otherwise.
 void repolish(Problem& problem, FitResult& result, bool linear_only) {
@@ -305,7 +307,9 @@ void repolish(Problem& problem, FitResult& result, bool linear_only) {
   problem.set_free(detail::movable(problem, free));
   if (problem.num_free() == 0) return;
   const std::vector<double> before = problem.natural();
-  const detail::StageOutcome out = detail::run_ceres(problem, problem.options().max_iterations);
+  // A re-polish starts next to a solution: a capped budget (the merge check judges the result).
+  const detail::StageOutcome out =
+      detail::run_ceres(problem, std::min(problem.options().max_iterations, kRepolishIterations));
   if (!out.usable || !std::isfinite(problem.cost(problem.natural()))) problem.natural() = before;
   note(result, "re-polish ", out);
 }
