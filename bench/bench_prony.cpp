@@ -16,6 +16,7 @@
 #include "fitlib/core/units.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/spectrum.hpp"
 #include "fitlib/fit/terms.hpp"
 #include "fitlib/model/model.hpp"
 
@@ -105,6 +106,69 @@ LogRms ansys_terms(const data::DynamicTestTable& table, const std::string& mpl) 
   return rms;
 }
 
+// pyvisco's figures on this machine kind (anchors.md; Python pyvisco is not installed here):
+// fit_freq of the 206-point master with 26 terms 130 ms, with term reduction 2.35 s; a 20-term
+// fit of 5000 points 1.7 s CPU (issue 10).
+constexpr double kPyviscoMasterFit_s = 0.130, kPyviscoMasterReduction_s = 2.35, kPyvisco5000x20_s = 1.7;
+
+// --terms auto (the smooth spectrum, fit/spectrum.hpp) on the master, and the scaling table.
+void spectrum_tables(const data::DynamicTestTable& master, const LogRms& ansys) {
+  fit::FitOptions o;
+  o.residual = fit::kSpectrumResidual;
+  o.storage_weight = fit::kSpectrumStorageWeight;
+  fit::TermSelection sel;
+  const double t_auto = median_time(11, [&] {
+    sel = fit::select_terms("prony", {{"mode", "uniaxial"}}, master, o, fit::TermOptions{});
+  });
+  const auto& m = sel.result.metrics;
+  std::printf("## --terms auto (smooth spectrum, default objective) on pyvisco's master, %zu points\n",
+              master.rows.size());
+  std::printf("| what | wall time | terms | rms log10 E' / E'' |\n|---|---|---|---|\n");
+  std::printf("| fitlib --terms auto (median of 11) | %.1f ms | %d | %.4f / %.4f |\n", 1e3 * t_auto, sel.chosen,
+              m.rms_log10_storage, m.rms_log10_loss);
+  std::printf("| pyvisco fit + term reduction (anchors.md) | %.0f ms | 18 | 0.0122 / 0.436 |\n",
+              1e3 * kPyviscoMasterReduction_s);
+  std::printf("| pyvisco fit_freq, 26 terms (anchors.md) | %.0f ms | 26 | 0.0100 / 0.386 |\n",
+              1e3 * kPyviscoMasterFit_s);
+  std::printf("| ANSYS reference terms | - | 27 | %.4f / %.4f |\n", ansys.storage, ansys.loss);
+  std::printf("speed-up over pyvisco's term selection: x%.0f; over its single 26-term fit: x%.1f\n\n",
+              kPyviscoMasterReduction_s / t_auto, kPyviscoMasterFit_s / t_auto);
+
+  // Scaling: synthetic shear data over 14 decades; the spectrum's grid holds N time constants
+  // (per_decade = N / 16 over the window); baseline of this run: one free-time fit of N terms
+  // (one row of the old N-sweep, the work pyvisco's fit does per N).
+  std::printf("## Scaling: --terms auto (spectrum) vs one free-tau N-term fit (this run) and pyvisco\n");
+  std::printf("| points | N | spectrum | free-tau N-term fit | ratio | pyvisco (anchors) | rms E' / E'' spectrum |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (int points : {50, 200, 1000, 5000}) {
+    for (int n : {5, 10, 20, 40}) {
+      const auto truth_model = model::make_model("prony", {{"terms", n}});
+      const auto table = synthetic(*truth_model, truth(n), points, 0.01, 7 + points + n);
+      fit::TermOptions to;
+      to.spectrum.per_decade = n / 16.0;
+      fit::TermSelection s;
+      const int repeats = points >= 1000 ? 3 : 7;
+      const double t_spectrum = median_time(repeats, [&] {
+        s = fit::select_terms("prony", {{"mode", "shear"}}, table, o, to);
+      });
+      fit::FitOptions free_options;
+      free_options.max_iterations = 100;
+      double t_free = 0.0;
+      if (points * n <= 40000)
+        t_free = median_time(points >= 1000 ? 1 : 3, [&] { fit::fit(truth_model, table, free_options); });
+      char baseline[64] = "-", ratio[32] = "-", pyvisco[32] = "n/a";
+      if (t_free > 0.0) {
+        std::snprintf(baseline, sizeof baseline, "%.1f ms", 1e3 * t_free);
+        std::snprintf(ratio, sizeof ratio, "x%.1f", t_free / t_spectrum);
+      }
+      if (points == 5000 && n == 20) std::snprintf(pyvisco, sizeof pyvisco, "%.0f ms (x%.0f)", 1e3 * kPyvisco5000x20_s, kPyvisco5000x20_s / t_spectrum);
+      std::printf("| %d | %d | %.1f ms | %s | %s | %s | %.4f / %.4f |\n", points, n, 1e3 * t_spectrum, baseline, ratio,
+                  pyvisco, s.result.metrics.rms_log10_storage, s.result.metrics.rms_log10_loss);
+    }
+  }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main() {
@@ -167,10 +231,10 @@ int main() {
   ro.format = data::TableFormat::pyvisco;
   ro.has_default_mode = true;
   ro.default_mode = model::TestMode::uniaxial;
-  const std::string shared = FITLIB_SHARED_DIR;
-  const auto master = data::read_dynamic_table(shared + "/external/pyvisco/examples/freq_user_master.csv", ro);
-  const LogRms ansys =
-      ansys_terms(master, shared + "/external/pyvisco/verification/freq_master/prony_terms.MPL");
+  const std::string materials = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/";
+  const auto master = data::read_dynamic_table(materials + "pyvisco-freq-master.csv", ro);
+  const LogRms ansys = ansys_terms(master, materials + "pyvisco-ansys-prony-terms.MPL");
+  spectrum_tables(master, ansys);
   std::printf("## Accuracy vs time, pyvisco freq_user_master.csv (%zu points), N = 2..40\n",
               master.rows.size());
   std::printf("Baseline: ANSYS reference terms (27) rms log10 E' %.4f, E'' %.4f\n", ansys.storage,
@@ -179,6 +243,7 @@ int main() {
     fit::FitOptions o;
     o.storage_weight = w;
     fit::TermOptions to;
+    to.method = fit::TermMethod::sweep;
     to.min_terms = 2;
     to.max_terms = 40;
     const core::Stopwatch clock;

@@ -60,7 +60,9 @@ fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double ref
 struct FitArgs {
   std::vector<std::string> data;
   std::string model, terms = "4", backend = "auto", format = "native", mode, out, name;
-  std::string temperature_law = "none", residual = "log10", term_rule = "bic";
+  std::string temperature_law = "none", residual = "log10", term_rule = "bic", term_method = "spectrum";
+  double smoothness = -1.0, terms_per_decade = 2.0;  // --terms auto, method spectrum
+  bool objective_given = false;  // --residual, --storage-weight or --loss-weight on the command line
   int polynomial_degree = 3;
   double reference_C = 23.0;
   bool bulk_modulus = false, skip_bad_rows = false, json = false, record_timing = false;
@@ -94,6 +96,10 @@ fitlib::fit::TermOptions term_options(const FitArgs& a) {
   t.max_terms = a.term_search_max;
   t.solver_cap = a.max_terms;
   t.rule = fitlib::fit::parse_term_rule(a.term_rule);
+  t.method = fitlib::fit::parse_term_method(a.term_method);
+  t.spectrum.lambda = a.smoothness;
+  t.spectrum.per_decade = a.terms_per_decade;
+  t.spectrum.polish = a.fit.polish;
   return t;
 }
 
@@ -108,7 +114,15 @@ struct Selection {
             {"rule", fitlib::fit::to_string(selection.rule)}, {"chosen", selection.chosen},
             {"unconstrained", selection.unconstrained}, {"cap_cost_ratio", selection.cap_cost_ratio},
             {"cap_storage_rms_ratio", selection.cap_storage_rms_ratio},
-            {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio}};
+            {"cap_loss_rms_ratio", selection.cap_loss_rms_ratio},
+            {"method", selection.method == fitlib::fit::TermMethod::spectrum ? "spectrum" : "sweep"}};
+    if (selection.method == fitlib::fit::TermMethod::spectrum) {
+      json["lambda"] = selection.spectrum_lambda;
+      json["lambda_path"] = nlohmann::json::array();
+      for (const auto& r : selection.spectrum_path)
+        json["lambda_path"].push_back({{"lambda", r.lambda}, {"gcv", r.gcv}, {"effective_terms", r.effective_terms},
+                                       {"terms", r.terms}, {"residual_norm", r.residual_norm}});
+    }
     json["rows"] = nlohmann::json::array();
     for (const auto& row : selection.rows)
       json["rows"].push_back({{"terms", row.terms}, {"wall_time_s", row.wall_time_s},
@@ -141,6 +155,7 @@ void finish(const FitArgs& a, const fitlib::fit::FitResult& result, const fitlib
   const auto card = card::card_from_fit(
       result, a.fit, table, {a.name.empty() ? a.model + "-fit" : a.name, a.command_line, a.record_timing});
   if (!a.out.empty()) card::save_card(a.out, card);
+  for (const auto& w : result.quality.warnings) std::cerr << "fitcli: warning: " << w << "\n";
 
   if (a.json) {
     auto j = card::card_to_json(card);
@@ -157,6 +172,13 @@ void finish(const FitArgs& a, const fitlib::fit::FitResult& result, const fitlib
             << (m.converged ? "yes" : "no") << ", wall time " << m.wall_time_s * 1e3 << " ms\n";
   std::cout << "rms log10 error: storage " << m.rms_log10_storage << ", loss " << m.rms_log10_loss
             << "; relative error mean " << m.mean_rel_error << ", max " << m.max_rel_error << "\n";
+  for (const auto& f : result.quality.figures)
+    std::cout << "  " << f.modulus << " (" << f.group << "): mean relative error " << 100.0 * f.mean_rel_error
+              << " %, max " << 100.0 * f.max_rel_error << " % at " << f.max_at_frequency_Hz << " Hz\n";
+  std::cout << "verdict: "
+            << (result.quality.acceptable() ? "within the thresholds (docs/fitting.md)"
+                                            : std::to_string(result.quality.warnings.size()) + " warning(s) on stderr")
+            << "\n";
   for (const auto& p : result.parameters) {
     std::cout << "  " << p.name << " = " << exact(p.value) << " " << p.unit;
     if (p.std_error)
@@ -200,7 +222,12 @@ void run_fit(FitArgs a) {
   Selection sel;
   const bool has_terms = model::make_model(a.model, options)->options().contains("terms");
   if (has_terms && a.terms == "auto") {
-    sel.take(fit::select_terms(a.model, options, table, a.fit, term_options(a)));
+    const auto terms = term_options(a);
+    if (terms.method == fit::TermMethod::spectrum && !a.objective_given) {
+      a.fit.residual = fit::kSpectrumResidual;  // the default objective of --terms auto
+      a.fit.storage_weight = fit::kSpectrumStorageWeight;
+    }
+    sel.take(fit::select_terms(a.model, options, table, a.fit, terms));
   } else {
     if (has_terms) options["terms"] = fixed_terms(a);
     sel.result = fit::fit(model::make_model(a.model, options), table, a.fit);
@@ -254,6 +281,13 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--term-search-max", a->term_search_max, "Largest N tried by --terms auto (0: from the data)");
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")
       ->capture_default_str();
+  cmd->add_option("--term-method", a->term_method,
+                  "--terms auto: spectrum (smooth spectrum, GCV; Prony without a temperature law) | sweep")
+      ->capture_default_str()->check(CLI::IsMember({"spectrum", "sweep"}));
+  cmd->add_option("--smoothness", a->smoothness,
+                  "Spectrum: second-difference penalty weight lambda (default: chosen by GCV)");
+  cmd->add_option("--terms-per-decade", a->terms_per_decade, "Spectrum: time constants per decade")
+      ->capture_default_str()->check(CLI::Range(0.25, 20.0));
   cmd->add_option("--backend", a->backend, "auto | nnls | ceres | nlopt | staged")->capture_default_str();
   cmd->add_option("--format", a->format,
                   "native | pyvisco (t, E_relax files are relaxation data) | eplexor (.xls, also recognised by content)")
@@ -264,9 +298,10 @@ void register_fit(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")->capture_default_str();
   cmd->add_flag("--bulk-modulus", a->bulk_modulus, "Add a constant bulk modulus K (mode conversion)");
-  cmd->add_option("--residual", a->residual, "log10 | relative")->capture_default_str()
-      ->check(CLI::IsMember({"log10", "relative"}));
-  cmd->add_option("--storage-weight", a->fit.storage_weight, "Weight of storage-modulus residuals")
+  cmd->add_option("--residual", a->residual, "log10 | relative | complex (errors relative to |E*|)")
+      ->capture_default_str()->check(CLI::IsMember({"log10", "relative", "complex"}));
+  cmd->add_option("--storage-weight", a->fit.storage_weight,
+                  "Weight of storage-modulus residuals (--terms auto default: 80, with --residual relative)")
       ->capture_default_str();
   cmd->add_option("--loss-weight", a->fit.loss_weight, "Weight of loss-modulus residuals")->capture_default_str();
   cmd->add_option("--mean-weight", a->fit.mean_weight, "Weight of mean-modulus residuals")->capture_default_str();
@@ -293,8 +328,9 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--shifts", a->master.shifts_in,
                   "Raw isotherms: shift them by these factors (pyvisco T,log_aT file) instead of fitting shifts")
       ->check(CLI::ExistingFile);
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     FitArgs args = *a;
+    args.objective_given = cmd->count("--residual") + cmd->count("--storage-weight") + cmd->count("--loss-weight") > 0;
     args.command_line = command_line();
     run_fit(args);
   });

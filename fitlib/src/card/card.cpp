@@ -30,9 +30,12 @@ json card_to_json(const Card& card) {
     p["unit"] = specs[i].unit;
     p["group"] = specs[i].group;
     p["fixed"] = e.fixed;
-    p["std_error"] = e.std_error ? json(*e.std_error) : json(nullptr);
-    if (!e.std_error && !e.std_error_reason.empty()) p["std_error_reason"] = e.std_error_reason;
-    if (e.ci95_low && e.ci95_high) p["ci95"] = json::array({*e.ci95_low, *e.ci95_high});
+    // No interval (docs/decisions.md "A missing interval"): std_error null, a reason, no ci95.
+    const bool interval = e.std_error && e.ci95_low && e.ci95_high && std::isfinite(*e.std_error) &&
+                          std::isfinite(*e.ci95_low) && std::isfinite(*e.ci95_high);
+    p["std_error"] = interval ? json(*e.std_error) : json(nullptr);
+    if (!interval) p["std_error_reason"] = e.std_error_reason.empty() ? "not estimated" : e.std_error_reason;
+    if (interval) p["ci95"] = json::array({*e.ci95_low, *e.ci95_high});
     params.push_back(p);
   }
   const auto values = card.values();
@@ -108,7 +111,8 @@ Card card_from_json(const json& j, const std::string& source) {
     if (list[i].contains("std_error") && list[i]["std_error"].is_number())
       e.std_error = list[i]["std_error"].get<double>();
     e.std_error_reason = list[i].value("std_error_reason", std::string());
-    if (list[i].contains("ci95") && list[i]["ci95"].is_array() && list[i]["ci95"].size() == 2) {
+    const json* ci = list[i].contains("ci95") ? &list[i]["ci95"] : nullptr;
+    if (ci && ci->is_array() && ci->size() == 2 && (*ci)[0].is_number() && (*ci)[1].is_number()) {
       e.ci95_low = list[i]["ci95"][0].get<double>();
       e.ci95_high = list[i]["ci95"][1].get<double>();
     }

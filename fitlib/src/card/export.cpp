@@ -1,5 +1,6 @@
 #include "fitlib/card/export.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -24,6 +25,40 @@ struct PronyExport {
   nlohmann::json temperature;
 };
 
+// Relative slack for values written at a bound (the card's decimal form of the bound).
+constexpr double kBoundSlack = 1e-9;
+
+}  // namespace
+
+std::string admissibility_problems(const Card& card) {
+  const auto values = card.values();
+  model::MaxwellSeries s;
+  if (!card.model()->maxwell_series(values.data(), &s)) return {};
+  std::ostringstream out;
+  const double m0 = s.glassy();
+  if (!(s.relaxed >= kMinRelaxedRatio * m0))
+    out << "relaxed modulus " << num(s.relaxed) << " MPa is below " << kMinRelaxedRatio
+        << " x the instantaneous " << num(m0) << " MPa; ";
+  const nlohmann::json w = card.fit.value("admissible", nlohmann::json::object());
+  if (!w.is_object() || w.empty()) return out.str();
+  const double tau_lo = w.value("tau_min_s", 0.0), tau_hi = w.value("tau_max_s", INFINITY);
+  const double ceiling = w.value("modulus_max_MPa", 0.0), floor = w.value("relaxed_min_MPa", 0.0);
+  for (std::size_t i = 0; i < s.moduli.size(); ++i) {
+    if (s.moduli[i] == 0.0) continue;  // a removed term
+    const double tau = s.times_s[i];
+    if (tau < tau_lo * (1.0 - kBoundSlack) || tau > tau_hi * (1.0 + kBoundSlack))
+      out << "term " << i + 1 << ": tau " << num(tau) << " s outside [" << num(tau_lo) << ", "
+          << num(tau_hi) << "] s; ";
+    if (ceiling > 0.0 && s.moduli[i] > ceiling * (1.0 + kBoundSlack))
+      out << "term " << i + 1 << ": modulus " << num(s.moduli[i]) << " MPa above " << num(ceiling) << " MPa; ";
+  }
+  if (floor > 0.0 && s.relaxed < floor * (1.0 - kBoundSlack))
+    out << "relaxed modulus " << num(s.relaxed) << " MPa below " << num(floor) << " MPa; ";
+  return out.str();
+}
+
+namespace {
+
 PronyExport prepare(const Card& card, const std::string& format, const ExportOptions& o) {
   const auto m = card.model();
   const auto values = card.values();
@@ -38,6 +73,12 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
   if (cap > 0 && static_cast<int>(s.moduli.size()) > cap)
     throw core::UsageError(format + " accepts at most " + std::to_string(cap) + " Prony terms, the card has " +
                            std::to_string(s.moduli.size()) + " (refit with --max-terms " + std::to_string(cap) + ")");
+  if (!o.allow_inadmissible) {
+    const std::string problems = admissibility_problems(card);
+    if (!problems.empty())
+      throw core::UsageError("card '" + card.name + "' is not admissible for " + format + ": " + problems +
+                             "refit, or pass --allow-inadmissible to export it anyway");
+  }
   const double m0 = s.glassy();
   PronyExport e;
   for (size_t i = 0; i < s.moduli.size(); ++i) {

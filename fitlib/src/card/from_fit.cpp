@@ -1,6 +1,41 @@
 #include "fitlib/card/from_fit.hpp"
 
+#include <cmath>
+
 namespace fitlib::card {
+namespace {
+
+// A card holds finite numbers only: a figure that does not exist (an infinite condition number,
+// the AIC of an exact fit) is left out rather than written as null.
+void drop_non_finite(nlohmann::json& j) {
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end();) {
+      if (it->is_number_float() && !std::isfinite(it->get<double>())) it = j.erase(it);
+      else drop_non_finite(*it++);
+    }
+  } else if (j.is_array()) {
+    for (auto& x : j) {
+      if (x.is_number_float() && !std::isfinite(x.get<double>())) x = nullptr;
+      else drop_non_finite(x);
+    }
+  }
+}
+
+nlohmann::json quality_json(const fit::QualityVerdict& q) {
+  nlohmann::json figures = nlohmann::json::array();
+  for (const auto& f : q.figures)
+    figures.push_back({{"group", f.group}, {"modulus", f.modulus}, {"count", f.count},
+                       {"mean_rel_error", f.mean_rel_error}, {"max_rel_error", f.max_rel_error},
+                       {"max_at_frequency_Hz", f.max_at_frequency_Hz}});
+  return {{"acceptable", q.acceptable()}, {"warnings", q.warnings}, {"figures", figures}};
+}
+
+}  // namespace
+
+nlohmann::json admissible_to_json(const fit::AdmissibleWindow& w) {
+  return {{"tau_min_s", w.tau_min_s}, {"tau_max_s", w.tau_max_s},
+          {"modulus_max_MPa", w.modulus_max_MPa}, {"relaxed_min_MPa", w.relaxed_min_MPa}};
+}
 
 Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,
                    const data::DynamicTestTable& table, const CardProvenance& provenance) {
@@ -41,7 +76,10 @@ Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,
               {"rank", m.rank},
               {"iterations", m.iterations},
               {"messages", r.messages}};
+  card.fit["quality"] = quality_json(r.quality);
+  if (r.admissible.applies) card.fit["admissible"] = admissible_to_json(r.admissible);
   if (provenance.record_timing) card.fit["wall_time_s"] = m.wall_time_s;
+  drop_non_finite(card.fit);
   card.provenance = {{"data_files", table.source_files},
                      {"data_sha256", table.source_sha256},
                      {"fitlib_version", FITLIB_VERSION},

@@ -1,4 +1,5 @@
 #include "backends.hpp"
+#include "admissible.hpp"
 
 #include <ceres/ceres.h>
 #include <nlopt.hpp>
@@ -48,39 +49,36 @@ std::string join_names(const Problem& problem, const std::vector<int>& indices) 
 }  // namespace
 
 std::vector<int> movable(const Problem& problem, const std::vector<int>& candidates) {
+  // The time constant of a removed series term (modulus 0) has no effect either.
+  const SeriesTerms series = series_terms(problem.specs());
+  std::vector<bool> removed(problem.num_parameters(), false);
+  for (std::size_t k = 0; k < series.times.size(); ++k)
+    removed[series.times[k]] = problem.natural()[series.moduli[k]] == 0.0;
   std::vector<int> out;
   for (int i : candidates)
-    if (!(problem.is_log(i) && problem.natural()[i] <= 0.0) && !problem.user_fixed()[i])
+    if (!(problem.is_log(i) && problem.natural()[i] <= 0.0) && !problem.user_fixed()[i] && !removed[i])
       out.push_back(i);
   return out;
 }
 
-StageOutcome run_nnls(Problem& problem) {
-  StageOutcome outcome;
+LinearDesign linear_design(const Problem& problem) {
+  LinearDesign d;
   const auto& specs = problem.specs();
-  std::vector<int> linear, held;
-  for (int i : problem.free()) (specs[i].linear ? linear : held).push_back(i);
-  if (linear.empty()) {
-    outcome.converged = true;
-    outcome.note = "nnls: no free linear parameter; nothing to solve";
-    return outcome;
-  }
-  std::vector<double>& p = problem.natural();
+  for (int i : problem.free()) (specs[i].linear ? d.linear : d.held).push_back(i);
+  const std::vector<double>& p = problem.natural();
   const int m = problem.num_residuals(), n = problem.num_parameters();
   // Columns: one per linear parameter with a lower bound (shifted to 0), two (±) when unbounded.
-  std::vector<int> column_param;
-  std::vector<double> column_sign;
-  for (int i : linear) {
-    column_param.push_back(i);
-    column_sign.push_back(1.0);
+  for (int i : d.linear) {
+    d.column_param.push_back(i);
+    d.column_sign.push_back(1.0);
     if (!std::isfinite(problem.lower(i))) {
-      column_param.push_back(i);
-      column_sign.push_back(-1.0);
+      d.column_param.push_back(i);
+      d.column_sign.push_back(-1.0);
     }
   }
-  const int nc = static_cast<int>(column_param.size());
-  Eigen::MatrixXd a(m, nc);
-  Eigen::VectorXd b(m);
+  const int nc = static_cast<int>(d.column_param.size());
+  d.a.resize(m, nc);
+  d.b.resize(m);
   Eigen::MatrixXd jac(3, n);
   int current_row = -1;
   model::Moduli<double> mod{};
@@ -93,41 +91,58 @@ StageOutcome run_nnls(Problem& problem) {
     const double value = en.component == 0 ? mod.storage : en.component == 1 ? mod.loss : mod.mean;
     // Linear parameters: value = offset + Σ jac·p over them, exactly.
     double offset = value;
-    for (int i : linear) offset -= jac(en.component, i) * p[i];
+    for (int i : d.linear) offset -= jac(en.component, i) * p[i];
     const double row_scale = en.sqrt_weight / (en.absolute ? en.scale : en.data * kLn10);
     double rhs = en.data - offset;
     for (int c = 0; c < nc; ++c) {
-      const int i = column_param[c];
-      a(e, c) = row_scale * column_sign[c] * jac(en.component, i);
+      const int i = d.column_param[c];
+      d.a(e, c) = row_scale * d.column_sign[c] * jac(en.component, i);
     }
-    for (int i : linear)
+    for (int i : d.linear)
       if (std::isfinite(problem.lower(i))) rhs -= jac(en.component, i) * problem.lower(i);
-    b[e] = row_scale * rhs;
+    d.b[e] = row_scale * rhs;
   }
-  if (!a.allFinite() || !b.allFinite())
+  if (!d.a.allFinite() || !d.b.allFinite())
     throw core::NumericalError("nnls: the design matrix of model '" + problem.model().kind() +
                                "' is not finite at the start (check the fixed time constants)");
-  const NnlsResult solved = nnls(a, b);
-  if (!solved.x.allFinite())
+  return d;
+}
+
+int apply_linear_solution(Problem& problem, const LinearDesign& d, const Eigen::VectorXd& x) {
+  if (!x.allFinite())
     throw core::NumericalError("nnls: the non-negative solve produced non-finite moduli");
-  for (int i : linear) p[i] = std::isfinite(problem.lower(i)) ? problem.lower(i) : 0.0;
-  for (int c = 0; c < nc; ++c) p[column_param[c]] += column_sign[c] * solved.x[c];
+  std::vector<double>& p = problem.natural();
+  for (int i : d.linear) p[i] = std::isfinite(problem.lower(i)) ? problem.lower(i) : 0.0;
+  for (std::size_t c = 0; c < d.column_param.size(); ++c) p[d.column_param[c]] += d.column_sign[c] * x[c];
   int clamped = 0;
-  for (int i : linear)
+  for (int i : d.linear)
     if (p[i] > problem.upper(i)) {
       p[i] = problem.upper(i);
       ++clamped;
     }
+  return clamped;
+}
+
+StageOutcome run_nnls(Problem& problem) {
+  StageOutcome outcome;
+  const LinearDesign d = linear_design(problem);
+  if (d.linear.empty()) {
+    outcome.converged = true;
+    outcome.note = "nnls: no free linear parameter; nothing to solve";
+    return outcome;
+  }
+  const NnlsResult solved = nnls(d.a, d.b);
+  const int clamped = apply_linear_solution(problem, d, solved.x);
   outcome.converged = solved.converged;
   outcome.iterations = solved.iterations;
   std::ostringstream s;
   int zeros = 0;
-  for (int i : linear) zeros += p[i] <= problem.lower(i);
-  s << "nnls: " << linear.size() << " linear parameters, " << zeros << " at their lower bound, "
+  for (int i : d.linear) zeros += problem.natural()[i] <= problem.lower(i);
+  s << "nnls: " << d.linear.size() << " linear parameters, " << zeros << " at their lower bound, "
     << solved.iterations << " active-set steps" << (solved.used_qr ? " (QR fallback)" : "")
     << ", KKT check " << (solved.converged ? "passed" : "FAILED");
   if (clamped) s << ", " << clamped << " clamped to their upper bound";
-  if (!held.empty()) s << "; held at start: " << join_names(problem, held);
+  if (!d.held.empty()) s << "; held at start: " << join_names(problem, d.held);
   outcome.note = s.str();
   return outcome;
 }

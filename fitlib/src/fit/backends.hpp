@@ -1,6 +1,7 @@
 #pragma once
 // Backends working on one Problem (private to the fit module). Each updates problem.natural()
 // for the problem's current free set and says how it went.
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,20 @@ struct StageOutcome {
 // (relative), the first-order form of the exact objective. Throws NumericalError when the
 // linear solve fails its check.
 StageOutcome run_nnls(Problem& problem);
+
+// The weighted design of that linear solve: columns for the free linear parameters (lower
+// bounds shifted to 0, ± columns for unbounded ones), rhs b, the held parameters.
+struct LinearDesign {
+  Eigen::MatrixXd a;
+  Eigen::VectorXd b;
+  std::vector<int> column_param;
+  std::vector<double> column_sign;
+  std::vector<int> linear, held;
+};
+LinearDesign linear_design(const Problem& problem);
+// Writes a column solution into problem.natural(); returns how many were clamped to their
+// upper bound.
+int apply_linear_solution(Problem& problem, const LinearDesign& design, const Eigen::VectorXd& x);
 
 // Levenberg–Marquardt (dense QR, one thread) on the free parameters in fitted coordinates.
 StageOutcome run_ceres(Problem& problem, int max_iterations);

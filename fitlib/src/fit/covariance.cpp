@@ -170,17 +170,21 @@ void assess(const Problem& problem, FitResult& result) {
       pr.reason = "variance not finite";
       continue;
     }
+    const bool log = problem.is_log(i);  // log: interval in log space, exponentiated (positive)
+    const double se = log ? p[i] * se_x : se_x;
+    const double low = log ? std::exp(x - t * se_x) : x - t * se_x;
+    const double high = log ? std::exp(x + t * se_x) : x + t * se_x;
+    // A card holds only finite numbers (docs/decisions.md "No interval"): an interval that
+    // overflows is no interval.
+    if (!std::isfinite(se) || !std::isfinite(low) || !std::isfinite(high)) {
+      pr.reason = "interval not finite: the data barely inform this parameter";
+      continue;
+    }
     usable[k] = true;
     pr.reason.clear();
-    if (problem.is_log(i)) {  // interval in log space, exponentiated: stays positive
-      pr.std_error = p[i] * se_x;
-      pr.ci95_low = std::exp(x - t * se_x);
-      pr.ci95_high = std::exp(x + t * se_x);
-    } else {
-      pr.std_error = se_x;
-      pr.ci95_low = x - t * se_x;
-      pr.ci95_high = x + t * se_x;
-    }
+    pr.std_error = se;
+    pr.ci95_low = low;
+    pr.ci95_high = high;
     ++metrics.n_active;
   }
   for (int a = 0; a < nf; ++a)

@@ -5,7 +5,9 @@
 #include <limits>
 #include <sstream>
 
+#include "admissible.hpp"
 #include "backends.hpp"
+#include "quality.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/core/units.hpp"
@@ -37,11 +39,17 @@ const char* to_string(Backend backend) {
 ResidualKind parse_residual_kind(const std::string& text) {
   if (text == "log10" || text == "log") return ResidualKind::log10;
   if (text == "relative") return ResidualKind::relative;
-  throw core::UsageError("unknown residual kind '" + text + "' (expected log10 or relative)");
+  if (text == "complex") return ResidualKind::complex;
+  throw core::UsageError("unknown residual kind '" + text + "' (expected log10, relative or complex)");
 }
 
 const char* to_string(ResidualKind kind) {
-  return kind == ResidualKind::log10 ? "log10" : "relative";
+  switch (kind) {
+    case ResidualKind::log10: return "log10";
+    case ResidualKind::relative: return "relative";
+    case ResidualKind::complex: return "complex";
+  }
+  return "?";
 }
 
 model::DataSummary summarize(const data::DynamicTestTable& table) {
@@ -80,8 +88,9 @@ using detail::StageOutcome;
 
 std::string describe_objective(const FitOptions& o) {
   std::ostringstream s;
-  s << (o.residual == ResidualKind::log10 ? "sum of squared log10 errors"
-                                          : "sum of squared relative errors")
+  s << (o.residual == ResidualKind::log10      ? "sum of squared log10 errors"
+        : o.residual == ResidualKind::relative ? "sum of squared relative errors"
+                                               : "sum of squared errors relative to |E*| of the row")
     << " of storage, loss and mean moduli; weights storage " << o.storage_weight << ", loss "
     << o.loss_weight << ", mean " << o.mean_weight
     << " (mean only where measured), times per-row weights; loss with tan delta < 1e-6 as an "
@@ -116,8 +125,12 @@ bool has_free_linear(const Problem& problem) {
 // parameters on the exact objective in log space.
 StageOutcome linear_stage(Problem& problem, FitResult& result, bool polish) {
   problem.set_free(all_free(problem));
-  StageOutcome out = detail::run_nnls(problem);
-  note(result, "", out);
+  StageOutcome out;
+  out.converged = true;
+  if (problem.options().linear_start) {
+    out = detail::run_nnls(problem);
+    note(result, "", out);
+  }
   if (!polish) return out;
   std::vector<int> linear;
   for (int i : all_free(problem))
@@ -268,12 +281,136 @@ void sort_series_terms(Problem& problem, FitResult& result) {
   result.messages.push_back("series terms sorted by time constant (same model, same cost)");
 }
 
+// Bounds of the admissible window at the start (docs/fitting.md "Admissible terms").
+void admit_start(Problem& problem, FitResult& result) {
+  result.admissible = detail::admissible_window(problem, problem.natural());
+  const AdmissibleWindow& w = result.admissible;
+  if (!w.applies) return;
+  const int moved = detail::apply_admissible_bounds(problem, w);
+  std::ostringstream s;
+  s << "admissible terms: time constants in [" << w.tau_min_s << ", " << w.tau_max_s << "] s";
+  if (w.modulus_max_MPa > 0.0) s << ", term moduli <= " << w.modulus_max_MPa << " MPa";
+  if (w.relaxed_min_MPa > 0.0) s << ", relaxed modulus >= " << w.relaxed_min_MPa << " MPa";
+  if (moved > 0) s << " (" << moved << " start values moved inside)";
+  result.messages.push_back(s.str());
+}
+
+constexpr int kRepolishIterations = 100;
+
+// Re-solves the current free set after bounds or terms changed: the linear polish for the
+// nnls backend, Ceres otherwise.
+void repolish(Problem& problem, FitResult& result, bool linear_only) {
+  std::vector<int> free = all_free(problem);
+  if (linear_only)
+    free.erase(std::remove_if(free.begin(), free.end(), [&](int i) { return !problem.specs()[i].linear; }),
+               free.end());
+  problem.set_free(detail::movable(problem, free));
+  if (problem.num_free() == 0) return;
+  const std::vector<double> before = problem.natural();
+  // A re-polish starts next to a solution: a capped budget (the merge check judges the result).
+  const detail::StageOutcome out =
+      detail::run_ceres(problem, std::min(problem.options().max_iterations, kRepolishIterations));
+  if (!out.usable || !std::isfinite(problem.cost(problem.natural()))) problem.natural() = before;
+  note(result, "re-polish ", out);
+}
+
+// With a temperature law the window moves with the fitted shift: re-bound and re-solve until the
+// terms lie in the window of the fitted law (at most 3 rounds, then the window of the last law).
+void readmit(Problem& problem, FitResult& result, bool linear_only) {
+  if (!result.admissible.applies) return;
+  for (int round = 0; round < 3; ++round) {
+    const AdmissibleWindow w = detail::admissible_window(problem, problem.natural());
+    if (!w.applies) return;
+    const bool same = std::abs(std::log(w.tau_min_s / result.admissible.tau_min_s)) < 1e-9 &&
+                      std::abs(std::log(w.tau_max_s / result.admissible.tau_max_s)) < 1e-9;
+    result.admissible = w;
+    if (detail::apply_admissible_bounds(problem, w) == 0 || same) return;
+    result.messages.push_back("admissible terms: window moved with the fitted temperature law to [" +
+                              std::to_string(w.tau_min_s) + ", " + std::to_string(w.tau_max_s) +
+                              "] s; terms moved inside and the fit re-polished");
+    repolish(problem, result, linear_only);
+  }
+}
+
+// A merge is kept when the re-polished cost is within this factor of the cost before it.
+constexpr double kMergeCostSlack = 1.001;
+
+// Series terms the identifiability report flags are merged into the active term with the nearest
+// time constant (moduli summed, time constants averaged in log weighted by modulus) and the fit
+// re-polished; never kept silently. Returns true when something was merged.
+bool merge_unidentifiable_terms(Problem& problem, FitResult& result, bool linear_only) {
+  const detail::SeriesTerms series = detail::series_terms(problem.specs());
+  const auto& flagged = result.identifiability.not_identifiable;
+  auto is_flagged = [&](int i) {
+    return std::find(flagged.begin(), flagged.end(), problem.specs()[i].name) != flagged.end();
+  };
+  std::vector<double>& p = problem.natural();
+  const std::vector<double> before = p;
+  const double cost_before = problem.cost(before);
+  std::vector<bool> received(series.times.size(), false);
+  std::string merged;
+  for (std::size_t k = 0; k < series.times.size(); ++k) {
+    const int mk = series.moduli[k], tk = series.times[k];
+    // Only a linear modulus may be 0 (a removed term); compliances and the like stay, flagged.
+    if (!problem.specs()[mk].linear || p[mk] == 0.0 || !(is_flagged(mk) || is_flagged(tk)) ||
+        problem.user_fixed()[mk])
+      continue;
+    if (received[k]) continue;  // merged into this round: no chains
+    // The nearest active term (pairs per round; the next round sees the merged fit).
+    int best = -1;
+    double distance = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < series.times.size(); ++j) {
+      const double d = std::abs(std::log(p[series.times[j]] / p[tk]));
+      if (j != k && p[series.moduli[j]] > 0.0 && d < distance) {
+        distance = d;
+        best = static_cast<int>(j);
+      }
+    }
+    if (best >= 0) received[best] = true;
+    if (best < 0) continue;
+    const int mj = series.moduli[best], tj = series.times[best];
+    if (!linear_only && !problem.user_fixed()[tj])
+      p[tj] = std::exp((p[mj] * std::log(p[tj]) + p[mk] * std::log(p[tk])) / (p[mj] + p[mk]));
+    p[mj] = std::min(p[mj] + p[mk], problem.upper(mj));
+    p[mk] = 0.0;
+    merged += (merged.empty() ? "" : ", ") + problem.specs()[mk].name + " into " + problem.specs()[mj].name;
+  }
+  if (merged.empty()) return false;
+  repolish(problem, result, linear_only);
+  const double after = problem.cost(problem.natural());
+  // Absolute slack: an exact fit's cost is rounding noise (rms residual below 1e-5).
+  if (!(after <= kMergeCostSlack * cost_before + 1e-10 * problem.num_residuals())) {
+    problem.natural() = before;
+    std::ostringstream s;
+    s << "terms the data cannot identify kept: merging them (" << merged << ") raised the cost x"
+      << after / cost_before;
+    result.messages.push_back(s.str());
+    return false;
+  }
+  result.messages.push_back("terms the data cannot identify merged (" + merged + ") and the fit re-polished");
+  return true;
+}
+
+// The values a fit returns lie inside the bounds exactly: exp(ln p) may land one ulp outside
+// (alpha2_I = 3.0000000000000004 against an upper bound of 3), and a card reader refuses that.
+void clamp_to_bounds(Problem& problem) {
+  std::vector<double>& p = problem.natural();
+  for (int i = 0; i < problem.num_parameters(); ++i) {
+    if (problem.user_fixed()[i]) continue;
+    p[i] = std::clamp(p[i], problem.lower(i), problem.upper(i));
+    // exp(x) of a log parameter can underflow to 0, which only a linear modulus may hold.
+    if (problem.is_log(i) && !problem.specs()[i].linear && !(p[i] > 0.0))
+      p[i] = std::max(problem.lower(i), std::numeric_limits<double>::min());
+  }
+}
+
 }  // namespace
 
 FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
               const FitOptions& options, const std::vector<double>* start) {
   if (!model) throw core::UsageError("fit: no model");
   const core::Stopwatch clock;
+  detail::check_single_temperature(*model, table);
   std::vector<double> natural_start =
       start ? *start : model->initial_parameters(summarize(table));
   Problem problem(model, table, options, std::move(natural_start));
@@ -281,6 +418,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   result.model = model;
   result.objective = describe_objective(options);
   for (const auto& n : problem.notes()) result.messages.push_back(n);
+  admit_start(problem, result);
   if (!std::isfinite(problem.cost(problem.natural())))
     throw core::NumericalError("fit: model '" + model->kind() +
                                "' cannot be evaluated at the start: " +
@@ -334,17 +472,25 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
       break;
   }
   result.backend_used = used;
+  readmit(problem, result, linear_only);
 
-  sort_series_terms(problem, result);
   // Covariance over what was fitted: the positive linear parameters (nnls), the last stage's
   // set (staged) or every movable parameter.
-  std::vector<int> fitted = movable(problem, last_stage_set ? problem.free() : all_free(problem));
-  if (linear_only)
-    fitted.erase(std::remove_if(fitted.begin(), fitted.end(),
-                                [&](int i) { return !problem.specs()[i].linear; }),
-                 fitted.end());
-  problem.set_free(fitted);
-  detail::assess(problem, result);
+  const std::vector<int> last_free = problem.free();
+  auto assess_fit = [&] {
+    sort_series_terms(problem, result);
+    clamp_to_bounds(problem);
+    std::vector<int> fitted = movable(problem, last_stage_set ? last_free : all_free(problem));
+    if (linear_only)
+      fitted.erase(std::remove_if(fitted.begin(), fitted.end(),
+                                  [&](int i) { return !problem.specs()[i].linear; }),
+                   fitted.end());
+    problem.set_free(fitted);
+    detail::assess(problem, result);
+  };
+  assess_fit();
+  for (int round = 0; round < 6 && merge_unidentifiable_terms(problem, result, linear_only); ++round)
+    assess_fit();
   if (linear_only)
     for (int i : all_free(problem))
       if (!problem.specs()[i].linear) {
@@ -354,6 +500,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   for (const auto& pr : result.parameters)
     if (!std::isfinite(pr.value))
       throw core::NumericalError("fit: parameter " + pr.name + " is not finite after the fit");
+  result.quality = detail::quality_verdict(problem, problem.natural());
   result.metrics.converged = outcome.converged;
   result.metrics.iterations = outcome.iterations;
   result.metrics.wall_time_s = clock.seconds();

@@ -79,9 +79,13 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
       e.sqrt_weight = std::sqrt(w);
       // Loss below tan δ = 1e-6, or a non-positive mean modulus: absolute residual on E′'s scale.
       const bool tiny = c == 1 ? values[c] < kLossFloor * row.storage_MPa : !(values[c] > 0.0);
-      if (tiny || options_.residual == ResidualKind::relative) {
+      if (tiny || options_.residual != ResidualKind::log10) {
         e.absolute = true;
-        const double ref = tiny ? row.storage_MPa : values[c];
+        // complex: E′ and E″ errors relative to the row's |E*| (docs/fitting.md "Objective").
+        const double ref = options_.residual == ResidualKind::complex && c < 2
+                               ? std::hypot(row.storage_MPa, row.loss_MPa)
+                           : tiny ? row.storage_MPa
+                                  : values[c];
         e.scale = options_.residual == ResidualKind::log10 ? ref * kLn10 : ref;
       }
       entries_.push_back(e);
@@ -121,6 +125,14 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
 
 void Problem::set_free(std::vector<int> free) {
   free_ = std::move(free);
+}
+
+bool Problem::restrict_bounds(int i, double lower, double upper) {
+  lower_[i] = std::max(lower, specs()[i].transform == core::Transform::log ? 0.0 : specs()[i].lower);
+  upper_[i] = std::min(upper, specs()[i].upper);
+  const double before = natural_[i];
+  natural_[i] = std::clamp(natural_[i], lower_[i], upper_[i]);
+  return natural_[i] != before;
 }
 
 bool Problem::is_log(int i) const { return specs()[i].transform == core::Transform::log; }

@@ -27,7 +27,44 @@ const char* to_string(TermRule rule) {
   return "?";
 }
 
+TermMethod parse_term_method(const std::string& text) {
+  if (text == "spectrum") return TermMethod::spectrum;
+  if (text == "sweep") return TermMethod::sweep;
+  throw core::UsageError("unknown term method '" + text + "' (expected spectrum or sweep)");
+}
+
 namespace {
+
+// The smooth-spectrum fit as a one-row selection (its positive terms are the count).
+TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make,
+                                 const data::DynamicTestTable& table, const FitOptions& options,
+                                 const TermOptions& terms) {
+  SpectrumFit s = fit_spectrum(make, table, options, terms.spectrum);
+  TermSelection sel;
+  sel.method = TermMethod::spectrum;
+  sel.rule = terms.rule;
+  const FitMetrics& m = s.result.metrics;
+  TermRow row;
+  row.terms = s.result.model->options().value("terms", 0);
+  row.wall_time_s = s.wall_time_s;
+  row.rms_log10_storage = m.rms_log10_storage;
+  row.rms_log10_loss = m.rms_log10_loss;
+  row.cost = m.cost;
+  row.aic = m.aic;
+  row.bic = m.bic;
+  row.n_free = m.n_free;
+  row.converged = m.converged;
+  sel.rows.push_back(row);
+  sel.by_aic = sel.by_bic = sel.by_ratio = sel.unconstrained = sel.chosen = row.terms;
+  if (terms.solver_cap > 0 && row.terms > terms.solver_cap)
+    throw core::UsageError("the smooth spectrum keeps " + std::to_string(row.terms) +
+                           " terms, above the solver cap of " + std::to_string(terms.solver_cap) +
+                           "; use --term-method sweep with --max-terms");
+  sel.spectrum_path = std::move(s.path);
+  sel.spectrum_lambda = s.lambda;
+  sel.result = std::move(s.result);
+  return sel;
+}
 
 const TermRow* row_for(const std::vector<TermRow>& rows, int terms) {
   for (const auto& r : rows)
@@ -61,6 +98,8 @@ int choose_terms(const std::vector<TermRow>& rows, TermRule rule, double ratio, 
 TermSelection select_terms(const std::function<model::ModelPtr(int)>& make,
                            const data::DynamicTestTable& table, const FitOptions& options,
                            const TermOptions& terms) {
+  if (terms.method == TermMethod::spectrum && spectrum_applies(make))
+    return spectrum_selection(make, table, options, terms);
   TermSelection sel;
   sel.rule = terms.rule;
   int max_terms = terms.max_terms;
@@ -142,6 +181,22 @@ TermSelection select_terms(const std::string& kind, const nlohmann::json& model_
 std::string format_term_table(const TermSelection& sel) {
   std::ostringstream s;
   char line[256];
+  if (sel.method == TermMethod::spectrum) {
+    std::snprintf(line, sizeof line, "%12s %12s %10s %8s %14s\n", "lambda", "GCV", "eff_terms", "terms",
+                  "residual_norm");
+    s << line;
+    for (const auto& r : sel.spectrum_path) {
+      std::snprintf(line, sizeof line, "%12.4g %12.6g %10.2f %8d %14.6g%s\n", r.lambda, r.gcv,
+                    r.effective_terms, r.terms, r.residual_norm,
+                    r.lambda == sel.spectrum_lambda ? "  <- chosen (GCV)" : "");
+      s << line;
+    }
+    std::snprintf(line, sizeof line, "%d terms, rms log10 E' %.5f, E'' %.5f, %.3f ms\n", sel.chosen,
+                  sel.rows.front().rms_log10_storage, sel.rows.front().rms_log10_loss,
+                  1e3 * sel.rows.front().wall_time_s);
+    s << line;
+    return s.str();
+  }
   std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms",
                 "rms_E'", "rms_E''", "cost", "AIC", "BIC", "chosen by");
   s << line;

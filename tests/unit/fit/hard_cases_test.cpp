@@ -2,6 +2,8 @@
 // NumericalError with a diagnostic, never NaN.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "fit_testing.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/fit/fit.hpp"
@@ -53,7 +55,8 @@ TEST(HardCases, OneTerm) {
 }
 
 // 60 terms on 5-term data: heavily over-parameterised. NNLS leaves most terms inactive; free-τ
-// Ceres stays finite and the report lists what is not identifiable.
+// Ceres stays finite, and the terms the report flags are merged (issue 10) at a cost within
+// 0.1 % of what they had (kMergeCostSlack), leaving fewer terms than the 60 asked for.
 TEST(HardCases, SixtyTerms) {
   const auto truth_model = prony(5);
   const auto truth = prony_parameters(0.2, {1.0, 3.0, 2.0, 0.5, 4.0}, {1e-4, 1e-2, 1.0, 1e2, 1e4});
@@ -68,8 +71,12 @@ TEST(HardCases, SixtyTerms) {
   free_tau.max_iterations = 30;
   const auto r2 = fit::fit(model, table, free_tau);
   expect_valid(r2);
-  EXPECT_LE(r2.metrics.cost, r1.metrics.cost * 1.0000001);
-  EXPECT_LT(r2.metrics.n_active, r2.metrics.n_free);
+  EXPECT_LE(r2.metrics.cost, r1.metrics.cost * 1.001);
+  int removed = 0;
+  for (int i = 1; i <= 60; ++i) removed += r2.values[i] == 0.0;
+  EXPECT_GT(removed, 0);
+  EXPECT_TRUE(std::any_of(r2.messages.begin(), r2.messages.end(),
+                          [](const std::string& m) { return m.find("merged") != std::string::npos; }));
 }
 
 TEST(HardCases, SingleFrequency) {

@@ -19,6 +19,7 @@ data::DynamicTestTable three_term_data() {
 TEST(Terms, BicFindsTheTrueTermCount) {
   const auto table = three_term_data();
   fit::TermOptions t;
+  t.method = fit::TermMethod::sweep;  // the N-sweep and its rules (the spectrum: spectrum_test)
   t.max_terms = 6;
   const auto sel = fit::select_terms("prony", {{"mode", "shear"}}, table, {}, t);
   ASSERT_EQ(sel.rows.size(), 6u);
@@ -44,6 +45,7 @@ TEST(Terms, BicFindsTheTrueTermCount) {
 TEST(Terms, SolverCapReportsItsAccuracyPenalty) {
   const auto table = three_term_data();
   fit::TermOptions t;
+  t.method = fit::TermMethod::sweep;  // the N-sweep and its rules (the spectrum: spectrum_test)
   t.max_terms = 5;
   t.solver_cap = 2;
   const auto sel = fit::select_terms("prony", {{"mode", "shear"}}, table, {}, t);
@@ -59,6 +61,7 @@ TEST(Terms, SolverCapReportsItsAccuracyPenalty) {
 TEST(Terms, RatioRuleAndTheTable) {
   const auto table = three_term_data();
   fit::TermOptions t;
+  t.method = fit::TermMethod::sweep;  // the N-sweep and its rules (the spectrum: spectrum_test)
   t.max_terms = 4;
   t.rule = fit::TermRule::residual_ratio;
   const auto sel = fit::select_terms("prony", {{"mode", "shear"}}, table, {}, t);

@@ -14,7 +14,18 @@ struct ExportOptions {
   // Default 0.4995 ⇔ K ≈ 10³ G (constitutive-model.md §1.4).
   double poisson_ratio = 0.4995;
   int material_id = 1;
+  // Write a card whose terms break the admissible window it records (fit.admissible) or whose
+  // relaxed/instantaneous ratio is below kMinRelaxedRatio (docs/fitting.md "Admissible terms").
+  bool allow_inadmissible = false;
 };
+
+// Smallest relaxed / instantaneous modulus an exported card may have (FE stability).
+constexpr double kMinRelaxedRatio = 1e-3;
+
+// Why the card's series terms are not admissible (empty when they are): terms outside the
+// window its fit recorded, moduli above the ceiling, the relaxed modulus below its floor or
+// below kMinRelaxedRatio of the instantaneous one.
+std::string admissibility_problems(const Card& card);
 
 // format: "abaqus" | "ansys" | "lsdyna" | "calculix".
 std::string export_card(const Card& card, const std::string& format, const ExportOptions& options = {});

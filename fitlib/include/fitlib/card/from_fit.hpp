@@ -20,4 +20,7 @@ struct CardProvenance {
 Card card_from_fit(const fit::FitResult& result, const fit::FitOptions& options,
                    const data::DynamicTestTable& table, const CardProvenance& provenance);
 
+// The admissible window as stored in a card's "fit.admissible" (export checks a card against it).
+nlohmann::json admissible_to_json(const fit::AdmissibleWindow& window);
+
 }  // namespace fitlib::card

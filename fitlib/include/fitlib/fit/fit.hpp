@@ -11,7 +11,9 @@
 namespace fitlib::fit {
 
 enum class Backend { automatic, nnls, ceres, nlopt, staged };
-enum class ResidualKind { log10, relative };  // log10 of storage/loss (default) or relative errors
+// log10 of storage/loss (default), errors relative to each modulus, or errors of E′ and E″
+// relative to the row's |E*| (how FE vendors weigh a complex-modulus fit).
+enum class ResidualKind { log10, relative, complex };
 
 Backend parse_backend(const std::string& text);      // "auto|nnls|ceres|nlopt|staged"
 const char* to_string(Backend backend);
@@ -31,10 +33,44 @@ struct FitOptions {
   // NNLS backend: after the linear solve, polish the positive moduli on the exact objective
   // (log10 or relative) in log space with Ceres. Off = the pure linear solve.
   bool polish = true;
+  // nnls backend: solve the linear parameters first (off: start from the given values, e.g. a
+  // regularised spectrum, and only polish).
+  bool linear_start = true;
   // automatic backend: always run the NLopt multistart before Ceres (non-convex models).
   bool global = false;
   // staged backend: schedule file (.json or .toml, see fit/staged.hpp); empty = default schedule.
   std::string schedule_path;
+  // Admissible terms of series models (docs/fitting.md "Admissible terms"): relaxation times in
+  // [10^-m / ω_max, 10^m / ω_min] of the reduced data (m = tau_margin_decades); every term's
+  // modulus ≤ modulus_ceiling × the largest measured storage; the relaxed modulus ≥
+  // relaxed_floor × the lowest measured storage (0: the user lets it collapse).
+  double tau_margin_decades = 1.0;
+  double modulus_ceiling = 10.0;
+  double relaxed_floor = 0.1;
+};
+
+// The window a fit's series terms were held in (card "fit.admissible"; export checks it).
+struct AdmissibleWindow {
+  bool applies = false;  // false: the model has no series terms (or an unknown shift law)
+  double tau_min_s = 0.0, tau_max_s = 0.0;
+  double modulus_max_MPa = 0.0;  // ceiling of each term's modulus (0: none, e.g. compliances)
+  double relaxed_min_MPa = 0.0;  // floor of the relaxed modulus (0: none)
+};
+
+// Relative errors |model − data| / data of one modulus over one group of rows.
+struct ErrorFigures {
+  std::string group;      // "all", "T=23 degC", "mode shear", ...
+  std::string modulus;    // "storage" | "loss" | "mean"
+  int count = 0;
+  double mean_rel_error = 0.0, max_rel_error = 0.0;
+  double max_at_frequency_Hz = 0.0;  // where the largest error sits
+};
+
+// Quality verdict after every fit (docs/fitting.md "Quality verdict").
+struct QualityVerdict {
+  std::vector<ErrorFigures> figures;  // per modulus for all rows, then per temperature/mode group
+  std::vector<std::string> warnings;  // one per figure past its threshold, and data warnings
+  bool acceptable() const { return warnings.empty(); }
 };
 
 struct ParameterResult {
@@ -88,6 +124,8 @@ struct FitResult {
   std::vector<std::string> messages;        // warnings, notes (e.g. rank deficiency)
   Identifiability identifiability;
   std::string objective;                    // e.g. "sum of squared log10 errors, w(E')=10"
+  AdmissibleWindow admissible;
+  QualityVerdict quality;
 };
 
 // Fits `model` to `table`. `start` overrides the model's initial_parameters(summary).
@@ -97,7 +135,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
 // Summary of the data a model uses to place its start.
 model::DataSummary summarize(const data::DynamicTestTable& table);
 
-ResidualKind parse_residual_kind(const std::string& text);  // "log10|relative"
+ResidualKind parse_residual_kind(const std::string& text);  // "log10|relative|complex"
 const char* to_string(ResidualKind kind);
 
 }  // namespace fitlib::fit

@@ -60,6 +60,9 @@ class Problem {
   double lower(int i) const { return lower_[i]; }
   double upper(int i) const { return upper_[i]; }
   bool is_log(int i) const;
+  // Narrows the bounds of parameter i (never widens the model's own) and moves its current
+  // value inside them; returns true when the value moved.
+  bool restrict_bounds(int i, double lower, double upper);
 
   // Fitted coordinates of the free parameters for the natural vector `natural`.
   Eigen::VectorXd to_x(const std::vector<double>& natural) const;

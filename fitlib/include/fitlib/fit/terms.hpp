@@ -9,10 +9,16 @@
 #include <nlohmann/json.hpp>
 
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/spectrum.hpp"
 
 namespace fitlib::fit {
 
 enum class TermRule { bic, aic, residual_ratio };
+// spectrum (default where it applies): one smooth-spectrum fit (fit/spectrum.hpp), its positive
+// terms are the count; sweep: fit N = min..max terms with free times and rank them by `rule`.
+enum class TermMethod { spectrum, sweep };
+TermMethod parse_term_method(const std::string& text);  // "spectrum|sweep"
+
 TermRule parse_term_rule(const std::string& text);  // "bic|aic|ratio"
 const char* to_string(TermRule rule);
 
@@ -22,6 +28,8 @@ struct TermOptions {
   int solver_cap = 0;    // e.g. 13 (Abaqus), 6 (LS-DYNA hyperelastic); 0 = none
   TermRule rule = TermRule::bic;
   double residual_ratio = 1.5;  // pyvisco's rule: smallest N with cost ≤ ratio × minimum
+  TermMethod method = TermMethod::spectrum;  // sweep where the spectrum does not apply
+  SpectrumOptions spectrum;
 };
 
 struct TermRow {
@@ -45,6 +53,9 @@ struct TermSelection {
   double cap_cost_ratio = 1.0, cap_storage_rms_ratio = 1.0, cap_loss_rms_ratio = 1.0;
   FitResult result;       // the fit with `chosen` terms
   std::vector<std::string> messages;
+  TermMethod method = TermMethod::sweep;
+  std::vector<SpectrumPathRow> spectrum_path;  // method spectrum: the λ path (GCV)
+  double spectrum_lambda = 0.0;
 };
 
 // `make(N)` builds the model with N terms. Throws NumericalError if every N fails.

@@ -1,0 +1,57 @@
+#pragma once
+// Smooth relaxation spectrum (docs/fitting.md "Default: a smooth spectrum"): the term moduli of a
+// series model on a dense log-spaced time grid over the admissible window, by non-negative
+// least squares with a second-difference penalty whose weight λ is chosen by generalized
+// cross-validation (GCV) along one path; the terms left positive are then polished on the exact
+// objective in log space with their times held.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fitlib/fit/fit.hpp"
+
+namespace fitlib::fit {
+
+// Default objective of the smooth spectrum (docs/fitting.md "Default objective"): errors
+// relative to each modulus, E′ weighted 80 (E″ 1) on squared residuals. The relative error is
+// the log10 error to first order, and exact for the linear solve (no polish needed).
+constexpr double kSpectrumStorageWeight = 80.0;
+constexpr ResidualKind kSpectrumResidual = ResidualKind::relative;
+
+struct SpectrumOptions {
+  double per_decade = 2.0;   // time constants per decade
+  // The grid spans [10^-g / ω_max, 10^g / ω_min] of the data (g = grid_margin_decades, at most
+  // the admissible margin): terms far beyond the data would take the relaxed modulus's place.
+  double grid_margin_decades = 0.0;
+  double lambda = -1.0;      // smoothness weight; < 0: chosen by GCV on the path below
+  double lambda_min = 1e-7, lambda_max = 1e3;
+  int lambda_steps = 31;     // log-spaced path from lambda_max down to lambda_min
+  // Gauss–Newton polish on the exact log10 objective plus the same penalty (λ held).
+  bool polish = true;
+};
+
+struct SpectrumPathRow {
+  double lambda = 0.0, gcv = 0.0, effective_terms = 0.0;
+  int terms = 0;             // positive moduli
+  double residual_norm = 0.0;  // of the linearised (weighted) data residuals
+};
+
+struct SpectrumFit {
+  FitResult result;          // the model with the positive terms only
+  double lambda = 0.0;       // chosen
+  int grid_terms = 0;        // time constants on the grid
+  int polish_steps = 0;
+  std::vector<SpectrumPathRow> path;
+  double wall_time_s = 0.0;
+};
+
+// True when `make(1)` is a series model with linear moduli and no temperature law (the models
+// fit_spectrum handles).
+bool spectrum_applies(const std::function<model::ModelPtr(int)>& make);
+
+// `make(N)` builds the series model with N terms. UsageError when spectrum_applies is false.
+SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
+                         const data::DynamicTestTable& table, const FitOptions& options,
+                         const SpectrumOptions& spectrum = {});
+
+}  // namespace fitlib::fit

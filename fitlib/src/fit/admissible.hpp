@@ -1,0 +1,29 @@
+#pragma once
+// Admissible terms of series models (docs/fitting.md "Admissible terms"): the window of
+// relaxation times the data can inform, a ceiling on each term's modulus, a floor on the relaxed
+// modulus; applied as bounds before the solve and enforced after it (private to the fit module).
+#include <vector>
+
+#include "fitlib/fit/problem.hpp"
+
+namespace fitlib::fit::detail {
+
+// Series terms: a "viscous"-group parameter paired in order with a "time"-group constant, and
+// the "elastic" relaxed modulus (-1 when none). Empty when the model has no such pairs.
+struct SeriesTerms {
+  std::vector<int> moduli, times;
+  int relaxed = -1;
+  bool empty() const { return times.empty(); }
+};
+SeriesTerms series_terms(const std::vector<core::ParameterSpec>& specs);
+
+// The window at the natural parameters `p` (the temperature law shifts the data first).
+// applies = false when the model has no series terms or a temperature law this file does not
+// know (then no bound is set).
+AdmissibleWindow admissible_window(const Problem& problem, const std::vector<double>& p);
+
+// Sets the window's bounds on the problem (times, moduli, relaxed modulus) and moves the
+// current point inside them. Returns the number of values moved.
+int apply_admissible_bounds(Problem& problem, const AdmissibleWindow& window);
+
+}  // namespace fitlib::fit::detail

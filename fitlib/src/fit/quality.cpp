@@ -1,0 +1,154 @@
+#include "quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "admissible.hpp"
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::fit::detail {
+namespace {
+
+// Temperatures closer than this are one isotherm (MasterCurveOptions::same_temperature_C).
+constexpr double kSameTemperature_C = 0.5;
+// Kramers–Kronig check: loss off by more than this factor where storage is within its threshold.
+constexpr double kKramersKronigLossFactor = 1.5;
+
+struct Accumulator {
+  int count = 0;
+  double sum = 0.0, max = 0.0, max_f = 0.0;
+  void add(double e, double f) {
+    ++count;
+    sum += e;
+    if (e > max) {
+      max = e;
+      max_f = f;
+    }
+  }
+};
+
+std::string group_of(const model::TestCondition& c, bool by_temperature, bool by_mode) {
+  std::ostringstream s;
+  if (by_mode) s << "mode " << model::to_string(c.mode);
+  if (by_temperature && c.has_temperature())
+    s << (by_mode ? ", " : "") << "T=" << std::round(10.0 * c.temperature_C) / 10.0 << " degC";
+  return s.str();
+}
+
+std::string percent(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << 100.0 * x << " %";
+  return s.str();
+}
+
+}  // namespace
+
+QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>& p,
+                               const QualityThresholds& th) {
+  const auto& rows = problem.table().rows;
+  double t_min = INFINITY, t_max = -INFINITY;
+  bool mixed_modes = false;
+  for (const auto& r : rows) {
+    if (r.condition.has_temperature()) {
+      t_min = std::min(t_min, r.condition.temperature_C);
+      t_max = std::max(t_max, r.condition.temperature_C);
+    }
+    mixed_modes = mixed_modes || r.condition.mode != rows.front().condition.mode;
+  }
+  const bool by_temperature = t_max - t_min >= kSameTemperature_C;
+  // (group, component) → errors; group "" = all rows.
+  std::map<std::pair<std::string, int>, Accumulator> acc;
+  // Kramers–Kronig: rows where storage fits and loss does not.
+  double kk_lo = INFINITY, kk_hi = 0.0, kk_worst = 1.0;
+  int current = -1;
+  model::Moduli<double> m{};
+  std::vector<double> storage_error(rows.size(), 0.0);
+  for (const ResidualEntry& e : problem.entries()) {
+    const auto& row = rows[e.row];
+    if (e.row != current) {
+      current = e.row;
+      m = problem.model().moduli(p.data(), row.condition);
+    }
+    // Elastic rows (tan δ below the loss floor) have no relative loss error.
+    const bool elastic = e.component == 1 && e.data < Problem::kLossFloor * row.storage_MPa;
+    if (elastic || !(e.data > 0.0) || e.sqrt_weight == 0.0) continue;
+    const double value = e.component == 0 ? m.storage : e.component == 1 ? m.loss : m.mean;
+    const double err = std::abs(value - e.data) / e.data;
+    const double f = row.condition.frequency_Hz;
+    acc[{"", e.component}].add(err, f);
+    if (by_temperature || mixed_modes)
+      acc[{group_of(row.condition, by_temperature, mixed_modes), e.component}].add(err, f);
+    if (e.component == 0) storage_error[e.row] = err;
+    if (e.component == 1 && storage_error[e.row] <= th.storage_mean) {
+      const double factor = std::max(value / e.data, e.data / value);
+      if (factor > kKramersKronigLossFactor) {
+        kk_lo = std::min(kk_lo, f);
+        kk_hi = std::max(kk_hi, f);
+        kk_worst = std::max(kk_worst, factor);
+      }
+    }
+  }
+  static const char* names[] = {"storage", "loss", "mean"};
+  QualityVerdict v;
+  for (const auto& [key, a] : acc) {
+    ErrorFigures fig;
+    fig.group = key.first.empty() ? "all" : key.first;
+    fig.modulus = names[key.second];
+    fig.count = a.count;
+    fig.mean_rel_error = a.sum / std::max(a.count, 1);
+    fig.max_rel_error = a.max;
+    fig.max_at_frequency_Hz = a.max_f;
+    const bool loss = key.second == 1;
+    const double mean_limit = loss ? th.loss_mean : th.storage_mean;
+    const double max_limit = loss ? th.loss_max : th.storage_max;
+    if (fig.mean_rel_error > mean_limit || fig.max_rel_error > max_limit) {
+      std::ostringstream s;
+      s << "fit misses the " << fig.modulus << " modulus (" << fig.group << "): mean relative error "
+        << percent(fig.mean_rel_error) << ", max " << percent(fig.max_rel_error) << " at "
+        << fig.max_at_frequency_Hz << " Hz (thresholds " << percent(mean_limit) << ", "
+        << percent(max_limit) << ")";
+      v.warnings.push_back(s.str());
+    }
+    v.figures.push_back(fig);
+  }
+  // "all" first, then the groups in their sorted order.
+  std::stable_partition(v.figures.begin(), v.figures.end(), [](const ErrorFigures& f) { return f.group == "all"; });
+  if (!series_terms(problem.specs()).empty() && kk_hi > 0.0) {
+    std::ostringstream s;
+    s << "data not Kramers-Kronig consistent between " << kk_lo << " and " << kk_hi
+      << " Hz: the storage modulus is fitted within " << percent(th.storage_mean)
+      << " there, but the loss modulus it implies differs from the measured one by up to a factor "
+      << kk_worst << " (no relaxation spectrum fits both; the weights choose between them)";
+    v.warnings.push_back(s.str());
+  }
+  return v;
+}
+
+void check_single_temperature(const model::Model& model, const data::DynamicTestTable& table) {
+  const std::vector<double> p = model.default_parameters();
+  const nlohmann::json law = model.temperature_law(p.data());
+  if (law.value("law", std::string("none")) != "none" || law.contains("c_T_per_C")) return;
+  for (const auto& spec : model.parameters())
+    if (spec.group == "shift") return;  // per-isotherm shifts (fit/master_curve.hpp)
+  const data::DynamicTestRow* cold = nullptr;
+  const data::DynamicTestRow* hot = nullptr;
+  for (const auto& r : table.rows) {
+    if (!r.condition.has_temperature()) continue;
+    if (!cold || r.condition.temperature_C < cold->condition.temperature_C) cold = &r;
+    if (!hot || r.condition.temperature_C > hot->condition.temperature_C) hot = &r;
+  }
+  if (!cold || hot->condition.temperature_C - cold->condition.temperature_C < kSameTemperature_C) return;
+  std::ostringstream s;
+  s << "rows at " << cold->condition.temperature_C << " degC (" << cold->source_file << ":"
+    << cold->source_line << ") and " << hot->condition.temperature_C << " degC (" << hot->source_file
+    << ":" << hot->source_line << ") but model '" << model.kind()
+    << "' has no temperature law: give --temperature-law wlf|arrhenius (with --reference-c), "
+       "or --master-curve for raw isotherms, or fit one temperature at a time";
+  throw core::InputError(s.str(), hot->source_file, hot->source_line);
+}
+
+}  // namespace fitlib::fit::detail
