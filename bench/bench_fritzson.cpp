@@ -14,6 +14,9 @@
 
 using namespace fitlib::model;
 using namespace fitlib::model::fritzson;
+// fritzson's own point and driver (model:: has the generic ones of the same names)
+using fitlib::model::fritzson::DriveResult;
+using fitlib::model::fritzson::MaterialPoint;
 using Clock = std::chrono::steady_clock;
 
 namespace {

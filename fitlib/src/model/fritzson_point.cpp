@@ -195,22 +195,6 @@ Vector6 MaterialPoint::update(const MaterialState& state, const Vector6& strain,
   return stress;
 }
 
-Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation) {
-  if (!(F.determinant() > 0.0))
-    throw core::NumericalError("fritzson: deformation gradient with det F ≤ 0");
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(F.transpose() * F);
-  const Eigen::Vector3d lambda = eig.eigenvalues().cwiseSqrt();
-  const Eigen::Matrix3d Q = eig.eigenvectors();
-  const Eigen::Matrix3d lnU = Q * lambda.array().log().matrix().asDiagonal() * Q.transpose();
-  if (rotation) {
-    const Eigen::Matrix3d U_inv = Q * lambda.cwiseInverse().asDiagonal() * Q.transpose();
-    *rotation = F * U_inv;
-  }
-  Vector6 e;
-  e << lnU(0, 0), lnU(1, 1), lnU(2, 2), 2.0 * lnU(1, 2), 2.0 * lnU(0, 2), 2.0 * lnU(0, 1);
-  return e;
-}
-
 Eigen::Matrix3d MaterialPoint::update_deformation(const MaterialState& state,
                                                   const Eigen::Matrix3d& F, double dt_s,
                                                   double temperature_C, MaterialState& next,

@@ -14,12 +14,14 @@
 #include <vector>
 
 #include "fitlib/model/fritzson.hpp"
+#include "fitlib/model/material_point.hpp"
 #include "fitlib/model/model.hpp"
 
 namespace fitlib::model::fritzson {
 
-using Vector6 = Eigen::Matrix<double, 6, 1>;
-using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using model::Matrix6;
+using model::Vector6;
+using model::log_strain;  // ln U and R of F = R U (material_point.hpp)
 
 // backward_euler: the thesis's scheme (L2302), first order: Maxwell s_{n+1} =
 //   τ/(τ+Δt)(s_n + 2G h2 g2 Δe), running mean by the rectangle rule.
@@ -90,9 +92,6 @@ class MaterialPoint {
   double reference_C_;
   Scheme scheme_;
 };
-
-// ln U (Voigt, engineering shear) and the rotation R of F = R U.
-Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation = nullptr);
 
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses
 // are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, L2264);
