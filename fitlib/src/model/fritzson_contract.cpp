@@ -59,7 +59,9 @@ class FritzsonContractPoint final : public model::MaterialPoint {
 
   Vector6 update(const double* state_n, const Vector6& strain, double dt_s, double temperature_C,
                  double* state_next, Matrix6* tangent) const override {
-    MaterialState s, next;
+    // Scratch states kept per thread: constructing (zeroing) two per call would cost more than
+    // the copies (docs/model.md, contract cost).
+    thread_local MaterialState s, next;
     unpack(state_n, s);
     const Vector6 stress = point_.update(s, strain, dt_s, temperature_C, next, tangent);
     pack(next, state_next);
