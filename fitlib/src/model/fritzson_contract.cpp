@@ -10,37 +10,7 @@
 namespace fitlib::model::fritzson {
 namespace {
 
-// Flat layout of MaterialState: time, strain (6), deviatoric strain integral (6), driver
-// amplitudes (3), last oscillating drivers (3), isotropic Maxwell stresses (5 × 6), A1 (5),
-// A2 (5 × 2).
-constexpr std::size_t kStateSize = 1 + 6 + 6 + 3 + 3 + 30 + 5 + 10;
-
-void unpack(const double* x, MaterialState& s) {
-  s.time_s = *x++;
-  for (int i = 0; i < 6; ++i) s.strain[i] = *x++;
-  for (int i = 0; i < 6; ++i) s.dev_strain_integral[i] = *x++;
-  for (double& v : s.driver_amplitude) v = *x++;
-  for (double& v : s.driver_oscillating) v = *x++;
-  for (auto& v : s.viscous_I)
-    for (int i = 0; i < 6; ++i) v[i] = *x++;
-  for (double& v : s.viscous_A1) v = *x++;
-  for (auto& v : s.viscous_A2) v[0] = *x++, v[1] = *x++;
-}
-
-void pack(const MaterialState& s, double* x) {
-  *x++ = s.time_s;
-  for (int i = 0; i < 6; ++i) *x++ = s.strain[i];
-  for (int i = 0; i < 6; ++i) *x++ = s.dev_strain_integral[i];
-  for (double v : s.driver_amplitude) *x++ = v;
-  for (double v : s.driver_oscillating) *x++ = v;
-  for (const auto& v : s.viscous_I)
-    for (int i = 0; i < 6; ++i) *x++ = v[i];
-  for (double v : s.viscous_A1) *x++ = v;
-  for (const auto& v : s.viscous_A2) *x++ = v[0], *x++ = v[1];
-}
-
-// Deviatoric projector b with e_k = b·ε for the A1 measure e3, and the spread a = (−½, −½, 1):
-// s = 2M e3 a adds 2M a bᵀ = (4/3)M a aᵀ to the stiffness (fritzson.md, A1 part).
+// The integrator of fritzson_point.cpp on the contract's flat state (FlatState, no copies).
 class FritzsonContractPoint final : public model::MaterialPoint {
  public:
   FritzsonContractPoint(std::vector<double> p, bool anisotropic, double reference_C, Scheme scheme)
@@ -50,26 +20,18 @@ class FritzsonContractPoint final : public model::MaterialPoint {
     return std::string(point_.anisotropic() ? "fritzson" : "fritzson-iso") +
            (point_.scheme() == Scheme::exponential ? " (exponential)" : " (backward Euler)");
   }
-  std::size_t state_size() const override { return kStateSize; }
-  std::vector<double> initial_state() const override {
-    std::vector<double> x(kStateSize);
-    pack(MaterialState(), x.data());
-    return x;
-  }
+  std::size_t state_size() const override { return kFlatStateSize; }
+  // The virgin MaterialState is all zeros.
+  std::vector<double> initial_state() const override { return std::vector<double>(kFlatStateSize, 0.0); }
 
   Vector6 update(const double* state_n, const Vector6& strain, double dt_s, double temperature_C,
                  double* state_next, Matrix6* tangent) const override {
-    // Scratch states kept per thread: constructing (zeroing) two per call would cost more than
-    // the copies (docs/model.md, contract cost).
-    thread_local MaterialState s, next;
-    unpack(state_n, s);
-    const Vector6 stress = point_.update(s, strain, dt_s, temperature_C, next, tangent);
-    pack(next, state_next);
-    return stress;
+    return point_.update_flat(state_n, strain, dt_s, temperature_C, state_next, tangent);
   }
 
   // Virgin material (no damage driver: h1 = 1, h2 = β2), mean strain zero: each part adds its
-  // dynamic modulus M* (part_moduli) on its own strain measure.
+  // dynamic modulus M* (part_moduli) on its own strain measure. A1: e3 = b·ε with
+  // b = (2/3)a and the stress spread a = (−½, −½, 1), so s = 2M* e3 a adds (4/3)M* a aᵀ.
   ComplexMatrix6 complex_stiffness(double frequency_Hz, double temperature_C) const override {
     const double* p = point_.parameters().data();
     const double omega = core::angular_frequency(frequency_Hz);

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,31 @@ struct MaterialState {
   MaterialState();
 };
 
+// A MaterialState in a flat array of kFlatStateSize doubles (the contract's state,
+// material_point.hpp), with the same member syntax over borrowed storage, so one update serves
+// both without copies. Order: time, strain (6), ∫e (6), e^a (3), e^o (3), viscous I (5 × 6),
+// A1 (5), A2 (5 × 2). D is double or const double.
+constexpr std::size_t kFlatStateSize = 64;
+template <typename D>
+struct FlatState {
+  using Vec = std::conditional_t<std::is_const_v<D>, Eigen::Map<const Vector6>, Eigen::Map<Vector6>>;
+  struct Rows {
+    D* p;
+    int width;
+    D* operator[](int n) const { return p + width * n; }
+  };
+  explicit FlatState(D* x)
+      : time_s(x[0]), strain(x + 1), dev_strain_integral(x + 7), driver_amplitude(x + 13),
+        driver_oscillating(x + 16), viscous_I{x + 19, 6}, viscous_A1(x + 49), viscous_A2{x + 54, 2} {}
+  D& time_s;
+  Vec strain, dev_strain_integral;
+  D* driver_amplitude;
+  D* driver_oscillating;
+  Rows viscous_I;
+  D* viscous_A1;
+  Rows viscous_A2;
+};
+
 class MaterialPoint {
  public:
   // parameters: 14 (isotropic) or 38 (anisotropic) in the order of fritzson.hpp.
@@ -78,15 +104,24 @@ class MaterialPoint {
                                      Vector6* stress_unrotated = nullptr,
                                      Matrix6* tangent = nullptr) const;
 
+  // The same update on a flat state (FlatState layout); bit-identical to update().
+  Vector6 update_flat(const double* state, const Vector6& strain, double dt_s,
+                      double temperature_C, double* next, Matrix6* tangent = nullptr) const;
+
   bool anisotropic() const { return anisotropic_; }
   Scheme scheme() const { return scheme_; }
   const std::vector<double>& parameters() const { return p_; }
 
-  template <typename T>
-  void update_impl(const MaterialState& state, const T* strain, double dt_s, double temperature_C,
-                   MaterialState& next, T* stress) const;
+  // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
+  template <typename T, typename In, typename Out>
+  void update_impl(const In& state, const T* strain, double dt_s, double temperature_C,
+                   Out& next, T* stress) const;
 
  private:
+  template <typename In, typename Out>
+  Vector6 update_any(const In& state, const Vector6& strain, double dt_s, double temperature_C,
+                     Out& next, Matrix6* tangent) const;
+
   std::vector<double> p_;
   bool anisotropic_;
   double reference_C_;
