@@ -252,3 +252,17 @@ TEST(Planner, TensionTestOutputRunsOnlyTheSimulation) {
   const std::string csv = scene::tension_test_csv(*r.tension_test);
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "phase,t_s,elongation_mm,span_tension_N,boundary_deg");
 }
+
+// Issue 8: the Sorge–Cammalleri steady drive used F − ρAv² even with inertia = false (74.24°).
+// With the static tensions 500 / 200 N (ratio 2.5 as in the paper's Fig. 5) the adhesion arc is
+// 75.00°; with inertia on, ρAv² lowers both tensions and the arc changes.
+TEST(Planner, SteadyDriveUsesStaticTensionsWithoutInertia) {
+  auto s = scene::load_scene(FITLIB_SOURCE_DIR "/datasets/drives/sorge-cammalleri-fig5.toml");
+  const auto r = scene::run_scene(s);
+  const auto& v = r.extra.at("viscoelastic_tension");
+  EXPECT_NEAR(v["driver"]["adhesion_deg"].get<double>(), 75.00, 0.005);
+  EXPECT_NEAR(v["driven"]["adhesion_deg"].get<double>(), 75.00, 0.005);
+  s.effects["inertia"] = true;
+  const auto with_inertia = scene::run_scene(s);
+  EXPECT_LT(with_inertia.extra.at("viscoelastic_tension")["driver"]["adhesion_deg"].get<double>(), 74.5);
+}
