@@ -277,15 +277,11 @@ belt::RetardationSpectrum scene_spectrum(const Scene& s, const std::string& spec
   const card::Card c = card::load_card(it->second);
   const auto model = c.model();
   const auto values = c.values();
-  model::KelvinSeries k;
-  if (!model->kelvin_series(values.data(), &k))
+  belt::RetardationSpectrum r;  // the model's Kelvin series
+  if (!model->kelvin_series(values.data(), &r))
     throw InputError("card " + it->second + " (model '" + c.model_kind +
                          "') has no discrete retardation spectrum J_g, L_i, lambda_i: fit a 'retardation' card",
                      s.path, 0, 0, "accumulation.spectrum");
-  belt::RetardationSpectrum r;
-  r.J_g_1_MPa = k.glassy_compliance;
-  r.L_1_MPa = k.compliances;
-  r.lambda_s = k.times_s;
   belt::validate(r, "accumulation.spectrum");
   if (source) *source = "card " + it->second + " (reference temperature)";
   return r;

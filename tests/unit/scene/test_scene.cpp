@@ -227,10 +227,10 @@ TEST(Accumulation, SpectrumFromARetardationCard) {
   auto s = scene::load_scene(kData + "minimal.toml");
   s.materials = {{"bottom", path}};
   const auto spec = scene::scene_spectrum(s, "material:bottom");
-  ASSERT_EQ(spec.L_1_MPa.size(), 2u);
-  EXPECT_DOUBLE_EQ(spec.J_g_1_MPa, 1e-3);
-  EXPECT_DOUBLE_EQ(spec.L_1_MPa[1], 5e-3);
-  EXPECT_DOUBLE_EQ(spec.lambda_s[1], 1.0);
+  ASSERT_EQ(spec.compliances.size(), 2u);
+  EXPECT_DOUBLE_EQ(spec.glassy_compliance, 1e-3);
+  EXPECT_DOUBLE_EQ(spec.compliances[1], 5e-3);
+  EXPECT_DOUBLE_EQ(spec.times_s[1], 1.0);
   // A card without a retardation spectrum is a clear error naming the key.
   const std::string z = write_card("fitlib_z.json", "zener3", nlohmann::json::object(), {8.0, 0.01, 0.05});
   s.materials = {{"bottom", z}};
