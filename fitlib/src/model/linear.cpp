@@ -351,9 +351,10 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
       c.temperature_C = options.temperature_C;
       const double m = this->moduli(p, c).storage;
       const double G = o_.mode == TestMode::shear ? m : 3.0 * K * m / (9.0 * K - m);
+      const double K_T = K * temperature_factors(p, options.temperature_C).scale;  // as moduli()
       if (!(G > 0.0))
         throw core::NumericalError(name + ": storage modulus not below 9K, no elastic equivalent");
-      return points::elastic_point(points::isotropic_stiffness(K, G), name + ", elastic");
+      return points::elastic_point(points::isotropic_stiffness(K_T, G), name + ", elastic");
     }
     if (o_.mode != TestMode::shear)
       throw core::UsageError(name + ": the 3-D viscoelastic point needs a shear card (a uniaxial "
