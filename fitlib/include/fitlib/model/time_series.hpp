@@ -24,6 +24,10 @@ struct MaxwellSeries {
   double creep(double t_s, int steps_per_decade = 400) const;
 };
 
+// The three-parameter solid T + τ_T Ṫ = S(ε + τ_ε ε̇) (Sorge–Cammalleri Eq. 1; docs/model.md)
+// as a Maxwell series: M∞ = S, M_1 = S(τ_ε/τ_T − 1), τ_1 = τ_T.
+MaxwellSeries three_parameter_solid(double S, double tau_T_s, double tau_eps_s);
+
 // J(t) = J_g + Σ L_i (1 − exp(−t/λ_i)).
 struct KelvinSeries {
   double glassy_compliance = 0.0;  // J_g, 1/MPa
@@ -36,6 +40,10 @@ struct KelvinSeries {
   std::vector<double> stress(const StrainHistory& history) const;
   // Relaxation modulus after a unit strain step (a ramp of `rise_s` then hold).
   double relaxation(double t_s, int steps_per_decade = 400) const;
+  // The same material as an exact Maxwell series (docs/model.md §"Kelvin to Maxwell"): the
+  // relaxation times are the zeros of J_g + Σ L_i/(1 − λ_i/τ), one per Kelvin element.
+  // Throws core::UsageError unless J_g > 0, L_i > 0 and λ_i > 0.
+  MaxwellSeries to_maxwell() const;
 };
 
 // Stress-strain steady state from a time integration: drives `model` with
