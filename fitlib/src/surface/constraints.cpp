@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/surface/bernstein.hpp"
 #include "fitlib/surface/fit.hpp"
 
@@ -150,6 +151,14 @@ std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, con
     groups.push_back(std::move(group));
   }
   return groups;
+}
+
+nlohmann::json read_user_constraints(const std::string& path) {
+  try {
+    return nlohmann::json::parse(core::read_file(path));
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e999
+    throw core::InputError(std::string("not valid JSON: ") + e.what(), path);
+  }
 }
 
 }  // namespace fitlib::surface
