@@ -104,8 +104,13 @@ Card card_from_json(const json& j, const std::string& source) {
                                  spec.name,
                              source, 0, 0, path + "value");
     e.fixed = list[i].value("fixed", false);
-    if (list[i].contains("std_error") && list[i]["std_error"].is_number())
-      e.std_error = list[i]["std_error"].get<double>();
+    if (list[i].contains("std_error") && !list[i]["std_error"].is_null()) {
+      const auto& se = list[i]["std_error"];
+      if (!se.is_number() || !std::isfinite(se.get<double>()) || se.get<double>() < 0.0)
+        throw core::InputError("std_error must be null or a finite number >= 0", source, 0, 0,
+                               path + "std_error");
+      e.std_error = se.get<double>();
+    }
     e.std_error_reason = list[i].value("std_error_reason", std::string());
     if (list[i].contains("ci95") && list[i]["ci95"].is_array() && list[i]["ci95"].size() == 2) {
       e.ci95_low = list[i]["ci95"][0].get<double>();

@@ -6,6 +6,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/toml_limits.hpp"
 
 namespace fitlib::fit {
 
@@ -75,6 +76,7 @@ Schedule parse_schedule_json(const std::string& text, const std::string& source)
 Schedule load_schedule(const std::string& path) {
   const std::string text = core::read_file(path);
   if (!ends_with(path, ".toml")) return parse_schedule_json(text, path);
+  core::check_toml_limits(text, path);
   toml::table table;
   try {
     table = toml::parse(text, path);

@@ -10,6 +10,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/toml_limits.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::scene {
@@ -144,6 +145,7 @@ const std::vector<std::string>& output_names() {
 }
 
 Scene parse_scene(const std::string& text, const std::string& source) {
+  core::check_toml_limits(text, source);
   toml::table root;
   try {
     root = toml::parse(text, source);
