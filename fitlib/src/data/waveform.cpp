@@ -415,7 +415,9 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
     info.has_mode = true;
   } else if (kind == KeyKind::count) {
     const double count = value.get<double>();
-    if (count < 1.0 || count != std::floor(count)) throw error("'n_specimens' must be a whole number >= 1");
+    // Capped so the int conversion is defined (a double sandwich has 2).
+    if (count < 1.0 || count > 1000.0 || count != std::floor(count))
+      throw error("'n_specimens' must be a whole number from 1 to 1000");
     info.n_specimens = static_cast<int>(count);
   } else if (kind == KeyKind::number) {
     const double number = value.get<double>();

@@ -189,6 +189,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
       if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
         pr.fail("center_mm", "expects [x, y] in mm");
       p.center_mm = std::make_pair((*a)[0].value<double>().value(), (*a)[1].value<double>().value());
+      if (!std::isfinite(p.center_mm->first) || !std::isfinite(p.center_mm->second))
+        pr.fail("center_mm", "expects finite [x, y] in mm");
     }
     pr.finish();
     s.pulleys.push_back(p);
