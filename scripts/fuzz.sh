@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (fuzz/) with clang into build-fuzz/ and runs each for SECONDS.
 #   scripts/fuzz.sh [SECONDS] [HARNESS...]   default 60 s, every harness
+#   FUZZ_RUNS=1000000 scripts/fuzz.sh 3600 table   stop after that many executions (or SECONDS)
+#   FUZZ_NO_BUILD=1 skips the build (harnesses already built)
 # Seeds: datasets/, tests/data/ (incl. the malformed corpus tests/data/bad/) and fuzz/seeds/.
 # The growing corpus stays in build-fuzz/corpus/<harness>; a finding (crash, sanitizer report,
 # unexpected exception type, accepted non-finite value) is saved in build-fuzz/findings/ and
@@ -14,9 +16,13 @@ if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2
   exit 2
 fi
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DFITLIB_FUZZ=ON -DFITLIB_TESTS=OFF -DFITLIB_BENCH=OFF >/dev/null
-cmake --build "$build" -j "${JOBS:-$(nproc)}" --target fuzz_all >/dev/null
+if [ "${FUZZ_NO_BUILD:-0}" != 1 ]; then
+  CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DFITLIB_FUZZ=ON -DFITLIB_TESTS=OFF -DFITLIB_BENCH=OFF >/dev/null
+  cmake --build "$build" -j "${JOBS:-$(nproc)}" --target fuzz_all >/dev/null
+fi
+runs=()
+[ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
 
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(table pyvisco card scene schedule_json schedule_toml surface constraints waveform)
@@ -47,7 +53,7 @@ for h in "${harnesses[@]}"; do
   [ -f "$root/fuzz/dict/$h.dict" ] && dict=(-dict="$root/fuzz/dict/$h.dict")
   log=$build/fuzz-$h.log
   start=$(date +%s)
-  if TMPDIR=$build/tmp "$build/fuzz/fuzz_$h" "$corpus" "${dict[@]}" -max_total_time="$seconds" \
+  if TMPDIR=$build/tmp "$build/fuzz/fuzz_$h" "$corpus" "${dict[@]}" "${runs[@]}" -max_total_time="$seconds" \
       -max_len=65536 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$build/findings/$h-" >"$log" 2>&1; then
     result=ok
