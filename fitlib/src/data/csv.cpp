@@ -71,6 +71,15 @@ std::vector<std::string> split_csv_fields(const std::string& text, const std::st
       field.erase(last == std::string::npos ? 0 : last + 1);
       i = end == std::string::npos ? text.size() : end;
     }
+    // A control character (other than tab) is no text: a stray CR would not survive writing
+    // and reading back (fuzz_table finding, docs/reliability.md).
+    const auto control = std::find_if(field.begin(), field.end(), [](char c) {
+      return static_cast<unsigned char>(c) < 0x20 && c != '\t';
+    });
+    if (control != field.end())
+      throw core::InputError("control character " + std::to_string(static_cast<int>(*control)) +
+                                 " in field",
+                             file_name, line, static_cast<int>(fields.size()) + 1);
     fields.push_back(std::move(field));
     if (i >= text.size()) break;
     ++i;  // the comma
