@@ -59,6 +59,13 @@ T required(const json& j, const std::string& key, const std::string& source, con
   }
 }
 
+// An optional key: `fallback` when absent, InputError naming the key when of the wrong type.
+template <typename T>
+T optional(const json& j, const std::string& key, T fallback, const std::string& source,
+           const std::string& path) {
+  return j.contains(key) ? required<T>(j, key, source, path) : fallback;
+}
+
 }  // namespace
 
 Card card_from_json(const json& j, const std::string& source) {
@@ -68,7 +75,7 @@ Card card_from_json(const json& j, const std::string& source) {
   if (schema != Card::kSchema)
     throw core::InputError("unsupported schema '" + schema + "' (expected " + Card::kSchema + ")",
                            source, 0, 0, "schema");
-  card.name = j.value("name", std::string());
+  card.name = optional<std::string>(j, "name", "", source, "");
   card.model_kind = required<std::string>(j, "model", source, "");
   card.model_options = j.value("options", json::object());
   model::ModelPtr m;
@@ -103,7 +110,7 @@ Card card_from_json(const json& j, const std::string& source) {
       throw core::InputError("value " + std::to_string(e.value) + " outside the admissible range of " +
                                  spec.name,
                              source, 0, 0, path + "value");
-    e.fixed = list[i].value("fixed", false);
+    e.fixed = optional<bool>(list[i], "fixed", false, source, path);
     if (list[i].contains("std_error") && !list[i]["std_error"].is_null()) {
       const auto& se = list[i]["std_error"];
       if (!se.is_number() || !std::isfinite(se.get<double>()) || se.get<double>() < 0.0)
@@ -111,10 +118,13 @@ Card card_from_json(const json& j, const std::string& source) {
                                path + "std_error");
       e.std_error = se.get<double>();
     }
-    e.std_error_reason = list[i].value("std_error_reason", std::string());
-    if (list[i].contains("ci95") && list[i]["ci95"].is_array() && list[i]["ci95"].size() == 2) {
-      e.ci95_low = list[i]["ci95"][0].get<double>();
-      e.ci95_high = list[i]["ci95"][1].get<double>();
+    e.std_error_reason = optional<std::string>(list[i], "std_error_reason", "", source, path);
+    if (list[i].contains("ci95")) {
+      const auto ci95 = required<std::vector<double>>(list[i], "ci95", source, path);
+      if (ci95.size() != 2 || !std::isfinite(ci95[0]) || !std::isfinite(ci95[1]))
+        throw core::InputError("ci95 must be [low, high] with finite numbers", source, 0, 0, path + "ci95");
+      e.ci95_low = ci95[0];
+      e.ci95_high = ci95[1];
     }
     card.parameters.push_back(e);
   }
@@ -140,6 +150,8 @@ Card load_card(const std::string& path) {
       }
     }
     throw core::InputError("invalid JSON", path, line, column);
+  } catch (const json::exception& e) {  // out_of_range: a number literal beyond double
+    throw core::InputError(std::string("invalid JSON: ") + e.what(), path);
   }
   return card_from_json(j, path);
 }

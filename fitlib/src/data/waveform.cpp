@@ -482,7 +482,7 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
     nlohmann::json sidecar;
     try {
       sidecar = nlohmann::json::parse(core::read_file(sidecar_path));
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
       throw InputError(std::string("invalid JSON: ") + e.what(), sidecar_path);
     }
     if (!sidecar.is_object()) throw InputError("specimen sidecar must be a JSON object", sidecar_path);
