@@ -62,10 +62,10 @@ for h in "${harnesses[@]}"; do
     status=1
   fi
   elapsed=$(( $(date +%s) - start ))
-  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')
-  last=$(grep -E '^#[0-9]+' "$log" | tail -1)
-  edges=$(echo "$last" | grep -o 'cov: [0-9]*' | grep -o '[0-9]*' || echo '?')
-  features=$(echo "$last" | grep -o 'ft: [0-9]*' | grep -o '[0-9]*' || echo '?')
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
+  last=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
+  edges=$(echo "$last" | grep -o 'cov: [0-9]*' | grep -o '[0-9]*' || true)
+  features=$(echo "$last" | grep -o 'ft: [0-9]*' | grep -o '[0-9]*' || true)
   printf '%-14s %10s %6s %7s %7s %s\n' "$h" "${execs:-?}" "$elapsed" "${edges:-?}" "${features:-?}" "$result"
 done
 exit $status

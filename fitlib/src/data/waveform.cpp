@@ -8,7 +8,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
-#include <regex>
+#include <cctype>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
@@ -439,6 +439,24 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
   }
 }
 
+// `# key = value` with an identifier as key (other comments are free text). Scanned by hand:
+// std::regex recursed per character and overflowed the stack on a 30 kB comment (issue 12).
+bool metadata_line(const std::string& text, std::string& key, std::string& value) {
+  const auto is_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto is_part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::size_t i = text.find_first_not_of(" \t");
+  if (i == std::string::npos || text[i] != '#') return false;
+  i = text.find_first_not_of(" \t", i + 1);
+  if (i == std::string::npos || !is_start(text[i])) return false;
+  std::size_t j = i;
+  while (j < text.size() && is_part(text[j])) ++j;
+  const std::size_t equals = text.find_first_not_of(" \t", j);
+  if (equals == std::string::npos || text[equals] != '=') return false;
+  key = text.substr(i, j - i);
+  value = text.substr(equals + 1);
+  return true;
+}
+
 std::string trim(const std::string& text) {
   const auto first = text.find_first_not_of(" \t");
   if (first == std::string::npos) return {};
@@ -456,14 +474,12 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
 
   // Metadata from `# key = value` lines (a key must look like an identifier; other comments are
   // free text).
-  static const std::regex metadata_line(R"(^\s*#\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$)");
   nlohmann::json metadata = nlohmann::json::object();
   std::size_t next = 0;
   for (const auto& line : lines) {
-    std::smatch match;
-    if (!is_blank_or_comment(line.text) || !std::regex_match(line.text, match, metadata_line)) continue;
-    const std::string key = match[1];
-    std::string value_text = trim(match[2]);
+    std::string key, value_text;
+    if (!metadata_line(line.text, key, value_text)) continue;
+    value_text = trim(value_text);
     if (value_text.size() >= 2 && value_text.front() == '"' && value_text.back() == '"')
       value_text = value_text.substr(1, value_text.size() - 2);
     const auto error = [&](const std::string& message) {
