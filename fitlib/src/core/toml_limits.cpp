@@ -35,7 +35,8 @@ void check_toml_limits(const std::string& text, const std::string& source) {
           column = 0;
         }
       }
-      i = std::min(text.size(), j + close.size()) - 1;
+      const bool unterminated_line = !multi && j < text.size() && text[j] == '\n';
+      i = unterminated_line ? j - 1 : std::min(text.size(), j + close.size()) - 1;
     } else if (c == '[' || c == '{') {
       if (++depth > kTomlMaxNesting)
         throw InputError("nested deeper than " + std::to_string(kTomlMaxNesting) + " levels",

@@ -588,6 +588,17 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
 
 DynamicTestRow waveform_row(const WaveformReport& report, const SpecimenInfo& specimen,
                             const std::string& source_file) {
+  // A degenerate record (no stress, a strain amplitude near the underflow limit) gives 0/0 in
+  // the energy method; nothing non-finite may reach a table.
+  for (const auto& [value, what] : {std::pair{report.frequency_Hz, "frequency"},
+                                    {report.strain_amplitude, "strain amplitude"},
+                                    {report.mean_strain, "mean strain"},
+                                    {report.storage_MPa, "storage modulus"},
+                                    {report.loss_MPa, "loss modulus"}})
+    if (!std::isfinite(value))
+      throw core::NumericalError(source_file + ": waveform analysis gave a non-finite " + what);
+  if (report.has_mean_modulus && !std::isfinite(report.mean_modulus_MPa))
+    throw core::NumericalError(source_file + ": waveform analysis gave a non-finite mean modulus");
   if (report.loss_MPa < 0.0)
     throw InputError("negative loss modulus from the energy method (stress lags strain): check "
                      "the signs of the force and displacement signals",
