@@ -81,11 +81,7 @@ void run_fit(const FitArgs& a) {
   options.missing = surface::parse_missing_cell_remedy(
       !a.missing.empty() ? a.missing : a.constraints.empty() ? "constrain" : "none");
   if (!a.constraints.empty()) {
-    try {
-      options.user_constraints = nlohmann::json::parse(core::read_file(a.constraints));
-    } catch (const nlohmann::json::parse_error& e) {
-      throw core::InputError(std::string("not valid JSON: ") + e.what(), a.constraints);
-    }
+    options.user_constraints = surface::read_user_constraints(a.constraints);
     options.user_constraints_source = a.constraints;
   }
   const auto data = surface::read_sample_columns(a.data, columns, a.y);

@@ -10,10 +10,25 @@ packages=(
   python3 python3-matplotlib python3-numpy jupyter-nbconvert python3-nbclient python3-ipykernel
   calculix-ccx
 )
+# Optional: clang and its libFuzzer runtime for the fuzz harnesses (scripts/fuzz.sh); the build
+# and every test work without them (gcc only), the test command then skips the fuzzing step.
+optional=(clang-14 libclang-rt-14-dev)
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 missing=()
 for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  installed "$p" || missing+=("$p")
 done
+missing_optional=()
+for p in "${optional[@]}"; do
+  installed "$p" || missing_optional+=("$p")
+done
+if [ ${#missing_optional[@]} -gt 0 ] && [ "${FITLIB_NO_OPTIONAL:-0}" != 1 ]; then
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  echo "install-deps: optional ${missing_optional[*]}"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
+    "${missing_optional[@]}" >/dev/null 2>&1 || echo "install-deps: optional packages not installed (fuzzing skipped)"
+fi
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
   exit 0

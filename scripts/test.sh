@@ -18,3 +18,12 @@ export BUILD_DIR=${BUILD_DIR:-$root/build}
 "$root/scripts/build.sh" -DFITLIB_TESTS=ON -DFITLIB_BENCH=ON
 cd "$BUILD_DIR"
 ctest -j "$(nproc)" --output-on-failure --timeout 900
+# Fuzzing: each libFuzzer harness for FITLIB_FUZZ_SECONDS (default 10; 0 skips) when clang with
+# its libFuzzer runtime is installed (docs/reliability.md gives the time this adds).
+fuzz_seconds=${FITLIB_FUZZ_SECONDS:-10}
+if [ "$fuzz_seconds" != 0 ] && command -v clang++ >/dev/null &&
+   [ -f "$(clang++ -print-file-name=libclang_rt.fuzzer-x86_64.a)" ]; then
+  "$root/scripts/fuzz.sh" "$fuzz_seconds"
+else
+  echo "test: fuzzing skipped (no clang++ with libFuzzer, or FITLIB_FUZZ_SECONDS=0)"
+fi

@@ -63,6 +63,13 @@ T required(const json& j, const std::string& key, const std::string& source, con
   }
 }
 
+// An optional key: `fallback` when absent, InputError naming the key when of the wrong type.
+template <typename T>
+T optional(const json& j, const std::string& key, T fallback, const std::string& source,
+           const std::string& path) {
+  return j.contains(key) ? required<T>(j, key, source, path) : fallback;
+}
+
 }  // namespace
 
 Card card_from_json(const json& j, const std::string& source) {
@@ -72,7 +79,7 @@ Card card_from_json(const json& j, const std::string& source) {
   if (schema != Card::kSchema)
     throw core::InputError("unsupported schema '" + schema + "' (expected " + Card::kSchema + ")",
                            source, 0, 0, "schema");
-  card.name = j.value("name", std::string());
+  card.name = optional<std::string>(j, "name", "", source, "");
   card.model_kind = required<std::string>(j, "model", source, "");
   card.model_options = j.value("options", json::object());
   model::ModelPtr m;
@@ -107,14 +114,21 @@ Card card_from_json(const json& j, const std::string& source) {
       throw core::InputError("value " + std::to_string(e.value) + " outside the admissible range of " +
                                  spec.name,
                              source, 0, 0, path + "value");
-    e.fixed = list[i].value("fixed", false);
-    if (list[i].contains("std_error") && list[i]["std_error"].is_number())
-      e.std_error = list[i]["std_error"].get<double>();
-    e.std_error_reason = list[i].value("std_error_reason", std::string());
-    const json* ci = list[i].contains("ci95") ? &list[i]["ci95"] : nullptr;
-    if (ci && ci->is_array() && ci->size() == 2 && (*ci)[0].is_number() && (*ci)[1].is_number()) {
-      e.ci95_low = list[i]["ci95"][0].get<double>();
-      e.ci95_high = list[i]["ci95"][1].get<double>();
+    e.fixed = optional<bool>(list[i], "fixed", false, source, path);
+    if (list[i].contains("std_error") && !list[i]["std_error"].is_null()) {
+      const auto& se = list[i]["std_error"];
+      if (!se.is_number() || !std::isfinite(se.get<double>()) || se.get<double>() < 0.0)
+        throw core::InputError("std_error must be null or a finite number >= 0", source, 0, 0,
+                               path + "std_error");
+      e.std_error = se.get<double>();
+    }
+    e.std_error_reason = optional<std::string>(list[i], "std_error_reason", "", source, path);
+    if (list[i].contains("ci95")) {
+      const auto ci95 = required<std::vector<double>>(list[i], "ci95", source, path);
+      if (ci95.size() != 2 || !std::isfinite(ci95[0]) || !std::isfinite(ci95[1]))
+        throw core::InputError("ci95 must be [low, high] with finite numbers", source, 0, 0, path + "ci95");
+      e.ci95_low = ci95[0];
+      e.ci95_high = ci95[1];
     }
     card.parameters.push_back(e);
   }

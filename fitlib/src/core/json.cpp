@@ -18,6 +18,8 @@ nlohmann::json parse_json(const std::string& text, const std::string& file_name)
       }
     }
     throw InputError("invalid JSON", file_name, line, column);
+  } catch (const nlohmann::json::exception& e) {  // out_of_range: a number literal beyond double
+    throw InputError(std::string("invalid JSON: ") + e.what(), file_name);
   }
 }
 

@@ -1,11 +1,5 @@
 #include "fitlib/data/csv.hpp"
 
-// The library copies file names with strncpy into fixed buffers; GCC warns about that inside it.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wstringop-truncation"
-#include <libfccp/csv.h>
-#pragma GCC diagnostic pop
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -20,13 +14,18 @@ std::vector<CsvLine> split_csv_lines(const std::string& bytes, const std::string
     const int line = 1 + static_cast<int>(std::count(bytes.begin(), bytes.begin() + nul, '\n'));
     throw core::InputError("NUL byte: not a text file", file_name, line);
   }
+  // io::LineReader's rules (UTF-8 BOM skipped, "\n" or "\r\n" ends a line, a last line without
+  // one counts), done here on the bytes in memory: LineReader allocates 48 MiB of buffers per
+  // file, which made each table read cost ~30 ms (docs/reliability.md).
   std::vector<CsvLine> lines;
-  try {
-    io::LineReader reader(file_name, bytes.data(), bytes.data() + bytes.size());
-    while (const char* text = reader.next_line())
-      lines.push_back({static_cast<int>(reader.get_file_line()), text});
-  } catch (const io::error::base& e) {
-    throw core::InputError(e.what(), file_name);
+  std::size_t begin = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  for (int number = 1; begin < bytes.size(); ++number) {
+    std::size_t end = bytes.find('\n', begin);
+    if (end == std::string::npos) end = bytes.size();
+    std::size_t text_end = end;
+    if (text_end > begin && bytes[text_end - 1] == '\r') --text_end;
+    lines.push_back({number, bytes.substr(begin, text_end - begin)});
+    begin = end + 1;
   }
   return lines;
 }
@@ -72,6 +71,15 @@ std::vector<std::string> split_csv_fields(const std::string& text, const std::st
       field.erase(last == std::string::npos ? 0 : last + 1);
       i = end == std::string::npos ? text.size() : end;
     }
+    // A control character (other than tab) is no text: a stray CR would not survive writing
+    // and reading back (fuzz_table finding, docs/reliability.md).
+    const auto control = std::find_if(field.begin(), field.end(), [](char c) {
+      return static_cast<unsigned char>(c) < 0x20 && c != '\t';
+    });
+    if (control != field.end())
+      throw core::InputError("control character " + std::to_string(static_cast<int>(*control)) +
+                                 " in field",
+                             file_name, line, static_cast<int>(fields.size()) + 1);
     fields.push_back(std::move(field));
     if (i >= text.size()) break;
     ++i;  // the comma

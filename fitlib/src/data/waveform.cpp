@@ -8,7 +8,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
-#include <regex>
+#include <cctype>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
@@ -415,7 +415,9 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
     info.has_mode = true;
   } else if (kind == KeyKind::count) {
     const double count = value.get<double>();
-    if (count < 1.0 || count != std::floor(count)) throw error("'n_specimens' must be a whole number >= 1");
+    // Capped so the int conversion is defined (a double sandwich has 2).
+    if (count < 1.0 || count > 1000.0 || count != std::floor(count))
+      throw error("'n_specimens' must be a whole number from 1 to 1000");
     info.n_specimens = static_cast<int>(count);
   } else if (kind == KeyKind::number) {
     const double number = value.get<double>();
@@ -437,6 +439,24 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
   }
 }
 
+// `# key = value` with an identifier as key (other comments are free text). Scanned by hand:
+// std::regex recursed per character and overflowed the stack on a 30 kB comment (issue 12).
+bool metadata_line(const std::string& text, std::string& key, std::string& value) {
+  const auto is_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto is_part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  std::size_t i = text.find_first_not_of(" \t");
+  if (i == std::string::npos || text[i] != '#') return false;
+  i = text.find_first_not_of(" \t", i + 1);
+  if (i == std::string::npos || !is_start(text[i])) return false;
+  std::size_t j = i;
+  while (j < text.size() && is_part(text[j])) ++j;
+  const std::size_t equals = text.find_first_not_of(" \t", j);
+  if (equals == std::string::npos || text[equals] != '=') return false;
+  key = text.substr(i, j - i);
+  value = text.substr(equals + 1);
+  return true;
+}
+
 std::string trim(const std::string& text) {
   const auto first = text.find_first_not_of(" \t");
   if (first == std::string::npos) return {};
@@ -454,14 +474,12 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
 
   // Metadata from `# key = value` lines (a key must look like an identifier; other comments are
   // free text).
-  static const std::regex metadata_line(R"(^\s*#\s*([A-Za-z_][A-Za-z0-9_]*)\s*=(.*)$)");
   nlohmann::json metadata = nlohmann::json::object();
   std::size_t next = 0;
   for (const auto& line : lines) {
-    std::smatch match;
-    if (!is_blank_or_comment(line.text) || !std::regex_match(line.text, match, metadata_line)) continue;
-    const std::string key = match[1];
-    std::string value_text = trim(match[2]);
+    std::string key, value_text;
+    if (!metadata_line(line.text, key, value_text)) continue;
+    value_text = trim(value_text);
     if (value_text.size() >= 2 && value_text.front() == '"' && value_text.back() == '"')
       value_text = value_text.substr(1, value_text.size() - 2);
     const auto error = [&](const std::string& message) {
@@ -480,7 +498,7 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
     nlohmann::json sidecar;
     try {
       sidecar = nlohmann::json::parse(core::read_file(sidecar_path));
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
       throw InputError(std::string("invalid JSON: ") + e.what(), sidecar_path);
     }
     if (!sidecar.is_object()) throw InputError("specimen sidecar must be a JSON object", sidecar_path);
@@ -570,6 +588,17 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
 
 DynamicTestRow waveform_row(const WaveformReport& report, const SpecimenInfo& specimen,
                             const std::string& source_file) {
+  // A degenerate record (no stress, a strain amplitude near the underflow limit) gives 0/0 in
+  // the energy method; nothing non-finite may reach a table.
+  for (const auto& [value, what] : {std::pair{report.frequency_Hz, "frequency"},
+                                    {report.strain_amplitude, "strain amplitude"},
+                                    {report.mean_strain, "mean strain"},
+                                    {report.storage_MPa, "storage modulus"},
+                                    {report.loss_MPa, "loss modulus"}})
+    if (!std::isfinite(value))
+      throw core::NumericalError(source_file + ": waveform analysis gave a non-finite " + what);
+  if (report.has_mean_modulus && !std::isfinite(report.mean_modulus_MPa))
+    throw core::NumericalError(source_file + ": waveform analysis gave a non-finite mean modulus");
   if (report.loss_MPa < 0.0)
     throw InputError("negative loss modulus from the energy method (stress lags strain): check "
                      "the signs of the force and displacement signals",

@@ -6,6 +6,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/toml_limits.hpp"
 
 namespace fitlib::fit {
 
@@ -66,7 +67,7 @@ Schedule parse_schedule_json(const std::string& text, const std::string& source)
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
     throw core::InputError(std::string("not valid JSON: ") + e.what(), source);
   }
   return schedule_from_json(j, source);
@@ -75,6 +76,7 @@ Schedule parse_schedule_json(const std::string& text, const std::string& source)
 Schedule load_schedule(const std::string& path) {
   const std::string text = core::read_file(path);
   if (!ends_with(path, ".toml")) return parse_schedule_json(text, path);
+  core::check_toml_limits(text, path);
   toml::table table;
   try {
     table = toml::parse(text, path);
@@ -85,7 +87,7 @@ Schedule load_schedule(const std::string& path) {
   }
   std::ostringstream json;
   json << toml::json_formatter{table};
-  return schedule_from_json(nlohmann::json::parse(json.str()), path);
+  return parse_schedule_json(json.str(), path);
 }
 
 Schedule default_schedule() {

@@ -10,6 +10,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/toml_limits.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::scene {
@@ -230,6 +231,7 @@ const std::vector<std::string>& output_names() {
 }
 
 Scene parse_scene(const std::string& text, const std::string& source) {
+  core::check_toml_limits(text, source);
   toml::table root;
   try {
     root = toml::parse(text, source);
@@ -273,6 +275,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
       if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
         pr.fail("center_mm", "expects [x, y] in mm");
       p.center_mm = std::make_pair((*a)[0].value<double>().value(), (*a)[1].value<double>().value());
+      if (!std::isfinite(p.center_mm->first) || !std::isfinite(p.center_mm->second))
+        pr.fail("center_mm", "expects finite [x, y] in mm");
     }
     pr.finish();
     s.pulleys.push_back(p);

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/surface/bernstein.hpp"
 #include "fitlib/surface/fit.hpp"
 
@@ -120,8 +121,10 @@ std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, con
         const auto& spec = item["derivative"];
         const std::size_t axis = axis_named(spec.at("axis").get<std::string>(), key + ".axis");
         const int order = spec.value("order", 2);
-        if (order < 1)
-          throw core::InputError("order must be >= 1", source, 0, 0, key + ".derivative.order");
+        if (order < 1 || order > s.axes[axis].degree)
+          throw core::InputError("order must be between 1 and the axis's degree (" +
+                                     std::to_string(s.axes[axis].degree) + ")",
+                                 source, 0, 0, key + ".derivative.order");
         std::vector<std::pair<std::size_t, double>> fixed;
         const nlohmann::json at = spec.value("at", nlohmann::json::object());
         for (const auto& [name, where] : at.items()) {
@@ -150,6 +153,14 @@ std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, con
     groups.push_back(std::move(group));
   }
   return groups;
+}
+
+nlohmann::json read_user_constraints(const std::string& path) {
+  try {
+    return nlohmann::json::parse(core::read_file(path));
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e999
+    throw core::InputError(std::string("not valid JSON: ") + e.what(), path);
+  }
 }
 
 }  // namespace fitlib::surface

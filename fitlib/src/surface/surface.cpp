@@ -380,7 +380,7 @@ Surface load_surface(const std::string& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
     throw core::InputError(std::string("not valid JSON: ") + e.what(), path);
   }
   return surface_from_json(j, path);

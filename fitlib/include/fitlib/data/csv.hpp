@@ -1,7 +1,7 @@
 #pragma once
 // Small CSV building blocks shared by the dynamic-test table and the waveform reader.
-// Lines come from fast-cpp-csv-parser's io::LineReader (UTF-8 BOM stripped, CRLF handled);
-// fields are split here because both formats have optional and alternative columns, which
+// Lines are split by io::LineReader's rules (UTF-8 BOM stripped, CRLF handled) on the bytes in
+// memory; fields are split here because both formats have optional and alternative columns, which
 // io::CSVReader (fixed column count known at compile time) cannot express.
 #include <optional>
 #include <string>

@@ -74,6 +74,8 @@ ConstraintGroup derivative_constraints(const Surface& shape, std::size_t axis, i
 // Parses user constraints (see FitOptions::user_constraints) against the surface's axes/degrees.
 std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, const Surface& shape,
                                                     const std::string& source);
+// The JSON document of a constraints file; InputError naming the file if it is not valid JSON.
+nlohmann::json read_user_constraints(const std::string& path);
 
 // Reads named numeric columns of a CSV with a header row (formats.md §1 conventions: `#` comments,
 // BOM, CRLF, spaces after commas, trailing empty line). InputError names file:line:column.
