@@ -167,10 +167,10 @@ int main() {
   ro.format = data::TableFormat::pyvisco;
   ro.has_default_mode = true;
   ro.default_mode = model::TestMode::uniaxial;
-  const std::string shared = FITLIB_SHARED_DIR;
-  const auto master = data::read_dynamic_table(shared + "/external/pyvisco/examples/freq_user_master.csv", ro);
+  const std::string root = FITLIB_SOURCE_DIR;  // pyvisco's files, copied into the repository
+  const auto master = data::read_dynamic_table(root + "/datasets/materials/pyvisco-freq-master.csv", ro);
   const LogRms ansys =
-      ansys_terms(master, shared + "/external/pyvisco/verification/freq_master/prony_terms.MPL");
+      ansys_terms(master, root + "/tests/data/pyvisco/freq_master_prony_terms.MPL");
   std::printf("## Accuracy vs time, pyvisco freq_user_master.csv (%zu points), N = 2..40\n",
               master.rows.size());
   std::printf("Baseline: ANSYS reference terms (27) rms log10 E' %.4f, E'' %.4f\n", ansys.storage,

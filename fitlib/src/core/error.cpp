@@ -1,5 +1,7 @@
 #include "fitlib/core/error.hpp"
 
+#include <cmath>
+
 namespace fitlib::core {
 namespace {
 std::string locate(const std::string& message, const std::string& file, int line, int column,
@@ -20,6 +22,11 @@ InputError::InputError(std::string message, std::string file, int line, int colu
       detail_(std::move(message)),
       line_(line),
       column_(column) {}
+
+double require_finite(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw NumericalError(what + " is not finite");
+  return value;
+}
 
 int exit_code_for(const std::exception& e) {
   if (dynamic_cast<const InputError*>(&e)) return kBadInput;

@@ -6,6 +6,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 
 namespace fitlib::fit {
 
@@ -63,13 +64,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }  // namespace
 
 Schedule parse_schedule_json(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw core::InputError(std::string("not valid JSON: ") + e.what(), source);
-  }
-  return schedule_from_json(j, source);
+  return schedule_from_json(core::parse_json(text, source), source);
 }
 
 Schedule load_schedule(const std::string& path) {
@@ -85,7 +80,7 @@ Schedule load_schedule(const std::string& path) {
   }
   std::ostringstream json;
   json << toml::json_formatter{table};
-  return schedule_from_json(nlohmann::json::parse(json.str()), path);
+  return schedule_from_json(core::parse_json(json.str(), path), path);
 }
 
 Schedule default_schedule() {

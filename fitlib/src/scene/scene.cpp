@@ -186,7 +186,10 @@ Scene parse_scene(const std::string& text, const std::string& source) {
       const toml::array* a = c->as_array();
       if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
         pr.fail("center_mm", "expects [x, y] in mm");
-      p.center_mm = std::make_pair((*a)[0].value<double>().value(), (*a)[1].value<double>().value());
+      const double x = (*a)[0].value<double>().value(), y = (*a)[1].value<double>().value();
+      if (!(std::abs(x) <= kMaxCoordinate_mm && std::abs(y) <= kMaxCoordinate_mm))
+        pr.fail("center_mm", "expects finite coordinates within +-1e6 mm");
+      p.center_mm = std::make_pair(x, y);
     }
     pr.finish();
     s.pulleys.push_back(p);
@@ -277,11 +280,14 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     AccumulationSpec a;
     a.shear_stress_MPa = ar.number_or("shear_stress_MPa", a.shear_stress_MPa, 0.0, 1e6, true);
     a.cycles = static_cast<long>(ar.number_or("cycles", 10000, 1, 1e12));
-    a.cycle_points = static_cast<int>(ar.number_or("cycle_points", 50, 1, 1e5));
+    a.cycle_points = static_cast<int>(ar.number_or("cycle_points", 50, 1, kMaxAccumulationPoints));
     a.omega_min_rad_s = ar.number_or("omega_min_rad_s", a.omega_min_rad_s, 0.0, 1e9, true);
     a.omega_max_rad_s = ar.number_or("omega_max_rad_s", a.omega_max_rad_s, 0.0, 1e9, true);
     if (a.omega_max_rad_s < a.omega_min_rad_s) ar.fail("omega_max_rad_s", "must be >= omega_min_rad_s");
-    a.omega_points = static_cast<int>(ar.number_or("omega_points", 100, 1, 1e5));
+    a.omega_points = static_cast<int>(ar.number_or("omega_points", 100, 1, kMaxAccumulationPoints));
+    if (static_cast<double>(a.cycle_points) * a.omega_points > kMaxAccumulationWork)
+      ar.fail("omega_points", "cycle_points x omega_points exceeds the work cap " + std::to_string(kMaxAccumulationWork) +
+                                  " (README, work caps)");
     a.kappa = ar.number("kappa", 0.0, 1e6);
     a.spectrum = ar.string("spectrum").value_or(a.spectrum);
     a.strain_limit = ar.number("strain_limit", 0.0, 1e6, true);
@@ -312,8 +318,11 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     t.S_N = tr.number("S_N", 0.0, 1e12, true);
     t.tau_T_s = tr.number_or("tau_T_s", t.tau_T_s, 0.0, 1e9);
     t.tau_eps_s = tr.number_or("tau_eps_s", t.tau_eps_s, 0.0, 1e9);
-    t.nodes = static_cast<int>(tr.number_or("nodes", t.nodes, 2, 1e5));
-    t.steps = static_cast<int>(tr.number_or("steps", t.steps, 1, 1e7));
+    t.nodes = static_cast<int>(tr.number_or("nodes", t.nodes, 2, kMaxTensionNodes));
+    t.steps = static_cast<int>(tr.number_or("steps", t.steps, 1, kMaxTensionSteps));
+    if (static_cast<double>(t.nodes) * t.steps > kMaxTensionWork)
+      tr.fail(tr.has("steps") ? "steps" : "nodes", "nodes x steps exceeds the work cap " +
+                                                     std::to_string(kMaxTensionWork) + " (README, work caps)");
     s.tension_test = t;
   }
   top.finish();

@@ -35,6 +35,8 @@ struct FitOptions {
   bool global = false;
   // staged backend: schedule file (.json or .toml, see fit/staged.hpp); empty = default schedule.
   std::string schedule_path;
+  // Wall times in the result's messages (staged fits) only when asked: same input, same bytes.
+  bool record_timing = false;
 };
 
 struct ParameterResult {
