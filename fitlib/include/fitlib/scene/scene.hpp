@@ -27,8 +27,8 @@ struct PulleySpec {
 constexpr double kMaxCoordinate_mm = 1e6;
 constexpr double kMaxAccumulationPoints = 1e5;       // cycle_points, omega_points each
 constexpr double kMaxAccumulationWork = 1e6;         // cycle_points × omega_points
-constexpr double kMaxTensionNodes = 1e5, kMaxTensionSteps = 1e7;
-constexpr double kMaxTensionWork = 1e8;              // nodes × steps
+constexpr double kMaxTensionNodes = 1e4, kMaxTensionSteps = 1e5;
+constexpr double kMaxTensionWork = 2e6;              // nodes × steps
 
 // Strain accumulation request ([accumulation], Zupancic–Emri).
 struct AccumulationSpec {
