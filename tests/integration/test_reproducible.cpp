@@ -8,7 +8,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Runs `args` (which writes `outputs`) twice; every output and stdout must be byte-identical.
+// Runs `args` (which writes `outputs`) twice; every output file must be byte-identical (the
+// human-readable summary on stdout may show wall times).
 void expect_reproducible(const std::string& args, const std::vector<std::string>& outputs) {
   std::vector<std::string> first;
   const auto a = run_fitcli(args);
@@ -19,7 +20,6 @@ void expect_reproducible(const std::string& args, const std::vector<std::string>
   }
   const auto b = run_fitcli(args);
   ASSERT_EQ(b.exit_code, 0) << args << "\n" << b.err;
-  EXPECT_EQ(a.out, b.out) << args;
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     EXPECT_FALSE(first[i].empty()) << outputs[i];
     EXPECT_EQ(first[i], slurp(outputs[i])) << args << ": " << outputs[i] << " differs";
