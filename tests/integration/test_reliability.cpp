@@ -203,25 +203,28 @@ TEST(Reliability, ScheduleErrorsNameTheScheduleFile) {
   EXPECT_TRUE(contains(r.err, schedule) && contains(r.err, "stages[0].free[0]")) << r.err;
 }
 
+// `args` + " --out <missing folder>/x" fails naming that folder and leaves no `other_output`.
+void expect_no_partial_output(const std::string& args, const std::string& other_output) {
+  const auto r = run_fitcli(args + " --out " + temp_file("no-such-dir/x"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_FALSE(fs::exists(other_output)) << args;
+  EXPECT_TRUE(contains(r.err, "no-such-dir")) << r.err;
+}
+
 TEST(Reliability, FailedMasterCurveFitLeavesNoShiftTable) {
   const auto shifts = temp_file("partial_shifts.csv");
-  const auto r = run_fitcli("fit --data " + source_path("datasets/materials/pyvisco-freq-raw.csv") +
-                            " --format pyvisco --model prony --terms 4 --master-curve --reference-c -5 --shifts-out " +
-                            shifts + " --out " + temp_file("no-such-dir/c.json"));
-  EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_FALSE(fs::exists(shifts));
-  EXPECT_TRUE(contains(r.err, "no-such-dir")) << r.err;
+  expect_no_partial_output("fit --data " + source_path("datasets/materials/pyvisco-freq-raw.csv") +
+                               " --format pyvisco --model prony --terms 4 --master-curve --reference-c -5 --shifts-out " + shifts,
+                           shifts);
 }
 
 // ---- surfaces ----
 
 TEST(Reliability, FailedSurfaceGridLeavesNoSurface) {
   const auto surface_out = temp_file("partial_surface.json");
-  const auto r = run_fitcli("surface grid --card " + source_path("datasets/cards/synthetic-prony-shear-true.json") +
-                            " --frequency-hz 1,10,100 --temperature-c 23 --amplitude 0.01 --surface-out " +
-                            surface_out + " --out " + temp_file("no-such-dir/grid.csv"));
-  EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_FALSE(fs::exists(surface_out));
+  expect_no_partial_output("surface grid --card " + source_path("datasets/cards/synthetic-prony-shear-true.json") +
+                               " --frequency-hz 1,10,100 --temperature-c 23 --amplitude 0.01 --surface-out " + surface_out,
+                           surface_out);
 }
 
 TEST(Reliability, SurfaceWithSixtyFourAxesIsBadInputNotZero) {

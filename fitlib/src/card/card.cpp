@@ -1,7 +1,6 @@
 #include "fitlib/card/card.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
@@ -58,12 +57,6 @@ const json& required(const json& j, const std::string& key, const std::string& s
   return j.at(key);
 }
 
-std::string short_number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
-
 json object_or_empty(const json& j, const std::string& key, const std::string& source) {
   if (!j.contains(key)) return json::object();
   if (!j.at(key).is_object()) throw core::InputError("expected an object", source, 0, 0, key);
@@ -113,7 +106,7 @@ Card card_from_json(const json& j, const std::string& source) {
     const bool must_be_positive = spec.transform == core::Transform::log && !spec.linear;
     if (!std::isfinite(e.value) || std::abs(e.value) > Card::kMaxMagnitude || e.value < spec.lower || e.value > spec.upper ||
         (must_be_positive && !(e.value > 0.0)))
-      throw core::InputError("value " + short_number(e.value) + " outside the admissible range of " +
+      throw core::InputError("value " + core::short_number(e.value) + " outside the admissible range of " +
                                  spec.name,
                              source, 0, 0, path + "value");
     const json& p = list[i];

@@ -1,6 +1,7 @@
 #include "fitlib/core/error.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace fitlib::core {
 namespace {
@@ -22,6 +23,12 @@ InputError::InputError(std::string message, std::string file, int line, int colu
       detail_(std::move(message)),
       line_(line),
       column_(column) {}
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
 
 double require_finite(double value, const std::string& what) {
   if (!std::isfinite(value)) throw NumericalError(what + " is not finite");

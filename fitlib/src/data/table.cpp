@@ -433,6 +433,11 @@ std::string format_dynamic_table(const DynamicTestTable& table) {
          "loss_MPa,mean_modulus_MPa,weight,material,specimen,set\n";
   for (const auto& row : table.rows) {
     const auto& c = row.condition;
+    const std::string at = " of a table row at " + core::short_number(c.frequency_Hz) + " Hz";
+    for (const auto& [what, value] : {std::pair<const char*, double>{"frequency", c.frequency_Hz},
+                                      {"storage modulus", row.storage_MPa}, {"loss modulus", row.loss_MPa},
+                                      {"strain amplitude", c.strain_amplitude}, {"mean strain", c.mean_strain}})
+      core::require_finite(value, what + at);
     out << model::to_string(c.mode) << ',' << c.orientation << ',' << format_exact(c.frequency_Hz)
         << ',' << (c.has_temperature() ? format_exact(c.temperature_C) : "") << ','
         << format_exact(c.strain_amplitude) << ',' << format_exact(c.mean_strain) << ','

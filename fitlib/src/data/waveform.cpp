@@ -246,7 +246,7 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
   // Checked in double before any conversion to int (a tiny known frequency would overflow it).
   if (!(samples_per_period * options.periods <= static_cast<double>(n)))
     throw InputError("the record holds fewer than " + std::to_string(options.periods) +
-                     " periods at " + std::to_string(frequency_Hz) + " Hz");
+                     " periods at " + core::short_number(frequency_Hz) + " Hz");
   if (samples_per_period < 5.0)
     throw InputError("fewer than 5 samples per period (" + std::to_string(samples_per_period) + ")");
   const int degree = std::max(1, std::min(options.harmonics,
@@ -310,7 +310,7 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
     if (!(smooth_stress_amplitude > 0.0)) throw InputError("stress amplitude is zero in a period");
     if (!std::isfinite(smooth_stress_amplitude / smooth_strain_amplitude))
       throw InputError("stress amplitude / strain amplitude is not a finite modulus (strain amplitude " +
-                       std::to_string(smooth_strain_amplitude) + ")");
+                       core::short_number(smooth_strain_amplitude) + ")");
     r.stress_amplitude_MPa = smooth_stress_amplitude / gain;
     r.strain_amplitude = smooth_strain_amplitude / gain;
     r.mean_stress_MPa = 0.5 * (sigma_max + sigma_min);
