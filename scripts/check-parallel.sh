@@ -12,7 +12,7 @@ for i in $(seq 1 "$runs"); do
     grep -E "tests failed|\(Failed\)|\(Timeout\)" "ctest-parallel-$i.log" || true
     exit 1
   fi
-  echo "run $i of $runs passed ($(grep -o '[0-9]* tests passed' "ctest-parallel-$i.log" | head -1 || true))"
+  echo "run $i of $runs passed ($(grep -o '[0-9]* tests failed out of [0-9]*' "ctest-parallel-$i.log" | head -1 || true))"
   rm -f "ctest-parallel-$i.log"
 done
 echo "all $runs runs passed"
