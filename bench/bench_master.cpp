@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   read.has_default_mode = true;
   read.default_mode = model::TestMode::uniaxial;
   const auto raw =
-      data::read_dynamic_table(std::string(FITLIB_SHARED_DIR) + "/external/pyvisco/examples/freq_user_raw.csv", read);
+      data::read_dynamic_table(std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-freq-raw.csv", read);
   fit::MasterCurveOptions curve_options;
   curve_options.reference_C = -5.0;
 

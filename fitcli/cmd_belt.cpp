@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 
@@ -12,15 +13,18 @@ void register_belt(CLI::App& app) {
   auto scene_path = std::make_shared<std::string>();
   auto out_dir = std::make_shared<std::string>("belt-out");
   auto json = std::make_shared<bool>(false);
+  auto record_timing = std::make_shared<bool>(false);
   cmd->add_option("--scene", *scene_path, "Scene TOML (formats.md §5)")->required();
   cmd->add_option("--out", *out_dir, "Output folder (load_history.csv, summary.json)");
   cmd->add_flag("--json", *json, "Print the summary as JSON on stdout");
+  cmd->add_flag("--record-timing", *record_timing, "Store wall times in summary.json (breaks byte-identity)");
   cmd->callback([=] {
     const auto scene = fitlib::scene::load_scene(*scene_path);
+    fitlib::core::prepare_output_dir(*out_dir);
     const auto result = fitlib::scene::run_scene(scene);
-    const auto files = fitlib::scene::write_outputs(scene, result, *out_dir);
+    const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
     if (*json) {
-      std::cout << fitlib::scene::summary_json(scene, result).dump(2) << "\n";
+      std::cout << fitlib::scene::summary_json(scene, result, *record_timing).dump(2) << "\n";
       return;
     }
     std::cout << "scene: " << scene.name << "\n";

@@ -84,8 +84,12 @@ void run_eval(const EvalArgs& a) {
         c.frequency_Hz = f;
         c.temperature_C = T;
         c.strain_amplitude = amp;
-        const auto m = model->moduli(p.data(), c);
-        const double tan_delta = m.loss / m.storage;
+        auto m = model->moduli(p.data(), c);
+        const std::string at = " at " + exact(f) + " Hz" + (std::isnan(T) ? "" : ", " + exact(T) + " degC");
+        m.storage = core::require_finite(m.storage, "storage modulus" + at);
+        m.loss = core::require_finite(m.loss, "loss modulus" + at);
+        m.mean = core::require_finite(m.mean, "mean modulus" + at);
+        const double tan_delta = core::require_finite(m.loss / m.storage, "tan delta" + at);
         csv << model::to_string(mode) << "," << a.orientation << "," << exact(f) << ","
             << (std::isnan(T) ? "" : exact(T)) << "," << exact(amp) << "," << exact(m.storage) << ","
             << exact(m.loss) << "," << exact(tan_delta) << "," << exact(m.mean) << "\n";
@@ -109,7 +113,7 @@ void run_eval(const EvalArgs& a) {
 void register_eval(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   auto* cmd = app.add_subcommand("eval", "Evaluate a card: storage, loss, tan delta and mean modulus (MPa), or M(t) and J(t)");
-  cmd->add_option("--card", args->card, "Material card (JSON)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--card", args->card, "Material card (JSON)")->required();
   cmd->add_option("--mode", args->mode, "shear | uniaxial | bulk")->capture_default_str();
   cmd->add_option("--orientation", args->orientation, "Thesis orientation label (11, 22, 33, 12, 13, 23)");
   cmd->add_option("--frequency-hz", args->frequency_Hz, "Frequencies in Hz, comma separated")

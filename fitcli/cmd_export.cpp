@@ -14,7 +14,7 @@ void register_export(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("export", "Write a card as Abaqus, ANSYS or LS-DYNA material keywords");
-  cmd->add_option("--card", args->card, "Material card (JSON)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--card", args->card, "Material card (JSON)")->required();
   cmd->add_option("--format", args->format, "abaqus | ansys | lsdyna | calculix")
       ->required()->check(CLI::IsMember({"abaqus", "ansys", "lsdyna", "calculix"}));
   cmd->add_option("--out", args->out, "Output file (default stdout); written atomically");

@@ -50,9 +50,6 @@ fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double ref
     m.curve = fitlib::fit::build_master_curve(raw, options);
   }
   (json ? std::cerr : std::cout) << fitlib::fit::format_shift_table(*m.curve) << "\n";
-  if (!m.shifts_out.empty())
-    fitlib::core::write_file_atomically(m.shifts_out,
-                                        fitlib::data::format_shift_factors(fitlib::fit::shift_factors_of(*m.curve)));
   return m.curve->master;
 }
 // ---- end --master-curve
@@ -155,11 +152,13 @@ void finish(const FitArgs& a, const fitlib::fit::FitResult& result, const fitlib
   const auto card = card::card_from_fit(
       result, a.fit, table, {a.name.empty() ? a.model + "-fit" : a.name, a.command_line, a.record_timing});
   if (!a.out.empty()) card::save_card(a.out, card);
+  if (!a.master.shifts_out.empty() && a.master.curve)
+    core::write_file_atomically(a.master.shifts_out, data::format_shift_factors(fit::shift_factors_of(*a.master.curve)));
   for (const auto& w : result.quality.warnings) std::cerr << "fitcli: warning: " << w << "\n";
 
   if (a.json) {
     auto j = card::card_to_json(card);
-    j["fit"]["wall_time_s"] = result.metrics.wall_time_s;
+    if (a.record_timing) j["fit"]["wall_time_s"] = result.metrics.wall_time_s;
     if (!sel.json.is_null()) j["term_selection"] = sel.json;
     std::cout << j.dump(2) << "\n";
     return;
@@ -197,6 +196,9 @@ void run_fit_relaxation(FitArgs a);
 
 void run_fit(FitArgs a) {
   using namespace fitlib;
+  // Every output is checked before the work and written after it: no partial results.
+  if (!a.out.empty()) core::check_output_path(a.out);
+  if (!a.master.shifts_out.empty()) core::check_output_path(a.master.shifts_out);
   if (relaxation_data(a)) return run_fit_relaxation(a);
   data::ReadOptions read;
   read.format = a.format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
@@ -217,6 +219,7 @@ void run_fit(FitArgs a) {
   options["mode"] = model::to_string(mode);
   if (a.bulk_modulus) options["bulk_modulus"] = true;
   a.fit.backend = fit::parse_backend(a.backend);
+  a.fit.record_timing = a.record_timing;
   a.fit.residual = fit::parse_residual_kind(a.residual);
 
   Selection sel;
@@ -272,7 +275,7 @@ void run_fit_relaxation(FitArgs a) {
 void register_fit(CLI::App& app) {
   auto a = std::make_shared<FitArgs>();
   auto* cmd = app.add_subcommand("fit", "Fit a model to dynamic-test tables and write a material card");
-  cmd->add_option("--data", a->data, "Dynamic-test CSV file(s)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--data", a->data, "Dynamic-test CSV file(s)")->required();
   cmd->add_option("--model", a->model, "prony | zener3 | retardation | fractional-zener | fritzson | fritzson-iso")
       ->required();
   cmd->add_option("--terms", a->terms, "Number of terms, or 'auto' (AIC, BIC and pyvisco's rule)")
@@ -310,8 +313,7 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--tolerance", a->fit.tolerance, "Relative function tolerance")->capture_default_str();
   cmd->add_option("--max-iterations", a->fit.max_iterations, "Iteration limit per solve")->capture_default_str();
   cmd->add_option("--seed", a->fit.seed, "Random seed (multistart)")->capture_default_str();
-  cmd->add_option("--schedule", a->fit.schedule_path, "Staged backend: schedule of parameter groups (JSON or TOML)")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("--schedule", a->fit.schedule_path, "Staged backend: schedule of parameter groups (JSON or TOML)");
   cmd->add_flag("--global", a->fit.global, "auto backend: run the NLopt multistart before Ceres");
   cmd->add_flag("!--no-polish", a->fit.polish, "nnls backend: keep the pure linear solve (no log-space polish)");
   cmd->add_flag("--skip-bad-rows", a->skip_bad_rows, "Skip bad rows with a listed warning instead of failing");
@@ -326,8 +328,7 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--shifts-out", a->master.shifts_out,
                   "--master-curve/--shifts: write the isotherm shifts (pyvisco format T,log_aT)");
   cmd->add_option("--shifts", a->master.shifts_in,
-                  "Raw isotherms: shift them by these factors (pyvisco T,log_aT file) instead of fitting shifts")
-      ->check(CLI::ExistingFile);
+                  "Raw isotherms: shift them by these factors (pyvisco T,log_aT file) instead of fitting shifts");
   cmd->callback([a, cmd] {
     FitArgs args = *a;
     args.objective_given = cmd->count("--residual") + cmd->count("--storage-weight") + cmd->count("--loss-weight") > 0;

@@ -208,8 +208,8 @@ void register_plot(CLI::App& app) {
   auto a = std::make_shared<PlotArgs>();
   auto* cmd = app.add_subcommand("plot", "Plot data against a card (PNG via gnuplot): E', E'', tan delta, residuals");
   cmd->add_option("--data", a->data, "Data file(s): dynamic-test CSV, pyvisco CSV (frequency or time), EPLEXOR .xls")
-      ->required()->check(CLI::ExistingFile);
-  cmd->add_option("--card", a->card, "Material card (JSON)")->required()->check(CLI::ExistingFile);
+      ->required();
+  cmd->add_option("--card", a->card, "Material card (JSON)")->required();
   cmd->add_option("--out", a->out, "PNG file (written atomically)")->required();
   cmd->add_option("--format", a->format, "native | pyvisco | eplexor")->capture_default_str()
       ->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));

@@ -8,6 +8,7 @@
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 #include "fitlib/surface/card_grid.hpp"
 #include "fitlib/surface/fit.hpp"
 #include "output.hpp"
@@ -152,7 +153,11 @@ void run_eval(const EvalArgs& a) {
     for (const auto& axis : s.axes) csv << ",d_" << s.dependent_name << "_d_" << axis.name;
   csv << ",extrapolated\n";
   for (const auto& x : points) {
-    const auto e = s.evaluate(x.data(), a.allow_extrapolation);
+    auto e = s.evaluate(x.data(), a.allow_extrapolation);
+    const std::string at = " at " + exact_list(x) + " (control points of " + a.surface + " too large?)";
+    core::require_finite(e.value, s.dependent_name + at);
+    for (Eigen::Index k = 0; k < e.gradient.size(); ++k)
+      core::require_finite(e.gradient[k], "d " + s.dependent_name + " / d " + s.axes[k].name + at);
     for (double v : x) csv << exact(v) << ",";
     csv << exact(e.value);
     if (a.gradient)
@@ -178,6 +183,9 @@ struct GridArgs {
 };
 
 void run_grid(const GridArgs& a) {
+  // Every output is checked before the work and written after it: no partial results.
+  if (!a.out.empty() && a.out != "-") core::check_output_path(a.out);
+  if (!a.surface_out.empty()) core::check_output_path(a.surface_out);
   const auto card = card::load_card(a.card);
   surface::CardGridRequest request;
   request.mode = model::parse_test_mode(a.mode);
@@ -186,6 +194,7 @@ void run_grid(const GridArgs& a) {
   request.temperature_C = a.temperature_C;
   request.strain_amplitude = a.amplitude;
   const auto grid = surface::evaluate_card_grid(card, request);
+  const std::string grid_csv = surface::modulus_grid_csv(grid);
   if (!a.surface_out.empty()) {
     auto s = surface::surface_from_grid(grid, a.quantity, a.degrees);
     s.provenance["card_file"] = a.card;
@@ -199,7 +208,7 @@ void run_grid(const GridArgs& a) {
          << 100 * s.statistics.max_relative_error << " %\n";
     std::cerr << note.str();
   }
-  emit(a.out, surface::modulus_grid_csv(grid));
+  emit(a.out, grid_csv);
 }
 
 }  // namespace
@@ -210,14 +219,13 @@ void register_surface(CLI::App& app) {
 
   auto fa = std::make_shared<FitArgs>();
   auto* fit = surface_cmd->add_subcommand("fit", "Fit a surface to measured points (least squares on control points)");
-  fit->add_option("--data", fa->data, "CSV with a header row")->required()->check(CLI::ExistingFile);
+  fit->add_option("--data", fa->data, "CSV with a header row")->required();
   fit->add_option("--x", fa->x, "Independent column, COL or COL:log / COL:lin (repeat; order = axis order)")
       ->required();
   fit->add_option("--y", fa->y, "Dependent column")->required();
   fit->add_option("--degree", fa->degrees, "Degree per axis, comma separated (default: levels - 1, at most 6)")
       ->delimiter(',');
-  fit->add_option("--constraints", fa->constraints, "JSON file of linear constraints on control points")
-      ->check(CLI::ExistingFile);
+  fit->add_option("--constraints", fa->constraints, "JSON file of linear constraints on control points");
   fit->add_option("--missing", fa->missing,
                   "Remedy for missing cells: constrain | lower-degree | none (default constrain; none with --constraints)");
   fit->add_option("--level-tolerance", fa->level_tolerance,
@@ -230,9 +238,9 @@ void register_surface(CLI::App& app) {
 
   auto ea = std::make_shared<EvalArgs>();
   auto* eval = surface_cmd->add_subcommand("eval", "Evaluate a surface (value, optional gradient)");
-  eval->add_option("--surface", ea->surface, "Surface JSON")->required()->check(CLI::ExistingFile);
+  eval->add_option("--surface", ea->surface, "Surface JSON")->required();
   eval->add_option("--at", ea->at, "Point V1,V2,... in axis order (repeat for more points)");
-  eval->add_option("--points", ea->points, "CSV with one column per axis name")->check(CLI::ExistingFile);
+  eval->add_option("--points", ea->points, "CSV with one column per axis name");
   eval->add_flag("--allow-extrapolation", ea->allow_extrapolation,
                  "Evaluate outside the fitted interval (rows are flagged extrapolated = 1)");
   eval->add_flag("--gradient", ea->gradient, "Add the derivatives along each axis");
@@ -242,7 +250,7 @@ void register_surface(CLI::App& app) {
 
   auto ga = std::make_shared<GridArgs>();
   auto* grid = surface_cmd->add_subcommand("grid", "Modulus grid of a card (CSV for FE codes) and its surface");
-  grid->add_option("--card", ga->card, "Material card (JSON)")->required()->check(CLI::ExistingFile);
+  grid->add_option("--card", ga->card, "Material card (JSON)")->required();
   grid->add_option("--frequency-hz", ga->frequency_Hz, "Frequencies in Hz, comma separated")
       ->required()->delimiter(',')->check(CLI::PositiveNumber);
   grid->add_option("--temperature-c", ga->temperature_C, "Temperatures in degC (default: card reference)")

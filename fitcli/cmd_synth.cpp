@@ -54,8 +54,7 @@ void run_synth(const SynthArgs& a) {
 void register_synth(CLI::App& app) {
   auto a = std::make_shared<SynthArgs>();
   auto* cmd = app.add_subcommand("synth", "Virtual dynamic test: evaluate a card on a test design with seeded noise");
-  cmd->add_option("--card", a->card, "Material card (JSON) holding the true parameters")->required()
-      ->check(CLI::ExistingFile);
+  cmd->add_option("--card", a->card, "Material card (JSON) holding the true parameters")->required();
   cmd->add_option("--mode", a->mode, "shear | uniaxial | bulk")->capture_default_str();
   cmd->add_option("--orientation", a->orientation, "Thesis orientation label");
   cmd->add_option("--frequency-hz", a->frequency_Hz, "Frequencies, Hz")->required()->delimiter(',')

@@ -87,8 +87,7 @@ nlohmann::json report_json(const WaveformArgs& args, const fitlib::data::Wavefor
 
 void run(const WaveformArgs& args) {
   const auto record = fitlib::data::read_waveform(args.signals, args.specimen);
-  const auto report =
-      fitlib::data::analyse_waveform(record.time_s, record.stress_MPa, record.strain, args.options);
+  const auto report = fitlib::data::analyse_record(record, args.options);
   const auto row = fitlib::data::waveform_row(report, record.specimen, record.source_file);
   if (!args.out.empty()) {
     fitlib::data::DynamicTestTable table;

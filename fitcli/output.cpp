@@ -33,6 +33,12 @@ std::string exact(double x) {
   return buf;
 }
 
+std::string exact_list(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ",") + exact(v);
+  return text;
+}
+
 void emit(const std::string& path, const std::string& content) {
   if (path.empty() || path == "-") {
     std::cout << content;

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libceres-dev libnlopt-cxx-dev libeigen3-dev libboost-dev
-  libfccp-dev nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
+  nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfreexl-dev gnuplot-nox
   python3 python3-matplotlib python3-numpy jupyter-nbconvert python3-nbclient python3-ipykernel

@@ -1,7 +1,6 @@
 #pragma once
 // Runs fitcli as a user would and captures exit code, stdout and stderr.
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -9,6 +8,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "common/temp_path.hpp"
 
 struct CliResult {
   int exit_code = -1;
@@ -24,7 +25,7 @@ inline std::string slurp(const std::string& path) {
 
 inline CliResult run_fitcli(const std::string& args) {
   static int counter = 0;
-  const std::string base = ::testing::TempDir() + "fitcli_run_" + std::to_string(getpid()) + "_" + std::to_string(++counter);
+  const std::string base = fitlib_test::temp_path("fitcli_run_" + std::to_string(++counter));
   const std::string cmd = std::string(FITCLI_EXE) + " " + args + " >" + base + ".out 2>" + base + ".err";
   const int status = std::system(cmd.c_str());
   CliResult r;
@@ -38,4 +39,4 @@ inline std::string source_path(const std::string& relative) {
   return std::string(FITLIB_SOURCE_DIR) + "/" + relative;
 }
 
-inline std::string temp_file(const std::string& name) { return ::testing::TempDir() + name; }
+inline std::string temp_file(const std::string& name) { return fitlib_test::temp_path(name); }

@@ -53,21 +53,17 @@ json card_to_json(const Card& card) {
 
 namespace {
 
-template <typename T>
-T required(const json& j, const std::string& key, const std::string& source, const std::string& path) {
-  if (!j.contains(key)) throw core::InputError("missing required key", source, 0, 0, path + key);
-  try {
-    return j.at(key).get<T>();
-  } catch (const json::exception&) {
-    throw core::InputError("wrong type", source, 0, 0, path + key);
-  }
+const json& required(const json& j, const std::string& key, const std::string& source,
+                     const std::string& path) {
+  if (!j.is_object() || !j.contains(key))
+    throw core::InputError("missing required key", source, 0, 0, path + key);
+  return j.at(key);
 }
 
-// An optional key: `fallback` when absent, InputError naming the key when of the wrong type.
-template <typename T>
-T optional(const json& j, const std::string& key, T fallback, const std::string& source,
-           const std::string& path) {
-  return j.contains(key) ? required<T>(j, key, source, path) : fallback;
+json object_or_empty(const json& j, const std::string& key, const std::string& source) {
+  if (!j.contains(key)) return json::object();
+  if (!j.at(key).is_object()) throw core::InputError("expected an object", source, 0, 0, key);
+  return j.at(key);
 }
 
 }  // namespace
@@ -75,18 +71,20 @@ T optional(const json& j, const std::string& key, T fallback, const std::string&
 Card card_from_json(const json& j, const std::string& source) {
   if (!j.is_object()) throw core::InputError("a card must be a JSON object", source);
   Card card;
-  const auto schema = required<std::string>(j, "schema", source, "");
+  const auto schema = core::json_string(required(j, "schema", source, ""), source, "schema");
   if (schema != Card::kSchema)
     throw core::InputError("unsupported schema '" + schema + "' (expected " + Card::kSchema + ")",
                            source, 0, 0, "schema");
-  card.name = optional<std::string>(j, "name", "", source, "");
-  card.model_kind = required<std::string>(j, "model", source, "");
-  card.model_options = j.value("options", json::object());
+  if (j.contains("name")) card.name = core::json_string(j.at("name"), source, "name");
+  card.model_kind = core::json_string(required(j, "model", source, ""), source, "model");
+  card.model_options = object_or_empty(j, "options", source);
   model::ModelPtr m;
   try {
     m = card.model();
   } catch (const core::UsageError& e) {
     throw core::InputError(e.what(), source, 0, 0, "options");
+  } catch (const json::exception&) {
+    throw core::InputError("an option has the wrong type", source, 0, 0, "options");
   }
   if (!j.contains("parameters") || !j.at("parameters").is_array())
     throw core::InputError("missing parameter list", source, 0, 0, "parameters");
@@ -99,46 +97,44 @@ Card card_from_json(const json& j, const std::string& source) {
                            source, 0, 0, "parameters");
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string path = "parameters[" + std::to_string(i) + "].";
-    const auto name = required<std::string>(list[i], "name", source, path);
+    const auto name = core::json_string(required(list[i], "name", source, path), source, path + "name");
     if (name != specs[i].name)
       throw core::InputError("expected parameter '" + specs[i].name + "', found '" + name + "'",
                              source, 0, 0, path + "name");
     ParameterEstimate e;
-    e.value = required<double>(list[i], "value", source, path);
+    e.value = core::json_number(required(list[i], "value", source, path), source, path + "value");
     const auto& spec = specs[i];
     // A positive scale must stay positive; a linear weight (a Prony modulus) may be exactly 0,
     // an inactive term held there by the non-negativity constraint.
     const bool must_be_positive = spec.transform == core::Transform::log && !spec.linear;
-    if (!std::isfinite(e.value) || e.value < spec.lower || e.value > spec.upper ||
+    if (!std::isfinite(e.value) || std::abs(e.value) > Card::kMaxMagnitude || e.value < spec.lower || e.value > spec.upper ||
         (must_be_positive && !(e.value > 0.0)))
-      throw core::InputError("value " + std::to_string(e.value) + " outside the admissible range of " +
+      throw core::InputError("value " + core::short_number(e.value) + " outside the admissible range of " +
                                  spec.name,
                              source, 0, 0, path + "value");
-    e.fixed = optional<bool>(list[i], "fixed", false, source, path);
-    if (list[i].contains("std_error") && !list[i]["std_error"].is_null()) {
-      const auto& se = list[i]["std_error"];
-      if (!se.is_number() || !std::isfinite(se.get<double>()) || se.get<double>() < 0.0)
-        throw core::InputError("std_error must be null or a finite number >= 0", source, 0, 0,
-                               path + "std_error");
-      e.std_error = se.get<double>();
+    const json& p = list[i];
+    if (p.contains("fixed")) e.fixed = core::json_bool(p["fixed"], source, path + "fixed");
+    if (p.contains("std_error") && !p["std_error"].is_null()) {
+      e.std_error = core::json_number(p["std_error"], source, path + "std_error");
+      if (*e.std_error < 0.0) throw core::InputError("std_error must be null or >= 0", source, 0, 0, path + "std_error");
     }
-    e.std_error_reason = optional<std::string>(list[i], "std_error_reason", "", source, path);
-    if (list[i].contains("ci95")) {
-      const auto ci95 = required<std::vector<double>>(list[i], "ci95", source, path);
-      if (ci95.size() != 2 || !std::isfinite(ci95[0]) || !std::isfinite(ci95[1]))
-        throw core::InputError("ci95 must be [low, high] with finite numbers", source, 0, 0, path + "ci95");
-      e.ci95_low = ci95[0];
-      e.ci95_high = ci95[1];
+    if (p.contains("std_error_reason"))
+      e.std_error_reason = core::json_string(p["std_error_reason"], source, path + "std_error_reason");
+    if (p.contains("ci95")) {
+      if (!p["ci95"].is_array() || p["ci95"].size() != 2)
+        throw core::InputError("expected [low, high]", source, 0, 0, path + "ci95");
+      e.ci95_low = core::json_number(p["ci95"][0], source, path + "ci95[0]");
+      e.ci95_high = core::json_number(p["ci95"][1], source, path + "ci95[1]");
     }
     card.parameters.push_back(e);
   }
-  card.fit = j.value("fit", json::object());
-  card.provenance = j.value("provenance", json::object());
+  card.fit = object_or_empty(j, "fit", source);
+  card.provenance = object_or_empty(j, "provenance", source);
   return card;
 }
 
 Card load_card(const std::string& path) {
-  return card_from_json(core::parse_json(core::read_file(path), path), path);
+  return card_from_json(core::load_json(path), path);
 }
 
 void save_card(const std::string& path, const Card& card) {

@@ -1,5 +1,8 @@
 #include "fitlib/core/error.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 namespace fitlib::core {
 namespace {
 std::string locate(const std::string& message, const std::string& file, int line, int column,
@@ -20,6 +23,17 @@ InputError::InputError(std::string message, std::string file, int line, int colu
       detail_(std::move(message)),
       line_(line),
       column_(column) {}
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+double require_finite(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw NumericalError(what + " is not finite");
+  return value;
+}
 
 int exit_code_for(const std::exception& e) {
   if (dynamic_cast<const InputError*>(&e)) return kBadInput;

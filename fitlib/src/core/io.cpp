@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -28,6 +29,24 @@ void write_file_atomically(const std::string& path, const std::string& content) 
     std::remove(tmp.c_str());
     throw InputError("cannot rename temporary into place", path);
   }
+}
+
+void check_output_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  if (fs::is_directory(p, ec)) throw InputError("output path is a folder", path);
+  const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  if (!fs::is_directory(folder, ec)) throw InputError("output folder does not exist", path);
+  if (::access(folder.c_str(), W_OK) != 0) throw InputError("output folder is not writable", path);
+}
+
+void prepare_output_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw InputError("cannot create output folder (" + ec.message() + ")", dir);
+  if (::access(dir.c_str(), W_OK) != 0) throw InputError("output folder is not writable", dir);
 }
 
 std::string read_file(const std::string& path) {

@@ -13,6 +13,8 @@
 
 namespace fitlib::data {
 namespace {
+constexpr double kMaxTableMagnitude = 1e100;   // any number in a table
+constexpr double kMinTableFrequency_Hz = 1e-100;
 
 enum Role {
   kMode, kFrequencyHz, kAngularFrequency, kStorage, kLoss, kAbsModulus, kTanDelta, kLossAngleDeg,
@@ -270,6 +272,9 @@ class TableParser {
         ++skipped;
       }
     }
+    if (!table_.rows.empty() &&
+        std::all_of(table_.rows.begin(), table_.rows.end(), [](const DynamicTestRow& r) { return r.weight == 0.0; }))
+      throw core::InputError("every row has weight 0: nothing to fit", file_, layout_.header_line, 0, "weight");
     if (table_.rows.empty()) {
       if (skipped > 0)
         throw core::InputError("no valid data rows (" + std::to_string(skipped) + " skipped)",
@@ -289,8 +294,12 @@ class TableParser {
     const auto fail = [&](Role role, const std::string& message) {
       return core::InputError(message, file_, line.number, layout_.column[role] + 1);
     };
+    // Range contract (docs/decisions.md "Table value range"): beyond it ω, 1/ω or the moduli
+    // overflow in the fit.
     const auto number = [&](Role role, const char* what) {
-      return parse_csv_number(text(role), what, file_, line.number, layout_.column[role] + 1);
+      const double v = parse_csv_number(text(role), what, file_, line.number, layout_.column[role] + 1);
+      if (std::abs(v) > kMaxTableMagnitude) throw fail(role, std::string(what) + " beyond +-1e100");
+      return v;
     };
     // Optional columns: an empty cell means "not given".
     const auto given = [&](Role role) { return layout_.has(role) && !text(role).empty(); };
@@ -314,9 +323,11 @@ class TableParser {
     if (layout_.has(kFrequencyHz)) {
       c.frequency_Hz = number(kFrequencyHz, "frequency");
       if (!(c.frequency_Hz > 0.0)) throw fail(kFrequencyHz, "non-positive frequency");
+      if (c.frequency_Hz < kMinTableFrequency_Hz) throw fail(kFrequencyHz, "frequency below 1e-100 Hz");
     } else {
       const double omega = number(kAngularFrequency, "angular frequency");
       if (!(omega > 0.0)) throw fail(kAngularFrequency, "non-positive angular frequency");
+      if (omega < kMinTableFrequency_Hz) throw fail(kAngularFrequency, "angular frequency below 1e-100 rad/s");
       c.frequency_Hz = omega / (2.0 * core::kPi);
     }
 
@@ -422,6 +433,11 @@ std::string format_dynamic_table(const DynamicTestTable& table) {
          "loss_MPa,mean_modulus_MPa,weight,material,specimen,set\n";
   for (const auto& row : table.rows) {
     const auto& c = row.condition;
+    const std::string at = " of a table row at " + core::short_number(c.frequency_Hz) + " Hz";
+    for (const auto& [what, value] : {std::pair<const char*, double>{"frequency", c.frequency_Hz},
+                                      {"storage modulus", row.storage_MPa}, {"loss modulus", row.loss_MPa},
+                                      {"strain amplitude", c.strain_amplitude}, {"mean strain", c.mean_strain}})
+      core::require_finite(value, what + at);
     out << model::to_string(c.mode) << ',' << c.orientation << ',' << format_exact(c.frequency_Hz)
         << ',' << (c.has_temperature() ? format_exact(c.temperature_C) : "") << ','
         << format_exact(c.strain_amplitude) << ',' << format_exact(c.mean_strain) << ','

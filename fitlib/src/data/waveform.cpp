@@ -3,15 +3,16 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
-#include <cctype>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/data/csv.hpp"
 
@@ -197,6 +198,19 @@ void check_signals(const std::vector<double>& time_s, const std::vector<double>&
   }
 }
 
+// Every reported figure must be finite before anything is written (overflowing signals).
+void check_report_finite(const WaveformReport& r) {
+  const std::pair<const char*, double> figures[] = {
+      {"frequency", r.frequency_Hz},         {"storage modulus", r.storage_MPa},
+      {"loss modulus", r.loss_MPa},          {"tan delta", r.tan_delta},
+      {"stress amplitude", r.stress_amplitude_MPa}, {"strain amplitude", r.strain_amplitude},
+      {"mean stress", r.mean_stress_MPa},    {"mean strain", r.mean_strain},
+      {"loss energy", r.loss_energy_MPa},    {"storage std", r.storage_std_MPa},
+      {"loss std", r.loss_std_MPa},          {"mean modulus", r.mean_modulus_MPa}};
+  for (const auto& [what, value] : figures)
+    if (!std::isfinite(value)) throw core::NumericalError("waveform analysis: " + std::string(what) + " is not finite");
+}
+
 }  // namespace
 
 WaveformReport analyse_waveform(const std::vector<double>& time_s,
@@ -229,6 +243,10 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
     frequency_Hz = static_cast<double>(crossings.size() - 1) / (crossings.back() - crossings.front());
   }
   double samples_per_period = 1.0 / (frequency_Hz * dt);
+  // Checked in double before any conversion to int (a tiny known frequency would overflow it).
+  if (!(samples_per_period * options.periods <= static_cast<double>(n)))
+    throw InputError("the record holds fewer than " + std::to_string(options.periods) +
+                     " periods at " + core::short_number(frequency_Hz) + " Hz");
   if (samples_per_period < 5.0)
     throw InputError("fewer than 5 samples per period (" + std::to_string(samples_per_period) + ")");
   const int degree = std::max(1, std::min(options.harmonics,
@@ -289,6 +307,10 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
     const double smooth_stress_amplitude = 0.5 * (sigma_max - sigma_min);
     const double smooth_strain_amplitude = 0.5 * (eps_max - eps_min);
     if (!(smooth_strain_amplitude > 0.0)) throw InputError("strain amplitude is zero in a period");
+    if (!(smooth_stress_amplitude > 0.0)) throw InputError("stress amplitude is zero in a period");
+    if (!std::isfinite(smooth_stress_amplitude / smooth_strain_amplitude))
+      throw InputError("stress amplitude / strain amplitude is not a finite modulus (strain amplitude " +
+                       core::short_number(smooth_strain_amplitude) + ")");
     r.stress_amplitude_MPa = smooth_stress_amplitude / gain;
     r.strain_amplitude = smooth_strain_amplitude / gain;
     r.mean_stress_MPa = 0.5 * (sigma_max + sigma_min);
@@ -339,6 +361,7 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
     report.max_circle_deviation = std::max(report.max_circle_deviation, r.circle_deviation);
     report.max_fit_residual = std::max(report.max_fit_residual, r.fit_residual);
   }
+  check_report_finite(report);
   return report;
 }
 
@@ -392,6 +415,7 @@ const std::map<std::string, KeyKind>& metadata_keys() {
 }
 
 using ErrorAt = std::function<InputError(const std::string& message)>;
+constexpr int kMaxSpecimens = 1000;  // specimens loaded in parallel (2 in a double sandwich)
 
 void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::json& value,
                     const ErrorAt& error) {
@@ -415,9 +439,8 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
     info.has_mode = true;
   } else if (kind == KeyKind::count) {
     const double count = value.get<double>();
-    // Capped so the int conversion is defined (a double sandwich has 2).
-    if (count < 1.0 || count > 1000.0 || count != std::floor(count))
-      throw error("'n_specimens' must be a whole number from 1 to 1000");
+    if (count < 1.0 || count > kMaxSpecimens || count != std::floor(count))
+      throw error("'n_specimens' must be a whole number from 1 to " + std::to_string(kMaxSpecimens));
     info.n_specimens = static_cast<int>(count);
   } else if (kind == KeyKind::number) {
     const double number = value.get<double>();
@@ -439,28 +462,32 @@ void apply_metadata(SpecimenInfo& info, const std::string& key, const nlohmann::
   }
 }
 
-// `# key = value` with an identifier as key (other comments are free text). Scanned by hand:
-// std::regex recursed per character and overflowed the stack on a 30 kB comment (issue 12).
-bool metadata_line(const std::string& text, std::string& key, std::string& value) {
-  const auto is_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
-  const auto is_part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-  std::size_t i = text.find_first_not_of(" \t");
-  if (i == std::string::npos || text[i] != '#') return false;
-  i = text.find_first_not_of(" \t", i + 1);
-  if (i == std::string::npos || !is_start(text[i])) return false;
-  std::size_t j = i;
-  while (j < text.size() && is_part(text[j])) ++j;
-  const std::size_t equals = text.find_first_not_of(" \t", j);
-  if (equals == std::string::npos || text[equals] != '=') return false;
-  key = text.substr(i, j - i);
-  value = text.substr(equals + 1);
-  return true;
-}
-
 std::string trim(const std::string& text) {
   const auto first = text.find_first_not_of(" \t");
   if (first == std::string::npos) return {};
   return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+// `# key = value` with key an identifier ([A-Za-z_][A-Za-z0-9_]*); other comments are free text.
+// A plain scan, linear in the line length (a regular expression recursed per character).
+bool parse_metadata_line(const std::string& text, std::string& key, std::string& value) {
+  const auto is_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto is_part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto skip_space = [&](std::size_t i) {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    return i;
+  };
+  std::size_t i = skip_space(0);
+  if (i == text.size() || text[i] != '#') return false;
+  i = skip_space(i + 1);
+  if (i == text.size() || !is_start(text[i])) return false;
+  const std::size_t key_begin = i;
+  while (i < text.size() && is_part(text[i])) ++i;
+  key = text.substr(key_begin, i - key_begin);
+  i = skip_space(i);
+  if (i == text.size() || text[i] != '=') return false;
+  value = text.substr(i + 1);
+  return true;
 }
 
 }  // namespace
@@ -472,14 +499,13 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
   record.source_sha256 = core::sha256_hex(bytes);
   const std::vector<CsvLine> lines = split_csv_lines(bytes, signals_path);
 
-  // Metadata from `# key = value` lines (a key must look like an identifier; other comments are
-  // free text).
+  // Metadata from `# key = value` lines.
   nlohmann::json metadata = nlohmann::json::object();
   std::size_t next = 0;
   for (const auto& line : lines) {
-    std::string key, value_text;
-    if (!metadata_line(line.text, key, value_text)) continue;
-    value_text = trim(value_text);
+    std::string key, raw_value;
+    if (!is_blank_or_comment(line.text) || !parse_metadata_line(line.text, key, raw_value)) continue;
+    std::string value_text = trim(raw_value);
     if (value_text.size() >= 2 && value_text.front() == '"' && value_text.back() == '"')
       value_text = value_text.substr(1, value_text.size() - 2);
     const auto error = [&](const std::string& message) {
@@ -495,12 +521,7 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
     metadata[key] = value;
   }
   if (!sidecar_path.empty()) {
-    nlohmann::json sidecar;
-    try {
-      sidecar = nlohmann::json::parse(core::read_file(sidecar_path));
-    } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
-      throw InputError(std::string("invalid JSON: ") + e.what(), sidecar_path);
-    }
+    const nlohmann::json sidecar = core::load_json(sidecar_path);
     if (!sidecar.is_object()) throw InputError("specimen sidecar must be a JSON object", sidecar_path);
     for (const auto& [key, value] : sidecar.items()) {
       const auto error = [&, key = key](const std::string& message) {
@@ -586,19 +607,18 @@ WaveformRecord read_waveform(const std::string& signals_path, const std::string&
   return record;
 }
 
+WaveformReport analyse_record(const WaveformRecord& record, const WaveformOptions& options) {
+  try {
+    return analyse_waveform(record.time_s, record.stress_MPa, record.strain, options);
+  } catch (const InputError& e) {
+    throw InputError(e.detail(), record.source_file, e.line(), e.column(), e.key());
+  } catch (const core::NumericalError& e) {
+    throw core::NumericalError(record.source_file + ": " + e.what());
+  }
+}
+
 DynamicTestRow waveform_row(const WaveformReport& report, const SpecimenInfo& specimen,
                             const std::string& source_file) {
-  // A degenerate record (no stress, a strain amplitude near the underflow limit) gives 0/0 in
-  // the energy method; nothing non-finite may reach a table.
-  for (const auto& [value, what] : {std::pair{report.frequency_Hz, "frequency"},
-                                    {report.strain_amplitude, "strain amplitude"},
-                                    {report.mean_strain, "mean strain"},
-                                    {report.storage_MPa, "storage modulus"},
-                                    {report.loss_MPa, "loss modulus"}})
-    if (!std::isfinite(value))
-      throw core::NumericalError(source_file + ": waveform analysis gave a non-finite " + what);
-  if (report.has_mean_modulus && !std::isfinite(report.mean_modulus_MPa))
-    throw core::NumericalError(source_file + ": waveform analysis gave a non-finite mean modulus");
   if (report.loss_MPa < 0.0)
     throw InputError("negative loss modulus from the energy method (stress lags strain): check "
                      "the signs of the force and displacement signals",

@@ -211,11 +211,9 @@ StageOutcome ceres_with_fallback(Problem& problem, FitResult& result, std::strin
   return out;
 }
 
-StageOutcome run_schedule(Problem& problem, FitResult& result) {
+StageOutcome run_stages(Problem& problem, FitResult& result, const Schedule& schedule) {
   const core::Stopwatch clock;
   const FitOptions& o = problem.options();
-  const Schedule schedule =
-      o.schedule_path.empty() ? default_schedule() : load_schedule(o.schedule_path);
   StageOutcome last;
   for (std::size_t s = 0; s < schedule.stages.size(); ++s) {
     const Stage& st = schedule.stages[s];
@@ -241,12 +239,23 @@ StageOutcome run_schedule(Problem& problem, FitResult& result) {
     FitMetrics reached;
     problem.measure(problem.natural(), reached);
     std::ostringstream reached_note;
-    reached_note << "; mean relative error " << 100.0 * reached.mean_rel_error << " % after "
-                 << clock.seconds() << " s";
+    reached_note << "; mean relative error " << 100.0 * reached.mean_rel_error << " %";
+    if (o.record_timing) reached_note << " after " << clock.seconds() << " s";
     last.note += reached_note.str();
     note(result, "stage '" + st.name + "': ", last);
   }
   return last;
+}
+
+StageOutcome run_schedule(Problem& problem, FitResult& result) {
+  const std::string& path = problem.options().schedule_path;
+  const Schedule schedule = path.empty() ? default_schedule() : load_schedule(path);
+  try {
+    return run_stages(problem, result, schedule);
+  } catch (const core::InputError& e) {  // a selector that selects nothing: name the schedule file
+    if (!e.file().empty()) throw;
+    throw core::InputError(e.detail(), path.empty() ? "the default schedule" : path, 0, 0, e.key());
+  }
 }
 
 // Series terms (a "viscous" modulus paired with a "time" constant, in the same order) are

@@ -6,6 +6,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 #include "fitlib/core/toml_limits.hpp"
 
 namespace fitlib::fit {
@@ -64,13 +65,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }  // namespace
 
 Schedule parse_schedule_json(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
-    throw core::InputError(std::string("not valid JSON: ") + e.what(), source);
-  }
-  return schedule_from_json(j, source);
+  return schedule_from_json(core::parse_json(text, source), source);
 }
 
 Schedule load_schedule(const std::string& path) {
@@ -87,7 +82,7 @@ Schedule load_schedule(const std::string& path) {
   }
   std::ostringstream json;
   json << toml::json_formatter{table};
-  return parse_schedule_json(json.str(), path);
+  return schedule_from_json(core::parse_json(json.str(), path), path);
 }
 
 Schedule default_schedule() {

@@ -315,7 +315,9 @@ AccumulationMap accumulation_map(const belt::RetardationSpectrum& s, const Accum
   return m;
 }
 
-SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options_in) {
+namespace {
+
+SceneResult run_effects(const Scene& s, const belt::LoadCycleOptions& options_in) {
   core::Stopwatch total;
   SceneResult r;
   r.plan = make_plan(s);
@@ -418,6 +420,19 @@ SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options_in) 
   return r;
 }
 
+}  // namespace
+
+SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options) {
+  try {
+    return run_effects(s, options);
+  } catch (const InputError& e) {  // slipping, self-locking, lift-off, ...: name the scene file
+    if (!e.file().empty()) throw;
+    throw InputError(e.detail(), s.path, 0, 0, e.key());
+  } catch (const core::NumericalError& e) {
+    throw core::NumericalError(s.path + ": " + e.what());
+  }
+}
+
 std::string load_history_csv(const SceneResult& r) {
   std::ostringstream o;
   o << std::setprecision(10);
@@ -451,17 +466,19 @@ std::string tension_test_csv(const belt::TensionTestResult& t) {
   return o.str();
 }
 
-nlohmann::json summary_json(const Scene& s, const SceneResult& r) {
+nlohmann::json summary_json(const Scene& s, const SceneResult& r, bool record_timing) {
   nlohmann::json j;
   j["scene"] = s.name;
   j["source"] = s.path;
   j["version"] = FITLIB_VERSION;
   nlohmann::json effects = nlohmann::json::array();
   for (const auto& e : r.plan.effects)
-    effects.push_back({{"name", e.name}, {"ran", e.ran}, {"wall_s", e.wall_s}, {"reason", e.reason}});
+    effects.push_back(record_timing
+                          ? nlohmann::json{{"name", e.name}, {"ran", e.ran}, {"wall_s", e.wall_s}, {"reason", e.reason}}
+                          : nlohmann::json{{"name", e.name}, {"ran", e.ran}, {"reason", e.reason}});
   j["effects"] = effects;
   j["outputs_not_available"] = r.plan.unavailable_outputs;
-  j["total_wall_s"] = r.total_wall_s;
+  if (record_timing) j["total_wall_s"] = r.total_wall_s;
   if (r.stiffness)
     j["stiffness"] = {{"c_N", r.stiffness->c_N}, {"k1_MPa", r.stiffness->k1_MPa}, {"EI_Nmm2", r.stiffness->EI_Nmm2},
                       {"c_source", r.stiffness->c_source}, {"k1_source", r.stiffness->k1_source},
@@ -519,8 +536,9 @@ nlohmann::json summary_json(const Scene& s, const SceneResult& r) {
   return j;
 }
 
-std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, const std::string& dir) {
-  std::filesystem::create_directories(dir);
+std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, const std::string& dir,
+                                       bool record_timing) {
+  core::prepare_output_dir(dir);
   std::vector<std::string> written;
   auto put = [&](const std::string& name, const std::string& text) {
     const std::string path = (std::filesystem::path(dir) / name).string();
@@ -530,7 +548,7 @@ std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, con
   if (r.cycle && flag(s.outputs, "load_history")) put("load_history.csv", load_history_csv(r));
   if (r.accumulation) put("accumulation.csv", accumulation_csv(*r.accumulation));
   if (r.tension_test) put("tension_test.csv", tension_test_csv(*r.tension_test));
-  put("summary.json", summary_json(s, r).dump(2) + "\n");
+  put("summary.json", summary_json(s, r, record_timing).dump(2) + "\n");
   return written;
 }
 

@@ -274,9 +274,10 @@ Scene parse_scene(const std::string& text, const std::string& source) {
       const toml::array* a = c->as_array();
       if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
         pr.fail("center_mm", "expects [x, y] in mm");
-      p.center_mm = std::make_pair((*a)[0].value<double>().value(), (*a)[1].value<double>().value());
-      if (!std::isfinite(p.center_mm->first) || !std::isfinite(p.center_mm->second))
-        pr.fail("center_mm", "expects finite [x, y] in mm");
+      const double x = (*a)[0].value<double>().value(), y = (*a)[1].value<double>().value();
+      if (!(std::abs(x) <= kMaxCoordinate_mm && std::abs(y) <= kMaxCoordinate_mm))
+        pr.fail("center_mm", "expects finite coordinates within +-1e6 mm");
+      p.center_mm = std::make_pair(x, y);
     }
     pr.finish();
     s.pulleys.push_back(p);

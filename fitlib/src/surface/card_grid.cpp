@@ -72,11 +72,16 @@ ModulusGrid evaluate_card_grid(const card::Card& card, const CardGridRequest& re
 std::string modulus_grid_csv(const ModulusGrid& grid) {
   std::ostringstream csv;
   csv << "strain_amplitude,frequency_Hz,temperature_C,storage_MPa,loss_MPa,tan_delta,mean_modulus_MPa\n";
-  for (const auto& r : grid.rows)
+  for (const auto& r : grid.rows) {
+    const std::string at = " of the grid at " + core::short_number(r.frequency_Hz) + " Hz";
+    core::require_finite(r.storage_MPa, "storage modulus" + at);
+    core::require_finite(r.loss_MPa / r.storage_MPa, "tan delta" + at);
+    core::require_finite(r.mean_modulus_MPa, "mean modulus" + at);
     csv << exact(r.strain_amplitude) << "," << exact(r.frequency_Hz) << ","
         << (std::isnan(r.temperature_C) ? "" : exact(r.temperature_C)) << "," << exact(r.storage_MPa)
         << "," << exact(r.loss_MPa) << "," << exact(r.loss_MPa / r.storage_MPa) << ","
         << exact(r.mean_modulus_MPa) << "\n";
+  }
   return csv.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/json.hpp"
 #include "fitlib/surface/bernstein.hpp"
 
 namespace fitlib::surface {
@@ -282,8 +283,9 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
       s.dependent_unit = j["dependent"].value("unit", "");
     }
     const auto axes = required<nlohmann::json>(j, "axes", source, "");
-    if (!axes.is_array() || axes.empty())
-      throw core::InputError("must be a non-empty array", source, 0, 0, "axes");
+    if (!axes.is_array() || axes.empty() || axes.size() > kMaxAxes)
+      throw core::InputError("must be an array of 1 to " + std::to_string(kMaxAxes) + " axes", source, 0, 0, "axes");
+    double control_point_count = 1.0;
     for (std::size_t k = 0; k < axes.size(); ++k) {
       const std::string path = "axes[" + std::to_string(k) + "].";
       Axis a;
@@ -294,7 +296,7 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
         throw core::InputError("transform must be linear or log10", source, 0, 0, path + "transform");
       a.transform = parse_transform(transform);
       const auto interval = required<std::vector<double>>(axes[k], "interval", source, path);
-      if (interval.size() != 2 || !(interval[0] <= interval[1]))
+      if (interval.size() != 2 || !(interval[0] <= interval[1]) || !std::isfinite(interval[1] - interval[0]))
         throw core::InputError("must be [start, end] with start <= end", source, 0, 0,
                                path + "interval");
       a.start = interval[0];
@@ -302,10 +304,12 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
       if (a.transform == Transform::log10 && !(a.start > 0.0))
         throw core::InputError("a log10 axis needs a positive interval", source, 0, 0,
                                path + "interval");
-      a.degree = required<int>(axes[k], "degree", source, path);
-      if (a.degree < 0 || a.degree > kMaxDegree)
-        throw core::InputError("degree must be 0.." + std::to_string(kMaxDegree), source, 0, 0,
-                               path + "degree");
+      a.degree = static_cast<int>(core::json_integer(required<nlohmann::json>(axes[k], "degree", source, path),
+                                                     0, kMaxDegree, source, path + "degree"));
+      control_point_count *= a.degree + 1;
+      if (control_point_count > kMaxControlPoints)
+        throw core::InputError("the degrees need more than " + std::to_string(kMaxControlPoints) +
+                                   " control points", source, 0, 0, path + "degree");
       if (axes[k].contains("levels")) a.levels = axes[k]["levels"].get<std::vector<double>>();
       a.level_count = axes[k].value("level_count", a.levels.size());
       a.scattered = axes[k].value("scattered", false);
@@ -376,14 +380,7 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
 }
 
 Surface load_surface(const std::string& path) {
-  const std::string text = core::read_file(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {  // also out_of_range (1e999)
-    throw core::InputError(std::string("not valid JSON: ") + e.what(), path);
-  }
-  return surface_from_json(j, path);
+  return surface_from_json(core::load_json(path), path);
 }
 
 void save_surface(const std::string& path, const Surface& s) {

@@ -1,5 +1,6 @@
 // Cards: round trip, validation with keys named, and FE exports with their refusals.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -36,7 +37,7 @@ card::Card prony_card(int terms, nlohmann::json extra = nlohmann::json::object()
   return c;
 }
 
-std::string temp_path(const std::string& name) { return ::testing::TempDir() + name; }
+std::string temp_path(const std::string& name) { return fitlib_test::temp_path(name); }
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 // Dynamic-test table reader/writer (formats.md §1): malformed fixtures with exact locations,
 // accepted variants, pyvisco import, round trip.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -22,7 +23,10 @@ using fitlib::model::TestMode;
 namespace {
 
 const std::string kMalformed = std::string(FITLIB_TEST_DATA_DIR) + "/malformed/";
-const std::string kPyvisco = std::string(FITLIB_SHARED_DIR) + "/external/pyvisco/examples/";
+// pyvisco's example files, copied into the repository (datasets/README.md, tests/data/pyvisco).
+const std::string kPyviscoMaster = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-freq-master.csv";
+const std::string kPyviscoRaw = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-freq-raw.csv";
+const std::string kPyviscoTimeMaster = std::string(FITLIB_TEST_DATA_DIR) + "/pyvisco/time_user_master.csv";
 using fitlib::core::kPi;
 
 struct MalformedCase {
@@ -234,7 +238,7 @@ TEST(Table, RoundTripIsBitExact) {
     row.set = i == 4 ? "#5" : std::to_string(i);
     table.rows.push_back(row);
   }
-  const std::string path = ::testing::TempDir() + "fitlib_roundtrip.csv";
+  const std::string path = fitlib_test::temp_path("fitlib_roundtrip.csv");
   fitlib::data::write_dynamic_table(path, table);
   const DynamicTestTable back = read_dynamic_table(path);
   ASSERT_EQ(back.rows.size(), table.rows.size());
@@ -268,7 +272,7 @@ TEST(Table, RoundTripIsBitExact) {
 TEST(Table, PyviscoMasterCurve) {
   ReadOptions options;
   options.format = TableFormat::pyvisco;
-  const auto table = read_dynamic_table(kPyvisco + "freq_user_master.csv", options);
+  const auto table = read_dynamic_table(kPyviscoMaster, options);
   ASSERT_EQ(table.rows.size(), 206u);
   const auto& first = table.rows.front();
   EXPECT_EQ(first.condition.mode, TestMode::uniaxial);
@@ -281,13 +285,13 @@ TEST(Table, PyviscoMasterCurve) {
   for (std::size_t i = 1; i < table.rows.size(); ++i)
     EXPECT_GT(table.rows[i].condition.frequency_Hz, table.rows[i - 1].condition.frequency_Hz);
   // The native reader refuses pyvisco's header (column 'f' is unknown there).
-  EXPECT_THROW(read_dynamic_table(kPyvisco + "freq_user_master.csv"), InputError);
+  EXPECT_THROW(read_dynamic_table(kPyviscoMaster), InputError);
 }
 
 TEST(Table, PyviscoRawIsothermsWithBom) {
   ReadOptions options;
   options.format = TableFormat::pyvisco;
-  const auto table = read_dynamic_table(kPyvisco + "freq_user_raw.csv", options);
+  const auto table = read_dynamic_table(kPyviscoRaw, options);
   ASSERT_EQ(table.rows.size(), 210u);
   std::set<std::string> sets;
   for (const auto& row : table.rows) sets.insert(row.set);
@@ -317,7 +321,7 @@ TEST(Table, PyviscoShearUnitsAndTimeDomainRefusal) {
   EXPECT_DOUBLE_EQ(g.rows[0].loss_MPa, 0.3);
   EXPECT_NEAR(g.rows[0].condition.temperature_C, 26.85, 1e-12);
   try {
-    read_dynamic_table(kPyvisco + "time_user_master.csv", options);
+    read_dynamic_table(kPyviscoTimeMaster, options);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 1);
@@ -331,11 +335,11 @@ TEST(Table, SeveralFilesKeepOrderAndFingerprints) {
   ReadOptions options;
   options.format = TableFormat::pyvisco;
   const auto both = fitlib::data::read_dynamic_tables(
-      {kPyvisco + "freq_user_master.csv", kPyvisco + "freq_user_raw.csv"}, options);
+      {kPyviscoMaster, kPyviscoRaw}, options);
   EXPECT_EQ(both.rows.size(), 416u);
   ASSERT_EQ(both.source_sha256.size(), 2u);
-  EXPECT_EQ(both.source_files[1], kPyvisco + "freq_user_raw.csv");
-  EXPECT_EQ(both.rows[206].source_file, kPyvisco + "freq_user_raw.csv");
+  EXPECT_EQ(both.source_files[1], kPyviscoRaw);
+  EXPECT_EQ(both.rows[206].source_file, kPyviscoRaw);
   EXPECT_NE(both.source_sha256[0], both.source_sha256[1]);
 }
 

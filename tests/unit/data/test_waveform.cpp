@@ -1,6 +1,7 @@
 // Waveform analysis (energy method): exact sinusoids, smoothing, harmonics, seeded noise,
 // force/displacement conversion and the signal-file reader.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -308,7 +309,7 @@ TEST(WaveformFile, ShearSandwichWithHeaderMetadata) {
   // The row goes through the table contract unchanged (what fitcli waveform --out writes).
   fitlib::data::DynamicTestTable table;
   table.rows.push_back(row);
-  const std::string path = ::testing::TempDir() + "fitlib_waveform_row.csv";
+  const std::string path = fitlib_test::temp_path("fitlib_waveform_row.csv");
   fitlib::data::write_dynamic_table(path, table);
   const auto back = fitlib::data::read_dynamic_table(path);
   ASSERT_EQ(back.rows.size(), 1u);
@@ -350,7 +351,7 @@ TEST(WaveformFile, StressStrainInputWithHarmonic) {
 }
 
 TEST(WaveformFile, MetadataErrorsNameTheKey) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = fitlib_test::temp_dir();
   const auto write = [&](const std::string& name, const std::string& text) {
     fitlib::core::write_file_atomically(dir + name, text);
     return dir + name;

@@ -59,8 +59,9 @@ inline std::vector<double> prony_parameters(double m_inf, const std::vector<doub
   return p;
 }
 
-inline std::string shared_path(const std::string& relative) {
-  return std::string(FITLIB_SHARED_DIR) + "/" + relative;
+// pyvisco's example files, copied into the repository (datasets/README.md, tests/data/pyvisco).
+inline std::string repo_path(const std::string& relative) {
+  return std::string(FITLIB_SOURCE_DIR) + "/" + relative;
 }
 
 inline data::DynamicTestTable read_pyvisco(const std::string& relative) {
@@ -68,7 +69,7 @@ inline data::DynamicTestTable read_pyvisco(const std::string& relative) {
   o.format = data::TableFormat::pyvisco;
   o.has_default_mode = true;
   o.default_mode = model::TestMode::uniaxial;
-  return data::read_dynamic_table(shared_path(relative), o);
+  return data::read_dynamic_table(repo_path(relative), o);
 }
 
 // ANSYS TB,PRONY terms (α_i, τ_i) from an .MPL file.

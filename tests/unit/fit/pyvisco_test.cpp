@@ -1,6 +1,7 @@
 // Acceptance on pyvisco's master curve against the ANSYS reference terms, and a master curve
 // built from raw isotherms (WLF shifts fitted with the Prony series).
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cstdio>
 
@@ -21,7 +22,7 @@ struct LogRms {
 
 // Independent evaluation of the ANSYS terms on the data points.
 LogRms ansys_reference(const data::DynamicTestTable& table) {
-  const auto terms = read_ansys_prony(shared_path("external/pyvisco/verification/freq_master/prony_terms.MPL"));
+  const auto terms = read_ansys_prony(repo_path("tests/data/pyvisco/freq_master_prony_terms.MPL"));
   EXPECT_EQ(terms.size(), 27u);
   const data::DynamicTestRow* highest = &table.rows.front();
   for (const auto& row : table.rows)
@@ -41,7 +42,7 @@ LogRms ansys_reference(const data::DynamicTestTable& table) {
 }  // namespace
 
 TEST(Pyvisco, AnsysReferenceTermsReproduceThePublishedFigures) {
-  const auto table = read_pyvisco("external/pyvisco/examples/freq_user_master.csv");
+  const auto table = read_pyvisco("datasets/materials/pyvisco-freq-master.csv");
   ASSERT_EQ(table.rows.size(), 206u);
   const LogRms ansys = ansys_reference(table);
   EXPECT_NEAR(ansys.storage, 0.0107, 0.0005);  // anchors.md
@@ -51,7 +52,7 @@ TEST(Pyvisco, AnsysReferenceTermsReproduceThePublishedFigures) {
 // --terms auto with the storage weight that puts the fit past ANSYS on both axes of the
 // E′/E″ frontier (the data are not Kramers–Kronig consistent: no fit is best in both).
 TEST(Pyvisco, TermsAutoDominatesTheAnsysTermsWithStorageWeight) {
-  const auto table = read_pyvisco("external/pyvisco/examples/freq_user_master.csv");
+  const auto table = read_pyvisco("datasets/materials/pyvisco-freq-master.csv");
   const LogRms ansys = ansys_reference(table);
   fit::FitOptions o;
   o.storage_weight = 500.0;
@@ -70,7 +71,7 @@ TEST(Pyvisco, TermsAutoDominatesTheAnsysTermsWithStorageWeight) {
 // the Prony series fitted together by a staged schedule — moduli by NNLS on a broad τ grid,
 // then moduli and shifts with τ held, then everything.
 TEST(Pyvisco, MasterCurveFromRawIsothermsWithWlf) {
-  const auto table = read_pyvisco("external/pyvisco/examples/freq_user_raw.csv");
+  const auto table = read_pyvisco("datasets/materials/pyvisco-freq-raw.csv");
   ASSERT_EQ(table.rows.size(), 210u);
   const int n = 16;
   const auto model = model::make_model("prony", {{"terms", n}, {"mode", "uniaxial"},
@@ -81,7 +82,7 @@ TEST(Pyvisco, MasterCurveFromRawIsothermsWithWlf) {
   for (int i = 0; i < n; ++i) start[1 + n + i] = std::pow(10.0, -14.0 + 26.0 * i / (n - 1));
   start[c1] = 17.44;  // the "universal" WLF constants as a start
   start[c2] = 51.6;
-  const std::string schedule = ::testing::TempDir() + "fit_master_schedule.json";
+  const std::string schedule = fitlib_test::temp_path("fit_master_schedule.json");
   core::write_file_atomically(schedule, R"({"stages": [
     {"name": "moduli", "free": ["*"], "backend": "nnls"},
     {"name": "shifts", "free": ["group:elastic", "group:viscous", "group:shift"], "backend": "ceres"},

@@ -1,5 +1,6 @@
 // Staged schedules: parsing (JSON and TOML), selectors, errors naming the key, and a staged fit.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include "fit_testing.hpp"
 #include "fitlib/core/error.hpp"
@@ -39,7 +40,7 @@ max_iterations = 200
 )";
 
 std::string temp_file(const std::string& name, const std::string& content) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = fitlib_test::temp_path(name);
   core::write_file_atomically(path, content);
   return path;
 }

@@ -3,6 +3,7 @@
 // files after a deliberate change: FITLIB_REGENERATE_DATASETS=1 ./test_fritzson
 //   --gtest_filter='FritzsonDatasets.*'
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cstdlib>
 #include <nlohmann/json.hpp>
@@ -55,7 +56,7 @@ TEST(FritzsonDatasets, CommittedTablesAreReproducedByteForByte) {
   for (int m : {1, 2}) {
     const std::string name = "material-" + std::to_string(m) + ".csv";
     const std::string text = table_text(m);
-    core::write_file_atomically(::testing::TempDir() + name, text);  // for inspection
+    core::write_file_atomically(fitlib_test::temp_path(name), text);  // for inspection
     const std::string committed = kRoot + "/datasets/materials/" + name;
     if (regenerate()) core::write_file_atomically(committed, text);
     EXPECT_EQ(core::read_file(committed), text) << committed << " differs from the generator";

@@ -69,19 +69,19 @@ double max_shift_error(const fit::MasterCurve& curve) {
   return worst;
 }
 
-std::string shared_path(const std::string& relative) { return std::string(FITLIB_SHARED_DIR) + "/" + relative; }
+std::string repo_path(const std::string& relative) { return std::string(FITLIB_SOURCE_DIR) + "/" + relative; }
 
 data::DynamicTestTable read_pyvisco(const std::string& relative) {
   data::ReadOptions o;
   o.format = data::TableFormat::pyvisco;
   o.has_default_mode = true;
   o.default_mode = model::TestMode::uniaxial;
-  return data::read_dynamic_table(shared_path(relative), o);
+  return data::read_dynamic_table(repo_path(relative), o);
 }
 
 // pyvisco's published shift table: (T, log a_T), 2-row header, BOM.
 std::vector<std::pair<double, double>> read_shift_factors(const std::string& relative) {
-  std::ifstream in(shared_path(relative));
+  std::ifstream in(repo_path(relative));
   std::string line;
   std::vector<std::pair<double, double>> out;
   int n = 0;
@@ -161,7 +161,7 @@ TEST(MasterCurve, ReferenceBetweenIsothermsIsInterpolated) {
 // pyvisco's raw isotherms: E′ shifts against pyvisco's published table (smoothness, span),
 // then a Prony fit of the master curve and the joint refinement.
 TEST(MasterCurve, PyviscoRawIsotherms) {
-  const auto raw = read_pyvisco("external/pyvisco/examples/freq_user_raw.csv");
+  const auto raw = read_pyvisco("datasets/materials/pyvisco-freq-raw.csv");
   ASSERT_EQ(raw.rows.size(), 210u);
   fit::MasterCurveOptions o;
   o.reference_C = -5.0;
@@ -171,7 +171,7 @@ TEST(MasterCurve, PyviscoRawIsotherms) {
   ASSERT_EQ(curve.isotherms.size(), 21u);
   for (std::size_t k = 1; k < curve.isotherms.size(); ++k)
     EXPECT_LT(curve.isotherms[k].log10_aT, curve.isotherms[k - 1].log10_aT) << curve.isotherms[k].set;
-  const auto published = read_shift_factors("external/pyvisco/examples/freq_user_master__shift_factors.csv");
+  const auto published = read_shift_factors("tests/data/pyvisco/freq_user_master__shift_factors.csv");
   ASSERT_EQ(published.size(), 21u);
   double worst = 0.0;
   for (std::size_t k = 0; k < published.size(); ++k) {
@@ -207,7 +207,7 @@ TEST(MasterCurve, PyviscoRawIsotherms) {
 // consistent) a 30-term Prony series on the free-shift master curve beats pyvisco's published
 // pipeline figures (0.0047, 0.188 before term reduction; anchors.md) on both axes.
 TEST(MasterCurve, PyviscoRawIsothermsBeatPyviscoAtTheStorageEnd) {
-  const auto raw = read_pyvisco("external/pyvisco/examples/freq_user_raw.csv");
+  const auto raw = read_pyvisco("datasets/materials/pyvisco-freq-raw.csv");
   fit::MasterCurveOptions o;
   o.reference_C = -5.0;
   fit::FitOptions f;

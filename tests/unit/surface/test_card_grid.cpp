@@ -1,6 +1,7 @@
 // Modulus surfaces from cards: the grid holds the card's moduli, and a surface fitted to the grid
 // reproduces the card between the grid points (tolerance stated in docs/surface.md).
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cmath>
 
@@ -31,7 +32,7 @@ card::Card prony_card() {
     p[static_cast<std::size_t>(i)] = v;
   }
   for (double v : p) c.parameters.push_back({v, false, {}, "", {}, {}});
-  const std::string path = ::testing::TempDir() + "surface_prony_card.json";
+  const std::string path = fitlib_test::temp_path("surface_prony_card.json");
   card::save_card(path, c);
   return card::load_card(path);
 }

@@ -1,5 +1,6 @@
 // Fitting, evaluation, hard cases and the JSON/CSV contracts of the surface module.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <Eigen/Dense>
 #include <cstdio>
@@ -19,7 +20,7 @@ bool all_cells(const std::vector<int>&) { return true; }
 int twice(std::size_t) { return 2; }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = fitlib_test::temp_path(name);
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
@@ -249,7 +250,7 @@ TEST(SurfaceFit, ScatteredDataRecoverAPolynomial) {
 TEST(SurfaceJson, RoundTripKeepsEverything) {
   const auto data = make_design(levels(3, 3, 3), shear_has_data, twice);
   const Surface s = fit_surface(data, rubber_options());
-  const std::string path = ::testing::TempDir() + "surface_roundtrip.json";
+  const std::string path = fitlib_test::temp_path("surface_roundtrip.json");
   save_surface(path, s);
   const Surface back = load_surface(path);
   EXPECT_EQ(back.control_points, s.control_points);

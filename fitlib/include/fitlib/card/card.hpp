@@ -20,6 +20,9 @@ struct ParameterEstimate {
 
 struct Card {
   static constexpr const char* kSchema = "fitlib.card/1";
+  // No card value (moduli in MPa, times in s, law constants) lies beyond this in magnitude;
+  // larger ones would overflow the moduli (docs/decisions.md, "Card value range").
+  static constexpr double kMaxMagnitude = 1e100;
   std::string name;
   std::string model_kind;
   nlohmann::json model_options = nlohmann::json::object();

@@ -36,6 +36,13 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A number for a message: %.6g (std::to_string prints 1e-310 as 0.000000 and 1e200 in full).
+std::string short_number(double value);
+
+// `value` if finite, else a NumericalError "<what> is not finite": every computed output passes
+// here before it is written, so no NaN or inf ever reaches a file.
+double require_finite(double value, const std::string& what);
+
 // Maps an exception to the contract's exit code.
 int exit_code_for(const std::exception& e);
 

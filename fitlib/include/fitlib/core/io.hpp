@@ -7,6 +7,14 @@ namespace fitlib::core {
 // Writes `content` to `path` through a temporary in the same folder and a rename.
 void write_file_atomically(const std::string& path, const std::string& content);
 
+// Checks before any work that `path` can be written: its folder exists and is writable and the
+// path is not a folder; InputError naming the path otherwise. Commands with several outputs check
+// them all first and write them all at the end, so a failed run leaves none behind.
+void check_output_path(const std::string& path);
+
+// Creates the output folder `dir` (and its parents); InputError naming it when that fails.
+void prepare_output_dir(const std::string& dir);
+
 // Whole file as bytes; InputError naming the file when it cannot be read.
 std::string read_file(const std::string& path);
 

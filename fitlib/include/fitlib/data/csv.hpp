@@ -1,8 +1,8 @@
 #pragma once
 // Small CSV building blocks shared by the dynamic-test table and the waveform reader.
-// Lines are split by io::LineReader's rules (UTF-8 BOM stripped, CRLF handled) on the bytes in
-// memory; fields are split here because both formats have optional and alternative columns, which
-// io::CSVReader (fixed column count known at compile time) cannot express.
+// Lines and fields are split here (UTF-8 BOM stripped, CRLF handled): both formats have optional
+// and alternative columns, which fast-cpp-csv-parser's io::CSVReader (fixed column count known at
+// compile time) cannot express, and its io::LineReader allocates 48 MiB per file.
 #include <optional>
 #include <string>
 #include <vector>

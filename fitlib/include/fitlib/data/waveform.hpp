@@ -112,6 +112,9 @@ struct WaveformRecord {
 // InputError naming the file and key (or line and column).
 WaveformRecord read_waveform(const std::string& signals_path, const std::string& sidecar_path = "");
 
+// analyse_waveform on a record read from a file; its errors name that file.
+WaveformReport analyse_record(const WaveformRecord& record, const WaveformOptions& options = {});
+
 // The dynamic-test row of an analysis (frequency, temperature, amplitudes, E′, E″, E_m).
 // Throws InputError if E″ < 0 (stress lagging strain: check the signs of the signals).
 DynamicTestRow waveform_row(const WaveformReport& report, const SpecimenInfo& specimen,

@@ -47,6 +47,8 @@ struct FitOptions {
   double tau_margin_decades = 1.0;
   double modulus_ceiling = 10.0;
   double relaxed_floor = 0.1;
+  // Wall times in the result's messages (staged fits) only when asked: same input, same bytes.
+  bool record_timing = false;
 };
 
 // The window a fit's series terms were held in (card "fit.admissible"; export checks it).

@@ -80,9 +80,13 @@ SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options 
 std::string load_history_csv(const SceneResult& r);
 std::string accumulation_csv(const AccumulationMap& m);
 std::string tension_test_csv(const belt::TensionTestResult& t);
-nlohmann::json summary_json(const Scene& scene, const SceneResult& r);
+// Wall times only with record_timing (otherwise the same scene gives the same bytes).
+nlohmann::json summary_json(const Scene& scene, const SceneResult& r, bool record_timing = false);
 // Writes load_history.csv, accumulation.csv, tension_test.csv (each if run) and summary.json into `dir`
 // atomically; returns the files written.
-std::vector<std::string> write_outputs(const Scene& scene, const SceneResult& r, const std::string& dir);
+// The folder is created first (InputError when it cannot be): call prepare_output_dir before
+// running to fail early.
+std::vector<std::string> write_outputs(const Scene& scene, const SceneResult& r, const std::string& dir,
+                                       bool record_timing = false);
 
 }  // namespace fitlib::scene

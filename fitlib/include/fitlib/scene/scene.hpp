@@ -23,6 +23,14 @@ struct PulleySpec {
   double torque_Nm = 0.0;                      // driven pulleys (0 = share of the remainder)
 };
 
+// Work caps (README "Work caps"): each keeps one command under a minute on the 2-core reference
+// machine; a scene beyond them is an InputError naming the key.
+constexpr double kMaxCoordinate_mm = 1e6;
+constexpr double kMaxAccumulationPoints = 1e5;       // cycle_points, omega_points each
+constexpr double kMaxAccumulationWork = 1e6;         // cycle_points × omega_points
+constexpr double kMaxTensionNodes = 1e4, kMaxTensionSteps = 1e5;
+constexpr double kMaxTensionWork = 2e6;              // nodes × steps
+
 // Strain accumulation request ([accumulation], Zupancic–Emri).
 struct AccumulationSpec {
   double shear_stress_MPa = 1.0;   // τ0 of the tooth-like loading

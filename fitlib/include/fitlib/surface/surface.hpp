@@ -22,6 +22,9 @@ namespace fitlib::surface {
 // is more than any lab design of Report V, and higher Bernstein degrees over scattered data only
 // follow the noise (bench_surface: accuracy versus degree).
 constexpr int kMaxDegree = 6;
+// A surface has at most this many axes and control points (the count must not wrap around).
+constexpr std::size_t kMaxAxes = 16;
+constexpr double kMaxControlPoints = 1e7;
 
 enum class Transform { linear, log10 };
 const char* to_string(Transform t);
