@@ -36,7 +36,8 @@ std::vector<std::optional<std::string>> blocked_effects(const Scene& s, const st
 }
 
 // Who asks for each effect: requested outputs and (through `needs`, walked backwards) the
-// effects that will read its result. Refinements do not pull in what they refine.
+// effects that will read its result. Refinements do not pull in what they refine; an effect this
+// build cannot run does not pull in effects that could (they would run for nothing).
 std::vector<std::vector<std::string>> askers(const Scene& s, const std::vector<Effect>& reg,
                                              const std::map<std::string, std::size_t>& index,
                                              const std::vector<std::optional<std::string>>& blocked) {
@@ -46,8 +47,9 @@ std::vector<std::vector<std::string>> askers(const Scene& s, const std::vector<E
       if (flag(s.outputs, o)) by[i].push_back(o);
   for (std::size_t i = reg.size(); i-- > 0;) {
     const bool wanted = !by[i].empty() || (!reg[i].effects_key.empty() && flag(s.effects, reg[i].effects_key));
-    if (!wanted || blocked[i] || !reg[i].refines.empty()) continue;
-    for (const auto& need : reg[i].needs(s)) by[index.at(need)].push_back(reg[i].name);
+    if (!wanted || !reg[i].refines.empty()) continue;
+    for (const auto& need : reg[i].needs(s))  // a blocked effect pulls in only what is blocked too
+      if (!blocked[i] || blocked[index.at(need)]) by[index.at(need)].push_back(reg[i].name);
   }
   return by;
 }
@@ -91,8 +93,8 @@ Plan make_plan(const Scene& s) {
       e.status = EffectStatus::not_needed, e.reason = "not run: no requested output uses " + f.refines;
     } else {
       e.status = EffectStatus::run, e.reason = join(why, "; ");
-      if (f.load_cycle_switch) p.load_cycle.*f.load_cycle_switch = true;
     }
+    if (f.load_cycle_switch) p.load_cycle.*f.load_cycle_switch = e.status == EffectStatus::run;
     p.effects.push_back(e);
   }
   for (const auto& o : output_names()) {

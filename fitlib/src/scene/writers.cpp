@@ -178,22 +178,24 @@ std::string life_text(const Scene& s, const SceneResult& r) {
   return o.str();
 }
 
-json effects_json(const Plan& plan) {
+json effects_json(const Plan& plan, bool wall_times) {
   json effects = json::array();
-  for (const auto& e : plan.effects)
-    effects.push_back({{"name", e.name}, {"ran", e.ran}, {"wall_s", e.wall_s}, {"reason", e.reason},
-                       {"status", to_string(e.status)}, {"cost", e.cost}});
+  for (const auto& e : plan.effects) {
+    effects.push_back({{"name", e.name}, {"ran", e.ran}, {"reason", e.reason}, {"status", to_string(e.status)},
+                       {"cost", e.cost}});
+    if (wall_times) effects.back()["wall_s"] = e.wall_s;
+  }
   return effects;
 }
 
-json summary_json(const Scene& s, const SceneResult& r) {
+json summary_json(const Scene& s, const SceneResult& r, bool wall_times) {
   json j;
   j["scene"] = s.name;
   j["source"] = s.path;
   j["version"] = FITLIB_VERSION;
-  j["effects"] = effects_json(r.plan);
+  j["effects"] = effects_json(r.plan, wall_times);
   j["outputs_not_available"] = r.plan.unavailable_outputs;
-  j["total_wall_s"] = r.total_wall_s;
+  if (wall_times) j["total_wall_s"] = r.total_wall_s;
   if (r.stiffness) j["stiffness"] = stiffness_json(*r.stiffness);
   if (r.drive) j["drive"] = drive_json(s, *r.drive);
   if (r.cycle) j["load_cycle"] = load_cycle_json(*r.cycle, *r.drive);
@@ -206,18 +208,19 @@ json summary_json(const Scene& s, const SceneResult& r) {
   return j;
 }
 
-json life_json(const Scene& s, const SceneResult& r) {
+json life_json(const Scene& s, const SceneResult& r, bool wall_times) {
   json j = life_summary_json(r.life.value());
   j["scene"] = s.name;
   j["source"] = s.path;
   j["version"] = FITLIB_VERSION;
   j["temperature_C"] = s.temperature_C;
-  j["effects"] = effects_json(r.plan);
-  j["total_wall_s"] = r.total_wall_s;
+  j["effects"] = effects_json(r.plan, wall_times);
+  if (wall_times) j["total_wall_s"] = r.total_wall_s;
   return j;
 }
 
-std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, const std::string& dir) {
+std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, const std::string& dir,
+                                       bool wall_times) {
   std::filesystem::create_directories(dir);
   std::vector<std::string> written;
   auto put = [&](const std::string& name, const std::string& text) {
@@ -229,8 +232,8 @@ std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, con
   if (r.cycle && history != s.outputs.end() && history->second) put("load_history.csv", load_history_csv(r));
   if (r.accumulation) put("accumulation.csv", accumulation_csv(*r.accumulation));
   if (r.tension_test) put("tension_test.csv", tension_test_csv(r.tension_test->result));
-  if (r.life) put("life.json", life_json(s, r).dump(2) + "\n");
-  put("summary.json", summary_json(s, r).dump(2) + "\n");
+  if (r.life) put("life.json", life_json(s, r, wall_times).dump(2) + "\n");
+  put("summary.json", summary_json(s, r, wall_times).dump(2) + "\n");
   return written;
 }
 

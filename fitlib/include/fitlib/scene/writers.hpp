@@ -15,8 +15,9 @@ namespace fitlib::scene {
 std::string load_history_csv(const SceneResult& r);
 std::string accumulation_csv(const AccumulationMap& m);
 std::string tension_test_csv(const belt::TensionTestResult& t);
-// Effects (name, ran, wall_s, reason, cost), one entry per registry effect.
-nlohmann::json effects_json(const Plan& plan);
+// Effects (name, ran, status, reason, cost measure and, with wall_times, wall_s), one entry per
+// registry effect. Wall times break byte-identical outputs, hence the switch.
+nlohmann::json effects_json(const Plan& plan, bool wall_times = true);
 // Human table of the effects: ran / not run, name, cost in ms, reason.
 std::string effects_table(const Plan& plan);
 // Human life report: fidelity and why, life per mode in cycles and hours with the design points,
@@ -24,12 +25,13 @@ std::string effects_table(const Plan& plan);
 std::string life_text(const Scene& scene, const SceneResult& r);
 // The summary: plan, effects with wall times, stiffness, drive, per-pulley results, and the
 // result of every other effect that ran.
-nlohmann::json summary_json(const Scene& scene, const SceneResult& r);
+nlohmann::json summary_json(const Scene& scene, const SceneResult& r, bool wall_times = true);
 // life.json: scene, fidelity and why, input files with sha256, life per mode (fatigue's JSON),
-// effects with their cost. Requires r.life.
-nlohmann::json life_json(const Scene& scene, const SceneResult& r);
+// effects with their cost (wall times only with wall_times). Requires r.life.
+nlohmann::json life_json(const Scene& scene, const SceneResult& r, bool wall_times);
 // Writes load_history.csv, accumulation.csv, tension_test.csv, life.json (each if run) and
 // summary.json into `dir` atomically; returns the files written.
-std::vector<std::string> write_outputs(const Scene& scene, const SceneResult& r, const std::string& dir);
+std::vector<std::string> write_outputs(const Scene& scene, const SceneResult& r, const std::string& dir,
+                                       bool wall_times = true);
 
 }  // namespace fitlib::scene
