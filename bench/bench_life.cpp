@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "drive_sweep.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
@@ -62,26 +63,11 @@ void level_table() {
 
 void beam_sweep() {
   std::printf("\n## 2. Beam level: sweep of 1000 drives through the planner\n\n");
-  scene::Scene s = reference("medium", "beam");
-  int done = 0, refused = 0, separation = 0;
-  const core::Stopwatch watch;
-  for (int i = 0; i < 25; ++i)
-    for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 10; ++k) {
-        s.torque_Nm = 2.0 + 2.0 * i;
-        s.pulleys[0].speed_rpm = 1000.0 + 1000.0 * j;
-        s.temperature_C = 60.0 + 60.0 * k / 9.0;
-        try {
-          const auto r = scene::run_scene(s);
-          ++done;
-          separation += r.life->report.governing == "separation";
-        } catch (const std::exception&) {
-          ++refused;  // the belt slips or lifts off: no load cycle
-        }
-      }
-  const double sweep_s = watch.seconds();
+  const SweepCounts c = sweep_1000_drives(reference("medium", "beam"), [](const scene::Scene& s) {
+    return scene::run_scene(s).life->report.governing;
+  });
   std::printf("1000 drives in %.3f s (%.3f ms per drive): %d computed, %d refused (belt slips), "
-              "%d governed by separation\n", sweep_s, sweep_s, done, refused, separation);
+              "%d governed by separation\n", c.seconds, c.seconds, c.done, c.refused, c.separation);
 }
 
 }  // namespace
