@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "drive_sweep.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -68,25 +69,9 @@ int main() {
 
   std::printf("\n## 2. Sweep of 1000 drives\n\n");
   scene::Scene s = reference("medium");
-  int done = 0, refused = 0, governed_by_separation = 0;
-  const core::Stopwatch watch;
-  for (int i = 0; i < 25; ++i)
-    for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 10; ++k) {
-        s.torque_Nm = 2.0 + 2.0 * i;
-        s.pulleys[0].speed_rpm = 1000.0 + 1000.0 * j;
-        s.temperature_C = 60.0 + 60.0 * k / 9.0;
-        try {
-          const Run r = run(s);
-          ++done;
-          governed_by_separation += r.life.governing == "separation";
-        } catch (const std::exception&) {
-          ++refused;  // the belt slips or lifts off: no load cycle
-        }
-      }
-  const double sweep_s = watch.seconds();
+  const SweepCounts c = sweep_1000_drives(s, [](const scene::Scene& d) { return run(d).life.governing; });
   std::printf("1000 drives in %.3f s (%.3f ms per drive): %d computed, %d refused (belt slips), "
-              "%d governed by separation\n", sweep_s, sweep_s, done, refused, governed_by_separation);
+              "%d governed by separation\n", c.seconds, c.seconds, c.done, c.refused, c.separation);
 
   std::printf("\n### Pull–life diagram (3000 rpm, 80 °C; medium drive's pulleys and tension)\n\n");
   std::printf("| torque N·m | N1 radial crack (h) | N2 separation (h) | governing |\n|---|---|---|---|\n");

@@ -28,9 +28,7 @@ void register_belt(CLI::App& app) {
       return;
     }
     std::cout << "scene: " << scene.name << "\n";
-    for (const auto& e : result.plan.effects)
-      std::cout << "  " << (e.ran ? "ran     " : "not run ") << e.name << "  " << e.wall_s * 1e3
-                << " ms  (" << e.reason << ")\n";
+    std::cout << fitlib::scene::effects_table(result.plan);
     if (result.cycle)
       for (const auto& p : result.cycle->pulleys)
         std::cout << "  pulley " << p.name << " (" << fitlib::belt::to_string(p.role) << "): F " << p.F_in_N

@@ -224,6 +224,10 @@ ViscoelasticPulley march_pulley(const ViscoelasticDriveInput& in, double T_in, d
 }
 }  // namespace
 
+ThreeParameterBelt drive_time_belt(double S_N, double omega_rad_s) {
+  return {S_N, 0.2 / omega_rad_s, 0.3 / omega_rad_s};
+}
+
 ViscoelasticDrive solve_viscoelastic_drive(const ViscoelasticDriveInput& in) {
   if (!(in.tight_N > in.slack_N && in.slack_N > 0))
     throw InputError("need tight > slack > 0", {}, 0, 0, "viscoelastic.tight_N");

@@ -1,5 +1,7 @@
 #include "fitlib/scene/scene.hpp"
 
+#include "fitlib/core/toml_limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -10,7 +12,6 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
-#include "fitlib/core/toml_limits.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::scene {
@@ -230,29 +231,9 @@ const std::vector<std::string>& output_names() {
   return names;
 }
 
-Scene parse_scene(const std::string& text, const std::string& source) {
-  core::check_toml_limits(text, source);
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    throw InputError(std::string(e.description()), source, static_cast<int>(e.source().begin.line),
-                     static_cast<int>(e.source().begin.column));
-  }
-  Scene s;
-  s.path = source;
-  const std::filesystem::path base = std::filesystem::path(source).parent_path();
-  Reader top(root, "", source);
-  top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt",
-             "tension_test", "segment"});
-  s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
+namespace {
 
-  // [drive]
-  const toml::table* drive_t = top.table("drive");
-  if (!drive_t) top.fail("drive", "missing [drive] table", root.source());
-  Reader drive(*drive_t, "drive", source);
-  drive.allow({"pulleys", "center_distance_mm", "torque_Nm", "power_kW", "slack_tension_N",
-               "tight_tension_N", "initial_tension_N"});
+void parse_pulleys(Scene& s, Reader& drive, const std::string& source) {
   const toml::node* pulleys_n = drive.node("pulleys");
   if (!pulleys_n || !pulleys_n->as_array())
     drive.fail("pulleys", "expects an array of pulley tables {name, pitch_diameter_mm, role, ...}");
@@ -284,6 +265,15 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     ++index;
   }
   if (s.pulleys.size() < 2) drive.fail("pulleys", "a drive needs at least two pulleys");
+}
+
+void parse_drive(Scene& s, Reader& top, const toml::table& root, const std::string& source) {
+  const toml::table* drive_t = top.table("drive");
+  if (!drive_t) top.fail("drive", "missing [drive] table", root.source());
+  Reader drive(*drive_t, "drive", source);
+  drive.allow({"pulleys", "center_distance_mm", "torque_Nm", "power_kW", "slack_tension_N",
+               "tight_tension_N", "initial_tension_N"});
+  parse_pulleys(s, drive, source);
   s.center_distance_mm = drive.number("center_distance_mm", 0.0, 1e6, true);
   const bool all_centres = std::all_of(s.pulleys.begin(), s.pulleys.end(),
                                        [](const PulleySpec& p) { return p.center_mm.has_value(); });
@@ -308,8 +298,15 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     drive.fail("slack_tension_N", "missing tensioning rule (slack_tension_N, tight_tension_N or initial_tension_N)",
                drive_t->source());
   drive.finish();
+}
 
-  // [belt]
+// A path relative to the scene's folder.
+std::string scene_relative(const std::filesystem::path& base, const std::string& p) {
+  std::filesystem::path f(p);
+  return (f.is_absolute() ? f : base / f).lexically_normal().string();
+}
+
+void parse_belt(Scene& s, Reader& top, const std::filesystem::path& base, const std::string& source) {
   const toml::table* belt_t = top.table("belt");
   toml::table empty;
   Reader br(belt_t ? *belt_t : empty, "belt", source);
@@ -322,10 +319,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     Reader mr(*mt, "belt.materials", source);
     mr.allow({"bottom", "cushion", "cord"});
     for (const char* role : {"bottom", "cushion", "cord"})
-      if (auto p = mr.string(role)) {
-        std::filesystem::path f(*p);
-        s.materials[role] = (f.is_absolute() ? f : base / f).lexically_normal().string();
-      }
+      if (auto p = mr.string(role)) s.materials[role] = scene_relative(base, *p);
     mr.finish();
   }
   if (const toml::table* st = br.table("stiffness")) {
@@ -337,8 +331,107 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     sr.finish();
   }
   br.finish();
+}
 
-  // [conditions]
+AccumulationSpec parse_accumulation(const toml::table& t, const std::string& source) {
+  Reader ar(t, "accumulation", source);
+  ar.allow({"shear_stress_MPa", "cycles", "cycle_points", "omega_min_rad_s", "omega_max_rad_s",
+            "omega_points", "kappa", "spectrum", "strain_limit"});
+  AccumulationSpec a;
+  a.shear_stress_MPa = ar.number_or("shear_stress_MPa", a.shear_stress_MPa, 0.0, 1e6, true);
+  a.cycles = static_cast<long>(ar.number_or("cycles", 10000, 1, 1e12));
+  a.cycle_points = static_cast<int>(ar.number_or("cycle_points", 50, 1, kMaxAccumulationPoints));
+  a.omega_min_rad_s = ar.number_or("omega_min_rad_s", a.omega_min_rad_s, 0.0, 1e9, true);
+  a.omega_max_rad_s = ar.number_or("omega_max_rad_s", a.omega_max_rad_s, 0.0, 1e9, true);
+  if (a.omega_max_rad_s < a.omega_min_rad_s) ar.fail("omega_max_rad_s", "must be >= omega_min_rad_s");
+  a.omega_points = static_cast<int>(ar.number_or("omega_points", 100, 1, kMaxAccumulationPoints));
+  if (static_cast<double>(a.cycle_points) * a.omega_points > kMaxAccumulationWork)
+    ar.fail("omega_points", "cycle_points x omega_points exceeds the work cap " + std::to_string(kMaxAccumulationWork) +
+                                " (README, work caps)");
+  a.kappa = ar.number("kappa", 0.0, 1e6);
+  a.spectrum = ar.string("spectrum").value_or(a.spectrum);
+  a.strain_limit = ar.number("strain_limit", 0.0, 1e6, true);
+  ar.finish();
+  return a;
+}
+
+CvtSpec parse_cvt(const toml::table& t, const std::string& source) {
+  Reader vr(t, "cvt", source);
+  vr.allow({"tight_tension_N", "slack_tension_N", "groove_half_angle_deg", "driver_wrap_deg",
+            "driven_wrap_deg"});
+  CvtSpec c;
+  c.tight_tension_N = vr.number_or("tight_tension_N", 0.0, 0.0, 1e7);
+  c.slack_tension_N = vr.number_or("slack_tension_N", 0.0, 0.0, 1e7);
+  c.groove_half_angle_deg = vr.number_or("groove_half_angle_deg", c.groove_half_angle_deg, 0.0, 90.0, true);
+  c.driver_wrap_rad = vr.number_or("driver_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
+  c.driven_wrap_rad = vr.number_or("driven_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
+  vr.finish();
+  return c;
+}
+
+TensionTestSpec parse_tension_test(const toml::table& t, const std::string& source) {
+  Reader tr(t, "tension_test", source);
+  tr.allow({"rate_mm_min", "load_time_s", "S_N", "tau_T_s", "tau_eps_s", "nodes", "steps"});
+  TensionTestSpec x;
+  x.rate_mm_min = tr.number_or("rate_mm_min", x.rate_mm_min, 0.0, 1e6, true);
+  x.load_time_s = tr.number_or("load_time_s", x.load_time_s, 0.0, 1e7, true);
+  x.S_N = tr.number("S_N", 0.0, 1e12, true);
+  x.tau_T_s = tr.number_or("tau_T_s", x.tau_T_s, 0.0, 1e9);
+  x.tau_eps_s = tr.number_or("tau_eps_s", x.tau_eps_s, 0.0, 1e9);
+  x.nodes = static_cast<int>(tr.number_or("nodes", x.nodes, 2, kMaxTensionNodes));
+  x.steps = static_cast<int>(tr.number_or("steps", x.steps, 1, kMaxTensionSteps));
+  if (static_cast<double>(x.nodes) * x.steps > kMaxTensionWork)
+    tr.fail(tr.has("steps") ? "steps" : "nodes", "nodes x steps exceeds the work cap " +
+                                                   std::to_string(kMaxTensionWork) + " (README, work caps)");
+  return x;
+}
+
+LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, const std::string& source) {
+  Reader lr(t, "life", source);
+  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg"});
+  LifeSpec l;
+  if (auto f = lr.string("fidelity")) {
+    if (*f != "beam" && *f != "elastic" && *f != "complete")
+      lr.fail("fidelity", "fidelity must be \"beam\", \"elastic\" or \"complete\", not \"" + *f + "\"");
+    l.fidelity = *f;
+  }
+  if (auto c = lr.string("card")) l.card = scene_relative(base, *c);
+  l.cycles = static_cast<int>(lr.number_or("cycles", l.cycles, 1, 1e4));
+  l.crack_sweep_deg = lr.number("crack_sweep_deg", 0.0, 90.0);
+  lr.finish();
+  return l;
+}
+
+void parse_flags(Reader& top, const char* table, const std::vector<std::string>& names,
+                 std::map<std::string, bool>& out, const std::string& source) {
+  if (const toml::table* t = top.table(table)) {
+    Reader fr(*t, table, source);
+    for (const auto& n : names)
+      if (auto b = fr.boolean(n)) out[n] = *b;
+    fr.finish();
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  core::check_toml_limits(text, source);
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw InputError(std::string(e.description()), source, static_cast<int>(e.source().begin.line),
+                     static_cast<int>(e.source().begin.column));
+  }
+  Scene s;
+  s.path = source;
+  const std::filesystem::path base = std::filesystem::path(source).parent_path();
+  Reader top(root, "", source);
+  top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt",
+             "tension_test", "segment", "life"});
+  s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
+  parse_drive(s, top, root, source);
+  parse_belt(s, top, base, source);
   if (const toml::table* ct = top.table("conditions")) {
     Reader cr(*ct, "conditions", source);
     cr.allow({"temperature_C", "friction"});
@@ -346,69 +439,14 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     s.friction = cr.number_or("friction", 0.8, 0.0, 100.0);
     cr.finish();
   }
-
-  // [effects], [outputs]
-  auto flags = [&](const char* table, const std::vector<std::string>& names,
-                   std::map<std::string, bool>& out) {
-    if (const toml::table* t = top.table(table)) {
-      Reader fr(*t, table, source);
-      for (const auto& n : names)
-        if (auto b = fr.boolean(n)) out[n] = *b;
-      fr.finish();
-    }
-  };
-  flags("effects", effect_names(), s.effects);
-  flags("outputs", output_names(), s.outputs);
+  parse_flags(top, "effects", effect_names(), s.effects, source);
+  parse_flags(top, "outputs", output_names(), s.outputs, source);
   if (!top.has("outputs")) s.outputs["load_history"] = true;
-
-  // [accumulation]
-  if (const toml::table* at = top.table("accumulation")) {
-    Reader ar(*at, "accumulation", source);
-    ar.allow({"shear_stress_MPa", "cycles", "cycle_points", "omega_min_rad_s", "omega_max_rad_s",
-              "omega_points", "kappa", "spectrum", "strain_limit"});
-    AccumulationSpec a;
-    a.shear_stress_MPa = ar.number_or("shear_stress_MPa", a.shear_stress_MPa, 0.0, 1e6, true);
-    a.cycles = static_cast<long>(ar.number_or("cycles", 10000, 1, 1e12));
-    a.cycle_points = static_cast<int>(ar.number_or("cycle_points", 50, 1, 1e5));
-    a.omega_min_rad_s = ar.number_or("omega_min_rad_s", a.omega_min_rad_s, 0.0, 1e9, true);
-    a.omega_max_rad_s = ar.number_or("omega_max_rad_s", a.omega_max_rad_s, 0.0, 1e9, true);
-    if (a.omega_max_rad_s < a.omega_min_rad_s) ar.fail("omega_max_rad_s", "must be >= omega_min_rad_s");
-    a.omega_points = static_cast<int>(ar.number_or("omega_points", 100, 1, 1e5));
-    a.kappa = ar.number("kappa", 0.0, 1e6);
-    a.spectrum = ar.string("spectrum").value_or(a.spectrum);
-    a.strain_limit = ar.number("strain_limit", 0.0, 1e6, true);
-    ar.finish();
-    s.accumulation = a;
-  }
-  // [cvt]
-  if (const toml::table* vt = top.table("cvt")) {
-    Reader vr(*vt, "cvt", source);
-    vr.allow({"tight_tension_N", "slack_tension_N", "groove_half_angle_deg", "driver_wrap_deg",
-              "driven_wrap_deg"});
-    CvtSpec c;
-    c.tight_tension_N = vr.number_or("tight_tension_N", 0.0, 0.0, 1e7);
-    c.slack_tension_N = vr.number_or("slack_tension_N", 0.0, 0.0, 1e7);
-    c.groove_half_angle_deg = vr.number_or("groove_half_angle_deg", c.groove_half_angle_deg, 0.0, 90.0, true);
-    c.driver_wrap_rad = vr.number_or("driver_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
-    c.driven_wrap_rad = vr.number_or("driven_wrap_deg", 0.0, 0.0, 360.0) * kPi / 180.0;
-    vr.finish();
-    s.cvt = c;
-  }
-  // [tension_test]
-  if (const toml::table* tt = top.table("tension_test")) {
-    Reader tr(*tt, "tension_test", source);
-    tr.allow({"rate_mm_min", "load_time_s", "S_N", "tau_T_s", "tau_eps_s", "nodes", "steps"});
-    TensionTestSpec t;
-    t.rate_mm_min = tr.number_or("rate_mm_min", t.rate_mm_min, 0.0, 1e6, true);
-    t.load_time_s = tr.number_or("load_time_s", t.load_time_s, 0.0, 1e7, true);
-    t.S_N = tr.number("S_N", 0.0, 1e12, true);
-    t.tau_T_s = tr.number_or("tau_T_s", t.tau_T_s, 0.0, 1e9);
-    t.tau_eps_s = tr.number_or("tau_eps_s", t.tau_eps_s, 0.0, 1e9);
-    t.nodes = static_cast<int>(tr.number_or("nodes", t.nodes, 2, 1e5));
-    t.steps = static_cast<int>(tr.number_or("steps", t.steps, 1, 1e7));
-    s.tension_test = t;
-  }
+  if (const toml::table* at = top.table("accumulation")) s.accumulation = parse_accumulation(*at, source);
+  if (const toml::table* vt = top.table("cvt")) s.cvt = parse_cvt(*vt, source);
+  if (const toml::table* tt = top.table("tension_test")) s.tension_test = parse_tension_test(*tt, source);
   if (const toml::table* st = top.table("segment")) s.segment = parse_segment(s, *st, source);
+  if (const toml::table* lt = top.table("life")) s.life = parse_life(*lt, base, source);
   top.finish();
   return s;
 }

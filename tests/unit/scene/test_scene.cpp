@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -99,21 +101,24 @@ TEST(Planner, RunsOnlyWhatTheOutputsNeed) {
   EXPECT_FALSE(none.cycle.has_value());
 }
 
-TEST(Planner, FullSceneRunsEveryAvailableEffectAndListsLifeAsNotAvailable) {
+TEST(Planner, FullSceneRunsEveryAvailableEffectWithLifeAtTheBeamLevel) {
   const auto s = scene::load_scene(kData + "full.toml");
   const auto r = scene::run_scene(s);
   for (const char* on : {"stiffness", "drive", "contact_arcs", "bending_zones", "inertia", "full_ode",
-                         "driver_exit_ramp", "viscoelastic_tension", "strain_accumulation", "cvt_thrust"}) {
+                         "driver_exit_ramp", "viscoelastic_tension", "strain_accumulation", "cvt_thrust",
+                         "beam_stresses", "fatigue"}) {
     auto it = std::find_if(r.plan.effects.begin(), r.plan.effects.end(), [&](const auto& e) { return e.name == on; });
     ASSERT_NE(it, r.plan.effects.end()) << on;
     EXPECT_TRUE(it->ran) << on;
     EXPECT_GE(it->wall_s, 0.0);
   }
-  ASSERT_EQ(r.plan.unavailable_outputs, std::vector<std::string>{"life"});
+  EXPECT_TRUE(r.plan.unavailable_outputs.empty());
+  ASSERT_TRUE(r.life.has_value());
+  EXPECT_EQ(r.life->plan.fidelity, "beam");
   auto fe = std::find_if(r.plan.effects.begin(), r.plan.effects.end(), [](const auto& e) { return e.name == "segment_fe"; });
   ASSERT_NE(fe, r.plan.effects.end());
   EXPECT_FALSE(fe->ran);
-  EXPECT_NE(fe->reason.find("not available in this version"), std::string::npos);
+  EXPECT_EQ(fe->status, scene::EffectStatus::not_requested);
   // Power → torque: 4 kW at 3000 rpm = 12.73 N·m on R = 50 mm → ΔF = 254.6 N.
   const auto& F = r.drive->span_tension_N;
   EXPECT_NEAR(F[1] - F[0], 4000.0 / (3000 * 2 * M_PI / 60) * 1000 / 50, 1e-9);
@@ -145,17 +150,18 @@ TEST(Planner, ThreePulleyDrive) {
 TEST(Outputs, WritesCsvAndJsonAtomically) {
   const auto s = scene::load_scene(kData + "full.toml");
   const auto r = scene::run_scene(s);
-  const auto dir = std::filesystem::temp_directory_path() / "fitlib_test_scene_out";
+  const auto dir = std::filesystem::temp_directory_path() / ("fitlib_test_scene_out-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   const auto files = scene::write_outputs(s, r, dir.string());
-  EXPECT_EQ(files.size(), 3u);
+  EXPECT_EQ(files.size(), 4u);  // load history, accumulation, life, summary
   const std::string csv = core::read_file((dir / "load_history.csv").string());
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "s_mm,t_s,pulley,zone,F_N,K_1_per_mm,p_MPa,gamma_deg,sliding_velocity_mm_s,friction_used");
   EXPECT_EQ(csv.find("nan"), std::string::npos);
   EXPECT_EQ(csv.find("inf"), std::string::npos);
   const auto j = nlohmann::json::parse(core::read_file((dir / "summary.json").string()));
-  EXPECT_EQ(j["outputs_not_available"][0], "life");
+  EXPECT_TRUE(j["outputs_not_available"].empty());
+  EXPECT_TRUE(std::filesystem::exists(dir / "life.json"));
   std::filesystem::remove_all(dir);
 }
 
@@ -247,9 +253,10 @@ TEST(Planner, TensionTestOutputRunsOnlyTheSimulation) {
   const auto r = scene::run_scene(s);
   EXPECT_FALSE(r.cycle.has_value());  // no load history asked for
   ASSERT_TRUE(r.tension_test.has_value());
-  EXPECT_GT(r.tension_test->loading.back().span_tension_N, 0.0);
-  EXPECT_LE(r.tension_test->unloading.back().span_tension_N, 1e-9 + r.tension_test->unloading.front().span_tension_N);
-  const std::string csv = scene::tension_test_csv(*r.tension_test);
+  const auto& test = r.tension_test->result;
+  EXPECT_GT(test.loading.back().span_tension_N, 0.0);
+  EXPECT_LE(test.unloading.back().span_tension_N, 1e-9 + test.unloading.front().span_tension_N);
+  const std::string csv = scene::tension_test_csv(test);
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "phase,t_s,elongation_mm,span_tension_N,boundary_deg");
 }
 
@@ -259,10 +266,11 @@ TEST(Planner, TensionTestOutputRunsOnlyTheSimulation) {
 TEST(Planner, SteadyDriveUsesStaticTensionsWithoutInertia) {
   auto s = scene::load_scene(FITLIB_SOURCE_DIR "/datasets/drives/sorge-cammalleri-fig5.toml");
   const auto r = scene::run_scene(s);
-  const auto& v = r.extra.at("viscoelastic_tension");
-  EXPECT_NEAR(v["driver"]["adhesion_deg"].get<double>(), 75.00, 0.005);
-  EXPECT_NEAR(v["driven"]["adhesion_deg"].get<double>(), 75.00, 0.005);
+  const double deg = 180.0 / M_PI;
+  const auto& v = r.viscoelastic->solution;
+  EXPECT_NEAR(v.driver.adhesion_rad * deg, 75.00, 0.005);
+  EXPECT_NEAR(v.driven.adhesion_rad * deg, 75.00, 0.005);
   s.effects["inertia"] = true;
   const auto with_inertia = scene::run_scene(s);
-  EXPECT_LT(with_inertia.extra.at("viscoelastic_tension")["driver"]["adhesion_deg"].get<double>(), 74.5);
+  EXPECT_LT(with_inertia.viscoelastic->solution.driver.adhesion_rad * deg, 74.5);
 }

@@ -75,6 +75,11 @@ struct ViscoelasticDrive {
 // InputError (key viscoelastic...) for a belt that slips or non-positive data.
 ViscoelasticDrive solve_viscoelastic_drive(const ViscoelasticDriveInput& in);
 
+// The belt in a running drive: equilibrium stiffness S with the short drive-time constants of
+// Sorge–Cammalleri's "crude extrapolation" (seed L162), τ_T ≈ 0.2/ω, τ_ε ≈ 0.3/ω, ω the pulley's
+// angular speed (rad/s).
+ThreeParameterBelt drive_time_belt(double S_N, double omega_rad_s);
+
 // The paper's route: the six matching equations (17a,b) tension at the exits, (19a,b) elongation
 // continuity at the entrances through the free spans, (20a,b) |T'| = fT where adhesion starts, in
 // θ_eR, θ_sR, θ_eN, θ_sN, ε_R, ε_N, solved with Ceres under θ_e ≥ 0. An entrance arc that ends on

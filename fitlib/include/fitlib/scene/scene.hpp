@@ -65,6 +65,14 @@ struct SegmentSpec {
   segment::StaticLoad load;
 };
 
+// Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").
+struct LifeSpec {
+  std::optional<std::string> fidelity;    // beam | elastic | complete; absent: the planner's default
+  std::string card;                       // fatigue card path (resolved); empty: the bundled default
+  int cycles = 3;                         // load cycles the segment levels run (beam: one exact cycle)
+  std::optional<double> crack_sweep_deg;  // overrides the card's mode-1 sweep
+};
+
 struct Scene {
   std::string name;
   std::string path;  // file it came from (errors, relative card paths)
@@ -91,6 +99,7 @@ struct Scene {
   std::optional<CvtSpec> cvt;
   std::optional<TensionTestSpec> tension_test;
   std::optional<SegmentSpec> segment;
+  std::optional<LifeSpec> life;
 };
 
 Scene load_scene(const std::string& path);

@@ -1,0 +1,44 @@
+// fitcli life: a scene's fatigue life — life per mode in cycles and hours, governing mode,
+// design points, the effects that ran and the cost of each (the table always shows wall times;
+// life.json and summary.json in DIR only with --record-timing, so that files stay byte-identical).
+#include <iostream>
+
+#include "commands.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/scene.hpp"
+
+namespace fitcli {
+
+void register_life(CLI::App& app) {
+  auto* cmd = app.add_subcommand("life", "Fatigue life of a drive scene: life per mode, governing mode, hours");
+  auto scene_path = std::make_shared<std::string>();
+  auto out_dir = std::make_shared<std::string>("life-out");
+  auto json = std::make_shared<bool>(false);
+  auto record_timing = std::make_shared<bool>(false);
+  cmd->add_option("--scene", *scene_path, "Scene TOML (formats.md §5; [life] optional)")->required();
+  cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)");
+  cmd->add_flag("--json", *json, "Print life.json on stdout");
+  cmd->add_flag("--record-timing", *record_timing,
+                "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
+  cmd->callback([=] {
+    auto scene = fitlib::scene::load_scene(*scene_path);
+    scene.outputs["life"] = true;  // the command asks for the life
+    const auto result = fitlib::scene::run_scene(scene);
+    if (!result.life) {
+      for (const auto& e : result.plan.effects)
+        if (e.name == "fatigue")
+          throw fitlib::core::InputError("the life cannot be computed: " + e.reason, scene.path, 0, 0, "life.fidelity");
+    }
+    const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
+    if (*json) {
+      std::cout << fitlib::scene::life_json(scene, result, *record_timing).dump(2) << "\n";
+      return;
+    }
+    std::cout << fitlib::scene::life_text(scene, result) << "effects:\n"
+              << fitlib::scene::effects_table(result.plan);
+    for (const auto& f : files) std::cout << "wrote " << f << "\n";
+  });
+}
+
+}  // namespace fitcli

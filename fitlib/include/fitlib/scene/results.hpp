@@ -1,0 +1,119 @@
+#pragma once
+// Typed results of a scene run: one slot per effect's product (docs/belt.md "Planner"). JSON is
+// made only by the writers (writers.hpp).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitlib/belt/drive.hpp"
+#include "fitlib/belt/load_cycle.hpp"
+#include "fitlib/belt/viscoelastic.hpp"
+#include "fitlib/fatigue/life.hpp"
+
+namespace fitlib::scene {
+
+// Why an effect does or does not run.
+enum class EffectStatus {
+  run,            // requested (directly or through an output that needs it)
+  not_requested,  // nothing asks for it
+  not_needed,     // listed true in [effects], but no requested output uses what it refines
+  unavailable,    // asked for, but this build cannot run it (or a need of it cannot run)
+};
+const char* to_string(EffectStatus status);
+
+struct EffectReport {
+  std::string name;
+  EffectStatus status = EffectStatus::not_requested;
+  bool ran = false;
+  double wall_s = 0.0;
+  std::string reason;  // "needed by load_history", "[effects] inertia = true", "not requested", ...
+  std::string cost;    // how wall_s is measured (the registry's words)
+};
+
+// The life the planner will compute: the fidelity level and why it was chosen.
+struct LifePlan {
+  std::string fidelity;  // beam | elastic | complete
+  std::string reason;    // "[life] fidelity = beam" or the default rule's words
+};
+
+struct Plan {
+  std::vector<EffectReport> effects;  // in run order (the registry's), each with ran = false until run
+  belt::LoadCycleEffects load_cycle;  // the refinements that will run
+  std::optional<LifePlan> life;       // when [outputs] life = true
+  std::vector<std::string> unavailable_outputs;  // requested but not computable in this build
+  bool will_run(const std::string& effect) const;
+};
+
+// Belt stiffnesses c, k1, EI at the scene's temperature and where each came from.
+struct Stiffness {
+  double c_N = 0.0, k1_MPa = 0.0, EI_Nmm2 = 0.0;
+  std::string c_source, k1_source, EI_source;
+};
+
+// Strain-accumulation map (Zupancic–Emri) over angular velocity × cycles.
+struct AccumulationMap {
+  double kappa = 0.0, shear_stress_MPa = 0.0;
+  std::string spectrum_source;
+  std::vector<double> omega_rad_s;
+  std::vector<long> cycles;
+  std::vector<double> gamma;          // gamma[i_omega * cycles.size() + i_N]
+  std::vector<long> critical_cycles;  // per ω, −1 if never (only with a strain limit)
+};
+
+// Largest relative pointwise change a load-cycle refinement causes (accuracy versus time).
+struct EffectChange {
+  double F = 0.0, p = 0.0, gamma = 0.0, K = 0.0, friction_used = 0.0;
+};
+
+// Sorge–Cammalleri steady drive on the scene's drive.
+struct ViscoelasticTension {
+  belt::ThreeParameterBelt belt;
+  belt::ViscoelasticDrive solution;
+};
+
+// Sorge's CVT formulary (12a,b) on the scene's drive, and the 1-D thrust of the load cycle.
+struct CvtThrust {
+  double tight_tension_N = 0.0, slack_tension_N = 0.0, groove_half_angle_deg = 0.0;
+  double driver_wrap_rad = 0.0, driven_wrap_rad = 0.0;
+  double driver_axial_thrust_N = 0.0, driven_axial_thrust_N = 0.0;
+  std::optional<double> load_cycle_driver_axial_thrust_N, load_cycle_driven_axial_thrust_N;
+};
+
+struct TensionTest {
+  belt::ThreeParameterBelt belt;
+  belt::TensionTestResult result;
+};
+
+// A file that fed the life, named with the sha256 of its bytes (traceability to the lab table
+// through the card's own provenance).
+struct InputFile {
+  std::string role;  // bottom | cushion | cord | fatigue
+  std::string path, sha256;
+  std::string used_for;
+};
+
+struct LifeResult {
+  LifePlan plan;
+  std::vector<InputFile> inputs;
+  fatigue::LifeReport report;
+};
+
+struct SceneResult {
+  Plan plan;
+  std::optional<Stiffness> stiffness;
+  std::optional<belt::DriveCase> drive;
+  belt::LoadCycleOptions load_cycle_options;  // as run: the caller's knobs and the planned refinements
+  std::optional<belt::LoadCycle> cycle;
+  std::map<std::string, EffectChange> effect_changes;  // per load-cycle refinement that ran
+  std::optional<ViscoelasticTension> viscoelastic;
+  std::optional<AccumulationMap> accumulation;
+  std::optional<CvtThrust> cvt;
+  std::optional<TensionTest> tension_test;
+  std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
+  std::optional<fatigue::LifeConditions> life_conditions;
+  std::optional<LifeResult> life;
+  double total_wall_s = 0.0;
+};
+
+}  // namespace fitlib::scene

@@ -1,0 +1,185 @@
+// What a scene's drive is made of: the belt's stiffnesses (cards, overrides or the Fritzson
+// laws), the drive case, κ, and the retardation spectrum and map of strain accumulation.
+#include <algorithm>
+#include <cmath>
+
+#include "fitlib/belt/stiffness.hpp"
+#include "fitlib/card/card.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/units.hpp"
+#include "fitlib/model/model.hpp"
+#include "fitlib/scene/planner.hpp"
+
+namespace fitlib::scene {
+namespace {
+using core::InputError;
+using core::kPi;
+
+double storage_modulus_MPa(const card::Card& c, const std::string& role, const char* orientation,
+                           double f_Hz, double amplitude, double T_C) {
+  try {
+    const auto model = c.model();
+    const auto values = c.values();
+    model::TestCondition tc;
+    tc.mode = model::TestMode::uniaxial;
+    tc.orientation = orientation;
+    tc.frequency_Hz = f_Hz;
+    tc.temperature_C = T_C;
+    tc.strain_amplitude = amplitude;
+    return model->moduli(values.data(), tc).storage;
+  } catch (const std::exception& e) {  // e.g. a shear card asked for a uniaxial modulus
+    throw InputError(std::string("card cannot give the uniaxial storage modulus the belt needs: ") + e.what(),
+                     {}, 0, 0, "belt.materials." + role);
+  }
+}
+
+}  // namespace
+
+Stiffness resolve_stiffness(const Scene& s) {
+  Stiffness k;
+  const double T = s.temperature_C;
+  auto card_for = [&](const char* role) -> std::optional<card::Card> {
+    auto it = s.materials.find(role);
+    if (it == s.materials.end()) return std::nullopt;
+    return card::load_card(it->second);
+  };
+  const auto cord = s.c_N ? std::nullopt : card_for("cord");
+  const auto bottom = (s.k1_MPa && s.EI_Nmm2) ? std::nullopt : card_for("bottom");
+  if (s.c_N) {
+    k.c_N = *s.c_N, k.c_source = "belt.stiffness.c_N";
+  } else if (cord) {
+    // Cord data at ε_a = 0.0025, 5 Hz (Report I §6.1): c = A_c E′.
+    k.c_N = s.cord_area_mm2 * storage_modulus_MPa(*cord, "cord", "", 5.0, 0.0025, T);
+    k.c_source = "card " + s.materials.at("cord") + " (A_c E', 5 Hz, 0.0025)";
+  } else {
+    k.c_N = belt::cord_stiffness_N(T, s.cord_area_mm2), k.c_source = "Fritzson (6.1), E1 = 100 MPa";
+  }
+  double E33 = 0.0;
+  if (s.k1_MPa) {
+    k.k1_MPa = *s.k1_MPa, k.k1_source = "belt.stiffness.k1_MPa";
+  } else {
+    if (bottom) {
+      E33 = storage_modulus_MPa(*bottom, "bottom", "33", 34.0, 0.005, T);
+      k.k1_source = "card " + s.materials.at("bottom") + " (E33', 34 Hz, 0.005) and (A.37)";
+    } else {
+      E33 = belt::axial_modulus_MPa(T);
+      k.k1_source = "Fritzson (6.4), E0 = 10 MPa, and (A.37)";
+    }
+    k.k1_MPa = belt::radial_stiffness_MPa(s.belt.wedge_half_angle_rad, E33, s.belt.height_mm, s.belt.width_mm);
+  }
+  if (s.EI_Nmm2) {
+    k.EI_Nmm2 = *s.EI_Nmm2, k.EI_source = "belt.stiffness.EI_Nmm2";
+  } else if (bottom) {
+    k.EI_Nmm2 = s.bending_inertia_mm4 * storage_modulus_MPa(*bottom, "bottom", "22", 34.0, 0.045, T);
+    k.EI_source = "card " + s.materials.at("bottom") + " (I E22', 34 Hz, 0.045)";
+  } else {
+    k.EI_Nmm2 = belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 / belt::FritzsonConstants::bending_inertia_mm4;
+    k.EI_source = "Fritzson (6.5), E0 = 10 MPa";
+  }
+  for (double v : {k.c_N, k.k1_MPa})
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError("belt stiffness from the material cards is not positive at " +
+                           std::to_string(T) + " degC", s.path, 0, 0, "belt.materials");
+  return k;
+}
+
+belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
+  std::vector<belt::Pulley> pulleys;
+  for (const auto& ps : s.pulleys) {
+    belt::Pulley p;
+    p.name = ps.name;
+    p.pitch_radius_mm = ps.pitch_diameter_mm / 2.0;
+    p.role = ps.role;
+    p.torque_Nm = ps.torque_Nm;
+    if (ps.center_mm) p.x_mm = ps.center_mm->first, p.y_mm = ps.center_mm->second;
+    pulleys.push_back(p);
+  }
+  belt::DriveCase d;
+  try {
+    if (pulleys.size() == 2 && s.center_distance_mm) {
+      const std::size_t drv = pulleys[1].role == belt::PulleyRole::driver ? 1 : 0;
+      d.geometry = belt::make_two_pulley_geometry(pulleys[drv], pulleys[1 - drv], *s.center_distance_mm);
+    } else {
+      d.geometry = belt::make_geometry(pulleys);
+    }
+    const std::size_t di = belt::driver_index(d.geometry);
+    const PulleySpec& driver = *std::find_if(s.pulleys.begin(), s.pulleys.end(), [&](const PulleySpec& p) {
+      return p.name == d.geometry.pulleys[di].name;
+    });
+    const double R = d.geometry.pulleys[di].pitch_radius_mm;
+    const double omega = driver.speed_rpm ? *driver.speed_rpm * 2.0 * kPi / 60.0 : 0.0;
+    d.belt_speed_mm_s = omega * R;
+    belt::TensionInput t;
+    if (s.torque_Nm) t.driver_torque_Nm = *s.torque_Nm;
+    if (s.power_kW) {
+      if (!(omega > 0.0))
+        throw InputError("power_kW needs the driver's speed_rpm", {}, 0, 0, "drive.power_kW");
+      t.driver_torque_Nm = *s.power_kW * 1000.0 / omega;
+    }
+    t.rule = s.tension_rule;
+    t.tension_N = s.tension_N;
+    d.span_tension_N = belt::span_tensions(d.geometry, t);
+  } catch (const InputError& e) {  // add the scene file to library errors
+    throw InputError(e.detail(), s.path, 0, 0, e.key());
+  }
+  d.belt = s.belt;
+  d.belt.c_N = k.c_N;
+  d.belt.k1_MPa = k.k1_MPa;
+  d.belt.EI_Nmm2 = k.EI_Nmm2;
+  d.friction = s.friction;
+  return d;
+}
+
+belt::RetardationSpectrum scene_spectrum(const Scene& s, const std::string& spec, std::string* source) {
+  const std::string prefix = "material:";
+  if (spec.rfind(prefix, 0) != 0) {
+    if (source) *source = "shape " + spec;
+    return belt::spectrum_shape(spec);
+  }
+  const std::string role = spec.substr(prefix.size());
+  auto it = s.materials.find(role);
+  if (it == s.materials.end())
+    throw InputError("spectrum '" + spec + "' names no card under [belt.materials]", s.path, 0, 0,
+                     "accumulation.spectrum");
+  const card::Card c = card::load_card(it->second);
+  const auto model = c.model();
+  const auto values = c.values();
+  belt::RetardationSpectrum r;  // the model's Kelvin series
+  if (!model->kelvin_series(values.data(), &r))
+    throw InputError("card " + it->second + " (model '" + c.model_kind +
+                         "') has no discrete retardation spectrum J_g, L_i, lambda_i: fit a 'retardation' card",
+                     s.path, 0, 0, "accumulation.spectrum");
+  belt::validate(r, "accumulation.spectrum");
+  if (source) *source = "card " + it->second + " (reference temperature)";
+  return r;
+}
+
+double drive_kappa(const Scene& scene) {
+  // Geometry only: the stiffness does not enter.
+  const belt::DriveCase d = make_drive(scene, Stiffness{1.0, 1.0, 0.0, "", "", ""});
+  const std::size_t i = belt::driver_index(d.geometry);
+  return d.geometry.spans[i].center_distance_mm / d.geometry.pulleys[i].pitch_radius_mm;
+}
+
+AccumulationMap accumulation_map(const belt::RetardationSpectrum& s, const AccumulationSpec& a, double kappa) {
+  AccumulationMap m;
+  m.kappa = kappa;
+  m.shear_stress_MPa = a.shear_stress_MPa;
+  for (int i = 0; i < a.omega_points; ++i) {
+    const double f = a.omega_points == 1 ? 0.0 : static_cast<double>(i) / (a.omega_points - 1);
+    m.omega_rad_s.push_back(a.omega_min_rad_s * std::pow(a.omega_max_rad_s / a.omega_min_rad_s, f));
+  }
+  for (int j = 0; j < a.cycle_points; ++j) {
+    const double f = a.cycle_points == 1 ? 1.0 : static_cast<double>(j) / (a.cycle_points - 1);
+    const long N = std::lround(std::pow(static_cast<double>(a.cycles), f));
+    if (m.cycles.empty() || N > m.cycles.back()) m.cycles.push_back(N);
+  }
+  for (double w : m.omega_rad_s) {
+    for (long N : m.cycles) m.gamma.push_back(belt::accumulated_strain(s, a.shear_stress_MPa, N, w, kappa));
+    if (a.strain_limit)
+      m.critical_cycles.push_back(belt::critical_cycles(s, a.shear_stress_MPa, w, kappa, *a.strain_limit, a.cycles));
+  }
+  return m;
+}
+
+}  // namespace fitlib::scene

@@ -1,0 +1,39 @@
+#pragma once
+// The scene's effects, one function each, as the registry (registry.cpp) runs them. Internal to
+// the scene module.
+#include <optional>
+#include <string>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/scene/planner.hpp"
+
+namespace fitlib::scene::detail {
+
+// Belt mechanics (belt_effects.cpp).
+ViscoelasticTension viscoelastic_tension(const belt::DriveCase& drive, bool inertia);
+CvtThrust cvt_thrust(const belt::DriveCase& drive, const CvtSpec& spec, const belt::LoadCycle* cycle);
+TensionTest tension_test(const belt::DriveCase& drive, const TensionTestSpec& spec, double friction);
+// The load cycle, timed as the best of three runs (a cycle takes well under a millisecond, so
+// single runs would make the refinements' costs, differences of such times, timer noise).
+double best_of_three(const belt::DriveCase& drive, const belt::LoadCycleOptions& options,
+                     belt::LoadCycle& out);
+// Largest relative pointwise change of F, p, γ, K and friction use between two cycles.
+EffectChange effect_change(const belt::LoadCycle& with, const belt::LoadCycle& without);
+
+// Life (life_effects.cpp).
+// Why this build cannot run the segment levels (elastic, complete); nullopt once it can.
+std::optional<std::string> segment_levels_unavailable();
+void beam_stresses(const Scene& scene, SceneResult& r);
+void fatigue_life(const Scene& scene, SceneResult& r);
+
+// Runs f, adding the scene file to an InputError a library call raised without one.
+template <typename F>
+auto in_scene(const Scene& scene, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const core::InputError& e) {
+    if (!e.file().empty()) throw;
+    throw core::InputError(e.detail().empty() ? e.what() : e.detail(), scene.path, 0, 0, e.key());
+  }
+}
+}  // namespace fitlib::scene::detail

@@ -1,0 +1,240 @@
+// Writers of a scene run: CSV tables, the JSON summary, life.json and the output folder.
+#include "fitlib/scene/writers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "fitlib/core/io.hpp"
+#include "fitlib/core/units.hpp"
+
+namespace fitlib::scene {
+namespace {
+using nlohmann::json;
+using core::kPi;
+constexpr double kDeg = 180.0 / kPi;
+
+json stiffness_json(const Stiffness& k) {
+  return {{"c_N", k.c_N}, {"k1_MPa", k.k1_MPa}, {"EI_Nmm2", k.EI_Nmm2}, {"c_source", k.c_source},
+          {"k1_source", k.k1_source}, {"EI_source", k.EI_source}};
+}
+
+json drive_json(const Scene& s, const belt::DriveCase& d) {
+  const auto& g = d.geometry;
+  json j = {{"belt_length_mm", g.belt_length_mm}, {"belt_speed_m_s", d.belt_speed_mm_s / 1000.0},
+            {"friction", d.friction}, {"temperature_C", s.temperature_C}};
+  json spans = json::array();
+  for (std::size_t i = 0; i < g.pulleys.size(); ++i)
+    spans.push_back({{"from", g.pulleys[i].name}, {"to", g.pulleys[(i + 1) % g.pulleys.size()].name},
+                     {"length_mm", g.spans[i].length_mm}, {"tension_N", d.span_tension_N[i]}});
+  j["spans"] = spans;
+  return j;
+}
+
+json pulley_json(const belt::PulleyCycle& p, const belt::LoadCycle& c, const belt::DriveCase& d) {
+  double p_max = 0.0, gamma_max = 0.0;
+  for (const auto& x : c.samples)
+    if (d.geometry.pulleys[x.pulley].name == p.name) {
+      p_max = std::max(p_max, x.p_MPa);
+      if (x.zone == belt::Zone::sliding) gamma_max = std::max(gamma_max, std::abs(x.gamma_rad - kPi));
+    }
+  return {{"name", p.name}, {"role", belt::to_string(p.role)}, {"radius_mm", p.radius_mm},
+          {"wrap_deg", p.wrap_rad * kDeg}, {"F_in_N", p.F_in_N}, {"F_out_N", p.F_out_N},
+          {"c0", p.c0}, {"gamma_prime_P", p.gamma_prime_P},
+          {"contact_angle_in_deg", p.phi_C_in_rad * kDeg}, {"contact_angle_out_deg", p.phi_C_out_rad * kDeg},
+          {"entrance_zone_deg", p.phi_E_in_rad * kDeg}, {"exit_zone_deg", p.phi_E_out_rad * kDeg},
+          {"non_sliding_deg", p.non_sliding_rad * kDeg}, {"sliding_deg", p.sliding_rad * kDeg},
+          {"sliding_closed_form_deg", p.sliding_closed_form_rad >= 0 ? p.sliding_closed_form_rad * kDeg : -1.0},
+          {"sliding_ode_deg", p.sliding_ode_rad >= 0 ? p.sliding_ode_rad * kDeg : -1.0},
+          {"arc_method", p.arc_method}, {"capstan_limit", p.capstan_limit},
+          {"p_max_MPa", p_max}, {"sliding_angle_max_deviation_deg", gamma_max * kDeg}};
+}
+
+json load_cycle_json(const belt::LoadCycle& c, const belt::DriveCase& d) {
+  json j = {{"centrifugal_tension_N", c.centrifugal_tension_N}, {"cycle_length_mm", c.cycle_length_mm},
+            {"cycle_time_s", c.cycle_time_s}, {"samples", c.samples.size()}};
+  json pulleys = json::array();
+  for (const auto& p : c.pulleys) pulleys.push_back(pulley_json(p, c, d));
+  j["pulleys"] = pulleys;
+  return j;
+}
+
+json accumulation_json(const AccumulationMap& m) {
+  json j = {{"kappa", m.kappa}, {"shear_stress_MPa", m.shear_stress_MPa}, {"spectrum", m.spectrum_source},
+            {"omega_points", m.omega_rad_s.size()}, {"cycle_points", m.cycles.size()},
+            {"max_strain", m.gamma.empty() ? 0.0 : *std::max_element(m.gamma.begin(), m.gamma.end())}};
+  if (!m.critical_cycles.empty()) {
+    json area = json::array();
+    for (std::size_t i = 0; i < m.omega_rad_s.size(); ++i)
+      if (m.critical_cycles[i] > 0) area.push_back({{"omega_rad_s", m.omega_rad_s[i]}, {"critical_cycles", m.critical_cycles[i]}});
+    j["critical_area"] = area;
+  }
+  return j;
+}
+
+json viscoelastic_json(const ViscoelasticTension& v) {
+  auto pulley = [](const belt::ViscoelasticPulley& p) {
+    return json{{"entrance_sliding_deg", p.entrance_sliding_rad * kDeg}, {"adhesion_deg", p.adhesion_rad * kDeg},
+                {"main_sliding_deg", p.main_sliding_rad * kDeg}, {"adhesion_elongation", p.adhesion_elongation},
+                {"max_relative_slip", p.max_relative_slip}};
+  };
+  return {{"model", "Sorge-Cammalleri three-parameter belt, S = c, drive-time constants tau_T = 0.2/omega, "
+                    "tau_eps = 0.3/omega (belt::drive_time_belt)"},
+          {"S_N", v.belt.S_N}, {"tau_T_s", v.belt.tau_T_s}, {"tau_eps_s", v.belt.tau_eps_s},
+          {"driver", pulley(v.solution.driver)}, {"driven", pulley(v.solution.driven)}};
+}
+
+json cvt_json(const CvtThrust& t) {
+  json j = {{"tight_tension_N", t.tight_tension_N}, {"slack_tension_N", t.slack_tension_N},
+            {"groove_half_angle_deg", t.groove_half_angle_deg}, {"driver_wrap_deg", t.driver_wrap_rad * kDeg},
+            {"driven_wrap_deg", t.driven_wrap_rad * kDeg}, {"driver_axial_thrust_N", t.driver_axial_thrust_N},
+            {"driven_axial_thrust_N", t.driven_axial_thrust_N},
+            {"method", "Sorge formulary (12a,b): xi_R = 2.2, xi_N = 1.5, n = 5, seat = pi/6, unseat = pi/18"}};
+  if (t.load_cycle_driver_axial_thrust_N) j["load_cycle_driver_axial_thrust_N"] = *t.load_cycle_driver_axial_thrust_N;
+  if (t.load_cycle_driven_axial_thrust_N) j["load_cycle_driven_axial_thrust_N"] = *t.load_cycle_driven_axial_thrust_N;
+  return j;
+}
+
+json tension_test_json(const TensionTest& t) {
+  const auto& u = t.result.unloading.back();
+  return {{"peak_tension_N", t.result.loading.back().span_tension_N}, {"end_of_unloading_tension_N", u.span_tension_N},
+          {"residual_elongation_mm", u.elongation_mm}, {"S_N", t.belt.S_N}, {"tau_T_s", t.belt.tau_T_s},
+          {"tau_eps_s", t.belt.tau_eps_s}};
+}
+
+json effect_changes_json(const std::map<std::string, EffectChange>& changes) {
+  json j = json::object();
+  for (const auto& [name, c] : changes)
+    j[name] = {{"F_relative", c.F}, {"p_relative", c.p}, {"gamma_relative", c.gamma}, {"K_relative", c.K},
+               {"friction_used_relative", c.friction_used}};
+  return j;
+}
+
+json life_summary_json(const LifeResult& l) {
+  json j = fatigue::life_to_json(l.report);
+  j["fidelity"] = l.plan.fidelity;
+  j["fidelity_reason"] = l.plan.reason;
+  json inputs = json::array();
+  for (const auto& f : l.inputs)
+    inputs.push_back({{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"used_for", f.used_for}});
+  j["inputs"] = inputs;
+  return j;
+}
+
+}  // namespace
+
+std::string load_history_csv(const SceneResult& r) {
+  std::ostringstream o;
+  o << std::setprecision(10);
+  o << "s_mm,t_s,pulley,zone,F_N,K_1_per_mm,p_MPa,gamma_deg,sliding_velocity_mm_s,friction_used\n";
+  if (!r.cycle) return o.str();
+  const auto& names = r.drive->geometry.pulleys;
+  for (const auto& x : r.cycle->samples)
+    o << x.s_mm << ',' << x.t_s << ',' << names[x.pulley].name << ',' << belt::to_string(x.zone) << ','
+      << x.F_N << ',' << x.K_1_mm << ',' << x.p_MPa << ',' << x.gamma_rad * 180.0 / kPi << ','
+      << x.slide_mm_s << ',' << x.friction_used << '\n';
+  return o.str();
+}
+
+std::string accumulation_csv(const AccumulationMap& m) {
+  std::ostringstream o;
+  o << std::setprecision(12);
+  o << "omega_rad_s,cycles,accumulated_strain\n";
+  for (std::size_t i = 0; i < m.omega_rad_s.size(); ++i)
+    for (std::size_t j = 0; j < m.cycles.size(); ++j)
+      o << m.omega_rad_s[i] << ',' << m.cycles[j] << ',' << m.gamma[i * m.cycles.size() + j] << '\n';
+  return o.str();
+}
+
+std::string tension_test_csv(const belt::TensionTestResult& t) {
+  std::ostringstream o;
+  o << std::setprecision(10) << "phase,t_s,elongation_mm,span_tension_N,boundary_deg\n";
+  for (const auto& [phase, pts] : {std::pair{"loading", &t.loading}, std::pair{"unloading", &t.unloading}})
+    for (const auto& q : *pts)
+      o << phase << ',' << q.t_s << ',' << q.elongation_mm << ',' << q.span_tension_N << ','
+        << q.boundary_rad * 180.0 / kPi << '\n';
+  return o.str();
+}
+
+std::string effects_table(const Plan& plan) {
+  std::ostringstream o;
+  for (const auto& e : plan.effects)
+    o << "  " << (e.ran ? "ran     " : "not run ") << std::left << std::setw(21) << e.name << std::right
+      << std::fixed << std::setprecision(3) << std::setw(10) << e.wall_s * 1e3 << " ms  (" << e.reason << ")\n";
+  return o.str();
+}
+
+std::string life_text(const Scene& s, const SceneResult& r) {
+  const LifeResult& l = r.life.value();
+  std::ostringstream o;
+  o << "scene: " << s.name << " (" << s.temperature_C << " degC)\n"
+    << "fidelity: " << l.plan.fidelity << " (" << l.plan.reason << ")\n"
+    << fatigue::life_table(l.report) << "inputs:\n";
+  for (const auto& f : l.inputs)
+    o << "  " << std::left << std::setw(8) << f.role << std::right << f.path << "\n           sha256 " << f.sha256
+      << ": " << f.used_for << "\n";
+  return o.str();
+}
+
+json effects_json(const Plan& plan, bool wall_times) {
+  json effects = json::array();
+  for (const auto& e : plan.effects) {
+    effects.push_back({{"name", e.name}, {"ran", e.ran}, {"reason", e.reason}, {"status", to_string(e.status)},
+                       {"cost", e.cost}});
+    if (wall_times) effects.back()["wall_s"] = e.wall_s;
+  }
+  return effects;
+}
+
+json summary_json(const Scene& s, const SceneResult& r, bool wall_times) {
+  json j;
+  j["scene"] = s.name;
+  j["source"] = s.path;
+  j["version"] = FITLIB_VERSION;
+  j["effects"] = effects_json(r.plan, wall_times);
+  j["outputs_not_available"] = r.plan.unavailable_outputs;
+  if (wall_times) j["total_wall_s"] = r.total_wall_s;
+  if (r.stiffness) j["stiffness"] = stiffness_json(*r.stiffness);
+  if (r.drive) j["drive"] = drive_json(s, *r.drive);
+  if (r.cycle) j["load_cycle"] = load_cycle_json(*r.cycle, *r.drive);
+  if (!r.effect_changes.empty()) j["effect_changes"] = effect_changes_json(r.effect_changes);
+  if (r.accumulation) j["strain_accumulation"] = accumulation_json(*r.accumulation);
+  if (r.viscoelastic) j["viscoelastic_tension"] = viscoelastic_json(*r.viscoelastic);
+  if (r.cvt) j["cvt_thrust"] = cvt_json(*r.cvt);
+  if (r.tension_test) j["tension_test"] = tension_test_json(*r.tension_test);
+  if (r.life) j["life"] = life_summary_json(*r.life);
+  return j;
+}
+
+json life_json(const Scene& s, const SceneResult& r, bool wall_times) {
+  json j = life_summary_json(r.life.value());
+  j["scene"] = s.name;
+  j["source"] = s.path;
+  j["version"] = FITLIB_VERSION;
+  j["temperature_C"] = s.temperature_C;
+  j["effects"] = effects_json(r.plan, wall_times);
+  if (wall_times) j["total_wall_s"] = r.total_wall_s;
+  return j;
+}
+
+std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, const std::string& dir,
+                                       bool wall_times) {
+  core::prepare_output_dir(dir);
+  std::vector<std::string> written;
+  auto put = [&](const std::string& name, const std::string& text) {
+    const std::string path = (std::filesystem::path(dir) / name).string();
+    core::write_file_atomically(path, text);
+    written.push_back(path);
+  };
+  const auto history = s.outputs.find("load_history");
+  if (r.cycle && history != s.outputs.end() && history->second) put("load_history.csv", load_history_csv(r));
+  if (r.accumulation) put("accumulation.csv", accumulation_csv(*r.accumulation));
+  if (r.tension_test) put("tension_test.csv", tension_test_csv(r.tension_test->result));
+  if (r.life) put("life.json", life_json(s, r, wall_times).dump(2) + "\n");
+  put("summary.json", summary_json(s, r, wall_times).dump(2) + "\n");
+  return written;
+}
+
+}  // namespace fitlib::scene

@@ -1,0 +1,81 @@
+// fitcli life end to end on every bundled reference drive: finite lives and a governing mode,
+// life.json in the output folder equal to --json, bad scenes and unavailable levels exit 3.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace {
+std::string unique_dir(const std::string& name) {
+  return temp_file(name + "-" + std::to_string(getpid()));
+}
+}  // namespace
+
+TEST(LifeCli, EveryReferenceDriveHasFiniteLivesAndAGoverningMode) {
+  for (const char* load : {"light", "medium", "heavy", "severe"}) {
+    const std::string dir = unique_dir(std::string("life_") + load);
+    const std::string scene = source_path("datasets/drives/ref-0500-" + std::string(load) + ".toml");
+    const auto r = run_fitcli("life --scene " + scene + " --out-dir " + dir + " --json");
+    ASSERT_EQ(r.exit_code, 0) << load << ": " << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir + "/life.json"));
+    EXPECT_EQ(j, nlohmann::json::parse(r.out)) << load;
+    ASSERT_EQ(j["modes"].size(), 2u) << load;
+    for (const auto& m : j["modes"]) {
+      ASSERT_TRUE(m["life_cycles"].is_number()) << load << " " << m["mode"];
+      EXPECT_TRUE(std::isfinite(m["life_cycles"].get<double>()) && m["life_cycles"].get<double>() > 0) << load;
+      EXPECT_GT(m["life_h"].get<double>(), 0.0) << load;
+      EXPECT_FALSE(m["design_point"]["name"].get<std::string>().empty()) << load;
+    }
+    const std::string governing = j["governing_mode"];
+    EXPECT_TRUE(governing == "radial_crack" || governing == "separation") << load << ": " << governing;
+    EXPECT_EQ(j["fidelity"], "beam");
+    int ran = 0;
+    for (const auto& e : j["effects"]) {
+      ran += e["ran"].get<bool>();
+      EXPECT_FALSE(e.contains("wall_s"));  // only with --record-timing
+    }
+    EXPECT_GE(ran, 5) << load;  // stiffness, drive, contact_arcs, beam_stresses, fatigue
+  }
+}
+
+TEST(LifeCli, HumanTableNamesModesGoverningModeAndCosts) {
+  const std::string dir = unique_dir("life_table");
+  const auto r = run_fitcli("life --scene " + source_path("datasets/drives/ref-0500-heavy.toml") +
+                            " --out-dir " + dir + " --record-timing");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* text : {"radial_crack", "separation", "governing: separation", "design point", " h)",
+                           "ran     fatigue", "ran     beam_stresses", " ms  (", "sha256"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
+  const auto j = nlohmann::json::parse(slurp(dir + "/life.json"));
+  EXPECT_TRUE(j["effects"][0].contains("wall_s"));
+}
+
+TEST(LifeCli, RepeatedRunsWriteIdenticalBytes) {
+  const std::string a = unique_dir("life_a"), b = unique_dir("life_b");
+  const std::string scene = source_path("datasets/drives/ref-0500-medium.toml");
+  ASSERT_EQ(run_fitcli("life --scene " + scene + " --out-dir " + a).exit_code, 0);
+  ASSERT_EQ(run_fitcli("life --scene " + scene + " --out-dir " + b).exit_code, 0);
+  EXPECT_EQ(slurp(a + "/life.json"), slurp(b + "/life.json"));
+  EXPECT_EQ(slurp(a + "/summary.json"), slurp(b + "/summary.json"));
+}
+
+TEST(LifeCli, BadSceneAndUnavailableLevelAreBadInputNamingFileAndKey) {
+  const std::string base = slurp(source_path("datasets/drives/ref-0500-heavy.toml"));
+  const std::string bad = unique_dir("life_bad") + ".toml";
+  std::ofstream(bad) << base << "\n[life]\nfidelity = \"fine\"\n";
+  auto r = run_fitcli("life --scene " + bad + " --out-dir " + unique_dir("life_bad_out"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("life.fidelity"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+  const std::string elastic = unique_dir("life_elastic") + ".toml";
+  std::ofstream(elastic) << base << "\n[life]\nfidelity = \"elastic\"\n";
+  r = run_fitcli("life --scene " + elastic + " --out-dir " + unique_dir("life_elastic_out"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("not available yet"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("life.fidelity"), std::string::npos) << r.err;
+  r = run_fitcli("life --scene " + unique_dir("missing") + ".toml");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+}

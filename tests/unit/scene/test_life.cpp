@@ -1,0 +1,154 @@
+// Life as an output of a scene: the planner's route (load cycle → beam stresses → fatigue)
+// against the fatigue module's own beam_life on the same drive, the default fidelity, the
+// [life] table, the fatigue card and its sha256.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/fatigue/beam_section.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/scene.hpp"
+
+using namespace fitlib;
+
+namespace {
+const std::string kDrives = FITLIB_SOURCE_DIR "/datasets/drives/";
+const std::string kBundledCard = FITLIB_SOURCE_DIR "/datasets/cards/fatigue-fritzson-1988.json";
+
+std::filesystem::path temp_dir() {
+  const auto d = std::filesystem::path(::testing::TempDir()) / ("fitlib-scene-life-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+scene::Scene with_life(const std::string& load) {
+  auto s = scene::load_scene(kDrives + "ref-0500-" + load + ".toml");
+  s.outputs["life"] = true;
+  return s;
+}
+
+// The fatigue module's own route, as bench_beam and the beam-life tests take it.
+fatigue::LifeReport beam_route(const scene::Scene& s, const fatigue::FatigueCard& card) {
+  const auto drive = scene::make_drive(s, scene::resolve_stiffness(s));
+  belt::LoadCycleOptions o;
+  o.effects = scene::make_plan(s).load_cycle;
+  const auto cycle = belt::compute_load_cycle(drive, o);
+  return fatigue::beam_life(cycle, drive, fatigue::default_beam_section(drive, s.temperature_C), card,
+                            s.temperature_C);
+}
+
+core::InputError parse_error(const std::string& text) {
+  try {
+    scene::parse_scene(text, "life.toml");
+  } catch (const core::InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError";
+  return core::InputError("none");
+}
+}  // namespace
+
+TEST(SceneLife, EqualsTheFatigueModulesBeamLifeOnEveryReferenceDrive) {
+  for (const char* load : {"light", "medium", "heavy", "severe"}) {
+    const auto s = with_life(load);
+    const auto r = scene::run_scene(s);
+    ASSERT_TRUE(r.life.has_value()) << load;
+    const auto expected = beam_route(s, fatigue::default_card());
+    ASSERT_EQ(r.life->report.modes.size(), expected.modes.size());
+    for (std::size_t m = 0; m < expected.modes.size(); ++m) {
+      EXPECT_EQ(r.life->report.modes[m].life_cycles, expected.modes[m].life_cycles) << load;
+      EXPECT_EQ(r.life->report.modes[m].life_h, expected.modes[m].life_h) << load;
+      EXPECT_EQ(r.life->report.modes[m].design_point, expected.modes[m].design_point) << load;
+    }
+    EXPECT_EQ(r.life->report.governing, expected.governing) << load;
+    EXPECT_TRUE(std::isfinite(r.life->report.life_h)) << load;
+  }
+}
+
+TEST(SceneLife, HeavyDriveMatchesTheFiguresInDocsFatigue) {
+  // docs/fatigue.md §5 measured: heavy N1 6.68e9, N2 6.33e4 (1.0 h), separation governs.
+  const auto r = scene::run_scene(with_life("heavy"));
+  EXPECT_NEAR(r.life->report.modes[0].life_cycles / 6.68e9, 1.0, 0.005);
+  EXPECT_NEAR(r.life->report.modes[1].life_cycles / 6.33e4, 1.0, 0.005);
+  EXPECT_EQ(r.life->report.governing, "separation");
+}
+
+TEST(SceneLife, DefaultFidelityIsTheFinestLevelTheSceneFeedsAndTheBuildHas) {
+  auto s = with_life("heavy");
+  auto plan = scene::choose_life_plan(s);
+  EXPECT_EQ(plan.fidelity, "beam");
+  EXPECT_NE(plan.reason.find("neither"), std::string::npos) << plan.reason;
+  s.materials = {{"bottom", "b.json"}, {"cushion", "c.json"}};
+  plan = scene::choose_life_plan(s);
+  EXPECT_EQ(plan.fidelity, "beam");  // complete would fit, but is not available yet
+  EXPECT_NE(plan.reason.find("complete"), std::string::npos) << plan.reason;
+  EXPECT_NE(plan.reason.find("not available yet"), std::string::npos) << plan.reason;
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = "elastic";
+  EXPECT_EQ(scene::choose_life_plan(s).fidelity, "elastic");
+  EXPECT_EQ(scene::choose_life_plan(s).reason, "[life] fidelity = elastic");
+}
+
+TEST(SceneLife, LifeTableIsValidatedAndNamesTheKey) {
+  const std::string base = core::read_file(kDrives + "ref-0500-heavy.toml");
+  auto e = parse_error(base + "\n[life]\nfidelity = \"fine\"\n");
+  EXPECT_EQ(e.key(), "life.fidelity");
+  EXPECT_EQ(e.file(), "life.toml");
+  EXPECT_GT(e.line(), 0);
+  e = parse_error(base + "\n[life]\nnotch_factor = 3\n");
+  EXPECT_EQ(e.key(), "life.notch_factor");
+  e = parse_error(base + "\n[life]\ncrack_sweep_deg = 120\n");
+  EXPECT_EQ(e.key(), "life.crack_sweep_deg");
+  const auto s = scene::parse_scene(base + "\n[life]\nfidelity = \"beam\"\ncard = \"../cards/x.json\"\ncycles = 5\n",
+                                    "/some/drives/scene.toml");
+  ASSERT_TRUE(s.life.has_value());
+  EXPECT_EQ(*s.life->fidelity, "beam");
+  EXPECT_EQ(s.life->card, "/some/cards/x.json");  // relative to the scene's folder
+  EXPECT_EQ(s.life->cycles, 5);
+}
+
+TEST(SceneLife, CardAndSweepFromTheSceneWithTheCardsSha256) {
+  // A card with another separation exponent and a zero crack sweep: the life must follow it.
+  fatigue::FatigueCard card = fatigue::default_card();
+  card.separation.n = 9.0;
+  const auto path = (temp_dir() / "card.json").string();
+  fatigue::save_card(path, card);
+  auto s = with_life("medium");
+  s.life = scene::LifeSpec{};
+  s.life->card = path;
+  s.life->crack_sweep_deg = 0.0;
+  const auto r = scene::run_scene(s);
+  card.crack_sweep_deg = 0.0;
+  const auto expected = beam_route(s, card);
+  EXPECT_EQ(r.life->report.modes[0].life_cycles, expected.modes[0].life_cycles);
+  EXPECT_EQ(r.life->report.modes[1].life_cycles, expected.modes[1].life_cycles);
+  EXPECT_NE(r.life->report.modes[1].life_cycles, beam_route(s, fatigue::default_card()).modes[1].life_cycles);
+  ASSERT_FALSE(r.life->inputs.empty());
+  EXPECT_EQ(r.life->inputs[0].role, "fatigue");
+  EXPECT_EQ(r.life->inputs[0].path, path);
+  EXPECT_EQ(r.life->inputs[0].sha256, core::sha256_hex(core::read_file(path)));
+  // The bundled card given by path gives the default life.
+  s.life->card = kBundledCard;
+  s.life->crack_sweep_deg.reset();
+  EXPECT_EQ(scene::run_scene(s).life->report.life_cycles, beam_route(s, fatigue::default_card()).life_cycles);
+}
+
+TEST(SceneLife, LifeJsonWithoutWallTimesIsByteIdenticalAndFinite) {
+  const auto s = with_life("severe");
+  const auto a = scene::life_json(s, scene::run_scene(s), false).dump(2);
+  const auto b = scene::life_json(s, scene::run_scene(s), false).dump(2);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.find("wall_s"), std::string::npos);
+  EXPECT_EQ(a.find("inf"), std::string::npos);
+  EXPECT_EQ(a.find("nan"), std::string::npos);
+  const auto j = nlohmann::json::parse(a);
+  EXPECT_EQ(j["fidelity"], "beam");
+  EXPECT_EQ(j["governing_mode"], "separation");
+  EXPECT_EQ(j["modes"].size(), 2u);
+  EXPECT_TRUE(scene::life_json(s, scene::run_scene(s), true)["effects"][0].contains("wall_s"));
+}
