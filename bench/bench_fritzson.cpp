@@ -11,6 +11,7 @@
 #include "fitlib/card/card.hpp"
 #include "fitlib/model/fritzson.hpp"
 #include "fitlib/model/fritzson_point.hpp"
+#include "fitlib/model/material_point.hpp"
 
 using namespace fitlib::model;
 using namespace fitlib::model::fritzson;
@@ -62,11 +63,11 @@ int main() {
     const double t_complex = seconds_per_call([&] { sink = sink + model->moduli(p.data(), c).storage; });
     Eigen::MatrixXd J(3, model->size());
     const double t_jac = seconds_per_call([&] { sink = sink + model->moduli(p.data(), c, J).storage; });
-    const MaterialPoint point(p, true, 23.0, Scheme::exponential);
+    const fritzson::MaterialPoint point(p, true, 23.0, Scheme::exponential);
     auto integrate = [&](int cycles, int steps) {
       const StrainHistory h = cyclic_history(c.strain_amplitude, c.mean_strain, c.frequency_Hz,
                                              cycles, steps);
-      const DriveResult r = drive_test(point, c, h);
+      const fritzson::DriveResult r = drive_test(point, c, h);
       sink = sink + cycle_moduli(h.time_s, h.strain, r.stress, c.frequency_Hz).storage;
     };
     const double t_short = seconds_per_call([&] { integrate(10, 64); });
@@ -86,12 +87,12 @@ int main() {
     const std::string label = std::string(to_string(c.mode)) + " " + c.orientation;
     const Moduli<double> exact = model->moduli(p.data(), c);
     for (Scheme scheme : {Scheme::backward_euler, Scheme::exponential}) {
-      const MaterialPoint point(p, true, 23.0, scheme);
+      const fritzson::MaterialPoint point(p, true, 23.0, scheme);
       auto run = [&](int steps, double* wall_ms) {
         const StrainHistory h = cyclic_history(c.strain_amplitude, c.mean_strain, c.frequency_Hz,
                                                50, steps);
         const auto start = Clock::now();
-        const DriveResult r = drive_test(point, c, h);
+        const fritzson::DriveResult r = drive_test(point, c, h);
         if (wall_ms) *wall_ms = std::chrono::duration<double>(Clock::now() - start).count() * 1e3;
         return cycle_moduli(h.time_s, h.strain, r.stress, c.frequency_Hz);
       };
@@ -113,7 +114,7 @@ int main() {
   }
 
   std::printf("\nMaterial-point update (one call, 3-D, material 1): ");
-  const MaterialPoint point(p, true, 23.0, Scheme::backward_euler);
+  const fritzson::MaterialPoint point(p, true, 23.0, Scheme::backward_euler);
   MaterialState state, next;
   Vector6 strain;
   strain << -0.01, 0.005, 0.004, 0.002, 0.003, 0.01;
@@ -122,5 +123,21 @@ int main() {
   const double t_tan = seconds_per_call([&] { sink = sink + point.update(state, strain, 1e-3, 60, next, &tangent)[0]; });
   std::printf("stress only %.3f us, with consistent tangent %.3f us (ratio %.1f)\n", t_plain * 1e6,
               t_tan * 1e6, t_tan / t_plain);
+
+  // The same update through the material-point contract (flat state, virtual call): the best of
+  // five interleaved rounds each, so a busy machine affects both alike.
+  const auto contract = fitlib::model::make_material_point(*make_model("fritzson", {}), p);
+  std::vector<double> flat = contract->initial_state(), flat_next(contract->state_size());
+  double best[4] = {1e9, 1e9, 1e9, 1e9};
+  for (int round = 0; round < 5; ++round) {
+    best[0] = std::min(best[0], seconds_per_call([&] { sink = sink + point.update(state, strain, 1e-3, 60, next)[0]; }));
+    best[1] = std::min(best[1], seconds_per_call([&] { sink = sink + contract->update(flat.data(), strain, 1e-3, 60, flat_next.data())[0]; }));
+    best[2] = std::min(best[2], seconds_per_call([&] { sink = sink + point.update(state, strain, 1e-3, 60, next, &tangent)[0]; }));
+    best[3] = std::min(best[3], seconds_per_call([&] { sink = sink + contract->update(flat.data(), strain, 1e-3, 60, flat_next.data(), &tangent)[0]; }));
+  }
+  std::printf("Through the contract: stress only %.3f us vs %.3f us direct (%+.1f %%), with tangent "
+              "%.3f us vs %.3f us (%+.1f %%)\n", best[1] * 1e6, best[0] * 1e6,
+              100.0 * (best[1] / best[0] - 1.0), best[3] * 1e6, best[2] * 1e6,
+              100.0 * (best[3] / best[2] - 1.0));
   return sink == 12345.678 ? 1 : 0;
 }

@@ -1,36 +1,97 @@
-// fitcli material-point: Report II §7.2 test cases of a Fritzson card at one material point,
-// written as stress–strain loops (CSV).
+// fitcli material-point: drives the material point of any card through a cyclic strain
+// program (model::drive, docs/model.md §"drive") and writes time, strains and stresses (CSV);
+// for Fritzson cards --case runs a Report II §7.2 test case instead.
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
+#include "fitlib/model/material_point.hpp"
 #include "output.hpp"
 
 namespace fitcli {
+namespace {
+
+struct Args {
+  std::string card, case_id, out, test = "shear", orientation, fidelity = "viscoelastic";
+  int steps_per_cycle = 200, cycles = 5;
+  double amplitude = 0.01, mean_strain = 0.0, frequency_Hz = 1.0;
+  double temperature_C = std::numeric_limits<double>::quiet_NaN();
+  double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();
+};
+
+std::string drive_csv(const fitlib::model::DriveResult& r) {
+  static const char* kVoigt[6] = {"11", "22", "33", "23", "13", "12"};
+  std::string out = "time_s";
+  for (const char* v : kVoigt) out += std::string(",strain_") + v;
+  for (const char* v : kVoigt) out += std::string(",stress_") + v + "_MPa";
+  out += "\n";
+  for (size_t n = 0; n < r.time_s.size(); ++n) {
+    out += exact(r.time_s[n]);
+    for (int i = 0; i < 6; ++i) out += "," + exact(r.strain[n][i]);
+    for (int i = 0; i < 6; ++i) out += "," + exact(r.stress[n][i]);
+    out += "\n";
+  }
+  return out;
+}
+
+void run_case(const Args& a, const fitlib::card::Card& card) {
+  using namespace fitlib;
+  if (card.model_kind != "fritzson" && card.model_kind != "fritzson-iso")
+    throw core::UsageError("--case needs a fritzson card, not '" + card.model_kind + "'");
+  const double reference_C = card.model_options.value("reference_C", 23.0);
+  const model::fritzson::MaterialPoint point(card.values(), card.model_kind == "fritzson",
+                                             reference_C, model::fritzson::Scheme::exponential);
+  const auto& c = model::fritzson::thesis_case(a.case_id);
+  emit(a.out, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
+}
+
+void run_cyclic(const Args& a, const fitlib::card::Card& card) {
+  using namespace fitlib;
+  if (a.fidelity != "viscoelastic" && a.fidelity != "elastic")
+    throw core::UsageError("--fidelity must be viscoelastic or elastic, not '" + a.fidelity + "'");
+  if (a.cycles < 1 || a.steps_per_cycle < 4 || !(a.frequency_Hz > 0.0))
+    throw core::UsageError("--cycles ≥ 1, --steps-per-cycle ≥ 4 and --frequency > 0 are needed");
+  model::PointOptions options;
+  options.fidelity = a.fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
+                                             : model::PointOptions::Fidelity::viscoelastic;
+  options.frequency_Hz = a.frequency_Hz;
+  options.temperature_C = a.temperature_C;
+  options.bulk_modulus_MPa = a.bulk_modulus_MPa;
+  const auto point = model::make_material_point(*card.model(), card.values(), options);
+  model::TestCondition c;
+  c.mode = model::parse_test_mode(a.test);
+  c.orientation = a.orientation;
+  c.temperature_C = a.temperature_C;
+  const auto history = model::fritzson::cyclic_history(a.amplitude, a.mean_strain, a.frequency_Hz,
+                                                       a.cycles, a.steps_per_cycle);
+  emit(a.out, drive_csv(model::drive(*point, model::test_program(c, history))));
+}
+
+}  // namespace
 
 void register_material_point(CLI::App& app) {
-  struct Args {
-    std::string card, case_id, out;
-    int steps_per_cycle = 200;
-  };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
-      "material-point", "Run a Report II §7.2 case (7.1–7.5) for a fritzson card; loops as CSV");
-  cmd->add_option("--card", args->card, "material card (model fritzson or fritzson-iso)")->required();
-  cmd->add_option("--case", args->case_id, "7.1, 7.2, 7.3, 7.4 (cyclic) or 7.5 (ramp)")->required();
+      "material-point",
+      "Drive a card's material point through a cyclic test (any model; CSV of time, strains, "
+      "stresses), or run a Report II §7.2 case (7.1–7.5) of a fritzson card");
+  cmd->add_option("--card", args->card, "material card")->required();
+  cmd->add_option("--case", args->case_id, "fritzson cards: 7.1, 7.2, 7.3, 7.4 (cyclic) or 7.5 (ramp)");
+  cmd->add_option("--test", args->test, "shear (default), uniaxial or bulk");
+  cmd->add_option("--orientation", args->orientation, "11, 22, 33, 12, 13 or 23 (default 12 / 22)");
+  cmd->add_option("--amplitude", args->amplitude, "strain amplitude (shear: γ; default 0.01)");
+  cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft");
+  cmd->add_option("--frequency", args->frequency_Hz, "Hz (default 1)");
+  cmd->add_option("--cycles", args->cycles, "cycles (default 5)");
+  cmd->add_option("--temperature", args->temperature_C, "degC (default: the card's reference)");
+  cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency)");
+  cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear shear card without K");
   cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)");
   cmd->add_option("--out", args->out, "output CSV (default stdout)");
   cmd->callback([args] {
-    using namespace fitlib;
-    const auto card = card::load_card(args->card);
-    if (card.model_kind != "fritzson" && card.model_kind != "fritzson-iso")
-      throw core::UsageError("material-point needs a fritzson card, not '" + card.model_kind + "'");
-    const double reference_C = card.model_options.value("reference_C", 23.0);
-    const model::fritzson::MaterialPoint point(card.values(), card.model_kind == "fritzson",
-                                               reference_C, model::fritzson::Scheme::exponential);
-    const auto& c = model::fritzson::thesis_case(args->case_id);
-    const auto loops = model::fritzson::run_thesis_case(point, c, args->steps_per_cycle);
-    emit(args->out, model::fritzson::case_loops_csv(c, loops));
+    const auto card = fitlib::card::load_card(args->card);
+    if (!args->case_id.empty()) run_case(*args, card);
+    else run_cyclic(*args, card);
   });
 }
 

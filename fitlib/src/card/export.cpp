@@ -1,5 +1,6 @@
 #include "fitlib/card/export.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -21,7 +22,9 @@ struct PronyExport {
   std::vector<double> alpha, tau_s;
   double young0_MPa = 0.0, shear0_MPa = 0.0, bulk_MPa = 0.0, poisson = 0.0;
   bool bulk_relaxes = false;  // uniaxial card: same α for bulk (constant Poisson ratio)
-  nlohmann::json temperature;
+  // WLF shift log a_T = −C1 (T − T_ref)/(C2 + T − T_ref), when the card has one.
+  bool wlf = false;
+  double reference_C = 0.0, C1 = 0.0, C2_K = 0.0;
 };
 
 PronyExport prepare(const Card& card, const std::string& format, const ExportOptions& o) {
@@ -47,25 +50,32 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
     e.alpha.push_back(s.moduli[i] / m0);
     e.tau_s.push_back(s.times_s[i]);
   }
-  e.temperature = m->temperature_law(values.data());
-  const std::string law = e.temperature.value("law", "none");
-  if (law != "none" && law != "wlf")
-    throw core::UsageError(format + " export supports only the WLF shift; the card uses '" + law + "'");
-  if (e.temperature.value("vertical_shift", false) || e.temperature.contains("c_T_per_C"))
+  const model::TemperatureLawInfo law = m->temperature_law_info();
+  if (law.law != model::ShiftLaw::none && law.law != model::ShiftLaw::wlf)
+    throw core::UsageError(format + " export supports only the WLF shift; the card uses '" +
+                           m->temperature_law(values.data()).value("law", "?") + "'");
+  if (law.vertical_shift || law.linear_factor)
     throw core::UsageError(format + " Prony input cannot hold a vertical shift or a linear temperature factor");
-  const auto bulk_index = core::find_parameter(m->parameters(), "K");
+  if (law.law == model::ShiftLaw::wlf) {
+    e.wlf = true;
+    e.reference_C = law.reference_C;
+    e.C1 = values[law.shift_parameters.at(0)];
+    e.C2_K = values[law.shift_parameters.at(1)];
+  }
+  const double bulk = m->bulk_modulus(values.data());
+  const bool has_bulk = !std::isnan(bulk);
   const auto mode = m->native_mode();
   if (mode == model::TestMode::bulk) throw core::UsageError("a bulk card cannot be exported as a Prony material");
   if (mode == model::TestMode::shear) {
     e.shear0_MPa = m0;
-    e.bulk_MPa = bulk_index >= 0 ? values[bulk_index]
+    e.bulk_MPa = has_bulk ? bulk
                                  : 2.0 * m0 * (1.0 + o.poisson_ratio) / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
     e.young0_MPa = 9.0 * e.bulk_MPa * m0 / (3.0 * e.bulk_MPa + m0);
   } else {
     e.young0_MPa = m0;
-    e.bulk_MPa = bulk_index >= 0 ? values[bulk_index] : m0 / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
+    e.bulk_MPa = has_bulk ? bulk : m0 / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
     e.shear0_MPa = 3.0 * e.bulk_MPa * m0 / (9.0 * e.bulk_MPa - m0);
-    e.bulk_relaxes = bulk_index < 0;
+    e.bulk_relaxes = !has_bulk;
   }
   e.poisson = (3.0 * e.bulk_MPa - 2.0 * e.shear0_MPa) / (2.0 * (3.0 * e.bulk_MPa + e.shear0_MPa));
   return e;
@@ -88,9 +98,8 @@ std::string abaqus(const Card& card, const PronyExport& e) {
   out << "*VISCOELASTIC, TIME=PRONY\n";
   for (size_t i = 0; i < e.alpha.size(); ++i)
     out << num(e.alpha[i]) << ", " << num(e.bulk_relaxes ? e.alpha[i] : 0.0) << ", " << num(e.tau_s[i]) << "\n";
-  if (e.temperature.value("law", "none") == "wlf")
-    out << "*TRS, DEFINITION=WLF\n" << num(e.temperature["reference_C"].get<double>()) << ", "
-        << num(e.temperature["C1"].get<double>()) << ", " << num(e.temperature["C2_K"].get<double>()) << "\n";
+  if (e.wlf)
+    out << "*TRS, DEFINITION=WLF\n" << num(e.reference_C) << ", " << num(e.C1) << ", " << num(e.C2_K) << "\n";
   return out.str();
 }
 
@@ -118,10 +127,9 @@ std::string ansys(const Card& card, const PronyExport& e, int id) {
     out << "TB,PRONY," << id << ",," << e.alpha.size() << ",BULK\n";
     tbdata(out, pairs);
   }
-  if (e.temperature.value("law", "none") == "wlf") {
+  if (e.wlf) {
     out << "TB,SHIFT," << id << ",,3,WLF\n";
-    tbdata(out, {e.temperature["reference_C"].get<double>(), e.temperature["C1"].get<double>(),
-                 e.temperature["C2_K"].get<double>()});
+    tbdata(out, {e.reference_C, e.C1, e.C2_K});
   }
   return out.str();
 }
@@ -133,11 +141,9 @@ std::string lsdyna(const Card& card, const PronyExport& e, int id) {
   out << header(card, "$", e);
   out << "*MAT_GENERAL_VISCOELASTIC\n";
   out << "$ MID, RO, BULK, PCF, EF, TREF, A, B\n";
-  const bool wlf = e.temperature.value("law", "none") == "wlf";
   out << id << ",0.0," << num(e.bulk_MPa) << ",0.0,0.0,"
-      << (wlf ? num(e.temperature["reference_C"].get<double>()) : "0.0") << ","
-      << (wlf ? num(e.temperature["C1"].get<double>()) : "0.0") << ","
-      << (wlf ? num(e.temperature["C2_K"].get<double>()) : "0.0") << "\n";
+      << (e.wlf ? num(e.reference_C) : "0.0") << "," << (e.wlf ? num(e.C1) : "0.0") << ","
+      << (e.wlf ? num(e.C2_K) : "0.0") << "\n";
   out << "$ LCID, NT, BSTART, TRAMP, LCIDK, NTK, BSTARTK, TRAMPK\n0,0,0.0,0.0,0,0,0.0,0.0\n";
   out << "$ GI, BETAI, KI, BETAKI\n";
   double sum_alpha = 0.0;

@@ -11,6 +11,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/autodiff_model.hpp"
 #include "fitlib/model/fritzson_point.hpp"
+#include "fritzson_contract.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::model::fritzson {
@@ -122,6 +123,18 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
   // Describes shear, uniaxial (all orientations) and bulk alike; shear is its natural card.
   TestMode native_mode() const override { return TestMode::shear; }
   bool amplitude_dependent() const override { return true; }
+  double bulk_modulus(const double* p) const override { return p[kK]; }
+  TemperatureLawInfo temperature_law_info() const override {
+    TemperatureLawInfo info;  // no horizontal shift; reversible linear factors per part
+    info.reference_C = reference_C_;
+    info.linear_factor = true;
+    return info;
+  }
+  std::shared_ptr<const model::MaterialPoint> material_point(
+      const double* p, const PointOptions& options) const override {
+    return make_contract_point(std::vector<double>(p, p + size()), anisotropic_, reference_C_,
+                               options);
+  }
   nlohmann::json temperature_law(const double* p) const override {
     nlohmann::json law = {{"law", "linear-factors"}, {"reference_C", reference_C_},
                           {"c1_I", p[kPartI + kC1]}, {"c2_I", p[kPartI + kC2]}};

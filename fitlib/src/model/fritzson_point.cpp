@@ -52,9 +52,9 @@ MaterialPoint::MaterialPoint(std::vector<double> parameters, bool anisotropic, d
                            " parameters, got " + std::to_string(p_.size()));
 }
 
-template <typename T>
-void MaterialPoint::update_impl(const MaterialState& state, const T* strain, double dt,
-                                double temperature_C, MaterialState& next, T* stress) const {
+template <typename T, typename In, typename Out>
+void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
+                                double temperature_C, Out& next, T* stress) const {
   if (!(dt >= 0.0) || !std::isfinite(dt))
     throw core::UsageError("fritzson material point: the time step must be finite and ≥ 0");
   const double* p = p_.data();
@@ -178,8 +178,9 @@ void MaterialPoint::update_impl(const MaterialState& state, const T* strain, dou
   }
 }
 
-Vector6 MaterialPoint::update(const MaterialState& state, const Vector6& strain, double dt_s,
-                              double temperature_C, MaterialState& next, Matrix6* tangent) const {
+template <typename In, typename Out>
+Vector6 MaterialPoint::update_any(const In& state, const Vector6& strain, double dt_s,
+                                  double temperature_C, Out& next, Matrix6* tangent) const {
   Vector6 stress;
   if (!tangent) {
     update_impl<double>(state, strain.data(), dt_s, temperature_C, next, stress.data());
@@ -195,20 +196,16 @@ Vector6 MaterialPoint::update(const MaterialState& state, const Vector6& strain,
   return stress;
 }
 
-Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation) {
-  if (!(F.determinant() > 0.0))
-    throw core::NumericalError("fritzson: deformation gradient with det F ≤ 0");
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(F.transpose() * F);
-  const Eigen::Vector3d lambda = eig.eigenvalues().cwiseSqrt();
-  const Eigen::Matrix3d Q = eig.eigenvectors();
-  const Eigen::Matrix3d lnU = Q * lambda.array().log().matrix().asDiagonal() * Q.transpose();
-  if (rotation) {
-    const Eigen::Matrix3d U_inv = Q * lambda.cwiseInverse().asDiagonal() * Q.transpose();
-    *rotation = F * U_inv;
-  }
-  Vector6 e;
-  e << lnU(0, 0), lnU(1, 1), lnU(2, 2), 2.0 * lnU(1, 2), 2.0 * lnU(0, 2), 2.0 * lnU(0, 1);
-  return e;
+Vector6 MaterialPoint::update(const MaterialState& state, const Vector6& strain, double dt_s,
+                              double temperature_C, MaterialState& next, Matrix6* tangent) const {
+  return update_any(state, strain, dt_s, temperature_C, next, tangent);
+}
+
+Vector6 MaterialPoint::update_flat(const double* state, const Vector6& strain, double dt_s,
+                                   double temperature_C, double* next, Matrix6* tangent) const {
+  const FlatState<const double> in(state);
+  FlatState<double> out(next);
+  return update_any(in, strain, dt_s, temperature_C, out, tangent);
 }
 
 Eigen::Matrix3d MaterialPoint::update_deformation(const MaterialState& state,

@@ -6,7 +6,9 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/autodiff_model.hpp"
+#include "fitlib/model/material_point.hpp"
 #include "fitlib/model/time_series.hpp"
+#include "points.hpp"
 
 namespace fitlib::model {
 namespace {
@@ -321,6 +323,78 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     }
     if (o_.linear_factor) j["c_T_per_C"] = p[factor_index_];
     return j;
+  }
+
+  bool kelvin_series(const double* p, KelvinSeries* out) const override {
+    if constexpr (std::is_same_v<Kernel, Retardation>) {
+      *out = Kernel::kelvin(p, terms());
+      return true;
+    }
+    return false;
+  }
+
+  double bulk_modulus(const double* p) const override {
+    return o_.bulk_modulus ? p[k_index_] : std::numeric_limits<double>::quiet_NaN();
+  }
+
+  TemperatureLawInfo temperature_law_info() const override {
+    TemperatureLawInfo info;
+    info.reference_C = o_.reference_C;
+    info.vertical_shift = o_.vertical_shift;
+    info.linear_factor = o_.linear_factor;
+    if (o_.law == ShiftLaw::wlf) {
+      info.law = model::ShiftLaw::wlf;
+      info.shift_parameters = {int(shift_index_), int(shift_index_ + 1)};
+      info.pole_parameter = int(shift_index_ + 1);
+    } else if (o_.law == ShiftLaw::arrhenius) {
+      info.law = model::ShiftLaw::arrhenius;
+      info.shift_parameters = {int(shift_index_)};
+    }
+    return info;
+  }
+
+  TemperatureFactors temperature_factors(const double* p, double temperature_C) const override {
+    TestCondition c;
+    c.temperature_C = temperature_C;
+    TemperatureFactors f;
+    temperature_factors(p, c, f.shift_factor, f.scale);
+    return f;
+  }
+
+  // docs/model.md §"Linear viscoelastic point": the shear series of the kernel (Kelvin chains
+  // converted exactly, the fractional Zener by its quadrature) and an elastic bulk modulus.
+  std::shared_ptr<const MaterialPoint> material_point(const double* p,
+                                                      const PointOptions& options) const override {
+    const double K = std::isnan(options.bulk_modulus_MPa) ? bulk_modulus(p) : options.bulk_modulus_MPa;
+    const std::string name = std::string(Kernel::kKind) + " (" + to_string(o_.mode) + " card)";
+    if (o_.mode == TestMode::bulk)
+      throw core::UsageError(name + ": a bulk card alone gives no material point (no shear part)");
+    if (!(K > 0.0))
+      throw core::UsageError(name + ": a material point needs a bulk modulus K > 0 (fit with "
+                             "--bulk-modulus, or give the point's bulk modulus)");
+    if (options.fidelity == PointOptions::Fidelity::elastic) {
+      TestCondition c;
+      c.mode = o_.mode;
+      c.frequency_Hz = options.frequency_Hz;
+      c.temperature_C = options.temperature_C;
+      const double m = this->moduli(p, c).storage;
+      const double G = o_.mode == TestMode::shear ? m : 3.0 * K * m / (9.0 * K - m);
+      if (!(G > 0.0))
+        throw core::NumericalError(name + ": storage modulus not below 9K, no elastic equivalent");
+      return points::elastic_point(points::isotropic_stiffness(K, G), name + ", elastic");
+    }
+    if (o_.mode != TestMode::shear)
+      throw core::UsageError(name + ": the 3-D viscoelastic point needs a shear card (a uniaxial "
+                             "relaxation series has no finite shear series); use the elastic "
+                             "fidelity or fit the shear modulus");
+    MaxwellSeries shear;
+    if constexpr (std::is_same_v<Kernel, Retardation>) shear = Kernel::kelvin(p, terms()).to_maxwell();
+    else shear = Kernel::series(p, terms());
+    auto self = std::make_shared<const LinearModel>(*this);
+    std::vector<double> values(p, p + specs_.size());
+    auto temperature = [self, values](double T) { return self->temperature_factors(values.data(), T); };
+    return points::linear_viscoelastic_point(std::move(shear), MaxwellSeries{K, {}, {}},
+                                             std::move(temperature), name);
   }
 
   bool maxwell_series(const double* p, MaxwellSeries* out) const override {

@@ -1,8 +1,10 @@
 #include "fitlib/model/model.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/model/material_point.hpp"
 
 namespace fitlib::model {
 
@@ -27,6 +29,13 @@ void check_strain_history(const StrainHistory& h) {
 
 nlohmann::json Model::temperature_law(const double*) const {
   return {{"law", "none"}};
+}
+
+double Model::bulk_modulus(const double*) const { return std::nan(""); }
+
+std::shared_ptr<const MaterialPoint> Model::material_point(const double*,
+                                                           const PointOptions&) const {
+  throw core::UsageError("model '" + kind() + "' has no material point");
 }
 
 TestMode parse_test_mode(const std::string& text) {

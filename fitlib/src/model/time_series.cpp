@@ -154,6 +154,54 @@ double KelvinSeries::relaxation(double t_s, int steps_per_decade) const {
   return sigma;
 }
 
+MaxwellSeries KelvinSeries::to_maxwell() const {
+  if (!(glassy_compliance > 0.0))
+    throw core::UsageError("retardation spectrum: glassy compliance J_g must be positive");
+  // Rates r = 1/λ ascending, equal retardation times merged.
+  std::vector<std::pair<double, double>> rate_compliance;
+  for (size_t i = 0; i < times_s.size(); ++i) {
+    if (!(times_s[i] > 0.0) || !(compliances[i] > 0.0))
+      throw core::UsageError("retardation spectrum: L_i and lambda_i must be > 0 for a Maxwell form");
+    rate_compliance.push_back({1.0 / times_s[i], compliances[i]});
+  }
+  std::sort(rate_compliance.begin(), rate_compliance.end());
+  std::vector<double> rate, L;
+  for (const auto& [r, l] : rate_compliance) {
+    if (!rate.empty() && r == rate.back()) L.back() += l;
+    else rate.push_back(r), L.push_back(l);
+  }
+  // g(x) = J_g + Σ L_i/(1 − x/r_i) is s·J̄(s) at s = −x; it rises from −∞ to +∞ between
+  // consecutive rates and from −∞ to J_g beyond the largest: one zero in each interval.
+  auto g = [&](double x) {
+    double v = glassy_compliance;
+    for (size_t i = 0; i < rate.size(); ++i) v += L[i] / (1.0 - x / rate[i]);
+    return v;
+  };
+  MaxwellSeries m;
+  double total = glassy_compliance;
+  for (double l : L) total += l;
+  m.relaxed = 1.0 / total;
+  for (size_t k = 0; k < rate.size(); ++k) {
+    double lo = rate[k], hi = k + 1 < rate.size() ? rate[k + 1] : 2.0 * rate[k];
+    while (k + 1 == rate.size() && g(hi) < 0.0) hi *= 2.0;
+    for (int it = 0; it < 200; ++it) {  // bisection to the last bit
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      (g(mid) < 0.0 ? lo : hi) = mid;
+    }
+    const double x = 0.5 * (lo + hi);
+    // Residue of 1/(s J̄(s)) at s = −x gives M_k = τ_k / Σ L_i λ_i/(1 − x λ_i)², τ_k = 1/x.
+    double slope = 0.0;
+    for (size_t i = 0; i < rate.size(); ++i) {
+      const double d = 1.0 - x / rate[i];
+      slope += L[i] / rate[i] / (d * d);
+    }
+    m.times_s.push_back(1.0 / x);
+    m.moduli.push_back(1.0 / (x * slope));
+  }
+  return m;
+}
+
 Moduli<double> steady_state_by_time_integration(const Model& model, const double* p,
                                                 const TestCondition& c, int cycles,
                                                 int steps_per_cycle) {

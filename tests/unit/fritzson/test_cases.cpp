@@ -13,6 +13,9 @@ namespace {
 
 using namespace fitlib::model;
 using namespace fitlib::model::fritzson;
+// fritzson's own point and driver (model:: has the generic ones of the same names)
+using fitlib::model::fritzson::DriveResult;
+using fitlib::model::fritzson::MaterialPoint;
 
 // Peak-to-peak stress over cycle `k` (0-based) of a cyclic case.
 double peak_to_peak(const CaseLoops& l, int k, int steps) {

@@ -18,6 +18,9 @@ namespace {
 
 using namespace fitlib::model;
 using namespace fitlib::model::fritzson;
+// fritzson's own point and driver (model:: has the generic ones of the same names)
+using fitlib::model::fritzson::DriveResult;
+using fitlib::model::fritzson::MaterialPoint;
 using fritzson_test::material1_parameters;
 using fritzson_test::material2_parameters;
 

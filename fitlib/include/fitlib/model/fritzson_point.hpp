@@ -10,16 +10,19 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <type_traits>
 #include <string>
 #include <vector>
 
 #include "fitlib/model/fritzson.hpp"
+#include "fitlib/model/material_point.hpp"
 #include "fitlib/model/model.hpp"
 
 namespace fitlib::model::fritzson {
 
-using Vector6 = Eigen::Matrix<double, 6, 1>;
-using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using model::Matrix6;
+using model::Vector6;
+using model::log_strain;  // ln U and R of F = R U (material_point.hpp)
 
 // backward_euler: the thesis's scheme (L2302), first order: Maxwell s_{n+1} =
 //   τ/(τ+Δt)(s_n + 2G h2 g2 Δe), running mean by the rectangle rule.
@@ -55,6 +58,31 @@ struct MaterialState {
   MaterialState();
 };
 
+// A MaterialState in a flat array of kFlatStateSize doubles (the contract's state,
+// material_point.hpp), with the same member syntax over borrowed storage, so one update serves
+// both without copies. Order: time, strain (6), ∫e (6), e^a (3), e^o (3), viscous I (5 × 6),
+// A1 (5), A2 (5 × 2). D is double or const double.
+constexpr std::size_t kFlatStateSize = 64;
+template <typename D>
+struct FlatState {
+  using Vec = std::conditional_t<std::is_const_v<D>, Eigen::Map<const Vector6>, Eigen::Map<Vector6>>;
+  struct Rows {
+    D* p;
+    int width;
+    D* operator[](int n) const { return p + width * n; }
+  };
+  explicit FlatState(D* x)
+      : time_s(x[0]), strain(x + 1), dev_strain_integral(x + 7), driver_amplitude(x + 13),
+        driver_oscillating(x + 16), viscous_I{x + 19, 6}, viscous_A1(x + 49), viscous_A2{x + 54, 2} {}
+  D& time_s;
+  Vec strain, dev_strain_integral;
+  D* driver_amplitude;
+  D* driver_oscillating;
+  Rows viscous_I;
+  D* viscous_A1;
+  Rows viscous_A2;
+};
+
 class MaterialPoint {
  public:
   // parameters: 14 (isotropic) or 38 (anisotropic) in the order of fritzson.hpp.
@@ -76,23 +104,29 @@ class MaterialPoint {
                                      Vector6* stress_unrotated = nullptr,
                                      Matrix6* tangent = nullptr) const;
 
+  // The same update on a flat state (FlatState layout); bit-identical to update().
+  Vector6 update_flat(const double* state, const Vector6& strain, double dt_s,
+                      double temperature_C, double* next, Matrix6* tangent = nullptr) const;
+
   bool anisotropic() const { return anisotropic_; }
   Scheme scheme() const { return scheme_; }
   const std::vector<double>& parameters() const { return p_; }
 
-  template <typename T>
-  void update_impl(const MaterialState& state, const T* strain, double dt_s, double temperature_C,
-                   MaterialState& next, T* stress) const;
+  // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
+  template <typename T, typename In, typename Out>
+  void update_impl(const In& state, const T* strain, double dt_s, double temperature_C,
+                   Out& next, T* stress) const;
 
  private:
+  template <typename In, typename Out>
+  Vector6 update_any(const In& state, const Vector6& strain, double dt_s, double temperature_C,
+                     Out& next, Matrix6* tangent) const;
+
   std::vector<double> p_;
   bool anisotropic_;
   double reference_C_;
   Scheme scheme_;
 };
-
-// ln U (Voigt, engineering shear) and the rotation R of F = R U.
-Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation = nullptr);
 
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses
 // are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, L2264);

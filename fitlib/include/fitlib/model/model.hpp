@@ -43,7 +43,30 @@ struct DataSummary {
   double temperature_min_C = 23.0, temperature_max_C = 23.0;
 };
 
-struct MaxwellSeries;  // time_series.hpp
+struct MaxwellSeries;   // time_series.hpp
+struct KelvinSeries;    // time_series.hpp
+struct PointOptions;    // material_point.hpp
+class MaterialPoint;    // material_point.hpp
+
+// The horizontal temperature law of a model, as typed data for fitters and exports.
+enum class ShiftLaw { none, wlf, arrhenius, other };
+struct TemperatureLawInfo {
+  ShiftLaw law = ShiftLaw::none;
+  double reference_C = 23.0;
+  // Indices of the law's constants in the law's order (WLF: C1, C2; Arrhenius: E_a).
+  std::vector<int> shift_parameters;
+  // The parameter p_k that places the law's pole at reference_C − p_k (WLF: C2); −1 = no pole.
+  int pole_parameter = -1;
+  bool vertical_shift = false;       // entropic factor T/T_ref
+  bool linear_factor = false;        // g(T) = 1 − c_T (T − T_ref)
+};
+
+// Temperature factors at one temperature: reduced frequency ω·shift_factor (reduced time
+// t/shift_factor) and moduli scaled by `scale`.
+struct TemperatureFactors {
+  double shift_factor = 1.0;
+  double scale = 1.0;
+};
 
 class Model {
  public:
@@ -85,6 +108,22 @@ class Model {
   virtual nlohmann::json temperature_law(const double* p) const;
   // true when moduli depend on strain amplitude (damage): linear FE formats cannot hold it.
   virtual bool amplitude_dependent() const { return false; }
+  // the model as an exact Kelvin chain (discrete retardation spectrum), if it is one;
+  virtual bool kelvin_series(const double* p, KelvinSeries* out) const { return false; }
+  // its constant (elastic) bulk modulus K in MPa, if it has one; NaN otherwise;
+  virtual double bulk_modulus(const double* p) const;
+  // the temperature law as typed data (no name lookups outside model);
+  virtual TemperatureLawInfo temperature_law_info() const { return {}; }
+  // the temperature factors at T (°C; NaN = reference);
+  virtual TemperatureFactors temperature_factors(const double* p, double temperature_C) const {
+    return {};
+  }
+
+  // The material point of this model with parameters p (material_point.hpp): the one call from
+  // a card to what an FE code drives. Every model of make_model implements it (the default
+  // throws core::UsageError, for models built elsewhere, e.g. a fitter's internal models).
+  virtual std::shared_ptr<const MaterialPoint> material_point(const double* p,
+                                                             const PointOptions& options) const;
 
   // Default values of all parameters (a start for fitting, a sane demo card).
   std::vector<double> default_parameters() const;

@@ -36,6 +36,10 @@ struct KelvinSeries {
   std::vector<double> stress(const StrainHistory& history) const;
   // Relaxation modulus after a unit strain step (a ramp of `rise_s` then hold).
   double relaxation(double t_s, int steps_per_decade = 400) const;
+  // The same material as an exact Maxwell series (docs/model.md §"Kelvin to Maxwell"): the
+  // relaxation times are the zeros of J_g + Σ L_i/(1 − λ_i/τ), one per Kelvin element.
+  // Throws core::UsageError unless J_g > 0, L_i > 0 and λ_i > 0.
+  MaxwellSeries to_maxwell() const;
 };
 
 // Stress-strain steady state from a time integration: drives `model` with

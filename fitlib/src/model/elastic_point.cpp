@@ -1,0 +1,51 @@
+// The linear elastic material point and the elastic equivalent of any point (docs/model.md
+// §"Elastic fidelity").
+#include <nlohmann/json.hpp>
+
+#include "fitlib/core/error.hpp"
+#include "points.hpp"
+
+namespace fitlib::model::points {
+namespace {
+
+class ElasticPoint final : public MaterialPoint {
+ public:
+  ElasticPoint(const Matrix6& C, std::string description)
+      : C_(C), description_(std::move(description)) {
+    if (!C_.allFinite()) throw core::NumericalError(description_ + ": stiffness is not finite");
+  }
+  std::string describe() const override { return description_; }
+  std::size_t state_size() const override { return 0; }
+  std::vector<double> initial_state() const override { return {}; }
+  Vector6 update(const double*, const Vector6& strain, double dt_s, double, double*,
+                 Matrix6* tangent) const override {
+    if (!(dt_s >= 0.0)) throw core::UsageError(description_ + ": the time step must be ≥ 0");
+    if (tangent) *tangent = C_;
+    return C_ * strain;
+  }
+  ComplexMatrix6 complex_stiffness(double, double) const override {
+    return C_.cast<std::complex<double>>();
+  }
+
+ private:
+  Matrix6 C_;
+  std::string description_;
+};
+
+}  // namespace
+
+MaterialPointPtr elastic_point(const Matrix6& stiffness, std::string description) {
+  return std::make_shared<ElasticPoint>(stiffness, std::move(description));
+}
+
+MaterialPointPtr elastic_equivalent(const MaterialPoint& point, double frequency_Hz,
+                                    double temperature_C) {
+  if (!(frequency_Hz > 0.0))
+    throw core::UsageError("elastic equivalent: the frequency must be > 0 Hz");
+  const Matrix6 C = point.complex_stiffness(frequency_Hz, temperature_C).real();
+  nlohmann::json at = {{"frequency_Hz", frequency_Hz}};
+  if (!std::isnan(temperature_C)) at["temperature_C"] = temperature_C;
+  return elastic_point(C, point.describe() + ", elastic at " + at.dump());
+}
+
+}  // namespace fitlib::model::points

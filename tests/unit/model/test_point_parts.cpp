@@ -1,0 +1,120 @@
+// Parts of the material-point contract beyond the every-model suite: Fritzson bit-identity
+// through the contract, the exact Kelvin-to-Maxwell conversion, plane strain, stress control,
+// elastic cards and restart-file checks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/model/fritzson_point.hpp"
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/model/model.hpp"
+#include "fitlib/model/time_series.hpp"
+
+namespace {
+
+using namespace fitlib::model;
+
+std::vector<double> fritzson_material1() {
+  return {4000.0, 2.5, 2.0, 0.21, 0.008, 2.5, 0.25, 0.6, -2.0, 0.5, 0.5, 0.0065, 0.008, 0.6,
+          10.0, 8.0, 0.7, 0.008, 2.5, 0.4, 0.5, -2.2, 0.5, 0.5, 0.006, 0.008,
+          1.2, 1.0, 0.1, 0.008, 2.5, 0.35, 0.6, -2.0, 0.5, 0.5, 0.006, 0.008};
+}
+
+TEST(PointParts, FritzsonThroughTheContractIsBitIdenticalToItsIntegrator) {
+  const auto p = fritzson_material1();
+  const auto model = make_model("fritzson", {{"reference_C", 23.0}});
+  const auto point = make_material_point(*model, p);
+  const fritzson::MaterialPoint direct(p, true, 23.0);
+  fritzson::MaterialState s, s_next;
+  std::vector<double> x = point->initial_state(), x_next(point->state_size());
+  for (int n = 0; n < 200; ++n) {
+    Vector6 e;
+    for (int i = 0; i < 6; ++i) e[i] = 0.01 * std::sin(0.1 * n * (i + 1));
+    Matrix6 C1, C2;
+    const Vector6 a = direct.update(s, e, n ? 0.004 : 0.0, 40.0, s_next, &C1);
+    const Vector6 b = point->update(x.data(), e, n ? 0.004 : 0.0, 40.0, x_next.data(), &C2);
+    s = s_next;
+    x.swap(x_next);
+    for (int i = 0; i < 6; ++i) ASSERT_EQ(a[i], b[i]) << "step " << n;
+    ASSERT_TRUE((C1.array() == C2.array()).all()) << "step " << n;
+  }
+}
+
+TEST(PointParts, KelvinChainAsMaxwellSeriesHasTheSameRelaxationAndCreep) {
+  const KelvinSeries k{0.1, {0.2, 0.3, 0.1}, {0.02, 0.1, 0.4}};
+  const MaxwellSeries m = k.to_maxwell();
+  ASSERT_EQ(m.moduli.size(), 3u);
+  EXPECT_NEAR(m.glassy(), 1.0 / 0.1, 1e-12 * 10.0);          // 1/J_g
+  EXPECT_NEAR(m.relaxed, 1.0 / 0.7, 1e-15);                   // 1/(J_g + ΣL)
+  for (double t : {0.001, 0.01, 0.1, 1.0, 5.0}) {
+    EXPECT_NEAR(m.relaxation(t), k.relaxation(t, 2000), 1e-6 * m.glassy()) << t;
+    EXPECT_NEAR(m.creep(t, 2000), k.creep(t), 1e-6 * k.creep(t)) << t;
+  }
+}
+
+TEST(PointParts, PlaneStrainKeepsOutOfPlaneStrainZero) {
+  const auto point = make_material_point(*make_model("elastic-iso", {}), {10.0, 0.3});
+  std::vector<double> none;
+  const auto r = point->update_plane_strain(none.data(), {1e-3, 0.0, 0.0}, 0.0, NAN, none.data());
+  // σ11 = (λ + 2μ)ε, σ22 = σ33 = λε, with λ = Eν/((1+ν)(1−2ν)), μ = E/(2(1+ν)).
+  const double lambda = 10.0 * 0.3 / (1.3 * 0.4), mu = 10.0 / 2.6;
+  EXPECT_NEAR(r.stress[0], (lambda + 2 * mu) * 1e-3, 1e-15);
+  EXPECT_NEAR(r.stress[1], lambda * 1e-3, 1e-15);
+  EXPECT_NEAR(r.stress_33, lambda * 1e-3, 1e-15);
+  EXPECT_NEAR(r.tangent(2, 2), mu, 1e-14);
+}
+
+TEST(PointParts, StressControlGivesYoungsModulusAndPoissonContraction) {
+  const auto point = make_material_point(*make_model("elastic-ortho", {}),
+                                         {5.0, 8.0, 200.0, 0.4, 0.01, 0.01, 2.0, 3.0, 3.5});
+  const TestCondition c{TestMode::uniaxial, "11"};
+  const DriveResult r = drive(*point, test_program(c, {{0.0, 1.0}, {0.0, 2e-3}}));
+  EXPECT_NEAR(test_stress(r, c)[1] / 2e-3, 5.0, 1e-9);      // E1
+  EXPECT_NEAR(-r.strain[1][1] / 2e-3, 0.4, 1e-9);           // ν12
+  EXPECT_NEAR(-r.strain[1][2] / 2e-3, 0.01, 1e-9);          // ν13
+}
+
+TEST(PointParts, ElasticCardsAnswerTheirOwnModuli) {
+  const auto iso = make_model("elastic-iso", {});
+  const double p[] = {10.0, 0.25};
+  TestCondition c;
+  c.mode = TestMode::shear;
+  EXPECT_DOUBLE_EQ(iso->moduli(p, c).storage, 4.0);
+  c.mode = TestMode::bulk;
+  EXPECT_NEAR(iso->moduli(p, c).storage, 10.0 / 1.5, 1e-12);
+  EXPECT_NEAR(iso->bulk_modulus(p), 10.0 / 1.5, 1e-12);
+  const double bad[] = {5.0, 5.0, 5.0, 0.9, 0.9, 0.9, 1.0, 1.0, 1.0};
+  EXPECT_THROW(make_model("elastic-ortho", {})->material_point(bad, {}), fitlib::core::UsageError);
+  EXPECT_THROW(make_model("elastic-iso", {{"terms", 3}}), fitlib::core::UsageError);
+}
+
+TEST(PointParts, RestartFileOfAnotherPointOrSizeIsRefused) {
+  const auto model = make_model("prony", {{"bulk_modulus", true}, {"terms", 2}});
+  const auto point = make_material_point(*model, {1.0, 2.0, 1.0, 0.1, 1.0, 100.0});
+  const auto state = point->initial_state();
+  nlohmann::json j = point->state_to_json(state.data());
+  EXPECT_EQ(point->state_from_json(j), state);
+  j["state"].push_back(0.0);
+  EXPECT_THROW(point->state_from_json(j), fitlib::core::UsageError);
+  j = point->state_to_json(state.data());
+  j["point"] = "fritzson";
+  EXPECT_THROW(point->state_from_json(j), fitlib::core::UsageError);
+}
+
+TEST(PointParts, LinearCardWithoutBulkModulusNamesTheFix) {
+  const auto model = make_model("prony", {{"terms", 1}});
+  const std::vector<double> p{1.0, 1.0, 0.1};
+  try {
+    make_material_point(*model, p);
+    FAIL();
+  } catch (const fitlib::core::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("bulk modulus"), std::string::npos) << e.what();
+  }
+  PointOptions o;
+  o.bulk_modulus_MPa = 100.0;
+  EXPECT_EQ(make_material_point(*model, p, o)->state_size(), 12u);
+}
+
+}  // namespace
