@@ -75,10 +75,36 @@ class LinearSolver {
   Eigen::SparseLU<SparseMatrix> lu_;
 };
 
+// All integration points' states in one contiguous block: element e's points start at offset[e].
+struct StateBlock {
+  std::vector<std::size_t> offset;
+  std::vector<double> committed, trial;
+};
+
+StateBlock initial_states(const StaticProblem& p, std::size_t points_per_element) {
+  const Mesh& m = *p.mesh;
+  StateBlock b;
+  for (int e = 0; e < m.element_count(); ++e) {
+    const PlaneStrainLaw& law = *p.laws[static_cast<int>(m.roles[e])];
+    b.offset.push_back(b.committed.size());
+    const std::vector<double> virgin = law.initial_state();
+    for (std::size_t q = 0; q < points_per_element; ++q) b.committed.insert(b.committed.end(), virgin.begin(), virgin.end());
+  }
+  b.trial = b.committed;
+  return b;
+}
+
 class Assembler {
  public:
   Assembler(const StaticProblem& p, const Dofs& d, int order)
       : p_(p), d_(d), rule_(detail::gauss_rule(order)) {}
+
+  std::size_t points_per_element() const { return rule_.size(); }
+  // The step the point states are updated over (state_n → state_next).
+  void set_step(const double* state_n, double* state_next, double dt_s) {
+    state_n_ = state_n, state_next_ = state_next, dt_s_ = dt_s;
+  }
+  void set_offsets(const std::vector<std::size_t>* offset) { offset_ = offset; }
 
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
 
@@ -104,12 +130,14 @@ class Assembler {
         X[a] = m.X[nodes[a]];
         u[a] = u_of(q, nodes[a]);
       }
-      if (!detail::element_response(X, u, *p_.laws[static_cast<int>(m.roles[e])], rule_, f,
+      const std::size_t at = (*offset_)[e];
+      const detail::ElementStep step{state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};
+      if (!detail::element_response(X, u, *p_.laws[static_cast<int>(m.roles[e])], rule_, step, f,
                                     K ? &Ke : nullptr, states ? &gp : nullptr))
         return e;
       scatter(nodes, f, K ? &Ke : nullptr, dq_p, r, K, coupling);
       if (states)
-        for (const auto& s : gp) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa});
+        for (const auto& s : gp) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
     }
     const double pressure = lambda * p_.pressure_MPa;
     if (pressure != 0.0)
@@ -151,6 +179,10 @@ class Assembler {
   const StaticProblem& p_;
   const Dofs& d_;
   std::vector<detail::GaussPoint> rule_;
+  const std::vector<std::size_t>* offset_ = nullptr;
+  const double* state_n_ = nullptr;
+  double* state_next_ = nullptr;
+  double dt_s_ = 0.0;
 };
 
 double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
@@ -168,8 +200,11 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   const Mesh& m = *p.mesh;
   Dofs d = number_dofs(p);
   std::vector<double> angles(p.constraints.size());
-  const Assembler assembler(p, d, gauss_order(m, knobs.integration));
-  LinearSolver linear(p.pressure_MPa == 0.0);
+  Assembler assembler(p, d, gauss_order(m, knobs.integration));
+  StateBlock states = initial_states(p, assembler.points_per_element());
+  assembler.set_offsets(&states.offset);
+  auto time_at = [&](double lambda) { return p.time_s ? p.time_s(lambda) : 0.0; };
+  LinearSolver linear(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent());
   const int nn = m.node_count();
   Eigen::VectorXd q = Eigen::VectorXd::Zero(2 * nn), r, coupling;
   std::vector<std::array<double, 2>> values(p.constraints.size());
@@ -197,6 +232,7 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
 
   double lambda = 0.0, dlambda = 1.0 / std::max(1, knobs.steps);
   int cuts_in_row = 0;
+  double last_dt = 0.0;
   while (lambda < 1.0 - 1e-14) {
     const double target = std::min(1.0, lambda + dlambda);
     if (p.rotate) {  // turn the constrained bases, keeping the displacements
@@ -209,6 +245,7 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
       }
     }
     const Eigen::VectorXd q_saved = q;
+    assembler.set_step(states.committed.data(), states.trial.data(), time_at(target) - time_at(lambda));
     const Eigen::VectorXd q_new_p = prescribed_at(target);
     Eigen::VectorXd dq_p = q_new_p - q;  // nonzero only at prescribed dofs
     int bad = -1, it = 0;
@@ -251,6 +288,9 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
       out.newton_iterations++;
     }
     if (converged) {
+      // The last assembly was at the converged q: trial holds its states.
+      states.committed.swap(states.trial);
+      last_dt = time_at(target) - time_at(lambda);
       lambda = target;
       out.increments++;
       out.final_residual = res;
@@ -262,8 +302,14 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
     dlambda *= 0.5;
     out.cuts++;
   }
+  // Stresses and reactions at the end: the last step's update again, from the states before it
+  // (after the swap, `trial` holds them).
+  std::vector<double> scratch(states.committed.size());
+  assembler.set_step(states.trial.data(), scratch.data(), last_dt);
   const int bad = assembler.run(q, 1.0, nullptr, r, nullptr, nullptr, &out.points);
   if (bad >= 0) fail(out.increments, 1.0, bad, out.final_residual, 0);
+  out.state = states.committed;
+  out.state_offset = states.offset;
   out.u_mm.resize(nn);
   out.reaction_N_mm.assign(nn, Eigen::Vector2d::Zero());
   for (int a = 0; a < nn; ++a) {
@@ -296,7 +342,9 @@ SectionForce section_force(const StaticProblem& p, const StaticSolution& s, doub
       touches = touches || std::abs(X[a].x() - x_cut) < tol;
     }
     if (!touches) continue;
-    detail::element_response(X, u, *p.laws[static_cast<int>(m.roles[e])], rule, f, nullptr, nullptr);
+    std::vector<Eigen::Matrix2d> piola;
+    for (const IntegrationPointStress& q : s.points[e]) piola.push_back(q.piola_MPa);
+    detail::internal_force(X, rule, piola, f);
     for (int a = 0; a < npe; ++a) {
       if (std::abs(X[a].x() - x_cut) >= tol) continue;
       const Eigen::Vector2d fa = f.segment<2>(2 * a), x = X[a] + u[a] - about;

@@ -7,6 +7,7 @@
 // step, the element and the residual (exit 4).
 #include <array>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,18 +43,26 @@ struct StaticProblem {
   // Optional: the constraints' basis angles at load level λ (a line that turns with the load).
   std::function<void(double lambda, std::vector<double>& angles_rad)> rotate;
   double pressure_MPa = 0.0;      // on the bottom edges, scaled by λ
+  // Time (s) at load level λ for rate-dependent laws; empty = 0 throughout (a static case
+  // applied at once: the glassy response of a viscoelastic law). Temperature of every point.
+  std::function<double(double lambda)> time_s;
+  double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
 };
 
 struct IntegrationPointStress {
   Eigen::Vector2d X_mm;           // reference position
   Eigen::Matrix2d cauchy_MPa;     // global x, y components
   double sigma33_MPa = 0.0;
+  Eigen::Matrix2d piola_MPa;      // first Piola–Kirchhoff (section forces)
+  Eigen::Matrix2d F;              // deformation gradient
 };
 
 struct StaticSolution {
   std::vector<Eigen::Vector2d> u_mm;                        // per node, global
   std::vector<Eigen::Vector2d> reaction_N_mm;               // per node (zero where free)
   std::vector<std::vector<IntegrationPointStress>> points;  // per element
+  std::vector<double> state;       // all integration points' committed states, one block
+  std::vector<std::size_t> state_offset;  // per element, into `state`
   int increments = 0, newton_iterations = 0, cuts = 0;
   double final_residual = 0.0;
   int equations = 0;

@@ -31,7 +31,7 @@ struct StaticSetup {
   CogSection section;
   MeshKnobs mesh;
   SolverKnobs solver;
-  ElasticLaw law = ElasticLaw::neo_hookean;
+  ElasticLaw law = ElasticLaw::hencky;
   std::array<IsotropicElastic, 2> materials{};  // by Role: bottom, cushion
   EndCondition ends = EndCondition::radial;
   std::vector<NamedPoint> points;               // beside the two standard points
