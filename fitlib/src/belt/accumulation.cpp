@@ -19,13 +19,13 @@ void check_loading(double omega, double kappa) {
 }  // namespace
 
 void validate(const RetardationSpectrum& s, const std::string& key) {
-  if (s.L_1_MPa.size() != s.lambda_s.size() || s.L_1_MPa.empty())
+  if (s.compliances.size() != s.times_s.size() || s.compliances.empty())
     throw InputError("spectrum needs as many retardation times as lines (and at least one)", {}, 0,
                      0, key);
-  for (std::size_t i = 0; i < s.L_1_MPa.size(); ++i) {
-    if (!(s.L_1_MPa[i] >= 0.0) || !std::isfinite(s.L_1_MPa[i]))
+  for (std::size_t i = 0; i < s.compliances.size(); ++i) {
+    if (!(s.compliances[i] >= 0.0) || !std::isfinite(s.compliances[i]))
       throw InputError("spectrum line L_" + std::to_string(i + 1) + " must be >= 0", {}, 0, 0, key);
-    if (!(s.lambda_s[i] > 0.0) || !std::isfinite(s.lambda_s[i]))
+    if (!(s.times_s[i] > 0.0) || !std::isfinite(s.times_s[i]))
       throw InputError("retardation time lambda_" + std::to_string(i + 1) + " must be > 0", {}, 0,
                        0, key);
   }
@@ -48,15 +48,15 @@ RetardationSpectrum spectrum_shape(const std::string& name, double total, int pe
   };
   if (per_decade < 1) throw InputError("lines per decade must be >= 1", {}, 0, 0, "spectrum");
   RetardationSpectrum s;
-  s.J_g_1_MPa = J_g;
+  s.glassy_compliance = J_g;
   double sum = 0.0;
   for (int k = -6 * per_decade; k <= 6 * per_decade; ++k) {
     const double x = static_cast<double>(k) / per_decade;
-    s.lambda_s.push_back(std::pow(10.0, x));
-    s.L_1_MPa.push_back(envelope(x));
-    sum += s.L_1_MPa.back();
+    s.times_s.push_back(std::pow(10.0, x));
+    s.compliances.push_back(envelope(x));
+    sum += s.compliances.back();
   }
-  for (double& L : s.L_1_MPa) L *= total / sum;
+  for (double& L : s.compliances) L *= total / sum;
   return s;
 }
 
@@ -65,12 +65,12 @@ double accumulated_strain(const RetardationSpectrum& s, double tau0, double N, d
   check_loading(omega, kappa);
   if (!(N >= 0.0)) throw InputError("cycle count must be >= 0", {}, 0, 0, "accumulation.cycles");
   double gamma = 0.0;
-  for (std::size_t i = 0; i < s.L_1_MPa.size(); ++i) {
-    const double a = 1.0 / (omega * s.lambda_s[i]);
+  for (std::size_t i = 0; i < s.compliances.size(); ++i) {
+    const double a = 1.0 / (omega * s.times_s[i]);
     // Σ_{m=0}^{N−1} q^m with q = e^{−2a(κ+π)}: (1 − q^N)/(1 − q), written with expm1.
     const double b = -2.0 * a * (kappa + kPi);
     const double geometric = std::expm1(b * N) / std::expm1(b);
-    gamma += s.L_1_MPa[i] * (-std::expm1(-kPi * a)) * std::exp(-a * kappa) * geometric;
+    gamma += s.compliances[i] * (-std::expm1(-kPi * a)) * std::exp(-a * kappa) * geometric;
   }
   return tau0 * gamma;
 }
@@ -80,9 +80,9 @@ double accumulated_strain_direct_sum(const RetardationSpectrum& s, double tau0, 
   check_loading(omega, kappa);
   double gamma = 0.0;
   for (long n = 1; n <= N; ++n)
-    for (std::size_t i = 0; i < s.L_1_MPa.size(); ++i) {
-      const double wl = omega * s.lambda_s[i];
-      gamma += s.L_1_MPa[i] * (1.0 - std::exp(-kPi / wl)) *
+    for (std::size_t i = 0; i < s.compliances.size(); ++i) {
+      const double wl = omega * s.times_s[i];
+      gamma += s.compliances[i] * (1.0 - std::exp(-kPi / wl)) *
                std::exp(-((kappa + kPi) * (2.0 * (N - n) + 1.0) - kPi) / wl);
     }
   return tau0 * gamma;
@@ -92,14 +92,14 @@ double accumulated_strain_time_integration(const RetardationSpectrum& s, double 
                                            double omega, double kappa, int substeps) {
   check_loading(omega, kappa);
   // Kelvin element i: strain e_i with λ_i ė_i + e_i = L_i τ; exact update for constant τ.
-  const std::size_t K = s.L_1_MPa.size();
+  const std::size_t K = s.compliances.size();
   std::vector<double> e(K, 0.0);
   auto hold = [&](double tau, double duration) {
     const double h = duration / substeps;
     for (int k = 0; k < substeps; ++k)
       for (std::size_t i = 0; i < K; ++i) {
-        const double target = s.L_1_MPa[i] * tau;
-        e[i] = target + (e[i] - target) * std::exp(-h / s.lambda_s[i]);
+        const double target = s.compliances[i] * tau;
+        e[i] = target + (e[i] - target) * std::exp(-h / s.times_s[i]);
       }
   };
   // Cycle: unloaded until t1 = (κ + π)/ω, loaded until t2 = (κ + 2π)/ω, unloaded until ξ.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/model/time_series.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
@@ -39,17 +40,15 @@ double relaxation_N(const ThreeParameterBelt& m, double T_x, double T_inf, doubl
 
 std::vector<double> integrate_three_parameter(const ThreeParameterBelt& m, const std::vector<double>& t,
                                               const std::vector<double>& eps, double T0) {
-  // T + τ_T Ṫ = S(ε + τ_ε ε̇); over a step with ε linear (slope k): exact update
-  // T(t+h) = e^{−h/τ_T} T + S ∫ e^{−(h−u)/τ_T}(ε(u) + τ_ε k) du / τ_T.
-  std::vector<double> T(t.size(), T0);
-  const double tT = m.tau_T_s;
-  for (std::size_t n = 1; n < t.size(); ++n) {
-    const double h = t[n] - t[n - 1], k = (eps[n] - eps[n - 1]) / h, e0 = eps[n - 1];
-    const double a = std::exp(-h / tT);
-    // ∫0^h e^{−(h−u)/τ}(e0 + k u) du/τ = e0(1 − a) + k[h − τ(1 − a)]
-    const double forced = e0 * (1 - a) + k * (h - tT * (1 - a)) + m.tau_eps_s * k * (1 - a);
-    T[n] = a * T[n - 1] + m.S_N * forced;
-  }
+  // The model's three-parameter solid (exact for ε linear over each step, from rest with a jump
+  // to ε(t0)), plus the free decay (T0 − T(t0)) e^{−(t−t0)/τ_T} that starts it at T0.
+  if (!(m.tau_T_s > 0.0))
+    throw core::UsageError("three-parameter belt: the time integration needs tau_T > 0");
+  const auto series = model::three_parameter_solid(m.S_N, m.tau_T_s, m.tau_eps_s);
+  std::vector<double> T = series.stress({t, eps});
+  if (T.empty()) return T;
+  const double offset = T0 - T[0];
+  for (std::size_t n = 0; n < T.size(); ++n) T[n] += offset * std::exp(-(t[n] - t[0]) / m.tau_T_s);
   return T;
 }
 

@@ -213,13 +213,9 @@ Eigen::Matrix3d MaterialPoint::update_deformation(const MaterialState& state,
                                                   double temperature_C, MaterialState& next,
                                                   Vector6* stress_unrotated,
                                                   Matrix6* tangent) const {
-  Eigen::Matrix3d R;
-  const Vector6 strain = log_strain(F, &R);
-  const Vector6 s = update(state, strain, dt_s, temperature_C, next, tangent);
-  if (stress_unrotated) *stress_unrotated = s;
-  Eigen::Matrix3d S;
-  S << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
-  return R * S * R.transpose();
+  return log_strain_step(F, stress_unrotated, [&](const Vector6& strain) {
+    return update(state, strain, dt_s, temperature_C, next, tangent);
+  });
 }
 
 PointLoading loading_for(const TestCondition& c, bool anisotropic) {

@@ -95,9 +95,7 @@ struct Zener3 {
   }
   template <typename T>
   static T relaxed(const T* p, int) { return p[0]; }
-  static MaxwellSeries series(const double* p, int) {
-    return {p[0], {p[0] * (p[2] / p[1] - 1.0)}, {p[1]}};
-  }
+  static MaxwellSeries series(const double* p, int) { return three_parameter_solid(p[0], p[1], p[2]); }
   static std::vector<double> start(const DataSummary& d, int) {
     const double t = 1.0 / std::sqrt(std::max(d.omega_min_rad_s * d.omega_max_rad_s, 1e-300));
     return {std::max(d.storage_min_MPa, 1e-9), t, t * std::max(d.storage_max_MPa / std::max(d.storage_min_MPa, 1e-9), 1.01)};
@@ -379,9 +377,10 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
       c.temperature_C = options.temperature_C;
       const double m = this->moduli(p, c).storage;
       const double G = o_.mode == TestMode::shear ? m : 3.0 * K * m / (9.0 * K - m);
+      const double K_T = K * temperature_factors(p, options.temperature_C).scale;  // as moduli()
       if (!(G > 0.0))
         throw core::NumericalError(name + ": storage modulus not below 9K, no elastic equivalent");
-      return points::elastic_point(points::isotropic_stiffness(K, G), name + ", elastic");
+      return points::elastic_point(points::isotropic_stiffness(K_T, G), name + ", elastic");
     }
     if (o_.mode != TestMode::shear)
       throw core::UsageError(name + ": the 3-D viscoelastic point needs a shear card (a uniaxial "

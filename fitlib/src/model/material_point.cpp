@@ -30,10 +30,12 @@ Eigen::Matrix3d MaterialPoint::update_deformation(const double* state_n, const E
                                                   double dt_s, double temperature_C,
                                                   double* state_next, Vector6* stress_unrotated,
                                                   Matrix6* tangent) const {
-  Eigen::Matrix3d R;
-  const Vector6 strain = log_strain(F, &R);
-  const Vector6 s = update(state_n, strain, dt_s, temperature_C, state_next, tangent);
-  if (stress_unrotated) *stress_unrotated = s;
+  return log_strain_step(F, stress_unrotated, [&](const Vector6& strain) {
+    return update(state_n, strain, dt_s, temperature_C, state_next, tangent);
+  });
+}
+
+Eigen::Matrix3d rotate_stress(const Vector6& s, const Eigen::Matrix3d& R) {
   Eigen::Matrix3d S;
   S << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
   return R * S * R.transpose();

@@ -91,6 +91,10 @@ double MaxwellSeries::creep(double t_s, int steps_per_decade) const {
   return eps;
 }
 
+MaxwellSeries three_parameter_solid(double S, double tau_T_s, double tau_eps_s) {
+  return {S, {S * (tau_eps_s / tau_T_s - 1.0)}, {tau_T_s}};
+}
+
 double KelvinSeries::creep(double t_s) const {
   double j = glassy_compliance;
   for (size_t i = 0; i < compliances.size(); ++i)

@@ -15,6 +15,7 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/core/units.hpp"
+#include "fitlib/model/time_series.hpp"
 
 namespace fitlib::scene {
 namespace {
@@ -82,8 +83,9 @@ nlohmann::json cvt_thrust_json(const belt::DriveCase& d, const CvtSpec& c) {
 }
 
 // Sorge–Cammalleri steady drive on the scene's two-pulley drive: S = c, drive-time constants from
-// the paper's extrapolation τ_T ≈ 0.2/ω, τ_ε ≈ 0.3/ω, dynamic tensions F − ρAv².
-nlohmann::json viscoelastic_json(const belt::DriveCase& d) {
+// the paper's extrapolation τ_T ≈ 0.2/ω, τ_ε ≈ 0.3/ω, tensions F − ρAv² when the scene's
+// `inertia` effect is on, else the static tensions F.
+nlohmann::json viscoelastic_json(const belt::DriveCase& d, bool inertia) {
   const auto& g = d.geometry;
   if (g.pulleys.size() != 2)
     throw InputError("viscoelastic_tension handles two-pulley drives only", {}, 0, 0, "effects.viscoelastic_tension");
@@ -98,7 +100,8 @@ nlohmann::json viscoelastic_json(const belt::DriveCase& d) {
   in.belt.S_N = d.belt.c_N;
   in.belt.tau_T_s = 0.2 / in.omega_rad_s;
   in.belt.tau_eps_s = 0.3 / in.omega_rad_s;
-  const double F_c = d.belt.density_kg_m3 * d.belt.area_mm2 * d.belt_speed_mm_s * d.belt_speed_mm_s * 1e-12;
+  const double F_c =
+      inertia ? d.belt.density_kg_m3 * d.belt.area_mm2 * d.belt_speed_mm_s * d.belt_speed_mm_s * 1e-12 : 0.0;
   in.slack_N = d.span_tension_N[drv] - F_c;
   in.tight_N = d.span_tension_N[1 - drv] - F_c;
   const auto sol = belt::solve_viscoelastic_drive(in);
@@ -274,26 +277,11 @@ belt::RetardationSpectrum scene_spectrum(const Scene& s, const std::string& spec
   const card::Card c = card::load_card(it->second);
   const auto model = c.model();
   const auto values = c.values();
-  belt::RetardationSpectrum r;
-  bool has_Jg = false;
-  std::vector<std::pair<int, double>> L, lam;
-  const auto& specs = model->parameters();
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    const std::string& n = specs[i].name;
-    if (n == "J_g") r.J_g_1_MPa = values[i], has_Jg = true;
-    else if (n.rfind("L_", 0) == 0) L.push_back({std::stoi(n.substr(2)), values[i]});
-    else if (n.rfind("lambda_", 0) == 0) lam.push_back({std::stoi(n.substr(7)), values[i]});
-  }
-  if (!has_Jg || L.empty() || L.size() != lam.size())
+  belt::RetardationSpectrum r;  // the model's Kelvin series
+  if (!model->kelvin_series(values.data(), &r))
     throw InputError("card " + it->second + " (model '" + c.model_kind +
                          "') has no discrete retardation spectrum J_g, L_i, lambda_i: fit a 'retardation' card",
                      s.path, 0, 0, "accumulation.spectrum");
-  std::sort(L.begin(), L.end());
-  std::sort(lam.begin(), lam.end());
-  for (std::size_t i = 0; i < L.size(); ++i) {
-    r.L_1_MPa.push_back(L[i].second);
-    r.lambda_s.push_back(lam[i].second);
-  }
   belt::validate(r, "accumulation.spectrum");
   if (source) *source = "card " + it->second + " (reference temperature)";
   return r;
@@ -387,7 +375,7 @@ SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options_in) 
           {"friction_used_relative", relative_change(*r.cycle, base, &belt::LoadSample::friction_used)}};
     }
   }
-  timed("viscoelastic_tension", [&] { r.extra["viscoelastic_tension"] = viscoelastic_json(*r.drive); });
+  timed("viscoelastic_tension", [&] { r.extra["viscoelastic_tension"] = viscoelastic_json(*r.drive, r.plan.load_cycle.inertia); });
   timed("strain_accumulation", [&] {
     const AccumulationSpec a = s.accumulation.value_or(AccumulationSpec{});
     std::string source;

@@ -90,6 +90,27 @@ TEST(PointParts, ElasticCardsAnswerTheirOwnModuli) {
   EXPECT_THROW(make_model("elastic-iso", {{"terms", 3}}), fitlib::core::UsageError);
 }
 
+// The elastic fidelity holds the card's own storage moduli at f and T, vertical shift included.
+TEST(PointParts, ElasticFidelityHoldsTheCardsModuliAtFrequencyAndTemperature) {
+  const auto model = make_model("prony", {{"bulk_modulus", true}, {"terms", 1}, {"temperature_law", "wlf"},
+                                          {"vertical_shift", true}, {"reference_C", 23.0}});
+  const std::vector<double> p{1.0, 2.0, 0.1, 300.0, 8.0, 120.0};
+  PointOptions o;
+  o.fidelity = PointOptions::Fidelity::elastic;
+  o.frequency_Hz = 5.0;
+  o.temperature_C = 60.0;
+  const auto point = make_material_point(*model, p, o);
+  std::vector<double> none;
+  Matrix6 C;
+  point->update(none.data(), Vector6::Zero(), 0.0, NAN, none.data(), &C);
+  TestCondition c;
+  c.frequency_Hz = 5.0;
+  c.temperature_C = 60.0;
+  EXPECT_NEAR(C(5, 5), model->moduli(p.data(), c).storage, 1e-12);
+  c.mode = TestMode::bulk;
+  EXPECT_NEAR((C.topLeftCorner<3, 3>().sum()) / 9.0, model->moduli(p.data(), c).storage, 1e-9);
+}
+
 TEST(PointParts, RestartFileOfAnotherPointOrSizeIsRefused) {
   const auto model = make_model("prony", {{"bulk_modulus", true}, {"terms", 2}});
   const auto point = make_material_point(*model, {1.0, 2.0, 1.0, 0.1, 1.0, 100.0});

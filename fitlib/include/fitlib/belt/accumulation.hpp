@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "fitlib/model/time_series.hpp"
+
 namespace fitlib::belt {
 
-struct RetardationSpectrum {
-  double J_g_1_MPa = 0.0;
-  std::vector<double> L_1_MPa;   // spectrum lines L_i
-  std::vector<double> lambda_s;  // retardation times λ_i
-};
+// The discrete retardation spectrum J_g, L_i (1/MPa), λ_i (s) is the model's Kelvin series
+// (one source for the law; time_series.hpp).
+using RetardationSpectrum = model::KelvinSeries;
 
 // Validates (equal sizes, L ≥ 0, λ > 0); InputError naming `key` otherwise.
 void validate(const RetardationSpectrum& s, const std::string& key = "spectrum");

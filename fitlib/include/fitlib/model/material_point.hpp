@@ -113,6 +113,16 @@ MaterialPointPtr make_material_point(const Model& model, const std::vector<doubl
 
 // ln U (Voigt, engineering shear) and the rotation R of F = R U; NumericalError when det F ≤ 0.
 Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation = nullptr);
+// R S Rᵀ of a Voigt stress S (the unrotated Kirchhoff stress to the current frame).
+Eigen::Matrix3d rotate_stress(const Vector6& stress, const Eigen::Matrix3d& rotation);
+// The total log-strain step every point shares: ε = ln U of F, `update(ε)` → τ_U, τ = R τ_U Rᵀ.
+template <typename Update>
+Eigen::Matrix3d log_strain_step(const Eigen::Matrix3d& F, Vector6* stress_unrotated, Update&& update) {
+  Eigen::Matrix3d R;
+  const Vector6 s = update(log_strain(F, &R));
+  if (stress_unrotated) *stress_unrotated = s;
+  return rotate_stress(s, R);
+}
 
 // ---- drive(): one driver for every point, as MTest does -------------------------------------
 // Each of the six Voigt components is either strain-controlled or stress-controlled, with its

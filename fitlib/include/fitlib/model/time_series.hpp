@@ -24,6 +24,10 @@ struct MaxwellSeries {
   double creep(double t_s, int steps_per_decade = 400) const;
 };
 
+// The three-parameter solid T + τ_T Ṫ = S(ε + τ_ε ε̇) (Sorge–Cammalleri Eq. 1; docs/model.md)
+// as a Maxwell series: M∞ = S, M_1 = S(τ_ε/τ_T − 1), τ_1 = τ_T.
+MaxwellSeries three_parameter_solid(double S, double tau_T_s, double tau_eps_s);
+
 // J(t) = J_g + Σ L_i (1 − exp(−t/λ_i)).
 struct KelvinSeries {
   double glassy_compliance = 0.0;  // J_g, 1/MPa
