@@ -28,12 +28,15 @@ struct NodeConstraint {
 using Prescribe = std::function<void(double lambda, std::vector<std::array<double, 2>>& local_values)>;
 
 struct SolverKnobs {
-  int steps = 4;                  // equal load increments of λ
+  int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
+  std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
   int max_iterations = 20;        // Newton iterations per increment
   int max_cuts = 6;               // halvings of an increment before giving up
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
 };
+
+struct StaticSolution;
 
 struct StaticProblem {
   const Mesh* mesh = nullptr;
@@ -46,6 +49,10 @@ struct StaticProblem {
   // Time (s) at load level λ for rate-dependent laws; empty = 0 throughout (a static case
   // applied at once: the glassy response of a viscoelastic law). Temperature of every point.
   std::function<double(double lambda)> time_s;
+  // Optional: dead body forces per element (global, N/mm³ of reference volume) at λ.
+  std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
+  // Optional: called after every converged increment with its stresses, displacements, reactions.
+  std::function<void(double lambda, const StaticSolution& increment)> on_increment;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
 };
 

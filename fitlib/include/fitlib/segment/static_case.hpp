@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fitlib/segment/curve.hpp"
 #include "fitlib/segment/elastic.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/section.hpp"
