@@ -13,7 +13,7 @@
 //
 // Kinematics (docs/model.md §"Finite strain"):
 //   small strain  ε = sym ∇u, σ Cauchy, tangent dσ_{n+1}/dε_{n+1};
-//   finite strain total logarithmic form (constitutive-model.md §1.1, §8 in docs/model.md):
+//   finite strain total logarithmic form (docs/model.md §"Finite strain"):
 //                 F = R U, the point is updated with the strain ln U in the unrotated frame and
 //                 returns the unrotated Kirchhoff stress τ_U (τ = R τ_U Rᵀ); the tangent is
 //                 dτ_U/d(ln U), the same 6 × 6 matrix as the small-strain tangent at ε = ln U.
