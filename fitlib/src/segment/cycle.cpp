@@ -151,6 +151,28 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   std::vector<NamedPoint> named = standard_points(section);
   named.insert(named.end(), extra_points.begin(), extra_points.end());
   std::vector<Eigen::Vector2d> forces;
+  std::vector<bool> written(knobs.vtk_at_s_mm.size(), false);
+  auto write_fields = [&](double tau, const StaticSolution& s) {
+    if (knobs.vtk_prefix.empty()) return;
+    const double s_last = (tau - 1.0 - (knobs.cycles - 1)) * h.length_mm();  // within the last cycle
+    for (std::size_t k = 0; k < written.size(); ++k) {
+      if (written[k] || s_last < knobs.vtk_at_s_mm[k]) continue;
+      VtkFields fields;
+      fields.displacement_mm = s.u_mm;
+      for (const auto& pts : s.points) {
+        std::array<double, 4> mean{};
+        for (const IntegrationPointStress& ip : pts) {
+          const std::array<double, 4> v{ip.cauchy_MPa(0, 0), ip.cauchy_MPa(1, 1), ip.cauchy_MPa(0, 1), ip.sigma33_MPa};
+          for (int c = 0; c < 4; ++c) mean[c] += v[c] / static_cast<double>(pts.size());
+        }
+        fields.cell_stress_MPa.push_back(mean);
+      }
+      const std::string path = knobs.vtk_prefix + "-" + std::to_string(k) + ".vtk";
+      write_vtk(m, path, fields);
+      out.vtk_files.push_back(path);
+      written[k] = true;
+    }
+  };
   p.on_increment = [&](double lambda, const StaticSolution& s) {
     if (out.points.empty()) {  // the integration point nearest each named point (reference)
       const Mesh one_point = wrapped([&] {
@@ -181,6 +203,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       c.s_mm = std::max(0.0, tau - 1.0) * h.length_mm();
       mh.samples.push_back(c);
     }
+    write_fields(tau, s);
     // Equilibrium: Σ reactions + ∫ b dV = 0 (the free residual is at the tolerance).
     body(lambda, forces);
     Eigen::Vector2d applied = Eigen::Vector2d::Zero(), reactions = Eigen::Vector2d::Zero(), cord = Eigen::Vector2d::Zero();

@@ -36,6 +36,10 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
+  // Full-field stress (VTK, cell means, global x–y) when the segment's middle first reaches each
+  // path position of the last cycle: <vtk_prefix>-<k>.vtk. Empty prefix: none.
+  std::vector<double> vtk_at_s_mm;
+  std::string vtk_prefix;
 };
 
 struct CycleSample {                    // a monitored point at the end of an increment
@@ -58,6 +62,7 @@ struct CycleResult {
   // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).
   double equilibrium_error = 0.0;
   double max_cord_reaction_N_mm = 0.0;  // largest |Σ cord-line reactions| (per mm of width)
+  std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
   int increments = 0, newton_iterations = 0, cuts = 0, elements = 0, equations = 0;
   StaticSolution final_state;
 };
