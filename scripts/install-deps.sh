@@ -6,7 +6,7 @@ packages=(
   libceres-dev libnlopt-cxx-dev libeigen3-dev libboost-dev
   nlohmann-json3-dev libtomlplusplus-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libfreexl-dev gnuplot-nox
+  libfreexl-dev gnuplot-nox libsuitesparse-dev
   python3 python3-matplotlib python3-numpy jupyter-nbconvert python3-nbclient python3-ipykernel
   calculix-ccx
 )

@@ -165,8 +165,9 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
     g.load.curvature_1_mm = 1.0 / *R;
   }
   g.load.pressure_MPa = r.number_or("pressure_MPa", 0.0, 0.0, 1e3);
-  const std::string law = r.string("law").value_or("neo-hookean");
-  if (law != "neo-hookean" && law != "stvk") r.fail("law", "law must be \"neo-hookean\" or \"stvk\"");
+  const std::string law = r.string("law").value_or("hencky");
+  if (law != "neo-hookean" && law != "stvk" && law != "hencky")
+    r.fail("law", "law must be \"hencky\", \"neo-hookean\" or \"stvk\"");
   g.setup.law = segment::elastic_law_from_string(law);
   const std::string ends = r.string("ends").value_or("radial");
   if (ends != "radial" && ends != "free") r.fail("ends", "ends must be \"radial\" or \"free\"");

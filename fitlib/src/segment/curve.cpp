@@ -36,10 +36,18 @@ NeutralCurve::NeutralCurve(double ds_mm, std::vector<double> curvature_pos, std:
 // Walks one side from the origin; the negative side is the mirror image of a positive walk.
 CurvePoint NeutralCurve::walk(double s_abs, bool positive) const {
   const auto& K = positive ? k_pos_ : k_neg_;
+  const auto& eps = positive ? eps_pos_ : eps_neg_;
   CurvePoint p;
+  p.K_1_mm = K.empty() ? 0.0 : K[0];
+  p.strain = eps.empty() ? 0.0 : eps[0];
   double left = s_abs;
   for (std::size_t i = 0; i < K.size() && left > 0.0; ++i) {
     const double d = (i + 1 == K.size()) ? left : std::min(left, ds_);
+    const double a0 = 1.0 / (1.0 + eps[i]);
+    const double a1 = (i + 1 == K.size() && d > ds_) ? a0 : 1.0 / (1.0 + eps[i + 1]);  // as unstrained_from_s
+    const double frac = std::min(1.0, d / ds_);
+    p.K_1_mm = K[i];
+    p.strain = 1.0 / (a0 + (a1 - a0) * frac) - 1.0;
     const double half = 0.5 * K[i] * d;
     const double mid = p.phi_rad + half;
     p.x_mm += d * std::cos(mid) * sinc(half);   // (sin φ_end − sin φ)/K, 5.11 rearranged

@@ -3,6 +3,10 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/segment/point_law.hpp"
+
+#include <nlohmann/json.hpp>
 
 namespace fitlib::segment {
 namespace {
@@ -14,7 +18,7 @@ int ij(int i, int J) { return 2 * i + J; }
 class StVenantKirchhoff final : public PlaneStrainLaw {
  public:
   StVenantKirchhoff(double lambda, double mu) : lambda_(lambda), mu_(mu) {}
-  PointResponse respond(const Matrix2& F) const override {
+  PointResponse respond(const Matrix2& F, const PointStep&) const override {
     const Matrix2 E = 0.5 * (F.transpose() * F - Matrix2::Identity());
     const Matrix2 S = lambda_ * E.trace() * Matrix2::Identity() + 2.0 * mu_ * E;
     PointResponse r;
@@ -42,7 +46,7 @@ class StVenantKirchhoff final : public PlaneStrainLaw {
 class NeoHookean final : public PlaneStrainLaw {
  public:
   NeoHookean(double lambda, double mu) : lambda_(lambda), mu_(mu) {}
-  PointResponse respond(const Matrix2& F) const override {
+  PointResponse respond(const Matrix2& F, const PointStep&) const override {
     const double J = F.determinant();
     PointResponse r;
     if (!(J > 0.0)) {
@@ -70,14 +74,26 @@ class NeoHookean final : public PlaneStrainLaw {
 
 }  // namespace
 
+PointResponse PlaneStrainLaw::respond(const Matrix2& F) const {
+  const std::vector<double> virgin = initial_state();
+  std::vector<double> next(virgin.size());
+  return respond(F, {virgin.data(), next.data(), 0.0, std::numeric_limits<double>::quiet_NaN()});
+}
+
 ElasticLaw elastic_law_from_string(const std::string& name) {
   if (name == "stvk" || name == "st-venant-kirchhoff") return ElasticLaw::st_venant_kirchhoff;
   if (name == "neo-hookean") return ElasticLaw::neo_hookean;
-  throw core::UsageError("unknown elastic law '" + name + "' (known: stvk, neo-hookean)");
+  if (name == "hencky") return ElasticLaw::hencky;
+  throw core::UsageError("unknown elastic law '" + name + "' (known: stvk, neo-hookean, hencky)");
 }
 
 std::string to_string(ElasticLaw law) {
-  return law == ElasticLaw::st_venant_kirchhoff ? "stvk" : "neo-hookean";
+  switch (law) {
+    case ElasticLaw::st_venant_kirchhoff: return "stvk";
+    case ElasticLaw::neo_hookean: return "neo-hookean";
+    case ElasticLaw::hencky: return "hencky";
+  }
+  return "?";
 }
 
 std::unique_ptr<PlaneStrainLaw> make_elastic(ElasticLaw law, double E_MPa, double nu) {
@@ -86,6 +102,10 @@ std::unique_ptr<PlaneStrainLaw> make_elastic(ElasticLaw law, double E_MPa, doubl
   const double lambda = E_MPa * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
   const double mu = E_MPa / (2.0 * (1.0 + nu));
   if (law == ElasticLaw::st_venant_kirchhoff) return std::make_unique<StVenantKirchhoff>(lambda, mu);
+  if (law == ElasticLaw::hencky) {
+    const model::ModelPtr iso = model::make_model("elastic-iso", nlohmann::json::object());
+    return std::make_unique<ContractLaw>(model::make_material_point(*iso, {E_MPa, nu}));
+  }
   return std::make_unique<NeoHookean>(lambda, mu);
 }
 

@@ -4,6 +4,8 @@
 
 #include <Eigen/LU>
 
+#include "fitlib/core/error.hpp"
+
 namespace fitlib::segment::detail {
 
 std::vector<double> gauss_abscissae(int n) {
@@ -42,53 +44,88 @@ void shape(int nodes, double xi, double eta, double* N, double* dxi, double* det
   N[7] = 0.5 * (1 - xi) * (1 - eta * eta), dxi[7] = -0.5 * (1 - eta * eta), deta[7] = -(1 - xi) * eta;
 }
 
+namespace {
+// ∂N/∂X at a Gauss point and the reference volume element; false when the map is inverted.
+bool reference_gradients(const std::vector<Eigen::Vector2d>& X, const GaussPoint& g, double* N,
+                         Eigen::Matrix<double, 8, 2>& G, double& dV) {
+  const int n = static_cast<int>(X.size());
+  double dxi[8], deta[8];
+  shape(n, g.xi, g.eta, N, dxi, deta);
+  Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
+  for (int a = 0; a < n; ++a) {
+    J0(0, 0) += X[a].x() * dxi[a], J0(0, 1) += X[a].x() * deta[a];
+    J0(1, 0) += X[a].y() * dxi[a], J0(1, 1) += X[a].y() * deta[a];
+  }
+  const double detJ0 = J0.determinant();
+  if (!(detJ0 > 0.0)) return false;
+  const Eigen::Matrix2d J0inv = J0.inverse();
+  for (int a = 0; a < n; ++a) {
+    G(a, 0) = dxi[a] * J0inv(0, 0) + deta[a] * J0inv(1, 0);
+    G(a, 1) = dxi[a] * J0inv(0, 1) + deta[a] * J0inv(1, 1);
+  }
+  dV = detJ0 * g.weight;
+  return true;
+}
+}  // namespace
+
+void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,
+                    const std::vector<Eigen::Matrix2d>& piola, ElementVector& f) {
+  const int n = static_cast<int>(X.size());
+  f.setZero(2 * n);
+  double N[8], dV = 0.0;
+  Eigen::Matrix<double, 8, 2> G;
+  for (std::size_t q = 0; q < rule.size(); ++q) {
+    if (!reference_gradients(X, rule[q], N, G, dV)) continue;
+    for (int a = 0; a < n; ++a)
+      for (int i = 0; i < 2; ++i) f(2 * a + i) += (piola[q](i, 0) * G(a, 0) + piola[q](i, 1) * G(a, 1)) * dV;
+  }
+}
+
 // f_aI = ∫ P_iJ ∂N_a/∂X_J dV;  K_aibk = ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L dV (unit thickness).
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
-                      const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, ElementVector& f,
-                      ElementMatrix* K, std::vector<ElementState>* states) {
+                      const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
+                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states) {
   const int n = static_cast<int>(X.size());
   f.setZero(2 * n);
   if (K) K->setZero(2 * n, 2 * n);
   if (states) states->clear();
-  double N[8], dxi[8], deta[8];
+  const std::size_t ns = law.state_size();
+  double N[8], dV = 0.0;
   Eigen::Matrix<double, 8, 2> G;  // ∂N/∂X
-  for (const GaussPoint& g : rule) {
-    shape(n, g.xi, g.eta, N, dxi, deta);
-    Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
-    for (int a = 0; a < n; ++a) {
-      J0(0, 0) += X[a].x() * dxi[a], J0(0, 1) += X[a].x() * deta[a];
-      J0(1, 0) += X[a].y() * dxi[a], J0(1, 1) += X[a].y() * deta[a];
-    }
-    const double detJ0 = J0.determinant();
-    if (!(detJ0 > 0.0)) return false;
-    const Eigen::Matrix2d J0inv = J0.inverse();
+  for (std::size_t q = 0; q < rule.size(); ++q) {
+    const GaussPoint& g = rule[q];
+    if (!reference_gradients(X, g, N, G, dV)) return false;
     Eigen::Matrix2d F = Eigen::Matrix2d::Identity();
-    for (int a = 0; a < n; ++a) {
-      G(a, 0) = dxi[a] * J0inv(0, 0) + deta[a] * J0inv(1, 0);
-      G(a, 1) = dxi[a] * J0inv(0, 1) + deta[a] * J0inv(1, 1);
-      F += u[a] * G.row(a);
-    }
+    for (int a = 0; a < n; ++a) F += u[a] * G.row(a);
     const double J = F.determinant();
     if (!(J > 0.0)) return false;
-    const PointResponse r = law.respond(F);
+    PointResponse r;
+    try {
+      r = law.respond(F, {step.state_n + q * ns, step.state_next + q * ns, step.dt_s, step.temperature_C});
+    } catch (const core::NumericalError&) {
+      return false;
+    }
     if (!r.P.allFinite() || !r.A.allFinite()) return false;
-    const double dV = detJ0 * g.weight;
     for (int a = 0; a < n; ++a)
       for (int i = 0; i < 2; ++i) f(2 * a + i) += (r.P(i, 0) * G(a, 0) + r.P(i, 1) * G(a, 1)) * dV;
-    if (K)
+    if (K) {
+      // H(a, 2i + k, L) = Σ_J G(a, J) A_iJkL, then K_aibk = Σ_L H G(b, L): 2 × fewer products.
+      Eigen::Matrix<double, 8, 8> H;
+      for (int a = 0; a < n; ++a)
+        for (int i = 0; i < 2; ++i)
+          for (int k = 0; k < 2; ++k)
+            for (int L = 0; L < 2; ++L)
+              H(a, 4 * i + 2 * k + L) = (G(a, 0) * r.A(2 * i, 2 * k + L) + G(a, 1) * r.A(2 * i + 1, 2 * k + L)) * dV;
       for (int a = 0; a < n; ++a)
         for (int i = 0; i < 2; ++i)
           for (int b = 0; b < n; ++b)
-            for (int k = 0; k < 2; ++k) {
-              double s = 0.0;
-              for (int Jd = 0; Jd < 2; ++Jd)
-                for (int L = 0; L < 2; ++L) s += G(a, Jd) * r.A(2 * i + Jd, 2 * k + L) * G(b, L);
-              (*K)(2 * a + i, 2 * b + k) += s * dV;
-            }
+            for (int k = 0; k < 2; ++k)
+              (*K)(2 * a + i, 2 * b + k) += H(a, 4 * i + 2 * k) * G(b, 0) + H(a, 4 * i + 2 * k + 1) * G(b, 1);
+    }
     if (states) {
       Eigen::Vector2d Xg = Eigen::Vector2d::Zero();
       for (int a = 0; a < n; ++a) Xg += N[a] * X[a];
-      states->push_back({r.P * F.transpose() / J, r.sigma33_MPa, Xg});
+      states->push_back({r.P * F.transpose() / J, r.sigma33_MPa, Xg, r.P, F});
     }
   }
   return true;

@@ -28,13 +28,28 @@ struct ElementState {   // what the solver keeps per integration point after con
   Eigen::Matrix2d cauchy_MPa;
   double sigma33_MPa;
   Eigen::Vector2d X_mm;  // reference position
+  Eigen::Matrix2d piola_MPa;
+  Eigen::Matrix2d F;     // deformation gradient (in-plane)
+};
+
+// The element's block of integration-point states (law.state_size() doubles per point, in rule
+// order) and the step they are updated over.
+struct ElementStep {
+  const double* state_n = nullptr;
+  double* state_next = nullptr;
+  double dt_s = 0.0;
+  double temperature_C = 0.0;
 };
 
 // Internal force and tangent of one element; false (with nothing written) when an integration
 // point is inverted (J ≤ 0) or the law returns a non-finite stress.
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
-                      const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, ElementVector& f,
-                      ElementMatrix* K, std::vector<ElementState>* states);
+                      const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
+                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states);
+
+// Internal force f_a = Σ P ∂N_a/∂X dV from given first Piola–Kirchhoff stresses at the points.
+void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,
+                    const std::vector<Eigen::Matrix2d>& piola_MPa, ElementVector& f);
 
 // Follower pressure p on a 2- or 3-node edge (a → b, midside), pushing against the outward
 // normal of the counter-clockwise element: external force and its derivative d f_ext / d u.

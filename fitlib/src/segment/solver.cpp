@@ -1,12 +1,13 @@
 #include "fitlib/segment/solver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
 
 #include "element.hpp"
 #include "fitlib/core/error.hpp"
@@ -47,11 +48,14 @@ Dofs number_dofs(const StaticProblem& p) {
   return d;
 }
 
-// Sparse direct solver: LDLᵀ for the symmetric tangent, LU when a follower pressure makes it
-// unsymmetric; the sparsity pattern is analysed once.
+// Sparse direct solver: LDLᵀ for the symmetric tangent, UMFPACK's LU when a follower pressure or
+// a contract point makes it unsymmetric (Eigen's SparseLU took 80 % of the run; docs/decisions.md);
+// the sparsity pattern is analysed once.
 class LinearSolver {
  public:
-  explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {}
+  explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
+    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;  // no iterative refinement: Newton corrects
+  }
   bool factorize(const SparseMatrix& K) {
     if (symmetric_) {
       if (!analysed_) ldlt_.analyzePattern(K);
@@ -72,24 +76,98 @@ class LinearSolver {
  private:
   bool symmetric_, analysed_ = false;
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
-  Eigen::SparseLU<SparseMatrix> lu_;
+  Eigen::UmfPackLU<SparseMatrix> lu_;
 };
+
+// All integration points' states in one contiguous block: element e's points start at offset[e].
+struct StateBlock {
+  std::vector<std::size_t> offset;
+  std::vector<double> committed, trial;
+};
+
+StateBlock initial_states(const StaticProblem& p, std::size_t points_per_element) {
+  const Mesh& m = *p.mesh;
+  StateBlock b;
+  for (int e = 0; e < m.element_count(); ++e) {
+    const PlaneStrainLaw& law = *p.laws[static_cast<int>(m.roles[e])];
+    b.offset.push_back(b.committed.size());
+    const std::vector<double> virgin = law.initial_state();
+    for (std::size_t q = 0; q < points_per_element; ++q) b.committed.insert(b.committed.end(), virgin.begin(), virgin.end());
+  }
+  b.trial = b.committed;
+  return b;
+}
+
+// The free-free tangent's sparsity, built once: per element and per bottom edge, the position in
+// K's value array of each local (row dof, column dof) pair, or −1 when either is prescribed.
+struct Pattern {
+  SparseMatrix K;
+  std::vector<std::vector<int>> element_slots, edge_slots;
+};
+
+std::vector<int> local_dofs(const std::vector<int>& nodes, const Dofs& d) {
+  std::vector<int> eq;
+  for (int n : nodes)
+    for (int i = 0; i < 2; ++i) eq.push_back(d.eq[2 * n + i]);
+  return eq;
+}
+
+std::vector<int> edge_nodes(const Edge& edge) {
+  std::vector<int> n;
+  for (int a : edge.nodes)
+    if (a >= 0) n.push_back(a);
+  return n;
+}
+
+Pattern build_pattern(const Mesh& m, const Dofs& d) {
+  std::vector<std::vector<int>> blocks;
+  for (const auto& el : m.elements) blocks.push_back(local_dofs({el.begin(), el.begin() + m.nodes_per_element}, d));
+  for (const Edge& edge : m.bottom_edges) blocks.push_back(local_dofs(edge_nodes(edge), d));
+  std::vector<Eigen::Triplet<double>> t;
+  for (const auto& eq : blocks)
+    for (int r : eq)
+      for (int c : eq)
+        if (r >= 0 && c >= 0) t.emplace_back(r, c, 0.0);
+  Pattern p;
+  p.K.resize(d.equations, d.equations);
+  p.K.setFromTriplets(t.begin(), t.end());
+  p.K.makeCompressed();
+  const int* outer = p.K.outerIndexPtr();
+  const int* inner = p.K.innerIndexPtr();
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const auto& eq = blocks[b];
+    std::vector<int> slots(eq.size() * eq.size(), -1);
+    for (std::size_t i = 0; i < eq.size(); ++i)
+      for (std::size_t j = 0; j < eq.size(); ++j)
+        if (eq[i] >= 0 && eq[j] >= 0)
+          slots[i * eq.size() + j] = static_cast<int>(std::lower_bound(inner + outer[eq[j]], inner + outer[eq[j] + 1], eq[i]) - inner);
+    (b < m.elements.size() ? p.element_slots : p.edge_slots).push_back(std::move(slots));
+  }
+  return p;
+}
 
 class Assembler {
  public:
   Assembler(const StaticProblem& p, const Dofs& d, int order)
       : p_(p), d_(d), rule_(detail::gauss_rule(order)) {}
 
+  std::size_t points_per_element() const { return rule_.size(); }
+  // The step the point states are updated over (state_n → state_next).
+  void set_step(const double* state_n, double* state_next, double dt_s) {
+    state_n_ = state_n, state_next_ = state_next, dt_s_ = dt_s;
+  }
+  void set_offsets(const std::vector<std::size_t>* offset) { offset_ = offset; }
+
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
 
-  // Residual (local components, all dofs) and, if asked, the free-free tangent as triplets and
-  // K_fp·dq_p into coupling. Returns the failing element, or −1.
+  // Residual (local components, all dofs) and, if asked, the free-free tangent into the pattern's
+  // values and K_fp·dq_p into coupling. Returns the failing element, or −1.
   int run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
-          std::vector<Eigen::Triplet<double>>* K, Eigen::VectorXd* coupling,
+          Pattern* K, Eigen::VectorXd* coupling,
           std::vector<std::vector<IntegrationPointStress>>* states = nullptr) const {
     const Mesh& m = *p_.mesh;
     r.setZero(2 * m.node_count());
-    if (K) K->clear();
+    if (K) std::fill(K->K.valuePtr(), K->K.valuePtr() + K->K.nonZeros(), 0.0);
     if (coupling) coupling->setZero(d_.equations);
     if (states) states->assign(m.element_count(), {});
     const int npe = m.nodes_per_element;
@@ -104,45 +182,75 @@ class Assembler {
         X[a] = m.X[nodes[a]];
         u[a] = u_of(q, nodes[a]);
       }
-      if (!detail::element_response(X, u, *p_.laws[static_cast<int>(m.roles[e])], rule_, f,
+      const std::size_t at = (*offset_)[e];
+      const detail::ElementStep step{state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};
+      if (!detail::element_response(X, u, *p_.laws[static_cast<int>(m.roles[e])], rule_, step, f,
                                     K ? &Ke : nullptr, states ? &gp : nullptr))
         return e;
-      scatter(nodes, f, K ? &Ke : nullptr, dq_p, r, K, coupling);
+      scatter(nodes, f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->element_slots[e] : nullptr, coupling);
       if (states)
-        for (const auto& s : gp) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa});
+        for (const auto& s : gp) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
     }
     const double pressure = lambda * p_.pressure_MPa;
     if (pressure != 0.0)
-      for (const Edge& edge : m.bottom_edges) {
-        std::vector<int> en;
+      for (std::size_t k = 0; k < m.bottom_edges.size(); ++k) {
+        const std::vector<int> en = edge_nodes(m.bottom_edges[k]);
         std::vector<Eigen::Vector2d> x;
-        for (int a : edge.nodes)
-          if (a >= 0) en.push_back(a), x.push_back(m.X[a] + u_of(q, a));
+        for (int a : en) x.push_back(m.X[a] + u_of(q, a));
         detail::pressure_load(x, pressure, f, Ke);
         f = -f;
         Ke = -Ke;
-        scatter(en, f, K ? &Ke : nullptr, dq_p, r, K, coupling);
+        scatter(en, f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->edge_slots[k] : nullptr, coupling);
       }
+    if (p_.body_force) add_body_forces(q, lambda, r);
     return -1;
   }
 
  private:
+  // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
+  // −∫ N_a b dV (the residual is internal minus external force).
+  void add_body_forces(const Eigen::VectorXd& q, double lambda, Eigen::VectorXd& r) const {
+    (void)q;
+    const Mesh& m = *p_.mesh;
+    body_.assign(m.element_count(), Eigen::Vector2d::Zero());
+    p_.body_force(lambda, body_);
+    const int npe = m.nodes_per_element;
+    double N[8], dxi[8], deta[8];
+    for (int e = 0; e < m.element_count(); ++e) {
+      if (body_[e].isZero(0.0)) continue;
+      for (const auto& g : rule_) {
+        detail::shape(npe, g.xi, g.eta, N, dxi, deta);
+        Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
+        for (int a = 0; a < npe; ++a) {
+          const Eigen::Vector2d& X = m.X[m.elements[e][a]];
+          J0.col(0) += dxi[a] * X, J0.col(1) += deta[a] * X;
+        }
+        const double dV = J0.determinant() * g.weight;
+        for (int a = 0; a < npe; ++a) {
+          const int n = m.elements[e][a];
+          r.segment<2>(2 * n) -= d_.R[n].transpose() * (N[a] * dV * body_[e]);
+        }
+      }
+    }
+  }
+
   void scatter(const std::vector<int>& nodes, const ElementVector& f, const ElementMatrix* Ke,
-               const Eigen::VectorXd* dq_p, Eigen::VectorXd& r, std::vector<Eigen::Triplet<double>>* K,
+               const Eigen::VectorXd* dq_p, Eigen::VectorXd& r, Pattern* K, const std::vector<int>* slots,
                Eigen::VectorXd* coupling) const {
     const int n = static_cast<int>(nodes.size());
     for (int a = 0; a < n; ++a) r.segment<2>(2 * nodes[a]) += d_.R[nodes[a]].transpose() * f.segment<2>(2 * a);
     if (!Ke) return;
+    double* values = K->K.valuePtr();
+    const int width = 2 * n;
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b) {
         const Eigen::Matrix2d k = d_.R[nodes[a]].transpose() * Ke->block<2, 2>(2 * a, 2 * b) * d_.R[nodes[b]];
         for (int i = 0; i < 2; ++i) {
-          const int row = d_.eq[2 * nodes[a] + i];
-          if (row < 0) continue;
+          if (d_.eq[2 * nodes[a] + i] < 0) continue;
           for (int j = 0; j < 2; ++j) {
-            const int col = d_.eq[2 * nodes[b] + j];
-            if (col >= 0) K->emplace_back(row, col, k(i, j));
-            else if (dq_p) (*coupling)(row) += k(i, j) * (*dq_p)(2 * nodes[b] + j);
+            const int slot = (*slots)[(2 * a + i) * width + 2 * b + j];
+            if (slot >= 0) values[slot] += k(i, j);
+            else if (dq_p) (*coupling)(d_.eq[2 * nodes[a] + i]) += k(i, j) * (*dq_p)(2 * nodes[b] + j);
           }
         }
       }
@@ -151,6 +259,11 @@ class Assembler {
   const StaticProblem& p_;
   const Dofs& d_;
   std::vector<detail::GaussPoint> rule_;
+  const std::vector<std::size_t>* offset_ = nullptr;
+  const double* state_n_ = nullptr;
+  double* state_next_ = nullptr;
+  double dt_s_ = 0.0;
+  mutable std::vector<Eigen::Vector2d> body_;
 };
 
 double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
@@ -162,25 +275,49 @@ double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
 
 }  // namespace
 
+namespace {
+
+// Increment targets: the schedule's breakpoints, or `steps` equal increments of λ.
+std::vector<double> breakpoints(const SolverKnobs& knobs) {
+  if (!knobs.schedule.empty()) {
+    for (std::size_t k = 0; k < knobs.schedule.size(); ++k)
+      if (!(knobs.schedule[k] > (k ? knobs.schedule[k - 1] : 0.0)) || knobs.schedule[k] > 1.0)
+        throw core::UsageError("segment: the load schedule must increase within (0, 1]");
+    std::vector<double> b = knobs.schedule;
+    if (b.back() < 1.0) b.push_back(1.0);
+    return b;
+  }
+  std::vector<double> b;
+  const int n = std::max(1, knobs.steps);
+  for (int k = 1; k <= n; ++k) b.push_back(static_cast<double>(k) / n);
+  return b;
+}
+
+}  // namespace
+
 StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
     throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
   const Mesh& m = *p.mesh;
   Dofs d = number_dofs(p);
   std::vector<double> angles(p.constraints.size());
-  const Assembler assembler(p, d, gauss_order(m, knobs.integration));
-  LinearSolver linear(p.pressure_MPa == 0.0);
+  Assembler assembler(p, d, gauss_order(m, knobs.integration));
+  StateBlock states = initial_states(p, assembler.points_per_element());
+  std::vector<double> scratch(states.committed.size());
+  assembler.set_offsets(&states.offset);
+  auto time_at = [&](double lambda) { return p.time_s ? p.time_s(lambda) : 0.0; };
+  LinearSolver linear(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent());
+  Pattern pattern = build_pattern(m, d);
   const int nn = m.node_count();
   Eigen::VectorXd q = Eigen::VectorXd::Zero(2 * nn), r, coupling;
   std::vector<std::array<double, 2>> values(p.constraints.size());
-  std::vector<Eigen::Triplet<double>> triplets;
-  SparseMatrix K(d.equations, d.equations);
   StaticSolution out;
   out.equations = d.equations;
 
+  // q with the prescribed components at λ.
   auto prescribed_at = [&](double lambda) {
-    p.prescribe(lambda, values);
     Eigen::VectorXd qp = q;
+    p.prescribe(lambda, values);
     for (std::size_t c = 0; c < p.constraints.size(); ++c)
       for (int k = 0; k < 2; ++k)
         if (p.constraints[c].fixed[k]) qp(2 * p.constraints[c].node + k) = values[c][k];
@@ -188,17 +325,36 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   };
   auto fail = [&](int increment, double lambda, int element, double residual, int iterations) {
     std::ostringstream msg;
-    msg << "segment: Newton failed in load increment " << increment << " (lambda " << lambda << ")";
+    msg << "segment: Newton failed in load increment " << increment << " (lambda " << lambda;
+    if (p.time_s) msg << ", t " << time_at(lambda) << " s";
+    msg << ")";
     if (element >= 0) msg << ", element " << element << " inverted or with a non-finite stress";
     msg << ", free residual " << residual << " N/mm after " << iterations << " iterations and "
         << knobs.max_cuts << " step cuts";
     throw core::NumericalError(msg.str());
   };
+  // Stresses, displacements and reactions at the converged q (states from `from` over dt).
+  auto snapshot = [&](double lambda, const std::vector<double>& from, double dt, StaticSolution& s) {
+    assembler.set_step(from.data(), scratch.data(), dt);
+    const int bad = assembler.run(q, lambda, nullptr, r, nullptr, nullptr, &s.points);
+    if (bad >= 0) fail(out.increments, lambda, bad, out.final_residual, 0);
+    s.u_mm.resize(nn);
+    s.reaction_N_mm.assign(nn, Eigen::Vector2d::Zero());
+    for (int a = 0; a < nn; ++a) {
+      s.u_mm[a] = assembler.u_of(q, a);
+      Eigen::Vector2d rl = r.segment<2>(2 * a);
+      for (int k = 0; k < 2; ++k)
+        if (d.eq[2 * a + k] >= 0) rl(k) = 0.0;
+      s.reaction_N_mm[a] = d.R[a] * rl;
+    }
+  };
 
-  double lambda = 0.0, dlambda = 1.0 / std::max(1, knobs.steps);
+  const std::vector<double> targets = breakpoints(knobs);
+  std::size_t next = 0;
+  double lambda = 0.0, max_step = 2.0, last_dt = 0.0;
   int cuts_in_row = 0;
-  while (lambda < 1.0 - 1e-14) {
-    const double target = std::min(1.0, lambda + dlambda);
+  while (next < targets.size()) {
+    const double target = std::min(targets[next], lambda + max_step);
     if (p.rotate) {  // turn the constrained bases, keeping the displacements
       p.rotate(target, angles);
       for (std::size_t c = 0; c < p.constraints.size(); ++c) {
@@ -209,49 +365,71 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
       }
     }
     const Eigen::VectorXd q_saved = q;
-    const Eigen::VectorXd q_new_p = prescribed_at(target);
-    Eigen::VectorXd dq_p = q_new_p - q;  // nonzero only at prescribed dofs
+    const double dt = time_at(target) - time_at(lambda);
+    assembler.set_step(states.committed.data(), states.trial.data(), dt);
+    // The first iteration is a predictor: K_fp·Δq_p moves the free dofs with the prescribed ones.
+    const Eigen::VectorXd q_start = prescribed_at(target);
+    const Eigen::VectorXd dq_p = q_start - q;
     int bad = -1, it = 0;
     double res = std::numeric_limits<double>::infinity();
     bool converged = false;
+    // Backtracking line search: a Newton step that lowers neither the free residual norm nor the
+    // energy measure |Δq·r| below 0.8 of its value at the step's start (a near-incompressible
+    // body's residual norm may rise on the way to convergence), or inverts an element, is halved,
+    // up to five times.
+    Eigen::VectorXd q_prev, dq_prev;
+    double res_prev = std::numeric_limits<double>::infinity(), alpha = 1.0, energy_prev = 0.0;
+    auto energy = [&](const Eigen::VectorXd& res_all) {
+      double e = 0.0;
+      for (int i = 0; i < 2 * nn; ++i)
+        if (d.eq[i] >= 0) e += res_all(i) * dq_prev(d.eq[i]);
+      return std::abs(e);
+    };
+    auto move = [&](const Eigen::VectorXd& from, double a) {
+      q = from;
+      for (int i = 0; i < 2 * nn; ++i)
+        if (d.eq[i] >= 0) q(i) += a * dq_prev(d.eq[i]);
+    };
     for (it = 0; it < knobs.max_iterations; ++it) {
       const bool predictor = it == 0;
-      bad = assembler.run(q, target, predictor ? &dq_p : nullptr, r, &triplets, &coupling);
-      if (bad >= 0) break;
-      res = free_norm(r, d, true);
+      bad = assembler.run(q, target, predictor ? &dq_p : nullptr, r, &pattern, &coupling);
+      res = bad >= 0 ? std::numeric_limits<double>::infinity() : free_norm(r, d, true);
+      const bool worse = !(res < res_prev) && !(std::isfinite(res) && energy(r) < 0.8 * energy_prev);
+      if (worse && std::isfinite(res_prev) && alpha > 1.0 / 32.0) {
+        alpha *= 0.5;
+        move(q_prev, alpha);
+        continue;
+      }
       if (!std::isfinite(res)) break;
       if (!predictor && res <= knobs.tolerance * (free_norm(r, d, false) + 1.0)) {
         converged = true;
         break;
       }
-      K.setFromTriplets(triplets.begin(), triplets.end());
-      if (!linear.factorize(K)) break;
+      if (!linear.factorize(pattern.K)) break;
       Eigen::VectorXd rhs(d.equations);
       for (int i = 0; i < 2 * nn; ++i)
         if (d.eq[i] >= 0) rhs(d.eq[i]) = -r(i);
       if (predictor) rhs -= coupling;
-      const Eigen::VectorXd dq = linear.solve(rhs);
-      if (!dq.allFinite()) break;
-      // Backtracking line search on the free residual norm (the predictor step is taken whole).
-      const Eigen::VectorXd q0 = predictor ? q_new_p : q;
-      double alpha = 1.0, best = std::numeric_limits<double>::infinity(), best_alpha = 1.0;
-      for (int ls = 0; ls < (predictor ? 1 : 5); ++ls, alpha *= 0.5) {
-        Eigen::VectorXd trial = q0;
-        for (int i = 0; i < 2 * nn; ++i)
-          if (d.eq[i] >= 0) trial(i) += alpha * dq(d.eq[i]);
-        Eigen::VectorXd rt;
-        const double n_t = assembler.run(trial, target, nullptr, rt, nullptr, nullptr) >= 0
-                               ? std::numeric_limits<double>::infinity()
-                               : free_norm(rt, d, true);
-        if (n_t < best) best = n_t, best_alpha = alpha;
-        if (n_t < res) break;
-      }
-      for (int i = 0; i < 2 * nn; ++i)
-        q(i) = q0(i) + (d.eq[i] >= 0 ? best_alpha * dq(d.eq[i]) : 0.0);
+      dq_prev = linear.solve(rhs);
+      if (!dq_prev.allFinite()) break;
+      q_prev = predictor ? q_start : q;  // the predictor step is taken whole
+      res_prev = predictor ? std::numeric_limits<double>::infinity() : res;
+      energy_prev = std::abs(rhs.dot(dq_prev));
+      alpha = 1.0;
+      move(q_prev, 1.0);
       out.newton_iterations++;
     }
     if (converged) {
+      if (p.on_increment) {
+        StaticSolution view;
+        snapshot(target, states.committed, dt, view);
+        view.increments = out.increments + 1;
+        p.on_increment(target, view);
+      }
+      states.committed.swap(states.trial);  // the last assembly was at the converged q
+      last_dt = dt;
       lambda = target;
+      if (target >= targets[next]) ++next;
       out.increments++;
       out.final_residual = res;
       cuts_in_row = 0;
@@ -259,20 +437,13 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
     }
     q = q_saved;
     if (++cuts_in_row > knobs.max_cuts) fail(out.increments + 1, target, bad, res, it);
-    dlambda *= 0.5;
+    max_step = 0.5 * (target - lambda);
     out.cuts++;
   }
-  const int bad = assembler.run(q, 1.0, nullptr, r, nullptr, nullptr, &out.points);
-  if (bad >= 0) fail(out.increments, 1.0, bad, out.final_residual, 0);
-  out.u_mm.resize(nn);
-  out.reaction_N_mm.assign(nn, Eigen::Vector2d::Zero());
-  for (int a = 0; a < nn; ++a) {
-    out.u_mm[a] = assembler.u_of(q, a);
-    Eigen::Vector2d rl = r.segment<2>(2 * a);
-    for (int k = 0; k < 2; ++k)
-      if (d.eq[2 * a + k] >= 0) rl(k) = 0.0;
-    out.reaction_N_mm[a] = d.R[a] * rl;
-  }
+  // After the swap, `trial` holds the states before the last increment.
+  snapshot(1.0, states.trial, last_dt, out);
+  out.state = states.committed;
+  out.state_offset = states.offset;
   return out;
 }
 
@@ -296,7 +467,9 @@ SectionForce section_force(const StaticProblem& p, const StaticSolution& s, doub
       touches = touches || std::abs(X[a].x() - x_cut) < tol;
     }
     if (!touches) continue;
-    detail::element_response(X, u, *p.laws[static_cast<int>(m.roles[e])], rule, f, nullptr, nullptr);
+    std::vector<Eigen::Matrix2d> piola;
+    for (const IntegrationPointStress& q : s.points[e]) piola.push_back(q.piola_MPa);
+    detail::internal_force(X, rule, piola, f);
     for (int a = 0; a < npe; ++a) {
       if (std::abs(X[a].x() - x_cut) >= tol) continue;
       const Eigen::Vector2d fa = f.segment<2>(2 * a), x = X[a] + u[a] - about;

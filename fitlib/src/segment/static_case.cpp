@@ -14,32 +14,30 @@ std::vector<NamedPoint> standard_points(const CogSection& s) {
   return {{"gap_bottom", 0.0, s.bottom_y_mm(0.0)}, {"mid_cushion", 0.0, -0.5 * s.cushion_mm}};
 }
 
-StaticProblem static_problem(const Mesh& m, const std::array<const PlaneStrainLaw*, 2>& laws,
-                             const StaticLoad& load, EndCondition ends) {
+StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_x_mm,
+                                 const std::array<const PlaneStrainLaw*, 2>& laws,
+                                 std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends) {
   StaticProblem p;
   p.mesh = &m;
   p.laws = laws;
-  p.pressure_MPa = load.pressure_MPa;
   for (int n : m.top_nodes) p.constraints.push_back({n, 0.0, {true, true}});
   const std::size_t n_top = p.constraints.size();
   if (ends == EndCondition::radial)
     for (const auto* side : {&m.left_nodes, &m.right_nodes})
       for (int n : *side)
         if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, {true, false}});
-  const double L = m.half_length_mm;
   // Bases at full load (the CalculiX deck uses them); the solver turns them with λ (rotate).
-  const NeutralCurve full = NeutralCurve::uniform(load.curvature_1_mm, load.strain, 1.5 * L);
-  for (std::size_t c = n_top; c < p.constraints.size(); ++c) {
-    const double x_end = m.X[p.constraints[c].node].x();
-    p.constraints[c].angle_rad = -full.at(full.s_from_unstrained(x_end)).phi_rad;  // e0 = tangent
-  }
+  const NeutralCurve full = curve_at(1.0);
+  for (std::size_t c = n_top; c < p.constraints.size(); ++c)
+    p.constraints[c].angle_rad = -full.at(full.s_from_unstrained(path_x_mm[p.constraints[c].node])).phi_rad;  // e0 = tangent
   const Mesh* mesh = &m;
   const std::vector<NodeConstraint> constraints = p.constraints;
-  p.prescribe = [mesh, constraints, n_top, load, L](double lambda, std::vector<std::array<double, 2>>& v) {
-    const NeutralCurve curve = NeutralCurve::uniform(lambda * load.curvature_1_mm, lambda * load.strain, 1.5 * L);
+  p.prescribe = [mesh, constraints, n_top, curve_at, path_x_mm](double lambda, std::vector<std::array<double, 2>>& v) {
+    const NeutralCurve curve = curve_at(lambda);
     for (std::size_t c = 0; c < constraints.size(); ++c) {
-      const Eigen::Vector2d& X = mesh->X[constraints[c].node];
-      const CurvePoint q = curve.at(curve.s_from_unstrained(X.x()));
+      const int node = constraints[c].node;
+      const Eigen::Vector2d& X = mesh->X[node];
+      const CurvePoint q = curve.at(curve.s_from_unstrained(path_x_mm[node]));
       if (c < n_top) {
         v[c] = {q.x_mm - X.x(), q.y_mm - X.y()};
       } else {  // stay on the radial line through the cord point: (x − q)·t = 0
@@ -49,11 +47,23 @@ StaticProblem static_problem(const Mesh& m, const std::array<const PlaneStrainLa
       }
     }
   };
-  p.rotate = [mesh, constraints, n_top, load, L](double lambda, std::vector<double>& angles) {
-    const NeutralCurve curve = NeutralCurve::uniform(lambda * load.curvature_1_mm, lambda * load.strain, 1.5 * L);
-    for (std::size_t c = n_top; c < angles.size(); ++c) angles[c] = -curve.at(curve.s_from_unstrained(
-                                                           mesh->X[constraints[c].node].x())).phi_rad;
+  p.rotate = [constraints, n_top, curve_at, path_x_mm](double lambda, std::vector<double>& angles) {
+    const NeutralCurve curve = curve_at(lambda);
+    for (std::size_t c = n_top; c < angles.size(); ++c)
+      angles[c] = -curve.at(curve.s_from_unstrained(path_x_mm[constraints[c].node])).phi_rad;
   };
+  return p;
+}
+
+StaticProblem static_problem(const Mesh& m, const std::array<const PlaneStrainLaw*, 2>& laws,
+                             const StaticLoad& load, EndCondition ends) {
+  std::vector<double> path_x;
+  for (const Eigen::Vector2d& X : m.X) path_x.push_back(X.x());
+  const double L = m.half_length_mm;
+  StaticProblem p = cord_curve_problem(m, path_x, laws, [load, L](double lambda) {
+    return NeutralCurve::uniform(lambda * load.curvature_1_mm, lambda * load.strain, 1.5 * L);
+  }, ends);
+  p.pressure_MPa = load.pressure_MPa;
   return p;
 }
 

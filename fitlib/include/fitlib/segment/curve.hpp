@@ -12,6 +12,8 @@ namespace fitlib::segment {
 struct CurvePoint {
   double x_mm = 0.0, y_mm = 0.0;
   double phi_rad = 0.0;  // tangent angle, dx/ds = cos φ, dy/ds = −sin φ
+  double K_1_mm = 0.0;   // curvature of the interval the point lies in
+  double strain = 0.0;   // ε there (1/(1 + ε) linear within the interval)
 };
 
 // Where a point lies relative to the curve: path position s of its foot, tangent angle there and

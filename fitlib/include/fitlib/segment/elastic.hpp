@@ -1,11 +1,16 @@
 #pragma once
-// Isotropic elastic laws for the plane-strain segment, written against a small interface
-// (first Piola–Kirchhoff stress and its consistent tangent dP/dF from an in-plane deformation
-// gradient, F33 = 1) so the material-point contract of `model` can replace them by an adapter.
-// St Venant–Kirchhoff is the law CalculiX's *ELASTIC uses under NLGEOM (the oracle comparison);
-// the compressible neo-Hookean law is the default for large strains (it resists inversion).
+// The law at an integration point of the plane-strain segment: first Piola–Kirchhoff stress and
+// its consistent tangent dP/dF from an in-plane deformation gradient (F33 = 1), with a flat state
+// per point (the solver keeps all points' states in one block and commits them when a step has
+// converged). The materials of the belt come from cards through the material-point contract
+// (point_law.hpp); two segment-private hyperelastic laws stay here: St Venant–Kirchhoff, the law
+// CalculiX's *ELASTIC is under NLGEOM (the oracle comparison; docs/decisions.md), and a
+// compressible neo-Hookean law.
+#include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -21,14 +26,29 @@ struct PointResponse {
   double sigma33_MPa = 0.0;  // out-of-plane Cauchy stress (plane-strain constraint)
 };
 
+struct PointStep {                      // one update of one integration point
+  const double* state_n = nullptr;     // state_size() doubles, last converged
+  double* state_next = nullptr;        // state_size() doubles, written
+  double dt_s = 0.0;
+  double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the card's reference
+};
+
 class PlaneStrainLaw {
  public:
   virtual ~PlaneStrainLaw() = default;
-  virtual PointResponse respond(const Matrix2& F) const = 0;
+  virtual std::size_t state_size() const { return 0; }
+  virtual std::vector<double> initial_state() const { return {}; }
+  // Whether dP/dF is major-symmetric (a hyperelastic law): the solver may then use LDLᵀ.
+  virtual bool symmetric_tangent() const { return true; }
+  // A non-finite P or A (or a thrown core::NumericalError) marks the point as failed.
+  virtual PointResponse respond(const Matrix2& F, const PointStep& step) const = 0;
+  // From the virgin state over dt = 0 at the reference temperature.
+  PointResponse respond(const Matrix2& F) const;
 };
 
-enum class ElasticLaw { st_venant_kirchhoff, neo_hookean };
-ElasticLaw elastic_law_from_string(const std::string& name);  // "stvk" | "neo-hookean"
+// hencky: the contract's `elastic-iso` point (τ_U = λ tr(ln U) I + 2μ ln U) through ContractLaw.
+enum class ElasticLaw { st_venant_kirchhoff, neo_hookean, hencky };
+ElasticLaw elastic_law_from_string(const std::string& name);  // "stvk" | "neo-hookean" | "hencky"
 std::string to_string(ElasticLaw law);
 
 std::unique_ptr<PlaneStrainLaw> make_elastic(ElasticLaw law, double E_MPa, double nu);

@@ -7,6 +7,7 @@
 // step, the element and the residual (exit 4).
 #include <array>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,12 +28,15 @@ struct NodeConstraint {
 using Prescribe = std::function<void(double lambda, std::vector<std::array<double, 2>>& local_values)>;
 
 struct SolverKnobs {
-  int steps = 4;                  // equal load increments of λ
+  int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
+  std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
   int max_iterations = 20;        // Newton iterations per increment
   int max_cuts = 6;               // halvings of an increment before giving up
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
 };
+
+struct StaticSolution;
 
 struct StaticProblem {
   const Mesh* mesh = nullptr;
@@ -42,18 +46,30 @@ struct StaticProblem {
   // Optional: the constraints' basis angles at load level λ (a line that turns with the load).
   std::function<void(double lambda, std::vector<double>& angles_rad)> rotate;
   double pressure_MPa = 0.0;      // on the bottom edges, scaled by λ
+  // Time (s) at load level λ for rate-dependent laws; empty = 0 throughout (a static case
+  // applied at once: the glassy response of a viscoelastic law). Temperature of every point.
+  std::function<double(double lambda)> time_s;
+  // Optional: dead body forces per element (global, N/mm³ of reference volume) at λ.
+  std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
+  // Optional: called after every converged increment with its stresses, displacements, reactions.
+  std::function<void(double lambda, const StaticSolution& increment)> on_increment;
+  double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
 };
 
 struct IntegrationPointStress {
   Eigen::Vector2d X_mm;           // reference position
   Eigen::Matrix2d cauchy_MPa;     // global x, y components
   double sigma33_MPa = 0.0;
+  Eigen::Matrix2d piola_MPa;      // first Piola–Kirchhoff (section forces)
+  Eigen::Matrix2d F;              // deformation gradient
 };
 
 struct StaticSolution {
   std::vector<Eigen::Vector2d> u_mm;                        // per node, global
   std::vector<Eigen::Vector2d> reaction_N_mm;               // per node (zero where free)
   std::vector<std::vector<IntegrationPointStress>> points;  // per element
+  std::vector<double> state;       // all integration points' committed states, one block
+  std::vector<std::size_t> state_offset;  // per element, into `state`
   int increments = 0, newton_iterations = 0, cuts = 0;
   double final_residual = 0.0;
   int equations = 0;

@@ -6,9 +6,11 @@
 // local frame of the curve at named points, the cord-line reactions, the section force at
 // mid-length and the section stiffnesses c and EI of the rubber about the cord line.
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "fitlib/segment/curve.hpp"
 #include "fitlib/segment/elastic.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/section.hpp"
@@ -31,7 +33,7 @@ struct StaticSetup {
   CogSection section;
   MeshKnobs mesh;
   SolverKnobs solver;
-  ElasticLaw law = ElasticLaw::neo_hookean;
+  ElasticLaw law = ElasticLaw::hencky;
   std::array<IsotropicElastic, 2> materials{};  // by Role: bottom, cushion
   EndCondition ends = EndCondition::radial;
   std::vector<NamedPoint> points;               // beside the two standard points
@@ -66,6 +68,13 @@ struct StaticResult {
 
 // The standard monitored points: bottom of the central cog gap and mid-cushion at mid-length.
 std::vector<NamedPoint> standard_points(const CogSection& section);
+
+// The problem of a cord line placed on a curve that changes with λ: every cord-line node on the
+// curve at its unstrained path position path_x_mm[node], the ends (radial) on the curve's normal
+// through the end point. `mesh` is the reference (it may be bent, path_x the straight x).
+StaticProblem cord_curve_problem(const Mesh& mesh, const std::vector<double>& path_x_mm,
+                                 const std::array<const PlaneStrainLaw*, 2>& laws,
+                                 std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends);
 
 // The problem of a load case on a mesh (constraints from the curve); laws must outlive it.
 StaticProblem static_problem(const Mesh& mesh, const std::array<const PlaneStrainLaw*, 2>& laws,

@@ -1,0 +1,42 @@
+#pragma once
+// Life from the segment FE (issue 11 items 1–2 joined): load cycle → segment driven by it
+// (segment/cycle.hpp) → stress histories at the monitored points → fatigue life. One library call
+// the scene planner runs for the `elastic` and `complete` fidelities; the beam level is
+// beam_section.hpp.
+#include <array>
+#include <vector>
+
+#include "fitlib/belt/load_cycle.hpp"
+#include "fitlib/fatigue/life.hpp"
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/segment/cycle.hpp"
+
+namespace fitlib::fatigue {
+
+// The monitored histories of a segment run as fatigue input: local stresses (1 radial,
+// 2 longitudinal), the role from the element's material.
+std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run);
+
+struct SegmentLifeSetup {
+  segment::CogSection section;
+  segment::MeshKnobs mesh;
+  segment::SolverKnobs solver;
+  segment::CycleKnobs cycle;
+  std::array<model::MaterialPointPtr, 2> materials;  // by segment::Role: bottom, cushion
+  std::vector<segment::NamedPoint> extra_points;
+  double temperature_C = 20.0;
+  PeakOptions peaks;
+};
+
+struct SegmentLife {
+  LifeReport report;
+  segment::CycleResult run;
+  double wall_s = 0.0;
+};
+
+// InputError for a standing belt or a drive without a load cycle; NumericalError (exit 4) when
+// the segment's Newton fails, naming increment and element.
+SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
+                         const FatigueCard& card);
+
+}  // namespace fitlib::fatigue

@@ -1,0 +1,84 @@
+#pragma once
+// The segment driven by the load cycle, as Report I §5–§6 (belt-mechanics.md §5; docs/segment.md
+// §"Loading by the load cycle"). The reference is the section as moulded: the straight mesh
+// wrapped on the mould radius (stress-free). Step 1 bends it straight and applies the cycle's
+// start state (F1 + F_c as ε = F/c, the free-span curvature); step 2 runs N load cycles from the
+// middle of the slack span. At pseudo time τ the cord line is the curve whose curvature and strain
+// at unstrained offset ξ from the segment's middle are K(s0 + ξ), F(s0 + ξ)/c of the load history
+// (s0 = (τ − 1) L), and the cord-line nodes are placed on it. Where the section is in a sheave
+// (p > 0) contact pressure, friction and radial inertia act as body forces (6.6–6.9).
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fitlib/belt/load_history.hpp"
+#include "fitlib/segment/mesh.hpp"
+#include "fitlib/segment/section.hpp"
+#include "fitlib/segment/solver.hpp"
+#include "fitlib/segment/static_case.hpp"
+
+namespace fitlib::segment {
+
+struct CycleDrive {                     // what the body forces need beyond the history
+  const belt::LoadHistory* history = nullptr;
+  double friction = 0.8;                // μ
+  double wedge_half_angle_rad = 0.0;    // β
+  double width_mm = 11.1542;            // B
+  double density_kg_m3 = 1200.0;        // ρ
+  double speed_mm_s = 0.0;              // V (> 0)
+  double temperature_C = 20.0;
+};
+
+struct CycleKnobs {
+  int cycles = 2;
+  int steps_per_cycle = 60;             // increments per load cycle (placed where K and p change)
+  int bend_steps = 4;                   // increments of step 1
+  double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
+  double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
+  int curve_intervals = 24;             // intervals per side of the cord curve
+  // Full-field stress (VTK, cell means, global x–y) when the segment's middle first reaches each
+  // path position of the last cycle: <vtk_prefix>-<k>.vtk. Empty prefix: none.
+  std::vector<double> vtk_at_s_mm;
+  std::string vtk_prefix;
+};
+
+struct CycleSample {                    // a monitored point at the end of an increment
+  double t_s = 0.0, s_mm = 0.0;         // time, path position of the segment's middle
+  double s11_MPa = 0.0, s22_MPa = 0.0, s12_MPa = 0.0, s33_MPa = 0.0;  // local: 1 radial, 2 along
+  double e11 = 0.0, e22 = 0.0, e12 = 0.0;  // logarithmic strain, same frame (e12 tensor shear)
+};
+
+struct MonitoredHistory {
+  NamedPoint point;
+  Role role = Role::bottom;
+  int element = 0, gauss_point = 0;     // the integration point nearest the named point
+  std::vector<CycleSample> samples;
+};
+
+struct CycleResult {
+  std::vector<MonitoredHistory> points;
+  double cycle_time_s = 0.0;
+  // Built-in equilibrium check: the largest |Σ reactions + ∫ b dV| over all increments, relative
+  // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).
+  double equilibrium_error = 0.0;
+  double max_cord_reaction_N_mm = 0.0;  // largest |Σ cord-line reactions| (per mm of width)
+  std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
+  int increments = 0, newton_iterations = 0, cuts = 0, elements = 0, equations = 0;
+  StaticSolution final_state;
+};
+
+// The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
+// 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change.
+std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight);
+
+// Body force (N/mm³, local: along the belt l and radial outward r) at a load state, 6.6–6.7.
+Eigen::Vector2d contact_body_force(const belt::LoadState& state, const CycleDrive& drive);
+
+CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
+                      const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                      const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points = {});
+
+// CSV of the monitored histories: point, role, t_s, s_mm, s11, s22, s12, s33, e11, e22, e12.
+void write_cycle_csv(const CycleResult& result, const std::string& path);
+
+}  // namespace fitlib::segment

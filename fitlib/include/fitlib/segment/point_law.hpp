@@ -1,0 +1,46 @@
+#pragma once
+// The segment's materials from the material-point contract (docs/segment.md §Materials): an
+// adapter that turns a model::MaterialPoint (τ_U from ln U, tangent dτ_U/d(ln U)) into the
+// element's P(F) and dP/dF (model/first_piola.hpp), and the point of a card per role at the
+// segment's fidelity.
+#include <vector>
+
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/segment/elastic.hpp"
+
+namespace fitlib::segment {
+
+class ContractLaw final : public PlaneStrainLaw {
+ public:
+  explicit ContractLaw(model::MaterialPointPtr point);
+  using PlaneStrainLaw::respond;
+  std::size_t state_size() const override { return point_->state_size(); }
+  std::vector<double> initial_state() const override { return point_->initial_state(); }
+  // The contract does not say whether a point is hyperelastic (an anisotropic or viscoelastic
+  // point's τ_U need not be conjugate to ln U), so the tangent is treated as unsymmetric.
+  bool symmetric_tangent() const override { return false; }
+  PointResponse respond(const Matrix2& F, const PointStep& step) const override;
+  const model::MaterialPoint& point() const { return *point_; }
+
+ private:
+  model::MaterialPointPtr point_;
+};
+
+// Fidelities of the segment (issue 11 item 5): `elastic` — the card's elastic equivalent (storage
+// stiffness) at the scene's temperature and load frequency; `complete` — the card's full model.
+enum class Fidelity { elastic, complete };
+Fidelity fidelity_from_string(const std::string& name);  // "elastic" | "complete"
+const char* to_string(Fidelity fidelity);
+
+struct RoleMaterialOptions {
+  Fidelity fidelity = Fidelity::complete;
+  double temperature_C = 20.0;   // elastic fidelity: where the storage stiffness is taken
+  double frequency_Hz = 10.0;    // elastic fidelity: the load cycle's frequency
+  double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();  // for shear cards without K
+};
+
+// The point of a card (its model and parameter values) for one role.
+model::MaterialPointPtr role_point(const model::Model& model, const std::vector<double>& values,
+                                   const RoleMaterialOptions& options);
+
+}  // namespace fitlib::segment

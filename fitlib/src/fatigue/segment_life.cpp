@@ -1,0 +1,54 @@
+// Life from the segment FE (fitlib/fatigue/segment_life.hpp).
+#include "fitlib/fatigue/segment_life.hpp"
+
+#include <chrono>
+
+#include "fitlib/belt/load_history.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/beam_section.hpp"
+#include "fitlib/segment/point_law.hpp"
+
+namespace fitlib::fatigue {
+
+std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run) {
+  std::vector<PointHistory> out;
+  for (const segment::MonitoredHistory& m : run.points) {
+    PointHistory p;
+    p.name = m.point.name;
+    p.role = m.role == segment::Role::bottom ? Role::bottom : Role::cushion;
+    p.x_mm = m.point.x_mm, p.y_mm = m.point.y_mm;
+    for (const segment::CycleSample& c : m.samples) p.samples.push_back({c.t_s, c.s11_MPa, c.s22_MPa, c.s12_MPa});
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
+                         const FatigueCard& card) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!setup.materials[0] || !setup.materials[1])
+    throw core::UsageError("segment life: a material point per role (bottom, cushion) is required");
+  const LifeConditions conditions = [&] {
+    LifeConditions c = cycle_conditions(cycle, drive, setup.temperature_C);  // refuses a standing belt
+    c.peaks = setup.peaks;
+    return c;
+  }();
+  const belt::LoadHistory history(cycle, drive.belt, setup.temperature_C);
+  segment::CycleDrive d;
+  d.history = &history;
+  d.friction = drive.friction;
+  d.wedge_half_angle_rad = drive.belt.wedge_half_angle_rad;
+  d.width_mm = drive.belt.width_mm;
+  d.density_kg_m3 = drive.belt.density_kg_m3;
+  d.speed_mm_s = drive.belt_speed_mm_s;
+  d.temperature_C = setup.temperature_C;
+  const segment::ContractLaw bottom(setup.materials[0]), cushion(setup.materials[1]);
+  SegmentLife out;
+  out.run = segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, setup.cycle,
+                               setup.extra_points);
+  out.report = evaluate_life(segment_point_histories(out.run), card, conditions);
+  out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace fitlib::fatigue

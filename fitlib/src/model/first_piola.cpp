@@ -1,0 +1,94 @@
+// First Piola–Kirchhoff stress and dP/dF of a material point (fitlib/model/first_piola.hpp).
+#include "fitlib/model/first_piola.hpp"
+
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::model {
+namespace {
+
+// ½ (ln a − ln b)/(a − b), stable as a → b (series of ln(1 + r)/r).
+double half_log_divided(double a, double b) {
+  const double r = a / b - 1.0;
+  if (std::abs(r) < 1e-6) return 0.5 * (1.0 - r / 2.0 + r * r / 3.0) / b;
+  return 0.5 * std::log1p(r) / (r * b);
+}
+
+// (a^(−½) − b^(−½))/(a − b) = −1/(√a √b (√a + √b)), exact also at a = b.
+double inverse_sqrt_divided(double a, double b) {
+  const double sa = std::sqrt(a), sb = std::sqrt(b);
+  return -1.0 / (sa * sb * (sa + sb));
+}
+
+Eigen::Matrix3d from_voigt(const Vector6& s) {
+  Eigen::Matrix3d m;
+  m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
+  return m;
+}
+
+Vector6 to_voigt_strain(const Eigen::Matrix3d& e) {  // engineering shears
+  Vector6 v;
+  v << e(0, 0), e(1, 1), e(2, 2), e(1, 2) + e(2, 1), e(0, 2) + e(2, 0), e(0, 1) + e(1, 0);
+  return v;
+}
+
+}  // namespace
+
+Eigen::Matrix3d spectral_derivative(const Eigen::Matrix3d& Q, const Eigen::Matrix3d& theta,
+                                    const Eigen::Matrix3d& dC) {
+  const Eigen::Matrix3d inner = theta.cwiseProduct(Q.transpose() * dC * Q);
+  return Q * inner * Q.transpose();
+}
+
+FirstPiolaResult first_piola(const MaterialPoint& point, const double* state_n, const Eigen::Matrix3d& F,
+                             double dt_s, double temperature_C, double* state_next, TangentColumns columns) {
+  if (!(F.determinant() > 0.0))
+    throw core::NumericalError("material point: deformation gradient with det F ≤ 0");
+  const Eigen::Matrix3d C = F.transpose() * F;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(C);
+  const Eigen::Vector3d c = eig.eigenvalues();
+  const Eigen::Matrix3d& Q = eig.eigenvectors();
+  if (!(c.minCoeff() > 0.0)) throw core::NumericalError("material point: C not positive definite");
+  const Eigen::Vector3d half_log_c = 0.5 * c.array().log().matrix();
+  const Eigen::Vector3d inv_sqrt_c = c.array().rsqrt().matrix();
+  const Eigen::Matrix3d lnU = Q * half_log_c.asDiagonal() * Q.transpose();
+  const Eigen::Matrix3d W = Q * inv_sqrt_c.asDiagonal() * Q.transpose();  // U⁻¹
+
+  FirstPiolaResult out;
+  Matrix6 D;
+  const bool tangent = columns != TangentColumns::none;
+  out.stress_unrotated = point.update(state_n, to_voigt_strain(lnU), dt_s, temperature_C, state_next, tangent ? &D : nullptr);
+  const Eigen::Matrix3d tau = from_voigt(out.stress_unrotated);
+  const Eigen::Matrix3d S = W * tau * W;
+  out.P = F * S;
+  out.dP_dF.setZero();
+  if (!tangent) return out;
+
+  Eigen::Matrix3d theta_log, theta_w;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      theta_log(a, b) = half_log_divided(c[a], c[b]);
+      theta_w(a, b) = inverse_sqrt_divided(c[a], c[b]);
+    }
+  for (int k = 0; k < 3; ++k)
+    for (int L = 0; L < 3; ++L) {
+      if (columns == TangentColumns::in_plane && (k == 2 || L == 2)) continue;
+      const Eigen::Matrix3d dCk = F.row(k).transpose() * Eigen::RowVector3d::Unit(L);  // FᵀdF, dF = e_k e_Lᵀ
+      const Eigen::Matrix3d dC = dCk + dCk.transpose();
+      const Eigen::Matrix3d dlnU = spectral_derivative(Q, theta_log, dC);
+      const Eigen::Matrix3d dW = spectral_derivative(Q, theta_w, dC);
+      const Eigen::Matrix3d dtau = from_voigt(D * to_voigt_strain(dlnU));
+      const Eigen::Matrix3d dS = dW * tau * W + W * dtau * W + W * tau * dW;
+      Eigen::Matrix3d dP = F * dS;
+      dP.row(k) += S.row(L);  // dF S with dF = e_k e_Lᵀ
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J) out.dP_dF(3 * i + J, 3 * k + L) = dP(i, J);
+    }
+  return out;
+}
+
+}  // namespace fitlib::model

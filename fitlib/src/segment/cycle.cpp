@@ -1,0 +1,253 @@
+// The segment driven by the load cycle (fitlib/segment/cycle.hpp; docs/segment.md).
+#include "fitlib/segment/cycle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+#include "element.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/segment/curve.hpp"
+
+namespace fitlib::segment {
+namespace {
+
+// The straight mesh wrapped on the mould circle (curvature K_m, unstrained cord line): the
+// stress-free reference of the moulded belt.
+Mesh wrapped(const Mesh& straight, double K_m) {
+  Mesh m = straight;
+  const NeutralCurve mould = NeutralCurve::uniform(K_m, 0.0, 1.5 * straight.half_length_mm);
+  for (Eigen::Vector2d& X : m.X) {
+    const CurvePoint q = mould.at(X.x());
+    X = Eigen::Vector2d(q.x_mm, q.y_mm) + X.y() * Eigen::Vector2d(std::sin(q.phi_rad), std::cos(q.phi_rad));
+  }
+  return m;
+}
+
+// Cord curve at pseudo time τ: step 1 (τ ≤ 1) blends the mould curvature into the cycle's start
+// state; step 2 reads the history at s0 + ξ, s0 = (τ − 1) L.
+NeutralCurve cord_curve(double tau, const belt::LoadHistory& h, double K_m, double reach_mm, int n) {
+  const double w = std::min(1.0, tau), s0 = std::max(0.0, tau - 1.0) * h.length_mm();
+  const double ds = reach_mm / n;
+  std::array<std::vector<double>, 2> K, eps;
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    for (int i = 0; i <= n; ++i) {
+      eps[side].push_back(w * h.at_position(s0 + sign * i * ds).strain);
+      if (i < n) K[side].push_back((1.0 - w) * K_m + w * h.at_position(s0 + sign * (i + 0.5) * ds).K_1_mm);
+    }
+  }
+  return NeutralCurve(ds, K[0], eps[0], K[1], eps[1]);
+}
+
+double reference_area(const Mesh& m, int e, const std::vector<detail::GaussPoint>& rule) {
+  double N[8], dxi[8], deta[8], area = 0.0;
+  for (const auto& g : rule) {
+    detail::shape(m.nodes_per_element, g.xi, g.eta, N, dxi, deta);
+    Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+    for (int a = 0; a < m.nodes_per_element; ++a) {
+      const Eigen::Vector2d& X = m.X[m.elements[e][a]];
+      J.col(0) += dxi[a] * X, J.col(1) += deta[a] * X;
+    }
+    area += J.determinant() * g.weight;
+  }
+  return area;
+}
+
+CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
+  const Eigen::Vector2d t(std::cos(phi), -std::sin(phi)), n(std::sin(phi), std::cos(phi));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(ip.F * ip.F.transpose());
+  const Eigen::Matrix2d e = eig.eigenvectors() * (0.5 * eig.eigenvalues().array().log()).matrix().asDiagonal() *
+                            eig.eigenvectors().transpose();
+  CycleSample c;
+  c.s11_MPa = n.dot(ip.cauchy_MPa * n), c.s22_MPa = t.dot(ip.cauchy_MPa * t), c.s12_MPa = n.dot(ip.cauchy_MPa * t);
+  c.s33_MPa = ip.sigma33_MPa;
+  c.e11 = n.dot(e * n), c.e22 = t.dot(e * t), c.e12 = n.dot(e * t);
+  return c;
+}
+
+}  // namespace
+
+Eigen::Vector2d contact_body_force(const belt::LoadState& q, const CycleDrive& d) {
+  if (!(q.p_MPa > 0.0)) return Eigen::Vector2d::Zero();
+  const double cb = std::cos(d.wedge_half_angle_rad), sb = std::sin(d.wedge_half_angle_rad);
+  const double area_factor = q.p_MPa * 2.0 / d.width_mm / cb;  // cos β_s = 1 (docs/decisions.md)
+  const double inertia = d.density_kg_m3 * 1e-12 * q.K_1_mm * d.speed_mm_s * d.speed_mm_s;  // ρKV², N/mm³
+  const double B_l = -d.friction * area_factor * std::sin(q.gamma_rad);                      // (6.6)
+  const double B_r = area_factor * (sb - d.friction * std::cos(q.gamma_rad)) + inertia;       // (6.7)
+  return {B_l, B_r};
+}
+
+std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, double weight) {
+  if (steps < 1) throw core::UsageError("segment cycle: steps_per_cycle must be ≥ 1");
+  const int M = 4000;
+  const double L = h.length_mm(), ds = L / M;
+  std::vector<double> dK(M), dp(M);
+  double tvK = 0.0, tvp = 0.0;
+  for (int i = 0; i < M; ++i) {
+    const belt::LoadState a = h.at_position(i * ds), b = h.at_position((i + 1) * ds);
+    dK[i] = std::abs(b.K_1_mm - a.K_1_mm), dp[i] = std::abs(b.p_MPa - a.p_MPa);
+    tvK += dK[i], tvp += dp[i];
+  }
+  std::vector<double> cumulative(M + 1, 0.0);
+  for (int i = 0; i < M; ++i)
+    cumulative[i + 1] = cumulative[i] + 1.0 / M + weight * 0.5 * ((tvK > 0 ? dK[i] / tvK : 0.0) + (tvp > 0 ? dp[i] / tvp : 0.0));
+  std::vector<double> tau;
+  for (int k = 1; k <= steps; ++k) {
+    const double target = cumulative.back() * k / steps;
+    const int i = static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+    const double s = i == 0 ? 0.0 : (i - 1 + (target - cumulative[i - 1]) / (cumulative[i] - cumulative[i - 1])) / M;
+    if (tau.empty() || s > tau.back() + 1e-9) tau.push_back(k == steps ? 1.0 : s);
+  }
+  return tau;
+}
+
+CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
+                      const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                      const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
+  if (!drive.history) throw core::UsageError("segment cycle: a load history is required");
+  if (!(drive.speed_mm_s > 0.0)) throw core::InputError("segment cycle: the belt speed must be > 0 (a belt at rest has no load cycle)");
+  if (knobs.cycles < 1) throw core::InputError("segment cycle: cycles must be ≥ 1");
+  const belt::LoadHistory& h = *drive.history;
+  const Mesh straight = build_mesh(section, mesh_knobs);
+  const double K_m = knobs.manufactured_radius_mm > 0.0 ? 1.0 / knobs.manufactured_radius_mm : 0.0;
+  const Mesh m = wrapped(straight, K_m);
+  std::vector<double> path_x;
+  for (const Eigen::Vector2d& X : straight.X) path_x.push_back(X.x());
+  const double reach = 1.5 * straight.half_length_mm, T = 1.0 + knobs.cycles;
+  const int n = knobs.curve_intervals;
+  auto curve_at = [&h, K_m, reach, n, T](double lambda) { return cord_curve(lambda * T, h, K_m, reach, n); };
+  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, EndCondition::radial);
+  const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
+  p.time_s = [T, period](double lambda) { return lambda * T * period; };
+  p.temperature_C = drive.temperature_C;
+
+  const auto rule = detail::gauss_rule(gauss_order(m, solver.integration));
+  std::vector<double> area(m.element_count()), centre_x(m.element_count());
+  for (int e = 0; e < m.element_count(); ++e) {
+    area[e] = reference_area(m, e, rule);
+    for (int a = 0; a < 4; ++a) centre_x[e] += 0.25 * path_x[m.elements[e][a]];
+  }
+  auto body = [&](double lambda, std::vector<Eigen::Vector2d>& b) {
+    const double tau = lambda * T;
+    b.assign(m.element_count(), Eigen::Vector2d::Zero());
+    if (tau <= 1.0) return;
+    const NeutralCurve curve = curve_at(lambda);
+    const double s0 = (tau - 1.0) * h.length_mm();
+    for (int e = 0; e < m.element_count(); ++e) {
+      const Eigen::Vector2d lr = contact_body_force(h.at_position(s0 + centre_x[e]), drive);
+      if (lr.isZero(0.0)) continue;
+      const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
+      b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
+    }
+  };
+  p.body_force = body;
+
+  CycleResult out;
+  out.cycle_time_s = period;
+  std::vector<NamedPoint> named = standard_points(section);
+  named.insert(named.end(), extra_points.begin(), extra_points.end());
+  std::vector<Eigen::Vector2d> forces;
+  std::vector<bool> written(knobs.vtk_at_s_mm.size(), false);
+  auto write_fields = [&](double tau, const StaticSolution& s) {
+    if (knobs.vtk_prefix.empty()) return;
+    const double s_last = (tau - 1.0 - (knobs.cycles - 1)) * h.length_mm();  // within the last cycle
+    for (std::size_t k = 0; k < written.size(); ++k) {
+      if (written[k] || s_last < knobs.vtk_at_s_mm[k]) continue;
+      VtkFields fields;
+      fields.displacement_mm = s.u_mm;
+      for (const auto& pts : s.points) {
+        std::array<double, 4> mean{};
+        for (const IntegrationPointStress& ip : pts) {
+          const std::array<double, 4> v{ip.cauchy_MPa(0, 0), ip.cauchy_MPa(1, 1), ip.cauchy_MPa(0, 1), ip.sigma33_MPa};
+          for (int c = 0; c < 4; ++c) mean[c] += v[c] / static_cast<double>(pts.size());
+        }
+        fields.cell_stress_MPa.push_back(mean);
+      }
+      const std::string path = knobs.vtk_prefix + "-" + std::to_string(k) + ".vtk";
+      write_vtk(m, path, fields);
+      out.vtk_files.push_back(path);
+      written[k] = true;
+    }
+  };
+  p.on_increment = [&](double lambda, const StaticSolution& s) {
+    if (out.points.empty()) {  // the integration point nearest each named point (reference)
+      const Mesh one_point = wrapped([&] {
+        Mesh q = straight;
+        q.X.clear();
+        for (const NamedPoint& np : named) q.X.emplace_back(np.x_mm, np.y_mm);
+        return q;
+      }(), K_m);
+      for (std::size_t k = 0; k < named.size(); ++k) {
+        MonitoredHistory mh;
+        mh.point = named[k];
+        double best = std::numeric_limits<double>::infinity();
+        for (int e = 0; e < m.element_count(); ++e)
+          for (std::size_t g = 0; g < s.points[e].size(); ++g) {
+            const double dist = (s.points[e][g].X_mm - one_point.X[k]).norm();
+            if (dist < best) best = dist, mh.element = e, mh.gauss_point = static_cast<int>(g);
+          }
+        mh.role = m.roles[mh.element];
+        out.points.push_back(mh);
+      }
+    }
+    const double tau = lambda * T;
+    const NeutralCurve curve = curve_at(lambda);
+    for (MonitoredHistory& mh : out.points) {
+      CycleSample c = local_sample(s.points[mh.element][mh.gauss_point],
+                                   curve.at(curve.s_from_unstrained(mh.point.x_mm)).phi_rad);
+      c.t_s = tau * period;
+      c.s_mm = std::max(0.0, tau - 1.0) * h.length_mm();
+      mh.samples.push_back(c);
+    }
+    write_fields(tau, s);
+    // Equilibrium: Σ reactions + ∫ b dV = 0 (the free residual is at the tolerance).
+    body(lambda, forces);
+    Eigen::Vector2d applied = Eigen::Vector2d::Zero(), reactions = Eigen::Vector2d::Zero(), cord = Eigen::Vector2d::Zero();
+    double scale = 1e-300;  // Σ |nodal reactions| + Σ |element body forces|
+    for (int e = 0; e < m.element_count(); ++e) applied += forces[e] * area[e], scale += (forces[e] * area[e]).norm();
+    for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
+    for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
+    out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
+    out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
+  };
+
+  SolverKnobs k = solver;
+  k.schedule.clear();
+  for (int i = 1; i <= knobs.bend_steps; ++i) k.schedule.push_back(static_cast<double>(i) / knobs.bend_steps / T);
+  const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight);
+  for (int c = 0; c < knobs.cycles; ++c)
+    for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
+  out.final_state = solve_static(p, k);
+  out.increments = out.final_state.increments;
+  out.newton_iterations = out.final_state.newton_iterations;
+  out.cuts = out.final_state.cuts;
+  out.elements = m.element_count();
+  out.equations = out.final_state.equations;
+  return out;
+}
+
+void write_cycle_csv(const CycleResult& r, const std::string& path) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw core::InputError("cannot write '" + path + "'");
+    f.precision(9);
+    f << "point,role,x_mm,y_mm,t_s,s_mm,s11_MPa,s22_MPa,s12_MPa,s33_MPa,e11,e22,e12\n";
+    for (const MonitoredHistory& mh : r.points)
+      for (const CycleSample& c : mh.samples) {
+        for (double v : {c.s11_MPa, c.s22_MPa, c.s12_MPa, c.s33_MPa, c.e11, c.e22, c.e12})
+          if (!std::isfinite(v)) throw core::NumericalError("segment cycle: non-finite value at '" + mh.point.name + "'");
+        f << mh.point.name << ',' << to_string(mh.role) << ',' << mh.point.x_mm << ',' << mh.point.y_mm << ','
+          << c.t_s << ',' << c.s_mm << ',' << c.s11_MPa << ',' << c.s22_MPa << ',' << c.s12_MPa << ','
+          << c.s33_MPa << ',' << c.e11 << ',' << c.e22 << ',' << c.e12 << '\n';
+      }
+    if (!f) throw core::InputError("cannot write '" + path + "'");
+  }
+  std::rename(tmp.c_str(), path.c_str());
+}
+
+}  // namespace fitlib::segment

@@ -1,0 +1,207 @@
+// The segment driven by a load cycle (Report I §5–§6, belt-mechanics.md §5): the qualitative
+// features on a synthetic one-pulley cycle of known shape, periodicity of an elastic belt,
+// equilibrium, and the failure exit.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <unistd.h>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/segment/cycle.hpp"
+#include "fitlib/segment/point_law.hpp"
+
+using namespace fitlib;
+using namespace fitlib::segment;
+
+namespace {
+
+// 400 mm belt at 1000 mm/s: span (0–90), entrance ramp of K (90–100), wrap of R = 40 mm
+// (100–200) with side pressure, the last 40 mm sliding (γ = 0.4, force rising), exit ramp
+// (200–210), span. F 300 N in the slack span, 600 N after the sliding zone.
+belt::LoadCycle synthetic_cycle(double pressure_MPa = 0.4) {
+  belt::LoadCycle c;
+  c.cycle_length_mm = 400.0;
+  c.cycle_time_s = 0.4;
+  struct P { double s, F, K, p, g; };
+  const P pts[] = {{0, 300, 0, 0, 0},       {90, 300, 0, 0, 0},          {100, 300, 1.0 / 40, pressure_MPa, 0},
+                   {160, 300, 1.0 / 40, pressure_MPa, 0}, {160.001, 300, 1.0 / 40, pressure_MPa, 0.4},
+                   {200, 600, 1.0 / 40, 2 * pressure_MPa, 0.4}, {210, 600, 0, 0, 0}, {310, 600, 0, 0, 0},
+                   {390, 300, 0, 0, 0}};
+  for (const P& q : pts) {
+    belt::LoadSample s;
+    s.s_mm = q.s, s.t_s = q.s / 1000.0, s.F_N = q.F, s.K_1_mm = q.K, s.p_MPa = q.p, s.gamma_rad = q.g;
+    c.samples.push_back(s);
+  }
+  return c;
+}
+
+struct Fixture {
+  belt::LoadHistory history;
+  CycleDrive drive;
+  MeshKnobs mesh;
+  SolverKnobs solver;
+  CycleKnobs knobs;
+  explicit Fixture(const belt::LoadCycle& cycle = synthetic_cycle())
+      : history(cycle, [] { belt::BeltSection b; b.c_N = 44000.0; return b; }(), 20.0) {
+    drive.history = &history;
+    drive.friction = 0.8;
+    drive.wedge_half_angle_rad = 19.0 * M_PI / 180.0;
+    drive.speed_mm_s = 1000.0;
+    mesh.fine_size_mm = 1.0, mesh.coarse_size_mm = 2.5, mesh.central_pitches = 1.0, mesh.end_pitches = 1.0;
+    mesh.cushion_rows = 1;
+    knobs.cycles = 2;
+    knobs.steps_per_cycle = 24;
+    knobs.manufactured_radius_mm = 0.0;
+  }
+  CycleResult run(const PlaneStrainLaw& bottom, const PlaneStrainLaw& cushion) const {
+    return run_cycle(CogSection{}, mesh, solver, {&bottom, &cushion}, drive, knobs);
+  }
+};
+
+std::unique_ptr<PlaneStrainLaw> hencky(double E, double nu) { return make_elastic(ElasticLaw::hencky, E, nu); }
+
+const MonitoredHistory& point(const CycleResult& r, const std::string& name) {
+  for (const auto& p : r.points)
+    if (p.point.name == name) return p;
+  throw std::runtime_error("no point " + name);
+}
+
+// The sample of cycle `c` (1-based) nearest path position s of the segment's middle.
+const CycleSample& at(const MonitoredHistory& h, int c, double s, double L = 400.0) {
+  const CycleSample* best = &h.samples.front();
+  for (const auto& q : h.samples)
+    if (std::abs(q.s_mm - ((c - 1) * L + s)) < std::abs(best->s_mm - ((c - 1) * L + s))) best = &q;
+  return *best;
+}
+
+}  // namespace
+
+TEST(SegmentCycle, ElasticBeltFollowsTheCycleInEquilibriumAndRepeatsItself) {
+  const Fixture f;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult r = f.run(*bottom, *cushion);
+  const MonitoredHistory& gap = point(r, "gap_bottom");
+  EXPECT_LT(r.equilibrium_error, 1e-6);
+  // Tension between the cogs in the spans (cord strain ≈ 0.7 %), compression on the pulley.
+  EXPECT_GT(at(gap, 2, 50.0).s22_MPa, 0.0);
+  EXPECT_LT(at(gap, 2, 140.0).s22_MPa, 0.0);
+  // An elastic belt repeats: cycle 2 equals cycle 1 at the same path position.
+  for (double s : {50.0, 140.0, 190.0, 300.0})
+    EXPECT_NEAR(at(gap, 2, s).s22_MPa, at(gap, 1, s).s22_MPa, 1e-6 * (1.0 + std::abs(at(gap, 1, s).s22_MPa))) << s;
+  std::printf("equilibrium error %.3g; ", r.equilibrium_error);
+  std::printf("gap s22: span %.4f, arc %.4f, sliding %.4f MPa; %d increments, %d iterations\n",
+              at(gap, 2, 50.0).s22_MPa, at(gap, 2, 140.0).s22_MPa, at(gap, 2, 190.0).s22_MPa, r.increments,
+              r.newton_iterations);
+  for (const auto& p : r.points)
+    for (const auto& q : p.samples) ASSERT_TRUE(std::isfinite(q.s11_MPa + q.s22_MPa + q.s12_MPa + q.e22));
+}
+
+TEST(SegmentCycle, StraighteningTheMouldedCurvatureStressesTheBelt) {
+  Fixture f;
+  f.knobs.cycles = 1;
+  f.knobs.steps_per_cycle = 4;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const double straight = point(f.run(*bottom, *cushion), "gap_bottom").samples[f.knobs.bend_steps - 1].s22_MPa;
+  f.knobs.manufactured_radius_mm = 40.0;
+  const double moulded = point(f.run(*bottom, *cushion), "gap_bottom").samples[f.knobs.bend_steps - 1].s22_MPa;
+  // Straightening opens the inside of the mould: extra tension at the gap bottom.
+  EXPECT_GT(moulded - straight, 0.2);
+  std::printf("gap s22 after step 1: straight mould %.4f, R 40 mm mould %.4f MPa\n", straight, moulded);
+}
+
+TEST(SegmentCycle, FrictionChangesTheShearInTheSlidingZone) {
+  Fixture f;
+  f.knobs.cycles = 1;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult with = f.run(*bottom, *cushion);
+  f.drive.friction = 0.0;
+  const CycleResult without = f.run(*bottom, *cushion);
+  const double d_sliding = at(point(with, "mid_cushion"), 1, 190.0).s12_MPa - at(point(without, "mid_cushion"), 1, 190.0).s12_MPa;
+  const double d_sticking = at(point(with, "mid_cushion"), 1, 130.0).s12_MPa - at(point(without, "mid_cushion"), 1, 130.0).s12_MPa;
+  EXPECT_GT(std::abs(d_sliding), 10.0 * std::abs(d_sticking));
+  std::printf("mid-cushion s12 change by friction: sliding %.4g, non-sliding %.4g MPa\n", d_sliding, d_sticking);
+}
+
+TEST(SegmentCycle, ViscoelasticBeltDiffersBetweenCycleOneAndTwo) {
+  Fixture f;
+  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
+  const ContractLaw law(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const CycleResult r = f.run(law, law);
+  const MonitoredHistory& gap = point(r, "gap_bottom");
+  double largest = 0.0;
+  for (double s : {50.0, 140.0, 300.0}) largest = std::max(largest, std::abs(at(gap, 2, s).s22_MPa - at(gap, 1, s).s22_MPa));
+  EXPECT_GT(largest, 1e-3);
+  std::printf("viscoelastic gap s22 cycle 2 − cycle 1: largest %.4g MPa\n", largest);
+}
+
+TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
+  Fixture f(synthetic_cycle());
+  f.knobs.cycles = 1;
+  f.knobs.manufactured_radius_mm = 0.8;  // tighter than the section is high: elements invert
+  f.solver.max_cuts = 2;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  try {
+    f.run(*bottom, *cushion);
+    FAIL() << "expected a numerical failure";
+  } catch (const core::NumericalError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("load increment"), std::string::npos) << what;
+    EXPECT_NE(what.find("element"), std::string::npos) << what;
+    std::printf("%s\n", what.c_str());
+  }
+}
+
+TEST(SegmentCycle, WritesTheStressFieldAtChosenInstantsAndTheHistoriesWithoutNaN) {
+  Fixture f;
+  f.knobs.cycles = 1;
+  f.knobs.steps_per_cycle = 12;
+  const std::string dir = ::testing::TempDir() + "/segment-cycle-" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  f.knobs.vtk_prefix = dir + "/field";
+  f.knobs.vtk_at_s_mm = {95.0, 205.0};  // entrance and exit transitions
+  const auto law = hencky(20.0, 0.49);
+  const CycleResult r = f.run(*law, *law);
+  ASSERT_EQ(r.vtk_files.size(), 2u);
+  for (const auto& path : r.vtk_files) {
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("CELLS"), std::string::npos);
+    EXPECT_EQ(text.find("nan"), std::string::npos);
+  }
+  write_cycle_csv(r, dir + "/cycle.csv");
+  std::ifstream csv(dir + "/cycle.csv");
+  const std::string text((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("point,role,x_mm,y_mm,t_s,s_mm,s11_MPa", 0), 0u);
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SegmentCycle, NearIncompressibleBeltRunsTheCycle) {
+  // K/G = 1000: the step cuts do the work; stresses stay finite and close to ν = 0.49's.
+  Fixture f;
+  f.knobs.cycles = 1;
+  f.knobs.steps_per_cycle = 12;
+  const auto b49 = hencky(20.0, 0.49), c49 = hencky(8.0, 0.49);
+  const auto b4995 = hencky(20.0, 0.4995), c4995 = hencky(8.0, 0.4995);
+  const CycleResult soft = f.run(*b49, *c49), hard = f.run(*b4995, *c4995);
+  const double a = at(point(soft, "gap_bottom"), 1, 140.0).s22_MPa, b = at(point(hard, "gap_bottom"), 1, 140.0).s22_MPa;
+  EXPECT_TRUE(std::isfinite(b));
+  EXPECT_NEAR(b, a, 0.2 * std::abs(a));
+  EXPECT_LT(hard.equilibrium_error, 1e-6);
+  std::printf("gap s22 on the pulley: nu 0.49 %.4f, nu 0.4995 %.4f MPa (%d vs %d increments)\n", a, b,
+              soft.increments, hard.increments);
+}
+
+TEST(SegmentCycle, ZeroSpeedIsRefusedWithAReason) {
+  Fixture f;
+  f.drive.speed_mm_s = 0.0;
+  const auto law = hencky(20.0, 0.49);
+  EXPECT_THROW(f.run(*law, *law), core::InputError);
+}

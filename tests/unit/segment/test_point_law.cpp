@@ -1,0 +1,130 @@
+// The segment's materials through the material-point contract: P = F U⁻¹ τ_U U⁻¹ and dP/dF
+// (model/first_piola.hpp) against central differences, for an isotropic and a non-coaxial
+// (orthotropic) point, a viscoelastic point over a step, and the element tangent built from them.
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "../../../fitlib/src/segment/element.hpp"
+#include "fitlib/model/first_piola.hpp"
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/segment/point_law.hpp"
+
+using namespace fitlib;
+
+namespace {
+
+model::MaterialPointPtr point_of(const std::string& kind, const nlohmann::json& options, std::vector<double> values) {
+  const model::ModelPtr m = model::make_model(kind, options);
+  return model::make_material_point(*m, values);
+}
+
+model::MaterialPointPtr ortho() {
+  return point_of("elastic-ortho", nlohmann::json::object(), {5.0, 8.0, 200.0, 0.4, 0.01, 0.01, 2.0, 3.0, 3.5});
+}
+model::MaterialPointPtr prony() {
+  return point_of("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 3}},
+                  {1.0, 2.0, 1.5, 0.8, 0.01, 0.1, 0.5, 500.0});
+}
+
+// Central difference of P(F) against the analytic dP/dF, relative to the tangent's size.
+double tangent_error(const model::MaterialPoint& point, const std::vector<double>& state, const Eigen::Matrix3d& F,
+                     double dt) {
+  std::vector<double> next(point.state_size());
+  const auto r = model::first_piola(point, state.data(), F, dt, NAN, next.data(), model::TangentColumns::all);
+  const double h = 1e-6;
+  double err = 0.0;
+  for (int k = 0; k < 3; ++k)
+    for (int L = 0; L < 3; ++L) {
+      Eigen::Matrix3d Fp = F, Fm = F;
+      Fp(k, L) += h, Fm(k, L) -= h;
+      const Eigen::Matrix3d dP = (model::first_piola(point, state.data(), Fp, dt, NAN, next.data(), model::TangentColumns::none).P -
+                                  model::first_piola(point, state.data(), Fm, dt, NAN, next.data(), model::TangentColumns::none).P) /
+                                 (2 * h);
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J) err = std::max(err, std::abs(dP(i, J) - r.dP_dF(3 * i + J, 3 * k + L)));
+    }
+  return err / r.dP_dF.cwiseAbs().maxCoeff();
+}
+
+Eigen::Matrix3d general_F() {
+  Eigen::Matrix3d F;
+  F << 1.12, 0.21, -0.05, -0.13, 0.93, 0.04, 0.02, -0.03, 1.05;
+  return F;
+}
+
+}  // namespace
+
+TEST(SegmentPointLaw, FirstPiolaTangentMatchesCentralDifferences) {
+  for (const auto& point : std::vector<model::MaterialPointPtr>{point_of("elastic-iso", nlohmann::json::object(), {10.0, 0.45}), ortho()}) {
+    const std::vector<double> state = point->initial_state();
+    EXPECT_LT(tangent_error(*point, state, general_F(), 0.0), 1e-7) << point->describe();
+    // Repeated stretches (a rotation times an isotropic stretch): the divided differences' limits.
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    EXPECT_LT(tangent_error(*point, state, 1.05 * R, 0.0), 1e-7) << point->describe();
+    EXPECT_LT(tangent_error(*point, state, Eigen::Matrix3d::Identity(), 0.0), 1e-7) << point->describe();
+  }
+}
+
+TEST(SegmentPointLaw, ViscoelasticTangentOverAStepMatchesCentralDifferences) {
+  const auto point = prony();
+  std::vector<double> state = point->initial_state(), next(point->state_size());
+  Eigen::Matrix3d F1 = Eigen::Matrix3d::Identity();
+  F1(0, 1) = 0.1, F1(1, 1) = 0.97;
+  model::first_piola(*point, state.data(), F1, 0.05, NAN, next.data(), model::TangentColumns::none);
+  state.swap(next);  // a loaded, partly relaxed state
+  EXPECT_LT(tangent_error(*point, state, general_F(), 0.02), 1e-7);
+}
+
+TEST(SegmentPointLaw, KirchhoffStressIsTheContractsRotatedStress) {
+  // τ = P Fᵀ must equal update_deformation's R τ_U Rᵀ (non-coaxial, anisotropic point).
+  const auto point = ortho();
+  const std::vector<double> s = point->initial_state();
+  std::vector<double> next(point->state_size());
+  const Eigen::Matrix3d F = general_F();
+  const auto r = model::first_piola(*point, s.data(), F, 0.0, NAN, next.data(), model::TangentColumns::none);
+  const Eigen::Matrix3d tau = point->update_deformation(s.data(), F, 0.0, NAN, next.data());
+  EXPECT_LT((r.P * F.transpose() - tau).cwiseAbs().maxCoeff(), 1e-12 * tau.cwiseAbs().maxCoeff());
+}
+
+TEST(SegmentPointLaw, ElementTangentMatchesCentralDifferencesOfItsInternalForce) {
+  // A distorted 8-node element, orthotropic contract point, reduced and full integration.
+  const segment::ContractLaw law(ortho());
+  const std::vector<Eigen::Vector2d> X = {{0, 0}, {1.2, 0.1}, {1.1, 0.9}, {-0.1, 1.0},
+                                          {0.6, 0.02}, {1.2, 0.5}, {0.5, 0.97}, {-0.05, 0.5}};
+  std::vector<Eigen::Vector2d> u;
+  for (std::size_t a = 0; a < X.size(); ++a) u.push_back({0.05 * X[a].y() + 0.01 * a, -0.04 * X[a].x() + 0.003 * a * a});
+  for (int order : {2, 3}) {
+    const auto rule = segment::detail::gauss_rule(order);
+    std::vector<double> state(rule.size() * law.state_size()), next(state.size());
+    const segment::detail::ElementStep step{state.data(), next.data(), 0.0, NAN};
+    segment::detail::ElementVector f, fp, fm;
+    segment::detail::ElementMatrix K;
+    ASSERT_TRUE(segment::detail::element_response(X, u, law, rule, step, f, &K, nullptr));
+    const double h = 1e-7;
+    double err = 0.0;
+    for (std::size_t b = 0; b < X.size(); ++b)
+      for (int k = 0; k < 2; ++k) {
+        auto up = u, um = u;
+        up[b][k] += h, um[b][k] -= h;
+        segment::detail::element_response(X, up, law, rule, step, fp, nullptr, nullptr);
+        segment::detail::element_response(X, um, law, rule, step, fm, nullptr, nullptr);
+        err = std::max(err, ((fp - fm) / (2 * h) - K.col(2 * b + k)).cwiseAbs().maxCoeff());
+      }
+    EXPECT_LT(err, 1e-6 * K.cwiseAbs().maxCoeff()) << "order " << order;
+  }
+}
+
+TEST(SegmentPointLaw, HenckyContractPointAgreesWithStVenantKirchhoffAtSmallStrain) {
+  // Both reduce to linear elasticity: at ε ~ 1e-4 the stresses agree to O(ε²) relative.
+  const double E = 20.0, nu = 0.49;
+  const segment::ContractLaw hencky(point_of("elastic-iso", nlohmann::json::object(), {E, nu}));
+  const auto svk = segment::make_elastic(segment::ElasticLaw::st_venant_kirchhoff, E, nu);
+  Eigen::Matrix2d F;
+  F << 1.0 + 1e-4, 0.5e-4, -0.3e-4, 1.0 - 0.7e-4;
+  const auto a = hencky.respond(F), b = svk->respond(F);
+  EXPECT_LT((a.P - b.P).cwiseAbs().maxCoeff(), 1e-3 * b.P.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(a.sigma33_MPa, b.sigma33_MPa, 1e-3 * std::abs(b.sigma33_MPa));
+}
