@@ -282,6 +282,27 @@ class IsothermShiftModel : public model::Model {
     std::vector<double> shifts(p + n_inner_, p + specs_.size());
     return {{"law", "tabulated"}, {"temperatures_C", temperatures_}, {"log10_aT", shifts}};
   }
+  // The capabilities of the inner model at the reference temperature (the shifts are 1 there);
+  // the law is the table of shifts (ShiftLaw::other), no point: a card's model gives that.
+  bool kelvin_series(const double* p, model::KelvinSeries* out) const override { return inner_->kelvin_series(p, out); }
+  double bulk_modulus(const double* p) const override { return inner_->bulk_modulus(p); }
+  bool amplitude_dependent() const override { return inner_->amplitude_dependent(); }
+  model::TemperatureLawInfo temperature_law_info() const override {
+    model::TemperatureLawInfo info;
+    info.law = model::ShiftLaw::other;
+    info.reference_C = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t k = 0; k < temperatures_.size(); ++k) info.shift_parameters.push_back(int(n_inner_ + k));
+    return info;
+  }
+  model::TemperatureFactors temperature_factors(const double* p, double temperature_C) const override {
+    model::TestCondition c;
+    c.temperature_C = temperature_C;
+    if (!c.has_temperature()) return {};
+    return {std::pow(10.0, p[n_inner_ + isotherm(c)]), 1.0};
+  }
+  std::shared_ptr<const model::MaterialPoint> material_point(const double*, const model::PointOptions&) const override {
+    throw core::UsageError("isotherm shifts are a fitter's internal model and have no material point");
+  }
   std::vector<double> initial_parameters(const model::DataSummary& d) const override {
     auto p = inner_->initial_parameters(d);
     p.resize(specs_.size(), 0.0);
@@ -539,7 +560,7 @@ FitResult with_wlf_from_shifts(const FitResult& result, const MasterCurve& curve
     temperatures.push_back(iso.temperature_C);
     log10_aT.push_back(iso.log10_aT);
   }
-  return with_law_from_shifts(result, temperatures, log10_aT, curve.reference_C, "wlf");
+  return with_law_from_shifts(result, temperatures, log10_aT, curve.reference_C, model::ShiftLaw::wlf);
 }
 
 std::string format_shift_table(const MasterCurve& curve) {

@@ -2,6 +2,7 @@
 #include "fitlib/fit/shift_laws.hpp"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -74,43 +75,69 @@ data::RelaxationTable shift_relaxation_table(const data::RelaxationTable& raw, c
   return out;
 }
 
-FitResult with_law_from_shifts(const FitResult& result, const std::vector<double>& temperatures_C,
-                               const std::vector<double>& log10_aT, double reference_C, const std::string& law,
-                               int polynomial_degree) {
-  std::vector<std::pair<std::string, double>> constants;
+namespace {
+
+// The law's constants fitted to the shifts, in the order of TemperatureLawInfo::shift_parameters.
+struct LawConstants {
+  std::vector<double> values;
   std::string summary;
-  double rms = 0.0;
-  int degree_option = 0;
-  if (law == "wlf") {
+  double rms_decades = 0.0;
+};
+
+LawConstants fit_law_constants(model::ShiftLaw law, const std::vector<double>& temperatures_C,
+                               const std::vector<double>& log10_aT, double reference_C, int polynomial_degree) {
+  LawConstants c;
+  if (law == model::ShiftLaw::wlf) {
     const WlfFit w = fit_wlf(temperatures_C, log10_aT, reference_C);
     if (std::isnan(w.C1)) throw core::UsageError("shift law: no WLF fit (it needs at least 3 isotherms)");
-    constants = {{"C1", w.C1}, {"C2", w.C2_K}};
-    summary = "WLF C1 = " + number(w.C1) + ", C2 = " + number(w.C2_K) + " K";
-    rms = w.rms_decades;
-  } else if (law == "polynomial") {
+    c.values = {w.C1, w.C2_K};
+    c.summary = "WLF C1 = " + number(w.C1) + ", C2 = " + number(w.C2_K) + " K";
+    c.rms_decades = w.rms_decades;
+  } else if (law == model::ShiftLaw::polynomial) {
     const PolynomialShiftFit poly = fit_polynomial_shift(temperatures_C, log10_aT, reference_C, polynomial_degree);
-    summary = "polynomial";
-    for (int k = 0; k < polynomial_degree; ++k) {
-      constants.push_back({"poly_C" + std::to_string(k + 1), poly.coefficients[k]});
-      summary += " C" + std::to_string(k + 1) + " = " + number(poly.coefficients[k]);
-    }
-    degree_option = polynomial_degree;
-    rms = poly.rms_decades;
+    c.values = poly.coefficients;
+    c.summary = "polynomial";
+    for (int k = 0; k < polynomial_degree; ++k)
+      c.summary += " C" + std::to_string(k + 1) + " = " + number(poly.coefficients[k]);
+    c.rms_decades = poly.rms_decades;
   } else {
-    throw core::UsageError("shift law '" + law + "' cannot be fitted to shifts (wlf or polynomial)");
+    throw core::UsageError("shift law '" + model::to_string(law) + "' cannot be fitted to shifts (wlf or polynomial)");
   }
-  if (!result.model) throw core::UsageError("shift law: the fit result has no model");
-  auto options = result.model->options();
-  if (degree_option > 0) options["polynomial_degree"] = degree_option;
-  options["temperature_law"] = law;
+  return c;
+}
+
+// The model of `result` with the law in its options (model.hpp: make_model rebuilds a model from them).
+model::ModelPtr model_with_law(const model::Model& m, model::ShiftLaw law, double reference_C, int polynomial_degree) {
+  auto options = m.options();
+  if (law == model::ShiftLaw::polynomial) options["polynomial_degree"] = polynomial_degree;
+  options["temperature_law"] = model::to_string(law);
   options["reference_C"] = reference_C;
+  return model::make_model(m.kind(), options);
+}
+
+}  // namespace
+
+FitResult with_law_from_shifts(const FitResult& result, const std::vector<double>& temperatures_C,
+                               const std::vector<double>& log10_aT, double reference_C, model::ShiftLaw law,
+                               int polynomial_degree) {
+  const LawConstants constants = fit_law_constants(law, temperatures_C, log10_aT, reference_C, polynomial_degree);
+  if (!result.model) throw core::UsageError("shift law: the fit result has no model");
   FitResult out = result;
-  out.model = model::make_model(result.model->kind(), options);
+  out.model = model_with_law(*result.model, law, reference_C, polynomial_degree);
+  const model::TemperatureLawInfo info = out.model->temperature_law_info();
+  if (info.law != law || info.shift_parameters.size() != constants.values.size())
+    throw core::UsageError("shift law: model '" + out.model->kind() + "' does not carry a " + model::to_string(law) +
+                           " law");
   out.values.clear();
   out.parameters.clear();
-  for (const auto& spec : out.model->parameters()) {
-    const int i = core::find_parameter(result.model->parameters(), spec.name);
-    if (i >= 0) {
+  const auto& specs = out.model->parameters();
+  for (int j = 0; j < static_cast<int>(specs.size()); ++j) {
+    const auto& spec = specs[j];
+    const auto law_slot = std::find(info.shift_parameters.begin(), info.shift_parameters.end(), j);
+    if (law_slot == info.shift_parameters.end()) {
+      // The same parameter of the model fitted without the law.
+      const int i = core::find_parameter(result.model->parameters(), spec.name);
+      if (i < 0) throw core::UsageError("shift law: parameter '" + spec.name + "' has no value");
       out.values.push_back(result.values[i]);
       out.parameters.push_back(result.parameters[i]);
       continue;
@@ -119,16 +146,14 @@ FitResult with_law_from_shifts(const FitResult& result, const std::vector<double
     p.name = spec.name;
     p.unit = spec.unit;
     p.fixed = true;
-    bool found = false;
-    for (const auto& [name, value] : constants)
-      if (name == spec.name) p.value = value, found = true;
-    if (!found) throw core::UsageError("shift law: parameter '" + spec.name + "' has no value");
-    p.reason = "fitted to the isotherm shifts (" + law + " rms " + number(rms, "%.3g") + " decades)";
+    p.value = constants.values[law_slot - info.shift_parameters.begin()];
+    p.reason = "fitted to the isotherm shifts (" + model::to_string(law) + " rms " +
+               number(constants.rms_decades, "%.3g") + " decades)";
     out.values.push_back(p.value);
     out.parameters.push_back(p);
   }
-  out.messages.push_back("master curve: " + summary + " at T_ref = " + number(reference_C) + " degC, fitted to " +
-                         std::to_string(temperatures_C.size()) + " isotherm shifts");
+  out.messages.push_back("master curve: " + constants.summary + " at T_ref = " + number(reference_C) +
+                         " degC, fitted to " + std::to_string(temperatures_C.size()) + " isotherm shifts");
   return out;
 }
 

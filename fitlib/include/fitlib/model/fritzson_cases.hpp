@@ -21,6 +21,10 @@ struct ThesisCase {
   double hold_s = 0.0;             // 7.5: hold after the ramp (decision, docs/decisions.md)
 };
 
+// The thesis integrator (exponential scheme) of a fritzson or fritzson-iso model with
+// parameters p; core::UsageError for any other model.
+MaterialPoint thesis_point(const Model& model, const std::vector<double>& p);
+
 // The five cases of the thesis table; throws UsageError for an unknown id.
 const std::vector<ThesisCase>& thesis_cases();
 const ThesisCase& thesis_case(const std::string& id);
