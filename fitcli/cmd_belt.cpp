@@ -12,7 +12,7 @@ void register_belt(CLI::App& app) {
   auto scene_path = std::make_shared<std::string>();
   auto out_dir = std::make_shared<std::string>("belt-out");
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("--scene", *scene_path, "Scene TOML (formats.md §5)")->required();
+  cmd->add_option("--scene", *scene_path, "Scene TOML (docs/formats.md §5)")->required();
   cmd->add_option("--out", *out_dir, "Output folder (load_history.csv, summary.json)");
   cmd->add_flag("--json", *json, "Print the summary as JSON on stdout");
   cmd->callback([=] {

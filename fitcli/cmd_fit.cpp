@@ -1,4 +1,4 @@
-// fitcli fit: dynamic-test tables → fitted model → material card (formats.md §3, §6).
+// fitcli fit: dynamic-test tables → fitted model → material card (docs/formats.md §3, §6).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>

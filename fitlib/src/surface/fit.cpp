@@ -351,38 +351,49 @@ std::size_t count_distinct_cells(const std::vector<std::int32_t>& level_index, s
   return distinct;
 }
 
-}  // namespace
-
-Surface fit_surface(const SampleSet& data, const FitOptions& options) {
-  const Eigen::Index N = data.x.rows();
-  const std::size_t n = static_cast<std::size_t>(data.x.cols());
-  if (options.axes.size() != n || n == 0)
-    throw core::UsageError("the surface needs one axis description per data column (" +
-                           std::to_string(n) + " columns, " + std::to_string(options.axes.size()) +
-                           " axes)");
-  if (N == 0) throw core::InputError("no data rows to fit", data.source);
-  if (data.y.size() != N) throw core::UsageError("x and y hold different numbers of rows");
-  if (!(options.level_tolerance >= 0.0 && options.level_tolerance < 1.0))
-    throw core::UsageError("level tolerance must lie in [0, 1)");
-
+// Axes named as asked, with their transforms (default by name when not given).
+Surface described_surface(const FitOptions& options) {
   Surface s;
   s.name = options.name;
   s.dependent_name = options.dependent_name;
   s.dependent_unit = options.dependent_unit;
-  std::vector<Transform> transforms;
   for (const auto& spec : options.axes) {
     Axis a;
     a.name = spec.name;
     a.unit = spec.unit;
     a.transform = spec.transform.value_or(default_transform(spec.name));
-    transforms.push_back(a.transform);
     s.axes.push_back(a);
   }
-  validate(data, s.axes);
+  return s;
+}
 
-  // Interval from the data; levels; degrees.
-  const auto levels = find_levels(data, transforms, options.level_tolerance);
-  for (std::size_t k = 0; k < n; ++k) {
+// The degree asked for an axis with L levels: at most L − 1 (Report V §5.2), else UsageError
+// listing the levels; without a request min(L − 1, kMaxDegree).
+int axis_degree(const Axis& a, const std::optional<int>& requested, int L, double level_tolerance) {
+  if (!requested) return std::min(L - 1, kMaxDegree);
+  const int d = *requested;
+  if (d < 0 || d > kMaxDegree)
+    throw core::UsageError("axis '" + a.name + "': degree " + std::to_string(d) + " is outside 0.." +
+                           std::to_string(kMaxDegree));
+  if (d <= L - 1) return d;
+  std::ostringstream msg;
+  msg << "axis '" << a.name << "': degree " << d << " needs at least " << d + 1
+      << " distinct levels, but the data hold " << L << " level(s)";
+  if (!a.levels.empty() && L <= 10) {
+    msg << " (";
+    for (int l = 0; l < L; ++l) msg << (l ? ", " : "") << a.levels[static_cast<std::size_t>(l)];
+    msg << ")";
+  }
+  msg << "; the degree of an axis is at most its number of test levels - 1 (Report V §5.2), "
+         "otherwise the surface is not determined between the levels. Values closer than "
+      << level_tolerance << " of the axis range form one level.";
+  throw core::UsageError(msg.str());
+}
+
+// Interval from the data, levels and degree of every axis.
+void set_axes_from_data(Surface& s, const SampleSet& data, const std::vector<LevelAxis>& levels,
+                        const FitOptions& options) {
+  for (std::size_t k = 0; k < s.axes.size(); ++k) {
     Axis& a = s.axes[k];
     a.start = data.x.col(static_cast<Eigen::Index>(k)).minCoeff();
     a.end = data.x.col(static_cast<Eigen::Index>(k)).maxCoeff();
@@ -391,33 +402,15 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
     if (!a.scattered)
       for (double c : levels[k].centres)
         a.levels.push_back(a.transform == Transform::log10 ? std::pow(10.0, c) : c);
-    const int L = static_cast<int>(levels[k].centres.size());
-    if (options.axes[k].degree) {
-      const int d = *options.axes[k].degree;
-      if (d < 0 || d > kMaxDegree)
-        throw core::UsageError("axis '" + a.name + "': degree " + std::to_string(d) +
-                               " is outside 0.." + std::to_string(kMaxDegree));
-      if (d > L - 1) {
-        std::ostringstream msg;
-        msg << "axis '" << a.name << "': degree " << d << " needs at least " << d + 1
-            << " distinct levels, but the data hold " << L << " level(s)";
-        if (!a.levels.empty() && L <= 10) {
-          msg << " (";
-          for (int l = 0; l < L; ++l) msg << (l ? ", " : "") << a.levels[static_cast<std::size_t>(l)];
-          msg << ")";
-        }
-        msg << "; the degree of an axis is at most its number of test levels - 1 (Report V §5.2), "
-               "otherwise the surface is not determined between the levels. Values closer than "
-            << options.level_tolerance << " of the axis range form one level.";
-        throw core::UsageError(msg.str());
-      }
-      a.degree = d;
-    } else {
-      a.degree = std::min(L - 1, kMaxDegree);
-    }
+    a.degree = axis_degree(a, options.axes[k].degree, static_cast<int>(levels[k].centres.size()),
+                           options.level_tolerance);
   }
+}
 
-  // Level index of every row and axis.
+// Level index of every row and axis (row-major, n per row).
+std::vector<std::int32_t> level_indices(const Surface& s, const SampleSet& data, const std::vector<LevelAxis>& levels) {
+  const Eigen::Index N = data.x.rows();
+  const std::size_t n = s.axes.size();
   std::vector<std::int32_t> level_index(static_cast<std::size_t>(N) * n);
   for (Eigen::Index r = 0; r < N; ++r)
     for (std::size_t k = 0; k < n; ++k) {
@@ -426,8 +419,14 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
       level_index[static_cast<std::size_t>(r) * n + k] =
           static_cast<std::int32_t>(std::lower_bound(ub.begin(), ub.end(), c) - ub.begin());
     }
+  return level_index;
+}
 
-  // Level grid over the axes that have levels; its empty cells and their remedy.
+// The level grid over the axes that have levels (none when it would exceed kMaxGridCells), with
+// the count of rows in every cell.
+std::optional<Grid> level_grid(const Surface& s, const std::vector<LevelAxis>& levels,
+                               const std::vector<std::int32_t>& level_index) {
+  const std::size_t n = s.axes.size();
   Grid grid;
   std::size_t cells = 1;
   for (std::size_t k = 0; k < n; ++k)
@@ -437,115 +436,116 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
       cells *= levels[k].centres.size();
       if (cells > kMaxGridCells) break;
     }
-  if (!grid.axes.empty() && cells <= kMaxGridCells) {
-    s.level_grid = true;
-    grid.strides.assign(grid.axes.size(), 1);
-    for (std::size_t g = grid.axes.size() - 1; g-- > 0;)
-      grid.strides[g] = grid.strides[g + 1] * grid.levels[g + 1];
-    grid.count.assign(cells, 0);
-    for (Eigen::Index r = 0; r < N; ++r) {
-      std::size_t cell = 0;
-      for (std::size_t g = 0; g < grid.axes.size(); ++g)
-        cell += grid.strides[g] *
-                static_cast<std::size_t>(level_index[static_cast<std::size_t>(r) * n + grid.axes[g]]);
-      ++grid.count[cell];
-    }
-    check_collinear(s, grid, data.source);
-    std::vector<std::size_t> empty;
-    for (std::size_t cell = 0; cell < cells; ++cell)
-      if (grid.count[cell] == 0) {
-        empty.push_back(cell);
-        const auto g_index = grid.unflatten(cell);
-        std::vector<int> full(n, -1);
-        for (std::size_t g = 0; g < grid.axes.size(); ++g) full[grid.axes[g]] = g_index[g];
-        s.missing_cells.push_back(full);
-      }
-    const auto open = undetermined_cells(s, grid, empty);
-    if (!open.empty()) {
-      if (open.size() > cells - empty.size())  // more undetermined than occupied cells
-        throw core::UsageError(
-            std::to_string(empty.size()) + " of " + std::to_string(cells) +
-            " cells of the level grid are empty, more than hold data; local constraints cannot "
-            "stand in for that much missing data (Report V §5.3); lower degrees (--degree) or "
-            "supply constraints");
-      if (options.missing == MissingCellRemedy::constrain)
-        constrain_missing_cells(s, grid, levels, open);
-      else if (options.missing == MissingCellRemedy::lower_degree)
-        lower_degree_for_missing_cells(s, grid, open);
-    }
+  if (grid.axes.empty() || cells > kMaxGridCells) return std::nullopt;
+  grid.strides.assign(grid.axes.size(), 1);
+  for (std::size_t g = grid.axes.size() - 1; g-- > 0;) grid.strides[g] = grid.strides[g + 1] * grid.levels[g + 1];
+  grid.count.assign(cells, 0);
+  for (std::size_t r = 0; r < level_index.size() / n; ++r) {
+    std::size_t cell = 0;
+    for (std::size_t g = 0; g < grid.axes.size(); ++g)
+      cell += grid.strides[g] * static_cast<std::size_t>(level_index[r * n + grid.axes[g]]);
+    ++grid.count[cell];
   }
-  for (auto& group : parse_user_constraints(options.user_constraints, s,
-                                            options.user_constraints_source))
-    s.constraints.push_back(std::move(group));
+  return grid;
+}
 
-  // Constraints C c = r → c = c0 + Z z.
+// Records the grid's empty cells and applies the remedy to the undetermined ones (Report V §5.3).
+void remedy_missing_cells(Surface& s, const Grid& grid, const std::vector<LevelAxis>& levels,
+                          const FitOptions& options) {
+  const std::size_t cells = grid.cells();
+  std::vector<std::size_t> empty;
+  for (std::size_t cell = 0; cell < cells; ++cell)
+    if (grid.count[cell] == 0) {
+      empty.push_back(cell);
+      const auto g_index = grid.unflatten(cell);
+      std::vector<int> full(s.axes.size(), -1);
+      for (std::size_t g = 0; g < grid.axes.size(); ++g) full[grid.axes[g]] = g_index[g];
+      s.missing_cells.push_back(full);
+    }
+  const auto open = undetermined_cells(s, grid, empty);
+  if (open.empty()) return;
+  if (open.size() > cells - empty.size())  // more undetermined than occupied cells
+    throw core::UsageError(std::to_string(empty.size()) + " of " + std::to_string(cells) +
+                           " cells of the level grid are empty, more than hold data; local constraints cannot "
+                           "stand in for that much missing data (Report V §5.3); lower degrees (--degree) or "
+                           "supply constraints");
+  if (options.missing == MissingCellRemedy::constrain)
+    constrain_missing_cells(s, grid, levels, open);
+  else if (options.missing == MissingCellRemedy::lower_degree)
+    lower_degree_for_missing_cells(s, grid, open);
+}
+
+// The control points that satisfy the constraints C c = r: c = c0 + Z z with q free z.
+struct ConstrainedBasis {
+  bool constrained = false;
+  Eigen::MatrixXd Z;
+  Eigen::VectorXd c0;
+  Eigen::Index q = 0;
+};
+
+ConstrainedBasis constrained_basis(const Surface& s) {
   const Eigen::Index p = static_cast<Eigen::Index>(s.size());
   Eigen::Index n_constraints = 0;
   for (const auto& g : s.constraints) n_constraints += static_cast<Eigen::Index>(g.equations.size());
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n_constraints, p);
   Eigen::VectorXd rhs(n_constraints);
-  {
-    Eigen::Index row = 0;
-    for (const auto& g : s.constraints)
-      for (const auto& e : g.equations) {
-        for (const auto& [flat, coefficient] : e.terms)
-          C(row, static_cast<Eigen::Index>(flat)) += coefficient;
-        rhs[row++] = e.rhs;
-      }
-  }
-  Eigen::MatrixXd Z;
-  Eigen::VectorXd c0 = Eigen::VectorXd::Zero(p);
-  Eigen::Index q = p;
-  const bool constrained = n_constraints > 0;
-  if (constrained) {
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(C.transpose());
-    qr.setThreshold(1e-12);
-    const Eigen::Index rank = qr.rank();
-    const Eigen::MatrixXd Q = qr.householderQ();
-    Z = Q.rightCols(p - rank);
-    q = p - rank;
-    c0 = C.completeOrthogonalDecomposition().solve(rhs);
-    if ((C * c0 - rhs).norm() > 1e-9 * (1.0 + rhs.norm()))
-      throw core::UsageError("the constraints on the control points contradict each other");
-  }
-
-  std::size_t occupied = count_distinct_cells(level_index, n, static_cast<std::size_t>(N));
-  if (static_cast<std::size_t>(q) > occupied) {
-    std::ostringstream msg;
-    msg << "the surface has " << q << " unknowns (control points";
-    if (constrained) msg << " after " << (p - q) << " constraint(s)";
-    msg << ") but the data occupy only " << occupied
-        << " distinct level combinations (cells); lower a degree (--degree) or add constraints";
-    throw core::UsageError(msg.str());
-  }
-
-  // Chunked Householder reduction of [A Z | y - A c0] to a (q+1)×(q+1) triangle.
-  Eigen::MatrixXd R_aug = Eigen::MatrixXd::Zero(q + 1, q + 1);
-  {
-    std::vector<double> u(n), phi(static_cast<std::size_t>(p)), b(kMaxDegree + 1);
-    Eigen::MatrixXd block(std::min<Eigen::Index>(N, kChunkRows) + q + 1, q + 1);
-    for (Eigen::Index first = 0; first < N; first += kChunkRows) {
-      const Eigen::Index rows = std::min<Eigen::Index>(kChunkRows, N - first);
-      block.resize(rows + q + 1, q + 1);
-      block.topRows(q + 1) = R_aug;
-      for (Eigen::Index r = 0; r < rows; ++r) {
-        const Eigen::Index row = first + r;
-        for (std::size_t k = 0; k < n; ++k)
-          u[k] = s.axes[k].parameter(data.x(row, static_cast<Eigen::Index>(k)));
-        basis_row(s, u.data(), phi.data(), b.data());
-        const Eigen::Map<const Eigen::RowVectorXd> phi_row(phi.data(), p);
-        if (constrained) {
-          block.row(q + 1 + r).head(q) = phi_row * Z;
-          block(q + 1 + r, q) = data.y[row] - phi_row.dot(c0);
-        } else {
-          block.row(q + 1 + r).head(q) = phi_row;
-          block(q + 1 + r, q) = data.y[row];
-        }
-      }
-      Eigen::HouseholderQR<Eigen::MatrixXd> qr(block);
-      R_aug = qr.matrixQR().topRows(q + 1).triangularView<Eigen::Upper>();
+  Eigen::Index row = 0;
+  for (const auto& g : s.constraints)
+    for (const auto& e : g.equations) {
+      for (const auto& [flat, coefficient] : e.terms) C(row, static_cast<Eigen::Index>(flat)) += coefficient;
+      rhs[row++] = e.rhs;
     }
+  ConstrainedBasis basis;
+  basis.c0 = Eigen::VectorXd::Zero(p);
+  basis.q = p;
+  basis.constrained = n_constraints > 0;
+  if (!basis.constrained) return basis;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(C.transpose());
+  qr.setThreshold(1e-12);
+  const Eigen::Index rank = qr.rank();
+  const Eigen::MatrixXd Q = qr.householderQ();
+  basis.Z = Q.rightCols(p - rank);
+  basis.q = p - rank;
+  basis.c0 = C.completeOrthogonalDecomposition().solve(rhs);
+  if ((C * basis.c0 - rhs).norm() > 1e-9 * (1.0 + rhs.norm()))
+    throw core::UsageError("the constraints on the control points contradict each other");
+  return basis;
+}
+
+// Chunked Householder reduction of [A Z | y − A c0] to a (q+1)×(q+1) triangle.
+Eigen::MatrixXd reduced_triangle(const Surface& s, const SampleSet& data, const ConstrainedBasis& basis) {
+  const Eigen::Index N = data.x.rows(), q = basis.q, p = static_cast<Eigen::Index>(s.size());
+  const std::size_t n = s.axes.size();
+  Eigen::MatrixXd R_aug = Eigen::MatrixXd::Zero(q + 1, q + 1);
+  std::vector<double> u(n), phi(static_cast<std::size_t>(p)), b(kMaxDegree + 1);
+  Eigen::MatrixXd block(std::min<Eigen::Index>(N, kChunkRows) + q + 1, q + 1);
+  for (Eigen::Index first = 0; first < N; first += kChunkRows) {
+    const Eigen::Index rows = std::min<Eigen::Index>(kChunkRows, N - first);
+    block.resize(rows + q + 1, q + 1);
+    block.topRows(q + 1) = R_aug;
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      const Eigen::Index row = first + r;
+      for (std::size_t k = 0; k < n; ++k) u[k] = s.axes[k].parameter(data.x(row, static_cast<Eigen::Index>(k)));
+      basis_row(s, u.data(), phi.data(), b.data());
+      const Eigen::Map<const Eigen::RowVectorXd> phi_row(phi.data(), p);
+      if (basis.constrained) {
+        block.row(q + 1 + r).head(q) = phi_row * basis.Z;
+        block(q + 1 + r, q) = data.y[row] - phi_row.dot(basis.c0);
+      } else {
+        block.row(q + 1 + r).head(q) = phi_row;
+        block(q + 1 + r, q) = data.y[row];
+      }
+    }
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(block);
+    R_aug = qr.matrixQR().topRows(q + 1).triangularView<Eigen::Upper>();
   }
+  return R_aug;
+}
+
+// Least-squares control points; NumericalError for a rank-deficient design.
+Eigen::VectorXd control_points(const Surface& s, const SampleSet& data, const ConstrainedBasis& basis) {
+  const Eigen::Index q = basis.q;
+  const Eigen::MatrixXd R_aug = reduced_triangle(s, data, basis);
   const Eigen::MatrixXd R = R_aug.topLeftCorner(q, q);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(R);
   solver.setThreshold(kRankThreshold);
@@ -558,9 +558,13 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
     throw core::NumericalError(msg.str());
   }
   const Eigen::VectorXd z = solver.solve(R_aug.col(q).head(q));
-  s.control_points = constrained ? Eigen::VectorXd(c0 + Z * z) : z;
+  return basis.constrained ? Eigen::VectorXd(basis.c0 + basis.Z * z) : z;
+}
 
-  // Statistics (Report V §5.2): N, p, dof, R, s, maximum relative error.
+// Statistics (Report V §5.2): N, p, dof, R, s, maximum relative error.
+void fill_statistics(Surface& s, const SampleSet& data, Eigen::Index q, std::size_t occupied) {
+  const Eigen::Index N = data.x.rows();
+  const std::size_t n = s.axes.size();
   Statistics& st = s.statistics;
   st.n_points = static_cast<std::size_t>(N);
   st.n_parameters = static_cast<std::size_t>(q);
@@ -569,8 +573,7 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
   const double mean = data.y.mean();
   std::vector<double> u(n);
   for (Eigen::Index r = 0; r < N; ++r) {
-    for (std::size_t k = 0; k < n; ++k)
-      u[k] = s.axes[k].parameter(data.x(r, static_cast<Eigen::Index>(k)));
+    for (std::size_t k = 0; k < n; ++k) u[k] = s.axes[k].parameter(data.x(r, static_cast<Eigen::Index>(k)));
     const double residual = data.y[r] - evaluate_at_parameters(s, u.data(), nullptr);
     st.ss_residual += residual * residual;
     st.ss_total += (data.y[r] - mean) * (data.y[r] - mean);
@@ -586,6 +589,50 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
                            : std::numeric_limits<double>::quiet_NaN();
   st.s = st.residual_dof > 0 ? std::sqrt(st.ss_residual / double(st.residual_dof))
                              : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+Surface fit_surface(const SampleSet& data, const FitOptions& options) {
+  const Eigen::Index N = data.x.rows();
+  const std::size_t n = static_cast<std::size_t>(data.x.cols());
+  if (options.axes.size() != n || n == 0)
+    throw core::UsageError("the surface needs one axis description per data column (" +
+                           std::to_string(n) + " columns, " + std::to_string(options.axes.size()) +
+                           " axes)");
+  if (N == 0) throw core::InputError("no data rows to fit", data.source);
+  if (data.y.size() != N) throw core::UsageError("x and y hold different numbers of rows");
+  if (!(options.level_tolerance >= 0.0 && options.level_tolerance < 1.0))
+    throw core::UsageError("level tolerance must lie in [0, 1)");
+
+  Surface s = described_surface(options);
+  validate(data, s.axes);
+  std::vector<Transform> transforms;
+  for (const auto& a : s.axes) transforms.push_back(a.transform);
+  const auto levels = find_levels(data, transforms, options.level_tolerance);
+  set_axes_from_data(s, data, levels, options);
+  const auto level_index = level_indices(s, data, levels);
+
+  if (const auto grid = level_grid(s, levels, level_index)) {
+    s.level_grid = true;
+    check_collinear(s, *grid, data.source);
+    remedy_missing_cells(s, *grid, levels, options);
+  }
+  for (auto& group : parse_user_constraints(options.user_constraints, s, options.user_constraints_source))
+    s.constraints.push_back(std::move(group));
+
+  const ConstrainedBasis basis = constrained_basis(s);
+  const std::size_t occupied = count_distinct_cells(level_index, n, static_cast<std::size_t>(N));
+  if (static_cast<std::size_t>(basis.q) > occupied) {
+    std::ostringstream msg;
+    msg << "the surface has " << basis.q << " unknowns (control points";
+    if (basis.constrained) msg << " after " << (static_cast<Eigen::Index>(s.size()) - basis.q) << " constraint(s)";
+    msg << ") but the data occupy only " << occupied
+        << " distinct level combinations (cells); lower a degree (--degree) or add constraints";
+    throw core::UsageError(msg.str());
+  }
+  s.control_points = control_points(s, data, basis);
+  fill_statistics(s, data, basis.q, occupied);
   return s;
 }
 

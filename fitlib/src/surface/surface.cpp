@@ -1,4 +1,4 @@
-// Bezier surface: axes, evaluation (value, gradient), JSON (formats.md §4).
+// Bezier surface: axes, evaluation (value, gradient), JSON (docs/formats.md §4).
 #include "fitlib/surface/surface.hpp"
 
 #include <algorithm>

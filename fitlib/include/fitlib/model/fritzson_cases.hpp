@@ -1,5 +1,5 @@
 #pragma once
-// The test cases of thesis Report II §7.2 (L2308–2329; spec constitutive-model.md §8) at one
+// The test cases of thesis Report II §7.2 (docs/fritzson.md §7) at one
 // material point: four cyclic cases (mean deformation −1 × amplitude, 10 cycles, starting at zero)
 // and the interrupted ramp, with stress–strain loops as CSV.
 #include <array>

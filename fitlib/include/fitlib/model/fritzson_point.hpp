@@ -1,6 +1,6 @@
 #pragma once
 // Time-domain integration of Fritzson's model at one material point (thesis Report II §7.1,
-// L2290–2306; spec constitutive-model.md §8), in the form a segment solver calls per
+// docs/fritzson.md §4), in the form a segment solver calls per
 // integration point: a pure update(state_n, strain_{n+1}, dt, T) → stress, consistent tangent
 // and state_{n+1}. Strain and stress are in material axes (1 radial, 2 along the belt, 3 fibre).
 //

@@ -75,7 +75,7 @@ ConstraintGroup derivative_constraints(const Surface& shape, std::size_t axis, i
 std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, const Surface& shape,
                                                     const std::string& source);
 
-// Reads named numeric columns of a CSV with a header row (formats.md §1 conventions: `#` comments,
+// Reads named numeric columns of a CSV with a header row (docs/formats.md §1 conventions: `#` comments,
 // BOM, CRLF, spaces after commas, trailing empty line). InputError names file:line:column.
 SampleSet read_sample_columns(const std::string& path, const std::vector<std::string>& x_columns,
                               const std::string& y_column);
