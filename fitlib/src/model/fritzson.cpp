@@ -155,7 +155,7 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     const double omega = 2.0 * kPi * c.frequency_Hz;
     const double amplitude = c.strain_amplitude;
     const T& K = p[kK];
-    if (c.mode == TestMode::bulk) return {K, T(0.0), K};  // purely elastic (4.39, L2224)
+    if (c.mode == TestMode::bulk) return {K, T(0.0), K};  // purely elastic (4.39; docs/fritzson.md §1)
 
     if (c.mode == TestMode::shear) {
       PartModuli<T> m = part(p + kPartI, shear_driver(c), omega, c);
@@ -168,7 +168,7 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     }
 
     // Uniaxial: the damage drivers depend on the lateral strains, which depend on the damaged
-    // moduli: solve for the fixed point (the thesis iterated, L2260). Doubles: Newton. Other
+    // moduli: solve for the fixed point (the thesis iterated; docs/fritzson.md §3). Doubles: Newton. Other
     // scalars (only the generic AutodiffModel passes use them): plain iteration, which carries
     // the derivatives along.
     T driver_I, driver_A;

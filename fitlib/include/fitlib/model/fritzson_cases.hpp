@@ -32,7 +32,7 @@ const ThesisCase& thesis_case(const std::string& id);
 struct CaseLoops {
   std::vector<double> time_s;
   std::vector<double> displacement;     // u/L
-  std::vector<double> strain;           // uniaxial: ln(1 + u/L); shear: γ = u/L (L2264)
+  std::vector<double> strain;           // uniaxial: ln(1 + u/L); shear: γ = u/L (docs/fritzson.md §7)
   std::vector<double> stress_MPa;       // uniaxial: Kirchhoff σ along the axis; shear: τ
   std::vector<double> nominal_MPa;      // force / undeformed area (uniaxial τ/λ; shear τ)
   std::vector<std::array<double, 3>> driver_amplitude;  // damage e^a of I, A1, A2
