@@ -14,7 +14,7 @@ void register_belt(CLI::App& app) {
   auto out_dir = std::make_shared<std::string>("belt-out");
   auto json = std::make_shared<bool>(false);
   auto record_timing = std::make_shared<bool>(false);
-  cmd->add_option("--scene", *scene_path, "Scene TOML (formats.md §5)")->required();
+  cmd->add_option("--scene", *scene_path, "Scene TOML (docs/formats.md §5)")->required();
   cmd->add_option("--out", *out_dir, "Output folder (load_history.csv, summary.json)");
   cmd->add_flag("--json", *json, "Print the summary as JSON on stdout");
   cmd->add_flag("--record-timing", *record_timing, "Store wall times in summary.json (breaks byte-identity)");

@@ -1,4 +1,4 @@
-// fitcli eval: a card's moduli over a grid of test conditions (formats.md §6).
+// fitcli eval: a card's moduli over a grid of test conditions (docs/formats.md §6).
 #include <iostream>
 #include <memory>
 #include <optional>

@@ -1,4 +1,4 @@
-// fitcli export: FE-solver material keywords from a card (formats.md §3).
+// fitcli export: FE-solver material keywords from a card (docs/formats.md §3).
 #include <memory>
 
 #include "commands.hpp"

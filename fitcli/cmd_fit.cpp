@@ -1,4 +1,4 @@
-// fitcli fit: dynamic-test tables → fitted model → material card (formats.md §3, §6).
+// fitcli fit: dynamic-test tables → fitted model → material card (docs/formats.md §3, §6).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -141,7 +141,8 @@ fitlib::fit::FitResult with_shift_law(const FitArgs& a, fitlib::fit::FitResult r
     log10_aT.push_back(iso.log10_aT);
   }
   return fitlib::fit::with_law_from_shifts(result, temperatures, log10_aT, curve->reference_C,
-                                           a.temperature_law == "polynomial" ? "polynomial" : "wlf",
+                                           a.temperature_law == "polynomial" ? fitlib::model::ShiftLaw::polynomial
+                                                                             : fitlib::model::ShiftLaw::wlf,
                                            a.polynomial_degree);
 }
 

@@ -36,11 +36,7 @@ std::string drive_csv(const fitlib::model::DriveResult& r) {
 
 void run_case(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
-  if (card.model_kind != "fritzson" && card.model_kind != "fritzson-iso")
-    throw core::UsageError("--case needs a fritzson card, not '" + card.model_kind + "'");
-  const double reference_C = card.model_options.value("reference_C", 23.0);
-  const model::fritzson::MaterialPoint point(card.values(), card.model_kind == "fritzson",
-                                             reference_C, model::fritzson::Scheme::exponential);
+  const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*card.model(), card.values());
   const auto& c = model::fritzson::thesis_case(a.case_id);
   emit(a.out, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
 }

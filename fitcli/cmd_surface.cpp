@@ -1,4 +1,4 @@
-// fitcli surface fit | eval | grid: Bezier surfaces of measured data and of cards (formats.md §4, §6).
+// fitcli surface fit | eval | grid: Bezier surfaces of measured data and of cards (docs/formats.md §4, §6).
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>

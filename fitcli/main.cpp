@@ -1,4 +1,4 @@
-// fitcli: command-line front of fitlib (formats.md §6).
+// fitcli: command-line front of fitlib (docs/formats.md §6).
 #include <iostream>
 
 #include "commands.hpp"

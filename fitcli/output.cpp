@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 
 namespace fitcli {
@@ -23,15 +24,7 @@ void set_command_line(int argc, char** argv) {
 
 const std::string& command_line() { return invocation(); }
 
-std::string exact(double x) {
-  if (std::isnan(x)) return "nan";
-  char buf[40];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
+std::string exact(double x) { return fitlib::core::format_number(x); }
 
 std::string exact_list(const std::vector<double>& values) {
   std::string text;

@@ -1,5 +1,5 @@
-// Sorge's 2-D contact-region ODE system (seeds/sorge-2d-vbelt-cvt.txt Eqs 3–11), shooting from the
-// exit. Reconstruction notes ([DERIVED] = not printed legibly in the source, derived from the
+// Sorge's 2-D contact-region ODE system (Eqs 3–11; docs/belt.md, "Sorge 2-D CVT: contact-region
+// ODE"), shooting from the exit. Reconstruction notes ([DERIVED] = not printed legibly in the source, derived from the
 // paper's own definitions; docs/belt.md "Sorge 2-D CVT: contact-region ODE" lists them):
 //  - Sliding direction (4): γ(Z) is the direction of the belt's sliding velocity in the plane
 //    (radially inward, forward), a = (1 + ε) sin χ, b = (1 + ε) cos χ − κ(1 − x)[1 + ZH(m − 1)]:

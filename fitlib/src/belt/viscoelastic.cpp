@@ -61,46 +61,87 @@ double relax_step(double eps0, double g0, double k, double h, double tau) {
 }
 }  // namespace
 
-TensionTestResult simulate_tension_test(const TensionTestInput& in) {
-  const ThreeParameterBelt& m = in.belt;
-  if (!(in.d0_mm > 0 && in.r_mm > 0 && in.f >= 0 && in.v_mm_s > 0 && in.load_time_s > 0 && in.nodes >= 2 &&
-        in.steps_per_phase >= 1 && m.S_N > 0 && m.tau_T_s >= 0 && m.tau_eps_s >= 0))
-    throw InputError("tension test: positive geometry, rate, times and sizes needed", {}, 0, 0, "tension_test");
-  const int M = in.nodes;
-  std::vector<double> theta(M), weight(M);
-  for (int i = 0; i < M; ++i) {  // Simpson-free trapezoid on a fine grid: ∫0^{π/2} ε dθ
-    theta[i] = 0.5 * kPi * i / (M - 1);
-    weight[i] = 0.5 * kPi / (M - 1) * ((i == 0 || i == M - 1) ? 0.5 : 1.0);
+namespace {
+
+// The tension test's state: strain and tension of every wrapped element θ_i and of the free
+// span, advanced step by step under the imposed elongation (Sorge & Cammalleri, Eqs 1 and 6).
+class TensionTest {
+ public:
+  explicit TensionTest(const TensionTestInput& in)
+      : in_(in), m_(in.belt), M_(in.nodes), theta_(M_), weight_(M_), eps_(M_, 0.0), T_(M_, 0.0) {
+    for (int i = 0; i < M_; ++i) {  // Simpson-free trapezoid on a fine grid: ∫0^{π/2} ε dθ
+      theta_[i] = 0.5 * kPi * i / (M_ - 1);
+      weight_[i] = 0.5 * kPi / (M_ - 1) * ((i == 0 || i == M_ - 1) ? 0.5 : 1.0);
+    }
   }
-  std::vector<double> eps(M, 0.0), T(M, 0.0);
-  double eps_fs = 0.0, T_fs = 0.0;
-  TensionTestResult out;
-  // Advances one step to span tension T1 under a sliding sign per element (−1 outward, +1 inward,
-  // 0 adhering); returns the elongation d − d0 it implies and writes the new state to the outs.
-  auto advance = [&](double T1, double h, const std::vector<int>& sign, const std::vector<double>& T_adh1,
-                     std::vector<double>& eps1, std::vector<double>& Tn, double& eps_fs1) {
-    const double k_fs = (T1 - T_fs) / h;
-    eps_fs1 = relax_step(eps_fs, (T_fs + m.tau_T_s * k_fs) / m.S_N, k_fs / m.S_N, h, m.tau_eps_s);
+
+  // Loading: all elements slide outward.
+  void load(TensionTestResult& out) {
+    const double h = in_.load_time_s / in_.steps_per_phase;
+    const std::vector<int> outward(M_, -1);
+    const std::vector<double> none(M_, 0.0);
+    out.loading.push_back({0.0, 0.0, 0.0, 0.5 * kPi});
+    for (int n = 1; n <= in_.steps_per_phase; ++n) {
+      double tb = 0.0;
+      solve_step(in_.v_mm_s * n * h, h, [&](double) { return outward; }, [&](double) { return none; }, tb);
+      out.loading.push_back({n * h, in_.v_mm_s * n * h, T_fs_, 0.5 * kPi});
+    }
+  }
+
+  // Unloading: frozen elongation and relaxing tension in the adhesion arc (closed form of (1)).
+  void unload(TensionTestResult& out) {
+    const std::vector<double> eps_x = eps_, T_x = T_;
+    std::vector<bool> sliding(M_, false);
+    const double h = in_.load_time_s / in_.steps_per_phase;
+    out.unloading.push_back({0.0, in_.v_mm_s * in_.load_time_s, T_fs_, 0.0});
+    for (int n = 1; n <= in_.steps_per_phase; ++n) {
+      const double t = n * h;
+      std::vector<double> T_adh(M_);
+      for (int i = 0; i < M_; ++i)
+        T_adh[i] = m_.S_N * eps_x[i] + (T_x[i] - m_.S_N * eps_x[i]) * (m_.tau_T_s > 0 ? std::exp(-t / m_.tau_T_s) : 0.0);
+      // Element i slides once T_fs e^{fθ_i} ≤ its adhesion tension (θ ≤ θ_b, Eq 6); it stays sliding.
+      auto signs = [&](double T1) {
+        std::vector<int> s(M_, 0);
+        for (int i = 0; i < M_; ++i) s[i] = (sliding[i] || T1 * std::exp(in_.f * theta_[i]) <= T_adh[i]) ? 1 : 0;
+        return s;
+      };
+      double tb = 0.0;
+      solve_step(in_.v_mm_s * (in_.load_time_s - t), h, signs, [&](double) { return T_adh; }, tb);
+      for (int i = 0; i < M_; ++i) sliding[i] = sliding[i] || theta_[i] <= tb;
+      out.unloading.push_back({t, in_.v_mm_s * (in_.load_time_s - t), T_fs_, tb});
+      if (T_fs_ <= 0.0) break;  // a belt carries no compression
+    }
+  }
+
+ private:
+  // One step to span tension T1 under a sliding sign per element (−1 outward, +1 inward, 0
+  // adhering); returns the elongation d − d0 it implies and writes the new state to the outs.
+  double advance(double T1, double h, const std::vector<int>& sign, const std::vector<double>& T_adh1,
+                 std::vector<double>& eps1, std::vector<double>& Tn, double& eps_fs1) const {
+    const double k_fs = (T1 - T_fs_) / h;
+    eps_fs1 = relax_step(eps_fs_, (T_fs_ + m_.tau_T_s * k_fs) / m_.S_N, k_fs / m_.S_N, h, m_.tau_eps_s);
     double integral = 0.0;
-    for (int i = 0; i < M; ++i) {
+    for (int i = 0; i < M_; ++i) {
       if (sign[i] == 0) {
-        eps1[i] = eps[i];
+        eps1[i] = eps_[i];
         Tn[i] = T_adh1[i];
       } else {
-        Tn[i] = T1 * std::exp(sign[i] * in.f * theta[i]);
-        const double k = (Tn[i] - T[i]) / h;
-        eps1[i] = relax_step(eps[i], (T[i] + m.tau_T_s * k) / m.S_N, k / m.S_N, h, m.tau_eps_s);
+        Tn[i] = T1 * std::exp(sign[i] * in_.f * theta_[i]);
+        const double k = (Tn[i] - T_[i]) / h;
+        eps1[i] = relax_step(eps_[i], (T_[i] + m_.tau_T_s * k) / m_.S_N, k / m_.S_N, h, m_.tau_eps_s);
       }
-      integral += weight[i] * eps1[i];
+      integral += weight_[i] * eps1[i];
     }
-    return in.d0_mm * eps_fs1 + 2.0 * in.r_mm * integral;
-  };
-  // Bisection on the span tension for the imposed elongation (monotone in T1).
-  auto solve_step = [&](double target, double h, const std::function<std::vector<int>(double)>& signs,
-                        const std::function<std::vector<double>(double)>& adhesion, double& t_b) {
-    std::vector<double> eps1(M), Tn(M);
+    return in_.d0_mm * eps_fs1 + 2.0 * in_.r_mm * integral;
+  }
+
+  // Bisection on the span tension for the imposed elongation (monotone in T1); moves the state
+  // and writes the end of the sliding arc θ_b to t_b.
+  void solve_step(double target, double h, const std::function<std::vector<int>(double)>& signs,
+                  const std::function<std::vector<double>(double)>& adhesion, double& t_b) {
+    std::vector<double> eps1(M_), Tn(M_);
     double e_fs1 = 0.0;
-    double lo = T_fs - 1e3 - std::abs(T_fs), hi = T_fs + 1e3 + std::abs(T_fs);
+    double lo = T_fs_ - 1e3 - std::abs(T_fs_), hi = T_fs_ + 1e3 + std::abs(T_fs_);
     auto residual = [&](double T1) { return advance(T1, h, signs(T1), adhesion(T1), eps1, Tn, e_fs1) - target; };
     while (residual(lo) > 0) lo -= 2 * (hi - lo);
     while (residual(hi) < 0) hi += 2 * (hi - lo);
@@ -111,47 +152,34 @@ TensionTestResult simulate_tension_test(const TensionTestInput& in) {
     const double T1 = 0.5 * (lo + hi);
     const auto sg = signs(T1);
     advance(T1, h, sg, adhesion(T1), eps1, Tn, e_fs1);
-    eps = eps1;
-    T = Tn;
-    eps_fs = e_fs1;
-    T_fs = T1;
+    eps_ = eps1;
+    T_ = Tn;
+    eps_fs_ = e_fs1;
+    T_fs_ = T1;
     int last = -1;
-    for (int i = 0; i < M; ++i)
+    for (int i = 0; i < M_; ++i)
       if (sg[i] != 0) last = i;
-    t_b = last < 0 ? 0.0 : theta[last];
-  };
-  // Loading: all elements slide outward.
-  const double h_load = in.load_time_s / in.steps_per_phase;
-  const std::vector<int> outward(M, -1);
-  const std::vector<double> none(M, 0.0);
-  out.loading.push_back({0.0, 0.0, 0.0, 0.5 * kPi});
-  for (int n = 1; n <= in.steps_per_phase; ++n) {
-    double tb = 0.0;
-    solve_step(in.v_mm_s * n * h_load, h_load, [&](double) { return outward; }, [&](double) { return none; }, tb);
-    out.loading.push_back({n * h_load, in.v_mm_s * n * h_load, T_fs, 0.5 * kPi});
+    t_b = last < 0 ? 0.0 : theta_[last];
   }
-  // Unloading: frozen elongation and relaxing tension in the adhesion arc (closed form of (1)).
-  const std::vector<double> eps_x = eps, T_x = T;
-  std::vector<bool> sliding(M, false);
-  const double h = in.load_time_s / in.steps_per_phase;
-  out.unloading.push_back({0.0, in.v_mm_s * in.load_time_s, T_fs, 0.0});
-  for (int n = 1; n <= in.steps_per_phase; ++n) {
-    const double t = n * h;
-    std::vector<double> T_adh(M);
-    for (int i = 0; i < M; ++i)
-      T_adh[i] = m.S_N * eps_x[i] + (T_x[i] - m.S_N * eps_x[i]) * (m.tau_T_s > 0 ? std::exp(-t / m.tau_T_s) : 0.0);
-    // Element i slides once T_fs e^{fθ_i} ≤ its adhesion tension (θ ≤ θ_b, Eq 6); it stays sliding.
-    auto signs = [&](double T1) {
-      std::vector<int> s(M, 0);
-      for (int i = 0; i < M; ++i) s[i] = (sliding[i] || T1 * std::exp(in.f * theta[i]) <= T_adh[i]) ? 1 : 0;
-      return s;
-    };
-    double tb = 0.0;
-    solve_step(in.v_mm_s * (in.load_time_s - t), h, signs, [&](double) { return T_adh; }, tb);
-    for (int i = 0; i < M; ++i) sliding[i] = sliding[i] || theta[i] <= tb;
-    out.unloading.push_back({t, in.v_mm_s * (in.load_time_s - t), T_fs, tb});
-    if (T_fs <= 0.0) break;  // a belt carries no compression
-  }
+
+  const TensionTestInput& in_;
+  const ThreeParameterBelt& m_;
+  int M_;
+  std::vector<double> theta_, weight_, eps_, T_;
+  double eps_fs_ = 0.0, T_fs_ = 0.0;
+};
+
+}  // namespace
+
+TensionTestResult simulate_tension_test(const TensionTestInput& in) {
+  const ThreeParameterBelt& m = in.belt;
+  if (!(in.d0_mm > 0 && in.r_mm > 0 && in.f >= 0 && in.v_mm_s > 0 && in.load_time_s > 0 && in.nodes >= 2 &&
+        in.steps_per_phase >= 1 && m.S_N > 0 && m.tau_T_s >= 0 && m.tau_eps_s >= 0))
+    throw InputError("tension test: positive geometry, rate, times and sizes needed", {}, 0, 0, "tension_test");
+  TensionTestResult out;
+  TensionTest test(in);
+  test.load(out);
+  test.unload(out);
   return out;
 }
 

@@ -5,16 +5,14 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/model/time_series.hpp"
 
 namespace fitlib::card {
 namespace {
 
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
+// Ten significant digits keep every deck field within its format's limits (CalculiX 20 characters).
+std::string num(double x) { return core::format_number(x, 10); }
 
 // What every linear-FE format needs: relative Prony weights α_i = M_i/M_0 with times, the
 // instantaneous Young's modulus and Poisson ratio, and how the weights apply to shear and bulk.

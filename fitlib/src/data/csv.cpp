@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 
 namespace fitlib::data {
 
@@ -104,11 +105,7 @@ double parse_csv_number(const std::string& text, const std::string& what,
   return value;
 }
 
-std::string format_exact(double value) {
-  char buffer[32];
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, ptr);
-}
+std::string format_exact(double value) { return core::format_number(value); }
 
 std::string quote_csv_field(const std::string& text) {
   const bool needs_quotes = text.find_first_of(",\"") != std::string::npos ||

@@ -1,4 +1,4 @@
-// Dynamic-test tables (formats.md §1): native CSV and pyvisco's two-row-header CSV.
+// Dynamic-test tables (docs/formats.md §1): native CSV and pyvisco's two-row-header CSV.
 #include "fitlib/data/table.hpp"
 
 #include <algorithm>

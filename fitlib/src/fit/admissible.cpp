@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <nlohmann/json.hpp>
 
 #include "fitlib/core/units.hpp"
 
@@ -11,28 +10,18 @@ namespace fitlib::fit::detail {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kGasConstant_kJ_molK = 8.314462618e-3;
 
-// ln a_T of the model's temperature law (its card form, Model::temperature_law) at T; false
-// for a law not known here.
-bool log_shift(const nlohmann::json& law, double temperature_C, double& ln_aT) {
-  const std::string name = law.value("law", std::string("none"));
-  ln_aT = 0.0;
-  if (name == "none") return true;
-  if (!std::isfinite(temperature_C)) return true;
-  const double t_ref = law.value("reference_C", 23.0), dT = temperature_C - t_ref;
-  if (name == "wlf") {
-    const double c1 = law.value("C1", 0.0), c2 = law.value("C2_K", 0.0);
-    if (!(c2 + dT > 0.0)) return false;
-    ln_aT = -c1 * dT / (c2 + dT) * std::log(10.0);
-    return true;
-  }
-  if (name == "arrhenius") {
-    ln_aT = law.value("activation_energy_kJ_mol", 0.0) / kGasConstant_kJ_molK *
-            (1.0 / core::kelvin_from_celsius(temperature_C) - 1.0 / core::kelvin_from_celsius(t_ref));
-    return true;
-  }
-  return false;
+// a_T of the model's temperature law at T (Model::temperature_factors); false for a law the
+// window is not placed under (polynomial, tabulated) and at or beyond the WLF pole.
+bool shift_factor(const model::Model& m, const std::vector<double>& p, double temperature_C, double& a_T) {
+  const model::TemperatureLawInfo law = m.temperature_law_info();
+  a_T = 1.0;
+  if (law.law != model::ShiftLaw::none && law.law != model::ShiftLaw::wlf && law.law != model::ShiftLaw::arrhenius)
+    return false;
+  if (law.law == model::ShiftLaw::none || !std::isfinite(temperature_C)) return true;
+  if (law.pole_parameter >= 0 && !(p[law.pole_parameter] + (temperature_C - law.reference_C) > 0.0)) return false;
+  a_T = m.temperature_factors(p.data(), temperature_C).shift_factor;
+  return true;
 }
 
 }  // namespace
@@ -52,14 +41,13 @@ AdmissibleWindow admissible_window(const Problem& problem, const std::vector<dou
   AdmissibleWindow w;
   const SeriesTerms series = series_terms(problem.specs());
   if (series.empty()) return w;
-  const nlohmann::json law = problem.model().temperature_law(p.data());
   const model::TestMode native = problem.model().native_mode();
   double omega_min = kInf, omega_max = 0.0, storage_min = kInf, storage_max = 0.0;
   for (const auto& row : problem.table().rows) {
     if (row.condition.mode == model::TestMode::bulk && native != model::TestMode::bulk) continue;
-    double ln_aT = 0.0;
-    if (!log_shift(law, row.condition.temperature_C, ln_aT)) return w;
-    const double omega = core::angular_frequency(row.condition.frequency_Hz) * std::exp(ln_aT);
+    double a_T = 1.0;
+    if (!shift_factor(problem.model(), p, row.condition.temperature_C, a_T)) return w;
+    const double omega = core::angular_frequency(row.condition.frequency_Hz) * a_T;
     omega_min = std::min(omega_min, omega);
     omega_max = std::max(omega_max, omega);
     storage_min = std::min(storage_min, row.storage_MPa);

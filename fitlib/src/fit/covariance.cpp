@@ -21,21 +21,13 @@ constexpr double kNullShare = 1e-6;
 constexpr double kDominant = 0.3;          // |v_k| naming a parameter in a null-space vector
 constexpr double kHighCorrelation = 0.99;
 
-}  // namespace
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-void assess(const Problem& problem, FitResult& result) {
+// Values, default reasons, cost and information criteria at the solution.
+void record_solution(const Problem& problem, double cost, FitResult& result) {
   const auto& specs = problem.specs();
   const int n = problem.num_parameters(), m = problem.num_residuals(), nf = problem.num_free();
   const std::vector<double>& p = problem.natural();
-
-  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMatrix jac(m, std::max(nf, 1));
-  Eigen::VectorXd r(m);
-  if (!problem.evaluate(p, r.data(), nf ? jac.data() : nullptr))
-    throw core::NumericalError("fit: residuals or Jacobian not finite at the solution of model '" +
-                               problem.model().kind() + "'");
-  const double cost = 0.5 * r.squaredNorm();
-
   result.values = p;
   result.parameters.assign(n, ParameterResult{});
   for (int i = 0; i < n; ++i) {
@@ -49,7 +41,6 @@ void assess(const Problem& problem, FitResult& result) {
       pr.reason = "inactive: held at 0 by the non-negativity constraint";
     else pr.reason = "not fitted in the final stage";
   }
-
   FitMetrics& metrics = result.metrics;
   metrics.n_residuals = m;
   metrics.n_free = nf;
@@ -59,17 +50,25 @@ void assess(const Problem& problem, FitResult& result) {
   metrics.bic = m * std::log(variance_per_residual) + nf * std::log(static_cast<double>(m));
   problem.measure(p, metrics);
   metrics.n_active = 0;
-  Identifiability& ident = result.identifiability;
-  ident = Identifiability{};
-  if (nf == 0) return;
+}
 
-  // Column scaling makes the rank test and the condition number independent of units.
-  Eigen::VectorXd norms(nf);
-  for (int k = 0; k < nf; ++k) norms[k] = jac.col(k).norm();
+// Singular values and right vectors of the column-scaled Jacobian (scaling makes the rank test
+// and the condition number independent of units), with the rank.
+struct ScaledSpectrum {
+  Eigen::VectorXd norms;  // column norms of the Jacobian
+  Eigen::VectorXd sigma;  // nf values, zero-padded
+  Eigen::MatrixXd v;
+  int rank = 0;
+  double condition_number = 0.0;
+};
+
+ScaledSpectrum scaled_spectrum(const RowMatrix& jac, int m, int nf) {
+  ScaledSpectrum out;
+  out.norms.resize(nf);
+  for (int k = 0; k < nf; ++k) out.norms[k] = jac.col(k).norm();
   Eigen::MatrixXd scaled(m, nf);
   for (int k = 0; k < nf; ++k)
-    scaled.col(k) = norms[k] > 0.0 ? Eigen::VectorXd(jac.col(k) / norms[k])
-                                   : Eigen::VectorXd::Zero(m);
+    scaled.col(k) = out.norms[k] > 0.0 ? Eigen::VectorXd(jac.col(k) / out.norms[k]) : Eigen::VectorXd::Zero(m);
   // SVD of the small triangular factor instead of the tall matrix.
   Eigen::MatrixXd small;
   if (m > nf) {
@@ -80,113 +79,100 @@ void assess(const Problem& problem, FitResult& result) {
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(small, Eigen::ComputeFullV);
   const Eigen::VectorXd sigma = svd.singularValues();
-  const Eigen::MatrixXd v = svd.matrixV();
+  out.v = svd.matrixV();
   const double sigma_max = sigma.size() ? sigma[0] : 0.0;
-  Eigen::VectorXd full_sigma = Eigen::VectorXd::Zero(nf);
-  full_sigma.head(sigma.size()) = sigma;
-  int rank = 0;
+  out.sigma = Eigen::VectorXd::Zero(nf);
+  out.sigma.head(sigma.size()) = sigma;
   for (int k = 0; k < nf; ++k)
-    if (sigma_max > 0.0 && full_sigma[k] > kRankTolerance * sigma_max) ++rank;
-  const double sigma_min = std::max(full_sigma[nf - 1], sigma_max * 1e-16);
-  ident.rank = rank;
-  ident.condition_number = sigma_max > 0.0 ? sigma_max / sigma_min : 0.0;
-  metrics.rank = rank;
-  metrics.condition_number = ident.condition_number;
+    if (sigma_max > 0.0 && out.sigma[k] > kRankTolerance * sigma_max) ++out.rank;
+  const double sigma_min = std::max(out.sigma[nf - 1], sigma_max * 1e-16);
+  out.condition_number = sigma_max > 0.0 ? sigma_max / sigma_min : 0.0;
+  return out;
+}
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& name : names) s += (s.empty() ? "" : ", ") + name;
+  return s;
+}
+
+// Names the parameters of every null-space direction and those without effect or with a share
+// in the null space; returns each free parameter's null-space share.
+Eigen::VectorXd report_null_space(const Problem& problem, const ScaledSpectrum& sp, FitResult& result) {
+  const auto& specs = problem.specs();
+  const int nf = problem.num_free();
+  Identifiability& ident = result.identifiability;
   Eigen::VectorXd null_share = Eigen::VectorXd::Zero(nf);
-  for (int d = rank; d < nf; ++d) {
+  for (int d = sp.rank; d < nf; ++d) {
     std::vector<std::pair<double, std::string>> members;
     for (int k = 0; k < nf; ++k) {
-      null_share[k] += v(k, d) * v(k, d);
-      if (std::abs(v(k, d)) >= kDominant)
-        members.emplace_back(std::abs(v(k, d)), specs[problem.free()[k]].name);
+      null_share[k] += sp.v(k, d) * sp.v(k, d);
+      if (std::abs(sp.v(k, d)) >= kDominant) members.emplace_back(std::abs(sp.v(k, d)), specs[problem.free()[k]].name);
     }
-    std::sort(members.begin(), members.end(),
-              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::sort(members.begin(), members.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     std::vector<std::string> names;
     for (const auto& mbr : members) names.push_back(mbr.second);
     ident.null_space.push_back(names);
-    std::string joined;
-    for (const auto& nm : names) joined += (joined.empty() ? "" : ", ") + nm;
     result.messages.push_back("not identifiable from these data (null-space direction " +
-                              std::to_string(d - rank + 1) + "): " + joined);
+                              std::to_string(d - sp.rank + 1) + "): " + joined(names));
   }
-
-  std::string unidentified;
   for (int k = 0; k < nf; ++k)
-    if (norms[k] == 0.0 || null_share[k] > kNullShare) {
-      ident.not_identifiable.push_back(specs[problem.free()[k]].name);
-      unidentified += (unidentified.empty() ? "" : ", ") + ident.not_identifiable.back();
-    }
-  if (!unidentified.empty())
+    if (sp.norms[k] == 0.0 || null_share[k] > kNullShare) ident.not_identifiable.push_back(specs[problem.free()[k]].name);
+  if (!ident.not_identifiable.empty())
     result.messages.push_back("not identifiable from these data (no effect, or a component in a "
-                              "null-space direction): " + unidentified);
+                              "null-space direction): " + joined(ident.not_identifiable));
+  return null_share;
+}
 
-  const int dof = m - nf;
-  if (dof <= 0) {
-    for (int k = 0; k < nf; ++k)
-      result.parameters[problem.free()[k]].reason =
-          "no residual degrees of freedom (" + std::to_string(m) + " residuals, " +
-          std::to_string(nf) + " free parameters)";
-    result.messages.push_back("standard errors not estimable: " + std::to_string(m) +
-                              " residuals for " + std::to_string(nf) + " free parameters");
-    return;
-  }
-  const double s2 = 2.0 * cost / dof;
-  const double t = boost::math::quantile(boost::math::students_t(dof), 0.975);
-
-  // Pseudo-inverse on the identifiable subspace: Cov_x = s² D⁻¹ V Σ⁻² Vᵀ D⁻¹.
+// Pseudo-inverse on the identifiable subspace: Cov_x = s² D⁻¹ V Σ⁻² Vᵀ D⁻¹.
+Eigen::MatrixXd covariance(const ScaledSpectrum& sp, double s2) {
+  const int nf = static_cast<int>(sp.norms.size());
   Eigen::MatrixXd cov_scaled = Eigen::MatrixXd::Zero(nf, nf);
-  for (int d = 0; d < rank; ++d)
-    cov_scaled += v.col(d) * v.col(d).transpose() / (full_sigma[d] * full_sigma[d]);
+  for (int d = 0; d < sp.rank; ++d) cov_scaled += sp.v.col(d) * sp.v.col(d).transpose() / (sp.sigma[d] * sp.sigma[d]);
   Eigen::MatrixXd cov_x(nf, nf);
   for (int a = 0; a < nf; ++a)
     for (int b = 0; b < nf; ++b) {
-      const double da = norms[a] > 0.0 ? 1.0 / norms[a] : 0.0;
-      const double db = norms[b] > 0.0 ? 1.0 / norms[b] : 0.0;
+      const double da = sp.norms[a] > 0.0 ? 1.0 / sp.norms[a] : 0.0;
+      const double db = sp.norms[b] > 0.0 ? 1.0 / sp.norms[b] : 0.0;
       cov_x(a, b) = s2 * da * db * cov_scaled(a, b);
     }
+  return cov_x;
+}
 
-  std::vector<bool> usable(nf, false);
-  for (int k = 0; k < nf; ++k) {
-    const int i = problem.free()[k];
-    auto& pr = result.parameters[i];
-    const double x = problem.is_log(i) ? std::log(p[i]) : p[i];
-    const double tol = 1e-9 * (1.0 + std::abs(x));
-    if (norms[k] == 0.0) {
-      pr.reason = "not identifiable: no effect on the residuals";
-      continue;
-    }
-    if (null_share[k] > kNullShare) {
-      pr.reason = "not identifiable: rank-deficient Jacobian (see the null-space messages)";
-      continue;
-    }
-    if (std::abs(x - problem.lower_x(k)) < tol || std::abs(x - problem.upper_x(k)) < tol) {
-      pr.reason = "at its bound: the linear interval does not apply";
-      continue;
-    }
-    const double se_x = std::sqrt(std::max(cov_x(k, k), 0.0));
-    if (!std::isfinite(se_x)) {
-      pr.reason = "variance not finite";
-      continue;
-    }
-    const bool log = problem.is_log(i);  // log: interval in log space, exponentiated (positive)
-    const double se = log ? p[i] * se_x : se_x;
-    const double low = log ? std::exp(x - t * se_x) : x - t * se_x;
-    const double high = log ? std::exp(x + t * se_x) : x + t * se_x;
-    // A card holds only finite numbers (docs/decisions.md "No interval"): an interval that
-    // overflows is no interval.
-    if (!std::isfinite(se) || !std::isfinite(low) || !std::isfinite(high)) {
-      pr.reason = "interval not finite: the data barely inform this parameter";
-      continue;
-    }
-    usable[k] = true;
-    pr.reason.clear();
-    pr.std_error = se;
-    pr.ci95_low = low;
-    pr.ci95_high = high;
-    ++metrics.n_active;
-  }
+// The standard error and 95 % interval of free parameter k (index i), or the reason it has none.
+bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const Eigen::VectorXd& null_share,
+                  const Eigen::MatrixXd& cov_x, double t, ParameterResult& pr) {
+  const int i = problem.free()[k];
+  const double p_i = problem.natural()[i];
+  const bool log = problem.is_log(i);  // log: interval in log space, exponentiated (positive)
+  const double x = log ? std::log(p_i) : p_i;
+  const double tol = 1e-9 * (1.0 + std::abs(x));
+  if (sp.norms[k] == 0.0) return pr.reason = "not identifiable: no effect on the residuals", false;
+  if (null_share[k] > kNullShare)
+    return pr.reason = "not identifiable: rank-deficient Jacobian (see the null-space messages)", false;
+  if (std::abs(x - problem.lower_x(k)) < tol || std::abs(x - problem.upper_x(k)) < tol)
+    return pr.reason = "at its bound: the linear interval does not apply", false;
+  const double se_x = std::sqrt(std::max(cov_x(k, k), 0.0));
+  if (!std::isfinite(se_x)) return pr.reason = "variance not finite", false;
+  const double se = log ? p_i * se_x : se_x;
+  const double low = log ? std::exp(x - t * se_x) : x - t * se_x;
+  const double high = log ? std::exp(x + t * se_x) : x + t * se_x;
+  // A card holds only finite numbers (docs/decisions.md "No interval"): an interval that
+  // overflows is no interval.
+  if (!std::isfinite(se) || !std::isfinite(low) || !std::isfinite(high))
+    return pr.reason = "interval not finite: the data barely inform this parameter", false;
+  pr.reason.clear();
+  pr.std_error = se;
+  pr.ci95_low = low;
+  pr.ci95_high = high;
+  return true;
+}
+
+// Pairs of parameters with intervals whose correlation exceeds kHighCorrelation.
+void report_correlations(const Problem& problem, const Eigen::MatrixXd& cov_x, const std::vector<bool>& usable,
+                         FitResult& result) {
+  const auto& specs = problem.specs();
+  const int nf = problem.num_free();
   for (int a = 0; a < nf; ++a)
     for (int b = a + 1; b < nf; ++b) {
       if (!usable[a] || !usable[b]) continue;
@@ -195,13 +181,53 @@ void assess(const Problem& problem, FitResult& result) {
       const double corr = cov_x(a, b) / denom;
       if (std::abs(corr) > kHighCorrelation) {
         const std::string na = specs[problem.free()[a]].name, nb = specs[problem.free()[b]].name;
-        ident.correlated.push_back({na, nb, corr});
+        result.identifiability.correlated.push_back({na, nb, corr});
         std::ostringstream s;
         s << "correlation " << corr << " between " << na << " and " << nb
           << " (their intervals are not independent)";
         result.messages.push_back(s.str());
       }
     }
+}
+
+}  // namespace
+
+void assess(const Problem& problem, FitResult& result) {
+  const int m = problem.num_residuals(), nf = problem.num_free();
+  RowMatrix jac(m, std::max(nf, 1));
+  Eigen::VectorXd r(m);
+  if (!problem.evaluate(problem.natural(), r.data(), nf ? jac.data() : nullptr))
+    throw core::NumericalError("fit: residuals or Jacobian not finite at the solution of model '" +
+                               problem.model().kind() + "'");
+  const double cost = 0.5 * r.squaredNorm();
+  record_solution(problem, cost, result);
+  result.identifiability = Identifiability{};
+  if (nf == 0) return;
+
+  const ScaledSpectrum sp = scaled_spectrum(jac, m, nf);
+  result.identifiability.rank = sp.rank;
+  result.identifiability.condition_number = sp.condition_number;
+  result.metrics.rank = sp.rank;
+  result.metrics.condition_number = sp.condition_number;
+  const Eigen::VectorXd null_share = report_null_space(problem, sp, result);
+
+  const int dof = m - nf;
+  if (dof <= 0) {
+    for (int k = 0; k < nf; ++k)
+      result.parameters[problem.free()[k]].reason = "no residual degrees of freedom (" + std::to_string(m) +
+                                                    " residuals, " + std::to_string(nf) + " free parameters)";
+    result.messages.push_back("standard errors not estimable: " + std::to_string(m) + " residuals for " +
+                              std::to_string(nf) + " free parameters");
+    return;
+  }
+  const double t = boost::math::quantile(boost::math::students_t(dof), 0.975);
+  const Eigen::MatrixXd cov_x = covariance(sp, 2.0 * cost / dof);
+  std::vector<bool> usable(nf, false);
+  for (int k = 0; k < nf; ++k) {
+    usable[k] = set_interval(problem, k, sp, null_share, cov_x, t, result.parameters[problem.free()[k]]);
+    if (usable[k]) ++result.metrics.n_active;
+  }
+  report_correlations(problem, cov_x, usable, result);
 }
 
 }  // namespace fitlib::fit::detail

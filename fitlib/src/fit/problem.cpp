@@ -137,18 +137,14 @@ bool Problem::restrict_bounds(int i, double lower, double upper) {
 
 bool Problem::is_log(int i) const { return specs()[i].transform == core::Transform::log; }
 
-// WLF: log aT = −C1 (T − Tref)/(C2 + T − Tref) has a pole at T = Tref − C2. Keep every data
-// temperature on the physical side: C2 > max(Tref − T_i) (+1 °C margin).
+// WLF: log aT = −C1 (T − Tref)/(C2 + T − Tref) has a pole at T = Tref − C2 (docs/decisions.md,
+// "fit: WLF pole"); the model names the pole's parameter (TemperatureLawInfo::pole_parameter).
+// Keep every data temperature on the physical side: C2 > max(Tref − T_i) (+1 °C margin).
 void Problem::tighten_temperature_bounds() {
-  const nlohmann::json opts = model_->options();
-  if (!opts.is_object() || opts.value("temperature_law", std::string()) != "wlf") return;
-  int c2 = -1;
-  for (int i = 0; i < num_parameters(); ++i) {
-    const std::string& name = specs()[i].name;
-    if (name == "C2" || (name.size() > 3 && name.compare(name.size() - 3, 3, "_C2") == 0)) c2 = i;
-  }
-  if (c2 < 0 || !opts.contains("reference_C")) return;
-  const double t_ref = opts["reference_C"].get<double>();
+  const model::TemperatureLawInfo law = model_->temperature_law_info();
+  const int c2 = law.pole_parameter;
+  if (c2 < 0) return;
+  const double t_ref = law.reference_C;
   double max_gap = -kInf;
   for (const auto& row : table_->rows)
     if (row.condition.has_temperature())

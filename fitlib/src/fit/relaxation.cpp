@@ -10,6 +10,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fit/nnls.hpp"
+#include "term_sweep.hpp"
 
 namespace fitlib::fit {
 namespace {
@@ -270,33 +271,12 @@ TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::j
   // polished, so the search costs one polish (docs/fitting.md, "Relaxation data").
   FitOptions linear_only = options;
   linear_only.polish = false;
-  std::vector<FitResult> results;
-  for (int n = min_terms; n <= max_terms; ++n) {
+  auto fit_n = [&](int n) {
     nlohmann::json o = model_options.is_object() ? model_options : nlohmann::json::object();
     o["terms"] = n;
-    TermRow row;
-    row.terms = n;
-    const core::Stopwatch clock;
-    try {
-      FitResult r = fit_relaxation(model::make_model(kind, o), table, linear_only);
-      row.rms_log10_storage = r.metrics.rms_log10_storage;
-      row.cost = r.metrics.cost;
-      row.aic = r.metrics.aic;
-      row.bic = r.metrics.bic;
-      row.n_free = r.metrics.n_free;
-      row.converged = r.metrics.converged;
-      results.push_back(std::move(r));
-    } catch (const core::NumericalError& e) {
-      row.failed = true;
-      row.message = e.what();
-      results.emplace_back();
-    }
-    row.wall_time_s = clock.seconds();
-    sel.rows.push_back(row);
-  }
-  sel.by_aic = choose_terms(sel.rows, TermRule::aic, terms.residual_ratio, 0);
-  sel.by_bic = choose_terms(sel.rows, TermRule::bic, terms.residual_ratio, 0);
-  sel.by_ratio = choose_terms(sel.rows, TermRule::residual_ratio, terms.residual_ratio, 0);
+    return fit_relaxation(model::make_model(kind, o), table, linear_only);
+  };
+  std::vector<FitResult> results = detail::sweep_terms(min_terms, max_terms, fit_n, terms, false, sel);
   sel.unconstrained = choose_terms(sel.rows, terms.rule, terms.residual_ratio, 0);
   sel.chosen = choose_terms(sel.rows, terms.rule, terms.residual_ratio, terms.solver_cap);
   if (sel.chosen == 0) throw core::NumericalError("relaxation terms: no usable fit");

@@ -1,5 +1,7 @@
 #include "fitlib/fit/terms.hpp"
 
+#include "term_sweep.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -95,6 +97,42 @@ int choose_terms(const std::vector<TermRow>& rows, TermRule rule, double ratio, 
   return chosen;
 }
 
+namespace detail {
+
+std::vector<FitResult> sweep_terms(int min_terms, int max_terms, const std::function<FitResult(int)>& fit_n,
+                                   const TermOptions& terms, bool note_failures, TermSelection& sel) {
+  std::vector<FitResult> results;
+  for (int n = min_terms; n <= max_terms; ++n) {
+    TermRow row;
+    row.terms = n;
+    const core::Stopwatch clock;
+    try {
+      FitResult r = fit_n(n);
+      row.rms_log10_storage = r.metrics.rms_log10_storage;
+      row.rms_log10_loss = r.metrics.rms_log10_loss;
+      row.cost = r.metrics.cost;
+      row.aic = r.metrics.aic;
+      row.bic = r.metrics.bic;
+      row.n_free = r.metrics.n_free;
+      row.converged = r.metrics.converged;
+      results.push_back(std::move(r));
+    } catch (const core::NumericalError& e) {
+      row.failed = true;
+      row.message = e.what();
+      results.emplace_back();
+      if (note_failures) sel.messages.push_back("terms " + std::to_string(n) + ": " + e.what());
+    }
+    row.wall_time_s = clock.seconds();
+    sel.rows.push_back(row);
+  }
+  sel.by_aic = choose_terms(sel.rows, TermRule::aic, terms.residual_ratio, 0);
+  sel.by_bic = choose_terms(sel.rows, TermRule::bic, terms.residual_ratio, 0);
+  sel.by_ratio = choose_terms(sel.rows, TermRule::residual_ratio, terms.residual_ratio, 0);
+  return results;
+}
+
+}  // namespace detail
+
 TermSelection select_terms(const std::function<model::ModelPtr(int)>& make,
                            const data::DynamicTestTable& table, const FitOptions& options,
                            const TermOptions& terms) {
@@ -112,33 +150,8 @@ TermSelection select_terms(const std::function<model::ModelPtr(int)>& make,
   if (max_terms < min_terms)
     throw core::UsageError("select_terms: max terms " + std::to_string(max_terms) +
                            " below min terms " + std::to_string(min_terms));
-  std::vector<FitResult> results;
-  for (int n = min_terms; n <= max_terms; ++n) {
-    TermRow row;
-    row.terms = n;
-    const core::Stopwatch clock;
-    try {
-      FitResult r = fit(make(n), table, options);
-      row.rms_log10_storage = r.metrics.rms_log10_storage;
-      row.rms_log10_loss = r.metrics.rms_log10_loss;
-      row.cost = r.metrics.cost;
-      row.aic = r.metrics.aic;
-      row.bic = r.metrics.bic;
-      row.n_free = r.metrics.n_free;
-      row.converged = r.metrics.converged;
-      results.push_back(std::move(r));
-    } catch (const core::NumericalError& e) {
-      row.failed = true;
-      row.message = e.what();
-      results.emplace_back();
-      sel.messages.push_back("terms " + std::to_string(n) + ": " + e.what());
-    }
-    row.wall_time_s = clock.seconds();
-    sel.rows.push_back(row);
-  }
-  sel.by_aic = choose_terms(sel.rows, TermRule::aic, terms.residual_ratio, 0);
-  sel.by_bic = choose_terms(sel.rows, TermRule::bic, terms.residual_ratio, 0);
-  sel.by_ratio = choose_terms(sel.rows, TermRule::residual_ratio, terms.residual_ratio, 0);
+  std::vector<FitResult> results = detail::sweep_terms(
+      min_terms, max_terms, [&](int n) { return fit(make(n), table, options); }, terms, true, sel);
   sel.unconstrained = terms.rule == TermRule::aic ? sel.by_aic
                       : terms.rule == TermRule::bic ? sel.by_bic
                                                     : sel.by_ratio;

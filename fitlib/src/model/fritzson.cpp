@@ -10,6 +10,7 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/autodiff_model.hpp"
+#include "fitlib/model/fritzson_cases.hpp"
 #include "fitlib/model/fritzson_point.hpp"
 #include "fritzson_contract.hpp"
 #include "fitlib/core/units.hpp"
@@ -118,6 +119,8 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
       : anisotropic_(anisotropic), reference_C_(reference_C), specs_(parameter_specs(anisotropic)) {}
 
   std::string kind() const override { return anisotropic_ ? "fritzson" : "fritzson-iso"; }
+  bool anisotropic() const { return anisotropic_; }
+  double reference_C() const { return reference_C_; }
   const std::vector<ParameterSpec>& parameters() const override { return specs_; }
   nlohmann::json options() const override { return {{"reference_C", reference_C_}}; }
   // Describes shear, uniaxial (all orientations) and bulk alike; shear is its natural card.
@@ -152,7 +155,7 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     const double omega = 2.0 * kPi * c.frequency_Hz;
     const double amplitude = c.strain_amplitude;
     const T& K = p[kK];
-    if (c.mode == TestMode::bulk) return {K, T(0.0), K};  // purely elastic (4.39, L2224)
+    if (c.mode == TestMode::bulk) return {K, T(0.0), K};  // purely elastic (4.39; docs/fritzson.md §1)
 
     if (c.mode == TestMode::shear) {
       PartModuli<T> m = part(p + kPartI, shear_driver(c), omega, c);
@@ -165,7 +168,7 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     }
 
     // Uniaxial: the damage drivers depend on the lateral strains, which depend on the damaged
-    // moduli: solve for the fixed point (the thesis iterated, L2260). Doubles: Newton. Other
+    // moduli: solve for the fixed point (the thesis iterated; docs/fritzson.md §3). Doubles: Newton. Other
     // scalars (only the generic AutodiffModel passes use them): plain iteration, which carries
     // the derivatives along.
     T driver_I, driver_A;
@@ -489,6 +492,12 @@ ModelPtr make_fritzson_model(const std::string& kind, const nlohmann::json& opti
     }
   }
   return std::make_shared<FritzsonModel>(kind == "fritzson", reference_C);
+}
+
+MaterialPoint thesis_point(const Model& model, const std::vector<double>& p) {
+  const auto* m = dynamic_cast<const FritzsonModel*>(&model);
+  if (!m) throw core::UsageError("the thesis cases need a fritzson card, not '" + model.kind() + "'");
+  return MaterialPoint(p, m->anisotropic(), m->reference_C(), Scheme::exponential);
 }
 
 }  // namespace fitlib::model::fritzson

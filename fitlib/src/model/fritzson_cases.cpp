@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::model::fritzson {
@@ -76,13 +77,13 @@ std::string case_loops_csv(const ThesisCase& c, const CaseLoops& loops) {
       << (c.ramp_rate_per_s > 0 ? "ramp" : "cyclic") << ", " << c.temperature_C << " C\n"
       << "time_s,displacement,strain,stress_MPa,nominal_stress_MPa,damage_driver_I,"
          "damage_driver_A1,damage_driver_A2\n";
-  char line[320];
+  using core::format_number;
   for (size_t k = 0; k < loops.time_s.size(); ++k) {
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%.6g\n", loops.time_s[k],
-                  loops.displacement[k], loops.strain[k], loops.stress_MPa[k],
-                  loops.nominal_MPa[k], loops.driver_amplitude[k][0],
-                  loops.driver_amplitude[k][1], loops.driver_amplitude[k][2]);
-    out << line;
+    for (double v : {loops.time_s[k], loops.displacement[k], loops.strain[k], loops.stress_MPa[k],
+                     loops.nominal_MPa[k]})
+      out << format_number(v, 9) << ',';
+    const auto& d = loops.driver_amplitude[k];
+    out << format_number(d[0], 6) << ',' << format_number(d[1], 6) << ',' << format_number(d[2], 6) << '\n';
   }
   return out.str();
 }

@@ -193,17 +193,6 @@ struct FractionalZener {
   }
 };
 
-enum class ShiftLaw { none, wlf, arrhenius, polynomial };
-
-const char* law_name(ShiftLaw law) {
-  switch (law) {
-    case ShiftLaw::wlf: return "wlf";
-    case ShiftLaw::arrhenius: return "arrhenius";
-    case ShiftLaw::polynomial: return "polynomial";
-    default: return "none";
-  }
-}
-
 // Parameter name of the polynomial law's coefficient of (T − T_ref)^k.
 std::string polynomial_name(int k) { return "poly_C" + std::to_string(k); }
 
@@ -224,14 +213,8 @@ Options parse_options(const nlohmann::json& j, bool has_terms) {
     try {
       if (key == "mode") o.mode = parse_test_mode(it->get<std::string>());
       else if (key == "terms" && has_terms) o.terms = it->get<int>();
-      else if (key == "temperature_law") {
-        const auto law = it->get<std::string>();
-        if (law == "none") o.law = ShiftLaw::none;
-        else if (law == "wlf") o.law = ShiftLaw::wlf;
-        else if (law == "arrhenius") o.law = ShiftLaw::arrhenius;
-        else if (law == "polynomial") o.law = ShiftLaw::polynomial;
-        else throw core::UsageError("unknown temperature_law '" + law + "' (none, wlf, arrhenius, polynomial)");
-      } else if (key == "reference_C") o.reference_C = it->get<double>();
+      else if (key == "temperature_law") o.law = parse_shift_law(it->get<std::string>());
+      else if (key == "reference_C") o.reference_C = it->get<double>();
       else if (key == "polynomial_degree") o.polynomial_degree = it->get<int>();
       else if (key == "vertical_shift") o.vertical_shift = it->get<bool>();
       else if (key == "linear_factor") o.linear_factor = it->get<bool>();
@@ -295,7 +278,7 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     nlohmann::json j;
     j["mode"] = to_string(o_.mode);
     if (Kernel::kHasTerms) j["terms"] = o_.terms;
-    j["temperature_law"] = law_name(o_.law);
+    j["temperature_law"] = to_string(o_.law);
     j["reference_C"] = o_.reference_C;
     if (o_.law == ShiftLaw::polynomial) j["polynomial_degree"] = o_.polynomial_degree;
     j["vertical_shift"] = o_.vertical_shift;
@@ -347,6 +330,9 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     } else if (o_.law == ShiftLaw::arrhenius) {
       info.law = model::ShiftLaw::arrhenius;
       info.shift_parameters = {int(shift_index_)};
+    } else if (o_.law == ShiftLaw::polynomial) {
+      info.law = model::ShiftLaw::polynomial;
+      for (int k = 0; k < o_.polynomial_degree; ++k) info.shift_parameters.push_back(int(shift_index_) + k);
     }
     return info;
   }

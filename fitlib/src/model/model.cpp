@@ -27,6 +27,23 @@ void check_strain_history(const StrainHistory& h) {
                              std::to_string(n) + ")");
 }
 
+std::string to_string(ShiftLaw law) {
+  switch (law) {
+    case ShiftLaw::none: return "none";
+    case ShiftLaw::wlf: return "wlf";
+    case ShiftLaw::arrhenius: return "arrhenius";
+    case ShiftLaw::polynomial: return "polynomial";
+    case ShiftLaw::other: break;
+  }
+  throw core::UsageError("a model-specific temperature law has no option name");
+}
+
+ShiftLaw parse_shift_law(const std::string& name) {
+  for (ShiftLaw law : {ShiftLaw::none, ShiftLaw::wlf, ShiftLaw::arrhenius, ShiftLaw::polynomial})
+    if (name == to_string(law)) return law;
+  throw core::UsageError("unknown temperature_law '" + name + "' (none, wlf, arrhenius, polynomial)");
+}
+
 nlohmann::json Model::temperature_law(const double*) const {
   return {{"law", "none"}};
 }

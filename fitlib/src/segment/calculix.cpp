@@ -1,20 +1,21 @@
 #include "fitlib/segment/calculix.hpp"
 
 #include <cmath>
-#include <iomanip>
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 
 namespace fitlib::segment {
 
 std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElastic, 2>& materials, int increments) {
   const Mesh& m = *p.mesh;
   if (m.nodes_per_element != 8) throw core::UsageError("calculix_deck: CPE8R needs the 8-node mesh");
+  // 13 significant digits: at most 20 characters, CalculiX's field (docs/formats.md §3).
+  const auto num = [](double x) { return core::format_number(x, 13); };
   std::ostringstream o;
-  o << std::setprecision(13);
   o << "** fitlib segment: plane strain, NLGEOM, CPE8R\n*NODE, NSET=NALL\n";
-  for (int a = 0; a < m.node_count(); ++a) o << a + 1 << ", " << m.X[a].x() << ", " << m.X[a].y() << "\n";
+  for (int a = 0; a < m.node_count(); ++a) o << a + 1 << ", " << num(m.X[a].x()) << ", " << num(m.X[a].y()) << "\n";
   for (Role role : {Role::bottom, Role::cushion}) {
     o << "*ELEMENT, TYPE=CPE8R, ELSET=E" << to_string(role) << "\n";
     for (int e = 0; e < m.element_count(); ++e) {
@@ -27,7 +28,7 @@ std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElas
   o << "*ELSET, ELSET=EALL\nEbottom, Ecushion\n";
   for (Role role : {Role::bottom, Role::cushion}) {
     const auto& mat = materials[static_cast<int>(role)];
-    o << "*MATERIAL, NAME=M" << to_string(role) << "\n*ELASTIC\n" << mat.E_MPa << ", " << mat.nu << "\n";
+    o << "*MATERIAL, NAME=M" << to_string(role) << "\n*ELASTIC\n" << num(mat.E_MPa) << ", " << num(mat.nu) << "\n";
     o << "*SOLID SECTION, ELSET=E" << to_string(role) << ", MATERIAL=M" << to_string(role) << "\n1.\n";
   }
   std::vector<std::array<double, 2>> values(p.constraints.size());
@@ -36,15 +37,16 @@ std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElas
     const double a = p.constraints[c].angle_rad;
     if (a == 0.0) continue;
     o << "*NSET, NSET=T" << c << "\n" << p.constraints[c].node + 1 << "\n*TRANSFORM, NSET=T" << c << ", TYPE=R\n"
-      << std::cos(a) << ", " << std::sin(a) << ", 0., " << -std::sin(a) << ", " << std::cos(a) << ", 0.\n";
+      << num(std::cos(a)) << ", " << num(std::sin(a)) << ", 0., " << num(-std::sin(a)) << ", " << num(std::cos(a))
+      << ", 0.\n";
   }
-  o << "*STEP, NLGEOM, INC=1000\n*STATIC\n" << 1.0 / increments << ", 1.\n*BOUNDARY\n";
+  o << "*STEP, NLGEOM, INC=1000\n*STATIC\n" << num(1.0 / increments) << ", 1.\n*BOUNDARY\n";
   for (std::size_t c = 0; c < p.constraints.size(); ++c)
     for (int k = 0; k < 2; ++k)
-      if (p.constraints[c].fixed[k]) o << p.constraints[c].node + 1 << ", " << k + 1 << ", " << k + 1 << ", " << values[c][k] << "\n";
+      if (p.constraints[c].fixed[k]) o << p.constraints[c].node + 1 << ", " << k + 1 << ", " << k + 1 << ", " << num(values[c][k]) << "\n";
   if (p.pressure_MPa != 0.0) {
     o << "*DLOAD\n";
-    for (const Edge& e : m.bottom_edges) o << e.element + 1 << ", P1, " << p.pressure_MPa << "\n";
+    for (const Edge& e : m.bottom_edges) o << e.element + 1 << ", P1, " << num(p.pressure_MPa) << "\n";
   }
   o << "*EL PRINT, ELSET=EALL\nS\n*END STEP\n";
   return o.str();

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 
 namespace fitlib::segment {
@@ -82,11 +83,11 @@ Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
 }
 
 void write_vtk(const Mesh& m, const std::string& path, const VtkFields& f) {
+  using core::format_number;  // shortest round trip, locale-independent (docs/decisions.md)
   std::ostringstream o;
-  o.precision(10);
   o << "# vtk DataFile Version 3.0\nfitlib segment mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
   o << "POINTS " << m.node_count() << " double\n";
-  for (const auto& x : m.X) o << x.x() << " " << x.y() << " 0\n";
+  for (const auto& x : m.X) o << format_number(x.x()) << " " << format_number(x.y()) << " 0\n";
   const int npe = m.nodes_per_element;
   o << "CELLS " << m.element_count() << " " << m.element_count() * (npe + 1) << "\n";
   for (const auto& e : m.elements) {
@@ -102,12 +103,12 @@ void write_vtk(const Mesh& m, const std::string& path, const VtkFields& f) {
     const char* names[4] = {"sigma_xx_MPa", "sigma_yy_MPa", "sigma_xy_MPa", "sigma_zz_MPa"};
     for (int c = 0; c < 4; ++c) {
       o << "SCALARS " << names[c] << " double 1\nLOOKUP_TABLE default\n";
-      for (const auto& s : f.cell_stress_MPa) o << s[c] << "\n";
+      for (const auto& s : f.cell_stress_MPa) o << format_number(s[c]) << "\n";
     }
   }
   if (!f.displacement_mm.empty()) {
     o << "POINT_DATA " << m.node_count() << "\nVECTORS displacement_mm double\n";
-    for (const auto& u : f.displacement_mm) o << u.x() << " " << u.y() << " 0\n";
+    for (const auto& u : f.displacement_mm) o << format_number(u.x()) << " " << format_number(u.y()) << " 0\n";
   }
   core::write_file_atomically(path, o.str());
 }

@@ -7,19 +7,12 @@
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 
 namespace fitlib::surface {
 namespace {
 
-// Shortest text that reads back as the same double.
-std::string exact(double x) {
-  char buffer[32];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-    if (std::strtod(buffer, nullptr) == x) break;
-  }
-  return buffer;
-}
+using core::format_number;
 
 double quantity_of(const ModulusGridRow& r, const std::string& quantity) {
   if (quantity == "storage") return r.storage_MPa;
@@ -41,9 +34,9 @@ const char* column_of(const std::string& quantity) {
 ModulusGrid evaluate_card_grid(const card::Card& card, const CardGridRequest& request) {
   if (request.frequency_Hz.empty()) throw core::UsageError("the grid needs at least one frequency");
   for (double f : request.frequency_Hz)
-    if (!(f > 0.0)) throw core::UsageError("frequencies must be positive, got " + exact(f));
+    if (!(f > 0.0)) throw core::UsageError("frequencies must be positive, got " + format_number(f));
   for (double a : request.strain_amplitude)
-    if (!(a >= 0.0)) throw core::UsageError("strain amplitudes must be >= 0, got " + exact(a));
+    if (!(a >= 0.0)) throw core::UsageError("strain amplitudes must be >= 0, got " + format_number(a));
   ModulusGrid grid;
   grid.request = request;
   grid.card_name = card.name;
@@ -77,10 +70,10 @@ std::string modulus_grid_csv(const ModulusGrid& grid) {
     core::require_finite(r.storage_MPa, "storage modulus" + at);
     core::require_finite(r.loss_MPa / r.storage_MPa, "tan delta" + at);
     core::require_finite(r.mean_modulus_MPa, "mean modulus" + at);
-    csv << exact(r.strain_amplitude) << "," << exact(r.frequency_Hz) << ","
-        << (std::isnan(r.temperature_C) ? "" : exact(r.temperature_C)) << "," << exact(r.storage_MPa)
-        << "," << exact(r.loss_MPa) << "," << exact(r.loss_MPa / r.storage_MPa) << ","
-        << exact(r.mean_modulus_MPa) << "\n";
+    csv << format_number(r.strain_amplitude) << "," << format_number(r.frequency_Hz) << ","
+        << (std::isnan(r.temperature_C) ? "" : format_number(r.temperature_C)) << "," << format_number(r.storage_MPa)
+        << "," << format_number(r.loss_MPa) << "," << format_number(r.loss_MPa / r.storage_MPa) << ","
+        << format_number(r.mean_modulus_MPa) << "\n";
   }
   return csv.str();
 }

@@ -1,4 +1,4 @@
-// Named numeric columns of a CSV with a header row, for surface fitting (formats.md §1 conventions).
+// Named numeric columns of a CSV with a header row, for surface fitting (docs/formats.md §1 conventions).
 #include <algorithm>
 #include <cerrno>
 #include <cmath>

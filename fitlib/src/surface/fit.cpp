@@ -1,13 +1,5 @@
-// Least-squares fit of a Bezier surface (Report V §5.2-5.3).
-//
-// Missing cells: the level grid of the data is built; an empty cell is "determined by the data"
-// when, along some axis a, the line through it holds at least d_a + 1 occupied levels (the curve
-// along a there is fixed by data and the cell is interpolated). Every other empty cell needs a
-// remedy: by default local constraints ∂^m/∂u_a^m = 0 (m = occupied levels on the line) on a face
-// (one other axis fixed at a level) or a line (all others fixed), chosen greedily with the fewest
-// constraints per empty cell; faces win ties over lines, then the face of the later axis (Report V
-// fixes the temperature face and makes the amplitude direction linear, Eqs 5.26-5.32). Missing
-// cells are never "compensated" by points elsewhere.
+// Least-squares fit of a Bezier surface (Report V §5.2-5.3; docs/surface.md). Missing cells of
+// the level grid: level_grid.cpp.
 //
 // Solve: constraints C c = r are eliminated by a null-space basis Z (c = c0 + Z z); the rows of
 // [A Z | y - A c0] are reduced chunk by chunk with Householder QR into a small triangle (memory
@@ -22,6 +14,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/surface/bernstein.hpp"
 #include "fitlib/surface/fit.hpp"
+#include "level_grid.hpp"
 
 namespace fitlib::surface {
 
@@ -35,7 +28,6 @@ MissingCellRemedy parse_missing_cell_remedy(const std::string& text) {
 
 namespace {
 
-constexpr std::size_t kMaxGridCells = 1000000;
 constexpr Eigen::Index kChunkRows = 4096;
 constexpr double kRankThreshold = 1e-10;
 
@@ -72,255 +64,6 @@ void validate(const SampleSet& d, const std::vector<Axis>& axes) {
   }
 }
 
-// The level grid over the non-scattered axes: occupancy of every cell.
-struct Grid {
-  std::vector<std::size_t> axes;     // surface axes that have levels
-  std::vector<std::size_t> levels;   // number of levels per grid axis
-  std::vector<std::size_t> strides;  // row-major
-  std::vector<std::uint32_t> count;  // points per cell
-
-  std::size_t cells() const { return count.size(); }
-  std::vector<int> unflatten(std::size_t cell) const {
-    std::vector<int> index(axes.size());
-    for (std::size_t g = 0; g < axes.size(); ++g)
-      index[g] = static_cast<int>((cell / strides[g]) % levels[g]);
-    return index;
-  }
-  // Occupied levels on the line through `cell` along grid axis g.
-  int occupied_on_line(std::size_t cell, std::size_t g) const {
-    const std::size_t base = cell - ((cell / strides[g]) % levels[g]) * strides[g];
-    int n = 0;
-    for (std::size_t l = 0; l < levels[g]; ++l) n += count[base + l * strides[g]] > 0;
-    return n;
-  }
-};
-
-// A candidate remedy: ∂^order/∂u_a^order = 0 on a face (fixed grid axis b at level) or on the
-// line through `cell`.
-struct Remedy {
-  bool face = false;
-  std::size_t a = 0, b = 0, level = 0, cell = 0;
-  int order = 0;
-  std::size_t n_constraints = 0;
-  std::vector<std::size_t> covers;
-};
-
-double level_parameter(const Axis& axis, const LevelAxis& levels, std::size_t l) {
-  // End levels sit on the faces u = 0 and u = 1 (Report V's "third level" is w = 1).
-  if (l == 0) return 0.0;
-  if (l + 1 == levels.centres.size()) return 1.0;
-  const double c0 = axis.coordinate(axis.start), c1 = axis.coordinate(axis.end);
-  return (levels.centres[l] - c0) / (c1 - c0);
-}
-
-std::string cell_text(const Surface& s, const Grid& grid, std::size_t cell) {
-  const auto index = grid.unflatten(cell);
-  std::ostringstream out;
-  out.precision(6);
-  out << "(";
-  for (std::size_t g = 0; g < grid.axes.size(); ++g) {
-    const Axis& a = s.axes[grid.axes[g]];
-    out << (g ? ", " : "") << a.name << " = " << a.levels[static_cast<std::size_t>(index[g])];
-  }
-  return out.str() + ")";
-}
-
-// Returns the empty cells that no axis's data determine under the current degrees.
-std::vector<std::size_t> undetermined_cells(const Surface& s, const Grid& grid,
-                                            const std::vector<std::size_t>& empty) {
-  std::vector<std::size_t> result;
-  for (std::size_t cell : empty) {
-    bool determined = false;
-    for (std::size_t g = 0; g < grid.axes.size() && !determined; ++g)
-      determined = grid.occupied_on_line(cell, g) >= s.axes[grid.axes[g]].degree + 1;
-    if (!determined) result.push_back(cell);
-  }
-  return result;
-}
-
-std::size_t product_of_other_degrees(const Surface& s, const std::vector<std::size_t>& excluded) {
-  std::size_t p = 1;
-  for (std::size_t k = 0; k < s.axes.size(); ++k)
-    if (std::find(excluded.begin(), excluded.end(), k) == excluded.end())
-      p *= static_cast<std::size_t>(s.axes[k].degree + 1);
-  return p;
-}
-
-std::vector<Remedy> candidate_remedies(const Surface& s, const Grid& grid,
-                                       const std::vector<std::size_t>& open) {
-  std::vector<Remedy> candidates;
-  const std::size_t G = grid.axes.size();
-  std::vector<std::size_t> grid_axes_all = grid.axes;
-  for (std::size_t ga = 0; ga < G; ++ga) {
-    const std::size_t a = grid.axes[ga];
-    const int d = s.axes[a].degree;
-    if (d < 1) continue;
-    // faces: grid axis gb fixed at level l
-    for (std::size_t gb = 0; gb < G; ++gb) {
-      if (gb == ga) continue;
-      for (std::size_t l = 0; l < grid.levels[gb]; ++l) {
-        int m = d + 1;
-        for (std::size_t cell = 0; cell < grid.cells(); ++cell) {
-          if ((cell / grid.strides[gb]) % grid.levels[gb] != l) continue;
-          if ((cell / grid.strides[ga]) % grid.levels[ga] != 0) continue;  // one cell per line
-          m = std::min(m, grid.occupied_on_line(cell, ga));
-        }
-        if (m < 1 || m > d) continue;
-        Remedy r;
-        r.face = true;
-        r.a = a;
-        r.b = grid.axes[gb];
-        r.level = l;
-        r.order = m;
-        r.n_constraints = static_cast<std::size_t>(d - m + 1) * product_of_other_degrees(s, {a, r.b});
-        for (std::size_t cell : open)
-          if ((cell / grid.strides[gb]) % grid.levels[gb] == l) r.covers.push_back(cell);
-        if (!r.covers.empty()) candidates.push_back(std::move(r));
-      }
-    }
-    // lines through each open cell (all other grid axes fixed); for two grid axes these are faces
-    if (G < 3) continue;
-    for (std::size_t cell : open) {
-      const int m = grid.occupied_on_line(cell, ga);
-      if (m < 1 || m > d) continue;
-      Remedy r;
-      r.a = a;
-      r.cell = cell;
-      r.order = m;
-      r.n_constraints = static_cast<std::size_t>(d - m + 1) * product_of_other_degrees(s, grid_axes_all);
-      const std::size_t base = cell - ((cell / grid.strides[ga]) % grid.levels[ga]) * grid.strides[ga];
-      for (std::size_t other : open)
-        if (other - ((other / grid.strides[ga]) % grid.levels[ga]) * grid.strides[ga] == base)
-          r.covers.push_back(other);
-      candidates.push_back(std::move(r));
-    }
-  }
-  return candidates;
-}
-
-// Fewest constraints per covered cell; then more cells; faces before lines; the face of the later
-// axis; the earlier derivative axis.
-bool better(const Remedy& x, const Remedy& y) {
-  const double cx = double(x.n_constraints) / double(x.covers.size());
-  const double cy = double(y.n_constraints) / double(y.covers.size());
-  if (cx != cy) return cx < cy;
-  if (x.covers.size() != y.covers.size()) return x.covers.size() > y.covers.size();
-  if (x.face != y.face) return x.face;
-  if (x.b != y.b) return x.b > y.b;
-  return x.a < y.a;
-}
-
-void constrain_missing_cells(Surface& s, const Grid& grid, const std::vector<LevelAxis>& levels,
-                             std::vector<std::size_t> open) {
-  while (!open.empty()) {
-    const auto candidates = candidate_remedies(s, grid, open);
-    if (candidates.empty()) {
-      std::ostringstream msg;
-      msg << open.size() << " empty cell(s) of the level grid, e.g. " << cell_text(s, grid, open[0])
-          << ", have no data on any line through them, so no local constraint can stand in for "
-             "them (Report V §5.3); lower a degree (--degree) or supply constraints";
-      throw core::UsageError(msg.str());
-    }
-    const Remedy& best = *std::min_element(candidates.begin(), candidates.end(), better);
-    std::vector<std::pair<std::size_t, double>> fixed;
-    std::string where;
-    if (best.face) {
-      const std::size_t gb = static_cast<std::size_t>(
-          std::find(grid.axes.begin(), grid.axes.end(), best.b) - grid.axes.begin());
-      fixed.emplace_back(best.b, level_parameter(s.axes[best.b], levels[best.b], best.level));
-      where = "face '" + s.axes[best.b].name + "' level " + std::to_string(best.level + 1) +
-              " of " + std::to_string(grid.levels[gb]);
-    } else {
-      const auto index = grid.unflatten(best.cell);
-      for (std::size_t g = 0; g < grid.axes.size(); ++g) {
-        const std::size_t k = grid.axes[g];
-        if (k == best.a) continue;
-        fixed.emplace_back(k, level_parameter(s.axes[k], levels[k], static_cast<std::size_t>(index[g])));
-      }
-      where = "line through " + cell_text(s, grid, best.cell);
-    }
-    ConstraintGroup group = derivative_constraints(s, best.a, best.order, fixed);
-    group.origin = "missing-cells";
-    group.description += " [" + where + "; the data hold " + std::to_string(best.order) +
-                         " level(s) of '" + s.axes[best.a].name + "' there]";
-    for (std::size_t cell : best.covers) {
-      const auto g_index = grid.unflatten(cell);
-      std::vector<int> full(s.axes.size(), -1);  // -1 for scattered axes (not part of cells)
-      for (std::size_t g = 0; g < grid.axes.size(); ++g) full[grid.axes[g]] = g_index[g];
-      group.cells.push_back(full);
-    }
-    s.constraints.push_back(std::move(group));
-    std::vector<std::size_t> remaining;
-    for (std::size_t cell : open)
-      if (std::find(best.covers.begin(), best.covers.end(), cell) == best.covers.end())
-        remaining.push_back(cell);
-    open.swap(remaining);
-  }
-}
-
-void lower_degree_for_missing_cells(Surface& s, const Grid& grid,
-                                    const std::vector<std::size_t>& open) {
-  // For each axis: the degree that the data determine on every line through an open cell.
-  std::size_t best_axis = s.axes.size();
-  int best_degree = 0;
-  std::size_t best_size = 0;
-  for (std::size_t g = 0; g < grid.axes.size(); ++g) {
-    const std::size_t a = grid.axes[g];
-    int m = s.axes[a].degree + 1;
-    for (std::size_t cell : open) m = std::min(m, grid.occupied_on_line(cell, g));
-    if (m < 1) continue;
-    Surface trial = s;
-    trial.axes[a].degree = m - 1;
-    if (best_axis == s.axes.size() || trial.size() > best_size) {
-      best_axis = a;
-      best_degree = m - 1;
-      best_size = trial.size();
-    }
-  }
-  if (best_axis == s.axes.size())
-    throw core::UsageError("the empty cells of the level grid, e.g. " + cell_text(s, grid, open[0]) +
-                           ", cannot be handled by lowering one axis's degree; use constraints");
-  ConstraintGroup group;
-  group.origin = "lowered-degree";
-  group.description = "degree of '" + s.axes[best_axis].name + "' lowered from " +
-                      std::to_string(s.axes[best_axis].degree) + " to " +
-                      std::to_string(best_degree) + " for missing cells (Report V §5.3)";
-  for (std::size_t cell : open) {
-    const auto g_index = grid.unflatten(cell);
-    std::vector<int> full(s.axes.size(), -1);
-    for (std::size_t g = 0; g < grid.axes.size(); ++g) full[grid.axes[g]] = g_index[g];
-    group.cells.push_back(full);
-  }
-  s.axes[best_axis].degree = best_degree;
-  s.constraints.push_back(std::move(group));
-}
-
-void check_collinear(const Surface& s, const Grid& grid, const std::string& source) {
-  const std::size_t G = grid.axes.size();
-  for (std::size_t ga = 0; ga < G; ++ga)
-    for (std::size_t gb = ga + 1; gb < G; ++gb) {
-      const std::size_t La = grid.levels[ga], Lb = grid.levels[gb];
-      if (La < 2 || Lb < 2) continue;
-      std::vector<char> pair(La * Lb, 0);
-      for (std::size_t cell = 0; cell < grid.cells(); ++cell)
-        if (grid.count[cell] > 0)
-          pair[((cell / grid.strides[ga]) % La) * Lb + (cell / grid.strides[gb]) % Lb] = 1;
-      std::vector<int> per_a(La, 0), per_b(Lb, 0);
-      for (std::size_t i = 0; i < La; ++i)
-        for (std::size_t j = 0; j < Lb; ++j)
-          if (pair[i * Lb + j]) ++per_a[i], ++per_b[j];
-      const bool one_to_one = std::all_of(per_a.begin(), per_a.end(), [](int n) { return n == 1; }) &&
-                              std::all_of(per_b.begin(), per_b.end(), [](int n) { return n == 1; });
-      if (one_to_one)
-        throw core::InputError("axes '" + s.axes[grid.axes[ga]].name + "' and '" +
-                                   s.axes[grid.axes[gb]].name +
-                                   "' are collinear in the data: each level of one occurs with "
-                                   "exactly one level of the other, so their effects cannot be "
-                                   "separated; fit one of them only or add data",
-                               source);
-    }
-}
-
 // Basis row φ_j(x) = Π_k B_{i_k}(u_k) for all flat j, built axis by axis in place.
 void basis_row(const Surface& s, const double* u, double* phi, double* b) {
   std::size_t length = 1;
@@ -351,38 +94,49 @@ std::size_t count_distinct_cells(const std::vector<std::int32_t>& level_index, s
   return distinct;
 }
 
-}  // namespace
-
-Surface fit_surface(const SampleSet& data, const FitOptions& options) {
-  const Eigen::Index N = data.x.rows();
-  const std::size_t n = static_cast<std::size_t>(data.x.cols());
-  if (options.axes.size() != n || n == 0)
-    throw core::UsageError("the surface needs one axis description per data column (" +
-                           std::to_string(n) + " columns, " + std::to_string(options.axes.size()) +
-                           " axes)");
-  if (N == 0) throw core::InputError("no data rows to fit", data.source);
-  if (data.y.size() != N) throw core::UsageError("x and y hold different numbers of rows");
-  if (!(options.level_tolerance >= 0.0 && options.level_tolerance < 1.0))
-    throw core::UsageError("level tolerance must lie in [0, 1)");
-
+// Axes named as asked, with their transforms (default by name when not given).
+Surface described_surface(const FitOptions& options) {
   Surface s;
   s.name = options.name;
   s.dependent_name = options.dependent_name;
   s.dependent_unit = options.dependent_unit;
-  std::vector<Transform> transforms;
   for (const auto& spec : options.axes) {
     Axis a;
     a.name = spec.name;
     a.unit = spec.unit;
     a.transform = spec.transform.value_or(default_transform(spec.name));
-    transforms.push_back(a.transform);
     s.axes.push_back(a);
   }
-  validate(data, s.axes);
+  return s;
+}
 
-  // Interval from the data; levels; degrees.
-  const auto levels = find_levels(data, transforms, options.level_tolerance);
-  for (std::size_t k = 0; k < n; ++k) {
+// The degree asked for an axis with L levels: at most L − 1 (Report V §5.2), else UsageError
+// listing the levels; without a request min(L − 1, kMaxDegree).
+int axis_degree(const Axis& a, const std::optional<int>& requested, int L, double level_tolerance) {
+  if (!requested) return std::min(L - 1, kMaxDegree);
+  const int d = *requested;
+  if (d < 0 || d > kMaxDegree)
+    throw core::UsageError("axis '" + a.name + "': degree " + std::to_string(d) + " is outside 0.." +
+                           std::to_string(kMaxDegree));
+  if (d <= L - 1) return d;
+  std::ostringstream msg;
+  msg << "axis '" << a.name << "': degree " << d << " needs at least " << d + 1
+      << " distinct levels, but the data hold " << L << " level(s)";
+  if (!a.levels.empty() && L <= 10) {
+    msg << " (";
+    for (int l = 0; l < L; ++l) msg << (l ? ", " : "") << a.levels[static_cast<std::size_t>(l)];
+    msg << ")";
+  }
+  msg << "; the degree of an axis is at most its number of test levels - 1 (Report V §5.2), "
+         "otherwise the surface is not determined between the levels. Values closer than "
+      << level_tolerance << " of the axis range form one level.";
+  throw core::UsageError(msg.str());
+}
+
+// Interval from the data, levels and degree of every axis.
+void set_axes_from_data(Surface& s, const SampleSet& data, const std::vector<LevelAxis>& levels,
+                        const FitOptions& options) {
+  for (std::size_t k = 0; k < s.axes.size(); ++k) {
     Axis& a = s.axes[k];
     a.start = data.x.col(static_cast<Eigen::Index>(k)).minCoeff();
     a.end = data.x.col(static_cast<Eigen::Index>(k)).maxCoeff();
@@ -391,33 +145,15 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
     if (!a.scattered)
       for (double c : levels[k].centres)
         a.levels.push_back(a.transform == Transform::log10 ? std::pow(10.0, c) : c);
-    const int L = static_cast<int>(levels[k].centres.size());
-    if (options.axes[k].degree) {
-      const int d = *options.axes[k].degree;
-      if (d < 0 || d > kMaxDegree)
-        throw core::UsageError("axis '" + a.name + "': degree " + std::to_string(d) +
-                               " is outside 0.." + std::to_string(kMaxDegree));
-      if (d > L - 1) {
-        std::ostringstream msg;
-        msg << "axis '" << a.name << "': degree " << d << " needs at least " << d + 1
-            << " distinct levels, but the data hold " << L << " level(s)";
-        if (!a.levels.empty() && L <= 10) {
-          msg << " (";
-          for (int l = 0; l < L; ++l) msg << (l ? ", " : "") << a.levels[static_cast<std::size_t>(l)];
-          msg << ")";
-        }
-        msg << "; the degree of an axis is at most its number of test levels - 1 (Report V §5.2), "
-               "otherwise the surface is not determined between the levels. Values closer than "
-            << options.level_tolerance << " of the axis range form one level.";
-        throw core::UsageError(msg.str());
-      }
-      a.degree = d;
-    } else {
-      a.degree = std::min(L - 1, kMaxDegree);
-    }
+    a.degree = axis_degree(a, options.axes[k].degree, static_cast<int>(levels[k].centres.size()),
+                           options.level_tolerance);
   }
+}
 
-  // Level index of every row and axis.
+// Level index of every row and axis (row-major, n per row).
+std::vector<std::int32_t> level_indices(const Surface& s, const SampleSet& data, const std::vector<LevelAxis>& levels) {
+  const Eigen::Index N = data.x.rows();
+  const std::size_t n = s.axes.size();
   std::vector<std::int32_t> level_index(static_cast<std::size_t>(N) * n);
   for (Eigen::Index r = 0; r < N; ++r)
     for (std::size_t k = 0; k < n; ++k) {
@@ -426,126 +162,80 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
       level_index[static_cast<std::size_t>(r) * n + k] =
           static_cast<std::int32_t>(std::lower_bound(ub.begin(), ub.end(), c) - ub.begin());
     }
+  return level_index;
+}
 
-  // Level grid over the axes that have levels; its empty cells and their remedy.
-  Grid grid;
-  std::size_t cells = 1;
-  for (std::size_t k = 0; k < n; ++k)
-    if (!s.axes[k].scattered) {
-      grid.axes.push_back(k);
-      grid.levels.push_back(levels[k].centres.size());
-      cells *= levels[k].centres.size();
-      if (cells > kMaxGridCells) break;
-    }
-  if (!grid.axes.empty() && cells <= kMaxGridCells) {
-    s.level_grid = true;
-    grid.strides.assign(grid.axes.size(), 1);
-    for (std::size_t g = grid.axes.size() - 1; g-- > 0;)
-      grid.strides[g] = grid.strides[g + 1] * grid.levels[g + 1];
-    grid.count.assign(cells, 0);
-    for (Eigen::Index r = 0; r < N; ++r) {
-      std::size_t cell = 0;
-      for (std::size_t g = 0; g < grid.axes.size(); ++g)
-        cell += grid.strides[g] *
-                static_cast<std::size_t>(level_index[static_cast<std::size_t>(r) * n + grid.axes[g]]);
-      ++grid.count[cell];
-    }
-    check_collinear(s, grid, data.source);
-    std::vector<std::size_t> empty;
-    for (std::size_t cell = 0; cell < cells; ++cell)
-      if (grid.count[cell] == 0) {
-        empty.push_back(cell);
-        const auto g_index = grid.unflatten(cell);
-        std::vector<int> full(n, -1);
-        for (std::size_t g = 0; g < grid.axes.size(); ++g) full[grid.axes[g]] = g_index[g];
-        s.missing_cells.push_back(full);
-      }
-    const auto open = undetermined_cells(s, grid, empty);
-    if (!open.empty()) {
-      if (open.size() > cells - empty.size())  // more undetermined than occupied cells
-        throw core::UsageError(
-            std::to_string(empty.size()) + " of " + std::to_string(cells) +
-            " cells of the level grid are empty, more than hold data; local constraints cannot "
-            "stand in for that much missing data (Report V §5.3); lower degrees (--degree) or "
-            "supply constraints");
-      if (options.missing == MissingCellRemedy::constrain)
-        constrain_missing_cells(s, grid, levels, open);
-      else if (options.missing == MissingCellRemedy::lower_degree)
-        lower_degree_for_missing_cells(s, grid, open);
-    }
-  }
-  for (auto& group : parse_user_constraints(options.user_constraints, s,
-                                            options.user_constraints_source))
-    s.constraints.push_back(std::move(group));
+// The control points that satisfy the constraints C c = r: c = c0 + Z z with q free z.
+struct ConstrainedBasis {
+  bool constrained = false;
+  Eigen::MatrixXd Z;
+  Eigen::VectorXd c0;
+  Eigen::Index q = 0;
+};
 
-  // Constraints C c = r → c = c0 + Z z.
+ConstrainedBasis constrained_basis(const Surface& s) {
   const Eigen::Index p = static_cast<Eigen::Index>(s.size());
   Eigen::Index n_constraints = 0;
   for (const auto& g : s.constraints) n_constraints += static_cast<Eigen::Index>(g.equations.size());
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n_constraints, p);
   Eigen::VectorXd rhs(n_constraints);
-  {
-    Eigen::Index row = 0;
-    for (const auto& g : s.constraints)
-      for (const auto& e : g.equations) {
-        for (const auto& [flat, coefficient] : e.terms)
-          C(row, static_cast<Eigen::Index>(flat)) += coefficient;
-        rhs[row++] = e.rhs;
-      }
-  }
-  Eigen::MatrixXd Z;
-  Eigen::VectorXd c0 = Eigen::VectorXd::Zero(p);
-  Eigen::Index q = p;
-  const bool constrained = n_constraints > 0;
-  if (constrained) {
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(C.transpose());
-    qr.setThreshold(1e-12);
-    const Eigen::Index rank = qr.rank();
-    const Eigen::MatrixXd Q = qr.householderQ();
-    Z = Q.rightCols(p - rank);
-    q = p - rank;
-    c0 = C.completeOrthogonalDecomposition().solve(rhs);
-    if ((C * c0 - rhs).norm() > 1e-9 * (1.0 + rhs.norm()))
-      throw core::UsageError("the constraints on the control points contradict each other");
-  }
-
-  std::size_t occupied = count_distinct_cells(level_index, n, static_cast<std::size_t>(N));
-  if (static_cast<std::size_t>(q) > occupied) {
-    std::ostringstream msg;
-    msg << "the surface has " << q << " unknowns (control points";
-    if (constrained) msg << " after " << (p - q) << " constraint(s)";
-    msg << ") but the data occupy only " << occupied
-        << " distinct level combinations (cells); lower a degree (--degree) or add constraints";
-    throw core::UsageError(msg.str());
-  }
-
-  // Chunked Householder reduction of [A Z | y - A c0] to a (q+1)×(q+1) triangle.
-  Eigen::MatrixXd R_aug = Eigen::MatrixXd::Zero(q + 1, q + 1);
-  {
-    std::vector<double> u(n), phi(static_cast<std::size_t>(p)), b(kMaxDegree + 1);
-    Eigen::MatrixXd block(std::min<Eigen::Index>(N, kChunkRows) + q + 1, q + 1);
-    for (Eigen::Index first = 0; first < N; first += kChunkRows) {
-      const Eigen::Index rows = std::min<Eigen::Index>(kChunkRows, N - first);
-      block.resize(rows + q + 1, q + 1);
-      block.topRows(q + 1) = R_aug;
-      for (Eigen::Index r = 0; r < rows; ++r) {
-        const Eigen::Index row = first + r;
-        for (std::size_t k = 0; k < n; ++k)
-          u[k] = s.axes[k].parameter(data.x(row, static_cast<Eigen::Index>(k)));
-        basis_row(s, u.data(), phi.data(), b.data());
-        const Eigen::Map<const Eigen::RowVectorXd> phi_row(phi.data(), p);
-        if (constrained) {
-          block.row(q + 1 + r).head(q) = phi_row * Z;
-          block(q + 1 + r, q) = data.y[row] - phi_row.dot(c0);
-        } else {
-          block.row(q + 1 + r).head(q) = phi_row;
-          block(q + 1 + r, q) = data.y[row];
-        }
-      }
-      Eigen::HouseholderQR<Eigen::MatrixXd> qr(block);
-      R_aug = qr.matrixQR().topRows(q + 1).triangularView<Eigen::Upper>();
+  Eigen::Index row = 0;
+  for (const auto& g : s.constraints)
+    for (const auto& e : g.equations) {
+      for (const auto& [flat, coefficient] : e.terms) C(row, static_cast<Eigen::Index>(flat)) += coefficient;
+      rhs[row++] = e.rhs;
     }
+  ConstrainedBasis basis;
+  basis.c0 = Eigen::VectorXd::Zero(p);
+  basis.q = p;
+  basis.constrained = n_constraints > 0;
+  if (!basis.constrained) return basis;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(C.transpose());
+  qr.setThreshold(1e-12);
+  const Eigen::Index rank = qr.rank();
+  const Eigen::MatrixXd Q = qr.householderQ();
+  basis.Z = Q.rightCols(p - rank);
+  basis.q = p - rank;
+  basis.c0 = C.completeOrthogonalDecomposition().solve(rhs);
+  if ((C * basis.c0 - rhs).norm() > 1e-9 * (1.0 + rhs.norm()))
+    throw core::UsageError("the constraints on the control points contradict each other");
+  return basis;
+}
+
+// Chunked Householder reduction of [A Z | y − A c0] to a (q+1)×(q+1) triangle.
+Eigen::MatrixXd reduced_triangle(const Surface& s, const SampleSet& data, const ConstrainedBasis& basis) {
+  const Eigen::Index N = data.x.rows(), q = basis.q, p = static_cast<Eigen::Index>(s.size());
+  const std::size_t n = s.axes.size();
+  Eigen::MatrixXd R_aug = Eigen::MatrixXd::Zero(q + 1, q + 1);
+  std::vector<double> u(n), phi(static_cast<std::size_t>(p)), b(kMaxDegree + 1);
+  Eigen::MatrixXd block(std::min<Eigen::Index>(N, kChunkRows) + q + 1, q + 1);
+  for (Eigen::Index first = 0; first < N; first += kChunkRows) {
+    const Eigen::Index rows = std::min<Eigen::Index>(kChunkRows, N - first);
+    block.resize(rows + q + 1, q + 1);
+    block.topRows(q + 1) = R_aug;
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      const Eigen::Index row = first + r;
+      for (std::size_t k = 0; k < n; ++k) u[k] = s.axes[k].parameter(data.x(row, static_cast<Eigen::Index>(k)));
+      basis_row(s, u.data(), phi.data(), b.data());
+      const Eigen::Map<const Eigen::RowVectorXd> phi_row(phi.data(), p);
+      if (basis.constrained) {
+        block.row(q + 1 + r).head(q) = phi_row * basis.Z;
+        block(q + 1 + r, q) = data.y[row] - phi_row.dot(basis.c0);
+      } else {
+        block.row(q + 1 + r).head(q) = phi_row;
+        block(q + 1 + r, q) = data.y[row];
+      }
+    }
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(block);
+    R_aug = qr.matrixQR().topRows(q + 1).triangularView<Eigen::Upper>();
   }
+  return R_aug;
+}
+
+// Least-squares control points; NumericalError for a rank-deficient design.
+Eigen::VectorXd control_points(const Surface& s, const SampleSet& data, const ConstrainedBasis& basis) {
+  const Eigen::Index q = basis.q;
+  const Eigen::MatrixXd R_aug = reduced_triangle(s, data, basis);
   const Eigen::MatrixXd R = R_aug.topLeftCorner(q, q);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(R);
   solver.setThreshold(kRankThreshold);
@@ -558,9 +248,13 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
     throw core::NumericalError(msg.str());
   }
   const Eigen::VectorXd z = solver.solve(R_aug.col(q).head(q));
-  s.control_points = constrained ? Eigen::VectorXd(c0 + Z * z) : z;
+  return basis.constrained ? Eigen::VectorXd(basis.c0 + basis.Z * z) : z;
+}
 
-  // Statistics (Report V §5.2): N, p, dof, R, s, maximum relative error.
+// Statistics (Report V §5.2): N, p, dof, R, s, maximum relative error.
+void fill_statistics(Surface& s, const SampleSet& data, Eigen::Index q, std::size_t occupied) {
+  const Eigen::Index N = data.x.rows();
+  const std::size_t n = s.axes.size();
   Statistics& st = s.statistics;
   st.n_points = static_cast<std::size_t>(N);
   st.n_parameters = static_cast<std::size_t>(q);
@@ -569,8 +263,7 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
   const double mean = data.y.mean();
   std::vector<double> u(n);
   for (Eigen::Index r = 0; r < N; ++r) {
-    for (std::size_t k = 0; k < n; ++k)
-      u[k] = s.axes[k].parameter(data.x(r, static_cast<Eigen::Index>(k)));
+    for (std::size_t k = 0; k < n; ++k) u[k] = s.axes[k].parameter(data.x(r, static_cast<Eigen::Index>(k)));
     const double residual = data.y[r] - evaluate_at_parameters(s, u.data(), nullptr);
     st.ss_residual += residual * residual;
     st.ss_total += (data.y[r] - mean) * (data.y[r] - mean);
@@ -586,6 +279,50 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
                            : std::numeric_limits<double>::quiet_NaN();
   st.s = st.residual_dof > 0 ? std::sqrt(st.ss_residual / double(st.residual_dof))
                              : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+Surface fit_surface(const SampleSet& data, const FitOptions& options) {
+  const Eigen::Index N = data.x.rows();
+  const std::size_t n = static_cast<std::size_t>(data.x.cols());
+  if (options.axes.size() != n || n == 0)
+    throw core::UsageError("the surface needs one axis description per data column (" +
+                           std::to_string(n) + " columns, " + std::to_string(options.axes.size()) +
+                           " axes)");
+  if (N == 0) throw core::InputError("no data rows to fit", data.source);
+  if (data.y.size() != N) throw core::UsageError("x and y hold different numbers of rows");
+  if (!(options.level_tolerance >= 0.0 && options.level_tolerance < 1.0))
+    throw core::UsageError("level tolerance must lie in [0, 1)");
+
+  Surface s = described_surface(options);
+  validate(data, s.axes);
+  std::vector<Transform> transforms;
+  for (const auto& a : s.axes) transforms.push_back(a.transform);
+  const auto levels = find_levels(data, transforms, options.level_tolerance);
+  set_axes_from_data(s, data, levels, options);
+  const auto level_index = level_indices(s, data, levels);
+
+  if (const auto grid = detail::level_grid(s, levels, level_index)) {
+    s.level_grid = true;
+    detail::check_collinear(s, *grid, data.source);
+    detail::remedy_missing_cells(s, *grid, levels, options);
+  }
+  for (auto& group : parse_user_constraints(options.user_constraints, s, options.user_constraints_source))
+    s.constraints.push_back(std::move(group));
+
+  const ConstrainedBasis basis = constrained_basis(s);
+  const std::size_t occupied = count_distinct_cells(level_index, n, static_cast<std::size_t>(N));
+  if (static_cast<std::size_t>(basis.q) > occupied) {
+    std::ostringstream msg;
+    msg << "the surface has " << basis.q << " unknowns (control points";
+    if (basis.constrained) msg << " after " << (static_cast<Eigen::Index>(s.size()) - basis.q) << " constraint(s)";
+    msg << ") but the data occupy only " << occupied
+        << " distinct level combinations (cells); lower a degree (--degree) or add constraints";
+    throw core::UsageError(msg.str());
+  }
+  s.control_points = control_points(s, data, basis);
+  fill_statistics(s, data, basis.q, occupied);
   return s;
 }
 

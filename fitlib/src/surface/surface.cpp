@@ -1,4 +1,4 @@
-// Bezier surface: axes, evaluation (value, gradient), JSON (formats.md §4).
+// Bezier surface: axes, evaluation (value, gradient), JSON (docs/formats.md §4).
 #include "fitlib/surface/surface.hpp"
 
 #include <algorithm>
@@ -270,6 +270,83 @@ nlohmann::json surface_to_json(const Surface& s) {
           {"provenance", s.provenance}};
 }
 
+namespace {
+
+Axis axis_from_json(const nlohmann::json& j, const std::string& source, const std::string& path) {
+  Axis a;
+  a.name = required<std::string>(j, "name", source, path);
+  a.unit = j.value("unit", "");
+  const auto transform = required<std::string>(j, "transform", source, path);
+  if (transform != "linear" && transform != "log10")
+    throw core::InputError("transform must be linear or log10", source, 0, 0, path + "transform");
+  a.transform = parse_transform(transform);
+  const auto interval = required<std::vector<double>>(j, "interval", source, path);
+  if (interval.size() != 2 || !(interval[0] <= interval[1]) || !std::isfinite(interval[1] - interval[0]))
+    throw core::InputError("must be [start, end] with start <= end", source, 0, 0, path + "interval");
+  a.start = interval[0];
+  a.end = interval[1];
+  if (a.transform == Transform::log10 && !(a.start > 0.0))
+    throw core::InputError("a log10 axis needs a positive interval", source, 0, 0, path + "interval");
+  a.degree = static_cast<int>(core::json_integer(required<nlohmann::json>(j, "degree", source, path), 0, kMaxDegree,
+                                                 source, path + "degree"));
+  if (j.contains("levels")) a.levels = j["levels"].get<std::vector<double>>();
+  a.level_count = j.value("level_count", a.levels.size());
+  a.scattered = j.value("scattered", false);
+  return a;
+}
+
+// Constraint groups on the control points of `s` (its axes read already).
+std::vector<ConstraintGroup> constraints_from_json(const nlohmann::json& groups, const Surface& s,
+                                                   const std::string& source) {
+  std::vector<ConstraintGroup> out;
+  try {
+    for (const auto& g : groups) {
+      ConstraintGroup group;
+      group.origin = g.value("origin", "");
+      group.description = g.value("description", "");
+      if (g.contains("cells")) group.cells = g["cells"].get<std::vector<std::vector<int>>>();
+      for (const auto& e : g.value("equations", nlohmann::json::array())) {
+        LinearConstraint c;
+        c.rhs = e.value("rhs", 0.0);
+        for (const auto& t : e.value("terms", nlohmann::json::array())) {
+          const auto index = t.at("index").get<std::vector<int>>();
+          bool valid = index.size() == s.axes.size();
+          for (std::size_t k = 0; valid && k < index.size(); ++k) valid = index[k] >= 0 && index[k] <= s.axes[k].degree;
+          if (!valid)
+            throw core::InputError("control-point index out of range", source, 0, 0,
+                                   "constraints[].equations[].terms[].index");
+          c.terms.emplace_back(s.flat_index(index), t.at("coefficient").get<double>());
+        }
+        group.equations.push_back(c);
+      }
+      out.push_back(group);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw core::InputError(std::string("malformed constraints: ") + e.what(), source, 0, 0, "constraints");
+  }
+  return out;
+}
+
+Statistics statistics_from_json(const nlohmann::json& st) {
+  auto number = [&](const char* key) {
+    return st.contains(key) && st[key].is_number() ? st[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  Statistics out;
+  out.n_points = st.value("N", std::size_t{0});
+  out.n_parameters = st.value("p", std::size_t{0});
+  out.residual_dof = st.value("residual_dof", std::size_t{0});
+  out.R = number("R");
+  out.s = number("s");
+  out.max_relative_error = number("max_relative_error");
+  out.max_relative_error_row = st.value("max_relative_error_row", std::size_t{0});
+  out.ss_residual = number("ss_residual");
+  out.ss_total = number("ss_total");
+  out.n_occupied_cells = st.value("occupied_cells", std::size_t{0});
+  return out;
+}
+
+}  // namespace
+
 Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
   try {
     Surface s;
@@ -288,32 +365,11 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
     double control_point_count = 1.0;
     for (std::size_t k = 0; k < axes.size(); ++k) {
       const std::string path = "axes[" + std::to_string(k) + "].";
-      Axis a;
-      a.name = required<std::string>(axes[k], "name", source, path);
-      a.unit = axes[k].value("unit", "");
-      const auto transform = required<std::string>(axes[k], "transform", source, path);
-      if (transform != "linear" && transform != "log10")
-        throw core::InputError("transform must be linear or log10", source, 0, 0, path + "transform");
-      a.transform = parse_transform(transform);
-      const auto interval = required<std::vector<double>>(axes[k], "interval", source, path);
-      if (interval.size() != 2 || !(interval[0] <= interval[1]) || !std::isfinite(interval[1] - interval[0]))
-        throw core::InputError("must be [start, end] with start <= end", source, 0, 0,
-                               path + "interval");
-      a.start = interval[0];
-      a.end = interval[1];
-      if (a.transform == Transform::log10 && !(a.start > 0.0))
-        throw core::InputError("a log10 axis needs a positive interval", source, 0, 0,
-                               path + "interval");
-      a.degree = static_cast<int>(core::json_integer(required<nlohmann::json>(axes[k], "degree", source, path),
-                                                     0, kMaxDegree, source, path + "degree"));
-      control_point_count *= a.degree + 1;
+      s.axes.push_back(axis_from_json(axes[k], source, path));
+      control_point_count *= s.axes.back().degree + 1;
       if (control_point_count > kMaxControlPoints)
         throw core::InputError("the degrees need more than " + std::to_string(kMaxControlPoints) +
                                    " control points", source, 0, 0, path + "degree");
-      if (axes[k].contains("levels")) a.levels = axes[k]["levels"].get<std::vector<double>>();
-      a.level_count = axes[k].value("level_count", a.levels.size());
-      a.scattered = axes[k].value("scattered", false);
-      s.axes.push_back(a);
     }
     const auto cp = required<nlohmann::json>(j, "control_points", source, "");
     const auto values = required<std::vector<double>>(cp, "values", source, "control_points.");
@@ -326,52 +382,8 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
     s.level_grid = j.value("level_grid", false);
     if (j.contains("missing_cells"))
       s.missing_cells = j["missing_cells"].get<std::vector<std::vector<int>>>();
-    if (j.contains("constraints")) {
-      try {
-        for (const auto& g : j["constraints"]) {
-          ConstraintGroup group;
-          group.origin = g.value("origin", "");
-          group.description = g.value("description", "");
-          if (g.contains("cells")) group.cells = g["cells"].get<std::vector<std::vector<int>>>();
-          for (const auto& e : g.value("equations", nlohmann::json::array())) {
-            LinearConstraint c;
-            c.rhs = e.value("rhs", 0.0);
-            for (const auto& t : e.value("terms", nlohmann::json::array())) {
-              const auto index = t.at("index").get<std::vector<int>>();
-              bool valid = index.size() == s.axes.size();
-              for (std::size_t k = 0; valid && k < index.size(); ++k)
-                valid = index[k] >= 0 && index[k] <= s.axes[k].degree;
-              if (!valid)
-                throw core::InputError("control-point index out of range", source, 0, 0,
-                                       "constraints[].equations[].terms[].index");
-              c.terms.emplace_back(s.flat_index(index), t.at("coefficient").get<double>());
-            }
-            group.equations.push_back(c);
-          }
-          s.constraints.push_back(group);
-        }
-      } catch (const nlohmann::json::exception& e) {
-        throw core::InputError(std::string("malformed constraints: ") + e.what(), source, 0, 0,
-                               "constraints");
-      }
-    }
-    if (j.contains("statistics")) {
-      const auto& st = j["statistics"];
-      auto number = [&](const char* key) {
-        return st.contains(key) && st[key].is_number() ? st[key].get<double>()
-                                                        : std::numeric_limits<double>::quiet_NaN();
-      };
-      s.statistics.n_points = st.value("N", std::size_t{0});
-      s.statistics.n_parameters = st.value("p", std::size_t{0});
-      s.statistics.residual_dof = st.value("residual_dof", std::size_t{0});
-      s.statistics.R = number("R");
-      s.statistics.s = number("s");
-      s.statistics.max_relative_error = number("max_relative_error");
-      s.statistics.max_relative_error_row = st.value("max_relative_error_row", std::size_t{0});
-      s.statistics.ss_residual = number("ss_residual");
-      s.statistics.ss_total = number("ss_total");
-      s.statistics.n_occupied_cells = st.value("occupied_cells", std::size_t{0});
-    }
+    if (j.contains("constraints")) s.constraints = constraints_from_json(j["constraints"], s, source);
+    if (j.contains("statistics")) s.statistics = statistics_from_json(j["statistics"]);
     if (j.contains("provenance")) s.provenance = j["provenance"];
     return s;
   } catch (const nlohmann::json::exception& e) {

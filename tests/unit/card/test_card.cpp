@@ -133,6 +133,9 @@ TEST(Export, RefusesWhatAFormatCannotHold) {
   EXPECT_THROW(card::export_card(prony_card(6), "lsdyna"), core::UsageError);  // > 5 terms
   EXPECT_THROW(card::export_card(prony_card(2), "calculix"), core::UsageError);
   EXPECT_THROW(card::export_card(prony_card(2, {{"temperature_law", "arrhenius"}}), "abaqus"), core::UsageError);
+  // The polynomial law is typed as such (Model::temperature_law_info), not dropped silently.
+  EXPECT_THROW(card::export_card(prony_card(2, {{"temperature_law", "polynomial"}, {"polynomial_degree", 1}}), "abaqus"),
+               core::UsageError);
   card::Card frac;
   frac.model_kind = "fractional-zener";
   for (double v : {1.0, 10.0, 0.1, 0.5}) frac.parameters.push_back(card::ParameterEstimate{v, false, {}, {}, {}, {}});

@@ -15,6 +15,7 @@
 #include "fitlib/core/rng.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/fit/master_curve.hpp"
+#include "fitlib/model/material_point.hpp"
 #include "fitlib/model/model.hpp"
 
 using namespace fitlib;
@@ -356,6 +357,22 @@ TEST(MasterCurve, ShiftModelKeysOnTemperature) {
   EXPECT_THROW(m->moduli(p.data(), c), core::InputError);
   EXPECT_NEAR(m->relaxation_modulus(p.data(), model::TestCondition{model::TestMode::shear, "", 1.0, 0.5}, 1.0),
               inner->relaxation_modulus(p.data(), model::TestCondition{}, 1.0 / 100.0), 1e-12);  // a_T = 10^2
+}
+
+TEST(MasterCurve, ShiftModelAnswersTheCapabilitiesOfItsTable) {
+  const auto inner = model::make_model("prony", {{"terms", 2}, {"mode", "shear"}, {"bulk_modulus", true}});
+  const auto m = fit::make_isotherm_shift_model(inner, {0.0, 20.0}, 5.0);
+  std::vector<double> p = inner->default_parameters();
+  p.insert(p.end(), {2.0, -1.0});
+  const auto law = m->temperature_law_info();
+  EXPECT_EQ(law.law, model::ShiftLaw::other);
+  EXPECT_EQ(law.shift_parameters, (std::vector<int>{6, 7}));
+  EXPECT_EQ(law.pole_parameter, -1);
+  EXPECT_DOUBLE_EQ(m->temperature_factors(p.data(), 19.0).shift_factor, 0.1);  // isotherm 1: 10^-1
+  EXPECT_DOUBLE_EQ(m->temperature_factors(p.data(), 1.0).shift_factor, 100.0);
+  EXPECT_EQ(m->temperature_factors(p.data(), std::nan("")).shift_factor, 1.0);
+  EXPECT_EQ(m->bulk_modulus(p.data()), inner->bulk_modulus(p.data()));
+  EXPECT_THROW(m->material_point(p.data(), {}), core::UsageError);
 }
 
 TEST(MasterCurve, CardCarriesWlfOfTheShifts) {

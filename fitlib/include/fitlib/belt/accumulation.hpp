@@ -1,5 +1,5 @@
 #pragma once
-// Strain accumulation under periodic tooth-like shear loading (Zupancic–Emri; belt-mechanics.md §8).
+// Strain accumulation under periodic tooth-like shear loading (Zupancic–Emri; docs/belt.md, "Zupancic–Emri").
 //
 // Each belt cycle loads a tooth with τ0 while it runs round a pulley (π/ω) and unloads it for the
 // rest of the cycle; ξ = 2(κ + π)/ω with κ = l/R. With a discrete retardation spectrum

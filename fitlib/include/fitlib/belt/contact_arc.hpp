@@ -1,5 +1,5 @@
 #pragma once
-// Sliding contact of a V-belt on one pulley (Report I, Appendix A; belt-mechanics.md §2.4).
+// Sliding contact of a V-belt on one pulley (Report I, Appendix A; docs/belt.md, "Equations as implemented").
 //
 // A sliding arc starts at the reference point P (end of the non-sliding arc, γ = 180°) and runs
 // with φ in the direction of belt travel. κ = F/F_P; x0 = x/R is the radial sinking of the belt.

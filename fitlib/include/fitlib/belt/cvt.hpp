@@ -1,6 +1,6 @@
 #pragma once
-// Axial thrust of a rubber V-belt CVT pulley: Sorge's practical formulary (belt-mechanics.md §7,
-// seeds/sorge-2d-vbelt-cvt.txt Eqs 11–12). Forces N, angles rad; α is the groove half-angle.
+// Axial thrust of a rubber V-belt CVT pulley: Sorge's practical formulary (docs/belt.md,
+// "Sorge CVT", Sorge Eqs 11–12). Forces N, angles rad; α is the groove half-angle.
 // R = driver, N = driven; T_T, T_S = tight and slack dynamic tensions (N − μv²).
 #include "fitlib/core/units.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
-// Sorge's 2-D shear-compliant contact region of a rubber V-belt CVT pulley (belt-mechanics.md §7,
-// seeds/sorge-2d-vbelt-cvt.txt §II.B, Eqs 3–11), solved by shooting from the exit.
+// Sorge's 2-D shear-compliant contact region of a rubber V-belt CVT pulley (docs/belt.md,
+// "Sorge 2-D CVT: contact-region ODE", Sorge §II.B Eqs 3–11), solved by shooting from the exit.
 // θ is the wrap angle from the entrance (0) to the exit (Θ); primes are d/dθ. All quantities are
 // dimensionless: x = penetration Δr/r∞, χ = penetration angle, ε = T/S_l, σ = S/S_l,
 // m = (M/S_f + 1/r_fact) r∞(1 − x)/cos χ, thrust per S_l. See docs/belt.md for the equations.

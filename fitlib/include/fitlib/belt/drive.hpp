@@ -1,5 +1,5 @@
 #pragma once
-// Drive geometry and tensions (Report I §4, belt-mechanics.md §2.2–2.3).
+// Drive geometry and tensions (Report I §4; docs/belt.md, "Equations as implemented").
 //
 // Pulleys are listed in the order the belt travels; the belt wraps every pulley on the outside of
 // a convex path (an open drive), travelling counter-clockwise. Two-pulley drives are placed on the

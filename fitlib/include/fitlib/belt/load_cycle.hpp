@@ -1,6 +1,6 @@
 #pragma once
-// The belt's load cycle around a drive (Report I §4; belt-mechanics.md §2.2–2.6): for every point
-// of the belt path the belt force F, curvature K, side pressure p, sliding angle γ, sliding speed
+// The belt's load cycle around a drive (Report I §4; docs/belt.md, "Equations as implemented"):
+// for every point of the belt path the belt force F, curvature K, side pressure p, sliding angle γ, sliding speed
 // and friction utilisation, zone by zone (free span, entrance, non-sliding, sliding, exit, free
 // span) for each pulley. The cycle starts at the middle of the span that leaves the driver (the
 // slack side) and follows the belt.

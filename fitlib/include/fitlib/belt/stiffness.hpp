@@ -1,5 +1,5 @@
 #pragma once
-// Belt stiffnesses c, k1, EI (Report I §6.1, A.36–A.37; belt-mechanics.md §4).
+// Belt stiffnesses c, k1, EI (Report I §6.1, A.36–A.37; docs/belt.md, "Stiffness laws").
 //
 // The thesis normalises moduli by proprietary constants E0 (rubber) and E1 (cord). The project
 // fixes them once (docs/decisions.md, "belt: E0 and E1"): E0 = 10 MPa, E1 = 100 MPa, with a cord

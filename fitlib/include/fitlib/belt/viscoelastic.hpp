@@ -1,5 +1,5 @@
 #pragma once
-// Viscoelastic belts after Sorge & Cammalleri (AIMETA 2001; belt-mechanics.md §6): the
+// Viscoelastic belts after Sorge & Cammalleri (AIMETA 2001; docs/belt.md, "Sorge–Cammalleri"): the
 // three-parameter belt T + τ_T Ṫ = S(ε + τ_ε ε̇) (1) in the tension test on two pulleys and in a
 // steady two-pulley drive. Forces N, angles rad, times s.
 #include <vector>

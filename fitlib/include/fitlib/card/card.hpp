@@ -1,5 +1,5 @@
 #pragma once
-// Material cards (formats.md §3): a model, its parameter values with uncertainty, how the fit
+// Material cards (docs/formats.md §3): a model, its parameter values with uncertainty, how the fit
 // went and where the data came from. JSON via nlohmann-json; written atomically.
 #include <nlohmann/json.hpp>
 #include <optional>

@@ -11,7 +11,7 @@ namespace fitlib::card {
 
 struct ExportOptions {
   // Poisson ratio of the instantaneous elastic response where the card has no bulk modulus.
-  // Default 0.4995 ⇔ K ≈ 10³ G (constitutive-model.md §1.4).
+  // Default 0.4995 ⇔ K ≈ 10³ G (docs/decisions.md, "exports: what each FE format receives").
   double poisson_ratio = 0.4995;
   int material_id = 1;
   // Write a card whose terms break the admissible window it records (fit.admissible) or whose

@@ -1,5 +1,5 @@
 #pragma once
-// Errors with context. Exit codes follow the command-line contract (formats.md §6):
+// Errors with context. Exit codes follow the command-line contract (docs/formats.md §6):
 // 2 usage, 3 bad input (file, line, column or key named), 4 numerical failure.
 #include <stdexcept>
 #include <string>

@@ -32,7 +32,7 @@ std::vector<std::string> split_csv_fields(const std::string& text, const std::st
 double parse_csv_number(const std::string& text, const std::string& what,
                         const std::string& file_name, int line, int column);
 
-// Text of `value` that reads back to the same double (17 significant digits).
+// Text of `value` that reads back to the same double (core::format_number, shortest round trip).
 std::string format_exact(double value);
 
 // Quotes a label for CSV output when it holds a comma, quote or surrounding space.

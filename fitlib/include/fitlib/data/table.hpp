@@ -1,5 +1,5 @@
 #pragma once
-// Dynamic-test tables (formats.md §1): one row per measured point, moduli in MPa.
+// Dynamic-test tables (docs/formats.md §1): one row per measured point, moduli in MPa.
 #include <string>
 #include <vector>
 
@@ -56,7 +56,7 @@ DynamicTestTable read_dynamic_tables(const std::vector<std::string>& paths,
 // shortest round-trip form so that reading the text back gives bit-identical values.
 std::string format_dynamic_table(const DynamicTestTable& table);
 
-// Writes a table as native CSV (formats.md §1), atomically.
+// Writes a table as native CSV (docs/formats.md §1), atomically.
 void write_dynamic_table(const std::string& path, const DynamicTestTable& table);
 
 }  // namespace fitlib::data

@@ -17,7 +17,7 @@
 namespace fitlib::fatigue {
 
 struct BeamSection {
-  // Geometry below the cord line (the reference cogged section, belt-mechanics.md §5a).
+  // Geometry below the cord line (the reference cogged section, docs/segment.md, "Mesh").
   double cushion_mm = 0.5;
   double land_depth_mm = 4.1;  // cord line to the gap bottom
   double cog_depth_mm = 2.5;

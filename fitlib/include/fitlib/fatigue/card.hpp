@@ -44,7 +44,7 @@ struct FatigueCard {
   LifeLaw& law(Mode m) { return m == Mode::radial_crack ? radial_crack : separation; }
 };
 
-// Report I's printed constants (L1133–1140) at the project's reference temperature.
+// Report I's printed constants (docs/fatigue.md §4) at the project's reference temperature.
 FatigueCard default_card();
 
 nlohmann::json card_to_json(const FatigueCard& card);

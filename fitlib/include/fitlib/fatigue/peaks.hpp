@@ -1,5 +1,5 @@
 #pragma once
-// The four-step peak extraction of Report I §6.4 (L1032–1037; docs/fatigue.md §2) on the
+// The four-step peak extraction of Report I §6.4 (docs/fatigue.md §2) on the
 // effective-stress history of one load cycle.
 #include <cstddef>
 #include <vector>

@@ -32,10 +32,11 @@ MasterCurve master_curve_from_shift_factors(const data::DynamicTestTable& raw, c
 data::RelaxationTable shift_relaxation_table(const data::RelaxationTable& raw, const data::ShiftFactorTable& shifts,
                                              double reference_C);
 
-// The model of `result` (fitted at T_ref without a law) with temperature_law `law` ("wlf" or
-// "polynomial") at reference_C, its constants fitted to the shift points and held fixed.
+// The model of `result` (fitted at T_ref without a law) with temperature law `law` (wlf or
+// polynomial) at reference_C, its constants fitted to the shift points and held fixed in the
+// slots the model names (Model::temperature_law_info).
 FitResult with_law_from_shifts(const FitResult& result, const std::vector<double>& temperatures_C,
-                               const std::vector<double>& log10_aT, double reference_C, const std::string& law,
+                               const std::vector<double>& log10_aT, double reference_C, model::ShiftLaw law,
                                int polynomial_degree = 3);
 
 // The isotherm shifts of a master curve as a pyvisco shift-factor table.

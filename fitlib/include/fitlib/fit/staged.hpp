@@ -1,5 +1,5 @@
 #pragma once
-// Staged fitting (constitutive-model.md §6: sub-optimisations with some variables locked, then a
+// Staged fitting (docs/fitting.md, "Staged schedules": sub-optimisations with some variables locked, then a
 // final global one). A schedule is a list of stages; each frees a selection of parameters, locks
 // others, and runs one backend. Parameters fixed by FitOptions::fixed stay fixed throughout.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// Fritzson's elastomer-composite model (thesis Report II, L1446–L2744; spec
-// constitutive-model.md): volumetric/deviatoric split, isotropic deviatoric part of mean,
+// Fritzson's elastomer-composite model (thesis Report II; docs/fritzson.md §1):
+// volumetric/deviatoric split, isotropic deviatoric part of mean,
 // rate-independent dynamic and five-element Maxwell (viscous) contributions, amplitude damage
 // h1/h2 with evolution constant C_d, linear temperature factors g1/g2, and the transversely
 // isotropic parts A1 (uniaxial along the fibre axis 3) and A2 (shear 13/23).

@@ -1,5 +1,5 @@
 #pragma once
-// The test cases of thesis Report II §7.2 (L2308–2329; spec constitutive-model.md §8) at one
+// The test cases of thesis Report II §7.2 (docs/fritzson.md §7) at one
 // material point: four cyclic cases (mean deformation −1 × amplitude, 10 cycles, starting at zero)
 // and the interrupted ramp, with stress–strain loops as CSV.
 #include <array>
@@ -21,6 +21,10 @@ struct ThesisCase {
   double hold_s = 0.0;             // 7.5: hold after the ramp (decision, docs/decisions.md)
 };
 
+// The thesis integrator (exponential scheme) of a fritzson or fritzson-iso model with
+// parameters p; core::UsageError for any other model.
+MaterialPoint thesis_point(const Model& model, const std::vector<double>& p);
+
 // The five cases of the thesis table; throws UsageError for an unknown id.
 const std::vector<ThesisCase>& thesis_cases();
 const ThesisCase& thesis_case(const std::string& id);
@@ -28,7 +32,7 @@ const ThesisCase& thesis_case(const std::string& id);
 struct CaseLoops {
   std::vector<double> time_s;
   std::vector<double> displacement;     // u/L
-  std::vector<double> strain;           // uniaxial: ln(1 + u/L); shear: γ = u/L (L2264)
+  std::vector<double> strain;           // uniaxial: ln(1 + u/L); shear: γ = u/L (docs/fritzson.md §7)
   std::vector<double> stress_MPa;       // uniaxial: Kirchhoff σ along the axis; shear: τ
   std::vector<double> nominal_MPa;      // force / undeformed area (uniaxial τ/λ; shear τ)
   std::vector<std::array<double, 3>> driver_amplitude;  // damage e^a of I, A1, A2

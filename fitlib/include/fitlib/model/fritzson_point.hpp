@@ -1,12 +1,12 @@
 #pragma once
 // Time-domain integration of Fritzson's model at one material point (thesis Report II §7.1,
-// L2290–2306; spec constitutive-model.md §8), in the form a segment solver calls per
+// docs/fritzson.md §4), in the form a segment solver calls per
 // integration point: a pure update(state_n, strain_{n+1}, dt, T) → stress, consistent tangent
 // and state_{n+1}. Strain and stress are in material axes (1 radial, 2 along the belt, 3 fibre).
 //
-// Voigt order (L1715): 11, 22, 33, 23, 13, 12; strain shears are engineering (γ = 2ε_ij).
+// Voigt order (docs/model.md, "Material point"): 11, 22, 33, 23, 13, 12; strain shears are engineering (γ = 2ε_ij).
 // Small-strain variant: the strain is ε. Logarithmic (total) variant: the strain is
-// ln U = ½ ln(FᵀF) (L1638–1650), the stress is the Kirchhoff stress in the unrotated frame.
+// ln U = ½ ln(FᵀF) (docs/model.md, "Finite strain"), the stress is the Kirchhoff stress in the unrotated frame.
 #include <Eigen/Core>
 
 #include <array>
@@ -24,7 +24,7 @@ using model::Matrix6;
 using model::Vector6;
 using model::log_strain;  // ln U and R of F = R U (material_point.hpp)
 
-// backward_euler: the thesis's scheme (L2302), first order: Maxwell s_{n+1} =
+// backward_euler: the thesis's scheme (docs/fritzson.md §4), first order: Maxwell s_{n+1} =
 //   τ/(τ+Δt)(s_n + 2G h2 g2 Δe), running mean by the rectangle rule.
 // exponential: exact for piecewise-linear strain (Maxwell s_{n+1} = e^{−Δt/τ}s_n +
 //   2G h2 g2 τ(1 − e^{−Δt/τ})/Δt·Δe, running mean by the trapezoid rule), second order.
@@ -129,7 +129,7 @@ class MaterialPoint {
 };
 
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses
-// are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, L2264);
+// are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, docs/fritzson.md §7);
 // uniaxial: ε_ii prescribed, the other normal stresses zero (lateral strains solved by Newton
 // with the consistent tangent), shears 0; bulk: ε = θ/3·(1,1,1), the stress returned is the mean
 // normal stress.

@@ -1,5 +1,5 @@
 #pragma once
-// The linear viscoelastic family (constitutive-model.md §10), one kernel each:
+// The linear viscoelastic family (README.md, "Models"; docs/model.md), one kernel each:
 //   prony             M∞ + Σ M_i·iωτ_i/(1 + iωτ_i)                       (generalized Maxwell)
 //   zener3            S(1 + iωτ_ε)/(1 + iωτ_T)                           (Sorge–Cammalleri Eq. 1)
 //   retardation       M* = 1/J*, J* = J_g + Σ L_i/(1 + iωλ_i)            (Zupancic–Emri Eq. 3)

@@ -111,6 +111,13 @@ using MaterialPointPtr = std::shared_ptr<const MaterialPoint>;
 MaterialPointPtr make_material_point(const Model& model, const std::vector<double>& values,
                                      const PointOptions& options = {});
 
+// The isotropic linear viscoelastic point (docs/model.md §"Linear viscoelastic point") of a shear
+// model that is an exact Maxwell or Kelvin series (Model::maxwell_series, kelvin_series), with
+// K from options or Model::bulk_modulus and the model's temperature_factors: what a new linear
+// model returns from material_point (docs/model.md §"How a new model plugs in").
+MaterialPointPtr series_point(std::shared_ptr<const Model> model, std::vector<double> values,
+                              const PointOptions& options);
+
 // ln U (Voigt, engineering shear) and the rotation R of F = R U; NumericalError when det F ≤ 0.
 Vector6 log_strain(const Eigen::Matrix3d& F, Eigen::Matrix3d* rotation = nullptr);
 // R S Rᵀ of a Voigt stress S (the unrotated Kirchhoff stress to the current frame).

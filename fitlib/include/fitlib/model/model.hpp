@@ -5,6 +5,7 @@
 // A model is a description (parameter specs, options) plus pure functions of a parameter vector
 // `p` in natural units (MPa, s, ...). Fitters handle transforms (log for positive scales).
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,11 +50,16 @@ struct PointOptions;    // material_point.hpp
 class MaterialPoint;    // material_point.hpp
 
 // The horizontal temperature law of a model, as typed data for fitters and exports.
-enum class ShiftLaw { none, wlf, arrhenius, other };
+enum class ShiftLaw { none, wlf, arrhenius, polynomial, other };
+// The option value of a law ("none", "wlf", "arrhenius", "polynomial"; "other" has none) and
+// back (core::UsageError for an unknown name; for user input and the options JSON).
+std::string to_string(ShiftLaw law);
+ShiftLaw parse_shift_law(const std::string& name);
 struct TemperatureLawInfo {
   ShiftLaw law = ShiftLaw::none;
   double reference_C = 23.0;
-  // Indices of the law's constants in the law's order (WLF: C1, C2; Arrhenius: E_a).
+  // Indices of the law's constants in the law's order (WLF: C1, C2; Arrhenius: E_a;
+  // polynomial: C_1 … C_degree).
   std::vector<int> shift_parameters;
   // The parameter p_k that places the law's pole at reference_C − p_k (WLF: C2); −1 = no pole.
   int pole_parameter = -1;
@@ -139,7 +145,12 @@ using ModelPtr = std::shared_ptr<const Model>;
 // Throws core::UsageError for an unknown name or option.
 ModelPtr make_model(const std::string& kind, const nlohmann::json& options);
 
-// The names make_model accepts.
+// The names make_model accepts (the built-in ones, then the registered ones).
 std::vector<std::string> model_kinds();
+
+// A model defined outside the library joins make_model and model_kinds (and so cards, fits,
+// exports and points) with one call; core::UsageError when the name is taken.
+using ModelFactory = std::function<ModelPtr(const nlohmann::json& options)>;
+void register_model(const std::string& kind, ModelFactory factory);
 
 }  // namespace fitlib::model

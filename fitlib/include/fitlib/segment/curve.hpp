@@ -1,5 +1,5 @@
 #pragma once
-// The parametric curve of the segment's neutral layer (cord line), belt-mechanics.md §3,
+// The parametric curve of the segment's neutral layer (cord line), docs/segment.md, "Parametric curve",
 // Report I Eqs 5.10–5.20 with the corrected 5.19. The curve is built from the origin outward:
 // its midpoint stays at the origin with zero tangent angle. Each side has n intervals of equal
 // deformed length Δs with constant curvature K_i; the strain varies linearly between the

@@ -1,5 +1,5 @@
 #pragma once
-// The longitudinal section of a cogged belt (belt-mechanics.md §5a): cord line at y = 0 as the
+// The longitudinal section of a cogged belt (docs/segment.md, "Mesh"): cord line at y = 0 as the
 // top boundary, a cushion layer below it, the bottom rubber down to a cogged profile. Gap centres
 // at x = 0, ±pitch, …; cog centres half a pitch away. The profile is a graph y(x): a land at the
 // gap bottom, a root fillet, a straight flank at flank_angle from the radial direction, a tip

@@ -77,7 +77,7 @@ std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, con
 // The JSON document of a constraints file; InputError naming the file if it is not valid JSON.
 nlohmann::json read_user_constraints(const std::string& path);
 
-// Reads named numeric columns of a CSV with a header row (formats.md §1 conventions: `#` comments,
+// Reads named numeric columns of a CSV with a header row (docs/formats.md §1 conventions: `#` comments,
 // BOM, CRLF, spaces after commas, trailing empty line). InputError names file:line:column.
 SampleSet read_sample_columns(const std::string& path, const std::vector<std::string>& x_columns,
                               const std::string& y_column);

@@ -1,6 +1,6 @@
 #pragma once
 // Bezier tensor-product hyper-surfaces of measured data (Report V §5; spec
-// material-tests-and-surfaces.md §3; JSON per formats.md §4).
+// docs/surface.md; JSON per docs/formats.md §4).
 //
 //   y(x_1..x_n) = Σ c_{i_1..i_n} B_{i_1,d_1}(u_1) ... B_{i_n,d_n}(u_n),
 //   u_k = (T_k(x_k) - T_k(start_k)) / (T_k(end_k) - T_k(start_k)),  T_k = identity or log10.
