@@ -207,8 +207,9 @@ void bind_card(py::module_& m) {
       .def_property_readonly("model_options", [](const Card& c) { return to_python(c.model_options); })
       .def_readonly("parameters", &Card::parameters)
       .def_property_readonly("parameter_names", [](const Card& c) {
+        const auto model = c.model();  // alive while its parameter list is read
         std::vector<std::string> names;
-        for (const auto& s : c.model()->parameters()) names.push_back(s.name);
+        for (const auto& s : model->parameters()) names.push_back(s.name);
         return names;
       })
       .def_property_readonly("fit", [](const Card& c) { return to_python(c.fit); })

@@ -52,6 +52,21 @@ surface::AxisSpec axis_spec(const py::handle& h) {
   return a;
 }
 
+// The measured points: arrays, or named columns of a CSV file (x the path, y the column).
+surface::SampleSet samples(const py::object& x, const py::object& y, const surface::FitOptions& o) {
+  if (py::isinstance<py::str>(x)) {
+    std::vector<std::string> columns;
+    for (const auto& a : o.axes) columns.push_back(a.name);
+    return surface::read_sample_columns(x.cast<std::string>(), columns, y.cast<std::string>());
+  }
+  surface::SampleSet data;
+  data.x = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x).cast<RowMatrix>();
+  const auto values = to_vector(y);
+  data.y = Eigen::Map<const Eigen::VectorXd>(values.data(), values.size());
+  data.source = "arrays";
+  return data;
+}
+
 void bind_surface(py::module_& m) {
   using surface::Surface;
   py::class_<surface::Axis>(m, "SurfaceAxis")
@@ -92,24 +107,19 @@ void bind_surface(py::module_& m) {
         py::arg("document"), py::arg("source") = "surface");
   m.def("fit_surface",
         [](const py::object& x, const py::object& y, const py::list& axes, const std::string& dependent_name,
-           const std::string& name, const std::string& missing, double level_tolerance, const py::object& constraints,
-           const std::string& source) {
-          surface::SampleSet data;
-          data.x = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x).cast<RowMatrix>();
-          const auto values = to_vector(y);
-          data.y = Eigen::Map<const Eigen::VectorXd>(values.data(), values.size());
-          data.source = source;
+           const std::string& name, const std::string& missing, double level_tolerance, const py::object& constraints) {
           surface::FitOptions o;
           for (const auto& a : axes) o.axes.push_back(axis_spec(a));
           o.dependent_name = dependent_name, o.name = name, o.level_tolerance = level_tolerance;
-          o.missing = surface::parse_missing_cell_remedy(missing);
+          // As fitcli: with user constraints the user takes charge of missing cells unless told.
+          o.missing = surface::parse_missing_cell_remedy(!missing.empty() ? missing : constraints.is_none() ? "constrain" : "none");
           if (!constraints.is_none()) o.user_constraints = to_json(constraints);
-          return surface::fit_surface(data, o);
+          return surface::fit_surface(samples(x, y, o), o);
         },
         py::arg("x"), py::arg("y"), py::arg("axes"), py::arg("dependent_name") = "y", py::arg("name") = "",
-        py::arg("missing") = "constrain", py::arg("level_tolerance") = 0.05, py::arg("constraints") = py::none(),
-        py::arg("source") = "arrays",
-        "Least-squares Bezier surface of y over x (N, n); axes: names or dicts {name, unit, transform, degree}");
+        py::arg("missing") = "", py::arg("level_tolerance") = 0.05, py::arg("constraints") = py::none(),
+        "Least-squares Bezier surface: x (N, n) and y (N) arrays, or x a CSV path and y its column name "
+        "(errors then name file, line and column); axes: names or dicts {name, unit, transform, degree}");
   m.def("read_samples",
         [](const std::string& path, const std::vector<std::string>& x_columns, const std::string& y_column) {
           const auto s = surface::read_sample_columns(path, x_columns, y_column);

@@ -128,6 +128,7 @@ def test_card_round_trip_and_eval_equal_the_cli():
     assert open(work("py-3.json")).read() == card.to_json_text()
     loaded = fitlib.load_card(work("py-3.json"))
     assert loaded.to_json() == card.to_json()
+    assert loaded.parameter_names == [p["name"] for p in card.to_json()["parameters"]]
     assert fitlib.card_from_json(card.to_json()).to_json_text() == card.to_json_text()
     f = [0.01, 1.0, 100.0]
     rows = list(csv.DictReader(io.StringIO(fitcli("eval", "--card", work("py-3.json"), "--mode", "shear",
