@@ -10,16 +10,20 @@
 namespace fitlib::python {
 namespace {
 
+// Options objects built from keyword arguments, each set as the attribute of that name.
+template <typename Options>
+Options from_keywords(const py::kwargs& kwargs) {
+  auto options = py::cast(Options{});
+  for (const auto& item : kwargs) py::setattr(options, item.first, item.second);
+  return options.template cast<Options>();
+}
+
 std::string method_name(fit::TermMethod m) { return m == fit::TermMethod::spectrum ? "spectrum" : "sweep"; }
 
 void bind_fit_options(py::module_& m) {
   using fit::FitOptions;
   py::class_<FitOptions>(m, "FitOptions", "Options of fitlib.fit (fit/fit.hpp); keyword arguments set fields")
-      .def(py::init([](const py::kwargs& kwargs) {
-        auto options = py::cast(FitOptions{});
-        for (const auto& item : kwargs) py::setattr(options, item.first, item.second);
-        return options.cast<FitOptions>();
-      }))
+      .def(py::init(&from_keywords<FitOptions>))
       .def_property("backend", [](const FitOptions& o) { return std::string(fit::to_string(o.backend)); },
                     [](FitOptions& o, const std::string& s) { o.backend = fit::parse_backend(s); })
       .def_property("residual", [](const FitOptions& o) { return std::string(fit::to_string(o.residual)); },
@@ -42,11 +46,7 @@ void bind_fit_options(py::module_& m) {
 
   using fit::TermOptions;
   py::class_<TermOptions>(m, "TermOptions", "Options of fitlib.select_terms (fit/terms.hpp)")
-      .def(py::init([](const py::kwargs& kwargs) {
-        auto options = py::cast(TermOptions{});
-        for (const auto& item : kwargs) py::setattr(options, item.first, item.second);
-        return options.cast<TermOptions>();
-      }))
+      .def(py::init(&from_keywords<TermOptions>))
       .def_readwrite("min_terms", &TermOptions::min_terms)
       .def_readwrite("max_terms", &TermOptions::max_terms)
       .def_readwrite("solver_cap", &TermOptions::solver_cap)

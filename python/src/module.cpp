@@ -40,6 +40,8 @@ void bind_errors(py::module_& m) {
   static py::exception<core::InputError> input(m, "InputError", base.ptr());
   static py::exception<core::UsageError> usage(m, "UsageError", base.ptr());
   static py::exception<core::NumericalError> numerical(m, "NumericalError", base.ptr());
+  for (py::handle error : std::initializer_list<py::handle>{base, input, usage, numerical})
+    error.attr("__module__") = "fitlib";
   base.attr("exit_code") = int(core::kNumericalFailure);
   input.attr("exit_code") = int(core::kBadInput);
   usage.attr("exit_code") = int(core::kUsageError);
@@ -121,6 +123,10 @@ py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, cons
   c.mode = mode_or_native(m, mode);
   c.orientation = orientation;
   for (std::size_t i = 0; i < n; ++i) {
+    // As fitcli eval's option checks: frequencies positive, amplitudes not negative.
+    if (!(b.columns[0][i] > 0.0) || !std::isfinite(b.columns[0][i]) || !(b.columns[2][i] >= 0.0))
+      throw core::UsageError("frequencies must be positive and amplitudes not negative, got " +
+                             std::to_string(b.columns[0][i]) + " Hz, amplitude " + std::to_string(b.columns[2][i]));
     c.frequency_Hz = b.columns[0][i];
     c.temperature_C = b.columns[1][i];
     c.strain_amplitude = b.columns[2][i];
@@ -147,10 +153,21 @@ py::array_t<double> time_array(const model::Model& m, const py::object& t, const
   c.orientation = orientation;
   std::vector<double> out(b.columns[0].size());
   for (std::size_t i = 0; i < out.size(); ++i) {
+    if (!(b.columns[0][i] >= 0.0) || !std::isfinite(b.columns[0][i]))
+      throw core::UsageError("times must be finite and not negative, got " + std::to_string(b.columns[0][i]));
     c.temperature_C = b.columns[1][i];
     out[i] = law(c, b.columns[0][i]);
   }
   return shaped(out, b.shape);
+}
+
+// M(t) or J(t) of the model with parameters p: the law is the Model member function.
+template <double (model::Model::*Law)(const double*, const model::TestCondition&, double) const>
+py::array_t<double> time_law(const model::Model& m, const py::object& p, const py::object& t, const py::object& T,
+                             const std::string& mode, const std::string& orientation) {
+  const auto v = checked_values(m, p);
+  return time_array(m, t, T, mode, orientation,
+                    [&](const model::TestCondition& c, double t_s) { return (m.*Law)(v.data(), c, t_s); });
 }
 
 // ---- tables -------------------------------------------------------------------------------
@@ -324,26 +341,10 @@ void bind_model(py::module_& m) {
            py::arg("p"), py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(),
            py::arg("strain_amplitude") = 0.0, py::arg("mode") = "", py::arg("orientation") = "",
            "Storage, loss, tan δ and mean modulus over broadcast arrays (mode '' = the model's own)")
-      .def("relaxation_modulus",
-           [](const Model& mo, const py::object& p, const py::object& t, const py::object& T,
-              const std::string& mode, const std::string& orientation) {
-             const auto v = checked_values(mo, p);
-             return time_array(mo, t, T, mode, orientation, [&](const model::TestCondition& c, double ts) {
-               return mo.relaxation_modulus(v.data(), c, ts);
-             });
-           },
-           py::arg("p"), py::arg("time_s"), py::arg("temperature_C") = py::none(), py::arg("mode") = "",
-           py::arg("orientation") = "")
-      .def("creep_compliance",
-           [](const Model& mo, const py::object& p, const py::object& t, const py::object& T,
-              const std::string& mode, const std::string& orientation) {
-             const auto v = checked_values(mo, p);
-             return time_array(mo, t, T, mode, orientation, [&](const model::TestCondition& c, double ts) {
-               return mo.creep_compliance(v.data(), c, ts);
-             });
-           },
-           py::arg("p"), py::arg("time_s"), py::arg("temperature_C") = py::none(), py::arg("mode") = "",
-           py::arg("orientation") = "")
+      .def("relaxation_modulus", &time_law<&Model::relaxation_modulus>, py::arg("p"), py::arg("time_s"),
+           py::arg("temperature_C") = py::none(), py::arg("mode") = "", py::arg("orientation") = "")
+      .def("creep_compliance", &time_law<&Model::creep_compliance>, py::arg("p"), py::arg("time_s"),
+           py::arg("temperature_C") = py::none(), py::arg("mode") = "", py::arg("orientation") = "")
       .def("__repr__", [](const Model& mo) { return "<fitlib.Model " + mo.kind() + " " + mo.options().dump() + ">"; });
 
   m.def("model_kinds", &model::model_kinds);

@@ -20,22 +20,22 @@ namespace {
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // ---- surfaces --------------------------------------------------------------------------------
-// Points as an (N, n) array (a 1-D array is one point) → one value per point.
+// One value per point (rows of x).
 py::array_t<double> surface_values(const surface::Surface& s, const RowMatrix& x, bool allow_extrapolation) {
-  if (static_cast<std::size_t>(x.cols()) != s.dimension())
-    throw core::UsageError("surface has " + std::to_string(s.dimension()) + " axes, points have " +
-                           std::to_string(x.cols()) + " columns");
   std::vector<double> out(x.rows());
   for (Eigen::Index i = 0; i < x.rows(); ++i) out[i] = s.value(x.row(i).data(), allow_extrapolation);
   return to_array(out);
 }
 
+// Points as an (N, n) array; a 1-D array of n values is one point.
 RowMatrix as_points(const surface::Surface& s, const py::object& x) {
   auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x);
   if (!a) throw py::type_error("points must be numbers");
   const auto n = static_cast<Eigen::Index>(s.dimension());
-  if (a.ndim() <= 1) return Eigen::Map<const RowMatrix>(a.data(), a.size() / std::max<Eigen::Index>(n, 1), n);
-  return Eigen::Map<const RowMatrix>(a.data(), a.shape(0), a.shape(1));
+  const bool one_point = a.ndim() <= 1;
+  if (a.ndim() > 2 || (one_point ? a.size() : a.shape(1)) != n || a.size() == 0)
+    throw core::UsageError("points must have " + std::to_string(n) + " coordinates (one per axis), one row a point");
+  return Eigen::Map<const RowMatrix>(a.data(), one_point ? 1 : a.shape(0), n);
 }
 
 surface::AxisSpec axis_spec(const py::handle& h) {
@@ -163,7 +163,8 @@ void bind_surface(py::module_& m) {
 model::DriveControl control(const py::handle& h) {
   model::DriveControl c;
   if (h.is_none()) return c;  // traction-free
-  const auto t = h.cast<py::tuple>();
+  const auto t = h.cast<py::sequence>();
+  if (t.size() != 2) throw core::UsageError("a drive component is ('strain' | 'stress', values)");
   const auto kind = t[0].cast<std::string>();
   if (kind != "strain" && kind != "stress") throw core::UsageError("a drive component is ('strain' | 'stress', values)");
   c.imposed = kind == "strain" ? model::DriveControl::Imposed::strain : model::DriveControl::Imposed::stress;

@@ -120,6 +120,10 @@ def test_prony_moduli_match_the_closed_form_and_broadcast():
     assert grid["storage_MPa"].shape == (7, 2)
     t = np.array([0.0, 0.1, 1.0])
     assert np.allclose(model.relaxation_modulus([G_inf, G_1, tau], t), G_inf + G_1 * np.exp(-t / tau), rtol=1e-12)
+    # Standard linear solid: J(t) = 1/G_inf − (1/G_inf − 1/G_0) exp(−t/τ_c), τ_c = τ G_0/G_inf.
+    G_0, tau_c = G_inf + G_1, tau * (G_inf + G_1) / G_inf
+    J = 1 / G_inf - (1 / G_inf - 1 / G_0) * np.exp(-t / tau_c)
+    assert np.allclose(model.creep_compliance([G_inf, G_1, tau], t), J, rtol=1e-5)  # J(t) is computed numerically
 
 
 # ---- cards --------------------------------------------------------------------------------------
@@ -167,9 +171,12 @@ def test_bad_card_key_is_an_input_error_naming_the_key():
 
 
 def test_usage_and_numerical_errors_are_their_own_classes():
+    expect(fitlib.UsageError, lambda: fitlib.make_model("prony", {"terms": 1}).moduli([1, 1, 1], [1.0, -2.0]))
     e = expect(fitlib.UsageError, lambda: fitlib.make_model("no-such-model"))
     assert e.exit_code == 2 and not isinstance(e, fitlib.InputError)
-    assert issubclass(fitlib.NumericalError, fitlib.FitlibError) and fitlib.NumericalError.exit_code == 4
+    prony = fitlib.make_model("prony", {"terms": 1, "mode": "shear"})
+    e = expect(fitlib.NumericalError, lambda: prony.creep_compliance([0.0, 0.0, 1.0], [1.0]))  # no glassy modulus
+    assert e.exit_code == 4 and isinstance(e, fitlib.FitlibError) and "glassy modulus" in str(e)
 
 
 def test_surface_outside_its_interval_is_an_input_error():
@@ -177,6 +184,7 @@ def test_surface_outside_its_interval_is_an_input_error():
     y = 1 + 2 * x[:, 0] + 3 * x[:, 0] ** 2 - x[:, 1] + 0.5 * x[:, 0] * x[:, 1]
     s = fitlib.fit_surface(x, y, ["a", "b"])
     expect(fitlib.InputError, lambda: s([2.0, 1.0]))
+    expect(fitlib.UsageError, lambda: s([0.5, 1.0, 2.0]))  # three coordinates for two axes
 
 
 # ---- surfaces, points, scenes -------------------------------------------------------------------
@@ -201,6 +209,10 @@ def test_elastic_point_stiffness_is_the_storage_modulus():
     assert math.isclose(stress[5], storage * 1e-3, rel_tol=1e-10) and math.isclose(tangent[5, 5], storage, rel_tol=1e-10)
     run = fitlib.drive_test(point, mode="shear", amplitude=0.01, cycles=1, steps_per_cycle=40)
     assert np.allclose(run["test_stress_MPa"], storage * run["test_strain"], rtol=1e-9, atol=1e-12)
+    t = np.linspace(0.0, 1.0, 11)
+    free = fitlib.drive(point, t, [None] * 5 + [["strain", 0.002 * t]])  # γ12 imposed, σ = 0 elsewhere
+    assert np.allclose(free["stress_MPa"][:, 5], storage * 0.002 * t, rtol=1e-9, atol=1e-12)
+    assert np.abs(free["stress_MPa"][:, :5]).max() < 1e-9 and free["strain"].shape == (11, 6)
 
 
 def test_scene_load_cycle_equals_the_cli_load_history():
