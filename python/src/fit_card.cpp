@@ -77,7 +77,9 @@ void bind_fit_result(py::module_& m) {
       .def_readonly("reason", &ParameterResult::reason)
       .def_readonly("ci95_low", &ParameterResult::ci95_low)
       .def_readonly("ci95_high", &ParameterResult::ci95_high)
-      .def("__repr__", [](const ParameterResult& p) { return "<" + p.name + " = " + std::to_string(p.value) + " " + p.unit + ">"; });
+      .def("__repr__", [](const ParameterResult& p) {
+        return "<" + p.name + " = " + std::to_string(p.value) + " " + p.unit + ">";
+      });
   py::class_<FitMetrics>(m, "FitMetrics")
       .def_readonly("n_points", &FitMetrics::n_points)
       .def_readonly("n_residuals", &FitMetrics::n_residuals)
@@ -238,7 +240,8 @@ void bind_card(py::module_& m) {
       .def("admissibility_problems", &card::admissibility_problems);
 
   m.def("load_card", &card::load_card, py::arg("path"));
-  m.def("card_from_json", [](const py::object& j, const std::string& source) { return card::card_from_json(to_json(j), source); },
+  m.def("card_from_json",
+        [](const py::object& j, const std::string& source) { return card::card_from_json(to_json(j), source); },
         py::arg("document"), py::arg("source") = "card");
   m.def("card_from_fit",
         [](const fit::FitResult& r, const fit::FitOptions& o, const data::DynamicTestTable& t, const std::string& name,

@@ -186,6 +186,17 @@ std::vector<std::string> labels(const data::DynamicTestTable& t, Field field) {
   return v;
 }
 
+// A read-only property `name` of the table: field(row) of every row, as an array or a list.
+template <typename Field>
+void def_column(py::class_<data::DynamicTestTable>& table, const char* name, Field field) {
+  table.def_property_readonly(name, [field](const data::DynamicTestTable& t) { return column(t, field); });
+}
+
+template <typename Field>
+void def_labels(py::class_<data::DynamicTestTable>& table, const char* name, Field field) {
+  table.def_property_readonly(name, [field](const data::DynamicTestTable& t) { return labels(t, field); });
+}
+
 data::ReadOptions read_options(const std::string& format, const std::string& mode,
                                bool skip_bad_rows, bool allow_unknown_columns) {
   if (format != "native" && format != "pyvisco" && format != "eplexor")
@@ -226,51 +237,25 @@ data::DynamicTestTable read_table(const py::object& paths, const std::string& fo
 void bind_table(py::module_& m) {
   using data::DynamicTestRow;
   using data::DynamicTestTable;
-  py::class_<DynamicTestTable>(m, "Table", "A dynamic-test table (formats.md §1); columns as NumPy arrays")
-      .def("__len__", [](const DynamicTestTable& t) { return t.rows.size(); })
-      .def_property_readonly("frequency_Hz", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.condition.frequency_Hz; });
-      })
-      .def_property_readonly("temperature_C", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.condition.temperature_C; });
-      })
-      .def_property_readonly("strain_amplitude", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.condition.strain_amplitude; });
-      })
-      .def_property_readonly("mean_strain", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.condition.mean_strain; });
-      })
-      .def_property_readonly("storage_MPa", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.storage_MPa; });
-      })
-      .def_property_readonly("loss_MPa", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.loss_MPa; });
-      })
-      .def_property_readonly("mean_modulus_MPa", [](const DynamicTestTable& t) {  // NaN where none
-        return column(t, [](const DynamicTestRow& r) { return r.has_mean_modulus ? r.mean_modulus_MPa : kNaN; });
-      })
-      .def_property_readonly("weight", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return r.weight; });
-      })
-      .def_property_readonly("source_line", [](const DynamicTestTable& t) {
-        return column(t, [](const DynamicTestRow& r) { return double(r.source_line); });
-      })
-      .def_property_readonly("mode", [](const DynamicTestTable& t) {
-        return labels(t, [](const DynamicTestRow& r) { return std::string(model::to_string(r.condition.mode)); });
-      })
-      .def_property_readonly("orientation", [](const DynamicTestTable& t) {
-        return labels(t, [](const DynamicTestRow& r) { return r.condition.orientation; });
-      })
-      .def_property_readonly("material", [](const DynamicTestTable& t) {
-        return labels(t, [](const DynamicTestRow& r) { return r.material; });
-      })
-      .def_property_readonly("specimen", [](const DynamicTestTable& t) {
-        return labels(t, [](const DynamicTestRow& r) { return r.specimen; });
-      })
-      .def_property_readonly("set", [](const DynamicTestTable& t) {
-        return labels(t, [](const DynamicTestRow& r) { return r.set; });
-      })
-      .def_readonly("source_files", &DynamicTestTable::source_files)
+  py::class_<DynamicTestTable> table(m, "Table", "A dynamic-test table (formats.md §1); columns as NumPy arrays");
+  table.def("__len__", [](const DynamicTestTable& t) { return t.rows.size(); });
+  // Numeric columns as arrays (mean_modulus_MPa: NaN where a row has none), labels as lists.
+  def_column(table, "frequency_Hz", [](const DynamicTestRow& r) { return r.condition.frequency_Hz; });
+  def_column(table, "temperature_C", [](const DynamicTestRow& r) { return r.condition.temperature_C; });
+  def_column(table, "strain_amplitude", [](const DynamicTestRow& r) { return r.condition.strain_amplitude; });
+  def_column(table, "mean_strain", [](const DynamicTestRow& r) { return r.condition.mean_strain; });
+  def_column(table, "storage_MPa", [](const DynamicTestRow& r) { return r.storage_MPa; });
+  def_column(table, "loss_MPa", [](const DynamicTestRow& r) { return r.loss_MPa; });
+  def_column(table, "mean_modulus_MPa",
+             [](const DynamicTestRow& r) { return r.has_mean_modulus ? r.mean_modulus_MPa : kNaN; });
+  def_column(table, "weight", [](const DynamicTestRow& r) { return r.weight; });
+  def_column(table, "source_line", [](const DynamicTestRow& r) { return double(r.source_line); });
+  def_labels(table, "mode", [](const DynamicTestRow& r) { return std::string(model::to_string(r.condition.mode)); });
+  def_labels(table, "orientation", [](const DynamicTestRow& r) { return r.condition.orientation; });
+  def_labels(table, "material", [](const DynamicTestRow& r) { return r.material; });
+  def_labels(table, "specimen", [](const DynamicTestRow& r) { return r.specimen; });
+  def_labels(table, "set", [](const DynamicTestRow& r) { return r.set; });
+  table.def_readonly("source_files", &DynamicTestTable::source_files)
       .def_readonly("source_sha256", &DynamicTestTable::source_sha256)
       .def_readonly("warnings", &DynamicTestTable::warnings)
       .def("to_csv", &data::format_dynamic_table, "The native CSV text (exact doubles)")

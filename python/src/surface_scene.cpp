@@ -103,7 +103,8 @@ void bind_surface(py::module_& m) {
       });
 
   m.def("load_surface", &surface::load_surface, py::arg("path"));
-  m.def("surface_from_json", [](const py::object& j, const std::string& source) { return surface::surface_from_json(to_json(j), source); },
+  m.def("surface_from_json",
+        [](const py::object& j, const std::string& source) { return surface::surface_from_json(to_json(j), source); },
         py::arg("document"), py::arg("source") = "surface");
   m.def("fit_surface",
         [](const py::object& x, const py::object& y, const py::list& axes, const std::string& dependent_name,
@@ -112,7 +113,8 @@ void bind_surface(py::module_& m) {
           for (const auto& a : axes) o.axes.push_back(axis_spec(a));
           o.dependent_name = dependent_name, o.name = name, o.level_tolerance = level_tolerance;
           // As fitcli: with user constraints the user takes charge of missing cells unless told.
-          o.missing = surface::parse_missing_cell_remedy(!missing.empty() ? missing : constraints.is_none() ? "constrain" : "none");
+          const char* remedy = constraints.is_none() ? "constrain" : "none";
+          o.missing = surface::parse_missing_cell_remedy(!missing.empty() ? missing : remedy);
           if (!constraints.is_none()) o.user_constraints = to_json(constraints);
           return surface::fit_surface(samples(x, y, o), o);
         },
@@ -290,7 +292,8 @@ py::dict accumulation_dict(const scene::AccumulationMap& a) {
 
 py::dict tension_phase(const std::vector<belt::TensionTestPoint>& pts) {
   std::vector<double> t, d, T, b;
-  for (const auto& q : pts) t.push_back(q.t_s), d.push_back(q.elongation_mm), T.push_back(q.span_tension_N), b.push_back(q.boundary_rad);
+  for (const auto& q : pts)
+    t.push_back(q.t_s), d.push_back(q.elongation_mm), T.push_back(q.span_tension_N), b.push_back(q.boundary_rad);
   py::dict out;
   out["t_s"] = to_array(t), out["elongation_mm"] = to_array(d), out["span_tension_N"] = to_array(T);
   out["boundary_rad"] = to_array(b);
@@ -317,7 +320,8 @@ void bind_scene(py::module_& m) {
   py::class_<SceneResult>(m, "SceneResult")
       .def_property_readonly("effects", [](const SceneResult& r) { return r.plan.effects; })
       .def_property_readonly("unavailable_outputs", [](const SceneResult& r) { return r.plan.unavailable_outputs; })
-      .def_property_readonly("load_cycle", [](const SceneResult& r) { return r.cycle ? py::object(load_cycle_columns(r)) : py::none(); },
+      .def_property_readonly("load_cycle",
+                             [](const SceneResult& r) { return r.cycle ? py::object(load_cycle_columns(r)) : py::none(); },
                              "Samples along the path as NumPy columns (None when not run)")
       .def_property_readonly("accumulation", [](const SceneResult& r) {
         return r.accumulation ? py::object(accumulation_dict(*r.accumulation)) : py::none();
