@@ -218,7 +218,7 @@ void bind_material_point(py::module_& m) {
         py::arg("model"), py::arg("values"), py::arg("fidelity") = "viscoelastic", py::arg("frequency_Hz") = 1.0,
         py::arg("temperature_C") = std::nan(""), py::arg("bulk_modulus_MPa") = std::nan(""));
   m.def("drive",
-        [](const MaterialPoint& p, const py::object& time_s, const py::list& components, const py::object& T) {
+        [](const MaterialPoint& p, const py::object& time_s, const py::sequence& components, const py::object& T) {
           model::DriveProgram program;
           program.time_s = to_vector(time_s);
           if (components.size() != 6) throw core::UsageError("drive needs 6 components (None = traction-free)");
