@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfreexl-dev gnuplot-nox libsuitesparse-dev
   python3 python3-matplotlib python3-numpy jupyter-nbconvert python3-nbclient python3-ipykernel
+  python3-dev pybind11-dev python3-pybind11
   calculix-ccx
 )
 # Optional: clang and its libFuzzer runtime for the fuzz harnesses (scripts/fuzz.sh); the build

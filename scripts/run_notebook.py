@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Runs a notebook headless (nbclient) in a work folder; fails if any cell raises.
+"""Runs a notebook headless (nbclient) in a work folder; fails if any cell raises or if the
+executed notebook shows no figure inline (no image/png output: a notebook must show its plots).
 
 usage: run_notebook.py NOTEBOOK.ipynb WORK_DIR
 The executed copy is written to WORK_DIR/<name>.executed.ipynb for inspection; figures the
@@ -10,6 +11,12 @@ import sys
 
 import nbformat
 from nbclient import NotebookClient
+
+
+def inline_figures(nb) -> int:
+    """Number of image/png outputs of the executed notebook's code cells."""
+    return sum("image/png" in out.get("data", {})
+               for cell in nb.cells if cell.cell_type == "code" for out in cell.get("outputs", []))
 
 
 def main() -> int:
@@ -26,7 +33,12 @@ def main() -> int:
     finally:
         name = os.path.splitext(os.path.basename(path))[0]
         nbformat.write(nb, os.path.join(work, name + ".executed.ipynb"))
-    print(f"notebook {os.path.basename(path)}: all cells ran")
+    figures = inline_figures(nb)
+    if figures == 0:
+        print(f"notebook {os.path.basename(path)}: no inline figure (image/png output); "
+              "use '%matplotlib inline' and show the plots", file=sys.stderr)
+        return 1
+    print(f"notebook {os.path.basename(path)}: all cells ran, {figures} inline figure(s)")
     return 0
 
 

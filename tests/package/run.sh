@@ -17,4 +17,12 @@ g++ -std=c++17 "$consumer/main.cpp" -DFITLIB_DATA_DIR="\"$work/prefix/share/fitl
   $(pkg-config --cflags --libs fitlib) -o "$work/pc-consumer"
 pc_out=$("$work/pc-consumer")
 echo "pkg-config consumer: $pc_out"
+# The Python module, when built, imports from the installed prefix alone (docs/python.md).
+package=$(find "$work/prefix" -name '_fitlib*.so' -printf '%h\n' | head -1)
+if [ -n "$package" ]; then
+  py_out=$(cd "$work" && PYTHONPATH=$(dirname "$package") /usr/bin/python3 -c \
+    'import fitlib; print(fitlib.__file__, len(fitlib.model_kinds()), "models")')
+  echo "python module: $py_out"
+  case "$py_out" in "$work/prefix/"*) ;; *) exit 1 ;; esac
+fi
 [ "$cmake_out" = "$pc_out" ]

@@ -1,0 +1,40 @@
+#pragma once
+// Shared pieces of the Python module (docs/python.md): JSON ↔ Python objects, vectors ↔ NumPy,
+// and one bind function per group of library modules (one translation unit each).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <nlohmann/json.hpp>
+#include "fitlib/model/model.hpp"
+#include <string>
+#include <vector>
+
+namespace fitlib::python {
+
+namespace py = pybind11;
+
+// JSON documents cross the boundary as Python dicts/lists through Python's json module (exact
+// for doubles: both sides print the shortest round-trip form).
+py::object to_python(const nlohmann::json& j);
+nlohmann::json to_json(const py::handle& object);
+
+// A copy of `v` as a 1-D NumPy array.
+py::array_t<double> to_array(const std::vector<double>& v);
+// Any array-like of numbers (scalar, list, NumPy array) flattened to doubles.
+std::vector<double> to_vector(const py::handle& object);
+
+
+
+// Storage, loss, tan δ and mean modulus of `m` with parameters `p` over NumPy-broadcast arrays
+// of frequency, temperature (None = the reference) and strain amplitude; mode "" = native.
+py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, const py::object& f,
+                       const py::object& T, const py::object& amplitude, const std::string& mode,
+                       const std::string& orientation);
+
+void bind_errors(py::module_& m);
+void bind_data_model(py::module_& m);
+void bind_fit_card(py::module_& m);
+void bind_surface_point_scene(py::module_& m);
+
+}  // namespace fitlib::python

@@ -1,0 +1,265 @@
+// Python bindings of fit (options, results, term selection) and card (load, save, JSON, eval,
+// FE export). docs/python.md lists the names.
+#include "bindings.hpp"
+#include "fitlib/card/card.hpp"
+#include "fitlib/card/export.hpp"
+#include "fitlib/card/from_fit.hpp"
+#include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/terms.hpp"
+
+namespace fitlib::python {
+namespace {
+
+// Options objects built from keyword arguments, each set as the attribute of that name.
+template <typename Options>
+Options from_keywords(const py::kwargs& kwargs) {
+  auto options = py::cast(Options{});
+  for (const auto& item : kwargs) py::setattr(options, item.first, item.second);
+  return options.template cast<Options>();
+}
+
+std::string method_name(fit::TermMethod m) { return m == fit::TermMethod::spectrum ? "spectrum" : "sweep"; }
+
+void bind_fit_options(py::module_& m) {
+  using fit::FitOptions;
+  py::class_<FitOptions>(m, "FitOptions", "Options of fitlib.fit (fit/fit.hpp); keyword arguments set fields")
+      .def(py::init(&from_keywords<FitOptions>))
+      .def_property("backend", [](const FitOptions& o) { return std::string(fit::to_string(o.backend)); },
+                    [](FitOptions& o, const std::string& s) { o.backend = fit::parse_backend(s); })
+      .def_property("residual", [](const FitOptions& o) { return std::string(fit::to_string(o.residual)); },
+                    [](FitOptions& o, const std::string& s) { o.residual = fit::parse_residual_kind(s); })
+      .def_readwrite("storage_weight", &FitOptions::storage_weight)
+      .def_readwrite("loss_weight", &FitOptions::loss_weight)
+      .def_readwrite("mean_weight", &FitOptions::mean_weight)
+      .def_readwrite("seed", &FitOptions::seed)
+      .def_readwrite("multistart", &FitOptions::multistart)
+      .def_readwrite("tolerance", &FitOptions::tolerance)
+      .def_readwrite("max_iterations", &FitOptions::max_iterations)
+      .def_readwrite("fixed", &FitOptions::fixed)
+      .def_readwrite("polish", &FitOptions::polish)
+      .def_readwrite("linear_start", &FitOptions::linear_start)
+      .def_readwrite("global_", &FitOptions::global)
+      .def_readwrite("schedule_path", &FitOptions::schedule_path)
+      .def_readwrite("tau_margin_decades", &FitOptions::tau_margin_decades)
+      .def_readwrite("modulus_ceiling", &FitOptions::modulus_ceiling)
+      .def_readwrite("relaxed_floor", &FitOptions::relaxed_floor);
+
+  using fit::TermOptions;
+  py::class_<TermOptions>(m, "TermOptions", "Options of fitlib.select_terms (fit/terms.hpp)")
+      .def(py::init(&from_keywords<TermOptions>))
+      .def_readwrite("min_terms", &TermOptions::min_terms)
+      .def_readwrite("max_terms", &TermOptions::max_terms)
+      .def_readwrite("solver_cap", &TermOptions::solver_cap)
+      .def_property("rule", [](const TermOptions& o) { return std::string(fit::to_string(o.rule)); },
+                    [](TermOptions& o, const std::string& s) { o.rule = fit::parse_term_rule(s); })
+      .def_readwrite("residual_ratio", &TermOptions::residual_ratio)
+      .def_property("method", [](const TermOptions& o) { return method_name(o.method); },
+                    [](TermOptions& o, const std::string& s) { o.method = fit::parse_term_method(s); })
+      .def_property("smoothness", [](const TermOptions& o) { return o.spectrum.lambda; },
+                    [](TermOptions& o, double v) { o.spectrum.lambda = v; })
+      .def_property("terms_per_decade", [](const TermOptions& o) { return o.spectrum.per_decade; },
+                    [](TermOptions& o, double v) { o.spectrum.per_decade = v; })
+      .def_property("spectrum_polish", [](const TermOptions& o) { return o.spectrum.polish; },
+                    [](TermOptions& o, bool v) { o.spectrum.polish = v; });
+
+  m.attr("SPECTRUM_RESIDUAL") = fit::to_string(fit::kSpectrumResidual);
+  m.attr("SPECTRUM_STORAGE_WEIGHT") = fit::kSpectrumStorageWeight;
+}
+
+void bind_fit_result(py::module_& m) {
+  using namespace fit;
+  py::class_<ParameterResult>(m, "ParameterResult")
+      .def_readonly("name", &ParameterResult::name)
+      .def_readonly("unit", &ParameterResult::unit)
+      .def_readonly("value", &ParameterResult::value)
+      .def_readonly("fixed", &ParameterResult::fixed)
+      .def_readonly("std_error", &ParameterResult::std_error)
+      .def_readonly("reason", &ParameterResult::reason)
+      .def_readonly("ci95_low", &ParameterResult::ci95_low)
+      .def_readonly("ci95_high", &ParameterResult::ci95_high)
+      .def("__repr__", [](const ParameterResult& p) {
+        return "<" + p.name + " = " + std::to_string(p.value) + " " + p.unit + ">";
+      });
+  py::class_<FitMetrics>(m, "FitMetrics")
+      .def_readonly("n_points", &FitMetrics::n_points)
+      .def_readonly("n_residuals", &FitMetrics::n_residuals)
+      .def_readonly("n_free", &FitMetrics::n_free)
+      .def_readonly("cost", &FitMetrics::cost)
+      .def_readonly("rms_log10_storage", &FitMetrics::rms_log10_storage)
+      .def_readonly("rms_log10_loss", &FitMetrics::rms_log10_loss)
+      .def_readonly("mean_rel_error", &FitMetrics::mean_rel_error)
+      .def_readonly("max_rel_error", &FitMetrics::max_rel_error)
+      .def_readonly("aic", &FitMetrics::aic)
+      .def_readonly("bic", &FitMetrics::bic)
+      .def_readonly("wall_time_s", &FitMetrics::wall_time_s)
+      .def_readonly("converged", &FitMetrics::converged)
+      .def_readonly("condition_number", &FitMetrics::condition_number)
+      .def_readonly("rank", &FitMetrics::rank)
+      .def_readonly("iterations", &FitMetrics::iterations)
+      .def_readonly("n_active", &FitMetrics::n_active);
+  py::class_<Identifiability>(m, "Identifiability")
+      .def_readonly("condition_number", &Identifiability::condition_number)
+      .def_readonly("rank", &Identifiability::rank)
+      .def_readonly("null_space", &Identifiability::null_space)
+      .def_readonly("not_identifiable", &Identifiability::not_identifiable)
+      .def_property_readonly("correlated", [](const Identifiability& i) {
+        py::list out;
+        for (const auto& p : i.correlated) out.append(py::make_tuple(p.a, p.b, p.correlation));
+        return out;
+      });
+  py::class_<ErrorFigures>(m, "ErrorFigures")
+      .def_readonly("group", &ErrorFigures::group)
+      .def_readonly("modulus", &ErrorFigures::modulus)
+      .def_readonly("count", &ErrorFigures::count)
+      .def_readonly("mean_rel_error", &ErrorFigures::mean_rel_error)
+      .def_readonly("max_rel_error", &ErrorFigures::max_rel_error)
+      .def_readonly("max_at_frequency_Hz", &ErrorFigures::max_at_frequency_Hz);
+  py::class_<QualityVerdict>(m, "QualityVerdict")
+      .def_readonly("figures", &QualityVerdict::figures)
+      .def_readonly("warnings", &QualityVerdict::warnings)
+      .def_property_readonly("acceptable", &QualityVerdict::acceptable);
+  py::class_<FitResult>(m, "FitResult")
+      .def_property_readonly("model", [](const FitResult& r) { return std::const_pointer_cast<model::Model>(r.model); })
+      .def_property_readonly("values", [](const FitResult& r) { return to_array(r.values); })
+      .def_readonly("parameters", &FitResult::parameters)
+      .def_readonly("metrics", &FitResult::metrics)
+      .def_readonly("backend_used", &FitResult::backend_used)
+      .def_readwrite("messages", &FitResult::messages)
+      .def_readonly("identifiability", &FitResult::identifiability)
+      .def_readonly("objective", &FitResult::objective)
+      .def_property_readonly("admissible", [](const FitResult& r) {
+        return r.admissible.applies ? to_python(card::admissible_to_json(r.admissible)) : py::none();
+      })
+      .def_readonly("quality", &FitResult::quality);
+
+  m.def("fit",
+        [](const std::shared_ptr<model::Model>& model, const data::DynamicTestTable& table,
+           const FitOptions& options, const py::object& start) {
+          if (start.is_none()) return fit::fit(model, table, options);
+          const auto p = to_vector(start);
+          return fit::fit(model, table, options, &p);
+        },
+        py::arg("model"), py::arg("table"), py::arg("options") = FitOptions{}, py::arg("start") = py::none(),
+        "Fits `model` to `table` (start: the model's own from the data unless given)");
+}
+
+void bind_terms(py::module_& m) {
+  using namespace fit;
+  py::class_<TermRow>(m, "TermRow")
+      .def_readonly("terms", &TermRow::terms)
+      .def_readonly("wall_time_s", &TermRow::wall_time_s)
+      .def_readonly("rms_log10_storage", &TermRow::rms_log10_storage)
+      .def_readonly("rms_log10_loss", &TermRow::rms_log10_loss)
+      .def_readonly("cost", &TermRow::cost)
+      .def_readonly("aic", &TermRow::aic)
+      .def_readonly("bic", &TermRow::bic)
+      .def_readonly("n_free", &TermRow::n_free)
+      .def_readonly("converged", &TermRow::converged)
+      .def_readonly("failed", &TermRow::failed)
+      .def_readonly("message", &TermRow::message);
+  py::class_<TermSelection>(m, "TermSelection")
+      .def_readonly("rows", &TermSelection::rows)
+      .def_readonly("by_aic", &TermSelection::by_aic)
+      .def_readonly("by_bic", &TermSelection::by_bic)
+      .def_readonly("by_ratio", &TermSelection::by_ratio)
+      .def_property_readonly("rule", [](const TermSelection& s) { return std::string(to_string(s.rule)); })
+      .def_readonly("unconstrained", &TermSelection::unconstrained)
+      .def_readonly("chosen", &TermSelection::chosen)
+      .def_readonly("cap_cost_ratio", &TermSelection::cap_cost_ratio)
+      .def_readonly("cap_storage_rms_ratio", &TermSelection::cap_storage_rms_ratio)
+      .def_readonly("cap_loss_rms_ratio", &TermSelection::cap_loss_rms_ratio)
+      .def_readonly("result", &TermSelection::result)
+      .def_readonly("messages", &TermSelection::messages)
+      .def_property_readonly("method", [](const TermSelection& s) { return method_name(s.method); })
+      .def_readonly("spectrum_lambda", &TermSelection::spectrum_lambda)
+      .def_property_readonly("spectrum_path", [](const TermSelection& s) {
+        py::list out;
+        for (const auto& r : s.spectrum_path) {
+          py::dict d;
+          d["lambda"] = r.lambda, d["gcv"] = r.gcv, d["effective_terms"] = r.effective_terms;
+          d["terms"] = r.terms, d["residual_norm"] = r.residual_norm;
+          out.append(d);
+        }
+        return out;
+      })
+      .def("table_text", &format_term_table, "The human term table the CLI prints");
+
+  m.def("select_terms",
+        [](const std::string& kind, const py::object& model_options, const data::DynamicTestTable& table,
+           const FitOptions& options, const TermOptions& terms) {
+          return select_terms(kind, to_json(model_options), table, options, terms);
+        },
+        py::arg("kind"), py::arg("model_options"), py::arg("table"), py::arg("options") = FitOptions{},
+        py::arg("terms") = TermOptions{}, "--terms auto: the term count by the smooth spectrum or an N-sweep");
+}
+
+void bind_card(py::module_& m) {
+  using card::Card;
+  using card::ParameterEstimate;
+  py::class_<ParameterEstimate>(m, "ParameterEstimate")
+      .def_readonly("value", &ParameterEstimate::value)
+      .def_readonly("fixed", &ParameterEstimate::fixed)
+      .def_readonly("std_error", &ParameterEstimate::std_error)
+      .def_readonly("std_error_reason", &ParameterEstimate::std_error_reason)
+      .def_readonly("ci95_low", &ParameterEstimate::ci95_low)
+      .def_readonly("ci95_high", &ParameterEstimate::ci95_high);
+  py::class_<Card>(m, "Card", "A material card (formats.md §3)")
+      .def_readonly("name", &Card::name)
+      .def_readonly("model_kind", &Card::model_kind)
+      .def_property_readonly("model_options", [](const Card& c) { return to_python(c.model_options); })
+      .def_readonly("parameters", &Card::parameters)
+      .def_property_readonly("parameter_names", [](const Card& c) {
+        const auto model = c.model();  // alive while its parameter list is read
+        std::vector<std::string> names;
+        for (const auto& s : model->parameters()) names.push_back(s.name);
+        return names;
+      })
+      .def_property_readonly("fit", [](const Card& c) { return to_python(c.fit); })
+      .def_property_readonly("provenance", [](const Card& c) { return to_python(c.provenance); })
+      .def("model", [](const Card& c) { return std::const_pointer_cast<model::Model>(c.model()); })
+      .def("values", [](const Card& c) { return to_array(c.values()); })
+      .def("to_json", [](const Card& c) { return to_python(card::card_to_json(c)); })
+      .def("to_json_text", [](const Card& c) { return card::card_to_json(c).dump(2) + "\n"; },
+           "The bytes save() writes")
+      .def("save", [](const Card& c, const std::string& path) { card::save_card(path, c); }, py::arg("path"))
+      .def("eval",
+           [](const Card& c, const py::object& f, const py::object& T, const py::object& amplitude,
+              const std::string& mode, const std::string& orientation) {
+             return moduli_arrays(*c.model(), c.values(), f, T, amplitude, mode, orientation);
+           },
+           py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(), py::arg("strain_amplitude") = 0.0,
+           py::arg("mode") = "", py::arg("orientation") = "", "fitcli eval over broadcast arrays")
+      .def("export",
+           [](const Card& c, const std::string& format, double poisson_ratio, int material_id, bool allow_inadmissible) {
+             card::ExportOptions o;
+             o.poisson_ratio = poisson_ratio, o.material_id = material_id, o.allow_inadmissible = allow_inadmissible;
+             return card::export_card(c, format, o);
+           },
+           py::arg("format"), py::arg("poisson_ratio") = 0.4995, py::arg("material_id") = 1,
+           py::arg("allow_inadmissible") = false, "FE keywords: abaqus | ansys | lsdyna | calculix")
+      .def("admissibility_problems", &card::admissibility_problems);
+
+  m.def("load_card", &card::load_card, py::arg("path"));
+  m.def("card_from_json",
+        [](const py::object& j, const std::string& source) { return card::card_from_json(to_json(j), source); },
+        py::arg("document"), py::arg("source") = "card");
+  m.def("card_from_fit",
+        [](const fit::FitResult& r, const fit::FitOptions& o, const data::DynamicTestTable& t, const std::string& name,
+           const std::string& command, bool record_timing) {
+          return card::card_from_fit(r, o, t, {name, command, record_timing});
+        },
+        py::arg("result"), py::arg("options"), py::arg("table"), py::arg("name"), py::arg("command") = "",
+        py::arg("record_timing") = false);
+  m.def("max_prony_terms", &card::max_prony_terms, py::arg("format"));
+}
+
+}  // namespace
+
+void bind_fit_card(py::module_& m) {
+  bind_fit_options(m);
+  bind_fit_result(m);
+  bind_terms(m);
+  bind_card(m);
+}
+
+}  // namespace fitlib::python

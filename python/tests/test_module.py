@@ -1,0 +1,257 @@
+#!/usr/bin/env python3
+"""Tests of the Python module (plain script, run by ctest as `python_module`).
+
+Environment: PYTHONPATH = <build>/python, FITCLI = the fitcli binary, FITLIB_ROOT = the source
+tree. Each test is a function test_*; the last line is 'N passed, M failed' and the exit code is
+0 only when none failed. Files go to a per-process folder under the system's temporary folder.
+"""
+import csv
+import io
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import traceback
+
+import numpy as np
+
+import fitlib
+
+ROOT = os.environ["FITLIB_ROOT"]
+FITCLI = os.environ["FITCLI"]
+WORK = os.path.join(tempfile.gettempdir(), f"fitlib-python-{os.getpid()}")
+os.makedirs(WORK, exist_ok=True)
+
+
+def source(*parts):
+    return os.path.join(ROOT, *parts)
+
+
+def work(name):
+    return os.path.join(WORK, name)
+
+
+def fitcli(*args):
+    run = subprocess.run([FITCLI, *map(str, args)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    return run.stdout
+
+
+def without_command(document):
+    document = json.loads(json.dumps(document))
+    document["provenance"].pop("command")
+    return document
+
+
+def expect(error_class, call):
+    try:
+        call()
+    except error_class as e:
+        return e
+    raise AssertionError(f"expected {error_class.__name__}")
+
+
+MASTER = source("datasets", "materials", "pyvisco-freq-master.csv")
+SHEAR = source("datasets", "materials", "synthetic-prony-shear.csv")
+
+
+# ---- fit: the module gives the CLI's card -------------------------------------------------------
+def test_fit_terms_auto_reproduces_the_cli_card():
+    fitcli("fit", "--data", MASTER, "--format", "pyvisco", "--model", "prony", "--terms", "auto",
+           "--out", work("cli-auto.json"))
+    card, result, selection = fitlib.fit_card(MASTER, "prony", "auto", format="pyvisco")
+    cli = json.load(open(work("cli-auto.json")))
+    assert without_command(card.to_json()) == without_command(cli)
+    assert [p["value"] for p in cli["parameters"]] == list(card.values())
+    assert selection.chosen == len(card.values()) // 2 and selection.method == "spectrum"
+    assert result.metrics.n_points == 206
+
+
+def test_fit_fixed_terms_native_shear_reproduces_the_cli_card():
+    fitcli("fit", "--data", SHEAR, "--model", "prony", "--terms", "3", "--out", work("cli-3.json"))
+    card, result, _ = fitlib.fit_card(SHEAR, "prony", 3)
+    assert without_command(card.to_json()) == without_command(json.load(open(work("cli-3.json"))))
+    names = [p.name for p in result.parameters]
+    assert names == ["G_inf", "G_1", "G_2", "G_3", "tau_1", "tau_2", "tau_3"], names
+    assert result.identifiability.rank > 0 and isinstance(result.quality.acceptable, bool)
+
+
+def test_fit_result_carries_intervals_metrics_and_verdict():
+    table = fitlib.read_table(SHEAR)
+    model = fitlib.make_model("prony", {"terms": 2, "mode": "shear"})
+    result = fitlib.fit(model, table, fitlib.FitOptions(backend="ceres"))
+    assert result.backend_used == "ceres"
+    for p in result.parameters:
+        if p.std_error is not None:
+            assert p.ci95_low < p.value < p.ci95_high
+    assert result.metrics.converged and result.metrics.n_free == model.size
+    assert {f.modulus for f in result.quality.figures} >= {"storage", "loss"}
+
+
+# ---- tables -------------------------------------------------------------------------------------
+def test_table_columns_are_the_file_numbers():
+    raw = np.genfromtxt(MASTER, delimiter=",", skip_header=2)
+    table = fitlib.read_table(MASTER, format="pyvisco")
+    assert len(table) == raw.shape[0]
+    assert np.array_equal(table.frequency_Hz, raw[:, 0])
+    assert np.array_equal(table.storage_MPa, raw[:, 1]) and np.array_equal(table.loss_MPa, raw[:, 2])
+    assert set(table.mode) == {"uniaxial"}
+    again = fitlib.parse_table(table.to_csv(), "copy.csv")
+    assert np.array_equal(again.storage_MPa, table.storage_MPa)
+
+
+def test_eplexor_table_is_read_by_content():
+    table = fitlib.read_table(source("datasets", "materials", "pyvisco-eplexor-master.xls"), format="pyvisco")
+    assert len(table) > 10 and np.all(table.storage_MPa > 0)
+
+
+# ---- models -------------------------------------------------------------------------------------
+def test_prony_moduli_match_the_closed_form_and_broadcast():
+    model = fitlib.make_model("prony", {"terms": 1, "mode": "shear"})
+    G_inf, G_1, tau = 2.0, 5.0, 0.1
+    f = np.logspace(-2, 3, 7)
+    out = model.moduli([G_inf, G_1, tau], f)
+    wt = 2 * np.pi * f * tau
+    assert np.allclose(out["storage_MPa"], G_inf + G_1 * wt**2 / (1 + wt**2), rtol=1e-14)
+    assert np.allclose(out["loss_MPa"], G_1 * wt / (1 + wt**2), rtol=1e-14)
+    grid = model.moduli([G_inf, G_1, tau], f[:, None], temperature_C=np.array([23.0, 23.0]))
+    assert grid["storage_MPa"].shape == (7, 2)
+    t = np.array([0.0, 0.1, 1.0])
+    assert np.allclose(model.relaxation_modulus([G_inf, G_1, tau], t), G_inf + G_1 * np.exp(-t / tau), rtol=1e-12)
+    # Standard linear solid: J(t) = 1/G_inf − (1/G_inf − 1/G_0) exp(−t/τ_c), τ_c = τ G_0/G_inf.
+    G_0, tau_c = G_inf + G_1, tau * (G_inf + G_1) / G_inf
+    J = 1 / G_inf - (1 / G_inf - 1 / G_0) * np.exp(-t / tau_c)
+    assert np.allclose(model.creep_compliance([G_inf, G_1, tau], t), J, rtol=1e-5)  # J(t) is computed numerically
+
+
+# ---- cards --------------------------------------------------------------------------------------
+def test_card_round_trip_and_eval_equal_the_cli():
+    card, _, _ = fitlib.fit_card(SHEAR, "prony", 3, out=work("py-3.json"))
+    assert open(work("py-3.json")).read() == card.to_json_text()
+    loaded = fitlib.load_card(work("py-3.json"))
+    assert loaded.to_json() == card.to_json()
+    assert loaded.parameter_names == [p["name"] for p in card.to_json()["parameters"]]
+    assert fitlib.card_from_json(card.to_json()).to_json_text() == card.to_json_text()
+    f = [0.01, 1.0, 100.0]
+    rows = list(csv.DictReader(io.StringIO(fitcli("eval", "--card", work("py-3.json"), "--mode", "shear",
+                                                  "--frequency-hz", ",".join(map(repr, f))))))
+    mine = loaded.eval(f, mode="shear")
+    assert [float(r["storage_MPa"]) for r in rows] == list(mine["storage_MPa"])
+    assert [float(r["loss_MPa"]) for r in rows] == list(mine["loss_MPa"])
+
+
+def test_card_export_equals_the_cli():
+    card = fitlib.load_card(source("datasets", "cards", "synthetic-prony-shear-true.json"))
+    path = source("datasets", "cards", "synthetic-prony-shear-true.json")
+    assert card.export("abaqus") == fitcli("export", "--card", path, "--format", "abaqus")
+
+
+# ---- errors -------------------------------------------------------------------------------------
+def test_bad_table_is_an_input_error_naming_file_and_line():
+    path = source("tests", "data", "malformed", "non_number.csv")
+    e = expect(fitlib.InputError, lambda: fitlib.read_table(path))
+    assert e.file == path and e.line > 1 and e.column > 0, (e.file, e.line, e.column)
+    assert str(e).startswith(path) and e.exit_code == 3 and isinstance(e, fitlib.FitlibError)
+
+
+def test_missing_file_is_an_input_error_naming_it():
+    e = expect(fitlib.InputError, lambda: fitlib.load_card(work("no-such-card.json")))
+    assert e.file.endswith("no-such-card.json"), e.file
+
+
+def test_bad_card_key_is_an_input_error_naming_the_key():
+    document = fitlib.load_card(source("datasets", "cards", "synthetic-prony-shear-true.json")).to_json()
+    document["parameters"][1]["value"] = "three"
+    with open(work("bad-card.json"), "w") as f:
+        json.dump(document, f)
+    e = expect(fitlib.InputError, lambda: fitlib.load_card(work("bad-card.json")))
+    assert e.file.endswith("bad-card.json") and e.key, (e.file, e.key, str(e))
+
+
+def test_usage_and_numerical_errors_are_their_own_classes():
+    expect(fitlib.UsageError, lambda: fitlib.make_model("prony", {"terms": 1}).moduli([1, 1, 1], [1.0, -2.0]))
+    e = expect(fitlib.UsageError, lambda: fitlib.make_model("no-such-model"))
+    assert e.exit_code == 2 and not isinstance(e, fitlib.InputError)
+    prony = fitlib.make_model("prony", {"terms": 1, "mode": "shear"})
+    e = expect(fitlib.NumericalError, lambda: prony.creep_compliance([0.0, 0.0, 1.0], [1.0]))  # no glassy modulus
+    assert e.exit_code == 4 and isinstance(e, fitlib.FitlibError) and "glassy modulus" in str(e)
+
+
+def test_surface_outside_its_interval_is_an_input_error():
+    x = np.array([[a, b] for a in (0.0, 0.5, 1.0) for b in (1.0, 2.0, 3.0)])
+    y = 1 + 2 * x[:, 0] + 3 * x[:, 0] ** 2 - x[:, 1] + 0.5 * x[:, 0] * x[:, 1]
+    s = fitlib.fit_surface(x, y, ["a", "b"])
+    expect(fitlib.InputError, lambda: s([2.0, 1.0]))
+    expect(fitlib.UsageError, lambda: s([0.5, 1.0, 2.0]))  # three coordinates for two axes
+
+
+# ---- surfaces, points, scenes -------------------------------------------------------------------
+def test_surface_reproduces_a_polynomial_of_its_degree():
+    x = np.array([[a, b] for a in (0.0, 0.5, 1.0) for b in (1.0, 2.0, 3.0)])
+    law = lambda p: 1 + 2 * p[:, 0] + 3 * p[:, 0] ** 2 - p[:, 1] + 0.5 * p[:, 0] * p[:, 1]
+    s = fitlib.fit_surface(x, law(x), ["a", {"name": "b", "transform": "linear"}])
+    q = np.array([[0.1, 1.3], [0.77, 2.9], [0.5, 2.5]])
+    assert np.allclose(s(q), law(q), atol=1e-12)
+    s.save(work("s.json"))
+    assert np.array_equal(fitlib.load_surface(work("s.json"))(q), s(q))
+
+
+def test_elastic_point_stiffness_is_the_storage_modulus():
+    card = fitlib.load_card(source("datasets", "cards", "synthetic-prony-shear-true.json"))
+    point = fitlib.make_material_point(card.model(), card.values(), fidelity="elastic", frequency_Hz=2.0,
+                                       bulk_modulus_MPa=2000.0)
+    storage = card.eval([2.0], mode="shear")["storage_MPa"][0]
+    strain = np.zeros(6)
+    strain[5] = 1e-3
+    stress, _, tangent = point.update(point.initial_state(), strain, 0.1)
+    assert math.isclose(stress[5], storage * 1e-3, rel_tol=1e-10) and math.isclose(tangent[5, 5], storage, rel_tol=1e-10)
+    run = fitlib.drive_test(point, mode="shear", amplitude=0.01, cycles=1, steps_per_cycle=40)
+    assert np.allclose(run["test_stress_MPa"], storage * run["test_strain"], rtol=1e-9, atol=1e-12)
+    t = np.linspace(0.0, 1.0, 11)
+    free = fitlib.drive(point, t, [None] * 5 + [["strain", 0.002 * t]])  # γ12 imposed, σ = 0 elsewhere
+    assert np.allclose(free["stress_MPa"][:, 5], storage * 0.002 * t, rtol=1e-9, atol=1e-12)
+    assert np.abs(free["stress_MPa"][:, :5]).max() < 1e-9 and free["strain"].shape == (11, 6)
+
+
+def test_scene_load_cycle_equals_the_cli_load_history():
+    path = source("datasets", "drives", "ref-0500-heavy.toml")
+    fitcli("belt", "--scene", path, "--out", work("belt"))
+    with open(work("belt/load_history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    scene = fitlib.load_scene(path)
+    result = scene.run()
+    cycle = result.load_cycle
+    assert len(cycle["s_mm"]) == len(rows)
+    assert np.allclose(cycle["F_N"], [float(r["F_N"]) for r in rows], rtol=1e-9)
+    assert list(cycle["zone"]) == [r["zone"] for r in rows]
+    summary = fitlib.scene_summary(scene, result)
+    cli = json.load(open(work("belt/summary.json")))
+    assert summary["load_cycle"]["pulleys"] == cli["load_cycle"]["pulleys"]
+
+
+def test_scene_error_names_file_and_key():
+    with open(source("datasets", "drives", "ref-0500-heavy.toml")) as f:
+        text = f.read().replace("[conditions]", "[conditions]\nno_such_key = 1", 1)
+    e = expect(fitlib.InputError, lambda: fitlib.parse_scene(text, "my-scene.toml"))
+    assert e.file == "my-scene.toml" and "no_such_key" in (e.key + str(e)), (e.file, e.key, str(e))
+
+
+def main():
+    tests = [(name, f) for name, f in globals().items() if name.startswith("test_") and callable(f)]
+    failed = 0
+    for name, f in tests:
+        try:
+            f()
+            print(f"ok   {name}")
+        except Exception:  # noqa: BLE001 - report every failure and go on
+            failed += 1
+            print(f"FAIL {name}")
+            traceback.print_exc()
+    print(f"{len(tests) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
