@@ -11,6 +11,7 @@
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "fitlib/scene/writers.hpp"
 #include "fitlib/surface/card_grid.hpp"
 #include "fitlib/surface/fit.hpp"
 
@@ -329,10 +330,9 @@ void bind_scene(py::module_& m) {
       .def_property_readonly("tension_test", [](const SceneResult& r) {
         if (!r.tension_test) return py::object(py::none());
         py::dict d;
-        d["loading"] = tension_phase(r.tension_test->loading), d["unloading"] = tension_phase(r.tension_test->unloading);
+        d["loading"] = tension_phase(r.tension_test->result.loading), d["unloading"] = tension_phase(r.tension_test->result.unloading);
         return py::object(d);
       })
-      .def_property_readonly("extra", [](const SceneResult& r) { return to_python(r.extra); })
       .def_readonly("total_wall_s", &SceneResult::total_wall_s)
       .def("load_history_csv", &scene::load_history_csv);
 
@@ -341,7 +341,8 @@ void bind_scene(py::module_& m) {
   m.def("run_scene", [](const Scene& s) { return scene::run_scene(s); }, py::arg("scene"));
   m.def("scene_summary", [](const Scene& s, const SceneResult& r) { return to_python(scene::summary_json(s, r)); },
         py::arg("scene"), py::arg("result"), "The summary.json document of fitcli belt");
-  m.def("write_scene_outputs", &scene::write_outputs, py::arg("scene"), py::arg("result"), py::arg("folder"));
+  m.def("write_scene_outputs", &scene::write_outputs, py::arg("scene"), py::arg("result"), py::arg("folder"),
+        py::arg("record_timing") = false);
   m.def("accumulation_map",
         [](const std::string& spectrum, double shear_stress_MPa, long cycles, int cycle_points, double omega_min,
            double omega_max, int omega_points, double kappa, double strain_limit) {

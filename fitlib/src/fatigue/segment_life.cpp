@@ -23,16 +23,11 @@ std::vector<PointHistory> segment_point_histories(const segment::CycleResult& ru
   return out;
 }
 
-SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
-                         const FatigueCard& card) {
-  const auto t0 = std::chrono::steady_clock::now();
+segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
+                                 const SegmentLifeSetup& setup) {
   if (!setup.materials[0] || !setup.materials[1])
     throw core::UsageError("segment life: a material point per role (bottom, cushion) is required");
-  const LifeConditions conditions = [&] {
-    LifeConditions c = cycle_conditions(cycle, drive, setup.temperature_C);  // refuses a standing belt
-    c.peaks = setup.peaks;
-    return c;
-  }();
+  cycle_conditions(cycle, drive, setup.temperature_C);  // refuses a standing belt before the FE runs
   const belt::LoadHistory history(cycle, drive.belt, setup.temperature_C);
   segment::CycleDrive d;
   d.history = &history;
@@ -43,9 +38,17 @@ SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& dr
   d.speed_mm_s = drive.belt_speed_mm_s;
   d.temperature_C = setup.temperature_C;
   const segment::ContractLaw bottom(setup.materials[0]), cushion(setup.materials[1]);
+  return segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, setup.cycle,
+                            setup.extra_points);
+}
+
+SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
+                         const FatigueCard& card) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LifeConditions conditions = cycle_conditions(cycle, drive, setup.temperature_C);
+  conditions.peaks = setup.peaks;
   SegmentLife out;
-  out.run = segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, setup.cycle,
-                               setup.extra_points);
+  out.run = segment_run(cycle, drive, setup);
   out.report = evaluate_life(segment_point_histories(out.run), card, conditions);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -22,7 +22,7 @@ EffectChange effect_change(const belt::LoadCycle& with, const belt::LoadCycle& w
 
 // Life (life_effects.cpp).
 // Why this build cannot run the segment levels (elastic, complete); nullopt once it can.
-std::optional<std::string> segment_levels_unavailable();
+void segment_stresses(const Scene& scene, SceneResult& r);
 void beam_stresses(const Scene& scene, SceneResult& r);
 void fatigue_life(const Scene& scene, SceneResult& r);
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/scene/registry.hpp"
 

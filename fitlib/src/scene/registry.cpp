@@ -94,7 +94,7 @@ std::vector<Effect> make_registry() {
   reg.push_back({"beam_stresses", "stresses, life_conditions", kOneRun, {}, "", always({"contact_arcs"}), "",
                  nullptr, {}, timed(detail::beam_stresses)});
   reg.push_back({"segment_fe", "stresses, life_conditions", kOneRun, {}, "", always({"contact_arcs"}), "",
-                 nullptr, detail::segment_levels_unavailable, {}});
+                 nullptr, {}, timed(detail::segment_stresses)});
   reg.push_back({"fatigue", "life", kOneRun, {"life"}, "",
                  [](const Scene& s) {
                    return std::vector<std::string>{choose_life_plan(s).fidelity == "beam" ? "beam_stresses" : "segment_fe"};

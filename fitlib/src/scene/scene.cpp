@@ -15,6 +15,23 @@
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::scene {
+segment::CogSection cog_section(const Scene& scene) {
+  segment::CogSection sec;
+  auto geo = [&](const char* key, double fallback) {
+    const auto it = scene.extra_geometry_mm.find(key);
+    return it == scene.extra_geometry_mm.end() ? fallback : it->second;
+  };
+  sec.height_mm = scene.belt.height_mm;
+  sec.cushion_mm = geo("cushion_mm", sec.cushion_mm);
+  sec.cog_pitch_mm = geo("cog_pitch_mm", sec.cog_pitch_mm);
+  sec.cog_depth_mm = geo("cog_depth_mm", sec.cog_depth_mm);
+  sec.flank_angle_deg = geo("cog_flank_angle_deg", sec.flank_angle_deg);
+  sec.land_half_width_mm = geo("cog_land_half_width_mm", sec.land_half_width_mm);
+  sec.root_fillet_mm = geo("cog_root_fillet_mm", sec.root_fillet_mm);
+  sec.tip_radius_mm = geo("cog_tip_radius_mm", sec.tip_radius_mm);
+  return sec;
+}
+
 namespace {
 using core::InputError;
 using core::kPi;
@@ -141,18 +158,7 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
            "materials"});
   SegmentSpec g;
   auto& sec = g.setup.section;
-  auto geo = [&](const char* key, double fallback) {
-    const auto it = scene.extra_geometry_mm.find(key);
-    return it == scene.extra_geometry_mm.end() ? fallback : it->second;
-  };
-  sec.height_mm = scene.belt.height_mm;
-  sec.cushion_mm = geo("cushion_mm", sec.cushion_mm);
-  sec.cog_pitch_mm = geo("cog_pitch_mm", sec.cog_pitch_mm);
-  sec.cog_depth_mm = geo("cog_depth_mm", sec.cog_depth_mm);
-  sec.flank_angle_deg = geo("cog_flank_angle_deg", sec.flank_angle_deg);
-  sec.land_half_width_mm = geo("cog_land_half_width_mm", sec.land_half_width_mm);
-  sec.root_fillet_mm = geo("cog_root_fillet_mm", sec.root_fillet_mm);
-  sec.tip_radius_mm = geo("cog_tip_radius_mm", sec.tip_radius_mm);
+  sec = cog_section(scene);
   try {
     sec.validate();
   } catch (const InputError& e) {

@@ -85,9 +85,9 @@ TEST(SceneLife, DefaultFidelityIsTheFinestLevelTheSceneFeedsAndTheBuildHas) {
   EXPECT_NE(plan.reason.find("neither"), std::string::npos) << plan.reason;
   s.materials = {{"bottom", "b.json"}, {"cushion", "c.json"}};
   plan = scene::choose_life_plan(s);
-  EXPECT_EQ(plan.fidelity, "beam");  // complete would fit, but is not available yet
-  EXPECT_NE(plan.reason.find("complete"), std::string::npos) << plan.reason;
-  EXPECT_NE(plan.reason.find("not available yet"), std::string::npos) << plan.reason;
+  EXPECT_EQ(plan.fidelity, "beam");  // the segment levels are asked for, not the default
+  EXPECT_NE(plan.reason.find("bottom and cushion cards"), std::string::npos) << plan.reason;
+  EXPECT_NE(plan.reason.find("fidelity = \"complete\""), std::string::npos) << plan.reason;
   s.life = scene::LifeSpec{};
   s.life->fidelity = "elastic";
   EXPECT_EQ(scene::choose_life_plan(s).fidelity, "elastic");

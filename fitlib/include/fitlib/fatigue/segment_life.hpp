@@ -34,6 +34,10 @@ struct SegmentLife {
   double wall_s = 0.0;
 };
 
+// The segment driven by the load cycle (no life): what segment_life evaluates.
+segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
+                                 const SegmentLifeSetup& setup);
+
 // InputError for a standing belt or a drive without a load cycle; NumericalError (exit 4) when
 // the segment's Newton fails, naming increment and element.
 SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,

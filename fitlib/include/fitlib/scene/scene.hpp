@@ -102,6 +102,9 @@ struct Scene {
   std::optional<LifeSpec> life;
 };
 
+// The cogged section of the scene's belt ([belt] cog_* keys over the section's defaults).
+segment::CogSection cog_section(const Scene& scene);
+
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& toml_text, const std::string& source_name = "scene");
 
