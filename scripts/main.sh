@@ -16,7 +16,7 @@ fitcli="$BUILD_DIR/fitcli"
 mkdir -p "$out"
 data="$root/datasets/materials"
 
-echo "== 1. Prony card from pyvisco's master curve (terms chosen by BIC; AIC and pyvisco's rule shown)"
+echo "== 1. Prony card from pyvisco's master curve (smooth spectrum, smoothness chosen by GCV; quality verdict shown)"
 "$fitcli" fit --data "$data/pyvisco-freq-master.csv" --format pyvisco --model prony --terms auto \
   --reference-c -5 --name pyvisco-master --out "$out/pyvisco-master.json"
 grid=$(/usr/bin/python3 -c "print(','.join(repr(10**(k/10)) for k in range(-120, 141)))")
