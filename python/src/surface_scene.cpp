@@ -246,11 +246,7 @@ void bind_material_point(py::module_& m) {
         "fitcli material-point: ε(t) = mean − a cos 2πft in the test's program");
   m.def("fritzson_thesis_case",
         [](const card::Card& c, const std::string& id, int steps_per_cycle) {
-          if (c.model_kind != "fritzson" && c.model_kind != "fritzson-iso")
-            throw core::UsageError("thesis cases need a fritzson card, not '" + c.model_kind + "'");
-          const model::fritzson::MaterialPoint point(c.values(), c.model_kind == "fritzson",
-                                                     c.model_options.value("reference_C", 23.0),
-                                                     model::fritzson::Scheme::exponential);
+          const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*c.model(), c.values());
           const auto loops = model::fritzson::run_thesis_case(point, model::fritzson::thesis_case(id), steps_per_cycle);
           py::dict d;
           d["time_s"] = to_array(loops.time_s), d["displacement"] = to_array(loops.displacement);
