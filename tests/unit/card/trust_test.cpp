@@ -1,6 +1,6 @@
 // Cards an engineer can trust (issue 10, items 2–4 and the item-3 side-by-side): the issue's
 // own commands, run through the library as fitcli runs them, on the bundled copies of pyvisco's
-// data (datasets/materials, never ../shared).
+// data in datasets/materials (nothing outside the repository).
 #include <gtest/gtest.h>
 
 #include <algorithm>
