@@ -23,10 +23,10 @@ using fitlib::model::TestMode;
 namespace {
 
 const std::string kMalformed = std::string(FITLIB_TEST_DATA_DIR) + "/malformed/";
-// pyvisco's example files, copied into the repository (datasets/README.md, tests/data/pyvisco).
+// pyvisco's example files, copied into the repository (datasets/materials, datasets/README.md).
 const std::string kPyviscoMaster = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-freq-master.csv";
 const std::string kPyviscoRaw = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-freq-raw.csv";
-const std::string kPyviscoTimeMaster = std::string(FITLIB_TEST_DATA_DIR) + "/pyvisco/time_user_master.csv";
+const std::string kPyviscoTimeMaster = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-time-master.csv";
 using fitlib::core::kPi;
 
 struct MalformedCase {

@@ -59,7 +59,7 @@ inline std::vector<double> prony_parameters(double m_inf, const std::vector<doub
   return p;
 }
 
-// pyvisco's example files, copied into the repository (datasets/README.md, tests/data/pyvisco).
+// pyvisco's example files, copied into the repository (datasets/materials, datasets/README.md).
 inline std::string repo_path(const std::string& relative) {
   return std::string(FITLIB_SOURCE_DIR) + "/" + relative;
 }

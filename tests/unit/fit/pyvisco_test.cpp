@@ -22,7 +22,7 @@ struct LogRms {
 
 // Independent evaluation of the ANSYS terms on the data points.
 LogRms ansys_reference(const data::DynamicTestTable& table) {
-  const auto terms = read_ansys_prony(repo_path("tests/data/pyvisco/freq_master_prony_terms.MPL"));
+  const auto terms = read_ansys_prony(repo_path("datasets/materials/pyvisco-ansys-prony-terms.MPL"));
   EXPECT_EQ(terms.size(), 27u);
   const data::DynamicTestRow* highest = &table.rows.front();
   for (const auto& row : table.rows)

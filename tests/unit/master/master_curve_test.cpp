@@ -172,7 +172,7 @@ TEST(MasterCurve, PyviscoRawIsotherms) {
   ASSERT_EQ(curve.isotherms.size(), 21u);
   for (std::size_t k = 1; k < curve.isotherms.size(); ++k)
     EXPECT_LT(curve.isotherms[k].log10_aT, curve.isotherms[k - 1].log10_aT) << curve.isotherms[k].set;
-  const auto published = read_shift_factors("tests/data/pyvisco/freq_user_master__shift_factors.csv");
+  const auto published = read_shift_factors("datasets/materials/pyvisco-freq-master-shift-factors.csv");
   ASSERT_EQ(published.size(), 21u);
   double worst = 0.0;
   for (std::size_t k = 0; k < published.size(); ++k) {
