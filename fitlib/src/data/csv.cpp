@@ -120,4 +120,10 @@ std::string quote_csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
+bool is_known_orientation(const std::string& label) {
+  static const char* kOrientations[] = {"11", "22", "33", "12", "13", "23", "3232", "2332"};
+  return std::find(std::begin(kOrientations), std::end(kOrientations), label) !=
+         std::end(kOrientations);
+}
+
 }  // namespace fitlib::data

@@ -64,7 +64,6 @@ constexpr const char* kKnownColumns =
     "tan_delta, loss_angle_deg, temperature_C, temperature_K, strain_amplitude, mean_strain, "
     "mean_modulus_<U>, orientation, material, specimen, set, weight (U: Pa, kPa, MPa, GPa; "
     "x_... for notes)";
-constexpr const char* kOrientations[] = {"11", "22", "33", "12", "13", "23", "3232", "2332"};
 
 // Where each quantity sits in a row (0-based field index, -1 = absent) and its unit factor.
 struct Layout {
@@ -80,6 +79,120 @@ struct Layout {
   }
   bool has(Role role) const { return column[role] >= 0; }
 };
+
+// One data row's fields under a layout, with the row's error and number helpers.
+struct RowFields {
+  const std::vector<std::string>& fields;
+  const Layout& layout;
+  const std::string& file;
+  int line;
+
+  const std::string& text(Role role) const { return fields[layout.column[role]]; }
+  core::InputError fail(Role role, const std::string& message) const {
+    return core::InputError(message, file, line, layout.column[role] + 1);
+  }
+  // Range contract (docs/decisions.md "Table value range"): beyond it ω, 1/ω or the moduli
+  // overflow in the fit.
+  double number(Role role, const char* what) const {
+    const double v = parse_csv_number(text(role), what, file, line, layout.column[role] + 1);
+    if (std::abs(v) > kMaxTableMagnitude) throw fail(role, std::string(what) + " beyond +-1e100");
+    return v;
+  }
+  // Optional columns: an empty cell means "not given".
+  bool given(Role role) const { return layout.has(role) && !text(role).empty(); }
+};
+
+void read_mode(const RowFields& in, model::TestCondition& c) {
+  if (in.given(kMode)) {
+    const auto mode = model::test_mode_from_label(in.text(kMode));
+    if (!mode)
+      throw in.fail(kMode, "unknown test mode '" + in.text(kMode) + "' (expected " + kModeLabels + ")");
+    c.mode = *mode;
+  } else if (in.layout.has_default_mode) {
+    c.mode = in.layout.default_mode;
+  } else {
+    throw in.fail(kMode, "empty mode");
+  }
+}
+
+void read_frequency(const RowFields& in, model::TestCondition& c) {
+  if (in.layout.has(kFrequencyHz)) {
+    c.frequency_Hz = in.number(kFrequencyHz, "frequency");
+    if (!(c.frequency_Hz > 0.0)) throw in.fail(kFrequencyHz, "non-positive frequency");
+    if (c.frequency_Hz < kMinTableFrequency_Hz) throw in.fail(kFrequencyHz, "frequency below 1e-100 Hz");
+  } else {
+    const double omega = in.number(kAngularFrequency, "angular frequency");
+    if (!(omega > 0.0)) throw in.fail(kAngularFrequency, "non-positive angular frequency");
+    if (omega < kMinTableFrequency_Hz) throw in.fail(kAngularFrequency, "angular frequency below 1e-100 rad/s");
+    c.frequency_Hz = omega / (2.0 * core::kPi);
+  }
+}
+
+// E′, E″ from storage and loss columns, or from |E*| with tan δ or δ.
+void read_moduli(const RowFields& in, DynamicTestRow& row) {
+  const auto& to_MPa = in.layout.to_MPa;
+  if (in.layout.has(kStorage)) {
+    row.storage_MPa = in.number(kStorage, "storage modulus") * to_MPa[kStorage];
+    if (!(row.storage_MPa > 0.0)) throw in.fail(kStorage, "non-positive storage modulus");
+    row.loss_MPa = in.number(kLoss, "loss modulus") * to_MPa[kLoss];
+    if (row.loss_MPa < 0.0) throw in.fail(kLoss, "negative loss modulus");
+    return;
+  }
+  const double abs_MPa = in.number(kAbsModulus, "modulus") * to_MPa[kAbsModulus];
+  if (!(abs_MPa > 0.0)) throw in.fail(kAbsModulus, "non-positive modulus");
+  if (in.layout.has(kTanDelta)) {
+    const double tan_delta = in.number(kTanDelta, "tan delta");
+    if (tan_delta < 0.0) throw in.fail(kTanDelta, "negative tan delta");
+    row.storage_MPa = abs_MPa / std::sqrt(1.0 + tan_delta * tan_delta);
+    row.loss_MPa = row.storage_MPa * tan_delta;
+  } else {
+    const double delta_deg = in.number(kLossAngleDeg, "loss angle");
+    if (delta_deg < 0.0 || delta_deg >= 90.0)
+      throw in.fail(kLossAngleDeg, "loss angle outside [0, 90) degrees");
+    const double delta = delta_deg * core::kPi / 180.0;
+    row.storage_MPa = abs_MPa * std::cos(delta);
+    row.loss_MPa = abs_MPa * std::sin(delta);
+  }
+}
+
+void read_temperature(const RowFields& in, model::TestCondition& c) {
+  if (in.given(kTemperatureC)) {
+    c.temperature_C = in.number(kTemperatureC, "temperature");
+    if (!(c.temperature_C > -core::kZeroCelsiusInKelvin))
+      throw in.fail(kTemperatureC, "temperature below absolute zero");
+  } else if (in.given(kTemperatureK)) {
+    const double t_K = in.number(kTemperatureK, "temperature");
+    if (!(t_K > 0.0)) throw in.fail(kTemperatureK, "temperature below absolute zero");
+    c.temperature_C = core::celsius_from_kelvin(t_K);
+  }
+}
+
+// Amplitude, mean strain and modulus, orientation, weight and labels.
+void read_optional(const RowFields& in, DynamicTestRow& row) {
+  model::TestCondition& c = row.condition;
+  if (in.given(kStrainAmplitude)) {
+    c.strain_amplitude = in.number(kStrainAmplitude, "strain amplitude");
+    if (c.strain_amplitude < 0.0) throw in.fail(kStrainAmplitude, "negative strain amplitude");
+  }
+  if (in.given(kMeanStrain)) c.mean_strain = in.number(kMeanStrain, "mean strain");
+  if (in.given(kMeanModulus)) {
+    row.mean_modulus_MPa = in.number(kMeanModulus, "mean modulus") * in.layout.to_MPa[kMeanModulus];
+    row.has_mean_modulus = true;
+  }
+  if (in.given(kOrientation)) {
+    c.orientation = in.text(kOrientation);
+    if (!is_known_orientation(c.orientation))
+      throw in.fail(kOrientation, "unknown orientation '" + c.orientation + "' (expected " +
+                                      kOrientationLabels + ")");
+  }
+  if (in.given(kWeight)) {
+    row.weight = in.number(kWeight, "weight");
+    if (row.weight < 0.0) throw in.fail(kWeight, "negative weight");
+  }
+  if (in.layout.has(kMaterial)) row.material = in.text(kMaterial);
+  if (in.layout.has(kSpecimen)) row.specimen = in.text(kSpecimen);
+  if (in.layout.has(kSet)) row.set = in.text(kSet);
+}
 
 class TableParser {
  public:
@@ -290,103 +403,15 @@ class TableParser {
                                  std::to_string(layout_.field_count),
                              file_, line.number,
                              static_cast<int>(std::min(fields.size(), layout_.field_count)) + 1);
-    const auto text = [&](Role role) -> const std::string& { return fields[layout_.column[role]]; };
-    const auto fail = [&](Role role, const std::string& message) {
-      return core::InputError(message, file_, line.number, layout_.column[role] + 1);
-    };
-    // Range contract (docs/decisions.md "Table value range"): beyond it ω, 1/ω or the moduli
-    // overflow in the fit.
-    const auto number = [&](Role role, const char* what) {
-      const double v = parse_csv_number(text(role), what, file_, line.number, layout_.column[role] + 1);
-      if (std::abs(v) > kMaxTableMagnitude) throw fail(role, std::string(what) + " beyond +-1e100");
-      return v;
-    };
-    // Optional columns: an empty cell means "not given".
-    const auto given = [&](Role role) { return layout_.has(role) && !text(role).empty(); };
-
+    const RowFields in{fields, layout_, file_, line.number};
     DynamicTestRow row;
     row.source_file = file_;
     row.source_line = line.number;
-    model::TestCondition& c = row.condition;
-
-    if (given(kMode)) {
-      const auto mode = model::test_mode_from_label(text(kMode));
-      if (!mode)
-        throw fail(kMode, "unknown test mode '" + text(kMode) + "' (expected " + kModeLabels + ")");
-      c.mode = *mode;
-    } else if (layout_.has_default_mode) {
-      c.mode = layout_.default_mode;
-    } else {
-      throw fail(kMode, "empty mode");
-    }
-
-    if (layout_.has(kFrequencyHz)) {
-      c.frequency_Hz = number(kFrequencyHz, "frequency");
-      if (!(c.frequency_Hz > 0.0)) throw fail(kFrequencyHz, "non-positive frequency");
-      if (c.frequency_Hz < kMinTableFrequency_Hz) throw fail(kFrequencyHz, "frequency below 1e-100 Hz");
-    } else {
-      const double omega = number(kAngularFrequency, "angular frequency");
-      if (!(omega > 0.0)) throw fail(kAngularFrequency, "non-positive angular frequency");
-      if (omega < kMinTableFrequency_Hz) throw fail(kAngularFrequency, "angular frequency below 1e-100 rad/s");
-      c.frequency_Hz = omega / (2.0 * core::kPi);
-    }
-
-    if (layout_.has(kStorage)) {
-      row.storage_MPa = number(kStorage, "storage modulus") * layout_.to_MPa[kStorage];
-      if (!(row.storage_MPa > 0.0)) throw fail(kStorage, "non-positive storage modulus");
-      row.loss_MPa = number(kLoss, "loss modulus") * layout_.to_MPa[kLoss];
-      if (row.loss_MPa < 0.0) throw fail(kLoss, "negative loss modulus");
-    } else {
-      const double abs_MPa = number(kAbsModulus, "modulus") * layout_.to_MPa[kAbsModulus];
-      if (!(abs_MPa > 0.0)) throw fail(kAbsModulus, "non-positive modulus");
-      if (layout_.has(kTanDelta)) {
-        const double tan_delta = number(kTanDelta, "tan delta");
-        if (tan_delta < 0.0) throw fail(kTanDelta, "negative tan delta");
-        row.storage_MPa = abs_MPa / std::sqrt(1.0 + tan_delta * tan_delta);
-        row.loss_MPa = row.storage_MPa * tan_delta;
-      } else {
-        const double delta_deg = number(kLossAngleDeg, "loss angle");
-        if (delta_deg < 0.0 || delta_deg >= 90.0)
-          throw fail(kLossAngleDeg, "loss angle outside [0, 90) degrees");
-        const double delta = delta_deg * core::kPi / 180.0;
-        row.storage_MPa = abs_MPa * std::cos(delta);
-        row.loss_MPa = abs_MPa * std::sin(delta);
-      }
-    }
-
-    if (given(kTemperatureC)) {
-      c.temperature_C = number(kTemperatureC, "temperature");
-      if (!(c.temperature_C > -core::kZeroCelsiusInKelvin))
-        throw fail(kTemperatureC, "temperature below absolute zero");
-    } else if (given(kTemperatureK)) {
-      const double t_K = number(kTemperatureK, "temperature");
-      if (!(t_K > 0.0)) throw fail(kTemperatureK, "temperature below absolute zero");
-      c.temperature_C = core::celsius_from_kelvin(t_K);
-    }
-    if (given(kStrainAmplitude)) {
-      c.strain_amplitude = number(kStrainAmplitude, "strain amplitude");
-      if (c.strain_amplitude < 0.0) throw fail(kStrainAmplitude, "negative strain amplitude");
-    }
-    if (given(kMeanStrain)) c.mean_strain = number(kMeanStrain, "mean strain");
-    if (given(kMeanModulus)) {
-      row.mean_modulus_MPa = number(kMeanModulus, "mean modulus") * layout_.to_MPa[kMeanModulus];
-      row.has_mean_modulus = true;
-    }
-    if (given(kOrientation)) {
-      c.orientation = text(kOrientation);
-      bool known = false;
-      for (const char* o : kOrientations) known = known || c.orientation == o;
-      if (!known)
-        throw fail(kOrientation, "unknown orientation '" + c.orientation +
-                                     "' (expected 11, 22, 33, 12, 13, 23, 3232 or 2332)");
-    }
-    if (given(kWeight)) {
-      row.weight = number(kWeight, "weight");
-      if (row.weight < 0.0) throw fail(kWeight, "negative weight");
-    }
-    if (layout_.has(kMaterial)) row.material = text(kMaterial);
-    if (layout_.has(kSpecimen)) row.specimen = text(kSpecimen);
-    if (layout_.has(kSet)) row.set = text(kSet);
+    read_mode(in, row.condition);
+    read_frequency(in, row.condition);
+    read_moduli(in, row);
+    read_temperature(in, row.condition);
+    read_optional(in, row);
     return row;
   }
 

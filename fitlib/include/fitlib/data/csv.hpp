@@ -40,4 +40,8 @@ std::string quote_csv_field(const std::string& text);
 
 constexpr const char* kModeLabels = "shear, uniaxial, tension, compression or bulk";
 
+// Orientation labels of a test (formats.md §1), shared by the table and the waveform reader.
+constexpr const char* kOrientationLabels = "11, 22, 33, 12, 13, 23, 3232 or 2332";
+bool is_known_orientation(const std::string& label);
+
 }  // namespace fitlib::data

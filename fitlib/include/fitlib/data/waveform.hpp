@@ -14,12 +14,11 @@
 //  6. sin δ = W_loss/(π σ_a ε_a); E′ = (σ_a/ε_a) cos δ, E″ = (σ_a/ε_a) sin δ, E_m = σ_m/ε_m;
 //  7. circle check: max over samples of |√((ε−ε_m)² + (ε̇/ω)²) − ε_a| / ε_a.
 // Exact sinusoids give E′, E″ to round-off with or without smoothing (see docs/data.md).
-#include <limits>
 #include <string>
 #include <vector>
 
+#include "fitlib/data/specimen.hpp"
 #include "fitlib/data/table.hpp"
-#include "fitlib/model/test_condition.hpp"
 
 namespace fitlib::data {
 
@@ -78,26 +77,6 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
                                 const std::vector<double>& stress_MPa,
                                 const std::vector<double>& strain,
                                 const WaveformOptions& options = {});
-
-// Specimen constants (formats.md §2) and labels for the table row.
-struct SpecimenInfo {
-  model::TestMode mode = model::TestMode::shear;
-  bool has_mode = false;
-  double area_mm2 = std::numeric_limits<double>::quiet_NaN();       // loaded area, one specimen
-  double thickness_mm = std::numeric_limits<double>::quiet_NaN();   // shear: sheared height h
-  double length_mm = std::numeric_limits<double>::quiet_NaN();      // uniaxial: length L
-  double volume_mm3 = std::numeric_limits<double>::quiet_NaN();     // bulk: V0
-  int n_specimens = 1;  // double-sandwich shear: 2 (τ = F/(n·A))
-  double temperature_C = std::numeric_limits<double>::quiet_NaN();
-  std::string material, specimen, orientation;
-};
-
-// Stress (MPa) and strain from force (N) and displacement (mm):
-// shear τ = F/(n·A), γ = u/h; uniaxial σ = F/(n·A), ε = u/L; bulk p = F/A, ε_v = A·u/V0.
-// Throws InputError naming the missing or non-positive specimen key.
-void stress_strain_from_force(const SpecimenInfo& specimen, const std::vector<double>& force_N,
-                              const std::vector<double>& displacement_mm,
-                              std::vector<double>& stress_MPa, std::vector<double>& strain);
 
 struct WaveformRecord {
   std::vector<double> time_s, stress_MPa, strain;
