@@ -43,6 +43,95 @@ struct LogLifeResidual {
   }
 };
 
+std::vector<const ObservedLife*> cases_of(const std::vector<ObservedLife>& all, Mode mode) {
+  std::vector<const ObservedLife*> cases;
+  for (const ObservedLife& c : all)
+    if (c.mode == mode) cases.push_back(&c);
+  if (cases.empty())
+    throw core::InputError(std::string("no observed lives with failure mode ") + to_string(mode),
+                           "", 0, 0, "failure_mode");
+  return cases;
+}
+
+// The free coordinates (ln σ0, n, b) and the problem on them; Ceres solves in place.
+struct LifeProblem {
+  double ln_sigma0 = 0.0, n = 0.0, b = 0.0;
+  bool fix_b = false;
+  ceres::Problem problem;
+};
+
+void solve_life_problem(const std::vector<const ObservedLife*>& cases, const LifeFitOptions& o,
+                        Mode mode, LifeProblem& lp) {
+  lp.ln_sigma0 = std::log(o.start.sigma0_MPa), lp.n = o.start.n, lp.b = o.start.b_per_C;
+  for (const ObservedLife* c : cases)
+    lp.problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<LogLifeResidual, 1, 1, 1, 1>(
+            new LogLifeResidual{c, c->temperature_C - o.reference_temperature_C}),
+        nullptr, &lp.ln_sigma0, &lp.n, &lp.b);
+  lp.problem.SetParameterLowerBound(&lp.n, 0, 0.1);
+  lp.problem.SetParameterUpperBound(&lp.n, 0, 100.0);
+  if (lp.fix_b) lp.problem.SetParameterBlockConstant(&lp.b);
+  ceres::Solver::Options options;
+  options.max_num_iterations = 200;
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-14;
+  options.parameter_tolerance = 1e-12;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &lp.problem, &summary);
+  if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost))
+    throw core::NumericalError(std::string("fatigue: life-constant fit of ") + to_string(mode) +
+                               " failed: " + summary.message);
+}
+
+// Jacobian of the residuals in the free coordinates (ln σ0, n[, b]) at the solution.
+Eigen::MatrixXd jacobian_at_solution(LifeProblem& lp, std::vector<double>& residuals) {
+  std::vector<double*> blocks = {&lp.ln_sigma0, &lp.n};
+  if (!lp.fix_b) blocks.push_back(&lp.b);
+  ceres::Problem::EvaluateOptions eo;
+  eo.parameter_blocks = blocks;
+  double cost = 0.0;
+  ceres::CRSMatrix crs;
+  lp.problem.Evaluate(eo, &cost, &residuals, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r)
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) J(r, crs.cols[k]) = crs.values[k];
+  return J;
+}
+
+// 95 % intervals from the covariance s²(JᵀJ)⁻¹ (Student t with m − p degrees of freedom); σ0's
+// from ln σ0's, exponentiated (stays positive), with a delta-method standard error. A note
+// instead when there are too few cases or the constants are not identifiable.
+void add_intervals(const Eigen::MatrixXd& J, double ss, double ln_sigma0,
+                   std::vector<ConstantEstimate>& est, std::string& note) {
+  const int m = static_cast<int>(J.rows()), p = static_cast<int>(J.cols());
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  if (m <= p) {
+    note += "no intervals: " + std::to_string(m) + " cases for " + std::to_string(p) + " constants.";
+    return;
+  }
+  if (!lu.isInvertible()) {
+    note += "no intervals: the constants are not identifiable from these cases.";
+    return;
+  }
+  const Eigen::MatrixXd cov = lu.inverse() * (ss / (m - p));
+  const double t = boost::math::quantile(boost::math::students_t(m - p), 0.975);
+  for (int k = 0; k < p; ++k) {
+    ConstantEstimate& e = est[k];
+    const double se = std::sqrt(std::max(cov(k, k), 0.0));
+    e.has_interval = true;
+    if (k == 0) {
+      e.std_error = e.value * se;
+      e.ci95_low = std::exp(ln_sigma0 - t * se);
+      e.ci95_high = std::exp(ln_sigma0 + t * se);
+    } else {
+      e.std_error = se;
+      e.ci95_low = e.value - t * se;
+      e.ci95_high = e.value + t * se;
+    }
+  }
+}
+
 }  // namespace
 
 double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double reference_C) {
@@ -50,89 +139,28 @@ double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double re
 }
 
 LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, const LifeFitOptions& o) {
-  std::vector<const ObservedLife*> cases;
-  for (const ObservedLife& c : all)
-    if (c.mode == mode) cases.push_back(&c);
-  if (cases.empty())
-    throw core::InputError(std::string("no observed lives with failure mode ") + to_string(mode),
-                           "", 0, 0, "failure_mode");
+  const std::vector<const ObservedLife*> cases = cases_of(all, mode);
   LifeFitResult result;
   result.mode = mode;
   result.cases = static_cast<int>(cases.size());
   bool one_temperature = true;
   for (const ObservedLife* c : cases)
     one_temperature = one_temperature && c->temperature_C == cases[0]->temperature_C;
-  const bool fix_b = o.fix_b || one_temperature;
-  if (fix_b && !o.fix_b) result.note = "b held at its start value: all cases at one temperature. ";
+  LifeProblem lp;
+  lp.fix_b = o.fix_b || one_temperature;
+  if (lp.fix_b && !o.fix_b) result.note = "b held at its start value: all cases at one temperature. ";
+  solve_life_problem(cases, o, mode, lp);
+  result.law = {std::exp(lp.ln_sigma0), lp.n, lp.b};
 
-  double ln_sigma0 = std::log(o.start.sigma0_MPa), n = o.start.n, b = o.start.b_per_C;
-  ceres::Problem problem;
-  for (const ObservedLife* c : cases)
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<LogLifeResidual, 1, 1, 1, 1>(
-            new LogLifeResidual{c, c->temperature_C - o.reference_temperature_C}),
-        nullptr, &ln_sigma0, &n, &b);
-  problem.SetParameterLowerBound(&n, 0, 0.1);
-  problem.SetParameterUpperBound(&n, 0, 100.0);
-  if (fix_b) problem.SetParameterBlockConstant(&b);
-  ceres::Solver::Options options;
-  options.max_num_iterations = 200;
-  options.function_tolerance = 1e-14;
-  options.gradient_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-12;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost))
-    throw core::NumericalError(std::string("fatigue: life-constant fit of ") + to_string(mode) +
-                               " failed: " + summary.message);
-  result.law = {std::exp(ln_sigma0), n, b};
-
-  // Intervals: covariance s²(JᵀJ)⁻¹ of the free coordinates (ln σ0, n[, b]).
-  std::vector<double*> blocks = {&ln_sigma0, &n};
-  if (!fix_b) blocks.push_back(&b);
-  ceres::Problem::EvaluateOptions eo;
-  eo.parameter_blocks = blocks;
-  double cost = 0.0;
   std::vector<double> residuals;
-  ceres::CRSMatrix crs;
-  problem.Evaluate(eo, &cost, &residuals, nullptr, &crs);
-  const int m = crs.num_rows, p = crs.num_cols;
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, p);
-  for (int r = 0; r < m; ++r)
-    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) J(r, crs.cols[k]) = crs.values[k];
+  const Eigen::MatrixXd J = jacobian_at_solution(lp, residuals);
   double ss = 0.0;
   for (double r : residuals) ss += r * r;
-  result.rms_log10_error = std::sqrt(ss / m);
-
-  std::vector<ConstantEstimate> est = {{"sigma0_MPa", "MPa", result.law.sigma0_MPa},
-                                       {"n", "1", n},
-                                       {"b_per_C", "1/°C", b, fix_b}};
-  const Eigen::MatrixXd JtJ = J.transpose() * J;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
-  if (m <= p) {
-    result.note += "no intervals: " + std::to_string(m) + " cases for " + std::to_string(p) +
-                   " constants.";
-  } else if (!lu.isInvertible()) {
-    result.note += "no intervals: the constants are not identifiable from these cases.";
-  } else {
-    const Eigen::MatrixXd cov = lu.inverse() * (ss / (m - p));
-    const double t = boost::math::quantile(boost::math::students_t(m - p), 0.975);
-    for (int k = 0; k < p; ++k) {
-      ConstantEstimate& e = est[k];
-      const double se = std::sqrt(std::max(cov(k, k), 0.0));
-      e.has_interval = true;
-      if (k == 0) {  // ln σ0 interval, exponentiated (stays positive); delta-method error
-        e.std_error = e.value * se;
-        e.ci95_low = std::exp(ln_sigma0 - t * se);
-        e.ci95_high = std::exp(ln_sigma0 + t * se);
-      } else {
-        e.std_error = se;
-        e.ci95_low = e.value - t * se;
-        e.ci95_high = e.value + t * se;
-      }
-    }
-  }
-  result.constants = est;
+  result.rms_log10_error = std::sqrt(ss / static_cast<double>(J.rows()));
+  result.constants = {{"sigma0_MPa", "MPa", result.law.sigma0_MPa},
+                      {"n", "1", lp.n},
+                      {"b_per_C", "1/°C", lp.b, lp.fix_b}};
+  add_intervals(J, ss, lp.ln_sigma0, result.constants, result.note);
   return result;
 }
 
