@@ -114,6 +114,20 @@ TEST(FitCli, ExportWritesSolverKeywordsOrRefusesClearly) {
   EXPECT_FALSE(std::ifstream(temp_file("mat.k")).good());  // nothing half-written
 }
 
+TEST(FitCli, LsDynaExportWritesTheGivenDensityOrRefuses) {
+  const auto card_path = temp_file("export_dyna.json");
+  ASSERT_EQ(run_fitcli("fit --data " + kSynthetic + " --model prony --terms 3 --out " + card_path).exit_code, 0);
+  const auto deck = temp_file("dyna.k");
+  auto r = run_fitcli("export --card " + card_path + " --format lsdyna --out " + deck);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--density"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(deck).good());
+  r = run_fitcli("export --card " + card_path + " --format lsdyna --density 1.2e-9 --out " + deck);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(slurp(deck).find("*MAT_GENERAL_VISCOELASTIC\n$ MID, RO, BULK, PCF, EF, TREF, A, B\n1,1.2e-09,"),
+            std::string::npos) << slurp(deck);
+}
+
 TEST(FitCli, EveryMalformedTableExitsWithThreeAndNamesFileAndLine) {
   const std::string dir = source_path("tests/data/malformed");
   int checked = 0;

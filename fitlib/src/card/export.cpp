@@ -172,25 +172,32 @@ std::string ansys(const Card& card, const PronyExport& e, int id) {
   return out.str();
 }
 
-std::string lsdyna(const Card& card, const PronyExport& e, int id) {
-  // *MAT_GENERAL_VISCOELASTIC (MAT_076), free format: G(t) = Σ G_i exp(−β_i t), the long-term
-  // modulus as a term with β = 0; TREF, A, B are the WLF constants.
+// *MAT_GENERAL_VISCOELASTIC (MAT_076), free format. LS-DYNA's convention (docs/formats.md §3
+// "LS-DYNA"): G(t) = Σ GI e^(−BETAI t) and, when KI rows are given, K(t) = Σ KI e^(−BETAKI t);
+// without KI rows the bulk response is elastic with BULK. The long-time moduli are rows with a
+// zero decay constant; BULK, the elastic bulk modulus, is K(0). TREF, A, B: the WLF constants.
+std::string lsdyna(const Card& card, const PronyExport& e, const ExportOptions& o) {
+  if (!(o.density_t_per_mm3 > 0.0) || !std::isfinite(o.density_t_per_mm3))
+    throw core::UsageError("LS-DYNA needs the mass density RO (an explicit run stops at RO = 0) and "
+                           "the card has none: pass --density in t/mm3 (rubber about 1.2e-9)");
   std::ostringstream out;
   out << header(card, "$", e);
+  out << "$ K(t) = sum KI exp(-BETAKI t) (elastic BULK without KI rows); BULK = K(0); RO in t/mm3\n";
   out << "*MAT_GENERAL_VISCOELASTIC\n";
   out << "$ MID, RO, BULK, PCF, EF, TREF, A, B\n";
-  out << id << ",0.0," << num(e.bulk_MPa) << ",0.0,0.0,"
+  out << o.material_id << "," << num(o.density_t_per_mm3) << "," << num(e.bulk_MPa) << ",0.0,0.0,"
       << (e.wlf ? num(e.reference_C) : "0.0") << "," << (e.wlf ? num(e.C1) : "0.0") << ","
       << (e.wlf ? num(e.C2_K) : "0.0") << "\n";
   out << "$ LCID, NT, BSTART, TRAMP, LCIDK, NTK, BSTARTK, TRAMPK\n0,0,0.0,0.0,0,0,0.0,0.0\n";
   out << "$ GI, BETAI, KI, BETAKI\n";
   double sum_alpha = 0.0;
   for (double a : e.alpha) sum_alpha += a;
-  out << num(e.shear0_MPa * (1.0 - sum_alpha)) << ",0.0,0.0,0.0\n";
+  const double bulk_scale = e.bulk_relaxes ? e.bulk_MPa : 0.0;  // no KI rows: elastic BULK
+  out << num(e.shear0_MPa * (1.0 - sum_alpha)) << ",0.0," << num(bulk_scale * (1.0 - sum_alpha))
+      << ",0.0\n";
   for (size_t i = 0; i < e.alpha.size(); ++i)
     out << num(e.shear0_MPa * e.alpha[i]) << "," << num(1.0 / e.tau_s[i]) << ","
-        << num(e.bulk_relaxes ? e.bulk_MPa * e.alpha[i] : 0.0) << ","
-        << num(e.bulk_relaxes ? 1.0 / e.tau_s[i] : 0.0) << "\n";
+        << num(bulk_scale * e.alpha[i]) << "," << num(e.bulk_relaxes ? 1.0 / e.tau_s[i] : 0.0) << "\n";
   return out.str();
 }
 
@@ -211,7 +218,7 @@ std::string export_card(const Card& card, const std::string& format, const Expor
   const PronyExport e = prepare(card, format, options);
   if (format == "abaqus") return abaqus(card, e);
   if (format == "ansys") return ansys(card, e, options.material_id);
-  return lsdyna(card, e, options.material_id);
+  return lsdyna(card, e, options);
 }
 
 }  // namespace fitlib::card

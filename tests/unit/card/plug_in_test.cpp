@@ -165,9 +165,11 @@ TEST_F(PlugIn, TheCardReadsBackAndEvaluatesAsTheFit) {
 TEST_F(PlugIn, ExportsWriteThePronyWeightOfTheSolid) {
   const auto values = card_.values();
   const double g1 = values[1] / (values[0] + values[1]);
+  card::ExportOptions options;
+  options.density_t_per_mm3 = 1.2e-9;  // LS-DYNA's RO
   for (const char* format : {"abaqus", "ansys", "lsdyna"}) {
     std::string deck;
-    ASSERT_NO_THROW(deck = card::export_card(card_, format)) << format;
+    ASSERT_NO_THROW(deck = card::export_card(card_, format, options)) << format;
     EXPECT_NE(deck.find("standard-linear-solid"), std::string::npos) << format;
   }
   EXPECT_THROW(card::export_card(card_, "calculix"), core::UsageError);  // as for every Prony card

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include "fitlib/card/card.hpp"
 #include "fitlib/card/export.hpp"
@@ -124,9 +125,87 @@ TEST(Export, AnsysAndLsDynaCarryTheSameSeries) {
   const auto c = prony_card(2);
   const auto ansys = card::export_card(c, "ansys");
   EXPECT_NE(ansys.find("TB,PRONY,1,,2,SHEAR\nTBDATA,1,0.3333333333,0.1,0.5,1\n"), std::string::npos) << ansys;
-  const auto dyna = card::export_card(c, "lsdyna");
+  card::ExportOptions with_density;
+  with_density.density_t_per_mm3 = 1.2e-9;
+  const auto dyna = card::export_card(c, "lsdyna", with_density);
   // Long-term shear modulus as a term with beta = 0, then G_i with beta_i = 1/tau_i.
-  EXPECT_NE(dyna.find("1,0.0,0.0,0.0\n2,10,0,0\n3,1,0,0\n"), std::string::npos) << dyna;
+  EXPECT_NE(dyna.find("1,0.0,0,0.0\n2,10,0,0\n3,1,0,0\n"), std::string::npos) << dyna;
+}
+
+namespace {
+
+// The moduli an LS-DYNA *MAT_GENERAL_VISCOELASTIC deck stands for, read back from its numbers by
+// the convention docs/formats.md §3 states: G(t) = Σ GI e^(−BETAI t); K(t) = Σ KI e^(−BETAKI t)
+// when a KI is non-zero, else K = BULK. An independent reader of the written text.
+struct DynaModuli {
+  double ro = 0.0, bulk = 0.0, shear0 = 0.0, shear_inf = 0.0, bulk0 = 0.0, bulk_inf = 0.0;
+};
+
+std::vector<double> fields_of(const std::string& line) {
+  std::vector<double> v;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ',')) v.push_back(std::stod(field));
+  return v;
+}
+
+DynaModuli read_back(const std::string& deck) {
+  std::stringstream in(deck.substr(deck.find("*MAT_GENERAL_VISCOELASTIC")));
+  std::string line;
+  std::vector<std::vector<double>> rows;
+  std::getline(in, line);  // the keyword
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '$') rows.push_back(fields_of(line));
+  DynaModuli m;
+  m.ro = rows.at(0).at(1);
+  m.bulk = rows.at(0).at(2);
+  bool bulk_series = false;
+  for (std::size_t r = 2; r < rows.size(); ++r) {  // GI, BETAI, KI, BETAKI
+    const auto& g = rows[r];
+    m.shear0 += g.at(0);
+    if (g.at(1) == 0.0) m.shear_inf += g.at(0);
+    m.bulk0 += g.at(2);
+    if (g.at(3) == 0.0) m.bulk_inf += g.at(2);
+    bulk_series = bulk_series || g.at(2) != 0.0;
+  }
+  if (!bulk_series) m.bulk0 = m.bulk_inf = m.bulk;
+  return m;
+}
+
+}  // namespace
+
+// Issue 9: the deck's instantaneous and long-time shear and bulk moduli, recomputed from the
+// written numbers, are the card's (closed forms from its series and the Poisson ratio 0.4995).
+TEST(Export, LsDynaDeckHoldsTheCardsModuliAndDensity) {
+  card::ExportOptions o;
+  o.density_t_per_mm3 = 1.15e-9;
+  const double nu = o.poisson_ratio, rel = 1e-9;
+  // Shear card: G_inf = 1, G_1 = 2, G_2 = 3 MPa; bulk elastic, K = 2 G0 (1 + nu)/(3 (1 − 2 nu)).
+  const DynaModuli s = read_back(card::export_card(prony_card(2), "lsdyna", o));
+  EXPECT_EQ(s.ro, 1.15e-9);
+  EXPECT_NEAR(s.shear0, 6.0, rel * 6.0);
+  EXPECT_NEAR(s.shear_inf, 1.0, rel);
+  const double k_shear_card = 2.0 * 6.0 * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu));
+  EXPECT_NEAR(s.bulk0, k_shear_card, rel * k_shear_card);
+  EXPECT_NEAR(s.bulk_inf, k_shear_card, rel * k_shear_card);
+  // Uniaxial card: E0 = 6, E_inf = 1 MPa; K0 = E0/(3(1 − 2 nu)), G0 = 3 K0 E0/(9 K0 − E0), and
+  // both relax by the same fraction E_inf/E0 (constant Poisson ratio).
+  const DynaModuli u = read_back(card::export_card(prony_card(2, {{"mode", "uniaxial"}}), "lsdyna", o));
+  const double k0 = 6.0 / (3.0 * (1.0 - 2.0 * nu)), g0 = 3.0 * k0 * 6.0 / (9.0 * k0 - 6.0);
+  EXPECT_NEAR(u.bulk, k0, rel * k0);  // BULK is K(0)
+  EXPECT_NEAR(u.bulk0, k0, 1e-8 * k0);
+  EXPECT_NEAR(u.bulk_inf, k0 / 6.0, 1e-8 * k0);
+  EXPECT_NEAR(u.shear0, g0, 1e-8 * g0);
+  EXPECT_NEAR(u.shear_inf, g0 / 6.0, 1e-8 * g0);
+}
+
+TEST(Export, LsDynaRefusesWithoutADensity) {
+  try {
+    card::export_card(prony_card(2), "lsdyna");
+    FAIL() << "exported with RO = 0";
+  } catch (const core::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("--density"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Export, RefusesWhatAFormatCannotHold) {

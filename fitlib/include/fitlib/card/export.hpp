@@ -14,6 +14,9 @@ struct ExportOptions {
   // Default 0.4995 ⇔ K ≈ 10³ G (docs/decisions.md, "exports: what each FE format receives").
   double poisson_ratio = 0.4995;
   int material_id = 1;
+  // Mass density in t/mm³ (consistent with MPa, mm, s; rubber ≈ 1.2e-9), LS-DYNA's RO. The card
+  // holds none and RO = 0 stops an explicit LS-DYNA run, so the LS-DYNA export refuses without it.
+  double density_t_per_mm3 = 0.0;
   // Write a card whose terms break the admissible window it records (fit.admissible) or whose
   // relaxed/instantaneous ratio is below kMinRelaxedRatio (docs/fitting.md "Admissible terms").
   bool allow_inadmissible = false;
