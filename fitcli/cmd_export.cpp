@@ -23,7 +23,7 @@ void register_export(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(0.0, 0.49999999));
   cmd->add_option("--material-id", args->options.material_id, "Material number (ANSYS, LS-DYNA)")
       ->capture_default_str();
-  cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)")->check(CLI::PositiveNumber);
+  cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)");
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");
   cmd->callback([args] {

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 #include "fitlib/model/model.hpp"
+#include "fitlib/scene/results.hpp"
 #include <string>
 #include <vector>
 
@@ -36,5 +37,10 @@ void bind_errors(py::module_& m);
 void bind_data_model(py::module_& m);
 void bind_fit_card(py::module_& m);
 void bind_surface_point_scene(py::module_& m);
+void bind_master_relaxation(py::module_& m);  // master_relaxation.cpp
+void bind_segment_life(py::module_& m);       // segment_life.cpp
+
+// The life of a scene result as a dict (None when it did not run); segment_life.cpp.
+py::object life_dict(const scene::SceneResult& result);
 
 }  // namespace fitlib::python

@@ -356,4 +356,6 @@ PYBIND11_MODULE(_fitlib, m) {
   fitlib::python::bind_data_model(m);
   fitlib::python::bind_fit_card(m);
   fitlib::python::bind_surface_point_scene(m);
+  fitlib::python::bind_master_relaxation(m);
+  fitlib::python::bind_segment_life(m);
 }

@@ -329,6 +329,7 @@ void bind_scene(py::module_& m) {
         d["loading"] = tension_phase(r.tension_test->result.loading), d["unloading"] = tension_phase(r.tension_test->result.unloading);
         return py::object(d);
       })
+      .def_property_readonly("life", &life_dict, "Lives per mode, governing mode, design points (None when not run)")
       .def_readonly("total_wall_s", &SceneResult::total_wall_s)
       .def("load_history_csv", &scene::load_history_csv);
 

@@ -238,6 +238,101 @@ def test_scene_error_names_file_and_key():
     assert e.file == "my-scene.toml" and "no_such_key" in (e.key + str(e)), (e.file, e.key, str(e))
 
 
+# ---- master curves, shift files, relaxation data (fit/master_curve.hpp, fit/shift_laws.hpp) ----
+RAW = source("datasets", "materials", "pyvisco-freq-raw.csv")
+TIME_MASTER = source("datasets", "materials", "pyvisco-time-master.csv")
+
+
+def test_master_curve_shifts_and_laws_equal_the_cli():
+    out = fitcli("fit", "--data", RAW, "--format", "pyvisco", "--master-curve", "--reference-c", 20,
+                 "--model", "prony", "--terms", 4, "--shifts-out", work("shifts.csv"), "--out", work("mc.json"))
+    raw = fitlib.read_table(RAW, format="pyvisco")
+    curve = fitlib.build_master_curve(raw, fitlib.MasterCurveOptions(reference_C=20.0))
+    assert curve.shift_table() in out, curve.shift_table()
+    with open(work("shifts.csv")) as f:
+        assert curve.shift_factors().to_csv() == f.read()
+    assert len(curve.isotherms) == 21 and len(curve.master) == len(raw)
+    # The card's WLF constants are the curve's, and the module's own WLF fit of its points.
+    card = json.load(open(work("mc.json")))
+    law = card["temperature"]
+    assert (law["C1"], law["C2_K"]) == (curve.wlf["C1"], curve.wlf["C2_K"]), (law, curve.wlf)
+    again = fitlib.fit_wlf(curve.temperature_C, curve.log10_aT, 20.0)
+    assert again["C1"] == curve.wlf["C1"] and again["C2_K"] == curve.wlf["C2_K"]
+    # A polynomial of degree 2 through exact quadratic shifts is found to round-off.
+    T = np.array([-20.0, 0.0, 20.0, 40.0, 60.0])
+    poly = fitlib.fit_polynomial_shift(T, -0.1 * (T - 20.0) + 1e-3 * (T - 20.0) ** 2, 20.0, 2)
+    assert np.allclose(poly["coefficients"], [-0.1, 1e-3], rtol=1e-9), poly
+
+
+def test_shift_file_read_write_and_given_shifts_equal_the_cli():
+    given = source("datasets", "materials", "pyvisco-freq-master-shift-factors.csv")
+    shifts = fitlib.read_shift_factors(given)
+    assert len(shifts) == len(shifts.temperature_C) > 2
+    again = fitlib.parse_shift_factors(shifts.to_csv(), "again.csv")
+    assert list(again.log10_aT) == list(shifts.log10_aT)  # exact round trip
+    made = fitlib.ShiftFactorTable([0.0, 50.0], [2.0, -1.5])
+    made.save(work("made.csv"))
+    assert list(fitlib.read_shift_factors(work("made.csv")).log10_aT) == [2.0, -1.5]
+    assert made.interpolate(25.0) == 0.25
+    fitcli("fit", "--data", RAW, "--format", "pyvisco", "--shifts", given, "--reference-c", 20,
+           "--model", "prony", "--terms", 4, "--shifts-out", work("given-out.csv"), "--out", work("given.json"))
+    raw = fitlib.read_table(RAW, format="pyvisco")
+    curve = fitlib.master_curve_from_shift_factors(raw, shifts, 20.0)
+    with open(work("given-out.csv")) as f:
+        assert curve.shift_factors().to_csv() == f.read()
+
+
+def test_relaxation_fit_and_times_equal_the_cli():
+    fitcli("fit", "--data", TIME_MASTER, "--format", "pyvisco", "--model", "prony", "--terms", 4,
+           "--out", work("relax.json"))
+    cli = fitlib.load_card(work("relax.json"))
+    table = fitlib.read_relaxation_table(TIME_MASTER)
+    assert len(table) == len(table.time_s) and set(table.mode) == {"uniaxial"}
+    model = fitlib.make_model("prony", {"terms": 4, "mode": "uniaxial", "temperature_law": "none"})
+    result = fitlib.fit_relaxation(model, table, fitlib.FitOptions())
+    assert np.allclose(result.values, cli.values(), rtol=1e-9, atol=0), (result.values, cli.values())
+    measures = fitlib.measure_relaxation(model, result.values, table)
+    assert measures["rms_log10"] == result.metrics.rms_log10_storage
+    # M(t) of the card at chosen times = fitcli eval --time-s.
+    times = [1e-6, 1e-2, 1.0, 1e3]
+    rows = json.loads(fitcli("eval", "--card", work("relax.json"), "--mode", "uniaxial", "--time-s", *times,
+                             "--json"))["rows"]
+    mine = cli.model().relaxation_modulus(cli.values(), times)
+    assert [r["relaxation_modulus_MPa"] for r in rows] == list(mine)
+
+
+# ---- segment and life (scene/segment_case.hpp, scene/planner.hpp) -------------------------------
+def test_segment_case_stresses_equal_the_cli():
+    path = source("datasets", "segment", "bend-40mm.toml")
+    cli = json.loads(fitcli("segment", "--scene", path, "--json"))
+    mine = fitlib.segment_case(fitlib.load_scene(path))
+    assert mine["points"] == [p["name"] for p in cli["points"]]
+    for key in ("sigma11_radial_MPa", "sigma22_longitudinal_MPa", "sigma12_MPa", "sigma33_MPa", "principal_max_MPa"):
+        assert isinstance(mine[key], np.ndarray)
+        assert list(mine[key]) == [p[key] for p in cli["points"]], key
+    assert mine["summary"] == cli
+    assert mine["c_N_per_mm"] == cli["stiffness"]["c_N_per_mm"]
+
+
+def test_life_per_mode_and_governing_mode_equal_the_cli():
+    path = source("datasets", "drives", "ref-0500-medium.toml")
+    cli = json.loads(fitcli("life", "--scene", path, "--out-dir", work("life"), "--json"))
+    scene = fitlib.load_scene(path)
+    result = fitlib.run_life(scene)
+    life = result.life
+    assert life["governing"] == cli["governing_mode"] and life["fidelity"] == cli["fidelity"]
+    assert life["life_cycles"] == cli["life_cycles"] and life["life_h"] == cli["life_h"]
+    assert sorted(life["modes"]) == sorted(m["mode"] for m in cli["modes"])
+    for m in cli["modes"]:
+        mine = life["modes"][m["mode"]]
+        assert mine["design_point"] == m["design_point"]["name"]
+        assert (mine["x_mm"], mine["y_mm"]) == (m["design_point"]["x_mm"], m["design_point"]["y_mm"])
+        assert mine["life_cycles"] == m["life_cycles"] and mine["sum_terms"] == m["sum_terms"]
+        assert list(mine["peak_stress_MPa"]) == [p["effective_stress_MPa"] for p in m["peaks"]]
+    assert fitlib.life_json(scene, result) == cli
+    assert fitlib.load_scene(path).run().life is None  # not asked for: not computed
+
+
 def main():
     tests = [(name, f) for name, f in globals().items() if name.startswith("test_") and callable(f)]
     failed = 0

@@ -177,9 +177,12 @@ std::string ansys(const Card& card, const PronyExport& e, int id) {
 // without KI rows the bulk response is elastic with BULK. The long-time moduli are rows with a
 // zero decay constant; BULK, the elastic bulk modulus, is K(0). TREF, A, B: the WLF constants.
 std::string lsdyna(const Card& card, const PronyExport& e, const ExportOptions& o) {
-  if (!(o.density_t_per_mm3 > 0.0) || !std::isfinite(o.density_t_per_mm3))
+  if (o.density_t_per_mm3 == 0.0)
     throw core::UsageError("LS-DYNA needs the mass density RO (an explicit run stops at RO = 0) and "
                            "the card has none: pass --density in t/mm3 (rubber about 1.2e-9)");
+  if (!(o.density_t_per_mm3 > 0.0) || !std::isfinite(o.density_t_per_mm3))
+    throw core::UsageError("--density (LS-DYNA RO) must be a positive finite number of t/mm3, got " +
+                           core::short_number(o.density_t_per_mm3));
   std::ostringstream out;
   out << header(card, "$", e);
   out << "$ K(t) = sum KI exp(-BETAKI t) (elastic BULK without KI rows); BULK = K(0); RO in t/mm3\n";

@@ -1,0 +1,259 @@
+// The Python module: master curves (raw isotherms → shifts → WLF/Arrhenius/polynomial laws,
+// pyvisco shift files) and relaxation data (E(t) tables, fits, M(t)/J(t) of a card). A thin layer
+// over fit/master_curve.hpp, fit/shift_laws.hpp, fit/relaxation.hpp and data/*.hpp
+// (docs/python.md).
+#include <cmath>
+#include <limits>
+
+#include "bindings.hpp"
+#include "fitlib/card/card.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/data/relaxation.hpp"
+#include "fitlib/data/shift_factors.hpp"
+#include "fitlib/fit/master_curve.hpp"
+#include "fitlib/fit/relaxation.hpp"
+#include "fitlib/fit/shift_laws.hpp"
+
+namespace fitlib::python {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One column of a vector of rows as a NumPy array.
+template <typename Row, typename Field>
+py::array_t<double> column_of(const std::vector<Row>& rows, Field field) {
+  std::vector<double> v;
+  v.reserve(rows.size());
+  for (const auto& r : rows) v.push_back(field(r));
+  return to_array(v);
+}
+
+fit::VerticalShift vertical_shift(const std::string& name) {
+  if (name == "none") return fit::VerticalShift::none;
+  if (name == "entropic") return fit::VerticalShift::entropic;
+  if (name == "fitted") return fit::VerticalShift::fitted;
+  throw core::UsageError("vertical shift '" + name + "' (none, entropic or fitted)");
+}
+
+data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::object& log10_aT, double reference_C) {
+  const auto T = to_vector(temperatures_C), a = to_vector(log10_aT);
+  if (T.size() != a.size()) throw core::UsageError("temperatures and log10 a_T differ in length");
+  data::ShiftFactorTable table;
+  table.reference_C = reference_C;
+  for (std::size_t i = 0; i < T.size(); ++i) table.factors.push_back({T[i], a[i]});
+  return table;
+}
+
+void bind_shift_factors(py::module_& m) {
+  using data::ShiftFactorTable;
+  py::class_<ShiftFactorTable>(m, "ShiftFactorTable", "Shift factors T, log10 a_T (pyvisco's file, docs/data.md §3)")
+      .def(py::init(&shift_table), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C") = kNaN)
+      .def_readonly("reference_C", &ShiftFactorTable::reference_C)
+      .def_readonly("source_file", &ShiftFactorTable::source_file)
+      .def_property_readonly("temperature_C", [](const ShiftFactorTable& t) {
+        return column_of(t.factors, [](const data::ShiftFactor& f) { return f.temperature_C; });
+      })
+      .def_property_readonly("log10_aT", [](const ShiftFactorTable& t) {
+        return column_of(t.factors, [](const data::ShiftFactor& f) { return f.log10_aT; });
+      })
+      .def("__len__", [](const ShiftFactorTable& t) { return t.factors.size(); })
+      .def("interpolate", &data::interpolate_log10_aT, py::arg("temperature_C"), py::arg("tolerance_C") = 0.5,
+           "log10 a_T at T, linear between the nearest tabulated temperatures")
+      .def("to_csv", &data::format_shift_factors, "pyvisco's text (T,log_aT / C,-)")
+      .def("save", [](const ShiftFactorTable& t, const std::string& path) {
+        core::write_file_atomically(path, data::format_shift_factors(t));
+      }, py::arg("path"));
+  m.def("read_shift_factors", &data::read_shift_factors, py::arg("path"));
+  m.def("parse_shift_factors", &data::parse_shift_factors, py::arg("text"), py::arg("file_name") = "shifts");
+}
+
+py::dict wlf_dict(const fit::WlfFit& w) {
+  py::dict d;
+  d["C1"] = w.C1, d["C2_K"] = w.C2_K, d["rms_decades"] = w.rms_decades;
+  return d;
+}
+
+py::dict arrhenius_dict(const fit::ArrheniusFit& a) {
+  py::dict d;
+  d["activation_energy_kJ_mol"] = a.activation_energy_kJ_mol, d["rms_decades"] = a.rms_decades;
+  return d;
+}
+
+py::dict isotherm_dict(const fit::IsothermShift& s) {
+  py::dict d;
+  d["set"] = s.set, d["temperature_C"] = s.temperature_C, d["log10_aT"] = s.log10_aT;
+  d["log10_bT"] = s.log10_bT, d["pair_rms_decades"] = s.pair_rms_decades;
+  d["pair_overlap_points"] = s.pair_overlap_points, d["rows"] = s.rows;
+  return d;
+}
+
+void bind_master_options(py::module_& m) {
+  using fit::MasterCurveOptions;
+  py::class_<MasterCurveOptions>(m, "MasterCurveOptions", "Options of build_master_curve (fit/master_curve.hpp)")
+      .def(py::init([](const py::kwargs& fields) {
+        MasterCurveOptions o;
+        py::object self = py::cast(o);
+        for (const auto& [key, value] : fields) self.attr(key) = value;
+        return self.cast<MasterCurveOptions>();
+      }))
+      .def_readwrite("reference_C", &MasterCurveOptions::reference_C)
+      .def_readwrite("loss_weight", &MasterCurveOptions::loss_weight)
+      .def_readwrite("max_pair_shift_decades", &MasterCurveOptions::max_pair_shift_decades)
+      .def_readwrite("monotone", &MasterCurveOptions::monotone)
+      .def_readwrite("extrapolation_points", &MasterCurveOptions::extrapolation_points)
+      .def_readwrite("taper_decades", &MasterCurveOptions::taper_decades)
+      .def_readwrite("same_temperature_C", &MasterCurveOptions::same_temperature_C)
+      .def_property("vertical",
+                    [](const MasterCurveOptions& o) {
+                      return std::string(o.vertical == fit::VerticalShift::none       ? "none"
+                                         : o.vertical == fit::VerticalShift::entropic ? "entropic"
+                                                                                      : "fitted");
+                    },
+                    [](MasterCurveOptions& o, const std::string& v) { o.vertical = vertical_shift(v); });
+}
+
+void bind_master_curve(py::module_& m) {
+  using fit::MasterCurve;
+  bind_master_options(m);
+  py::class_<MasterCurve>(m, "MasterCurve", "Shifted isotherms (fitcli fit --master-curve)")
+      .def_readonly("reference_C", &MasterCurve::reference_C)
+      .def_readonly("master", &MasterCurve::master, "The shifted rows as a Table")
+      .def_readonly("messages", &MasterCurve::messages)
+      .def_property_readonly("isotherms", [](const MasterCurve& c) {
+        py::list out;
+        for (const auto& s : c.isotherms) out.append(isotherm_dict(s));
+        return out;
+      })
+      .def_property_readonly("temperature_C", [](const MasterCurve& c) {
+        return column_of(c.isotherms, [](const fit::IsothermShift& s) { return s.temperature_C; });
+      })
+      .def_property_readonly("log10_aT", [](const MasterCurve& c) {
+        return column_of(c.isotherms, [](const fit::IsothermShift& s) { return s.log10_aT; });
+      })
+      .def_property_readonly("log10_bT", [](const MasterCurve& c) {
+        return column_of(c.isotherms, [](const fit::IsothermShift& s) { return s.log10_bT; });
+      })
+      .def_property_readonly("wlf", [](const MasterCurve& c) { return wlf_dict(c.wlf); })
+      .def_property_readonly("arrhenius", [](const MasterCurve& c) { return arrhenius_dict(c.arrhenius); })
+      .def("shift_table", &fit::format_shift_table, "The text table fitcli prints")
+      .def("shift_table_csv", &fit::shift_table_csv)
+      .def("shift_factors", &fit::shift_factors_of, "As a ShiftFactorTable (fitcli --shifts-out)");
+  m.def("build_master_curve", &fit::build_master_curve, py::arg("table"),
+        py::arg("options") = fit::MasterCurveOptions{}, "Free per-isotherm shifts of raw isotherms");
+  m.def("master_curve_from_shift_factors", &fit::master_curve_from_shift_factors, py::arg("table"),
+        py::arg("shifts"), py::arg("reference_C"), "Raw isotherms shifted by given factors (fitcli --shifts)");
+  m.def("apply_shifts",
+        [](MasterCurve curve, const data::DynamicTestTable& raw, const py::object& log10_aT) {
+          fit::apply_shifts(curve, raw, to_vector(log10_aT));
+          return curve;
+        },
+        py::arg("curve"), py::arg("table"), py::arg("log10_aT"), "A copy of the curve with new shifts");
+}
+
+void bind_shift_laws(py::module_& m) {
+  m.def("fit_wlf",
+        [](const py::object& T, const py::object& a, double ref) { return wlf_dict(fit::fit_wlf(to_vector(T), to_vector(a), ref)); },
+        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"));
+  m.def("fit_arrhenius",
+        [](const py::object& T, const py::object& a, double ref) {
+          return arrhenius_dict(fit::fit_arrhenius(to_vector(T), to_vector(a), ref));
+        },
+        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"));
+  m.def("fit_polynomial_shift",
+        [](const py::object& T, const py::object& a, double ref, int degree) {
+          const auto p = fit::fit_polynomial_shift(to_vector(T), to_vector(a), ref, degree);
+          py::dict d;
+          d["coefficients"] = to_array(p.coefficients), d["rms_decades"] = p.rms_decades;
+          return d;
+        },
+        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), py::arg("degree") = 3);
+  m.def("given_log10_aT", &fit::given_log10_aT, py::arg("shifts"), py::arg("temperature_C"), py::arg("reference_C"));
+  m.def("fit_master_curve",
+        [](const std::shared_ptr<model::Model>& model, const data::DynamicTestTable& raw,
+           const fit::MasterCurveOptions& curve_options, const fit::FitOptions& fit_options, bool refine) {
+          auto r = fit::fit_master_curve(model, raw, curve_options, fit_options, refine);
+          py::dict d;
+          d["curve"] = r.curve, d["master"] = r.master;
+          d["joint"] = r.joint ? py::cast(*r.joint) : py::none();
+          d["pairwise_log10_aT"] = to_array(r.pairwise_log10_aT);
+          return d;
+        },
+        py::arg("model"), py::arg("table"), py::arg("curve_options") = fit::MasterCurveOptions{},
+        py::arg("fit_options") = fit::FitOptions{}, py::arg("refine_shifts") = false,
+        "Master curve, the model fitted to it, and optionally shifts and model refined together");
+  m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"));
+  m.def("with_law_from_shifts",
+        [](const fit::FitResult& r, const py::object& T, const py::object& a, double ref, const std::string& law,
+           int degree) {
+          return fit::with_law_from_shifts(r, to_vector(T), to_vector(a), ref, model::parse_shift_law(law), degree);
+        },
+        py::arg("result"), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"),
+        py::arg("law") = "wlf", py::arg("polynomial_degree") = 3,
+        "The fit's model with the law (wlf | polynomial) fitted to the shifts, constants held");
+}
+
+void bind_relaxation(py::module_& m) {
+  using data::RelaxationRow;
+  using data::RelaxationTable;
+  py::class_<RelaxationTable>(m, "RelaxationTable", "Relaxation tests t, M(t) (docs/data.md §4)")
+      .def("__len__", [](const RelaxationTable& t) { return t.rows.size(); })
+      .def_property_readonly("time_s", [](const RelaxationTable& t) {
+        return column_of(t.rows, [](const RelaxationRow& r) { return r.time_s; });
+      })
+      .def_property_readonly("modulus_MPa", [](const RelaxationTable& t) {
+        return column_of(t.rows, [](const RelaxationRow& r) { return r.modulus_MPa; });
+      })
+      .def_property_readonly("temperature_C", [](const RelaxationTable& t) {
+        return column_of(t.rows, [](const RelaxationRow& r) { return r.temperature_C; });
+      })
+      .def_property_readonly("weight", [](const RelaxationTable& t) {
+        return column_of(t.rows, [](const RelaxationRow& r) { return r.weight; });
+      })
+      .def_property_readonly("mode", [](const RelaxationTable& t) {
+        std::vector<std::string> v;
+        for (const auto& r : t.rows) v.push_back(model::to_string(r.mode));
+        return v;
+      })
+      .def_property_readonly("set", [](const RelaxationTable& t) {
+        std::vector<std::string> v;
+        for (const auto& r : t.rows) v.push_back(r.set);
+        return v;
+      })
+      .def_readonly("source_files", &RelaxationTable::source_files)
+      .def_readonly("source_sha256", &RelaxationTable::source_sha256);
+  m.def("read_relaxation_table", &data::read_relaxation_table, py::arg("path"));
+  m.def("parse_relaxation_table", &data::parse_relaxation_table, py::arg("text"), py::arg("file_name") = "relaxation");
+  m.def("shift_relaxation_table", &fit::shift_relaxation_table, py::arg("table"), py::arg("shifts"),
+        py::arg("reference_C"), "Rows at reduced time t / a_T (fitcli fit --shifts on relaxation data)");
+  m.def("fit_relaxation",
+        [](const std::shared_ptr<model::Model>& model, const RelaxationTable& t, const fit::FitOptions& o) {
+          return fit::fit_relaxation(model, t, o);
+        },
+        py::arg("model"), py::arg("table"), py::arg("options") = fit::FitOptions{});
+  m.def("select_relaxation_terms",
+        [](const std::string& kind, const py::object& options, const RelaxationTable& t, const fit::FitOptions& o,
+           const fit::TermOptions& terms) { return fit::select_relaxation_terms(kind, to_json(options), t, o, terms); },
+        py::arg("kind"), py::arg("model_options"), py::arg("table"), py::arg("options") = fit::FitOptions{},
+        py::arg("terms") = fit::TermOptions{}, "fitcli fit --terms auto on relaxation data");
+  m.def("measure_relaxation",
+        [](const std::shared_ptr<model::Model>& model, const py::object& p, const RelaxationTable& t) {
+          const auto r = fit::measure_relaxation(*model, to_vector(p), t);
+          py::dict d;
+          d["rms_log10"] = r.rms_log10, d["rms_relative"] = r.rms_relative;
+          d["max_relative"] = r.max_relative, d["mean_relative"] = r.mean_relative;
+          return d;
+        },
+        py::arg("model"), py::arg("p"), py::arg("table"));
+}
+
+}  // namespace
+
+void bind_master_relaxation(py::module_& m) {
+  bind_shift_factors(m);
+  bind_master_curve(m);
+  bind_shift_laws(m);
+  bind_relaxation(m);
+}
+
+}  // namespace fitlib::python
