@@ -6,7 +6,6 @@
 #include <numeric>
 
 #include "fitlib/core/error.hpp"
-#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 #include "trig_series.hpp"
 
