@@ -109,7 +109,9 @@ void parse_axes(const toml::table& root, Sweep& s, const std::string& source) {
       auto [value, label] = scalar(v, source, vk);
       if (card) {
         if (!v.is_string()) fail(source, &v, vk, "expects a card file name (string)");
-        value = relative_to(source, label);  // label: as written, so the table is the same anywhere
+        // Absolute, since the scene resolves card paths against its own folder; the label stays as
+        // written, so the table is the same wherever the sweep runs.
+        value = std::filesystem::absolute(relative_to(source, label)).lexically_normal().string();
       }
       axis.values.push_back(value);
       axis.labels.push_back(label);

@@ -1,12 +1,12 @@
 // fitcli sweep under mpiexec with 2 ranks on this machine: the same bytes as the threaded run
-// (docs/sweep.md "MPI"). Built when CMake finds MPI (FITLIB_MPI); fails, never skips, when
+// (docs/sweep.md "MPI"). Built when CMake finds MPI (FITLIB_MPI) as test_sweep_mpi; fails, never skips, when
 // mpiexec is missing (scripts/install-deps.sh installs openmpi-bin).
 #ifdef FITLIB_MPIEXEC
 #include <unistd.h>
 
 #include <filesystem>
 
-#include "cli_runner.hpp"
+#include "integration/cli_runner.hpp"
 
 namespace {
 
