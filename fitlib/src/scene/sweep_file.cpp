@@ -79,6 +79,8 @@ void parse_scenes(const toml::table& root, Sweep& s, const std::string& source) 
     if (!p) fail(source, &n, "scenes", "expects file names (strings)");
     s.scene_labels.push_back(p->get());
     s.scenes.push_back(relative_to(source, p->get()));
+    if (!std::filesystem::is_regular_file(s.scenes.back()))
+      fail(source, &n, "scenes[" + std::to_string(s.scenes.size() - 1) + "]", "no scene file " + s.scenes.back());
   }
 }
 
@@ -112,6 +114,8 @@ void parse_axes(const toml::table& root, Sweep& s, const std::string& source) {
         // Absolute, since the scene resolves card paths against its own folder; the label stays as
         // written, so the table is the same wherever the sweep runs.
         value = std::filesystem::absolute(relative_to(source, label)).lexically_normal().string();
+        if (!std::filesystem::is_regular_file(std::get<std::string>(value)))
+          fail(source, &v, vk, "no card file " + relative_to(source, label));
       }
       axis.values.push_back(value);
       axis.labels.push_back(label);
