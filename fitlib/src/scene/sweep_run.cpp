@@ -89,9 +89,13 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
   std::ofstream out;
   if (to_file) out.open(partial, std::ios::binary | std::ios::app);
   ProgressLine progress(writer && opt.progress, sweep.case_count, done);
-  const std::size_t chunk = 4 * static_cast<std::size_t>(ex.workers());
+  // Chunks start at 4 cases per worker and double while one takes under a second (fewer waits
+  // at chunk ends for fast cases, a flushed row soon for slow ones); the writer's size is shared.
+  std::size_t chunk = 4 * static_cast<std::size_t>(ex.workers());
   while (done < sweep.case_count) {
-    const std::size_t end = std::min(sweep.case_count, done + chunk);
+    std::size_t end = std::min(sweep.case_count, done + chunk);
+    if (opt.stop_after > done) end = std::min(end, opt.stop_after);
+    const auto t0 = std::chrono::steady_clock::now();
     std::string text;
     for (const auto& row : ex.rows(sweep, done, end)) text += row + "\n";
     if (to_file && !(out << text << std::flush))
@@ -101,6 +105,8 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
     progress.update(done, done == sweep.case_count);
     const bool stop = opt.stop_after > 0 && done >= opt.stop_after && done < sweep.case_count;
     if (ex.share(stop ? 1 : 0)) return result;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 1.0 && chunk < 4096) chunk *= 2;
+    chunk = ex.share(chunk);
   }
   result.complete = true;
   if (to_file) {
