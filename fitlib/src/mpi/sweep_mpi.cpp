@@ -69,7 +69,7 @@ std::vector<std::string> MpiExecutor::rows(const scene::Sweep& sweep, std::size_
       if (all[offsets[r]] == '!') failure = all.substr(offsets[r] + 1, lengths[r] - 1);
   if (share(failure.empty() ? 0 : 1)) throw std::runtime_error(rank_ == 0 ? failure : "another rank failed");
   if (rank_ != 0) return {};
-  // Rank r's k-th row is case begin + ... in order: interleave by i mod size.
+  // Case i's row is the next unread row of rank i mod N.
   std::vector<std::size_t> cursor(size_);
   for (int r = 0; r < size_; ++r) cursor[r] = static_cast<std::size_t>(offsets[r]) + 1;
   std::vector<std::string> rows;

@@ -1,5 +1,6 @@
 // Reading and validating a sweep file (docs/sweep.md "Sweep file").
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -8,7 +9,6 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
-#include "fitlib/core/toml_limits.hpp"
 #include "fitlib/scene/scene_toml.hpp"
 #include "fitlib/scene/sweep.hpp"
 #include "sweep_case.hpp"
@@ -164,17 +164,11 @@ void hash_inputs(Sweep& s, const std::string& text) {
 }  // namespace
 
 Sweep parse_sweep(const std::string& text, const std::string& source) {
-  core::check_toml_limits(text, source);
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    throw InputError(std::string(e.description()), source, static_cast<int>(e.source().begin.line),
-                     static_cast<int>(e.source().begin.column));
-  }
+  const toml::table root = parse_scene_toml(text, source);  // same limits and errors as a scene
   check_keys(root, {"name", "scenes", "set", "axis", "outputs"}, source, "");
   Sweep s;
   s.path = source;
+  if (const toml::node* n = root.get("name"); n && !n->is_string()) fail(source, n, "name", "expects a string");
   s.name = root["name"].value_or(std::filesystem::path(source).stem().string());
   parse_scenes(root, s, source);
   if (const toml::node* set = root.get("set")) {

@@ -12,8 +12,8 @@
 
 namespace fitlib::scene {
 
-// Work cap (README "Work caps"): cases of one sweep file; 10⁶ beam-level life cases take about a
-// core-day (docs/sweep.md, bench_sweep).
+// Work cap (README "Work caps"): cases of one sweep file; 10⁶ beam-level life cases take about
+// 0.2 core-hours (docs/sweep.md "Scaling", bench_sweep), segment-level ones far more.
 constexpr double kMaxSweepCases = 1e6;
 
 using SweepValue = std::variant<bool, std::int64_t, double, std::string>;
