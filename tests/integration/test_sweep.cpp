@@ -1,7 +1,11 @@
 // fitcli sweep end to end (docs/sweep.md): the same bytes for 1, 2 and 4 threads, a stopped
 // sweep resumed to the bytes of an uninterrupted one, JSON equal to the CSV, progress on stderr.
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -69,6 +73,38 @@ TEST(SweepCli, StoppedSweepResumesToTheSameBytes) {
   EXPECT_NE(r.err.find("sweep: 24/24 cases"), std::string::npos) << r.err;  // progress
   EXPECT_EQ(slurp(out), whole);
   EXPECT_FALSE(std::filesystem::exists(out + ".partial"));
+}
+
+std::size_t line_count(const std::string& path) {
+  const std::string text = slurp(path);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// A real kill: SIGTERM once some rows are flushed. Should the sweep finish first (a fast machine),
+// the restart redoes it; either way the final bytes must equal an uninterrupted run's.
+TEST(SweepCli, KilledSweepResumesToTheSameBytes) {
+  const std::string sweep = source_path("tests/data/sweep/long.toml");
+  const std::string whole = out_file("long_whole"), out = out_file("long_killed");
+  ASSERT_EQ(run_fitcli("sweep --sweep " + sweep + " --out " + whole + " --threads 2 --quiet").exit_code, 0);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl(FITCLI_EXE, FITCLI_EXE, "sweep", "--sweep", sweep.c_str(), "--out", out.c_str(), "--threads", "1",
+          "--quiet", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  for (int i = 0; i < 4000 && line_count(out + ".partial") < 6; ++i) usleep(2000);
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (WIFSIGNALED(status)) {
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_LT(line_count(out + ".partial"), 1002u);
+  }
+  const auto r = run_fitcli("sweep --sweep " + sweep + " --out " + out + " --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(out), slurp(whole));
+  std::printf("[ killed   ] %s; restart: %s", WIFSIGNALED(status) ? "by SIGTERM" : "finished first",
+              r.err.substr(r.err.rfind("wrote")).c_str());
 }
 
 TEST(SweepCli, PartialFileOfAnotherSweepIsRefused) {
