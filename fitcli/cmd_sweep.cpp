@@ -1,12 +1,12 @@
 // fitcli sweep: a grid of scene runs from a sweep file (docs/sweep.md) as one CSV table (or JSON
 // with --json), on threads, or across MPI ranks under mpirun; resumable through --out FILE.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <thread>
 
 #include "commands.hpp"
-#include "fitlib/core/io.hpp"
 #include "fitlib/scene/sweep_run.hpp"
 #ifdef FITLIB_HAVE_MPI
 #include "fitlib/mpi/sweep_mpi.hpp"

@@ -36,5 +36,6 @@ void bind_errors(py::module_& m);
 void bind_data_model(py::module_& m);
 void bind_fit_card(py::module_& m);
 void bind_surface_point_scene(py::module_& m);
+void bind_sweep(py::module_& m);
 
 }  // namespace fitlib::python

@@ -356,4 +356,5 @@ PYBIND11_MODULE(_fitlib, m) {
   fitlib::python::bind_data_model(m);
   fitlib::python::bind_fit_card(m);
   fitlib::python::bind_surface_point_scene(m);
+  fitlib::python::bind_sweep(m);
 }

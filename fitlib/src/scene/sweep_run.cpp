@@ -22,7 +22,8 @@ std::string head_text(const Sweep& sweep) {
 
 // Finished rows of FILE.partial: its head must be this sweep's; row k must be case k; a cut last
 // line is dropped. Returns the case count and keeps the bytes in `table`.
-std::size_t read_partial(const std::string& partial, const std::string& head, std::string& table) {
+std::size_t read_partial(const std::string& partial, const std::string& head, std::size_t case_count,
+                         std::string& table) {
   const std::string bytes = core::read_file(partial);
   if (bytes.size() < head.size() && head.compare(0, bytes.size(), bytes) == 0) {  // cut in the head
     table = head;
@@ -39,6 +40,8 @@ std::size_t read_partial(const std::string& partial, const std::string& head, st
       throw core::InputError("expected the row of case " + std::to_string(done) + "; remove the file to start over",
                              partial, static_cast<int>(done + 3), 1);
   }
+  if (done > case_count)
+    throw core::InputError("holds more rows than the sweep has cases; remove it to start over", partial, 1, 1);
   table = bytes.substr(0, pos);
   return done;
 }
@@ -78,7 +81,7 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
   std::size_t done = 0;
   if (to_file) {
     core::check_output_path(opt.out_path);
-    if (std::filesystem::exists(partial)) done = read_partial(partial, head, result.table);
+    if (std::filesystem::exists(partial)) done = read_partial(partial, head, sweep.case_count, result.table);
     else result.table = head;
     core::write_file_atomically(partial, result.table);  // drops a cut last line
   } else if (writer) {
