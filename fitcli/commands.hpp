@@ -17,5 +17,6 @@ void register_material_point(CLI::App& app);
 void register_plot(CLI::App& app);
 void register_segment(CLI::App& app);
 void register_life(CLI::App& app);
+void register_sweep(CLI::App& app);
 
 }  // namespace fitcli

@@ -10,6 +10,7 @@ packages=(
   python3 python3-matplotlib python3-numpy jupyter-nbconvert python3-nbclient python3-ipykernel
   python3-dev pybind11-dev python3-pybind11
   calculix-ccx
+  libopenmpi-dev openmpi-bin
 )
 # Optional: clang and its libFuzzer runtime for the fuzz harnesses (scripts/fuzz.sh); the build
 # and every test work without them (gcc only), the test command then skips the fuzzing step.

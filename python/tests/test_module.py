@@ -231,6 +231,15 @@ def test_scene_load_cycle_equals_the_cli_load_history():
     assert summary["load_cycle"]["pulleys"] == cli["load_cycle"]["pulleys"]
 
 
+def test_sweep_equals_fitcli_sweep():
+    path = source("tests", "data", "sweep", "small.toml")
+    cli = fitcli("sweep", "--sweep", path, "--quiet")
+    assert fitlib.sweep(path, threads=2, csv=True) == cli
+    table = fitlib.sweep(path)
+    assert table == json.loads(fitcli("sweep", "--sweep", path, "--json", "--quiet"))
+    assert len(table["rows"]) == 24 and table["rows"][2]["status"] == "input_error"
+
+
 def test_scene_error_names_file_and_key():
     with open(source("datasets", "drives", "ref-0500-heavy.toml")) as f:
         text = f.read().replace("[conditions]", "[conditions]\nno_such_key = 1", 1)

@@ -1,4 +1,5 @@
 #include "fitlib/scene/scene.hpp"
+#include "fitlib/scene/scene_toml.hpp"
 
 #include "fitlib/core/toml_limits.hpp"
 
@@ -421,15 +422,21 @@ void parse_flags(Reader& top, const char* table, const std::vector<std::string>&
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& source) {
+toml::table parse_scene_toml(const std::string& text, const std::string& source) {
   core::check_toml_limits(text, source);
-  toml::table root;
   try {
-    root = toml::parse(text, source);
+    return toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     throw InputError(std::string(e.description()), source, static_cast<int>(e.source().begin.line),
                      static_cast<int>(e.source().begin.column));
   }
+}
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  return parse_scene_table(parse_scene_toml(text, source), source);
+}
+
+Scene parse_scene_table(const toml::table& root, const std::string& source) {
   Scene s;
   s.path = source;
   const std::filesystem::path base = std::filesystem::path(source).parent_path();

@@ -1,0 +1,169 @@
+// One row of a sweep: run the case's scene with the outputs its columns need, print the columns
+// (docs/sweep.md "Columns").
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
+#include "fitlib/core/units.hpp"
+#include "fitlib/fatigue/card.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/sweep.hpp"
+#include "sweep_case.hpp"
+
+namespace fitlib::scene {
+namespace {
+
+using Column = std::function<std::string(const SceneResult&)>;
+
+// Finite numbers by the one formatter; an unbounded life (or no value) is an empty field.
+std::string number(double x) { return std::isfinite(x) ? core::format_number(x) : std::string(); }
+
+double max_over(const belt::LoadCycle& c, double belt::LoadSample::*field, bool absolute = false) {
+  double m = -INFINITY;
+  for (const auto& s : c.samples) m = std::max(m, absolute ? std::abs(s.*field) : s.*field);
+  return m;
+}
+
+Column cycle_max(double belt::LoadSample::*field, double scale = 1.0, bool absolute = false) {
+  return [=](const SceneResult& r) { return number(scale * max_over(*r.cycle, field, absolute)); };
+}
+
+// Life of one failure mode (radial_crack, separation, cord_break); empty when it has none.
+Column mode_life(const std::string& mode, bool hours) {
+  return [=](const SceneResult& r) {
+    const auto& rep = r.life->report;
+    if (mode == "cord_break")
+      return rep.cord_break ? number(hours ? rep.cord_break->life_h : rep.cord_break->life_cycles) : std::string();
+    for (const auto& m : rep.modes)
+      if (fatigue::to_string(m.mode) == mode) return number(hours ? m.life_h : m.life_cycles);
+    return std::string();
+  };
+}
+
+struct ColumnSpec {
+  const char* output;  // the scene output it needs: load_history or life
+  Column column;
+};
+
+const std::map<std::string, ColumnSpec>& columns() {
+  const double deg = 180.0 / core::kPi;
+  static const std::map<std::string, ColumnSpec> table{
+      {"max_tension_N", {"load_history", cycle_max(&belt::LoadSample::F_N)}},
+      {"min_tension_N", {"load_history", [](const SceneResult& r) {
+         double m = INFINITY;
+         for (const auto& x : r.cycle->samples) m = std::min(m, x.F_N);
+         return number(m);
+       }}},
+      {"max_side_pressure_MPa", {"load_history", cycle_max(&belt::LoadSample::p_MPa)}},
+      {"max_sliding_angle_deg", {"load_history", cycle_max(&belt::LoadSample::gamma_rad, deg, true)}},
+      {"max_sliding_speed_mm_s", {"load_history", cycle_max(&belt::LoadSample::slide_mm_s, 1.0, true)}},
+      {"max_friction_used", {"load_history", cycle_max(&belt::LoadSample::friction_used)}},
+      {"max_sliding_arc_deg", {"load_history", [deg](const SceneResult& r) {
+         double m = 0.0;
+         for (const auto& p : r.cycle->pulleys) m = std::max(m, p.sliding_rad);
+         return number(m * deg);
+       }}},
+      {"centrifugal_tension_N", {"load_history", [](const SceneResult& r) { return number(r.cycle->centrifugal_tension_N); }}},
+      {"cycle_time_s", {"load_history", [](const SceneResult& r) { return number(r.cycle->cycle_time_s); }}},
+      {"fidelity", {"life", [](const SceneResult& r) { return r.life->plan.fidelity; }}},
+      {"governing_mode", {"life", [](const SceneResult& r) { return r.life->report.governing; }}},
+      {"life_cycles", {"life", [](const SceneResult& r) { return number(r.life->report.life_cycles); }}},
+      {"life_h", {"life", [](const SceneResult& r) { return number(r.life->report.life_h); }}},
+      {"radial_crack_life_cycles", {"life", mode_life("radial_crack", false)}},
+      {"radial_crack_life_h", {"life", mode_life("radial_crack", true)}},
+      {"separation_life_cycles", {"life", mode_life("separation", false)}},
+      {"separation_life_h", {"life", mode_life("separation", true)}},
+      {"cord_break_life_cycles", {"life", mode_life("cord_break", false)}},
+      {"cord_break_life_h", {"life", mode_life("cord_break", true)}},
+  };
+  return table;
+}
+
+// The case's result columns; InputError / NumericalError propagate to the row's status.
+std::vector<std::string> result_fields(const Sweep& sweep, Scene scene) {
+  scene.outputs.clear();  // only what the columns need runs
+  for (const auto& c : sweep.columns) scene.outputs[columns().at(c).output] = true;
+  const SceneResult r = run_scene(scene);
+  if (scene.outputs.count("life") && !r.life) {
+    for (const auto& e : r.plan.effects)
+      if (e.name == "fatigue") throw core::InputError("the life cannot be computed: " + e.reason, scene.path);
+    throw core::InputError("the life cannot be computed", scene.path);
+  }
+  if (scene.outputs.count("load_history") && !r.cycle) throw core::InputError("no load cycle", scene.path);
+  std::vector<std::string> fields;
+  for (const auto& c : sweep.columns) fields.push_back(columns().at(c).column(r));
+  return fields;
+}
+
+}  // namespace
+
+const std::vector<std::string>& sweep_column_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& [name, spec] : columns()) n.push_back(name);
+    return n;
+  }();
+  return names;
+}
+
+std::vector<std::string> sweep_header(const Sweep& sweep) {
+  std::vector<std::string> h{"case", "scene"};
+  for (const auto& a : sweep.axes) h.push_back(a.key);
+  h.insert(h.end(), sweep.columns.begin(), sweep.columns.end());
+  h.push_back("status");
+  h.push_back("message");
+  return h;
+}
+
+std::string sweep_row(const Sweep& sweep, std::size_t index) {
+  const SweepCase c = sweep_case(sweep, index);
+  std::vector<std::string> fields{std::to_string(index), sweep.scene_labels[c.scene]};
+  for (std::size_t a = 0; a < sweep.axes.size(); ++a) fields.push_back(sweep.axes[a].labels[c.value[a]]);
+  std::string status = "ok", message;
+  std::vector<std::string> results;
+  try {
+    results = result_fields(sweep, case_scene(sweep, c));
+  } catch (const core::InputError& e) {
+    status = "input_error", message = e.what();
+  } catch (const core::NumericalError& e) {
+    status = "numerical_error", message = e.what();
+  }
+  results.resize(sweep.columns.size());
+  fields.insert(fields.end(), results.begin(), results.end());
+  fields.push_back(status);
+  std::replace(message.begin(), message.end(), '\n', ' ');  // one row per line (resume reads lines)
+  fields.push_back(message);
+  std::string row;
+  for (std::size_t i = 0; i < fields.size(); ++i) row += (i ? "," : "") + csv_field(fields[i]);
+  return row;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string q = "\"";
+  for (char ch : text) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return q + "\"";
+}
+
+std::vector<std::string> split_csv_row(const std::string& row) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    const char ch = row[i];
+    if (quoted && ch == '"' && i + 1 < row.size() && row[i + 1] == '"') {
+      fields.back() += '"', ++i;
+    } else if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += ch;
+    }
+  }
+  return fields;
+}
+
+}  // namespace fitlib::scene

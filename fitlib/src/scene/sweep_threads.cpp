@@ -1,0 +1,44 @@
+// The rows of a list of cases on a pool of threads (docs/sweep.md "Running").
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "fitlib/scene/sweep_run.hpp"
+
+namespace fitlib::scene {
+
+std::vector<std::string> sweep_rows_in_threads(const Sweep& sweep, const std::vector<std::size_t>& cases,
+                                               int threads) {
+  std::vector<std::string> rows(cases.size());
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  // Dynamic schedule: each thread takes the next case; rows land at their own index.
+  auto work = [&] {
+    for (std::size_t k = next++; k < cases.size(); k = next++) {
+      try {
+        rows[k] = sweep_row(sweep, cases[k]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = cases.size();
+      }
+    }
+  };
+  const auto n = static_cast<std::size_t>(threads < 1 ? 1 : threads);
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < std::min(n, cases.size()); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return rows;
+}
+
+std::vector<std::string> ThreadExecutor::rows(const Sweep& sweep, std::size_t begin, std::size_t end) {
+  std::vector<std::size_t> cases;
+  for (std::size_t i = begin; i < end; ++i) cases.push_back(i);
+  return sweep_rows_in_threads(sweep, cases, threads_);
+}
+
+}  // namespace fitlib::scene

@@ -1,0 +1,158 @@
+// Sweep files, grid enumeration and rows (docs/sweep.md).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/sweep.hpp"
+
+namespace {
+
+using fitlib::scene::parse_sweep;
+
+// Sweep text "parsed" as if it were a file in datasets/sweeps (its relative paths resolve there).
+const std::string kSource = std::string(FITLIB_SOURCE_DIR) + "/datasets/sweeps/unit-test.toml";
+
+std::string grid_text(const std::string& axes, const std::string& columns = R"(["max_tension_N"])") {
+  return "scenes = [\"../drives/ref-0500-medium.toml\", \"../drives/ref-0500-heavy.toml\"]\n" + axes +
+         "\n[outputs]\ncolumns = " + columns + "\n";
+}
+
+const std::string kTwoAxes = R"(
+[[axis]]
+key = "conditions.temperature_C"
+values = [20, 60.5, 80]
+
+[[axis]]
+key = "drive.pulleys[0].speed_rpm"
+values = [1500, 3000]
+)";
+
+fitlib::core::InputError input_error_of(const std::string& text) {
+  try {
+    parse_sweep(text, kSource);
+  } catch (const fitlib::core::InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError";
+  return fitlib::core::InputError("none");
+}
+
+TEST(Sweep, EnumeratesScenesSlowestLastAxisFastest) {
+  const auto s = parse_sweep(grid_text(kTwoAxes), kSource);
+  ASSERT_EQ(s.case_count, 12u);
+  for (std::size_t scene = 0, i = 0; scene < 2; ++scene)
+    for (std::size_t t = 0; t < 3; ++t)
+      for (std::size_t v = 0; v < 2; ++v, ++i) {
+        const auto c = fitlib::scene::sweep_case(s, i);
+        EXPECT_EQ(c.index, i);
+        EXPECT_EQ(c.scene, scene) << i;
+        EXPECT_EQ(c.value, (std::vector<std::size_t>{t, v})) << i;
+      }
+  EXPECT_THROW(fitlib::scene::sweep_case(s, 12), std::out_of_range);
+}
+
+TEST(Sweep, HeaderNamesAxesByKeyAndLabelsAsWritten) {
+  const auto s = parse_sweep(grid_text(kTwoAxes), kSource);
+  EXPECT_EQ(fitlib::scene::sweep_header(s),
+            (std::vector<std::string>{"case", "scene", "conditions.temperature_C", "drive.pulleys[0].speed_rpm",
+                                      "max_tension_N", "status", "message"}));
+  EXPECT_EQ(s.axes[0].labels, (std::vector<std::string>{"20", "60.5", "80"}));
+  EXPECT_EQ(s.scene_labels[1], "../drives/ref-0500-heavy.toml");
+}
+
+// The row's figure equals the same scene edited by hand and run directly (an independent path:
+// text substitution instead of key paths).
+TEST(Sweep, RowEqualsTheHandEditedSceneRun) {
+  const auto s = parse_sweep(grid_text(R"(
+[[axis]]
+key = "drive.torque_Nm"
+values = [10, 30]
+)", R"(["max_tension_N", "min_tension_N"])"), kSource);
+  const std::string path = std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-heavy.toml";
+  std::string text = fitlib::core::read_file(path);
+  const auto at = text.find("torque_Nm = 30");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 14, "torque_Nm = 10");
+  const auto r = fitlib::scene::run_scene(fitlib::scene::parse_scene(text, path));
+  double hi = -INFINITY, lo = INFINITY;
+  for (const auto& x : r.cycle->samples) hi = std::max(hi, x.F_N), lo = std::min(lo, x.F_N);
+  const auto fields = fitlib::scene::split_csv_row(fitlib::scene::sweep_row(s, 2));  // heavy, 10 N·m
+  ASSERT_EQ(fields.size(), 7u);
+  EXPECT_EQ(fields[0], "2");
+  EXPECT_EQ(fields[2], "10");
+  EXPECT_EQ(fields[3], fitlib::core::format_number(hi));
+  EXPECT_EQ(fields[4], fitlib::core::format_number(lo));
+  EXPECT_EQ(fields[5], "ok");
+  EXPECT_EQ(fields[6], "");
+  EXPECT_NE(fitlib::scene::sweep_row(s, 3), fitlib::scene::sweep_row(s, 2));
+}
+
+TEST(Sweep, CaseTheDriveCannotCarryIsARowNotAFailure) {
+  const auto s = parse_sweep(grid_text(R"(
+[[axis]]
+key = "drive.torque_Nm"
+values = [10, 5000]
+)"), kSource);
+  const auto fields = fitlib::scene::split_csv_row(fitlib::scene::sweep_row(s, 1));
+  ASSERT_EQ(fields.size(), 6u);
+  EXPECT_EQ(fields[3], "");
+  EXPECT_EQ(fields[4], "input_error");
+  EXPECT_NE(fields[5].find("ref-0500-medium.toml"), std::string::npos) << fields[5];
+}
+
+TEST(Sweep, CsvFieldsRoundTrip) {
+  const std::vector<std::string> fields{"a", "b,c", "say \"hi\"", "", "1e+06"};
+  std::string row;
+  for (std::size_t i = 0; i < fields.size(); ++i) row += (i ? "," : "") + fitlib::scene::csv_field(fields[i]);
+  EXPECT_EQ(row, "a,\"b,c\",\"say \"\"hi\"\"\",,1e+06");
+  EXPECT_EQ(fitlib::scene::split_csv_row(row), fields);
+}
+
+TEST(Sweep, HashChangesWithTheSweepAndTheFilesItNames) {
+  const auto a = parse_sweep(grid_text(kTwoAxes), kSource);
+  const auto b = parse_sweep(grid_text(kTwoAxes) + "# edited\n", kSource);
+  EXPECT_EQ(a.sha256.size(), 64u);
+  EXPECT_NE(a.sha256, b.sha256);
+  EXPECT_EQ(a.sha256, parse_sweep(grid_text(kTwoAxes), kSource).sha256);
+}
+
+TEST(SweepFile, ErrorsNameFileLineAndKey) {
+  auto e = input_error_of(grid_text(kTwoAxes, R"(["max_tension_N", "max_tenson_N"])"));
+  EXPECT_EQ(e.key(), "outputs.columns[1]");
+  EXPECT_EQ(e.file(), kSource);
+  e = input_error_of(grid_text("[[axis]]\nkey = \"conditions.temperature_C\"\nvalues = [20, -500]\n"));
+  EXPECT_EQ(e.key(), "axis[0].values[1]");
+  EXPECT_EQ(e.line(), 4);
+  EXPECT_NE(std::string(e.what()).find("temperature_C"), std::string::npos) << e.what();
+  e = input_error_of(grid_text("[[axis]]\nkey = \"drive.pulleys.speed_rpm\"\nvalues = [1]\n"));
+  EXPECT_EQ(e.key(), "axis[0].values[0]");
+  e = input_error_of(grid_text("[[axis]]\nkey = \"conditions.temprature_C\"\nvalues = [1]\n"));
+  EXPECT_NE(std::string(e.what()).find("temprature_C"), std::string::npos) << e.what();
+  e = input_error_of(grid_text("[[axis]]\ncard = \"top\"\nvalues = [\"x.json\"]\n"));
+  EXPECT_EQ(e.key(), "axis[0].card");
+  e = input_error_of(grid_text("[[axis]]\nkey = \"drive.torque_Nm\"\nvalues = []\n"));
+  EXPECT_EQ(e.key(), "axis[0].values");
+  e = input_error_of("scenes = [\"../drives/none.toml\"]\n[outputs]\ncolumns = [\"life_h\"]\n");
+  EXPECT_NE(std::string(e.what()).find("none.toml"), std::string::npos) << e.what();
+  e = input_error_of(grid_text(kTwoAxes) + "threads = 4\n");
+  EXPECT_EQ(e.key(), "outputs.threads");  // after [outputs]: a key of that table
+}
+
+TEST(SweepFile, GridAboveTheWorkCapIsRefused) {
+  std::string big = "[[axis]]\nkey = \"conditions.temperature_C\"\nvalues = [";
+  for (int i = 0; i < 1001; ++i) big += (i ? ", " : "") + std::to_string(i % 100);
+  big += "]\n[[axis]]\nkey = \"drive.torque_Nm\"\nvalues = [";
+  for (int i = 0; i < 500; ++i) big += (i ? ", " : "") + std::to_string(i % 30);
+  big += "]\n";
+  const auto e = input_error_of(grid_text(big));  // 2 × 1001 × 500 > 1e6
+  EXPECT_EQ(e.key(), "axis");
+  EXPECT_NE(std::string(e.what()).find("work cap"), std::string::npos) << e.what();
+}
+
+}  // namespace
