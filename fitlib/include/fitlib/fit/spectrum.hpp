@@ -28,6 +28,9 @@ struct SpectrumOptions {
   int lambda_steps = 31;     // log-spaced path from lambda_max down to lambda_min
   // Gauss–Newton polish on the exact log10 objective plus the same penalty (λ held).
   bool polish = true;
+  // With a temperature law and ≥ 2 isotherms: the law's constants (started from the model-free
+  // isotherm shifts) refined with the spectrum, moduli projected out, λ held.
+  bool refine_law = true;
 };
 
 struct SpectrumPathRow {
@@ -41,17 +44,25 @@ struct SpectrumFit {
   double lambda = 0.0;       // chosen
   int grid_terms = 0;        // time constants on the grid
   int polish_steps = 0;
+  int law_rounds = 0, law_evaluations = 0;  // refinement of the temperature law's constants
   std::vector<SpectrumPathRow> path;
   double wall_time_s = 0.0;
 };
 
-// True when `make(1)` is a series model with linear moduli and no temperature law (the models
-// fit_spectrum handles).
+// True when `make(1)` is a series model with linear moduli and no temperature law or a WLF,
+// Arrhenius or polynomial one (the models fit_spectrum handles).
 bool spectrum_applies(const std::function<model::ModelPtr(int)>& make);
 
 // `make(N)` builds the series model with N terms. UsageError when spectrum_applies is false.
 SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
                          const data::DynamicTestTable& table, const FitOptions& options,
                          const SpectrumOptions& spectrum = {});
+
+// A spectrum fit reduced to at most `max_terms` terms (a solver's limit, card/export.hpp):
+// adjacent terms merged pairwise by Ward's criterion in ln τ (moduli summed, ln τ weighted by
+// modulus) until `max_terms` remain, then the N-term model re-fitted from there with free
+// times (fit(), automatic backend: NNLS start, Ceres in log space; a law's constants free too).
+FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
+                       const FitOptions& options, const FitResult& spectrum, int max_terms);
 
 }  // namespace fitlib::fit
