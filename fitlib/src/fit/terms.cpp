@@ -63,8 +63,8 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
   TermSelection sel;
   sel.method = TermMethod::spectrum;
   sel.rule = terms.rule;
-  sel.rows.push_back(row_of(s.result, s.wall_time_s));
-  const TermRow& full = sel.rows.front();
+  const TermRow full = row_of(s.result, s.wall_time_s);
+  sel.rows.push_back(full);
   sel.by_aic = sel.by_bic = sel.by_ratio = sel.unconstrained = sel.chosen = full.terms;
   sel.spectrum_path = std::move(s.path);
   sel.spectrum_lambda = s.lambda;
@@ -72,15 +72,15 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
   if (terms.solver_cap <= 0 || full.terms <= terms.solver_cap) return sel;
   const core::Stopwatch clock;
   FitResult capped = cap_spectrum(make, table, options, sel.result, terms.solver_cap);
-  sel.rows.push_back(row_of(capped, clock.seconds()));
-  const TermRow& cap = sel.rows.back();
+  const TermRow cap = row_of(capped, clock.seconds());
+  sel.rows.push_back(cap);
   sel.chosen = cap.terms;
   sel.cap_cost_ratio = ratio(cap.cost, full.cost);
   sel.cap_storage_rms_ratio = ratio(cap.rms_log10_storage, full.rms_log10_storage);
   sel.cap_loss_rms_ratio = ratio(cap.rms_log10_loss, full.rms_log10_loss);
   std::ostringstream msg;
   msg << "solver cap " << terms.solver_cap << " terms: the smooth spectrum's " << full.terms
-      << " terms merged to " << cap.terms << " (Ward, in ln tau) and re-fitted with free times; cost x"
+      << " terms reduced to " << cap.terms << " (re-fitted with free times); cost x"
       << sel.cap_cost_ratio << ", rms log10 storage " << full.rms_log10_storage << " -> " << cap.rms_log10_storage
       << " (x" << sel.cap_storage_rms_ratio << "), loss " << full.rms_log10_loss << " -> " << cap.rms_log10_loss
       << " (x" << sel.cap_loss_rms_ratio << ")";

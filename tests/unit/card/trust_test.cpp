@@ -237,6 +237,43 @@ TEST(Trust, WlfFitsOfTheSyntheticTableStayInTheWindowAndSayWhenTheyMiss) {
   }
 }
 
+// ---- item 2 of the remaining issue-10 list: --max-terms with the spectrum. LS-DYNA's limit
+// (card/export's table) on pyvisco's master: at most 5 terms, admissible, exportable, the cost
+// of the cap reported, and no worse than the sweep's own 5-term fit with the same objective.
+TEST(Trust, LsDynaCapOnPyviscoMasterGivesFiveAdmissibleTermsAndReportsTheCost) {
+  const auto table = pyvisco_table("pyvisco-freq-master.csv");
+  const int cap = card::max_prony_terms("lsdyna");
+  ASSERT_EQ(cap, 5);
+  fit::FitOptions o;
+  o.residual = fit::kSpectrumResidual;
+  o.storage_weight = fit::kSpectrumStorageWeight;
+  fit::TermOptions t;
+  t.solver_cap = cap;
+  const auto sel = fit::select_terms("prony", {{"mode", "uniaxial"}, {"reference_C", -5.0}}, table, o, t);
+  ASSERT_EQ(sel.rows.size(), 2u);  // the spectrum, then the capped fit
+  EXPECT_EQ(sel.unconstrained, 53);
+  EXPECT_EQ(sel.chosen, cap);
+  expect_admissible(sel.result, o, table, "--max-terms 5");
+  const card::Card card = card_of(sel.result, o, table);
+  EXPECT_NO_THROW(card::export_card(card, "lsdyna"));
+  // The cost of the cap, in the report: rows, ratios and a message.
+  EXPECT_NEAR(sel.cap_cost_ratio, sel.rows[1].cost / sel.rows[0].cost, 1e-12);
+  EXPECT_GT(sel.cap_storage_rms_ratio, 1.0);
+  EXPECT_TRUE(std::any_of(sel.messages.begin(), sel.messages.end(), [](const std::string& m) {
+    return m.find("solver cap 5 terms") != std::string::npos;
+  }));
+  const auto& m = sel.result.metrics;
+  std::printf("cap 5: rms log10 E' %.4f, E'' %.3f, cost %.2f (x%.2f of the 53-term spectrum)\n", m.rms_log10_storage,
+              m.rms_log10_loss, m.cost, sel.cap_cost_ratio);
+  EXPECT_LE(m.rms_log10_storage, 0.055);  // 5 terms over 26 decades: ≈ 12 % typical E′ error
+  // Independent baseline: the N-sweep's 5-term fit (free times, same objective).
+  fit::TermOptions sweep;
+  sweep.method = fit::TermMethod::sweep;
+  sweep.min_terms = sweep.max_terms = cap;
+  const auto five = fit::select_terms("prony", {{"mode", "uniaxial"}, {"reference_C", -5.0}}, table, o, sweep);
+  EXPECT_LE(m.cost, five.result.metrics.cost * (1 + 1e-6));
+}
+
 // ---- item 4: a fit that misses says so
 
 TEST(Trust, TooFewTermsWarnPerModulusAndGroup) {

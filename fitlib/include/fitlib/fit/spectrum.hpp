@@ -61,7 +61,8 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
 // A spectrum fit reduced to at most `max_terms` terms (a solver's limit, card/export.hpp):
 // adjacent terms merged pairwise by Ward's criterion in ln τ (moduli summed, ln τ weighted by
 // modulus) until `max_terms` remain, then the N-term model re-fitted from there with free
-// times (fit(), automatic backend: NNLS start, Ceres in log space; a law's constants free too).
+// times (fit(), automatic backend: NNLS start, Ceres in log space; a law's constants free too)
+// and from the model's own start; the lower cost is kept.
 FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                        const FitOptions& options, const FitResult& spectrum, int max_terms);
 
