@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/master_curve.hpp"
 
 namespace fitlib::fit {
 
@@ -65,5 +66,21 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
 // and from the model's own start; the lower cost is kept.
 FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                        const FitOptions& options, const FitResult& spectrum, int max_terms);
+
+// Raw isotherms: the spectrum on the master of `curve` (pairwise shifts), then the shifts and
+// the spectrum refined together by block coordinate descent: every shift but the anchor's
+// (the isotherm nearest T_ref) by Brent on its own rows with the spectrum held (±0.5 decade),
+// then the spectrum re-fitted on the re-shifted master; rounds while the cost falls by > 0.01 %.
+// Shifts follow E′ only (the cost with loss weight 0), as the pairwise shifts do.
+struct SpectrumMasterFit {
+  MasterCurve curve;     // the refined shifts (WLF / Arrhenius refitted to them)
+  SpectrumFit spectrum;  // on curve.master
+  double pairwise_cost = 0.0;  // E′ cost of the spectrum on the pairwise shifts' master
+  int rounds = 0;        // rounds kept
+};
+SpectrumMasterFit refine_shifts_with_spectrum(const std::function<model::ModelPtr(int)>& make,
+                                              const data::DynamicTestTable& raw, MasterCurve curve,
+                                              const FitOptions& options, const SpectrumOptions& spectrum = {},
+                                              int max_rounds = 6);
 
 }  // namespace fitlib::fit
