@@ -138,9 +138,10 @@ PathPoint choose_lambda(const SpectrumSystem& s, const SpectrumOptions& so, std:
   }
   PathPoint best;
   best.row.gcv = std::numeric_limits<double>::infinity();
+  std::vector<bool> passive;  // each λ starts from the positive set of the previous one
   for (int k = 0; k < so.lambda_steps; ++k) {
     const double t = so.lambda_steps > 1 ? double(k) / (so.lambda_steps - 1) : 0.0;
-    PathPoint pt = detail::solve_at(s, so.lambda_max * std::pow(so.lambda_min / so.lambda_max, t));
+    PathPoint pt = detail::solve_at(s, so.lambda_max * std::pow(so.lambda_min / so.lambda_max, t), &passive);
     path.push_back(pt.row);
     if (pt.row.gcv < best.row.gcv) best = std::move(pt);
   }

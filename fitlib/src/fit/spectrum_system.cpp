@@ -13,20 +13,71 @@ namespace fitlib::fit::detail {
 namespace {
 
 // Generalized cross-validation of the penalised solution on its positive set F:
-// GCV = m ‖r‖² / (m − df)², df = tr(R_F (R_FᵀR_F + λ D_FᵀD_F)⁻¹ R_Fᵀ).
-double effective_parameters(const Eigen::MatrixXd& r, const Eigen::MatrixXd& d, double lambda,
+// GCV = m ‖r‖² / (m − df)², df = tr((G_FF + λ H_FF)⁻¹ G_FF), G = RᵀR, H = DᵀD.
+double effective_parameters(const Eigen::MatrixXd& g, const Eigen::MatrixXd& h, double lambda,
                             const std::vector<int>& positive) {
   const int k = static_cast<int>(positive.size());
   if (k == 0) return 0.0;
-  Eigen::MatrixXd rf(r.rows(), k), df(d.rows(), k);
-  for (int j = 0; j < k; ++j) {
-    rf.col(j) = r.col(positive[j]);
-    df.col(j) = d.col(positive[j]);
+  Eigen::MatrixXd gf(k, k), qf(k, k);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      gf(a, b) = g(positive[a], positive[b]);
+      qf(a, b) = gf(a, b) + lambda * h(positive[a], positive[b]);
+    }
+  return Eigen::LDLT<Eigen::MatrixXd>(qf).solve(gf).trace();
+}
+
+// Lawson–Hanson's active set on the normal equations Q y = r (Q = G + λH positive definite),
+// warm-started from `passive`: first the start set is pruned until its solution is positive,
+// then the usual outer loop. False when it does not reach the KKT conditions within its budget
+// (the caller then solves with nnls()).
+bool active_set(const Eigen::MatrixXd& q, const Eigen::VectorXd& r, std::vector<bool>& passive, Eigen::VectorXd& y) {
+  const int n = static_cast<int>(q.rows());
+  auto solve_on = [&](Eigen::VectorXd& z) {
+    std::vector<int> p;
+    for (int i = 0; i < n; ++i)
+      if (passive[i]) p.push_back(i);
+    z = Eigen::VectorXd::Zero(n);
+    if (p.empty()) return;
+    Eigen::MatrixXd qp(p.size(), p.size());
+    Eigen::VectorXd rp(p.size());
+    for (std::size_t a = 0; a < p.size(); ++a) {
+      rp[a] = r[p[a]];
+      for (std::size_t b = 0; b < p.size(); ++b) qp(a, b) = q(p[a], p[b]);
+    }
+    const Eigen::VectorXd zp = qp.llt().solve(rp);
+    for (std::size_t a = 0; a < p.size(); ++a) z[p[a]] = zp[a];
+  };
+  Eigen::VectorXd z;
+  for (bool pruned = true; pruned;) {  // the warm start: drop non-positive members
+    solve_on(z);
+    pruned = false;
+    for (int i = 0; i < n; ++i)
+      if (passive[i] && !(z[i] > 0.0)) passive[i] = false, pruned = true;
   }
-  const Eigen::MatrixXd gram = rf.transpose() * rf;
-  const Eigen::MatrixXd m = gram + lambda * df.transpose() * df;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(m);
-  return ldlt.solve(gram).trace();
+  y = z;
+  const double tolerance = 1e-12 * std::max(r.cwiseAbs().maxCoeff(), 1e-300);
+  for (int outer = 0; outer < 3 * n; ++outer) {
+    const Eigen::VectorXd w = r - q * y;
+    int j = -1;
+    for (int i = 0; i < n; ++i)
+      if (!passive[i] && w[i] > tolerance && (j < 0 || w[i] > w[j])) j = i;
+    if (j < 0) return true;
+    passive[j] = true;
+    for (int inner = 0; inner < 3 * n; ++inner) {
+      solve_on(z);
+      double alpha = 1.0;
+      for (int i = 0; i < n; ++i)
+        if (passive[i] && !(z[i] > 0.0)) alpha = std::min(alpha, y[i] / (y[i] - z[i]));
+      if (alpha >= 1.0) break;
+      y += alpha * (z - y);
+      for (int i = 0; i < n; ++i)
+        if (passive[i] && !(y[i] > 0.0)) passive[i] = false, y[i] = 0.0;
+    }
+    y = z;
+    if (!(y.minCoeff() >= 0.0)) return false;
+  }
+  return false;
 }
 
 bool is_series(const SeriesTerms& s, int i) {
@@ -63,13 +114,23 @@ Reduced reduce(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
   return out;
 }
 
-Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda) {
+Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda,
+                                std::vector<bool>* passive) {
   const int nc = static_cast<int>(red.r.cols());
+  std::vector<bool> all;
+  std::vector<bool>& set = passive ? *passive : all;
+  if (static_cast<int>(set.size()) != nc) set.assign(nc, true);
+  Eigen::VectorXd y;
+  const Eigen::MatrixXd q = red.r.transpose() * red.r + lambda * d.transpose() * d;
+  if (active_set(q, red.r.transpose() * red.c, set, y)) return y;
+  // Not settled (ill-conditioned Q): the QR-checked solver on the stacked system.
   Eigen::MatrixXd big(nc + d.rows(), nc);
   big << red.r, std::sqrt(lambda) * d;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nc + d.rows());
   rhs.head(nc) = red.c;
-  return nnls(big, rhs).x;
+  y = nnls(big, rhs).x;
+  for (int i = 0; i < nc; ++i) set[i] = y[i] > 0.0;
+  return y;
 }
 
 void SpectrumSystem::relinearise() {
@@ -121,16 +182,16 @@ SpectrumSystem make_spectrum_system(const model::ModelPtr& dense, const data::Dy
   return s;
 }
 
-PathPoint solve_at(const SpectrumSystem& s, double lambda) {
+PathPoint solve_at(const SpectrumSystem& s, double lambda, std::vector<bool>* passive) {
   PathPoint pt;
-  pt.y = solve_penalised(s.red, s.d, lambda);
+  pt.y = solve_penalised(s.red, s.d, lambda, passive);
   const int nc = static_cast<int>(pt.y.size());
   const int m = static_cast<int>(s.design.a.rows());
   std::vector<int> positive;
   for (int j = 0; j < nc; ++j)
     if (pt.y[j] > 0.0) positive.push_back(j);
   const double rss = (s.red.r * pt.y - s.red.c).squaredNorm() + s.red.outside;
-  const double df = effective_parameters(s.red.r, s.d, lambda, positive);
+  const double df = effective_parameters(s.red.r.transpose() * s.red.r, s.d.transpose() * s.d, lambda, positive);
   pt.row.lambda = lambda;
   pt.row.effective_terms = df;
   pt.row.residual_norm = std::sqrt(rss);

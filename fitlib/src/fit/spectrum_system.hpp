@@ -28,8 +28,11 @@ struct Reduced {
 };
 Reduced reduce(const Eigen::MatrixXd& a, const Eigen::VectorXd& b);
 
-// min ‖R y − c‖² + λ‖D y‖² over y ≥ 0.
-Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda);
+// min ‖R y − c‖² + λ‖D y‖² over y ≥ 0: an active set on the normal equations, warm-started from
+// `passive` (the positive set of a neighbouring λ; updated; null: start from every column),
+// with nnls() on the stacked system when it does not settle.
+Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda,
+                                std::vector<bool>* passive = nullptr);
 
 // The dense model's linear system: design (columns scaled to unit norm at construction, the
 // scale kept when the law moves), its reduction, the zero-padded second-difference operator.
@@ -59,8 +62,8 @@ struct PathPoint {
   Eigen::VectorXd y;
   SpectrumPathRow row;
 };
-// One solve at λ with its GCV figures.
-PathPoint solve_at(const SpectrumSystem& s, double lambda);
+// One solve at λ with its GCV figures (warm start as solve_penalised).
+PathPoint solve_at(const SpectrumSystem& s, double lambda, std::vector<bool>* passive = nullptr);
 
 // The law's constants (TemperatureLawInfo::shift_parameters) of the system's model moved to
 // minimise the penalised objective with λ held, the moduli projected out (re-solved at every
