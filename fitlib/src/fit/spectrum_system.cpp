@@ -114,15 +114,18 @@ Reduced reduce(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
   return out;
 }
 
-Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda,
-                                std::vector<bool>* passive) {
+NormalEquations normal_equations(const Reduced& red, const Eigen::MatrixXd& d) {
+  return {red.r.transpose() * red.r, d.transpose() * d, red.r.transpose() * red.c};
+}
+
+Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, const NormalEquations& ne,
+                                double lambda, std::vector<bool>* passive) {
   const int nc = static_cast<int>(red.r.cols());
   std::vector<bool> all;
   std::vector<bool>& set = passive ? *passive : all;
   if (static_cast<int>(set.size()) != nc) set.assign(nc, true);
   Eigen::VectorXd y;
-  const Eigen::MatrixXd q = red.r.transpose() * red.r + lambda * d.transpose() * d;
-  if (active_set(q, red.r.transpose() * red.c, set, y)) return y;
+  if (active_set(ne.g + lambda * ne.h, ne.rhs, set, y)) return y;
   // Not settled (ill-conditioned Q): the QR-checked solver on the stacked system.
   Eigen::MatrixXd big(nc + d.rows(), nc);
   big << red.r, std::sqrt(lambda) * d;
@@ -133,9 +136,14 @@ Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, do
   return y;
 }
 
+Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda) {
+  return solve_penalised(red, d, normal_equations(red, d), lambda, nullptr);
+}
+
 void SpectrumSystem::relinearise() {
   design = linear_design(problem);
   red = reduce(design.a * scale.cwiseInverse().asDiagonal(), design.b);
+  normal = normal_equations(red, d);
 }
 
 double SpectrumSystem::penalised(const Eigen::VectorXd& y, double lambda) const {
@@ -179,19 +187,20 @@ SpectrumSystem make_spectrum_system(const model::ModelPtr& dense, const data::Dy
       const int term = t + q;
       if (term >= 0 && term < n && s.column_of_term[term] >= 0) s.d(t + 1, s.column_of_term[term]) = stencil[q];
     }
+  s.normal = normal_equations(s.red, s.d);
   return s;
 }
 
 PathPoint solve_at(const SpectrumSystem& s, double lambda, std::vector<bool>* passive) {
   PathPoint pt;
-  pt.y = solve_penalised(s.red, s.d, lambda, passive);
+  pt.y = solve_penalised(s.red, s.d, s.normal, lambda, passive);
   const int nc = static_cast<int>(pt.y.size());
   const int m = static_cast<int>(s.design.a.rows());
   std::vector<int> positive;
   for (int j = 0; j < nc; ++j)
     if (pt.y[j] > 0.0) positive.push_back(j);
   const double rss = (s.red.r * pt.y - s.red.c).squaredNorm() + s.red.outside;
-  const double df = effective_parameters(s.red.r.transpose() * s.red.r, s.d.transpose() * s.d, lambda, positive);
+  const double df = effective_parameters(s.normal.g, s.normal.h, lambda, positive);
   pt.row.lambda = lambda;
   pt.row.effective_terms = df;
   pt.row.residual_norm = std::sqrt(rss);
@@ -225,7 +234,7 @@ int refine_law_constants(SpectrumSystem& s, double lambda, const std::vector<int
     } catch (const std::exception&) {
       return HUGE_VAL;  // a trial beyond the law's pole
     }
-    const double v = s.penalised(solve_penalised(s.red, s.d, lambda), lambda);
+    const double v = s.penalised(solve_penalised(s.red, s.d, s.normal, lambda, nullptr), lambda);
     return std::isfinite(v) ? v : HUGE_VAL;
   };
   nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(k));

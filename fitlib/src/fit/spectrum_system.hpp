@@ -28,11 +28,19 @@ struct Reduced {
 };
 Reduced reduce(const Eigen::MatrixXd& a, const Eigen::VectorXd& b);
 
-// min ‖R y − c‖² + λ‖D y‖² over y ≥ 0: an active set on the normal equations, warm-started from
+// The normal equations of the penalised problem: G = RᵀR, H = DᵀD, rhs = Rᵀc.
+struct NormalEquations {
+  Eigen::MatrixXd g, h;
+  Eigen::VectorXd rhs;
+};
+NormalEquations normal_equations(const Reduced& red, const Eigen::MatrixXd& d);
+
+// min ‖R y − c‖² + λ‖D y‖² over y ≥ 0: an active set on (G + λH) y = rhs, warm-started from
 // `passive` (the positive set of a neighbouring λ; updated; null: start from every column),
 // with nnls() on the stacked system when it does not settle.
-Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda,
-                                std::vector<bool>* passive = nullptr);
+Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, const NormalEquations& ne,
+                                double lambda, std::vector<bool>* passive);
+Eigen::VectorXd solve_penalised(const Reduced& red, const Eigen::MatrixXd& d, double lambda);
 
 // The dense model's linear system: design (columns scaled to unit norm at construction, the
 // scale kept when the law moves), its reduction, the zero-padded second-difference operator.
@@ -43,6 +51,7 @@ struct SpectrumSystem {
   Eigen::VectorXd scale;    // y = scale ⊙ x
   Reduced red;
   Eigen::MatrixXd d;
+  NormalEquations normal;   // of red and d
   std::vector<int> column_of_term;  // column of each term's modulus (−1: none)
   SeriesTerms series;
   int terms = 0;
