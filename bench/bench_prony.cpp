@@ -110,6 +110,17 @@ LogRms ansys_terms(const data::DynamicTestTable& table, const std::string& mpl) 
   return rms;
 }
 
+const std::string kMaterials = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/";
+
+// A pyvisco table of the bundled copies (uniaxial).
+data::DynamicTestTable pyvisco_dataset(const std::string& name) {
+  data::ReadOptions ro;
+  ro.format = data::TableFormat::pyvisco;
+  ro.has_default_mode = true;
+  ro.default_mode = model::TestMode::uniaxial;
+  return data::read_dynamic_table(kMaterials + name, ro);
+}
+
 // pyvisco's figures on this machine kind (anchors.md and issue 10; Python pyvisco is not
 // installable here, so they are recorded figures, not measured in this run): fit_freq of the
 // 206-point master with 26 terms 130 ms, with term reduction 2.35 s; a 20-term fit of 5000
@@ -226,12 +237,7 @@ void spectrum_tables(const data::DynamicTestTable& master, const LogRms& ansys, 
 // Raw isotherms (pyvisco's freq_user_raw.csv): pairwise shifts, the spectrum, shifts refined
 // with it; and --terms auto with a WLF law on the bundled synthetic isotherms.
 void law_tables() {
-  data::ReadOptions ro;
-  ro.format = data::TableFormat::pyvisco;
-  ro.has_default_mode = true;
-  ro.default_mode = model::TestMode::uniaxial;
-  const std::string materials = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/";
-  const auto raw = data::read_dynamic_table(materials + "pyvisco-freq-raw.csv", ro);
+  const auto raw = pyvisco_dataset("pyvisco-freq-raw.csv");
   fit::FitOptions o;
   o.residual = fit::kSpectrumResidual;
   o.storage_weight = fit::kSpectrumStorageWeight;
@@ -251,7 +257,7 @@ void law_tables() {
               r.spectrum.result.metrics.rms_log10_loss);
   std::printf("| pyvisco pipeline (anchors.md, recorded) | %.0f ms | 0.0047 / 0.188 |\n\n", 1e3 * kPyviscoRaw_s);
 
-  const auto wlf = data::read_dynamic_table(materials + "synthetic-prony-wlf.csv", data::ReadOptions{});
+  const auto wlf = data::read_dynamic_table(kMaterials + "synthetic-prony-wlf.csv", data::ReadOptions{});
   fit::TermSelection s;
   const nlohmann::json options = {{"mode", "shear"}, {"temperature_law", "wlf"}, {"reference_C", 23.0}};
   const double t_law = median_time(5, [&] { s = fit::select_terms("prony", options, wlf, o, fit::TermOptions{}); });
@@ -325,13 +331,8 @@ int main(int, char** argv) {
   std::printf("\n");
 
   // 3. Accuracy versus time on pyvisco's master curve, two weightings.
-  data::ReadOptions ro;
-  ro.format = data::TableFormat::pyvisco;
-  ro.has_default_mode = true;
-  ro.default_mode = model::TestMode::uniaxial;
-  const std::string materials = std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/";
-  const auto master = data::read_dynamic_table(materials + "pyvisco-freq-master.csv", ro);
-  const LogRms ansys = ansys_terms(master, materials + "pyvisco-ansys-prony-terms.MPL");
+  const auto master = pyvisco_dataset("pyvisco-freq-master.csv");
+  const LogRms ansys = ansys_terms(master, kMaterials + "pyvisco-ansys-prony-terms.MPL");
   spectrum_tables(master, ansys, argv[0]);
   law_tables();
   std::printf("## Accuracy vs time, pyvisco freq_user_master.csv (%zu points), N = 2..40\n",
