@@ -156,6 +156,8 @@ double children_cpu_s() {
   return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
+void scaling_table(const fit::FitOptions& o);
+
 // --terms auto (the smooth spectrum, fit/spectrum.hpp) on the master, and the scaling table.
 void spectrum_tables(const data::DynamicTestTable& master, const LogRms& ansys, const char* argv0) {
   fit::FitOptions o;
@@ -192,7 +194,10 @@ void spectrum_tables(const data::DynamicTestTable& master, const LogRms& ansys, 
   std::printf("| pyvisco fit_freq, 26 terms (anchors.md, recorded) | %.0f ms | 26 | 0.0100 / 0.386 | - |\n",
               1e3 * kPyviscoMasterFit_s);
   std::printf("| ANSYS reference terms | - | 27 | %.4f / %.4f | - |\n\n", ansys.storage, ansys.loss);
+  scaling_table(o);
+}
 
+void scaling_table(const fit::FitOptions& o) {
   // Scaling: synthetic shear data over 14 decades; the spectrum's grid holds N time constants
   // (per_decade = N / 16 over the window). Baselines: pyvisco's N-term fit (recorded at 5000 × 20,
   // scaled by points × terms elsewhere: a lower bound of its time) and one free-time fit of N

@@ -7,6 +7,7 @@
 
 #include "spectrum_system.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/fit/spectrum.hpp"
 
 namespace fitlib::fit {
@@ -71,9 +72,11 @@ FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const da
   const bool own_better = own.metrics.cost < merged.metrics.cost;
   FitResult& kept = own_better ? own : merged;
   kept.messages.insert(kept.messages.begin(),
-                       std::string("term cap: ") + std::to_string(max_terms) + "-term re-fit from " +
-                           (own_better ? "the model's own start (cost below that from the merged spectrum)"
-                                       : "the merged spectrum (cost below that from the model's own start)"));
+                       "term cap: the " + std::to_string(max_terms) + "-term re-fit from " +
+                           (own_better ? "the model's own start" : "the merged spectrum") + " kept (cost " +
+                           core::format_number(kept.metrics.cost, 6) + "; from the " +
+                           (own_better ? "merged spectrum " : "model's own start ") +
+                           core::format_number((own_better ? merged : own).metrics.cost, 6) + ")");
   return std::move(kept);
 }
 
