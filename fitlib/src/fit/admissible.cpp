@@ -12,12 +12,11 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // a_T of the model's temperature law at T (Model::temperature_factors); false for a law the
-// window is not placed under (polynomial, tabulated) and at or beyond the WLF pole.
+// window is not placed under (tabulated, a model's own) and at or beyond the WLF pole.
 bool shift_factor(const model::Model& m, const std::vector<double>& p, double temperature_C, double& a_T) {
   const model::TemperatureLawInfo law = m.temperature_law_info();
   a_T = 1.0;
-  if (law.law != model::ShiftLaw::none && law.law != model::ShiftLaw::wlf && law.law != model::ShiftLaw::arrhenius)
-    return false;
+  if (law.law == model::ShiftLaw::other) return false;
   if (law.law == model::ShiftLaw::none || !std::isfinite(temperature_C)) return true;
   if (law.pole_parameter >= 0 && !(p[law.pole_parameter] + (temperature_C - law.reference_C) > 0.0)) return false;
   a_T = m.temperature_factors(p.data(), temperature_C).shift_factor;

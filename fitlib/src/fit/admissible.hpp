@@ -18,8 +18,8 @@ struct SeriesTerms {
 SeriesTerms series_terms(const std::vector<core::ParameterSpec>& specs);
 
 // The window at the natural parameters `p` (the temperature law shifts the data first).
-// applies = false when the model has no series terms or a temperature law other than none, WLF
-// and Arrhenius (then no bound is set).
+// applies = false when the model has no series terms or a temperature law of its own
+// (ShiftLaw::other; then no bound is set).
 AdmissibleWindow admissible_window(const Problem& problem, const std::vector<double>& p);
 
 // Sets the window's bounds on the problem (times, moduli, relaxed modulus) and moves the

@@ -13,6 +13,7 @@
 #include "fitlib/core/units.hpp"
 #include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/shift_laws.hpp"
+#include "law_constants.hpp"
 
 namespace fitlib::fit {
 namespace {
@@ -104,14 +105,7 @@ PolynomialShiftFit fit_polynomial_shift(const std::vector<double>& temperatures_
   return fit;
 }
 
-namespace {
-
-// The law's constants fitted to the shifts, in the order of TemperatureLawInfo::shift_parameters.
-struct LawConstants {
-  std::vector<double> values;
-  std::string summary;
-  double rms_decades = 0.0;
-};
+namespace detail {
 
 LawConstants fit_law_constants(model::ShiftLaw law, const std::vector<double>& temperatures_C,
                                const std::vector<double>& log10_aT, double reference_C, int polynomial_degree) {
@@ -129,11 +123,23 @@ LawConstants fit_law_constants(model::ShiftLaw law, const std::vector<double>& t
     for (int k = 0; k < polynomial_degree; ++k)
       c.summary += " C" + std::to_string(k + 1) + " = " + core::format_number(poly.coefficients[k], 6);
     c.rms_decades = poly.rms_decades;
+  } else if (law == model::ShiftLaw::arrhenius) {
+    const ArrheniusFit a = fit_arrhenius(temperatures_C, log10_aT, reference_C);
+    if (std::isnan(a.activation_energy_kJ_mol))
+      throw core::UsageError("shift law: no Arrhenius fit (it needs at least 2 isotherms)");
+    c.values = {a.activation_energy_kJ_mol};
+    c.summary = "Arrhenius E_a = " + core::format_number(a.activation_energy_kJ_mol, 6) + " kJ/mol";
+    c.rms_decades = a.rms_decades;
   } else {
-    throw core::UsageError("shift law '" + model::to_string(law) + "' cannot be fitted to shifts (wlf or polynomial)");
+    throw core::UsageError("shift law '" + model::to_string(law) +
+                           "' cannot be fitted to shifts (wlf, arrhenius or polynomial)");
   }
   return c;
 }
+
+}  // namespace detail
+
+namespace {
 
 // The model of `result` with the law in its options (model.hpp: make_model rebuilds a model from them).
 model::ModelPtr model_with_law(const model::Model& m, model::ShiftLaw law, double reference_C, int polynomial_degree) {
@@ -149,7 +155,7 @@ model::ModelPtr model_with_law(const model::Model& m, model::ShiftLaw law, doubl
 FitResult with_law_from_shifts(const FitResult& result, const std::vector<double>& temperatures_C,
                                const std::vector<double>& log10_aT, double reference_C, model::ShiftLaw law,
                                int polynomial_degree) {
-  const LawConstants constants = fit_law_constants(law, temperatures_C, log10_aT, reference_C, polynomial_degree);
+  const detail::LawConstants constants = detail::fit_law_constants(law, temperatures_C, log10_aT, reference_C, polynomial_degree);
   if (!result.model) throw core::UsageError("shift law: the fit result has no model");
   FitResult out = result;
   out.model = model_with_law(*result.model, law, reference_C, polynomial_degree);

@@ -37,18 +37,11 @@ TermMethod parse_term_method(const std::string& text) {
 
 namespace {
 
-// The smooth-spectrum fit as a one-row selection (its positive terms are the count).
-TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make,
-                                 const data::DynamicTestTable& table, const FitOptions& options,
-                                 const TermOptions& terms) {
-  SpectrumFit s = fit_spectrum(make, table, options, terms.spectrum);
-  TermSelection sel;
-  sel.method = TermMethod::spectrum;
-  sel.rule = terms.rule;
-  const FitMetrics& m = s.result.metrics;
+TermRow row_of(const FitResult& r, double wall_time_s) {
+  const FitMetrics& m = r.metrics;
   TermRow row;
-  row.terms = s.result.model->options().value("terms", 0);
-  row.wall_time_s = s.wall_time_s;
+  row.terms = r.model->options().value("terms", 0);
+  row.wall_time_s = wall_time_s;
   row.rms_log10_storage = m.rms_log10_storage;
   row.rms_log10_loss = m.rms_log10_loss;
   row.cost = m.cost;
@@ -56,15 +49,44 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
   row.bic = m.bic;
   row.n_free = m.n_free;
   row.converged = m.converged;
-  sel.rows.push_back(row);
-  sel.by_aic = sel.by_bic = sel.by_ratio = sel.unconstrained = sel.chosen = row.terms;
-  if (terms.solver_cap > 0 && row.terms > terms.solver_cap)
-    throw core::UsageError("the smooth spectrum keeps " + std::to_string(row.terms) +
-                           " terms, above the solver cap of " + std::to_string(terms.solver_cap) +
-                           "; use --term-method sweep with --max-terms");
+  return row;
+}
+
+double ratio(double a, double b) { return b > 0.0 ? a / b : 1.0; }
+
+// The smooth-spectrum fit as a one-row selection (its positive terms are the count); with a
+// solver cap below that count, a second row: the spectrum reduced to the cap (cap_spectrum).
+TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make,
+                                 const data::DynamicTestTable& table, const FitOptions& options,
+                                 const TermOptions& terms) {
+  SpectrumFit s = fit_spectrum(make, table, options, terms.spectrum);
+  TermSelection sel;
+  sel.method = TermMethod::spectrum;
+  sel.rule = terms.rule;
+  const TermRow full = row_of(s.result, s.wall_time_s);
+  sel.rows.push_back(full);
+  sel.by_aic = sel.by_bic = sel.by_ratio = sel.unconstrained = sel.chosen = full.terms;
   sel.spectrum_path = std::move(s.path);
   sel.spectrum_lambda = s.lambda;
   sel.result = std::move(s.result);
+  if (terms.solver_cap <= 0 || full.terms <= terms.solver_cap) return sel;
+  const core::Stopwatch clock;
+  FitResult capped = cap_spectrum(make, table, options, sel.result, terms.solver_cap);
+  const TermRow cap = row_of(capped, clock.seconds());
+  sel.rows.push_back(cap);
+  sel.chosen = cap.terms;
+  sel.cap_cost_ratio = ratio(cap.cost, full.cost);
+  sel.cap_storage_rms_ratio = ratio(cap.rms_log10_storage, full.rms_log10_storage);
+  sel.cap_loss_rms_ratio = ratio(cap.rms_log10_loss, full.rms_log10_loss);
+  std::ostringstream msg;
+  msg << "solver cap " << terms.solver_cap << " terms: the smooth spectrum's " << full.terms
+      << " terms reduced to " << cap.terms << " (re-fitted with free times); cost x"
+      << sel.cap_cost_ratio << ", rms log10 storage " << full.rms_log10_storage << " -> " << cap.rms_log10_storage
+      << " (x" << sel.cap_storage_rms_ratio << "), loss " << full.rms_log10_loss << " -> " << cap.rms_log10_loss
+      << " (x" << sel.cap_loss_rms_ratio << ")";
+  sel.messages.push_back(msg.str());
+  capped.messages.insert(capped.messages.begin(), sel.result.messages.front());
+  sel.result = std::move(capped);
   return sel;
 }
 
@@ -164,7 +186,6 @@ TermSelection select_terms(const std::function<model::ModelPtr(int)>& make,
                                std::to_string(terms.solver_cap) + " terms");
   const TermRow* chosen = row_for(sel.rows, sel.chosen);
   const TermRow* free = row_for(sel.rows, sel.unconstrained);
-  auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 1.0; };
   sel.cap_cost_ratio = ratio(chosen->cost, free->cost);
   sel.cap_storage_rms_ratio = ratio(chosen->rms_log10_storage, free->rms_log10_storage);
   sel.cap_loss_rms_ratio = ratio(chosen->rms_log10_loss, free->rms_log10_loss);
@@ -204,10 +225,13 @@ std::string format_term_table(const TermSelection& sel) {
                     r.lambda == sel.spectrum_lambda ? "  <- chosen (GCV)" : "");
       s << line;
     }
-    std::snprintf(line, sizeof line, "%d terms, rms log10 E' %.5f, E'' %.5f, %.3f ms\n", sel.chosen,
-                  sel.rows.front().rms_log10_storage, sel.rows.front().rms_log10_loss,
-                  1e3 * sel.rows.front().wall_time_s);
-    s << line;
+    for (std::size_t k = 0; k < sel.rows.size(); ++k) {
+      const TermRow& r = sel.rows[k];
+      std::snprintf(line, sizeof line, "%s%d terms, rms log10 E' %.5f, E'' %.5f, cost %.6g, %.3f ms%s\n",
+                    k == 0 ? "" : "solver cap: ", r.terms, r.rms_log10_storage, r.rms_log10_loss, r.cost,
+                    1e3 * r.wall_time_s, r.terms == sel.chosen ? "  <- chosen" : "");
+      s << line;
+    }
     return s.str();
   }
   std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms",

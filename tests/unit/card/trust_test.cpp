@@ -14,6 +14,7 @@
 #include "fitlib/card/export.hpp"
 #include "fitlib/card/from_fit.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/timer.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
@@ -235,6 +236,73 @@ TEST(Trust, WlfFitsOfTheSyntheticTableStayInTheWindowAndSayWhenTheyMiss) {
     std::printf("%s: mean relative error %.2f %%, max %.2f %%, %zu warnings\n", what.c_str(),
                 100 * r.metrics.mean_rel_error, 100 * r.metrics.max_rel_error, r.quality.warnings.size());
   }
+}
+
+// ---- item 2 of the remaining issue-10 list: --max-terms with the spectrum. LS-DYNA's limit
+// (card/export's table) on pyvisco's master: at most 5 terms, admissible, exportable, the cost
+// of the cap reported, and no worse than the sweep's own 5-term fit with the same objective.
+TEST(Trust, LsDynaCapOnPyviscoMasterGivesFiveAdmissibleTermsAndReportsTheCost) {
+  const auto table = pyvisco_table("pyvisco-freq-master.csv");
+  const int cap = card::max_prony_terms("lsdyna");
+  ASSERT_EQ(cap, 5);
+  fit::FitOptions o;
+  o.residual = fit::kSpectrumResidual;
+  o.storage_weight = fit::kSpectrumStorageWeight;
+  fit::TermOptions t;
+  t.solver_cap = cap;
+  const auto sel = fit::select_terms("prony", {{"mode", "uniaxial"}, {"reference_C", -5.0}}, table, o, t);
+  ASSERT_EQ(sel.rows.size(), 2u);  // the spectrum, then the capped fit
+  EXPECT_EQ(sel.unconstrained, 53);
+  EXPECT_EQ(sel.chosen, cap);
+  expect_admissible(sel.result, o, table, "--max-terms 5");
+  const card::Card card = card_of(sel.result, o, table);
+  EXPECT_NO_THROW(card::export_card(card, "lsdyna"));
+  // The cost of the cap, in the report: rows, ratios and a message.
+  EXPECT_NEAR(sel.cap_cost_ratio, sel.rows[1].cost / sel.rows[0].cost, 1e-12);
+  EXPECT_GT(sel.cap_storage_rms_ratio, 1.0);
+  EXPECT_TRUE(std::any_of(sel.messages.begin(), sel.messages.end(), [](const std::string& m) {
+    return m.find("solver cap 5 terms") != std::string::npos;
+  }));
+  const auto& m = sel.result.metrics;
+  std::printf("cap 5: rms log10 E' %.4f, E'' %.3f, cost %.2f (x%.2f of the 53-term spectrum)\n", m.rms_log10_storage,
+              m.rms_log10_loss, m.cost, sel.cap_cost_ratio);
+  EXPECT_LE(m.rms_log10_storage, 0.055);  // 5 terms over 26 decades: ≈ 12 % typical E′ error
+  // Independent baseline: the N-sweep's 5-term fit (free times, same objective).
+  fit::TermOptions sweep;
+  sweep.method = fit::TermMethod::sweep;
+  sweep.min_terms = sweep.max_terms = cap;
+  const auto five = fit::select_terms("prony", {{"mode", "uniaxial"}, {"reference_C", -5.0}}, table, o, sweep);
+  EXPECT_LE(m.cost, five.result.metrics.cost * (1 + 1e-6));
+}
+
+// ---- item 3 on pyvisco's raw isotherms: free shifts, then the default spectrum on the master,
+// then the shifts refined with the spectrum; against pyvisco's published pipeline figures
+// (anchors.md: rms log10 E′ 0.0047, E″ 0.188 before its term reduction, ≈ 3.3 s).
+TEST(Trust, RawIsothermsDefaultSpectrumAgainstPyvisco) {
+  const auto raw = pyvisco_table("pyvisco-freq-raw.csv");
+  fit::MasterCurveOptions mo;
+  mo.reference_C = -5.0;
+  fit::FitOptions o;
+  o.residual = fit::kSpectrumResidual;
+  o.storage_weight = fit::kSpectrumStorageWeight;
+  const auto make = [](int n) {
+    return model::make_model("prony", {{"mode", "uniaxial"}, {"terms", n}, {"reference_C", -5.0}});
+  };
+  const core::Stopwatch clock;
+  const auto refined = fit::refine_shifts_with_spectrum(make, raw, fit::build_master_curve(raw, mo), o);
+  const double seconds = clock.seconds();
+  const auto pairwise = fit::fit_spectrum(make, fit::build_master_curve(raw, mo).master, o);
+  const auto& p = pairwise.result.metrics;
+  const auto& r = refined.spectrum.result.metrics;
+  std::printf("pairwise shifts + spectrum: rms log10 E' %.5f E'' %.4f, %d terms\n", p.rms_log10_storage,
+              p.rms_log10_loss, static_cast<int>(pairwise.result.values.size() / 2));
+  std::printf("shifts refined (%d rounds):  rms log10 E' %.5f E'' %.4f, %.0f ms\n", refined.rounds,
+              r.rms_log10_storage, r.rms_log10_loss, 1e3 * seconds);
+  std::printf("pyvisco (anchors.md):       rms log10 E' 0.0047  E'' 0.188, 3.3 s\n");
+  EXPECT_LE(r.rms_log10_storage, 0.0047);
+  EXPECT_LE(r.rms_log10_loss, 0.188);
+  EXPECT_LT(r.rms_log10_storage, p.rms_log10_storage);
+  expect_admissible(refined.spectrum.result, o, refined.curve.master, "raw isotherms, default spectrum");
 }
 
 // ---- item 4: a fit that misses says so

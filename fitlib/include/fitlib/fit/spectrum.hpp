@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/master_curve.hpp"
 
 namespace fitlib::fit {
 
@@ -28,6 +29,9 @@ struct SpectrumOptions {
   int lambda_steps = 31;     // log-spaced path from lambda_max down to lambda_min
   // Gauss–Newton polish on the exact log10 objective plus the same penalty (λ held).
   bool polish = true;
+  // With a temperature law and ≥ 2 isotherms: the law's constants (started from the model-free
+  // isotherm shifts) refined with the spectrum, moduli projected out, λ held.
+  bool refine_law = true;
 };
 
 struct SpectrumPathRow {
@@ -41,17 +45,42 @@ struct SpectrumFit {
   double lambda = 0.0;       // chosen
   int grid_terms = 0;        // time constants on the grid
   int polish_steps = 0;
+  int law_rounds = 0, law_evaluations = 0;  // refinement of the temperature law's constants
   std::vector<SpectrumPathRow> path;
   double wall_time_s = 0.0;
 };
 
-// True when `make(1)` is a series model with linear moduli and no temperature law (the models
-// fit_spectrum handles).
+// True when `make(1)` is a series model with linear moduli and no temperature law or a WLF,
+// Arrhenius or polynomial one (the models fit_spectrum handles).
 bool spectrum_applies(const std::function<model::ModelPtr(int)>& make);
 
 // `make(N)` builds the series model with N terms. UsageError when spectrum_applies is false.
 SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
                          const data::DynamicTestTable& table, const FitOptions& options,
                          const SpectrumOptions& spectrum = {});
+
+// A spectrum fit reduced to at most `max_terms` terms (a solver's limit, card/export.hpp):
+// adjacent terms merged pairwise by Ward's criterion in ln τ (moduli summed, ln τ weighted by
+// modulus) until `max_terms` remain, then the N-term model re-fitted from there with free
+// times (fit(), automatic backend: NNLS start, Ceres in log space; a law's constants free too)
+// and from the model's own start; the lower cost is kept.
+FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
+                       const FitOptions& options, const FitResult& spectrum, int max_terms);
+
+// Raw isotherms: the spectrum on the master of `curve` (pairwise shifts), then the shifts and
+// the spectrum refined together by block coordinate descent: every shift but the anchor's
+// (the isotherm nearest T_ref) by Brent on its own rows with the spectrum held (±0.5 decade),
+// then the spectrum re-fitted on the re-shifted master; rounds while the cost falls by > 0.01 %.
+// Shifts follow E′ only (the cost with loss weight 0), as the pairwise shifts do.
+struct SpectrumMasterFit {
+  MasterCurve curve;     // the refined shifts (WLF / Arrhenius refitted to them)
+  SpectrumFit spectrum;  // on curve.master
+  double pairwise_cost = 0.0;  // E′ cost of the spectrum on the pairwise shifts' master
+  int rounds = 0;        // rounds kept
+};
+SpectrumMasterFit refine_shifts_with_spectrum(const std::function<model::ModelPtr(int)>& make,
+                                              const data::DynamicTestTable& raw, MasterCurve curve,
+                                              const FitOptions& options, const SpectrumOptions& spectrum = {},
+                                              int max_rounds = 6);
 
 }  // namespace fitlib::fit
