@@ -18,4 +18,7 @@ void register_plot(CLI::App& app);
 void register_segment(CLI::App& app);
 void register_life(CLI::App& app);
 
+// The export formats with their Prony term limits, for help texts (cmd_export.cpp).
+std::string export_formats_text();
+
 }  // namespace fitcli
