@@ -28,9 +28,12 @@ struct EvalArgs {
   bool json = false, allow_extrapolation = false;
 };
 
+// "--temperature-c 300 is outside the card's data window [23, 60] degC".
 std::string excess_text(const fitlib::card::WindowExcess& x) {
-  return x.quantity + " " + exact(x.value) + " outside the card's data window [" + exact(x.low) + ", " +
-         exact(x.high) + "]";
+  const bool f = x.quantity == "frequency_Hz", T = x.quantity == "temperature_C";
+  const std::string option = f ? "--frequency-hz" : T ? "--temperature-c" : "--amplitude";
+  return option + " " + exact(x.value) + " is outside the card's data window [" + exact(x.low) + ", " +
+         exact(x.high) + "]" + (f ? " Hz" : T ? " degC" : "");
 }
 
 // True when `c` lies beyond the card's data window: an error, or a warning with --allow-extrapolation.

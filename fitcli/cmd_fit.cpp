@@ -159,7 +159,7 @@ void print_summary(const FitArgs& a, const fitlib::card::FitCardResult& r) {
       out << "  (" << p.reason << ")";
     out << "\n";
   }
-  for (const auto& msg : result.messages) out << "note: " << msg << "\n";
+  for (const auto& msg : result.messages) note(msg);
   if (!a.out.empty() && a.out != "-") out << "card written to " << a.out << "\n";
 }
 

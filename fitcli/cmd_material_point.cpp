@@ -74,6 +74,10 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
   write_table(a, drive_csv(model::drive(*point, model::test_program(c, history))));
 }
 
+// Old option names and their replacements.
+const std::pair<const char*, const char*> kRenamed[] = {
+    {"--test", "--mode"}, {"--frequency", "--frequency-hz"}, {"--temperature", "--temperature-c"}};
+
 }  // namespace
 
 void register_material_point(CLI::App& app) {
@@ -84,20 +88,31 @@ void register_material_point(CLI::App& app) {
       "stresses), or run a Report II §7.2 case (7.1–7.5) of a fritzson card");
   cmd->add_option("--card", args->card, "material card file (JSON; - = stdin)")->required();
   cmd->add_option("--case", args->case_id, "fritzson cards: 7.1, 7.2, 7.3, 7.4 (cyclic) or 7.5 (ramp)");
-  cmd->add_option("--test", args->test, "shear (default), uniaxial or bulk");
+  cmd->add_option("--mode", args->test, "shear (default), uniaxial or bulk");
   cmd->add_option("--orientation", args->orientation, "11, 22, 33, 12, 13 or 23 (default 12 / 22)");
   cmd->add_option("--amplitude", args->amplitude, "strain amplitude (shear: γ; default 0.01)");
   cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft");
-  cmd->add_option("--frequency", args->frequency_Hz, "Hz (default 1)");
+  cmd->add_option("--frequency-hz", args->frequency_Hz, "Hz (default 1)");
   cmd->add_option("--cycles", args->cycles, "cycles (default 5)");
-  cmd->add_option("--temperature", args->temperature_C, "degC (default: the card's reference)");
+  cmd->add_option("--temperature-c", args->temperature_C, "degC (default: the card's reference)");
+  // Deprecated spellings (one release): the same names as every other subcommand.
+  for (const auto& [old_name, new_name] : kRenamed) {
+    auto* now = cmd->get_option(new_name);
+    auto* old = old_name == std::string("--test") ? cmd->add_option(old_name, args->test)
+                : old_name == std::string("--frequency") ? cmd->add_option(old_name, args->frequency_Hz)
+                                                         : cmd->add_option(old_name, args->temperature_C);
+    old->group("")->excludes(now);
+  }
   cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency)");
   cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear shear card without K");
   cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)");
   cmd->add_option("--out", args->out, "CSV file to write (JSON with --json; default or - = stdout)");
   add_json_flag(cmd, args->json, "the rows (to --out when given)");
   add_verbosity_flags(cmd);
-  cmd->callback([args] {
+  cmd->callback([args, cmd] {
+    for (const auto& [old_name, new_name] : kRenamed)
+      if (cmd->count(old_name) > 0)
+        note(std::string("material-point ") + old_name + " is deprecated: use " + new_name + " (docs/cli.md)");
     claim_output("--out", args->out, false);
     const auto card = fitlib::card::load_card(input_path(args->card));
     if (!args->case_id.empty()) run_case(*args, card);
