@@ -356,3 +356,20 @@ TEST(CliGrammar, WaveformManyFilesOneTable) {
   EXPECT_NE(text.find(",S1,"), std::string::npos) << text;
   EXPECT_NE(text.find("," + a + ","), std::string::npos) << text;
 }
+
+// fit --plot writes the figure fitcli plot makes of the same data and card, after the card.
+TEST(CliGrammar, FitPlotIsThePlotFigure) {
+  const std::string card = temp_file("grammar_plot_card.json"), a = temp_file("grammar_fit.png"),
+                    b = temp_file("grammar_plot.png");
+  const auto fit = run_fitcli("fit --data " + source_path(kShearCsv) + " --model prony --terms 3 -q --out " + card +
+                              " --plot " + a);
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  ASSERT_EQ(run_fitcli("plot --data " + source_path(kShearCsv) + " --card " + card + " --out " + b).exit_code, 0);
+  const std::string png = slurp(a);
+  EXPECT_EQ(png.substr(0, 4), "\x89PNG");
+  EXPECT_EQ(png, slurp(b));
+  const std::string c = temp_file("grammar_eval.png");
+  const auto eval = run_fitcli("eval --card " + card + " --frequency-hz 1 --plot " + c + " --data " + source_path(kShearCsv));
+  ASSERT_EQ(eval.exit_code, 0) << eval.err;
+  EXPECT_EQ(slurp(c), png);
+}
