@@ -2,6 +2,7 @@
 // the card's own unless --mode asks for another (converted as export does, card/conversion.hpp);
 // conditions beyond the card's data window are refused unless --allow-extrapolation.
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <nlohmann/json.hpp>
@@ -36,17 +37,46 @@ std::string excess_text(const fitlib::card::WindowExcess& x) {
          exact(x.high) + "]" + (f ? " Hz" : T ? " degC" : "");
 }
 
-// True when `c` lies beyond the card's data window: an error, or a warning with --allow-extrapolation.
-bool check_window(const EvalArgs& a, const fitlib::card::Card& card, const fitlib::model::TestCondition& c) {
-  const auto excess = fitlib::card::outside_data_window(card, c);
-  if (excess.empty()) return false;
-  if (!a.allow_extrapolation)
-    throw fitlib::core::InputError("eval: " + excess_text(excess.front()) +
-                                       "; pass --allow-extrapolation to evaluate there anyway",
-                                   a.card, 0, 0, "fit.data_window." + excess.front().quantity);
-  for (const auto& x : excess) warning("extrapolating: " + excess_text(x) + " (" + a.card + ")");
-  return true;
-}
+// Conditions beyond the card's data window: the first is an error, or with
+// --allow-extrapolation each quantity's range is one warning at the end.
+class WindowCheck {
+ public:
+  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), card_(card) {}
+
+  // True when `c` lies beyond the window (and extrapolation is allowed).
+  bool beyond(const fitlib::model::TestCondition& c) {
+    const auto excess = fitlib::card::outside_data_window(card_, c);
+    if (excess.empty()) return false;
+    if (!a_.allow_extrapolation)
+      throw fitlib::core::InputError("eval: " + excess_text(excess.front()) +
+                                         "; pass --allow-extrapolation to evaluate there anyway",
+                                     a_.card, 0, 0, "fit.data_window." + excess.front().quantity);
+    for (const auto& x : excess) {
+      const bool added = seen_.emplace(x.quantity, x).second;
+      double& lo = lowest_[x.quantity];
+      double& hi = highest_[x.quantity];
+      lo = added ? x.value : std::min(lo, x.value);
+      hi = added ? x.value : std::max(hi, x.value);
+    }
+    return true;
+  }
+
+  ~WindowCheck() {
+    for (auto [quantity, x] : seen_) {
+      x.value = lowest_[quantity];
+      std::string text = excess_text(x);
+      if (highest_[quantity] != lowest_[quantity])
+        text.insert(text.find(" is outside"), " … " + exact(highest_[quantity]));
+      warning("extrapolating: " + text + " (" + a_.card + ")");
+    }
+  }
+
+ private:
+  const EvalArgs& a_;
+  const fitlib::card::Card& card_;
+  std::map<std::string, fitlib::card::WindowExcess> seen_;
+  std::map<std::string, double> lowest_, highest_;
+};
 
 // --time-s: relaxation modulus M(t) after a unit strain step and creep compliance J(t) after a
 // unit stress step; a model that has no creep compliance (fritzson) leaves J empty and says why.
@@ -60,13 +90,14 @@ void run_eval_time(const EvalArgs& a, const fitlib::card::Card& card, fitlib::mo
   nlohmann::json rows = nlohmann::json::array();
   csv << "mode,temperature_C,time_s,relaxation_modulus_MPa,creep_compliance_per_MPa\n";
   std::string refused;
+  WindowCheck window(a, card);
   for (double T : temperatures)
     for (double t : a.time_s) {
       model::TestCondition c;
       c.mode = mode;
       c.orientation = a.orientation;
       c.temperature_C = T;
-      const bool extrapolated = check_window(a, card, c);
+      const bool extrapolated = window.beyond(c);
       const double m = model->relaxation_modulus(p.data(), c, t);
       std::optional<double> j;
       try {
@@ -100,6 +131,7 @@ void run_eval_frequency(const EvalArgs& a, const fitlib::card::Card& card, fitli
   nlohmann::json rows = nlohmann::json::array();
   csv << "mode,orientation,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa,tan_delta,"
          "mean_modulus_MPa\n";
+  WindowCheck window(a, card);
   for (double T : temperatures)
     for (double amp : amplitudes)
       for (double f : a.frequency_Hz) {
@@ -109,7 +141,7 @@ void run_eval_frequency(const EvalArgs& a, const fitlib::card::Card& card, fitli
         c.frequency_Hz = f;
         c.temperature_C = T;
         c.strain_amplitude = amp;
-        const bool extrapolated = check_window(a, card, c);
+        const bool extrapolated = window.beyond(c);
         auto m = card::moduli_in_mode(*model, p, c, a.poisson_ratio);
         const std::string at = " at " + exact(f) + " Hz" + (std::isnan(T) ? "" : ", " + exact(T) + " degC");
         m.storage = core::require_finite(m.storage, "storage modulus" + at);
