@@ -36,7 +36,7 @@ void register_accumulate(CLI::App& app) {
   cmd->add_option("--omega-points", a->omega_points, "Number of angular velocities (log-spaced)");
   cmd->add_option("--strain-limit", a->limit, "Strain limit for the critical angular-velocity area");
   cmd->add_option("--out", a->out, "CSV file to write (default or - = stdout)");
-  add_json_flag(cmd, a->json, "a summary (the CSV goes to --out)");
+  add_json_flag(cmd, a->json, "a summary on stdout (the CSV goes to --out)");
   add_verbosity_flags(cmd);
   cmd->callback([a, cmd] {
     using namespace fitlib;

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
@@ -19,12 +20,13 @@ void register_belt(CLI::App& app) {
   cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; - = stdin)")->required();
   cmd->add_option("--out-dir", *out_dir, "Output folder (load_history.csv, summary.json)")->capture_default_str();
   // Deprecated spelling (one release): --out names a file in every other subcommand.
-  auto* old_out = cmd->add_option("--out", *out_dir)->group("");
-  cmd->get_option("--out-dir")->excludes(old_out);
-  add_json_flag(cmd, *json, "the summary");
+  cmd->add_option("--out", *out_dir)->group("");
+  add_json_flag(cmd, *json, "the summary, on stdout");
   add_verbosity_flags(cmd);
   cmd->add_flag("--record-timing", *record_timing, "Store wall times in summary.json (breaks byte-identity)");
   cmd->callback([=] {
+    if (cmd->count("--out") > 0 && cmd->count("--out-dir") > 0)
+      throw fitlib::core::UsageError("belt: give --out-dir only (--out DIR is its deprecated spelling)");
     if (cmd->count("--out") > 0) note("belt --out DIR is deprecated: use --out-dir DIR (docs/cli.md)");
     const auto scene = load_scene_input(*scene_path);
     fitlib::core::prepare_output_dir(*out_dir);

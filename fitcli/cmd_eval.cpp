@@ -65,8 +65,9 @@ class WindowCheck {
     for (auto [quantity, x] : seen_) {
       x.value = lowest_[quantity];
       std::string text = excess_text(x);
+      const auto at = text.find(" is outside");
       if (highest_[quantity] != lowest_[quantity])
-        text.insert(text.find(" is outside"), " … " + exact(highest_[quantity]));
+        text.replace(at, 11, " … " + exact(highest_[quantity]) + " reaches beyond");
       warning("extrapolating: " + text + " (" + a_.card + ")");
     }
   }
@@ -209,7 +210,7 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--data", args->data, "With --plot: the data file(s) to plot against the card");
   cmd->add_option("--format", args->data_format, "With --plot: format of --data (native | pyvisco | eplexor)")
       ->capture_default_str()->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));
-  add_json_flag(cmd, args->json, "the rows (to --out when given)");
+  add_json_flag(cmd, args->json, "the rows instead of CSV, on stdout or in --out");
   add_verbosity_flags(cmd);
   cmd->callback([args] { run_eval(*args); });
 }

@@ -39,7 +39,7 @@ void register_export(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");
-  add_json_flag(cmd, args->json, "the keywords (or, with --out, the file written)");
+  add_json_flag(cmd, args->json, "the keywords (or, with --out, the file written), on stdout");
   add_verbosity_flags(cmd);
   cmd->callback([args] {
     claim_output("--out", args->out, false);

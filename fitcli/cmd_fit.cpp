@@ -283,7 +283,7 @@ void register_fit(CLI::App& app) {
   cmd->add_flag("--record-timing", a->record_timing, "Store the wall time in the card (breaks byte-identity)");
   a->fit.progress = true;  // shown only when stderr is a terminal
   cmd->add_flag("!--no-progress", a->fit.progress, "Hide the progress of multistart runs on stderr");
-  add_json_flag(cmd, a->json, "the card and run figures");
+  add_json_flag(cmd, a->json, "the card and run figures, on stdout");
   add_verbosity_flags(cmd);
   cmd->add_flag("--master-curve", a->master.enabled,
                 "Data are raw isotherms: shift them to --reference-c first; the card gets WLF fitted to the shifts");

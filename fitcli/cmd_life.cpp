@@ -21,7 +21,7 @@ void register_life(CLI::App& app) {
   cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; [life] optional; - = stdin)")
       ->required();
   cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)")->capture_default_str();
-  add_json_flag(cmd, *json, "life.json");
+  add_json_flag(cmd, *json, "life.json, on stdout");
   add_verbosity_flags(cmd);
   cmd->add_flag("--record-timing", *record_timing,
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");

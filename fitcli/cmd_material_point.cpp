@@ -96,18 +96,18 @@ void register_material_point(CLI::App& app) {
   cmd->add_option("--cycles", args->cycles, "cycles (default 5)");
   cmd->add_option("--temperature-c", args->temperature_C, "degC (default: the card's reference)");
   // Deprecated spellings (one release): the same names as every other subcommand.
-  for (const auto& [old_name, new_name] : kRenamed) {
-    auto* now = cmd->get_option(new_name);
-    auto* old = old_name == std::string("--test") ? cmd->add_option(old_name, args->test)
-                : old_name == std::string("--frequency") ? cmd->add_option(old_name, args->frequency_Hz)
-                                                         : cmd->add_option(old_name, args->temperature_C);
-    old->group("")->excludes(now);
+  for (const auto& renamed : kRenamed) {
+    const std::string name = renamed.first;
+    auto* old = name == "--test"        ? cmd->add_option(name, args->test)
+                : name == "--frequency" ? cmd->add_option(name, args->frequency_Hz)
+                                        : cmd->add_option(name, args->temperature_C);
+    old->group("");  // hidden from --help
   }
-  cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency)");
+  cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency-hz)");
   cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear shear card without K");
   cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)");
   cmd->add_option("--out", args->out, "CSV file to write (JSON with --json; default or - = stdout)");
-  add_json_flag(cmd, args->json, "the rows (to --out when given)");
+  add_json_flag(cmd, args->json, "the rows instead of CSV, on stdout or in --out");
   add_verbosity_flags(cmd);
   cmd->callback([args, cmd] {
     for (const auto& [old_name, new_name] : kRenamed)

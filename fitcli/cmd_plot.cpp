@@ -234,7 +234,7 @@ void register_plot(CLI::App& app) {
   cmd->add_option("--format", a->format, "native | pyvisco | eplexor")->capture_default_str()
       ->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));
   cmd->add_option("--title", a->title, "Figure title (default: the card's name)");
-  add_json_flag(cmd, a->json, "the files read and written");
+  add_json_flag(cmd, a->json, "the files read and written, on stdout");
   add_verbosity_flags(cmd);
   cmd->callback([a] { run_plot(*a); });
 }

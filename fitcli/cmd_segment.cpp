@@ -17,7 +17,7 @@ void register_segment(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   cmd->add_option("--scene", *scene_path, "Scene file (TOML) with a [segment] table (- = stdin)")->required();
   cmd->add_option("--vtk", *vtk, "VTK file to write: the mesh with displacements and cell stresses (legacy VTK)");
-  add_json_flag(cmd, *json, "the result");
+  add_json_flag(cmd, *json, "the result, on stdout");
   add_verbosity_flags(cmd);
   cmd->callback([=] {
     if (*vtk == "-") throw fitlib::core::UsageError("segment --vtk needs a file (- is not supported)");

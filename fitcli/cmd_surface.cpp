@@ -241,7 +241,7 @@ void register_surface(CLI::App& app) {
       ->capture_default_str();
   fit->add_option("--name", fa->name, "Name stored in the surface");
   fit->add_option("--out", fa->out, "Surface file to write (JSON; default or - = stdout)");
-  add_json_flag(fit, fa->json, "the statistics (with --out; without it the surface is the document)");
+  add_json_flag(fit, fa->json, "the statistics on stdout (with --out; without it the surface is the document)");
   add_verbosity_flags(fit);
   fit->callback([fa] { run_fit(*fa); });
 
@@ -254,7 +254,7 @@ void register_surface(CLI::App& app) {
                  "Evaluate outside the fitted interval (rows are flagged extrapolated = 1)");
   eval->add_flag("--gradient", ea->gradient, "Add the derivatives along each axis");
   eval->add_option("--out", ea->out, "Output file (CSV, or JSON with --json; default or - = stdout)");
-  add_json_flag(eval, ea->json, "the rows (to --out when given)");
+  add_json_flag(eval, ea->json, "the rows instead of CSV, on stdout or in --out");
   add_verbosity_flags(eval);
   eval->callback([ea] { run_eval(*ea); });
 
@@ -275,7 +275,7 @@ void register_surface(CLI::App& app) {
       ->delimiter(',');
   grid->add_option("--out", ga->out, "Grid file to write (CSV, or JSON with --json; default or - = stdout)");
   grid->add_option("--surface-out", ga->surface_out, "Also fit a surface of --quantity and write it to this file (JSON)");
-  add_json_flag(grid, ga->json, "the grid rows (to --out when given)");
+  add_json_flag(grid, ga->json, "the grid rows instead of CSV, on stdout or in --out");
   add_verbosity_flags(grid);
   grid->callback([ga] { run_grid(*ga); });
 }

@@ -82,7 +82,7 @@ void register_synth(CLI::App& app) {
   // Deprecated spelling (one release): the label option is --name in every subcommand.
   cmd->add_option("--material", a->name)->group("");
   cmd->add_option("--out", a->out, "Table file to write (native CSV, atomically; - = stdout)")->required();
-  add_json_flag(cmd, a->json, "what was written");
+  add_json_flag(cmd, a->json, "what was written, on stdout");
   add_verbosity_flags(cmd);
   cmd->callback([a, cmd] {
     if (cmd->count("--material") > 0) note("synth --material is deprecated: use --name (docs/cli.md)");

@@ -148,7 +148,7 @@ void register_waveform(CLI::App& app) {
       ->required();
   cmd->add_option("--specimen", args->specimen, "specimen metadata file (JSON sidecar), for every signal file");
   cmd->add_option("--out", args->out, "table file to write: one dynamic-test row per signal file (CSV; - = stdout)");
-  add_json_flag(cmd, args->json, "the analysis (one file: its record; several: fitlib.waveforms/1)");
+  add_json_flag(cmd, args->json, "the analysis on stdout (one file: its record; several: fitlib.waveforms/1)");
   add_verbosity_flags(cmd);
   cmd->add_option("--periods", args->options.periods, "whole periods analysed (default 4)");
   cmd->add_option("--smoothing", args->options.smoothing_window,

@@ -58,7 +58,7 @@ void add_verbosity_flags(CLI::App* cmd) {
 }
 
 void add_json_flag(CLI::App* cmd, bool& json, const std::string& what) {
-  cmd->add_flag("--json", json, "Print " + what + " as one JSON document on stdout");
+  cmd->add_flag("--json", json, "One JSON document: " + what);
 }
 
 bool quiet() { return verbosity().quiet; }

@@ -24,7 +24,8 @@ std::string exact_list(const std::vector<double>& values);
 
 // --quiet / --verbose on `cmd` (the same switches on every subcommand and on fitcli itself).
 void add_verbosity_flags(CLI::App* cmd);
-// --json on `cmd`: one JSON document on stdout and nothing else there.
+// --json on `cmd`: one JSON document of `what`, on stdout (nothing else there) unless `what` says
+// it goes to --out.
 void add_json_flag(CLI::App* cmd, bool& json, const std::string& what);
 bool quiet();
 bool verbose();
