@@ -3,19 +3,16 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 
 #include "commands.hpp"
 #include "fitlib/card/fit_card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
-#include "fitlib/data/eplexor.hpp"
 #include "fitlib/data/relaxation.hpp"
 #include "fitlib/data/shift_factors.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/fit/master_curve.hpp"
-#include "fitlib/fit/relaxation.hpp"
 #include "fitlib/fit/shift_laws.hpp"
 #include "fitlib/fit/terms.hpp"
 #include "inputs.hpp"
