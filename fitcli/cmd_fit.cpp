@@ -190,6 +190,7 @@ void run_fit(FitArgs a) {
   if (!a.plot.empty()) claim_output("--plot", a.plot, false);
   if (quiet()) a.fit.progress = false;
   const auto data = input_paths(a.data);
+  if (!a.fit.schedule_path.empty()) a.fit.schedule_path = input_path(a.fit.schedule_path);
   auto options = fit_card_options(a);
   if (is_relaxation_data(data, a.format)) {
     if (a.master.enabled) throw core::UsageError("--master-curve needs frequency data; give relaxation isotherms --shifts");

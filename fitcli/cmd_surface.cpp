@@ -83,7 +83,7 @@ void run_fit(const FitArgs& a) {
   options.missing = surface::parse_missing_cell_remedy(
       !a.missing.empty() ? a.missing : a.constraints.empty() ? "constrain" : "none");
   if (!a.constraints.empty()) {
-    options.user_constraints = surface::read_user_constraints(a.constraints);
+    options.user_constraints = surface::read_user_constraints(input_path(a.constraints));
     options.user_constraints_source = a.constraints;
   }
   claim_output("--out", a.out, false);
