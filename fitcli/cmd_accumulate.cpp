@@ -8,6 +8,8 @@
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/core/units.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
 
 namespace fitcli {
 
@@ -21,8 +23,9 @@ void register_accumulate(CLI::App& app) {
     bool json = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--card", a->card, "Material card with a retardation spectrum (J_g, L_i, lambda_i)");
-  cmd->add_option("--scene", a->scene, "Scene: kappa = centre distance / driver radius and [accumulation]");
+  cmd->add_option("--card", a->card, "Material card file with a retardation spectrum (J_g, L_i, lambda_i; - = stdin)");
+  cmd->add_option("--scene", a->scene,
+                  "Scene file: kappa = centre distance / driver radius and [accumulation] (- = stdin)");
   cmd->add_option("--spectrum", a->spectrum, "Spectrum shape instead of a card: box|gauss|lorentzian|ramp|wedge");
   cmd->add_option("--shear-stress-mpa", a->tau0, "Shear stress amplitude tau0 (MPa)");
   cmd->add_option("--kappa", a->kappa, "l/R (default from the scene, else pi)");
@@ -32,20 +35,22 @@ void register_accumulate(CLI::App& app) {
   cmd->add_option("--omega-max", a->omega_max, "Largest angular velocity (1/s)");
   cmd->add_option("--omega-points", a->omega_points, "Number of angular velocities (log-spaced)");
   cmd->add_option("--strain-limit", a->limit, "Strain limit for the critical angular-velocity area");
-  cmd->add_option("--out", a->out, "CSV file (default stdout)");
-  cmd->add_flag("--json", a->json, "Print a JSON summary on stdout (the CSV goes to --out)");
+  cmd->add_option("--out", a->out, "CSV file to write (default or - = stdout)");
+  add_json_flag(cmd, a->json, "a summary on stdout (the CSV goes to --out)");
+  add_verbosity_flags(cmd);
   cmd->callback([a, cmd] {
     using namespace fitlib;
+    claim_output("--out", a->out, a->json);
     if (a->card.empty() == a->spectrum.empty() && a->scene.empty())
       throw core::UsageError("give exactly one of --card or --spectrum (or a --scene with [accumulation])");
     scene::Scene sc;
     scene::AccumulationSpec spec;
     if (!a->scene.empty()) {
-      sc = scene::load_scene(a->scene);
+      sc = load_scene_input(a->scene);
       if (sc.accumulation) spec = *sc.accumulation;
     }
     if (!a->card.empty()) {
-      sc.materials["bottom"] = a->card;
+      sc.materials["bottom"] = input_path(a->card);
       spec.spectrum = "material:bottom";
     } else if (!a->spectrum.empty()) {
       spec.spectrum = a->spectrum;
@@ -65,11 +70,8 @@ void register_accumulate(CLI::App& app) {
     const auto spectrum = scene::scene_spectrum(sc, spec.spectrum, &source);
     const auto map = scene::accumulation_map(spectrum, spec, kappa);
     const std::string csv = scene::accumulation_csv(map);
-    if (a->out.empty() && !a->json) {
-      std::cout << csv;
-      return;
-    }
-    if (!a->out.empty()) core::write_file_atomically(a->out, csv);
+    if (!a->json) return emit(a->out, csv);
+    if (!a->out.empty()) emit(a->out, csv);
     if (a->json) {
       nlohmann::json j{{"kappa", kappa}, {"spectrum", source}, {"shear_stress_MPa", spec.shear_stress_MPa},
                        {"omega_points", map.omega_rad_s.size()}, {"cycle_points", map.cycles.size()}};

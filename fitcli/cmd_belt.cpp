@@ -2,9 +2,12 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
 
 namespace fitcli {
 
@@ -14,12 +17,18 @@ void register_belt(CLI::App& app) {
   auto out_dir = std::make_shared<std::string>("belt-out");
   auto json = std::make_shared<bool>(false);
   auto record_timing = std::make_shared<bool>(false);
-  cmd->add_option("--scene", *scene_path, "Scene TOML (docs/formats.md §5)")->required();
-  cmd->add_option("--out", *out_dir, "Output folder (load_history.csv, summary.json)");
-  cmd->add_flag("--json", *json, "Print the summary as JSON on stdout");
+  cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; - = stdin)")->required();
+  cmd->add_option("--out-dir", *out_dir, "Output folder (load_history.csv, summary.json)")->capture_default_str();
+  // Deprecated spelling (one release): --out names a file in every other subcommand.
+  cmd->add_option("--out", *out_dir)->group("");
+  add_json_flag(cmd, *json, "the summary, on stdout");
+  add_verbosity_flags(cmd);
   cmd->add_flag("--record-timing", *record_timing, "Store wall times in summary.json (breaks byte-identity)");
   cmd->callback([=] {
-    const auto scene = fitlib::scene::load_scene(*scene_path);
+    if (cmd->count("--out") > 0 && cmd->count("--out-dir") > 0)
+      throw fitlib::core::UsageError("belt: give --out-dir only (--out DIR is its deprecated spelling)");
+    if (cmd->count("--out") > 0) note("belt --out DIR is deprecated: use --out-dir DIR (docs/cli.md)");
+    const auto scene = load_scene_input(*scene_path);
     fitlib::core::prepare_output_dir(*out_dir);
     const auto result = fitlib::scene::run_scene(scene);
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
@@ -35,7 +44,7 @@ void register_belt(CLI::App& app) {
                   << " -> " << p.F_out_N << " N, sliding arc " << p.sliding_rad * 57.29577951308232
                   << " deg of " << p.wrap_rad * 57.29577951308232 << " deg (" << p.arc_method << ")\n";
     for (const auto& o : result.plan.unavailable_outputs)
-      std::cerr << "fitcli: warning: output '" << o << "' is not available in this version (not run)\n";
+      warning("output '" + o + "' is not available in this version (not run)");
     for (const auto& f : files) std::cout << "wrote " << f << "\n";
   });
 }

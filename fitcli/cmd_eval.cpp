@@ -1,5 +1,8 @@
-// fitcli eval: a card's moduli over a grid of test conditions (docs/formats.md §6).
+// fitcli eval: a card's moduli over a grid of test conditions (docs/cli.md "eval"). The mode is
+// the card's own unless --mode asks for another (converted as export does, card/conversion.hpp);
+// conditions beyond the card's data window are refused unless --allow-extrapolation.
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <nlohmann/json.hpp>
@@ -7,23 +10,79 @@
 
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
+#include "fitlib/card/data_window.hpp"
+#include "fitlib/card/export.hpp"
 #include "fitlib/core/error.hpp"
+#include "inputs.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 
 namespace fitcli {
 namespace {
 
 struct EvalArgs {
-  std::string card, mode = "shear", orientation, out;
+  std::string card, mode, orientation, out, plot, data_format = "native";
+  std::vector<std::string> data;  // --plot: tables to plot against
   std::vector<double> frequency_Hz, temperature_C, amplitude, time_s;
-  bool json = false;
+  double poisson_ratio = fitlib::card::ExportOptions{}.poisson_ratio;
+  bool json = false, allow_extrapolation = false;
+};
+
+// "--temperature-c 300 is outside the card's data window [23, 60] degC".
+std::string excess_text(const fitlib::card::WindowExcess& x) {
+  const bool f = x.quantity == "frequency_Hz", T = x.quantity == "temperature_C";
+  const std::string option = f ? "--frequency-hz" : T ? "--temperature-c" : "--amplitude";
+  return option + " " + exact(x.value) + " is outside the card's data window [" + exact(x.low) + ", " +
+         exact(x.high) + "]" + (f ? " Hz" : T ? " degC" : "");
+}
+
+// Conditions beyond the card's data window: the first is an error, or with
+// --allow-extrapolation each quantity's range is one warning at the end.
+class WindowCheck {
+ public:
+  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), card_(card) {}
+
+  // True when `c` lies beyond the window (and extrapolation is allowed).
+  bool beyond(const fitlib::model::TestCondition& c) {
+    const auto excess = fitlib::card::outside_data_window(card_, c);
+    if (excess.empty()) return false;
+    if (!a_.allow_extrapolation)
+      throw fitlib::core::InputError("eval: " + excess_text(excess.front()) +
+                                         "; pass --allow-extrapolation to evaluate there anyway",
+                                     a_.card, 0, 0, "fit.data_window." + excess.front().quantity);
+    for (const auto& x : excess) {
+      const bool added = seen_.emplace(x.quantity, x).second;
+      double& lo = lowest_[x.quantity];
+      double& hi = highest_[x.quantity];
+      lo = added ? x.value : std::min(lo, x.value);
+      hi = added ? x.value : std::max(hi, x.value);
+    }
+    return true;
+  }
+
+  ~WindowCheck() {
+    for (auto [quantity, x] : seen_) {
+      x.value = lowest_[quantity];
+      std::string text = excess_text(x);
+      const auto at = text.find(" is outside");
+      if (highest_[quantity] != lowest_[quantity])
+        text.replace(at, 11, " … " + exact(highest_[quantity]) + " reaches beyond");
+      warning("extrapolating: " + text + " (" + a_.card + ")");
+    }
+  }
+
+ private:
+  const EvalArgs& a_;
+  const fitlib::card::Card& card_;
+  std::map<std::string, fitlib::card::WindowExcess> seen_;
+  std::map<std::string, double> lowest_, highest_;
 };
 
 // --time-s: relaxation modulus M(t) after a unit strain step and creep compliance J(t) after a
 // unit stress step; a model that has no creep compliance (fritzson) leaves J empty and says why.
-void run_eval_time(const EvalArgs& a) {
+void run_eval_time(const EvalArgs& a, const fitlib::card::Card& card, fitlib::model::TestMode mode) {
   using namespace fitlib;
-  const auto card = card::load_card(a.card);
   const auto model = card.model();
   const auto p = card.values();
   const std::vector<double> temperatures =
@@ -32,12 +91,14 @@ void run_eval_time(const EvalArgs& a) {
   nlohmann::json rows = nlohmann::json::array();
   csv << "mode,temperature_C,time_s,relaxation_modulus_MPa,creep_compliance_per_MPa\n";
   std::string refused;
+  WindowCheck window(a, card);
   for (double T : temperatures)
     for (double t : a.time_s) {
       model::TestCondition c;
-      c.mode = model::parse_test_mode(a.mode);
+      c.mode = mode;
       c.orientation = a.orientation;
       c.temperature_C = T;
+      const bool extrapolated = window.beyond(c);
       const double m = model->relaxation_modulus(p.data(), c, t);
       std::optional<double> j;
       try {
@@ -45,29 +106,25 @@ void run_eval_time(const EvalArgs& a) {
       } catch (const core::UsageError& e) {
         refused = e.what();
       }
-      csv << a.mode << "," << (std::isnan(T) ? "" : exact(T)) << "," << exact(t) << "," << exact(m) << ","
-          << (j ? exact(*j) : "") << "\n";
+      csv << model::to_string(mode) << "," << (std::isnan(T) ? "" : exact(T)) << "," << exact(t) << "," << exact(m)
+          << "," << (j ? exact(*j) : "") << "\n";
       rows.push_back({{"time_s", t},
                       {"temperature_C", std::isnan(T) ? nlohmann::json(nullptr) : nlohmann::json(T)},
                       {"relaxation_modulus_MPa", m},
-                      {"creep_compliance_per_MPa", j ? nlohmann::json(*j) : nlohmann::json(nullptr)}});
+                      {"creep_compliance_per_MPa", j ? nlohmann::json(*j) : nlohmann::json(nullptr)},
+                      {"extrapolated", extrapolated}});
     }
-  if (!refused.empty()) std::cerr << "fitcli: note: no creep compliance: " << refused << "\n";
+  if (!refused.empty()) note("no creep compliance: " + refused);
   if (a.json)
-    emit(a.out, nlohmann::json{{"card", a.card}, {"mode", a.mode}, {"rows", rows}}.dump(2) + "\n");
+    emit(a.out, nlohmann::json{{"card", a.card}, {"mode", model::to_string(mode)}, {"rows", rows}}.dump(2) + "\n");
   else
     emit(a.out, csv.str());
 }
 
-void run_eval(const EvalArgs& a) {
+void run_eval_frequency(const EvalArgs& a, const fitlib::card::Card& card, fitlib::model::TestMode mode) {
   using namespace fitlib;
-  if (a.frequency_Hz.empty() == a.time_s.empty())
-    throw core::UsageError("eval: give --frequency-hz (complex moduli) or --time-s (relaxation, creep), one of them");
-  if (!a.time_s.empty()) return run_eval_time(a);
-  const auto card = card::load_card(a.card);
   const auto model = card.model();
   const auto p = card.values();
-  const auto mode = model::parse_test_mode(a.mode);
   const std::vector<double> temperatures =
       a.temperature_C.empty() ? std::vector<double>{std::nan("")} : a.temperature_C;
   const std::vector<double> amplitudes = a.amplitude.empty() ? std::vector<double>{0.0} : a.amplitude;
@@ -75,6 +132,7 @@ void run_eval(const EvalArgs& a) {
   nlohmann::json rows = nlohmann::json::array();
   csv << "mode,orientation,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa,tan_delta,"
          "mean_modulus_MPa\n";
+  WindowCheck window(a, card);
   for (double T : temperatures)
     for (double amp : amplitudes)
       for (double f : a.frequency_Hz) {
@@ -84,7 +142,8 @@ void run_eval(const EvalArgs& a) {
         c.frequency_Hz = f;
         c.temperature_C = T;
         c.strain_amplitude = amp;
-        auto m = model->moduli(p.data(), c);
+        const bool extrapolated = window.beyond(c);
+        auto m = card::moduli_in_mode(*model, p, c, a.poisson_ratio);
         const std::string at = " at " + exact(f) + " Hz" + (std::isnan(T) ? "" : ", " + exact(T) + " degC");
         m.storage = core::require_finite(m.storage, "storage modulus" + at);
         m.loss = core::require_finite(m.loss, "loss modulus" + at);
@@ -99,13 +158,29 @@ void run_eval(const EvalArgs& a) {
                         {"storage_MPa", m.storage},
                         {"loss_MPa", m.loss},
                         {"tan_delta", tan_delta},
-                        {"mean_modulus_MPa", m.mean}});
+                        {"mean_modulus_MPa", m.mean},
+                        {"extrapolated", extrapolated}});
       }
   if (a.json)
-    emit(a.out, nlohmann::json{{"card", a.card}, {"mode", a.mode}, {"orientation", a.orientation}, {"rows", rows}}
-                        .dump(2) + "\n");
+    emit(a.out, nlohmann::json{{"card", a.card}, {"mode", model::to_string(mode)}, {"orientation", a.orientation},
+                               {"rows", rows}}.dump(2) + "\n");
   else
     emit(a.out, csv.str());
+}
+
+void run_eval(const EvalArgs& a) {
+  using namespace fitlib;
+  if (a.frequency_Hz.empty() == a.time_s.empty())
+    throw core::UsageError("eval: give --frequency-hz (complex moduli) or --time-s (relaxation, creep), one of them");
+  if (!a.plot.empty() && a.data.empty()) throw core::UsageError("eval --plot needs --data (the table to plot against)");
+  claim_output("--out", a.out, false);  // with --json the rows are JSON wherever they go
+  if (!a.plot.empty()) claim_output("--plot", a.plot, false);
+  const auto card = card::load_card(input_path(a.card));
+  const auto data = input_paths(a.data);
+  const auto mode = a.mode.empty() ? card.model()->native_mode() : model::parse_test_mode(a.mode);
+  if (!a.time_s.empty()) run_eval_time(a, card, mode);
+  else run_eval_frequency(a, card, mode);
+  if (!a.plot.empty()) plot_card(card, data, a.data_format, "", a.plot);
 }
 
 }  // namespace
@@ -113,8 +188,11 @@ void run_eval(const EvalArgs& a) {
 void register_eval(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   auto* cmd = app.add_subcommand("eval", "Evaluate a card: storage, loss, tan delta and mean modulus (MPa), or M(t) and J(t)");
-  cmd->add_option("--card", args->card, "Material card (JSON)")->required();
-  cmd->add_option("--mode", args->mode, "shear | uniaxial | bulk")->capture_default_str();
+  cmd->add_option("--card", args->card, "Material card file (JSON; - = stdin)")->required();
+  cmd->add_option("--mode", args->mode, "shear | uniaxial | bulk (default: the card's own mode)");
+  cmd->add_option("--poisson-ratio", args->poisson_ratio,
+                  "Another --mode of a card without a bulk modulus: instantaneous Poisson ratio (as export)")
+      ->capture_default_str()->check(CLI::Range(0.0, 0.49999999));
   cmd->add_option("--orientation", args->orientation, "Thesis orientation label (11, 22, 33, 12, 13, 23)");
   cmd->add_option("--frequency-hz", args->frequency_Hz, "Frequencies in Hz, comma separated")
       ->delimiter(',')->check(CLI::PositiveNumber);
@@ -125,8 +203,15 @@ void register_eval(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--amplitude", args->amplitude, "Strain amplitudes (default: small-amplitude limit)")
       ->delimiter(',')->check(CLI::NonNegativeNumber);
-  cmd->add_option("--out", args->out, "Output file (default stdout); written atomically");
-  cmd->add_flag("--json", args->json, "Print one JSON document instead of CSV");
+  cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,
+                "Evaluate beyond the card's data window (a warning, and extrapolated: true in --json)");
+  cmd->add_option("--out", args->out, "Output file (CSV, or JSON with --json; default or - = stdout)");
+  cmd->add_option("--plot", args->plot, "Also write the figure of fitcli plot (PNG file) of --data against the card");
+  cmd->add_option("--data", args->data, "With --plot: the data file(s) to plot against the card");
+  cmd->add_option("--format", args->data_format, "With --plot: format of --data (native | pyvisco | eplexor)")
+      ->capture_default_str()->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));
+  add_json_flag(cmd, args->json, "the rows instead of CSV, on stdout or in --out");
+  add_verbosity_flags(cmd);
   cmd->callback([args] { run_eval(*args); });
 }
 

@@ -1,23 +1,37 @@
-// fitcli export: FE-solver material keywords from a card (docs/formats.md §3).
+// fitcli export: FE-solver material keywords from a card (docs/cli.md "export", docs/formats.md §3).
+#include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "fitlib/card/export.hpp"
+#include "inputs.hpp"
 #include "output.hpp"
 
 namespace fitcli {
 
+// "abaqus | ansys | lsdyna" with each format's term limit, from the library's one table.
+std::string export_formats_text() {
+  std::string text;
+  for (const auto& f : fitlib::card::export_formats()) {
+    const int cap = fitlib::card::max_prony_terms(f);
+    text += (text.empty() ? "" : ", ") + f + (cap > 0 ? " (at most " + std::to_string(cap) + " Prony terms)" : "");
+  }
+  return text;
+}
+
 void register_export(CLI::App& app) {
   struct Args {
     std::string card, format, out;
+    bool json = false;
     fitlib::card::ExportOptions options;
   };
   auto args = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand("export", "Write a card as Abaqus, ANSYS or LS-DYNA material keywords");
-  cmd->add_option("--card", args->card, "Material card (JSON)")->required();
-  cmd->add_option("--format", args->format, "abaqus | ansys | lsdyna | calculix")
-      ->required()->check(CLI::IsMember({"abaqus", "ansys", "lsdyna", "calculix"}));
-  cmd->add_option("--out", args->out, "Output file (default stdout); written atomically");
+  auto* cmd = app.add_subcommand("export", "Write a card as FE-solver material keywords: " + export_formats_text());
+  cmd->add_option("--card", args->card, "Material card file (JSON; - = stdin)")->required();
+  cmd->add_option("--format", args->format, "FE solver: " + export_formats_text())
+      ->required()->check(CLI::IsMember(fitlib::card::export_formats()));
+  cmd->add_option("--out", args->out, "Keyword file to write (atomically; default or - = stdout)");
   cmd->add_option("--poisson-ratio", args->options.poisson_ratio,
                   "Instantaneous Poisson ratio when the card has no bulk modulus")
       ->capture_default_str()->check(CLI::Range(0.0, 0.49999999));
@@ -26,8 +40,21 @@ void register_export(CLI::App& app) {
   cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)");
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");
+  add_json_flag(cmd, args->json, "the keywords (or, with --out, the file written), on stdout");
+  add_verbosity_flags(cmd);
   cmd->callback([args] {
-    emit(args->out, fitlib::card::export_card(fitlib::card::load_card(args->card), args->format, args->options));
+    claim_output("--out", args->out, false);
+    const auto text =
+        fitlib::card::export_card(fitlib::card::load_card(input_path(args->card)), args->format, args->options);
+    if (!args->json) return emit(args->out, text);
+    nlohmann::json j = {{"card", args->card}, {"format", args->format}};
+    if (args->out.empty() || args->out == "-") {
+      j["keywords"] = text;
+    } else {
+      emit(args->out, text);
+      j["out"] = args->out;
+    }
+    std::cout << j.dump(2) << "\n";
   });
 }
 

@@ -7,6 +7,8 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
 
 namespace fitcli {
 
@@ -16,13 +18,15 @@ void register_life(CLI::App& app) {
   auto out_dir = std::make_shared<std::string>("life-out");
   auto json = std::make_shared<bool>(false);
   auto record_timing = std::make_shared<bool>(false);
-  cmd->add_option("--scene", *scene_path, "Scene TOML (formats.md §5; [life] optional)")->required();
-  cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)");
-  cmd->add_flag("--json", *json, "Print life.json on stdout");
+  cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; [life] optional; - = stdin)")
+      ->required();
+  cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)")->capture_default_str();
+  add_json_flag(cmd, *json, "life.json, on stdout");
+  add_verbosity_flags(cmd);
   cmd->add_flag("--record-timing", *record_timing,
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
-    auto scene = fitlib::scene::load_scene(*scene_path);
+    auto scene = load_scene_input(*scene_path);
     scene.outputs["life"] = true;  // the command asks for the life
     const auto result = fitlib::scene::run_scene(scene);
     if (!result.life) {

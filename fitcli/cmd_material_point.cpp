@@ -1,11 +1,14 @@
 // fitcli material-point: drives the material point of any card through a cyclic strain
 // program (model::drive, docs/model.md §"drive") and writes time, strains and stresses (CSV);
 // for Fritzson cards --case runs a Report II §7.2 test case instead.
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
 #include "fitlib/model/material_point.hpp"
+#include "inputs.hpp"
 #include "output.hpp"
 
 namespace fitcli {
@@ -17,7 +20,15 @@ struct Args {
   double amplitude = 0.01, mean_strain = 0.0, frequency_Hz = 1.0;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();
+  bool json = false;
 };
+
+// The CSV, or with --json the same rows as one JSON document.
+void write_table(const Args& a, const std::string& csv) {
+  if (!a.json) return emit(a.out, csv);
+  const nlohmann::json j = {{"card", a.card}, {"case", a.case_id}, {"rows", csv_rows_json(csv)}};
+  emit(a.out, j.dump(2) + "\n");
+}
 
 std::string drive_csv(const fitlib::model::DriveResult& r) {
   static const char* kVoigt[6] = {"11", "22", "33", "23", "13", "12"};
@@ -38,7 +49,7 @@ void run_case(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
   const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*card.model(), card.values());
   const auto& c = model::fritzson::thesis_case(a.case_id);
-  emit(a.out, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
+  write_table(a, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
 }
 
 void run_cyclic(const Args& a, const fitlib::card::Card& card) {
@@ -60,8 +71,12 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
   c.temperature_C = a.temperature_C;
   const auto history = model::fritzson::cyclic_history(a.amplitude, a.mean_strain, a.frequency_Hz,
                                                        a.cycles, a.steps_per_cycle);
-  emit(a.out, drive_csv(model::drive(*point, model::test_program(c, history))));
+  write_table(a, drive_csv(model::drive(*point, model::test_program(c, history))));
 }
+
+// Old option names and their replacements.
+const std::pair<const char*, const char*> kRenamed[] = {
+    {"--test", "--mode"}, {"--frequency", "--frequency-hz"}, {"--temperature", "--temperature-c"}};
 
 }  // namespace
 
@@ -71,21 +86,35 @@ void register_material_point(CLI::App& app) {
       "material-point",
       "Drive a card's material point through a cyclic test (any model; CSV of time, strains, "
       "stresses), or run a Report II §7.2 case (7.1–7.5) of a fritzson card");
-  cmd->add_option("--card", args->card, "material card")->required();
+  cmd->add_option("--card", args->card, "material card file (JSON; - = stdin)")->required();
   cmd->add_option("--case", args->case_id, "fritzson cards: 7.1, 7.2, 7.3, 7.4 (cyclic) or 7.5 (ramp)");
-  cmd->add_option("--test", args->test, "shear (default), uniaxial or bulk");
+  cmd->add_option("--mode", args->test, "shear (default), uniaxial or bulk");
   cmd->add_option("--orientation", args->orientation, "11, 22, 33, 12, 13 or 23 (default 12 / 22)");
   cmd->add_option("--amplitude", args->amplitude, "strain amplitude (shear: γ; default 0.01)");
   cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft");
-  cmd->add_option("--frequency", args->frequency_Hz, "Hz (default 1)");
+  cmd->add_option("--frequency-hz", args->frequency_Hz, "Hz (default 1)");
   cmd->add_option("--cycles", args->cycles, "cycles (default 5)");
-  cmd->add_option("--temperature", args->temperature_C, "degC (default: the card's reference)");
-  cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency)");
+  cmd->add_option("--temperature-c", args->temperature_C, "degC (default: the card's reference)");
+  // Deprecated spellings (one release): the same names as every other subcommand.
+  for (const auto& renamed : kRenamed) {
+    const std::string name = renamed.first;
+    auto* old = name == "--test"        ? cmd->add_option(name, args->test)
+                : name == "--frequency" ? cmd->add_option(name, args->frequency_Hz)
+                                        : cmd->add_option(name, args->temperature_C);
+    old->group("");  // hidden from --help
+  }
+  cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency-hz)");
   cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear shear card without K");
   cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)");
-  cmd->add_option("--out", args->out, "output CSV (default stdout)");
-  cmd->callback([args] {
-    const auto card = fitlib::card::load_card(args->card);
+  cmd->add_option("--out", args->out, "CSV file to write (JSON with --json; default or - = stdout)");
+  add_json_flag(cmd, args->json, "the rows instead of CSV, on stdout or in --out");
+  add_verbosity_flags(cmd);
+  cmd->callback([args, cmd] {
+    for (const auto& [old_name, new_name] : kRenamed)
+      if (cmd->count(old_name) > 0)
+        note(std::string("material-point ") + old_name + " is deprecated: use " + new_name + " (docs/cli.md)");
+    claim_output("--out", args->out, false);
+    const auto card = fitlib::card::load_card(input_path(args->card));
     if (!args->case_id.empty()) run_case(*args, card);
     else run_cyclic(*args, card);
   });

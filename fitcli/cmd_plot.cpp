@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include <unistd.h>
@@ -18,8 +19,10 @@
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 
 namespace fitcli {
 namespace {
@@ -27,6 +30,7 @@ namespace {
 struct PlotArgs {
   std::vector<std::string> data;
   std::string card, out, format = "native", title;
+  bool json = false;
 };
 
 // Rows of one isotherm (or one temperature), with the card's curve over its frequency range.
@@ -183,23 +187,38 @@ void run_gnuplot(const std::string& script, const std::string& tmp, const std::s
   }
 }
 
-void run_plot(const PlotArgs& a) {
+}  // namespace
+
+void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& data, const std::string& format,
+               const std::string& title, const std::string& out) {
   using namespace fitlib;
-  const auto card = card::load_card(a.card);
   const auto model = card.model();
   const auto p = card.values();
-  if (a.out.find('\'') != std::string::npos) throw core::UsageError("plot: --out must not contain a quote");
-  const std::string tmp = a.out + ".tmp-" + std::to_string(getpid()) + ".png";
-  const std::string title = a.title.empty() ? card.name : a.title;
+  if (out == "-") throw core::UsageError("plot: the PNG needs a file (--out -: stdout is not supported)");
+  if (out.find('\'') != std::string::npos) throw core::UsageError("plot: the PNG file name must not contain a quote");
+  const std::string tmp = out + ".tmp-" + std::to_string(getpid()) + ".png";
+  const std::string shown = title.empty() ? card.name : title;
   std::string script;
-  if (is_relaxation_data(a.data, a.format)) {
-    script = relaxation_script(read_relaxation_tables(a.data), *model, p, title, tmp);
+  if (is_relaxation_data(data, format)) {
+    script = relaxation_script(read_relaxation_tables(data), *model, p, shown, tmp);
   } else {
     data::ReadOptions read;
-    read.format = a.format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
-    script = frequency_script(read_tables(a.data, a.format, read), *model, p, title, tmp);
+    read.format = format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
+    script = frequency_script(read_tables(data, format, read), *model, p, shown, tmp);
   }
-  run_gnuplot(script, tmp, a.out);
+  run_gnuplot(script, tmp, out);
+}
+
+namespace {
+
+void run_plot(const PlotArgs& a) {
+  fitlib::core::check_output_path(a.out);
+  const auto card = fitlib::card::load_card(input_path(a.card));
+  plot_card(card, input_paths(a.data), a.format, a.title, a.out);
+  if (a.json)
+    std::cout << nlohmann::json{{"card", a.card}, {"data", a.data}, {"out", a.out}}.dump(2) << "\n";
+  else
+    detail("wrote " + a.out);
 }
 
 }  // namespace
@@ -207,13 +226,16 @@ void run_plot(const PlotArgs& a) {
 void register_plot(CLI::App& app) {
   auto a = std::make_shared<PlotArgs>();
   auto* cmd = app.add_subcommand("plot", "Plot data against a card (PNG via gnuplot): E', E'', tan delta, residuals");
-  cmd->add_option("--data", a->data, "Data file(s): dynamic-test CSV, pyvisco CSV (frequency or time), EPLEXOR .xls")
+  cmd->add_option("--data", a->data,
+                  "Data file(s): dynamic-test CSV, pyvisco CSV (frequency or time), EPLEXOR .xls (- = stdin)")
       ->required();
-  cmd->add_option("--card", a->card, "Material card (JSON)")->required();
-  cmd->add_option("--out", a->out, "PNG file (written atomically)")->required();
+  cmd->add_option("--card", a->card, "Material card file (JSON; - = stdin)")->required();
+  cmd->add_option("--out", a->out, "PNG file to write (atomically)")->required();
   cmd->add_option("--format", a->format, "native | pyvisco | eplexor")->capture_default_str()
       ->check(CLI::IsMember({"native", "pyvisco", "eplexor"}));
   cmd->add_option("--title", a->title, "Figure title (default: the card's name)");
+  add_json_flag(cmd, a->json, "the files read and written, on stdout");
+  add_verbosity_flags(cmd);
   cmd->callback([a] { run_plot(*a); });
 }
 

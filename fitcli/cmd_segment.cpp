@@ -3,7 +3,10 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "fitlib/core/error.hpp"
 #include "fitlib/scene/segment_case.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
 
 namespace fitcli {
 
@@ -12,11 +15,13 @@ void register_segment(CLI::App& app) {
   auto scene_path = std::make_shared<std::string>();
   auto vtk = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("--scene", *scene_path, "Scene TOML with a [segment] table")->required();
-  cmd->add_option("--vtk", *vtk, "Write the mesh with displacements and cell stresses (legacy VTK)");
-  cmd->add_flag("--json", *json, "Print the result as JSON on stdout");
+  cmd->add_option("--scene", *scene_path, "Scene file (TOML) with a [segment] table (- = stdin)")->required();
+  cmd->add_option("--vtk", *vtk, "VTK file to write: the mesh with displacements and cell stresses (legacy VTK)");
+  add_json_flag(cmd, *json, "the result, on stdout");
+  add_verbosity_flags(cmd);
   cmd->callback([=] {
-    const auto scene = fitlib::scene::load_scene(*scene_path);
+    if (*vtk == "-") throw fitlib::core::UsageError("segment --vtk needs a file (- is not supported)");
+    const auto scene = load_scene_input(*scene_path);
     const auto r = fitlib::scene::run_segment_case(scene, *vtk);
     const auto j = fitlib::scene::segment_json(scene, r);
     if (*json) {

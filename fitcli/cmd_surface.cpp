@@ -11,6 +11,7 @@
 #include "fitlib/core/json.hpp"
 #include "fitlib/surface/card_grid.hpp"
 #include "fitlib/surface/fit.hpp"
+#include "inputs.hpp"
 #include "output.hpp"
 
 namespace fitcli {
@@ -82,13 +83,15 @@ void run_fit(const FitArgs& a) {
   options.missing = surface::parse_missing_cell_remedy(
       !a.missing.empty() ? a.missing : a.constraints.empty() ? "constrain" : "none");
   if (!a.constraints.empty()) {
-    options.user_constraints = surface::read_user_constraints(a.constraints);
+    options.user_constraints = surface::read_user_constraints(input_path(a.constraints));
     options.user_constraints_source = a.constraints;
   }
-  const auto data = surface::read_sample_columns(a.data, columns, a.y);
+  claim_output("--out", a.out, false);
+  const std::string data_path = input_path(a.data);
+  const auto data = surface::read_sample_columns(data_path, columns, a.y);
   surface::Surface s = surface::fit_surface(data, options);
-  s.provenance = {{"data_files", {a.data}},
-                  {"data_sha256", core::sha256_hex(core::read_file(a.data))},
+  s.provenance = {{"data_files", {with_stdin_named(data_path)}},
+                  {"data_sha256", core::sha256_hex(core::read_file(data_path))},
                   {"fitlib_version", FITLIB_VERSION},
                   {"command", command_line()}};
   const std::string document = surface::surface_to_json(s).dump(2) + "\n";
@@ -128,7 +131,8 @@ std::vector<double> parse_point(const std::string& text, std::size_t n) {
 }
 
 void run_eval(const EvalArgs& a) {
-  const auto s = surface::load_surface(a.surface);
+  claim_output("--out", a.out, false);
+  const auto s = surface::load_surface(input_path(a.surface));
   const std::size_t n = s.dimension();
   std::vector<std::vector<double>> points;
   for (const auto& text : a.at) points.push_back(parse_point(text, n));
@@ -136,7 +140,7 @@ void run_eval(const EvalArgs& a) {
     std::vector<std::string> names;
     for (const auto& axis : s.axes) names.push_back(axis.name);
     // the first axis doubles as the (unused) y column: read_sample_columns wants one
-    const auto table = surface::read_sample_columns(a.points, names, names.front());
+    const auto table = surface::read_sample_columns(input_path(a.points), names, names.front());
     for (Eigen::Index r = 0; r < table.x.rows(); ++r) {
       std::vector<double> x(n);
       for (std::size_t k = 0; k < n; ++k) x[k] = table.x(r, static_cast<Eigen::Index>(k));
@@ -184,9 +188,9 @@ struct GridArgs {
 
 void run_grid(const GridArgs& a) {
   // Every output is checked before the work and written after it: no partial results.
-  if (!a.out.empty() && a.out != "-") core::check_output_path(a.out);
-  if (!a.surface_out.empty()) core::check_output_path(a.surface_out);
-  const auto card = card::load_card(a.card);
+  claim_output("--out", a.out, false);
+  claim_output("--surface-out", a.surface_out, false);
+  const auto card = card::load_card(input_path(a.card));
   surface::CardGridRequest request;
   request.mode = model::parse_test_mode(a.mode);
   request.orientation = a.orientation;
@@ -200,15 +204,18 @@ void run_grid(const GridArgs& a) {
     s.provenance["card_file"] = a.card;
     s.provenance["fitlib_version"] = FITLIB_VERSION;
     s.provenance["command"] = command_line();
-    surface::save_surface(a.surface_out, s);
-    std::ostringstream note;
-    note.precision(4);
-    note << "surface of " << s.dependent_name << ": N = " << s.statistics.n_points << ", p = "
+    emit_with(a.surface_out, [&](const std::string& path) { surface::save_surface(path, s); });
+    std::ostringstream text;
+    text.precision(4);
+    text << "surface of " << s.dependent_name << ": N = " << s.statistics.n_points << ", p = "
          << s.statistics.n_parameters << ", max relative error at the grid points = "
-         << 100 * s.statistics.max_relative_error << " %\n";
-    std::cerr << note.str();
+         << 100 * s.statistics.max_relative_error << " %";
+    note(text.str());
   }
-  emit(a.out, grid_csv);
+  if (a.json)
+    emit(a.out, nlohmann::json{{"card", a.card}, {"rows", csv_rows_json(grid_csv)}}.dump(2) + "\n");
+  else
+    emit(a.out, grid_csv);
 }
 
 }  // namespace
@@ -216,41 +223,44 @@ void run_grid(const GridArgs& a) {
 void register_surface(CLI::App& app) {
   auto* surface_cmd = app.add_subcommand("surface", "Bezier tensor-product surfaces: fit, eval, grid");
   surface_cmd->require_subcommand(1);
+  add_verbosity_flags(surface_cmd);
 
   auto fa = std::make_shared<FitArgs>();
   auto* fit = surface_cmd->add_subcommand("fit", "Fit a surface to measured points (least squares on control points)");
-  fit->add_option("--data", fa->data, "CSV with a header row")->required();
+  fit->add_option("--data", fa->data, "Data file: CSV with a header row (- = stdin)")->required();
   fit->add_option("--x", fa->x, "Independent column, COL or COL:log / COL:lin (repeat; order = axis order)")
       ->required();
   fit->add_option("--y", fa->y, "Dependent column")->required();
   fit->add_option("--degree", fa->degrees, "Degree per axis, comma separated (default: levels - 1, at most 6)")
       ->delimiter(',');
-  fit->add_option("--constraints", fa->constraints, "JSON file of linear constraints on control points");
+  fit->add_option("--constraints", fa->constraints, "Constraints file: JSON of linear constraints on control points");
   fit->add_option("--missing", fa->missing,
                   "Remedy for missing cells: constrain | lower-degree | none (default constrain; none with --constraints)");
   fit->add_option("--level-tolerance", fa->level_tolerance,
                   "Values closer than this fraction of an axis range form one level (0: every value)")
       ->capture_default_str();
   fit->add_option("--name", fa->name, "Name stored in the surface");
-  fit->add_option("--out", fa->out, "Surface JSON (default: print it to stdout)");
-  fit->add_flag("--json", fa->json, "With --out: print the statistics as JSON");
+  fit->add_option("--out", fa->out, "Surface file to write (JSON; default or - = stdout)");
+  add_json_flag(fit, fa->json, "the statistics on stdout (with --out; without it the surface is the document)");
+  add_verbosity_flags(fit);
   fit->callback([fa] { run_fit(*fa); });
 
   auto ea = std::make_shared<EvalArgs>();
   auto* eval = surface_cmd->add_subcommand("eval", "Evaluate a surface (value, optional gradient)");
-  eval->add_option("--surface", ea->surface, "Surface JSON")->required();
+  eval->add_option("--surface", ea->surface, "Surface file (JSON; - = stdin)")->required();
   eval->add_option("--at", ea->at, "Point V1,V2,... in axis order (repeat for more points)");
-  eval->add_option("--points", ea->points, "CSV with one column per axis name");
+  eval->add_option("--points", ea->points, "Points file: CSV with one column per axis name (- = stdin)");
   eval->add_flag("--allow-extrapolation", ea->allow_extrapolation,
                  "Evaluate outside the fitted interval (rows are flagged extrapolated = 1)");
   eval->add_flag("--gradient", ea->gradient, "Add the derivatives along each axis");
-  eval->add_option("--out", ea->out, "Output file (default stdout)");
-  eval->add_flag("--json", ea->json, "Print one JSON document instead of CSV");
+  eval->add_option("--out", ea->out, "Output file (CSV, or JSON with --json; default or - = stdout)");
+  add_json_flag(eval, ea->json, "the rows instead of CSV, on stdout or in --out");
+  add_verbosity_flags(eval);
   eval->callback([ea] { run_eval(*ea); });
 
   auto ga = std::make_shared<GridArgs>();
   auto* grid = surface_cmd->add_subcommand("grid", "Modulus grid of a card (CSV for FE codes) and its surface");
-  grid->add_option("--card", ga->card, "Material card (JSON)")->required();
+  grid->add_option("--card", ga->card, "Material card file (JSON; - = stdin)")->required();
   grid->add_option("--frequency-hz", ga->frequency_Hz, "Frequencies in Hz, comma separated")
       ->required()->delimiter(',')->check(CLI::PositiveNumber);
   grid->add_option("--temperature-c", ga->temperature_C, "Temperatures in degC (default: card reference)")
@@ -263,8 +273,10 @@ void register_surface(CLI::App& app) {
       ->capture_default_str();
   grid->add_option("--degree", ga->degrees, "Surface degree per axis present (amplitude, frequency, temperature)")
       ->delimiter(',');
-  grid->add_option("--out", ga->out, "Grid CSV (default stdout)");
-  grid->add_option("--surface-out", ga->surface_out, "Also fit and write a surface JSON of --quantity");
+  grid->add_option("--out", ga->out, "Grid file to write (CSV, or JSON with --json; default or - = stdout)");
+  grid->add_option("--surface-out", ga->surface_out, "Also fit a surface of --quantity and write it to this file (JSON)");
+  add_json_flag(grid, ga->json, "the grid rows instead of CSV, on stdout or in --out");
+  add_verbosity_flags(grid);
   grid->callback([ga] { run_grid(*ga); });
 }
 

@@ -1,26 +1,32 @@
 // fitcli synth: a virtual dynamic test — a card evaluated on a test design with seeded noise,
 // written as a dynamic-test table. Used to make datasets of known ground truth.
+#include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/rng.hpp"
 #include "fitlib/data/table.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
 
 namespace fitcli {
 namespace {
 
 struct SynthArgs {
-  std::string card, mode = "shear", orientation, out, material;
+  std::string card, mode = "shear", orientation, out, name;
   std::vector<double> frequency_Hz, temperature_C, amplitude;
   double noise = 0.0;
   int specimens = 1;
   std::uint64_t seed = 1;
+  bool json = false;
 };
 
 void run_synth(const SynthArgs& a) {
   using namespace fitlib;
-  const auto card = card::load_card(a.card);
+  claim_output("--out", a.out, a.json);
+  const auto card = card::load_card(input_path(a.card));
   const auto model = card.model();
   const auto p = card.values();
   core::Rng rng(a.seed);
@@ -42,11 +48,17 @@ void run_synth(const SynthArgs& a) {
           // Multiplicative Gaussian scatter, independent for storage and loss.
           row.storage_MPa = m.storage * (1.0 + a.noise * rng.normal());
           row.loss_MPa = m.loss * (1.0 + a.noise * rng.normal());
-          row.material = a.material.empty() ? card.name : a.material;
+          row.material = a.name.empty() ? card.name : a.name;
           row.specimen = std::to_string(s);
           table.rows.push_back(row);
         }
-  data::write_dynamic_table(a.out, table);
+  emit_with(a.out, [&](const std::string& path) { data::write_dynamic_table(path, table); });
+  if (a.json)
+    std::cout << nlohmann::json{{"card", a.card}, {"out", a.out}, {"rows", table.rows.size()}, {"seed", a.seed},
+                                {"noise", a.noise}}.dump(2)
+              << "\n";
+  else
+    detail("wrote " + std::to_string(table.rows.size()) + " rows to " + a.out);
 }
 
 }  // namespace
@@ -54,7 +66,7 @@ void run_synth(const SynthArgs& a) {
 void register_synth(CLI::App& app) {
   auto a = std::make_shared<SynthArgs>();
   auto* cmd = app.add_subcommand("synth", "Virtual dynamic test: evaluate a card on a test design with seeded noise");
-  cmd->add_option("--card", a->card, "Material card (JSON) holding the true parameters")->required();
+  cmd->add_option("--card", a->card, "Material card file (JSON; - = stdin) holding the true parameters")->required();
   cmd->add_option("--mode", a->mode, "shear | uniaxial | bulk")->capture_default_str();
   cmd->add_option("--orientation", a->orientation, "Thesis orientation label");
   cmd->add_option("--frequency-hz", a->frequency_Hz, "Frequencies, Hz")->required()->delimiter(',')
@@ -66,9 +78,16 @@ void register_synth(CLI::App& app) {
   cmd->add_option("--specimens", a->specimens, "Specimens per test point")->capture_default_str()
       ->check(CLI::Range(1, 100));
   cmd->add_option("--seed", a->seed, "Random seed")->capture_default_str();
-  cmd->add_option("--material", a->material, "Material label (default: the card's name)");
-  cmd->add_option("--out", a->out, "Table to write (native CSV, atomically)")->required();
-  cmd->callback([a] { run_synth(*a); });
+  cmd->add_option("--name", a->name, "Material label of the rows (default: the card's name)");
+  // Deprecated spelling (one release): the label option is --name in every subcommand.
+  cmd->add_option("--material", a->name)->group("");
+  cmd->add_option("--out", a->out, "Table file to write (native CSV, atomically; - = stdout)")->required();
+  add_json_flag(cmd, a->json, "what was written, on stdout");
+  add_verbosity_flags(cmd);
+  cmd->callback([a, cmd] {
+    if (cmd->count("--material") > 0) note("synth --material is deprecated: use --name (docs/cli.md)");
+    run_synth(*a);
+  });
 }
 
 }  // namespace fitcli

@@ -1,4 +1,5 @@
-// fitcli waveform: raw force/displacement (or stress/strain) signals → one dynamic-test row.
+// fitcli waveform: raw force/displacement (or stress/strain) signals → one dynamic-test row per
+// signal file, in argument order (docs/cli.md "waveform").
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -10,12 +11,15 @@
 #include "fitlib/data/csv.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/data/waveform.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
 
 namespace fitcli {
 namespace {
 
 struct WaveformArgs {
-  std::string signals, specimen, out;
+  std::vector<std::string> signals;
+  std::string specimen, out;
   bool json = false;
   fitlib::data::WaveformOptions options;
 };
@@ -24,7 +28,7 @@ nlohmann::json nullable(double value, bool valid = true) {
   return valid && !std::isnan(value) ? nlohmann::json(value) : nullptr;
 }
 
-nlohmann::json report_json(const WaveformArgs& args, const fitlib::data::WaveformRecord& record,
+nlohmann::json report_json(const WaveformArgs& args, const std::string& signals, const fitlib::data::WaveformRecord& record,
                            const fitlib::data::WaveformReport& report,
                            const fitlib::data::DynamicTestRow& row) {
   const auto& s = record.specimen;
@@ -44,7 +48,7 @@ nlohmann::json report_json(const WaveformArgs& args, const fitlib::data::Wavefor
                        {"fit_residual", p.fit_residual}});
   return {
       {"schema", "fitlib.waveform/1"},
-      {"source", {{"signals", record.source_file},
+      {"source", {{"signals", signals},
                   {"sha256", record.source_sha256},
                   {"specimen_file", args.specimen.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.specimen)}}},
       {"specimen", {{"mode", fitlib::model::to_string(s.mode)},
@@ -85,21 +89,9 @@ nlohmann::json report_json(const WaveformArgs& args, const fitlib::data::Wavefor
       {"warnings", report.warnings}};
 }
 
-void run(const WaveformArgs& args) {
-  const auto record = fitlib::data::read_waveform(args.signals, args.specimen);
-  const auto report = fitlib::data::analyse_record(record, args.options);
-  const auto row = fitlib::data::waveform_row(report, record.specimen, record.source_file);
-  if (!args.out.empty()) {
-    fitlib::data::DynamicTestTable table;
-    table.rows.push_back(row);
-    fitlib::data::write_dynamic_table(args.out, table);
-  }
-  if (args.json) {
-    std::cout << report_json(args, record, report, row).dump(2) << "\n";
-    return;
-  }
+void print_text(const fitlib::data::WaveformRecord& record, const fitlib::data::WaveformReport& report) {
   const char* modulus = record.specimen.mode == fitlib::model::TestMode::shear ? "G" : "E";
-  std::cout << std::setprecision(6) << "frequency        " << report.frequency_Hz << " Hz ("
+  summary() << std::setprecision(6) << "frequency        " << report.frequency_Hz << " Hz ("
             << report.periods.size() << " periods, " << report.samples_per_period
             << " samples/period, smoothing " << report.smoothing_window << ")\n"
             << "storage " << modulus << "'       " << report.storage_MPa << " MPa (std "
@@ -111,11 +103,37 @@ void run(const WaveformArgs& args) {
             << "strain amplitude " << report.strain_amplitude << ", mean " << report.mean_strain
             << "\nstress amplitude " << report.stress_amplitude_MPa << " MPa, mean "
             << report.mean_stress_MPa << " MPa\n";
-  if (report.has_mean_modulus)
-    std::cout << "mean modulus     " << report.mean_modulus_MPa << " MPa\n";
-  std::cout << "circle check     " << report.max_circle_deviation << " (max relative radial deviation)\n";
-  for (const auto& w : report.warnings) std::cerr << "fitcli: warning: " << w << "\n";
-  if (!args.out.empty()) std::cout << "wrote " << args.out << "\n";
+  if (report.has_mean_modulus) summary() << "mean modulus     " << report.mean_modulus_MPa << " MPa\n";
+  summary() << "circle check     " << report.max_circle_deviation << " (max relative radial deviation)\n";
+}
+
+void run(const WaveformArgs& args) {
+  claim_output("--out", args.out, args.json);
+  const std::string sidecar = input_path(args.specimen);
+  fitlib::data::DynamicTestTable table;
+  nlohmann::json records = nlohmann::json::array();
+  for (const auto& given : args.signals) {
+    const std::string path = input_path(given);
+    const auto record = fitlib::data::read_waveform(path, sidecar);
+    const auto report = fitlib::data::analyse_record(record, args.options);
+    auto row = fitlib::data::waveform_row(report, record.specimen, record.source_file);
+    if (row.specimen.empty()) row.specimen = given;  // each row names its file
+    table.rows.push_back(row);
+    if (args.json) records.push_back(report_json(args, with_stdin_named(record.source_file), record, report, row));
+    if (!args.json && args.signals.size() > 1) summary() << "signals          " << given << "\n";
+    if (!args.json) print_text(record, report);
+    for (const auto& w : report.warnings) warning(given + ": " + w);
+  }
+  if (!args.out.empty())
+    emit_with(args.out, [&](const std::string& file) { fitlib::data::write_dynamic_table(file, table); });
+  if (args.json) {
+    // One file: its record; several: the records in argument order.
+    const auto doc = records.size() == 1 ? records.front()
+                                         : nlohmann::json{{"schema", "fitlib.waveforms/1"}, {"records", records}};
+    std::cout << doc.dump(2) << "\n";
+  } else if (!args.out.empty()) {
+    detail("wrote " + args.out);
+  }
 }
 
 }  // namespace
@@ -125,12 +143,13 @@ void register_waveform(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "waveform", "Analyse force/displacement or stress/strain signals (energy method) into a "
                   "dynamic-test table row");
-  cmd->add_option("--signals", args->signals, "signal CSV (time_s, force_N, displacement_mm or "
-                                              "stress_MPa, strain; '# key = value' metadata)")
+  cmd->add_option("--signals", args->signals, "signal CSV file(s) (time_s, force_N, displacement_mm or "
+                                              "stress_MPa, strain; '# key = value' metadata; - = stdin)")
       ->required();
-  cmd->add_option("--specimen", args->specimen, "specimen metadata JSON sidecar");
-  cmd->add_option("--out", args->out, "write the row as a dynamic-test table CSV");
-  cmd->add_flag("--json", args->json, "print one JSON document on stdout");
+  cmd->add_option("--specimen", args->specimen, "specimen metadata file (JSON sidecar), for every signal file");
+  cmd->add_option("--out", args->out, "table file to write: one dynamic-test row per signal file (CSV; - = stdout)");
+  add_json_flag(cmd, args->json, "the analysis on stdout (one file: its record; several: fitlib.waveforms/1)");
+  add_verbosity_flags(cmd);
   cmd->add_option("--periods", args->options.periods, "whole periods analysed (default 4)");
   cmd->add_option("--smoothing", args->options.smoothing_window,
                   "moving-average width in samples, odd; 0 = automatic (~period/40), 1 = off");

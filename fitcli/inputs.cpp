@@ -1,11 +1,79 @@
 #include "inputs.hpp"
 
-#include <iostream>
+#include <unistd.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <iterator>
+
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/data/eplexor.hpp"
+#include "output.hpp"
 
 namespace fitcli {
+
+namespace {
+
+// Never destroyed, so the exit handler can still read it.
+std::string& scratch_dir() {
+  static std::string* dir = new std::string;
+  return *dir;
+}
+
+void remove_scratch() {
+  std::error_code ignored;
+  if (!scratch_dir().empty()) std::filesystem::remove_all(scratch_dir(), ignored);
+}
+
+std::string read_stdin() {
+  static bool read = false;
+  if (read) throw fitlib::core::UsageError("stdin ('-') can be read only once per run");
+  read = true;
+  std::cin >> std::noskipws;
+  return std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+}
+
+std::string stdin_copy() { return scratch_dir().empty() ? std::string() : scratch_dir() + "/stdin"; }
+
+}  // namespace
+
+std::string scratch_path(const std::string& stem) {
+  static int counter = 0;
+  if (scratch_dir().empty()) {
+    std::string pattern = (std::filesystem::temp_directory_path() / "fitcli-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw fitlib::core::InputError("cannot create a scratch folder", pattern);
+    scratch_dir() = pattern;
+    std::atexit(remove_scratch);
+  }
+  return scratch_dir() + "/" + stem + (stem == "stdin" ? "" : "-" + std::to_string(++counter));
+}
+
+std::string input_path(const std::string& path) {
+  if (path != "-") return path;
+  const std::string bytes = read_stdin();
+  const std::string copy = scratch_path("stdin");
+  fitlib::core::write_file_atomically(copy, bytes);
+  return copy;
+}
+
+std::vector<std::string> input_paths(const std::vector<std::string>& paths) {
+  std::vector<std::string> out;
+  for (const auto& p : paths) out.push_back(input_path(p));
+  return out;
+}
+
+std::string with_stdin_named(std::string text) {
+  const std::string copy = stdin_copy();
+  if (copy.empty()) return text;
+  for (auto at = text.find(copy); at != std::string::npos; at = text.find(copy, at + 5)) text.replace(at, copy.size(), "stdin");
+  return text;
+}
+
+fitlib::scene::Scene load_scene_input(const std::string& path) {
+  return path == "-" ? fitlib::scene::parse_scene(read_stdin(), "stdin") : fitlib::scene::load_scene(path);
+}
 
 fitlib::data::DynamicTestTable read_tables(const std::vector<std::string>& paths, const std::string& format,
                                            const fitlib::data::ReadOptions& read) {
@@ -16,9 +84,9 @@ fitlib::data::DynamicTestTable read_tables(const std::vector<std::string>& paths
     if (format == "eplexor" || data::is_ole_compound_file(core::read_file(path))) {
       auto x = data::read_eplexor(path, read);
       if (x.has_shift_list)
-        std::cerr << "fitcli: note: " << path << ": EPLEXOR master export, Ref.Temp. " << x.shifts.reference_C
-                  << " degC, WLF C1 " << x.wlf_C1 << ", C2 " << x.wlf_C2_K << " K (" << x.shifts.factors.size()
-                  << " shifts)\n";
+        note(with_stdin_named(path) + ": EPLEXOR master export, Ref.Temp. " + exact(x.shifts.reference_C) +
+             " degC, WLF C1 " + exact(x.wlf_C1) + ", C2 " + exact(x.wlf_C2_K) + " K (" +
+             std::to_string(x.shifts.factors.size()) + " shifts)");
       one = std::move(x.table);
     } else {
       one = data::read_dynamic_table(path, read);

@@ -1,14 +1,17 @@
-// fitcli: command-line front of fitlib (docs/formats.md §6).
+// fitcli: command-line front of fitlib (docs/cli.md).
 #include <iostream>
 
 #include "commands.hpp"
-#include "output.hpp"
 #include "fitlib/core/error.hpp"
+#include "inputs.hpp"
+#include "output.hpp"
+#include "version_info.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"fitcli: fit material models to dynamic tests, write cards, run belt scenes"};
+  CLI::App app{"fitcli: fit material models to dynamic tests, write cards, run belt scenes (docs/cli.md)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", FITLIB_VERSION);
+  app.set_version_flag("--version", fitcli::version_text());
+  fitcli::add_verbosity_flags(&app);
   fitcli::register_fit(app);
   fitcli::register_eval(app);
   fitcli::register_export(app);
@@ -29,7 +32,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : fitlib::core::kUsageError;
   } catch (const std::exception& e) {
-    std::cerr << "fitcli: error: " << e.what() << "\n";
+    std::cerr << "fitcli: error: " << fitcli::with_stdin_named(e.what()) << "\n";
     return fitlib::core::exit_code_for(e);
   }
   return 0;

@@ -3,9 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
+#include "inputs.hpp"
 
 namespace fitcli {
 
@@ -13,6 +17,21 @@ namespace {
 std::string& invocation() {
   static std::string text;
   return text;
+}
+
+struct Verbosity {
+  bool quiet = false, verbose = false, stdout_taken = false;
+};
+Verbosity& verbosity() {
+  static Verbosity v;
+  return v;
+}
+
+// A stream that drops everything (--quiet summaries when stdout is taken).
+std::ostream& null_stream() {
+  static std::ostringstream sink;
+  sink.str("");
+  return sink;
 }
 }  // namespace
 
@@ -32,6 +51,46 @@ std::string exact_list(const std::vector<double>& values) {
   return text;
 }
 
+void add_verbosity_flags(CLI::App* cmd) {
+  auto* q = cmd->add_flag("--quiet,-q", verbosity().quiet, "No notes or warnings on stderr (errors only)");
+  auto* v = cmd->add_flag("--verbose,-v", verbosity().verbose, "More notes on stderr");
+  q->excludes(v);
+}
+
+void add_json_flag(CLI::App* cmd, bool& json, const std::string& what) {
+  cmd->add_flag("--json", json, "One JSON document: " + what);
+}
+
+bool quiet() { return verbosity().quiet; }
+bool verbose() { return verbosity().verbose && !verbosity().quiet; }
+
+void note(const std::string& message) {
+  if (!quiet()) std::cerr << "fitcli: note: " << message << "\n";
+}
+
+void warning(const std::string& message) {
+  if (!quiet()) std::cerr << "fitcli: warning: " << message << "\n";
+}
+
+void detail(const std::string& message) {
+  if (verbose()) std::cerr << "fitcli: note: " << message << "\n";
+}
+
+std::ostream& summary() {
+  if (!verbosity().stdout_taken) return std::cout;
+  return quiet() ? null_stream() : std::cerr;
+}
+
+void claim_output(const std::string& option, const std::string& path, bool json) {
+  if (path == "-") {
+    if (json) throw fitlib::core::UsageError(option + " - and --json both write stdout: give " + option + " a file");
+    if (verbosity().stdout_taken) throw fitlib::core::UsageError(option + " -: stdout is already taken by another output");
+    verbosity().stdout_taken = true;
+  } else if (!path.empty()) {
+    fitlib::core::check_output_path(path);
+  }
+}
+
 void emit(const std::string& path, const std::string& content) {
   if (path.empty() || path == "-") {
     std::cout << content;
@@ -39,6 +98,48 @@ void emit(const std::string& path, const std::string& content) {
   } else {
     fitlib::core::write_file_atomically(path, content);
   }
+}
+
+void emit_with(const std::string& path, const std::function<void(const std::string&)>& write) {
+  if (path != "-") return write(path);
+  const std::string tmp = scratch_path("stdout");
+  write(tmp);
+  emit("-", fitlib::core::read_file(tmp));
+  std::remove(tmp.c_str());
+}
+
+nlohmann::json csv_rows_json(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::vector<std::string> names;
+  auto split = [](const std::string& text) {
+    std::vector<std::string> fields;
+    std::stringstream s(text);
+    std::string f;
+    while (std::getline(s, f, ',')) fields.push_back(f);
+    if (!text.empty() && text.back() == ',') fields.emplace_back();
+    return fields;
+  };
+  nlohmann::json rows = nlohmann::json::array();
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto fields = split(line);
+    if (names.empty()) {
+      names = fields;
+      continue;
+    }
+    nlohmann::json row = nlohmann::json::object();
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const std::string f = k < fields.size() ? fields[k] : "";
+      char* stop = nullptr;
+      const double v = std::strtod(f.c_str(), &stop);
+      if (f.empty()) row[names[k]] = nullptr;
+      else if (*stop == '\0' && std::isfinite(v)) row[names[k]] = v;
+      else row[names[k]] = f;
+    }
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 }  // namespace fitcli

@@ -1,8 +1,14 @@
 #pragma once
-// Small output helpers shared by the subcommands: exact number formatting and writing to a file
-// (atomically) or to stdout.
+// Output conventions shared by the subcommands (docs/cli.md "Conventions"): results on stdout,
+// notes and warnings on stderr (--quiet hides them, --verbose adds some), "-" as a file name
+// means stdout, files written atomically, exact number formatting.
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 namespace fitcli {
 
@@ -16,7 +22,35 @@ std::string exact(double x);
 // "a,b,c" of exact().
 std::string exact_list(const std::vector<double>& values);
 
+// --quiet / --verbose on `cmd` (the same switches on every subcommand and on fitcli itself).
+void add_verbosity_flags(CLI::App* cmd);
+// --json on `cmd`: one JSON document of `what`, on stdout (nothing else there) unless `what` says
+// it goes to --out.
+void add_json_flag(CLI::App* cmd, bool& json, const std::string& what);
+bool quiet();
+bool verbose();
+
+// "fitcli: note: …" and "fitcli: warning: …" on stderr (not with --quiet); detail() only with --verbose.
+void note(const std::string& message);
+void warning(const std::string& message);
+void detail(const std::string& message);
+
+// Where the human summary of a run goes: stdout, or stderr (as notes) when a "-" output
+// already took stdout (then nothing with --quiet).
+std::ostream& summary();
+
+// Declares that output `path` of option `option` will be written: "-" takes stdout (a usage
+// error with --json, whose document is stdout's); a file path is checked now, before the work.
+void claim_output(const std::string& option, const std::string& path, bool json);
+
 // Writes to `path` atomically, or to stdout when path is empty or "-".
 void emit(const std::string& path, const std::string& content);
+
+// Runs `write(file)`, the library's writer of a file, on `path`; for "-" on a temporary whose
+// bytes then go to stdout.
+void emit_with(const std::string& path, const std::function<void(const std::string&)>& write);
+
+// A CSV table (header row, comma separated, no quoting) as JSON rows, numbers as numbers.
+nlohmann::json csv_rows_json(const std::string& csv);
 
 }  // namespace fitcli

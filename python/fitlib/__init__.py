@@ -1,12 +1,11 @@
 """fitlib for Python: the C++ library's public API (docs/python.md).
 
-Everything in ``fitlib._fitlib`` is re-exported here; ``fit_card`` is the one convenience, the
-steps of ``fitcli fit`` (read, choose the model's options from the data, fit or select terms,
-make the card) with the same defaults, so that it gives the CLI's card.
+Everything in ``fitlib._fitlib`` is re-exported here; ``fit_card`` is the one convenience: the
+library call ``fitcli fit`` makes (card/fit_card.hpp: model options from the data, fit or term
+selection, card) with the same defaults, so that it gives the CLI's card.
 """
 from ._fitlib import *  # noqa: F401,F403
-from ._fitlib import (FitOptions, InputError, Table, TermOptions, card_from_fit, fit, make_model,
-                      read_table, select_terms, SPECTRUM_RESIDUAL, SPECTRUM_STORAGE_WEIGHT, __version__)
+from ._fitlib import (FitOptions, Table, TermOptions, fit_table_card, read_table, __version__)
 
 
 def fit_card(data, model, terms=4, *, format="native", mode="", temperature_law="none",
@@ -20,33 +19,15 @@ def fit_card(data, model, terms=4, *, format="native", mode="", temperature_law=
     Returns (card, result, selection); selection is None unless terms="auto". out: card file.
     """
     table = data if isinstance(data, Table) else read_table(data, format=format, mode=mode)
-    if len(table) == 0:
-        raise InputError("no usable rows")
-    model_options = {"temperature_law": temperature_law, "reference_C": reference_C,
-                     "mode": table.mode[0]}  # the mode of the data, as the CLI does
+    model_options = {"temperature_law": temperature_law, "reference_C": reference_C}
     if temperature_law == "polynomial":
         model_options["polynomial_degree"] = polynomial_degree
     if bulk_modulus:
         model_options["bulk_modulus"] = True
-    options = options if options is not None else FitOptions()
-    has_terms = "terms" in make_model(model, model_options).options
-    selection = None
-    if has_terms and terms == "auto":
-        term_options = term_options if term_options is not None else TermOptions()
-        default = FitOptions()
-        if term_options.method == "spectrum" and (options.residual, options.storage_weight,
-                                                  options.loss_weight) == (
-                default.residual, default.storage_weight, default.loss_weight):
-            options.residual = SPECTRUM_RESIDUAL
-            options.storage_weight = SPECTRUM_STORAGE_WEIGHT
-        selection = select_terms(model, model_options, table, options, term_options)
-        result = selection.result
-        result.messages = result.messages + selection.messages
-    else:
-        if has_terms:
-            model_options["terms"] = int(terms)
-        result = fit(make_model(model, model_options), table, options)
-    card = card_from_fit(result, options, table, name or model + "-fit", command, record_timing)
+    card, result, selection = fit_table_card(
+        table, model, str(terms), model_options, options if options is not None else FitOptions(),
+        term_options if term_options is not None else TermOptions(), name or model + "-fit", command,
+        record_timing)
     if out:
         card.save(out)
     return card, result, selection

@@ -3,6 +3,7 @@
 #include "bindings.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/card/export.hpp"
+#include "fitlib/card/fit_card.hpp"
 #include "fitlib/card/from_fit.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/fit/terms.hpp"
@@ -236,7 +237,7 @@ void bind_card(py::module_& m) {
              return card::export_card(c, format, o);
            },
            py::arg("format"), py::arg("poisson_ratio") = 0.4995, py::arg("material_id") = 1,
-           py::arg("allow_inadmissible") = false, "FE keywords: abaqus | ansys | lsdyna | calculix")
+           py::arg("allow_inadmissible") = false, "FE keywords: abaqus | ansys | lsdyna (fitlib.export_formats())")
       .def("admissibility_problems", &card::admissibility_problems);
 
   m.def("load_card", &card::load_card, py::arg("path"));
@@ -251,6 +252,28 @@ void bind_card(py::module_& m) {
         py::arg("result"), py::arg("options"), py::arg("table"), py::arg("name"), py::arg("command") = "",
         py::arg("record_timing") = false);
   m.def("max_prony_terms", &card::max_prony_terms, py::arg("format"));
+  m.def("export_formats", &card::export_formats, "The formats Card.export writes");
+}
+
+// fitlib.fit_card's one call into the library (card/fit_card.hpp, as fitcli fit).
+void bind_fit_table_card(py::module_& m) {
+  m.def("fit_table_card",
+        [](const data::DynamicTestTable& table, const std::string& model, const std::string& terms,
+           const py::object& model_options, const fit::FitOptions& options, const fit::TermOptions& term_options,
+           const std::string& name, const std::string& command, bool record_timing) {
+          card::FitCardOptions o;
+          o.model = model, o.terms = terms, o.model_options = to_json(model_options);
+          o.fit = options, o.term = term_options, o.max_terms = term_options.solver_cap;
+          const fit::FitOptions defaults;  // an objective left at its defaults is --terms auto's to choose
+          o.objective_given = options.residual != defaults.residual || options.storage_weight != defaults.storage_weight ||
+                              options.loss_weight != defaults.loss_weight;
+          o.provenance = {name, command, record_timing};
+          auto r = card::fit_card(table, o);
+          return py::make_tuple(r.card, r.result, r.selection ? py::cast(*r.selection) : py::none());
+        },
+        py::arg("table"), py::arg("model"), py::arg("terms"), py::arg("model_options"), py::arg("options"),
+        py::arg("term_options"), py::arg("name"), py::arg("command") = "", py::arg("record_timing") = false,
+        "(card, result, selection) of card::fit_card; fitlib.fit_card is the keyword front");
 }
 
 }  // namespace
@@ -260,6 +283,7 @@ void bind_fit_card(py::module_& m) {
   bind_fit_result(m);
   bind_terms(m);
   bind_card(m);
+  bind_fit_table_card(m);
 }
 
 }  // namespace fitlib::python

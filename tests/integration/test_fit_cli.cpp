@@ -81,7 +81,7 @@ TEST(FitCli, BundledSyntheticTableIsReproducedByteForByte) {
   const auto out = temp_file("regenerated.csv");
   const auto r = run_fitcli("synth --card " + source_path("datasets/cards/synthetic-prony-shear-true.json") +
                             " --frequency-hz " + "0.001,0.00316227766016838,0.01,0.0316227766016838,0.1,0.316227766016838,1,3.16227766016838,10,31.6227766016838,100,316.227766016838,1000" +
-                            " --specimens 3 --noise 0.01 --seed 42 --material synthetic-prony-shear --out " + out);
+                            " --specimens 3 --noise 0.01 --seed 42 --name synthetic-prony-shear --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(slurp(out), slurp(kSynthetic));
 }

@@ -9,7 +9,7 @@ namespace fs = std::filesystem;
 
 TEST(BeltCli, ReferenceDriveWritesLoadHistoryAndSaysWhatRan) {
   const auto dir = temp_file("belt_out");
-  const auto r = run_fitcli("belt --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out " + dir + " --json");
+  const auto r = run_fitcli("belt --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + dir + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(fs::exists(dir + "/load_history.csv"));
   const auto summary = nlohmann::json::parse(slurp(dir + "/summary.json"));
@@ -24,7 +24,7 @@ TEST(BeltCli, ReferenceDriveWritesLoadHistoryAndSaysWhatRan) {
 TEST(BeltCli, UnknownSceneKeyIsBadInputNamingTheKey) {
   const auto scene = temp_file("bad_scene.toml");
   std::ofstream(scene) << slurp(source_path("tests/data/scenes/minimal.toml")) << "\n[effects]\nwarp_drive = true\n";
-  const auto r = run_fitcli("belt --scene " + scene + " --out " + temp_file("bad_belt"));
+  const auto r = run_fitcli("belt --scene " + scene + " --out-dir " + temp_file("bad_belt"));
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("warp_drive"), std::string::npos) << r.err;
 }

@@ -263,14 +263,14 @@ TEST(Reliability, SceneCentreAtInfinityIsBadInputNamingTheKey) {
   ASSERT_NE(scene.find(centre), std::string::npos);
   scene.replace(scene.find(centre), centre.size(), "center_mm = [inf, 0]");
   const auto path = write("center_inf.toml", scene);
-  const auto r = run_fitcli("belt --scene " + path + " --out " + temp_file("center_inf_out"));
+  const auto r = run_fitcli("belt --scene " + path + " --out-dir " + temp_file("center_inf_out"));
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_TRUE(contains(r.err, path) && contains(r.err, "center_mm")) << r.err;
 }
 
 TEST(Reliability, BeltOutputFolderThatCannotBeCreatedIsBadInput) {
   const auto file = write("a_file", "x");
-  const auto r = run_fitcli("belt --scene " + source_path("tests/data/scenes/minimal.toml") + " --out " + file + "/sub");
+  const auto r = run_fitcli("belt --scene " + source_path("tests/data/scenes/minimal.toml") + " --out-dir " + file + "/sub");
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_TRUE(contains(r.err, file)) << r.err;
 }
@@ -279,7 +279,7 @@ TEST(Reliability, BeltErrorsNameTheSceneFile) {
   std::string scene = slurp(source_path("tests/data/scenes/minimal.toml"));
   scene.replace(scene.find("torque_Nm = 15"), 14, "torque_Nm = 5000");
   const auto path = write("slipping.toml", scene);
-  const auto r = run_fitcli("belt --scene " + path + " --out " + temp_file("slipping_out"));
+  const auto r = run_fitcli("belt --scene " + path + " --out-dir " + temp_file("slipping_out"));
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_TRUE(contains(r.err, path + ":")) << r.err;
 }
@@ -289,7 +289,7 @@ TEST(Reliability, AccumulationWorkBeyondTheCapIsRefusedAtOnce) {
                           minimal_scene("[outputs]\nstrain_accumulation = true\n[accumulation]\nspectrum = \"gauss\"\n"
                                         "cycle_points = 100000\nomega_points = 100000\n"));
   const auto start = std::chrono::steady_clock::now();
-  const auto r = run_fitcli("belt --scene " + path + " --out " + temp_file("accumulation_cap_out"));
+  const auto r = run_fitcli("belt --scene " + path + " --out-dir " + temp_file("accumulation_cap_out"));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_TRUE(contains(r.err, "accumulation.omega_points")) << r.err;
@@ -301,7 +301,7 @@ TEST(Reliability, TensionTestWorkBeyondTheCapIsRefusedAtOnce) {
   scene.replace(scene.find("steps = 300"), 11, "steps = 10000000");
   const auto path = write("tension_cap.toml", scene);
   const auto start = std::chrono::steady_clock::now();
-  const auto r = run_fitcli("belt --scene " + path + " --out " + temp_file("tension_cap_out"));
+  const auto r = run_fitcli("belt --scene " + path + " --out-dir " + temp_file("tension_cap_out"));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_TRUE(contains(r.err, "tension_test.nodes")) << r.err;

@@ -92,7 +92,7 @@ TEST(Reproducible, SurfaceFitEvalGrid) {
 
 TEST(Reproducible, BeltAndAccumulate) {
   const auto dir = temp_file("repro-belt"), map = temp_file("repro-map.csv");
-  expect_reproducible("belt --scene " + source_path("tests/data/scenes/full.toml") + " --out " + dir,
+  expect_reproducible("belt --scene " + source_path("tests/data/scenes/full.toml") + " --out-dir " + dir,
                       {dir + "/load_history.csv", dir + "/accumulation.csv", dir + "/summary.json"});
   expect_reproducible("accumulate --spectrum gauss --out " + map, {map});
 }

@@ -1,5 +1,7 @@
 #include "fitlib/card/export.hpp"
 
+#include "fitlib/card/conversion.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -100,22 +102,11 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
     e.C1 = values[law.shift_parameters.at(0)];
     e.C2_K = values[law.shift_parameters.at(1)];
   }
-  const double bulk = m->bulk_modulus(values.data());
-  const bool has_bulk = !std::isnan(bulk);
   const auto mode = m->native_mode();
   if (mode == model::TestMode::bulk) throw core::UsageError("a bulk card cannot be exported as a Prony material");
-  if (mode == model::TestMode::shear) {
-    e.shear0_MPa = m0;
-    e.bulk_MPa = has_bulk ? bulk
-                                 : 2.0 * m0 * (1.0 + o.poisson_ratio) / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
-    e.young0_MPa = 9.0 * e.bulk_MPa * m0 / (3.0 * e.bulk_MPa + m0);
-  } else {
-    e.young0_MPa = m0;
-    e.bulk_MPa = has_bulk ? bulk : m0 / (3.0 * (1.0 - 2.0 * o.poisson_ratio));
-    e.shear0_MPa = 3.0 * e.bulk_MPa * m0 / (9.0 * e.bulk_MPa - m0);
-    e.bulk_relaxes = !has_bulk;
-  }
-  e.poisson = (3.0 * e.bulk_MPa - 2.0 * e.shear0_MPa) / (2.0 * (3.0 * e.bulk_MPa + e.shear0_MPa));
+  const ElasticConstants c = elastic_constants(mode, m0, m->bulk_modulus(values.data()), o.poisson_ratio);
+  e.young0_MPa = c.young0_MPa, e.shear0_MPa = c.shear0_MPa, e.bulk_MPa = c.bulk_MPa, e.poisson = c.poisson;
+  e.bulk_relaxes = c.bulk_relaxes;
   return e;
 }
 
@@ -212,12 +203,15 @@ int max_prony_terms(const std::string& format) {
   return 0;
 }
 
+const std::vector<std::string>& export_formats() {
+  static const std::vector<std::string> formats = {"abaqus", "ansys", "lsdyna"};
+  return formats;
+}
+
 std::string export_card(const Card& card, const std::string& format, const ExportOptions& options) {
-  if (format == "calculix")
-    throw core::UsageError("CalculiX has no built-in Prony viscoelasticity (it needs a user material); "
-                           "use abaqus, ansys or lsdyna");
+  // CalculiX has no built-in Prony viscoelasticity (it needs a user material): not a format.
   if (format != "abaqus" && format != "ansys" && format != "lsdyna")
-    throw core::UsageError("unknown export format '" + format + "' (abaqus, ansys, lsdyna, calculix)");
+    throw core::UsageError("unknown export format '" + format + "' (abaqus, ansys, lsdyna)");
   const PronyExport e = prepare(card, format, options);
   if (format == "abaqus") return abaqus(card, e);
   if (format == "ansys") return ansys(card, e, options.material_id);

@@ -102,7 +102,7 @@ class Reader {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
       if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return key == a; }))
-        fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see formats.md §5)",
+        fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see docs/formats.md §5)",
              k.source());
     }
     return *this;
@@ -111,7 +111,7 @@ class Reader {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
       if (seen_.count(key)) continue;
-      fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see formats.md §5)",
+      fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see docs/formats.md §5)",
            v.source());
     }
   }

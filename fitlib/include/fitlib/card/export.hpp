@@ -4,6 +4,7 @@
 // exact Prony series, negative relaxation weights, more terms than the solver accepts, a
 // temperature law the solver lacks.
 #include <string>
+#include <vector>
 
 #include "fitlib/card/card.hpp"
 
@@ -30,7 +31,10 @@ constexpr double kMinRelaxedRatio = 1e-3;
 // below kMinRelaxedRatio of the instantaneous one.
 std::string admissibility_problems(const Card& card);
 
-// format: "abaqus" | "ansys" | "lsdyna" | "calculix".
+// The formats export_card writes, in the order help texts list them.
+const std::vector<std::string>& export_formats();
+
+// format: one of export_formats().
 std::string export_card(const Card& card, const std::string& format, const ExportOptions& options = {});
 
 // Largest number of Prony terms each format accepts (0 = no limit known).

@@ -15,6 +15,9 @@ struct CardProvenance {
   // Wall time differs run to run; it enters the card only on request so that the same input
   // and seed give the same bytes (docs/decisions.md).
   bool record_timing = false;
+  // The measured rows whose conditions make the card's data window (card/data_window.hpp) when
+  // the fitted table is not them (a master curve); null: the fitted table's own rows.
+  const data::DynamicTestTable* measured = nullptr;
 };
 
 Card card_from_fit(const fit::FitResult& result, const fit::FitOptions& options,

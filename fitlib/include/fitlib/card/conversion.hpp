@@ -1,0 +1,30 @@
+#pragma once
+// One rule, for eval and the FE exports, for a card's response in a mode it does not describe
+// natively when it holds no bulk modulus (docs/decisions.md, "exports: what each FE format
+// receives" and "eval: native mode, conversion"): a shear card gets an elastic bulk modulus
+// K = 2G₀(1 + ν)/(3(1 − 2ν)) from its instantaneous shear modulus; a uniaxial card keeps the
+// Poisson ratio ν constant (bulk relaxes with the same weights).
+#include <vector>
+
+#include "fitlib/model/model.hpp"
+
+namespace fitlib::card {
+
+// Instantaneous elastic constants of a linear card.
+struct ElasticConstants {
+  double young0_MPa = 0.0, shear0_MPa = 0.0, bulk_MPa = 0.0, poisson = 0.0;
+  bool bulk_relaxes = false;  // uniaxial card without K: constant Poisson ratio
+};
+
+// `instantaneous_MPa`: the native-mode instantaneous modulus; `bulk_MPa`: the card's K or NaN;
+// `poisson_ratio` applies only when the card has no K.
+ElasticConstants elastic_constants(model::TestMode native, double instantaneous_MPa, double bulk_MPa,
+                                   double poisson_ratio);
+
+// The card's moduli at `c` in any mode: the model's own when c.mode is its native mode or it has
+// a bulk modulus; otherwise converted by elastic_constants (UsageError for a bulk card, or a
+// shear card that is not a Prony-type series, whose G₀ is then unknown).
+model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vector<double>& values,
+                                     const model::TestCondition& c, double poisson_ratio);
+
+}  // namespace fitlib::card

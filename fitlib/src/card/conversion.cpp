@@ -1,0 +1,62 @@
+#include "fitlib/card/conversion.hpp"
+
+#include <cmath>
+#include <complex>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/model/time_series.hpp"
+
+namespace fitlib::card {
+
+ElasticConstants elastic_constants(model::TestMode native, double m0, double bulk, double nu) {
+  const bool has_bulk = !std::isnan(bulk);
+  ElasticConstants e;
+  if (native == model::TestMode::bulk) throw core::UsageError("a bulk card cannot answer shear or uniaxial tests");
+  if (native == model::TestMode::shear) {
+    e.shear0_MPa = m0;
+    e.bulk_MPa = has_bulk ? bulk : 2.0 * m0 * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu));
+    e.young0_MPa = 9.0 * e.bulk_MPa * m0 / (3.0 * e.bulk_MPa + m0);
+  } else {
+    e.young0_MPa = m0;
+    e.bulk_MPa = has_bulk ? bulk : m0 / (3.0 * (1.0 - 2.0 * nu));
+    e.shear0_MPa = 3.0 * e.bulk_MPa * m0 / (9.0 * e.bulk_MPa - m0);
+    e.bulk_relaxes = !has_bulk;
+  }
+  e.poisson = (3.0 * e.bulk_MPa - 2.0 * e.shear0_MPa) / (2.0 * (3.0 * e.bulk_MPa + e.shear0_MPa));
+  return e;
+}
+
+namespace {
+
+// Native complex modulus M* → the same material's modulus in mode `to` (shear card: elastic K;
+// uniaxial card: constant ν, so G* = E*/(2(1 + ν)) and K* = E*/(3(1 − 2ν))).
+std::complex<double> convert(std::complex<double> M, model::TestMode native, model::TestMode to,
+                             const ElasticConstants& e) {
+  if (native == model::TestMode::shear)
+    return to == model::TestMode::bulk ? std::complex<double>(e.bulk_MPa, 0.0) : 9.0 * e.bulk_MPa * M / (3.0 * e.bulk_MPa + M);
+  const double nu = e.poisson;
+  return to == model::TestMode::shear ? M / (2.0 * (1.0 + nu)) : M / (3.0 * (1.0 - 2.0 * nu));
+}
+
+}  // namespace
+
+model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vector<double>& p,
+                                     const model::TestCondition& c, double poisson_ratio) {
+  const auto native = model.native_mode();
+  if (c.mode == native || !std::isnan(model.bulk_modulus(p.data()))) return model.moduli(p.data(), c);
+  model::TestCondition n = c;
+  n.mode = native;
+  const auto m = model.moduli(p.data(), n);
+  model::MaxwellSeries s;
+  double m0 = m.storage;  // a uniaxial card's ν does not depend on it
+  if (model.maxwell_series(p.data(), &s)) m0 = s.glassy();
+  else if (native == model::TestMode::shear)
+    throw core::UsageError("a shear card that is not a Prony-type series cannot answer a " +
+                           std::string(model::to_string(c.mode)) + " test without a bulk modulus (fit with --bulk-modulus)");
+  const auto e = elastic_constants(native, m0, std::nan(""), poisson_ratio);
+  const auto M = convert({m.storage, m.loss}, native, c.mode, e);
+  const auto mean = convert({m.mean, 0.0}, native, c.mode, e);
+  return {M.real(), M.imag(), mean.real()};
+}
+
+}  // namespace fitlib::card

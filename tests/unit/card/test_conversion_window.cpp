@@ -1,0 +1,102 @@
+// card/conversion.hpp (one mode-conversion rule for eval and exports) and card/data_window.hpp
+// (the box of measured conditions a card stores), against closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "fitlib/card/conversion.hpp"
+#include "fitlib/card/data_window.hpp"
+#include "fitlib/core/error.hpp"
+
+using namespace fitlib;
+
+namespace {
+
+// A two-term Prony card in `mode`: M_inf = 2, M_1 = 3 (tau 0.1 s), M_2 = 5 (tau 10 s).
+card::Card two_term_card(const char* mode) {
+  card::Card c;
+  c.model_kind = "prony";
+  c.model_options = {{"terms", 2}, {"mode", mode}};
+  for (double v : {2.0, 3.0, 5.0, 0.1, 10.0}) {
+    card::ParameterEstimate p;
+    p.value = v;
+    c.parameters.push_back(p);
+  }
+  return c;
+}
+
+std::complex<double> prony(double f_Hz) {
+  const std::complex<double> i(0.0, 1.0);
+  const double w = 2.0 * M_PI * f_Hz;
+  return 2.0 + 3.0 * i * w * 0.1 / (1.0 + i * w * 0.1) + 5.0 * i * w * 10.0 / (1.0 + i * w * 10.0);
+}
+
+model::TestCondition at(model::TestMode mode, double f_Hz) {
+  model::TestCondition c;
+  c.mode = mode;
+  c.frequency_Hz = f_Hz;
+  return c;
+}
+
+}  // namespace
+
+TEST(ModeConversion, UniaxialCardKeepsPoissonRatioConstant) {
+  const auto card = two_term_card("uniaxial");
+  const double nu = 0.3;
+  const auto E = prony(0.7);
+  const auto G = card::moduli_in_mode(*card.model(), card.values(), at(model::TestMode::shear, 0.7), nu);
+  const auto K = card::moduli_in_mode(*card.model(), card.values(), at(model::TestMode::bulk, 0.7), nu);
+  EXPECT_NEAR(G.storage, E.real() / (2.0 * (1.0 + nu)), 1e-12);
+  EXPECT_NEAR(G.loss, E.imag() / (2.0 * (1.0 + nu)), 1e-12);
+  EXPECT_NEAR(K.storage, E.real() / (3.0 * (1.0 - 2.0 * nu)), 1e-12);
+  EXPECT_NEAR(K.loss, E.imag() / (3.0 * (1.0 - 2.0 * nu)), 1e-12);
+}
+
+TEST(ModeConversion, ShearCardGetsTheExportsElasticBulkModulus) {
+  const auto card = two_term_card("shear");
+  const double nu = 0.45, G0 = 10.0, K = 2.0 * G0 * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu));
+  const auto e = card::elastic_constants(model::TestMode::shear, G0, std::nan(""), nu);
+  EXPECT_NEAR(e.bulk_MPa, K, 1e-12);
+  EXPECT_NEAR(e.poisson, nu, 1e-12);
+  const auto G = prony(3.0), E = 9.0 * K * G / (3.0 * K + G);
+  const auto m = card::moduli_in_mode(*card.model(), card.values(), at(model::TestMode::uniaxial, 3.0), nu);
+  EXPECT_NEAR(m.storage, E.real(), 1e-12);
+  EXPECT_NEAR(m.loss, E.imag(), 1e-12);
+  const auto b = card::moduli_in_mode(*card.model(), card.values(), at(model::TestMode::bulk, 3.0), nu);
+  EXPECT_NEAR(b.storage, K, 1e-12);
+  EXPECT_EQ(b.loss, 0.0);
+}
+
+TEST(ModeConversion, NativeModeIsTheModelsOwn) {
+  const auto card = two_term_card("shear");
+  const auto m = card::moduli_in_mode(*card.model(), card.values(), at(model::TestMode::shear, 1.0), 0.1);
+  EXPECT_DOUBLE_EQ(m.storage, prony(1.0).real());
+}
+
+TEST(DataWindow, BoxOfMeasuredConditionsWithSlackAtTheBounds) {
+  data::DynamicTestTable t;
+  for (double f : {0.1, 100.0})
+    for (double T : {23.0, 60.0}) {
+      data::DynamicTestRow row;
+      row.condition.frequency_Hz = f;
+      row.condition.temperature_C = T;
+      t.rows.push_back(row);
+    }
+  const auto w = card::data_window_json(t);
+  EXPECT_EQ(w, (nlohmann::json{{"frequency_Hz", {0.1, 100.0}}, {"temperature_C", {23.0, 60.0}}}));  // no amplitude
+  card::Card card = two_term_card("shear");
+  card.fit["data_window"] = w;
+  model::TestCondition c = at(model::TestMode::shear, 100.0 * (1.0 + 1e-12));
+  c.temperature_C = 60.0;
+  EXPECT_TRUE(card::outside_data_window(card, c).empty());
+  c.temperature_C = 61.0;
+  c.frequency_Hz = 0.05;
+  const auto x = card::outside_data_window(card, c);
+  ASSERT_EQ(x.size(), 2u);
+  EXPECT_EQ(x[0].quantity, "frequency_Hz");
+  EXPECT_EQ(x[1].quantity, "temperature_C");
+  EXPECT_EQ(x[1].high, 60.0);
+  card.fit.erase("data_window");  // a card without a window is not checked
+  EXPECT_TRUE(card::outside_data_window(card, c).empty());
+}
