@@ -180,30 +180,23 @@ double ClosedFormArc::sliding_arc_length(double kappa_end) const {
   return std::acos(cos_arg) / gp;
 }
 
-OdeArc integrate_sliding_arc(const ArcParameters& a, double kappa_end, double phi_max,
-                             double tolerance) {
-  namespace odeint = boost::numeric::odeint;
-  validate(a);
-  using State = std::array<double, 2>;  // κ, γ
-  const double gp = sliding_angle_slope_at_P(a);
-  const double T = std::tan(a.wedge_half_angle_rad) + a.friction;
-  const double fP = sinking_ratio_at_P(a);
-  const bool driver = a.role == PulleyRole::driver;
-  OdeArc arc;
-  auto record = [&](double phi, const State& y) {
-    arc.points.push_back({phi, y[0], y[1], y[0] * sinking_function(a, y[1])});
-  };
-  const State start{1.0, kPi};
-  record(0.0, start);
-  const bool increasing = kappa_end > 1.0;
-  if (kappa_end == 1.0 || a.friction == 0.0) {
-    arc.reached_kappa_end = kappa_end == 1.0;
-    arc.phi_end_rad = arc.reached_kappa_end ? 0.0 : phi_max;
-    if (!arc.reached_kappa_end) record(phi_max, start);
-    return arc;
-  }
-  bool held = false;  // driver's γ held at γ_Lim
-  auto rhs = [&](const State& y, State& dy, double) {
+namespace {
+namespace odeint = boost::numeric::odeint;
+using ArcState = std::array<double, 2>;  // κ, γ
+using ArcStepper = odeint::dense_output_runge_kutta<
+    odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<ArcState>>>;
+
+void record(OdeArc& arc, const ArcParameters& a, double phi, const ArcState& y) {
+  arc.points.push_back({phi, y[0], y[1], y[0] * sinking_function(a, y[1])});
+}
+
+// The sliding arc's equations in κ and γ: κ' from (A.21), γ' from (A.22); `held` freezes the
+// driver's γ at γ_Lim.
+struct SlidingArcRhs {
+  const ArcParameters& a;
+  double fP;
+  bool held = false;
+  void operator()(const ArcState& y, ArcState& dy, double) const {
     const double kappa = y[0], gamma = held ? kDriverSlidingAngleLimit_rad : y[1];
     const double dk = kappa * force_log_slope(a, gamma);
     dy[0] = dk;
@@ -215,57 +208,93 @@ OdeArc integrate_sliding_arc(const ArcParameters& a, double kappa_end, double ph
     // ξ = x0/F0P = κ f; (A.22) ξ' tan γ = −[(ξ − fP) + (κ − 1)/c0]
     const double xi_prime = -((kappa * f - fP) + (kappa - 1.0) / a.c0) / std::tan(gamma);
     dy[1] = (xi_prime - dk * f) / (kappa * sinking_function_derivative(a, gamma));
-  };
+  }
+};
+
+// Bisection on the dense output for the first φ in (lo, hi] where κ has passed kappa_end.
+template <typename Passed>
+double passing_phi(const ArcStepper& stepper, Passed passed, double lo, double hi) {
+  ArcState s;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    stepper.calc_state(mid, s);
+    (passed(s) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// Steps the arc from the stepper's state to κ = kappa_end (ends the arc there) or to phi_max.
+template <typename Passed>
+void march_arc(const ArcParameters& a, ArcStepper& stepper, SlidingArcRhs& rhs, Passed passed,
+               double phi_max, OdeArc& arc) {
+  const bool driver = a.role == PulleyRole::driver;
+  while (stepper.current_time() < phi_max) {
+    stepper.do_step(rhs);
+    ArcState cur = stepper.current_state();
+    const double t1 = stepper.current_time();
+    if (!std::isfinite(cur[0]) || !std::isfinite(cur[1]))
+      throw core::NumericalError("sliding-arc ODE diverged at phi = " + std::to_string(t1));
+    const double t_hit = std::min(t1, phi_max);
+    ArcState at_hit = cur;
+    if (t_hit < t1) stepper.calc_state(t_hit, at_hit);
+    if (passed(at_hit)) {
+      const double hi = passing_phi(stepper, passed, stepper.previous_time(), t_hit);
+      ArcState s;
+      stepper.calc_state(hi, s);
+      if (rhs.held) s[1] = kDriverSlidingAngleLimit_rad;
+      record(arc, a, hi, s);
+      arc.reached_kappa_end = true;
+      arc.phi_end_rad = hi;
+      return;
+    }
+    if (driver && !rhs.held && cur[1] >= kDriverSlidingAngleLimit_rad) {
+      rhs.held = true;
+      cur[1] = kDriverSlidingAngleLimit_rad;
+      stepper.initialize(cur, t1, 1e-3);
+    }
+    if (t_hit < t1) {
+      record(arc, a, t_hit, at_hit);
+      break;
+    }
+    record(arc, a, t1, cur);
+  }
+  arc.phi_end_rad = phi_max;
+}
+
+}  // namespace
+
+OdeArc integrate_sliding_arc(const ArcParameters& a, double kappa_end, double phi_max,
+                             double tolerance) {
+  validate(a);
+  OdeArc arc;
+  const ArcState start{1.0, kPi};
+  record(arc, a, 0.0, start);
+  if (kappa_end == 1.0 || a.friction == 0.0) {
+    arc.reached_kappa_end = kappa_end == 1.0;
+    arc.phi_end_rad = arc.reached_kappa_end ? 0.0 : phi_max;
+    if (!arc.reached_kappa_end) record(arc, a, phi_max, start);
+    return arc;
+  }
   // Series start (A.24): γ = π + γ'_P φ, κ = 1 − μ γ'_P φ²/(2(tan β + μ)).
+  const double gp = sliding_angle_slope_at_P(a);
+  const double T = std::tan(a.wedge_half_angle_rad) + a.friction;
   const double phi0 = std::min(1e-4, 1e-3 / std::abs(gp));
-  State y{1.0 - a.friction * gp * phi0 * phi0 / (2.0 * T), kPi + gp * phi0};
-  auto stepper = odeint::make_dense_output(tolerance, tolerance, 0.02,
-                                           odeint::runge_kutta_dopri5<State>());
+  const ArcState y{1.0 - a.friction * gp * phi0 * phi0 / (2.0 * T), kPi + gp * phi0};
+  ArcStepper stepper = odeint::make_dense_output(tolerance, tolerance, 0.02,
+                                                 odeint::runge_kutta_dopri5<ArcState>());
   stepper.initialize(y, phi0, std::min(phi0, 1e-3));
-  record(phi0, y);
-  auto passed = [&](const State& s) { return increasing ? s[0] >= kappa_end : s[0] <= kappa_end; };
+  record(arc, a, phi0, y);
+  const bool increasing = kappa_end > 1.0;
+  auto passed = [&](const ArcState& s) {
+    return increasing ? s[0] >= kappa_end : s[0] <= kappa_end;
+  };
   if (passed(y)) {
     arc.reached_kappa_end = true;
     arc.phi_end_rad = phi0;
     return arc;
   }
-  while (stepper.current_time() < phi_max) {
-    stepper.do_step(rhs);
-    State cur = stepper.current_state();
-    const double t1 = stepper.current_time();
-    if (!std::isfinite(cur[0]) || !std::isfinite(cur[1]))
-      throw core::NumericalError("sliding-arc ODE diverged at phi = " + std::to_string(t1));
-    const double t_hit = std::min(t1, phi_max);
-    State at_hit = cur;
-    if (t_hit < t1) stepper.calc_state(t_hit, at_hit);
-    if (passed(at_hit)) {
-      // Bisection on the dense output for κ = kappa_end.
-      double lo = stepper.previous_time(), hi = t_hit;
-      State s;
-      for (int i = 0; i < 100; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        stepper.calc_state(mid, s);
-        (passed(s) ? hi : lo) = mid;
-      }
-      stepper.calc_state(hi, s);
-      if (held) s[1] = kDriverSlidingAngleLimit_rad;
-      record(hi, s);
-      arc.reached_kappa_end = true;
-      arc.phi_end_rad = hi;
-      return arc;
-    }
-    if (driver && !held && cur[1] >= kDriverSlidingAngleLimit_rad) {
-      held = true;
-      cur[1] = kDriverSlidingAngleLimit_rad;
-      stepper.initialize(cur, t1, 1e-3);
-    }
-    if (t_hit < t1) {
-      record(t_hit, at_hit);
-      break;
-    }
-    record(t1, cur);
-  }
-  arc.phi_end_rad = phi_max;
+  SlidingArcRhs rhs{a, sinking_ratio_at_P(a)};
+  march_arc(a, stepper, rhs, passed, phi_max, arc);
   return arc;
 }
 

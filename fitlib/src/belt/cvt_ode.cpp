@@ -243,16 +243,13 @@ CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCa
 }
 
 namespace {
-CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const CvtOdeOptions& o) {
-  auto fail = [&](double wrap, double res) {
-    throw core::NumericalError("CVT contact shooting did not converge at wrap " + std::to_string(wrap * 180 / kPi) +
-                               " deg (residual " + std::to_string(res) + ")");
-  };
-  // 1. Short wrap, single shooting from the exit (the paper's method): a coarse grid over
-  //    (χ_out, m_out) gives Newton's first guess.
-  CvtContactCase short_case = c;
-  short_case.wrap_rad = std::min(c.wrap_rad, 0.5);
-  Shooter sh{b, short_case, o};
+[[noreturn]] void shooting_failed(double wrap, double res) {
+  throw core::NumericalError("CVT contact shooting did not converge at wrap " + std::to_string(wrap * 180 / kPi) +
+                             " deg (residual " + std::to_string(res) + ")");
+}
+
+// Newton's first guess for a short wrap: the best of a coarse grid over (χ_out, m_out).
+Vec coarse_exit_guess(Shooter& sh) {
   Vec u2(2);
   u2 << -0.1, 1.0;
   double best = HUGE_VAL;
@@ -267,48 +264,61 @@ CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const
       }
     }
   }
-  double res = sh.newton(u2, [&](const Vec& u) { return sh.multi(u, 1); });
-  const double accept = std::max(o.accept_residual, 30 * o.tolerance);  // integration noise
-  if (!(res <= accept)) fail(short_case.wrap_rad, res);
-  // 2. Continuation in the wrap with a secant predictor; the step halves when Newton fails.
-  //    Single shooting from the exit while it converges; once e^{λΘ} nears 1e15 it loses all
-  //    digits (the driven example beyond ~120°), and the wrap is cut into N segments, each shot
-  //    backward from its end (multiple shooting; forward shots from the entrance diverge).
+  return u2;
+}
+
+// The shooting unknowns at the full wrap: u, its segment count N and residual.
+struct WrapSolution {
+  Vec u;
   int N = 1;
-  Vec u = u2, u_prev = u2;
-  double wrap = short_case.wrap_rad, wrap_prev = wrap, step = o.continuation_step_rad;
-  while (wrap < c.wrap_rad) {
-    const double next = std::min(c.wrap_rad, wrap + step);
-    Vec t = u;
-    if (wrap > wrap_prev) t += (u - u_prev) * (next - wrap) / (wrap - wrap_prev);
+  double residual;
+};
+
+// Continuation in the wrap from sh.c.wrap_rad to wrap_end with a secant predictor; the step
+// halves when Newton fails. Single shooting from the exit while it converges; once e^{λΘ}
+// nears 1e15 it loses all digits (the driven example beyond ~120°), and the wrap is cut into N
+// segments, each shot backward from its end (multiple shooting; forward shots from the
+// entrance diverge).
+WrapSolution continue_in_wrap(Shooter& sh, WrapSolution s, double wrap_end, double accept) {
+  Vec u_prev = s.u;
+  double wrap = sh.c.wrap_rad, wrap_prev = wrap, step = sh.o.continuation_step_rad;
+  while (wrap < wrap_end) {
+    const double next = std::min(wrap_end, wrap + step);
+    Vec t = s.u;
+    if (wrap > wrap_prev) t += (s.u - u_prev) * (next - wrap) / (wrap - wrap_prev);
     sh.c.wrap_rad = next;
     double r = HUGE_VAL;
     try {
-      r = sh.newton(t, [&](const Vec& v) { return sh.multi(v, N); });
+      r = sh.newton(t, [&](const Vec& v) { return sh.multi(v, s.N); });
     } catch (const Blowup&) {
     }
     if (r <= accept) {
-      u_prev = u, wrap_prev = wrap, u = t, wrap = next, res = r;
-      step = std::min(step * 1.5, o.continuation_step_rad);
-    } else if (N == 1 && step < 0.05) {
-      N = std::max(2, static_cast<int>(std::ceil(c.wrap_rad / 0.8)));
+      u_prev = s.u, wrap_prev = wrap, s.u = t, wrap = next, s.residual = r;
+      step = std::min(step * 1.5, sh.o.continuation_step_rad);
+    } else if (s.N == 1 && step < 0.05) {
+      s.N = std::max(2, static_cast<int>(std::ceil(wrap_end / 0.8)));
       sh.c.wrap_rad = wrap;
-      u = sh.to_nodes(u, N), u_prev = u, wrap_prev = wrap, step = 0.05;
+      s.u = sh.to_nodes(s.u, s.N), u_prev = s.u, wrap_prev = wrap, step = 0.05;
     } else if ((step *= 0.5) < 1e-4) {
-      fail(next, r);
+      shooting_failed(next, r);
     }
   }
+  return s;
+}
+
+// The solution at the full wrap: exit unknowns, thrust, entry strain and the profile.
+CvtContactSolution solution_of(Shooter& sh, const WrapSolution& s, double wrap_rad) {
   CvtContactSolution sol;
-  sol.exit_penetration_angle_rad = u[0];
-  sol.exit_moment = u[1];
-  sol.kappa = sh.kappa(u[0]);
-  sol.residual = res;
-  sh.c.wrap_rad = c.wrap_rad;
-  std::vector<Path> paths(N);
+  sol.exit_penetration_angle_rad = s.u[0];
+  sol.exit_moment = s.u[1];
+  sol.kappa = sh.kappa(s.u[0]);
+  sol.residual = s.residual;
+  sh.c.wrap_rad = wrap_rad;
+  std::vector<Path> paths(s.N);
   State entry{};
-  sh.multi(u, N, o.keep_profile ? &paths : nullptr, &sol.axial_thrust_per_Sl, &entry);
+  sh.multi(s.u, s.N, sh.o.keep_profile ? &paths : nullptr, &sol.axial_thrust_per_Sl, &entry);
   sol.entry_strain = entry[2];
-  for (int j = N - 1; j >= 0; --j) {  // profile entrance → exit
+  for (int j = s.N - 1; j >= 0; --j) {  // profile entrance → exit
     const Path& p = paths[j];
     for (auto it = p.rbegin(); it != p.rend(); ++it) {
       if (!sol.theta.empty() && std::abs(it->first - sol.theta.back()) < 1e-14) continue;
@@ -318,6 +328,19 @@ CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const
   }
   sol.shots = sh.shots;
   return sol;
+}
+
+CvtContactSolution solve(const CvtContactBelt& b, const CvtContactCase& c, const CvtOdeOptions& o) {
+  // 1. Short wrap, single shooting from the exit (the paper's method).
+  CvtContactCase short_case = c;
+  short_case.wrap_rad = std::min(c.wrap_rad, 0.5);
+  Shooter sh{b, short_case, o};
+  WrapSolution s{coarse_exit_guess(sh)};
+  s.residual = sh.newton(s.u, [&](const Vec& u) { return sh.multi(u, 1); });
+  const double accept = std::max(o.accept_residual, 30 * o.tolerance);  // integration noise
+  if (!(s.residual <= accept)) shooting_failed(short_case.wrap_rad, s.residual);
+  // 2. Continuation to the full wrap.
+  return solution_of(sh, continue_in_wrap(sh, s, c.wrap_rad, accept), c.wrap_rad);
 }
 }  // namespace
 

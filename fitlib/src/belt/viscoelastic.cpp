@@ -184,71 +184,97 @@ TensionTestResult simulate_tension_test(const TensionTestInput& in) {
 }
 
 namespace {
+// One pulley's march in θ: the belt's constants at the pulley and the path recorded so far.
+struct PulleyMarch {
+  double S, f, aT, ae, h;  // S_N, friction, ωτ_T, ωτ_ε, step (rad)
+  ViscoelasticPulley p;
+
+  void record(double th, double T, double e) {
+    p.theta_rad.push_back(th);
+    p.T_N.push_back(T);
+    p.eps.push_back(e);
+  }
+  // ε along a sliding arc with T = T0 e^{sfθ}: ae ε' + ε = T(1 + s f aT)/S, exact for each step
+  // (the forcing is exponential in θ): particular ε_p = c e^{sfθ}, c = T0(1 + s f aT)/(S(1 + s f ae)).
+  double slide_eps(double T0, double e0, double s, double th) const {
+    if (ae == 0.0) return T0 * std::exp(s * f * th) * (1 + s * f * aT) / S;
+    const double c = T0 * (1 + s * f * aT) / (S * (1 + s * f * ae));
+    return c * std::exp(s * f * th) + (e0 - c) * std::exp(-th / ae);
+  }
+  bool adhesion_ok(double T, double e) const { return std::abs(S * e - T) <= f * aT * T * (1 + 1e-12); }
+  // Tension along the adhesion arc from (T2, ε_a): relaxes towards S ε_a.
+  double adhering_tension(double T2, double ea, double ta) const {
+    return aT > 0 ? S * ea + (T2 - S * ea) * std::exp(-ta / aT) : S * ea;
+  }
+
+  // Entrance sliding arc: the belt slides while adhesion would need |T'| > fT; moves th, T, e
+  // to its end.
+  void entrance(double& th, double& T, double& e) {
+    const double s_in = S * e > T ? 1.0 : -1.0;
+    if (aT > 0.0 && !adhesion_ok(T, e)) {
+      const double T0 = T, e0 = e;
+      while (!adhesion_ok(T, e)) {
+        th += h;
+        if (th > kPi) throw InputError("entrance sliding spans the whole wrap", {}, 0, 0, "viscoelastic");
+        T = T0 * std::exp(s_in * f * th);
+        e = slide_eps(T0, e0, s_in, th);
+        record(th, T, e);
+      }
+    } else if (aT == 0.0) {
+      T = S * e;  // τ_T = 0: T follows ε at once
+    }
+  }
+
+  // Adhesion arc θ_a, with main sliding to T_out after it: θ_a + ln(T_out/T_3)/(direction f)
+  // = rest (the wrap after the entrance arc).
+  double adhesion_arc(double rest, double T2, double ea, double T_out, double direction) const {
+    auto g = [&](double ta) {
+      return ta + std::log(T_out / adhering_tension(T2, ea, ta)) / (direction * f) - rest;
+    };
+    if (!(g(rest) >= 0.0))
+      throw InputError("the belt slips: the tension ratio needs more than the wrap", {}, 0, 0,
+                       "viscoelastic.tight_N");
+    double lo = 0.0, hi = rest;
+    if (g(lo) >= 0.0) hi = lo;  // no adhesion arc left: the sliding arc takes the whole rest
+    for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (g(mid) >= 0.0 ? hi : lo) = mid;
+    }
+    return hi;
+  }
+
+  // Main sliding arc from θ = th to the exit at π, tension T3 e^{direction f θ}.
+  void main_sliding(double th, double T3, double ea, double direction) {
+    p.main_sliding_rad = kPi - th;
+    record(th, T3, ea);
+    for (double ts = h; ts <= p.main_sliding_rad + 1e-12; ts += h) {
+      const double ts_c = std::min(ts, p.main_sliding_rad);
+      const double e_s = slide_eps(T3, ea, direction, ts_c);
+      record(th + ts_c, T3 * std::exp(direction * f * ts_c), e_s);
+      p.max_relative_slip = std::max(p.max_relative_slip, std::abs(e_s - ea));
+    }
+  }
+};
+
 // One pulley of the steady drive, entered with tension T_in and elongation eps_in; leaves with
 // T_out. direction = −1 on the driver (tension falls), +1 on the driven pulley.
 ViscoelasticPulley march_pulley(const ViscoelasticDriveInput& in, double T_in, double eps_in,
                                 double T_out, double direction) {
-  const double S = in.belt.S_N, f = in.friction, w = in.omega_rad_s;
-  const double aT = w * in.belt.tau_T_s, ae = w * in.belt.tau_eps_s;  // ωτ_T, ωτ_ε
-  const double h = 1.0 / in.steps_per_rad;
-  ViscoelasticPulley p;
-  auto record = [&](double th, double T, double e) {
-    p.theta_rad.push_back(th);
-    p.T_N.push_back(T);
-    p.eps.push_back(e);
-  };
-  // ε along a sliding arc with T = T0 e^{sfθ}: ae ε' + ε = T(1 + s f aT)/S, exact for each step
-  // (the forcing is exponential in θ): particular ε_p = c e^{sfθ}, c = T0(1 + s f aT)/(S(1 + s f ae)).
-  auto slide_eps = [&](double T0, double e0, double s, double th) {
-    if (ae == 0.0) return T0 * std::exp(s * f * th) * (1 + s * f * aT) / S;
-    const double c = T0 * (1 + s * f * aT) / (S * (1 + s * f * ae));
-    return c * std::exp(s * f * th) + (e0 - c) * std::exp(-th / ae);
-  };
-  auto adhesion_ok = [&](double T, double e) { return std::abs(S * e - T) <= f * aT * T * (1 + 1e-12); };
-  // Entrance sliding arc: the belt slides while adhesion would need |T'| > fT.
+  const double w = in.omega_rad_s;
+  PulleyMarch m{in.belt.S_N, in.friction, w * in.belt.tau_T_s, w * in.belt.tau_eps_s,
+                1.0 / in.steps_per_rad, {}};
   double th = 0.0, T = T_in, e = eps_in;
-  record(th, T, e);
-  const double s_in = S * eps_in > T_in ? 1.0 : -1.0;
-  if (aT > 0.0 && !adhesion_ok(T, e)) {
-    const double T0 = T_in, e0 = eps_in;
-    while (!adhesion_ok(T, e)) {
-      th += h;
-      if (th > kPi) throw InputError("entrance sliding spans the whole wrap", {}, 0, 0, "viscoelastic");
-      T = T0 * std::exp(s_in * f * th);
-      e = slide_eps(T0, e0, s_in, th);
-      record(th, T, e);
-    }
-  } else if (aT == 0.0) {
-    T = S * e;  // τ_T = 0: T follows ε at once
-  }
-  p.entrance_sliding_rad = th;
-  p.adhesion_elongation = e;
-  // Adhesion arc θ_a, then main sliding to T_out: θ_a + ln(T_out/T_3)/(direction f) = wrap − θ_e.
-  const double rest = kPi - th, T2 = T, ea = e;
-  auto T3 = [&](double ta) { return aT > 0 ? S * ea + (T2 - S * ea) * std::exp(-ta / aT) : S * ea; };
-  auto g = [&](double ta) { return ta + std::log(T_out / T3(ta)) / (direction * f) - rest; };
-  if (!(g(rest) >= 0.0))
-    throw InputError("the belt slips: the tension ratio needs more than the wrap", {}, 0, 0,
-                     "viscoelastic.tight_N");
-  double lo = 0.0, hi = rest;
-  if (g(lo) >= 0.0) hi = lo;  // no adhesion arc left: the sliding arc takes the whole rest
-  for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (g(mid) >= 0.0 ? hi : lo) = mid;
-  }
-  p.adhesion_rad = hi;
-  for (double ta = h; ta < hi; ta += h) record(th + ta, T3(ta), ea);
-  th += hi;
-  const double T3v = T3(hi);
-  p.main_sliding_rad = kPi - th;
-  record(th, T3v, ea);
-  for (double ts = h; ts <= p.main_sliding_rad + 1e-12; ts += h) {
-    const double ts_c = std::min(ts, p.main_sliding_rad);
-    const double e_s = slide_eps(T3v, ea, direction, ts_c);
-    record(th + ts_c, T3v * std::exp(direction * f * ts_c), e_s);
-    p.max_relative_slip = std::max(p.max_relative_slip, std::abs(e_s - ea));
-  }
-  return p;
+  m.record(th, T, e);
+  m.entrance(th, T, e);
+  m.p.entrance_sliding_rad = th;
+  m.p.adhesion_elongation = e;
+  const double T2 = T, ea = e;
+  const double ta_end = m.adhesion_arc(kPi - th, T2, ea, T_out, direction);
+  m.p.adhesion_rad = ta_end;
+  for (double ta = m.h; ta < ta_end; ta += m.h) m.record(th + ta, m.adhering_tension(T2, ea, ta), ea);
+  th += ta_end;
+  m.main_sliding(th, m.adhering_tension(T2, ea, ta_end), ea, direction);
+  return m.p;
 }
 }  // namespace
 

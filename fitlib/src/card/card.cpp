@@ -66,6 +66,56 @@ json object_or_empty(const json& j, const std::string& key, const std::string& s
   return j.at(key);
 }
 
+// The card's model from its kind and options; option errors name "options".
+model::ModelPtr model_of(const Card& card, const std::string& source) {
+  try {
+    return card.model();
+  } catch (const core::UsageError& e) {
+    throw core::InputError(e.what(), source, 0, 0, "options");
+  } catch (const json::exception&) {
+    throw core::InputError("an option has the wrong type", source, 0, 0, "options");
+  }
+}
+
+// The optional fields of a parameter entry: fixed, std_error (null or ≥ 0), its reason, ci95.
+void read_uncertainty(const json& p, const std::string& source, const std::string& path,
+                      ParameterEstimate& e) {
+  if (p.contains("fixed")) e.fixed = core::json_bool(p["fixed"], source, path + "fixed");
+  if (p.contains("std_error") && !p["std_error"].is_null()) {
+    e.std_error = core::json_number(p["std_error"], source, path + "std_error");
+    if (*e.std_error < 0.0) throw core::InputError("std_error must be null or >= 0", source, 0, 0, path + "std_error");
+  }
+  if (p.contains("std_error_reason"))
+    e.std_error_reason = core::json_string(p["std_error_reason"], source, path + "std_error_reason");
+  if (p.contains("ci95")) {
+    if (!p["ci95"].is_array() || p["ci95"].size() != 2)
+      throw core::InputError("expected [low, high]", source, 0, 0, path + "ci95");
+    e.ci95_low = core::json_number(p["ci95"][0], source, path + "ci95[0]");
+    e.ci95_high = core::json_number(p["ci95"][1], source, path + "ci95[1]");
+  }
+}
+
+// One entry of "parameters" (path "parameters[i]."), checked against the model's spec.
+ParameterEstimate read_parameter(const json& p, const core::ParameterSpec& spec,
+                                 const std::string& source, const std::string& path) {
+  const auto name = core::json_string(required(p, "name", source, path), source, path + "name");
+  if (name != spec.name)
+    throw core::InputError("expected parameter '" + spec.name + "', found '" + name + "'",
+                           source, 0, 0, path + "name");
+  ParameterEstimate e;
+  e.value = core::json_number(required(p, "value", source, path), source, path + "value");
+  // A positive scale must stay positive; a linear weight (a Prony modulus) may be exactly 0,
+  // an inactive term held there by the non-negativity constraint.
+  const bool must_be_positive = spec.transform == core::Transform::log && !spec.linear;
+  if (!std::isfinite(e.value) || std::abs(e.value) > Card::kMaxMagnitude || e.value < spec.lower || e.value > spec.upper ||
+      (must_be_positive && !(e.value > 0.0)))
+    throw core::InputError("value " + core::short_number(e.value) + " outside the admissible range of " +
+                               spec.name,
+                           source, 0, 0, path + "value");
+  read_uncertainty(p, source, path, e);
+  return e;
+}
+
 }  // namespace
 
 Card card_from_json(const json& j, const std::string& source) {
@@ -78,14 +128,7 @@ Card card_from_json(const json& j, const std::string& source) {
   if (j.contains("name")) card.name = core::json_string(j.at("name"), source, "name");
   card.model_kind = core::json_string(required(j, "model", source, ""), source, "model");
   card.model_options = object_or_empty(j, "options", source);
-  model::ModelPtr m;
-  try {
-    m = card.model();
-  } catch (const core::UsageError& e) {
-    throw core::InputError(e.what(), source, 0, 0, "options");
-  } catch (const json::exception&) {
-    throw core::InputError("an option has the wrong type", source, 0, 0, "options");
-  }
+  const model::ModelPtr m = model_of(card, source);
   if (!j.contains("parameters") || !j.at("parameters").is_array())
     throw core::InputError("missing parameter list", source, 0, 0, "parameters");
   const auto& list = j.at("parameters");
@@ -95,39 +138,9 @@ Card card_from_json(const json& j, const std::string& source) {
                                std::to_string(specs.size()) + " parameters, the card lists " +
                                std::to_string(list.size()),
                            source, 0, 0, "parameters");
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string path = "parameters[" + std::to_string(i) + "].";
-    const auto name = core::json_string(required(list[i], "name", source, path), source, path + "name");
-    if (name != specs[i].name)
-      throw core::InputError("expected parameter '" + specs[i].name + "', found '" + name + "'",
-                             source, 0, 0, path + "name");
-    ParameterEstimate e;
-    e.value = core::json_number(required(list[i], "value", source, path), source, path + "value");
-    const auto& spec = specs[i];
-    // A positive scale must stay positive; a linear weight (a Prony modulus) may be exactly 0,
-    // an inactive term held there by the non-negativity constraint.
-    const bool must_be_positive = spec.transform == core::Transform::log && !spec.linear;
-    if (!std::isfinite(e.value) || std::abs(e.value) > Card::kMaxMagnitude || e.value < spec.lower || e.value > spec.upper ||
-        (must_be_positive && !(e.value > 0.0)))
-      throw core::InputError("value " + core::short_number(e.value) + " outside the admissible range of " +
-                                 spec.name,
-                             source, 0, 0, path + "value");
-    const json& p = list[i];
-    if (p.contains("fixed")) e.fixed = core::json_bool(p["fixed"], source, path + "fixed");
-    if (p.contains("std_error") && !p["std_error"].is_null()) {
-      e.std_error = core::json_number(p["std_error"], source, path + "std_error");
-      if (*e.std_error < 0.0) throw core::InputError("std_error must be null or >= 0", source, 0, 0, path + "std_error");
-    }
-    if (p.contains("std_error_reason"))
-      e.std_error_reason = core::json_string(p["std_error_reason"], source, path + "std_error_reason");
-    if (p.contains("ci95")) {
-      if (!p["ci95"].is_array() || p["ci95"].size() != 2)
-        throw core::InputError("expected [low, high]", source, 0, 0, path + "ci95");
-      e.ci95_low = core::json_number(p["ci95"][0], source, path + "ci95[0]");
-      e.ci95_high = core::json_number(p["ci95"][1], source, path + "ci95[1]");
-    }
-    card.parameters.push_back(e);
-  }
+  for (size_t i = 0; i < list.size(); ++i)
+    card.parameters.push_back(
+        read_parameter(list[i], specs[i], source, "parameters[" + std::to_string(i) + "]."));
   card.fit = object_or_empty(j, "fit", source);
   card.provenance = object_or_empty(j, "provenance", source);
   return card;

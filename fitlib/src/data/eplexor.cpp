@@ -163,6 +163,68 @@ bool is_ole_compound_file(const std::string& bytes) {
   return true;
 }
 
+namespace {
+
+// The data sheet's columns (field indices; T < 0 when absent), test mode and unit factors.
+struct DataColumns {
+  int f = -1, T = -1, storage = -1, loss = -1;
+  model::TestMode mode = model::TestMode::uniaxial;
+  double to_MPa[2];  // storage, loss
+};
+
+// Names in row 0, units in row 1.
+DataColumns locate_columns(Workbook& book) {
+  DataColumns d;
+  for (unsigned c = 0; c < book.columns(); ++c) {
+    const std::string name = book.text(0, c);
+    const auto take = [&](int& slot) {
+      if (slot >= 0) throw book.error("duplicate column '" + name + "'", 0, c);
+      slot = static_cast<int>(c);
+    };
+    if (name == "f") take(d.f);
+    else if (name == "T") take(d.T);
+    else if (name == "E'" || name == "G'") take(d.storage), d.mode = name[0] == 'G' ? model::TestMode::shear : d.mode;
+    else if (name == "E''" || name == "G''") take(d.loss);
+  }
+  if (d.f < 0) throw book.error("missing column 'f'", 0);
+  if (d.storage < 0) throw book.error("missing column E' (or G')", 0);
+  if (d.loss < 0) throw book.error("missing column E'' (or G'')", 0);
+  const auto unit_of = [&](int c) { return book.text(1, static_cast<unsigned>(c)); };
+  if (unit_of(d.f) != "Hz") throw book.error("unit '" + unit_of(d.f) + "' of column 'f' (expected Hz)", 1, d.f);
+  for (int k = 0; k < 2; ++k) {
+    const int c = k == 0 ? d.storage : d.loss;
+    try {
+      d.to_MPa[k] = core::modulus_to_MPa(unit_of(c));
+    } catch (const core::InputError&) {
+      throw book.error("unit '" + unit_of(c) + "' (expected Pa, kPa, MPa or GPa)", 1, c);
+    }
+  }
+  if (d.T >= 0 && unit_of(d.T) != "°C") throw book.error("unit '" + unit_of(d.T) + "' of column 'T' (expected °C)", 1, d.T);
+  return d;
+}
+
+DynamicTestRow read_data_row(Workbook& book, const DataColumns& d, unsigned r,
+                             const std::string& path) {
+  DynamicTestRow row;
+  row.source_file = path;
+  row.source_line = static_cast<int>(r) + 1;
+  row.condition.mode = d.mode;
+  row.condition.frequency_Hz = book.number(r, d.f, "f");
+  if (!(row.condition.frequency_Hz > 0.0)) throw book.error("non-positive frequency", r, d.f, "f");
+  row.storage_MPa = book.number(r, d.storage, book.text(0, d.storage)) * d.to_MPa[0];
+  if (!(row.storage_MPa > 0.0)) throw book.error("non-positive storage modulus", r, d.storage, book.text(0, d.storage));
+  row.loss_MPa = book.number(r, d.loss, book.text(0, d.loss)) * d.to_MPa[1];
+  if (row.loss_MPa < 0.0) throw book.error("negative loss modulus", r, d.loss, book.text(0, d.loss));
+  if (d.T >= 0) {
+    row.condition.temperature_C = book.number(r, d.T, "T");
+    if (!(row.condition.temperature_C > -core::kZeroCelsiusInKelvin))
+      throw book.error("temperature below absolute zero", r, d.T, "T");
+  }
+  return row;
+}
+
+}  // namespace
+
 EplexorExport read_eplexor(const std::string& path, const ReadOptions& options) {
   const std::string bytes = core::read_file(path);
   if (!is_ole_compound_file(bytes)) throw core::InputError("not an .xls (OLE compound) file", path);
@@ -174,55 +236,13 @@ EplexorExport read_eplexor(const std::string& path, const ReadOptions& options) 
   if (book.select(kShiftSheet)) read_shift_list(book, out, path);
   if (!book.select(kDataSheet)) throw core::InputError(std::string("no sheet '") + kDataSheet + "'", path);
   if (book.rows() < 3) throw book.error("needs a names row, a units row and data rows", book.rows());
-
-  int f = -1, T = -1, storage = -1, loss = -1;
-  model::TestMode mode = model::TestMode::uniaxial;
-  for (unsigned c = 0; c < book.columns(); ++c) {
-    const std::string name = book.text(0, c);
-    const auto take = [&](int& slot) {
-      if (slot >= 0) throw book.error("duplicate column '" + name + "'", 0, c);
-      slot = static_cast<int>(c);
-    };
-    if (name == "f") take(f);
-    else if (name == "T") take(T);
-    else if (name == "E'" || name == "G'") take(storage), mode = name[0] == 'G' ? model::TestMode::shear : mode;
-    else if (name == "E''" || name == "G''") take(loss);
-  }
-  if (f < 0) throw book.error("missing column 'f'", 0);
-  if (storage < 0) throw book.error("missing column E' (or G')", 0);
-  if (loss < 0) throw book.error("missing column E'' (or G'')", 0);
-  const auto unit_of = [&](int c) { return book.text(1, static_cast<unsigned>(c)); };
-  if (unit_of(f) != "Hz") throw book.error("unit '" + unit_of(f) + "' of column 'f' (expected Hz)", 1, f);
-  double to_MPa[2];
-  for (int k = 0; k < 2; ++k) {
-    const int c = k == 0 ? storage : loss;
-    try {
-      to_MPa[k] = core::modulus_to_MPa(unit_of(c));
-    } catch (const core::InputError&) {
-      throw book.error("unit '" + unit_of(c) + "' (expected Pa, kPa, MPa or GPa)", 1, c);
-    }
-  }
-  if (T >= 0 && unit_of(T) != "°C") throw book.error("unit '" + unit_of(T) + "' of column 'T' (expected °C)", 1, T);
+  const DataColumns columns = locate_columns(book);
 
   int isotherm = 0;
   double previous_f = 0.0;
   for (unsigned r = 2; r < book.rows(); ++r) {
     try {
-      DynamicTestRow row;
-      row.source_file = path;
-      row.source_line = static_cast<int>(r) + 1;
-      row.condition.mode = mode;
-      row.condition.frequency_Hz = book.number(r, f, "f");
-      if (!(row.condition.frequency_Hz > 0.0)) throw book.error("non-positive frequency", r, f, "f");
-      row.storage_MPa = book.number(r, storage, book.text(0, storage)) * to_MPa[0];
-      if (!(row.storage_MPa > 0.0)) throw book.error("non-positive storage modulus", r, storage, book.text(0, storage));
-      row.loss_MPa = book.number(r, loss, book.text(0, loss)) * to_MPa[1];
-      if (row.loss_MPa < 0.0) throw book.error("negative loss modulus", r, loss, book.text(0, loss));
-      if (T >= 0) {
-        row.condition.temperature_C = book.number(r, T, "T");
-        if (!(row.condition.temperature_C > -core::kZeroCelsiusInKelvin))
-          throw book.error("temperature below absolute zero", r, T, "T");
-      }
+      DynamicTestRow row = read_data_row(book, columns, r, path);
       if (!out.has_shift_list) {
         // A raw temperature–frequency sweep: each isotherm starts again at the lowest frequency.
         if (!table.rows.empty() && row.condition.frequency_Hz < previous_f) ++isotherm;

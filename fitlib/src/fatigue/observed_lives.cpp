@@ -38,58 +38,74 @@ std::vector<double> parse_peaks(const std::string& text, const std::string& file
   return out;
 }
 
+using Columns = std::map<std::string, int>;  // column name → 0-based index
+
+// The header: known, unique names, with the required ones and one way to give the life.
+Columns header_columns(const std::vector<std::string>& f, const std::string& file, int line) {
+  Columns col;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    if (std::find(kColumns.begin(), kColumns.end(), f[k]) == kColumns.end())
+      throw core::InputError("unknown column '" + f[k] + "'", file, line, int(k) + 1, f[k]);
+    if (col.count(f[k]))
+      throw core::InputError("duplicate column '" + f[k] + "'", file, line, int(k) + 1, f[k]);
+    col[f[k]] = int(k);
+  }
+  for (const char* need : {"case", "failure_mode", "temperature_C", "peaks_MPa"})
+    if (!col.count(need))
+      throw core::InputError(std::string("missing column '") + need + "'", file, line, 0, need);
+  const bool by_cycles = col.count("observed_cycles") > 0;
+  const bool by_hours = col.count("observed_h") && col.count("cycles_per_h");
+  if (by_cycles == by_hours)
+    throw core::InputError("give observed_cycles, or observed_h with cycles_per_h", file, line, 0,
+                           "observed_cycles");
+  return col;
+}
+
+// One data row: a case with its mode, temperature, life and one point's peaks.
+ObservedLife read_life_row(const std::vector<std::string>& f, const Columns& col,
+                           const std::string& file, int line) {
+  if (f.size() != col.size())
+    throw core::InputError("expected " + std::to_string(col.size()) + " fields, found " +
+                               std::to_string(f.size()), file, line, int(f.size()) + 1);
+  auto field = [&](const std::string& c) { return f[col.at(c)]; };
+  auto number = [&](const std::string& c) {
+    const double v = data::parse_csv_number(field(c), c, file, line, col.at(c) + 1);
+    if (c != "temperature_C" && !(v > 0.0))
+      throw core::InputError(c + " must be positive", file, line, col.at(c) + 1, c);
+    return v;
+  };
+  ObservedLife row;
+  row.name = field("case");
+  row.line = line;
+  row.mode = parse_mode(field("failure_mode"), file, line, col.at("failure_mode") + 1);
+  row.temperature_C = number("temperature_C");
+  row.observed_cycles = col.count("observed_cycles") ? number("observed_cycles")
+                                                     : number("observed_h") * number("cycles_per_h");
+  row.point_peaks_MPa.push_back(parse_peaks(field("peaks_MPa"), file, line, col.at("peaks_MPa") + 1));
+  return row;
+}
+
 }  // namespace
 
 std::vector<ObservedLife> parse_observed_lives(const std::string& text, const std::string& file) {
-  std::map<std::string, int> col;  // column name → 0-based index
+  Columns col;
   std::vector<ObservedLife> out;
   std::map<std::string, std::size_t> by_case;
   for (const data::CsvLine& l : data::split_csv_lines(text, file)) {
     if (data::is_blank_or_comment(l.text)) continue;
     const std::vector<std::string> f = data::split_csv_fields(l.text, file, l.number);
     if (col.empty()) {
-      for (std::size_t k = 0; k < f.size(); ++k) {
-        if (std::find(kColumns.begin(), kColumns.end(), f[k]) == kColumns.end())
-          throw core::InputError("unknown column '" + f[k] + "'", file, l.number, int(k) + 1, f[k]);
-        if (col.count(f[k]))
-          throw core::InputError("duplicate column '" + f[k] + "'", file, l.number, int(k) + 1, f[k]);
-        col[f[k]] = int(k);
-      }
-      for (const char* need : {"case", "failure_mode", "temperature_C", "peaks_MPa"})
-        if (!col.count(need))
-          throw core::InputError(std::string("missing column '") + need + "'", file, l.number, 0, need);
-      const bool by_cycles = col.count("observed_cycles") > 0;
-      const bool by_hours = col.count("observed_h") && col.count("cycles_per_h");
-      if (by_cycles == by_hours)
-        throw core::InputError("give observed_cycles, or observed_h with cycles_per_h", file,
-                               l.number, 0, "observed_cycles");
+      col = header_columns(f, file, l.number);
       continue;
     }
-    if (f.size() != col.size())
-      throw core::InputError("expected " + std::to_string(col.size()) + " fields, found " +
-                                 std::to_string(f.size()), file, l.number, int(f.size()) + 1);
-    auto field = [&](const std::string& c) { return f[col.at(c)]; };
-    auto number = [&](const std::string& c) {
-      const double v = data::parse_csv_number(field(c), c, file, l.number, col.at(c) + 1);
-      if (c != "temperature_C" && !(v > 0.0))
-        throw core::InputError(c + " must be positive", file, l.number, col.at(c) + 1, c);
-      return v;
-    };
-    ObservedLife row;
-    row.name = field("case");
-    row.line = l.number;
-    row.mode = parse_mode(field("failure_mode"), file, l.number, col.at("failure_mode") + 1);
-    row.temperature_C = number("temperature_C");
-    row.observed_cycles = col.count("observed_cycles") ? number("observed_cycles")
-                                                       : number("observed_h") * number("cycles_per_h");
-    row.point_peaks_MPa.push_back(
-        parse_peaks(field("peaks_MPa"), file, l.number, col.at("peaks_MPa") + 1));
+    ObservedLife row = read_life_row(f, col, file, l.number);
     auto it = by_case.find(row.name);
     if (it == by_case.end()) {
       by_case[row.name] = out.size();
       out.push_back(std::move(row));
       continue;
     }
+    // A further row of a case adds a point; the case's mode, temperature and life must agree.
     ObservedLife& c = out[it->second];
     if (c.mode != row.mode || c.temperature_C != row.temperature_C ||
         c.observed_cycles != row.observed_cycles)

@@ -34,6 +34,125 @@ std::array<T, kPartSize> part_as(const double* part) {
   return out;
 }
 
+
+// The step's deviatoric strains (tensor components), shared by the three deviatoric parts.
+template <typename T>
+struct StepStrains {
+  T e[6];         // now
+  double e_n[6];  // at the start of the step
+  T e_osc[6];     // oscillating part (4.30)
+};
+
+// Running mean (4.29) and oscillating part (4.30). At t = 0 the mean is the strain itself
+// (the limit of (1/t)∫e), so a jump at the start leaves e^o = 0.
+template <typename T, typename Vec>
+void running_mean(const Vec& integral_n, StepStrains<T>& k, double dt, double t_next,
+                  Scheme scheme, T* integral) {
+  for (int i = 0; i < 6; ++i) {
+    integral[i] = scheme == Scheme::exponential
+                      ? T(integral_n[i]) + 0.5 * dt * (k.e[i] + k.e_n[i])
+                      : T(integral_n[i]) + dt * k.e[i];
+    k.e_osc[i] = t_next > 0.0 ? k.e[i] - integral[i] / t_next : T(0.0);
+  }
+}
+
+// Damage drivers (4.32, 4.77, 4.78) of I, A1, A2; shear components count twice in the norm.
+template <typename T>
+void oscillation_norms(const T* e_osc, T* osc) {
+  osc[0] = safe_sqrt(e_osc[0] * e_osc[0] + e_osc[1] * e_osc[1] + e_osc[2] * e_osc[2] +
+                     2.0 * (e_osc[3] * e_osc[3] + e_osc[4] * e_osc[4] + e_osc[5] * e_osc[5]));
+  osc[1] = safe_sqrt(2.0 * e_osc[2] * e_osc[2]);
+  osc[2] = safe_sqrt(2.0 * (e_osc[2] * e_osc[2] + e_osc[3] * e_osc[3] + e_osc[4] * e_osc[4]));
+}
+
+// Maxwell coefficients of one part's five elements: s_{n+1} = decay·s_n + gain·(2M h2 g2)·Δe.
+struct MaxwellStep {
+  double decay[5], gain[5];
+};
+
+MaxwellStep maxwell_step(const double* part, double dt, Scheme scheme) {
+  MaxwellStep m;
+  double times[5];
+  maxwell_times(part[kTau], part[kK_ratio], times);
+  for (int n = 0; n < 5; ++n) {
+    const double x = dt / times[n];
+    if (scheme == Scheme::exponential) {
+      m.decay[n] = std::exp(-x);
+      m.gain[n] = one_minus_exp_over(x);
+    } else {
+      m.decay[n] = 1.0 / (1.0 + x);
+      m.gain[n] = m.decay[n];
+    }
+  }
+  return m;
+}
+
+// Isotropic deviatoric part (4.40–4.50): writes s, keeps its Maxwell stresses in next.
+template <typename T, typename In, typename Out>
+void isotropic_part(const double* part, const PartFactors<T>& f, const MaxwellStep& m,
+                    const StepStrains<T>& k, const In& state, Out& next, T* s) {
+  const T elastic = f.h1 * f.g1 * 2.0;
+  const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
+  for (int i = 0; i < 6; ++i)
+    s[i] = elastic * (part[kMean] * k.e[i] + part[kDynamic] * k.e_osc[i]);
+  for (int n = 0; n < 5; ++n) {
+    for (int i = 0; i < 6; ++i) {
+      const T sn = m.decay[n] * state.viscous_I[n][i] + m.gain[n] * viscous * (k.e[i] - k.e_n[i]);
+      s[i] += sn;
+      next.viscous_I[n][i] = scalar_part(sn);
+    }
+  }
+}
+
+// A1: uniaxial along the fibres (4.51, 4.56, 4.62–4.69), spread onto s as (−½, −½, 1).
+template <typename T, typename In, typename Out>
+void fibre_uniaxial_part(const double* part, const PartFactors<T>& f, const MaxwellStep& m,
+                         const StepStrains<T>& k, const In& state, Out& next, T* s) {
+  const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
+  T s3 = f.h1 * f.g1 * 2.0 * (part[kMean] * k.e[2] + part[kDynamic] * k.e_osc[2]);
+  for (int n = 0; n < 5; ++n) {
+    const T sn = m.decay[n] * state.viscous_A1[n] + m.gain[n] * viscous * (k.e[2] - k.e_n[2]);
+    s3 += sn;
+    next.viscous_A1[n] = scalar_part(sn);
+  }
+  s[0] -= 0.5 * s3;
+  s[1] -= 0.5 * s3;
+  s[2] += s3;
+}
+
+// A2: shear along the fibres, 23 and 13 (4.53–4.54, 4.58–4.59, 4.70–4.76); s = C'44 γ.
+template <typename T, typename In, typename Out>
+void fibre_shear_part(const double* part, const PartFactors<T>& f, const MaxwellStep& m,
+                      const StepStrains<T>& k, const In& state, Out& next, T* s) {
+  const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
+  for (int c = 0; c < 2; ++c) {
+    const int i = 3 + c;  // Voigt 23, 13
+    T sc = f.h1 * f.g1 * 2.0 * (part[kMean] * k.e[i] + part[kDynamic] * k.e_osc[i]);
+    for (int n = 0; n < 5; ++n) {
+      const T sn =
+          m.decay[n] * state.viscous_A2[n][c] + m.gain[n] * viscous * (k.e[i] - k.e_n[i]);
+      sc += sn;
+      next.viscous_A2[n][c] = scalar_part(sn);
+    }
+    s[i] += sc;
+  }
+}
+
+// The rest of state_{n+1}: time, strain, ∫e and the damage drivers of the parts in use.
+template <typename T, typename Out>
+void record_step(const T* strain, const T* integral, const T* amplitude, const T* osc, int parts,
+                 double t_next, Out& next) {
+  next.time_s = t_next;
+  for (int i = 0; i < 6; ++i) {
+    next.strain[i] = scalar_part(strain[i]);
+    next.dev_strain_integral[i] = scalar_part(integral[i]);
+  }
+  for (int j = 0; j < 3; ++j) {
+    next.driver_amplitude[j] = j < parts ? scalar_part(amplitude[j]) : 0.0;
+    next.driver_oscillating[j] = j < parts ? scalar_part(osc[j]) : 0.0;
+  }
+}
+
 }  // namespace
 
 MaterialState::MaterialState() {
@@ -58,124 +177,42 @@ void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
   if (!(dt >= 0.0) || !std::isfinite(dt))
     throw core::UsageError("fritzson material point: the time step must be finite and ≥ 0");
   const double* p = p_.data();
-  // Deviatoric strain now and at the start of the step (tensor components).
-  T e[6];
-  deviatoric(strain, e);
-  double e_n[6];
-  deviatoric(state.strain.data(), e_n);
-
-  // Running mean (4.29) and oscillating part (4.30). At t = 0 the mean is the strain itself
-  // (the limit of (1/t)∫e), so a jump at the start leaves e^o = 0.
+  StepStrains<T> k;
+  deviatoric(strain, k.e);
+  deviatoric(state.strain.data(), k.e_n);
   const double t_next = state.time_s + dt;
-  T integral[6], e_osc[6];
-  for (int i = 0; i < 6; ++i) {
-    integral[i] = scheme_ == Scheme::exponential
-                      ? T(state.dev_strain_integral[i]) + 0.5 * dt * (e[i] + e_n[i])
-                      : T(state.dev_strain_integral[i]) + dt * e[i];
-    e_osc[i] = t_next > 0.0 ? e[i] - integral[i] / t_next : T(0.0);
-  }
+  T integral[6];
+  running_mean(state.dev_strain_integral, k, dt, t_next, scheme_, integral);
 
-  // Damage drivers (4.32, 4.77, 4.78); shear components count twice in the tensor norm.
   T osc[3];
-  osc[0] = safe_sqrt(e_osc[0] * e_osc[0] + e_osc[1] * e_osc[1] + e_osc[2] * e_osc[2] +
-                     2.0 * (e_osc[3] * e_osc[3] + e_osc[4] * e_osc[4] + e_osc[5] * e_osc[5]));
-  osc[1] = safe_sqrt(2.0 * e_osc[2] * e_osc[2]);
-  osc[2] = safe_sqrt(2.0 * (e_osc[2] * e_osc[2] + e_osc[3] * e_osc[3] + e_osc[4] * e_osc[4]));
+  oscillation_norms(k.e_osc, osc);
   T amplitude[3];
   const int parts = anisotropic_ ? 3 : 1;
   for (int j = 0; j < parts; ++j)
     amplitude[j] = evolve_damage_driver(state.driver_amplitude[j], state.driver_oscillating[j], osc[j],
                                  p[kCd]);
 
-  // Maxwell coefficients: s_{n+1} = decay·s_n + gain·(2M h2 g2)·Δe.
-  auto coefficients = [&](const double* part, double decay[5], double gain[5]) {
-    double times[5];
-    maxwell_times(part[kTau], part[kK_ratio], times);
-    for (int n = 0; n < 5; ++n) {
-      const double x = dt / times[n];
-      if (scheme_ == Scheme::exponential) {
-        decay[n] = std::exp(-x);
-        gain[n] = one_minus_exp_over(x);
-      } else {
-        decay[n] = 1.0 / (1.0 + x);
-        gain[n] = decay[n];
-      }
-    }
-  };
-  double decay[5], gain[5];
-
   // Volumetric part (4.39): σ_p = K tr ε.
   const T pressure = p[kK] * (strain[0] + strain[1] + strain[2]);
+  auto factors = [&](const double* part, const T& driver) {
+    return part_factors(part_as<T>(part).data(), driver, temperature_C, reference_C_);
+  };
   T s[6];
-
-  // Isotropic deviatoric part (4.40–4.50).
-  {
-    const double* part = p + kPartI;
-    const PartFactors<T> f = part_factors(part_as<T>(part).data(), amplitude[0], temperature_C,
-                                          reference_C_);
-    const T elastic = f.h1 * f.g1 * 2.0;
-    const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
-    coefficients(part, decay, gain);
-    for (int i = 0; i < 6; ++i) s[i] = elastic * (part[kMean] * e[i] + part[kDynamic] * e_osc[i]);
-    for (int n = 0; n < 5; ++n) {
-      for (int i = 0; i < 6; ++i) {
-        const T sn = decay[n] * state.viscous_I[n][i] + gain[n] * viscous * (e[i] - e_n[i]);
-        s[i] += sn;
-        next.viscous_I[n][i] = scalar_part(sn);
-      }
-    }
-  }
-
+  const double* part = p + kPartI;
+  isotropic_part(part, factors(part, amplitude[0]), maxwell_step(part, dt, scheme_), k, state,
+                 next, s);
   if (anisotropic_) {
-    // A1: uniaxial along the fibres (4.51, 4.56, 4.62–4.69), spread as (−½, −½, 1).
-    {
-      const double* part = p + kPartA1;
-      const PartFactors<T> f = part_factors(part_as<T>(part).data(), amplitude[1], temperature_C,
-                                            reference_C_);
-      const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
-      coefficients(part, decay, gain);
-      T s3 = f.h1 * f.g1 * 2.0 * (part[kMean] * e[2] + part[kDynamic] * e_osc[2]);
-      for (int n = 0; n < 5; ++n) {
-        const T sn = decay[n] * state.viscous_A1[n] + gain[n] * viscous * (e[2] - e_n[2]);
-        s3 += sn;
-        next.viscous_A1[n] = scalar_part(sn);
-      }
-      s[0] -= 0.5 * s3;
-      s[1] -= 0.5 * s3;
-      s[2] += s3;
-    }
-    // A2: shear along the fibres, 23 and 13 (4.53–4.54, 4.58–4.59, 4.70–4.76); s = C'44 γ.
-    {
-      const double* part = p + kPartA2;
-      const PartFactors<T> f = part_factors(part_as<T>(part).data(), amplitude[2], temperature_C,
-                                            reference_C_);
-      const T viscous = f.h2 * f.g2 * (2.0 * part[kViscous]);
-      coefficients(part, decay, gain);
-      for (int c = 0; c < 2; ++c) {
-        const int i = 3 + c;  // Voigt 23, 13
-        T sc = f.h1 * f.g1 * 2.0 * (part[kMean] * e[i] + part[kDynamic] * e_osc[i]);
-        for (int n = 0; n < 5; ++n) {
-          const T sn = decay[n] * state.viscous_A2[n][c] + gain[n] * viscous * (e[i] - e_n[i]);
-          sc += sn;
-          next.viscous_A2[n][c] = scalar_part(sn);
-        }
-        s[i] += sc;
-      }
-    }
+    part = p + kPartA1;
+    fibre_uniaxial_part(part, factors(part, amplitude[1]), maxwell_step(part, dt, scheme_), k,
+                        state, next, s);
+    part = p + kPartA2;
+    fibre_shear_part(part, factors(part, amplitude[2]), maxwell_step(part, dt, scheme_), k, state,
+                     next, s);
   }
 
   for (int i = 0; i < 3; ++i) stress[i] = pressure + s[i];
   for (int i = 3; i < 6; ++i) stress[i] = s[i];
-
-  next.time_s = t_next;
-  for (int i = 0; i < 6; ++i) {
-    next.strain[i] = scalar_part(strain[i]);
-    next.dev_strain_integral[i] = scalar_part(integral[i]);
-  }
-  for (int j = 0; j < 3; ++j) {
-    next.driver_amplitude[j] = j < parts ? scalar_part(amplitude[j]) : 0.0;
-    next.driver_oscillating[j] = j < parts ? scalar_part(osc[j]) : 0.0;
-  }
+  record_step(strain, integral, amplitude, osc, parts, t_next, next);
 }
 
 template <typename In, typename Out>
@@ -242,61 +279,66 @@ PointLoading loading_for(const TestCondition& c, bool anisotropic) {
   return l;
 }
 
+namespace {
+
+// Uniaxial step: lateral normal stresses zero by Newton on the two lateral strains, starting
+// from the last ones (in `strain` on entry) plus the incompressible guess for the increment.
+Vector6 uniaxial_step(const MaterialPoint& point, const MaterialState& state, int axis,
+                      double value, double dt, double temperature_C, double time_s,
+                      Vector6& strain, MaterialState& next) {
+  const int lateral[2] = {(axis + 1) % 3, (axis + 2) % 3};
+  const double increment = value - strain[axis];
+  strain[axis] = value;
+  for (int l : lateral) strain[l] -= 0.5 * increment;
+  Matrix6 tangent;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const Vector6 stress = point.update(state, strain, dt, temperature_C, next, &tangent);
+    const Eigen::Vector2d residual(stress[lateral[0]], stress[lateral[1]]);
+    const double scale = 1.0 + std::abs(stress[axis]);
+    if (residual.cwiseAbs().maxCoeff() <= 1e-10 * scale) return stress;
+    Eigen::Matrix2d J;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) J(a, b) = tangent(lateral[a], lateral[b]);
+    const Eigen::Vector2d step = J.partialPivLu().solve(-residual);
+    strain[lateral[0]] += step[0];
+    strain[lateral[1]] += step[1];
+  }
+  throw core::NumericalError("fritzson: uniaxial lateral-stress iteration did not converge at t = " +
+                             std::to_string(time_s) + " s");
+}
+
+// One step of the test to the prescribed `value`; `strain` carries the last strain in and the
+// new one out. Returns the test's stress.
+double test_step(const MaterialPoint& point, const PointLoading& loading,
+                 const MaterialState& state, double value, double dt, double temperature_C,
+                 double time_s, Vector6& strain, MaterialState& next) {
+  const int axis = loading.component;
+  if (loading.mode == TestMode::shear) {
+    strain.setZero();
+    strain[axis] = value;
+    return point.update(state, strain, dt, temperature_C, next)[axis];
+  }
+  if (loading.mode == TestMode::bulk) {
+    strain.setZero();
+    strain.head<3>().setConstant(value / 3.0);
+    return point.update(state, strain, dt, temperature_C, next).head<3>().mean();
+  }
+  return uniaxial_step(point, state, axis, value, dt, temperature_C, time_s, strain, next)[axis];
+}
+
+}  // namespace
+
 DriveResult drive(const MaterialPoint& point, const PointLoading& loading,
                   const StrainHistory& history, double temperature_C) {
   check_strain_history(history);
   DriveResult out;
   MaterialState state, next;
   Vector6 strain = Vector6::Zero();
-  Vector6 previous_strain = Vector6::Zero();
-  Matrix6 tangent;
-  const int axis = loading.component;
-  const int lateral[2] = {(axis + 1) % 3, (axis + 2) % 3};
   for (size_t n = 0; n < history.time_s.size(); ++n) {
     const double dt = n == 0 ? 0.0 : history.time_s[n] - history.time_s[n - 1];
-    const double value = history.strain[n];
-    Vector6 stress;
-    double test_stress = 0.0;
-    if (loading.mode == TestMode::shear) {
-      strain.setZero();
-      strain[axis] = value;
-      stress = point.update(state, strain, dt, temperature_C, next);
-      test_stress = stress[axis];
-    } else if (loading.mode == TestMode::bulk) {
-      strain.setZero();
-      strain.head<3>().setConstant(value / 3.0);
-      stress = point.update(state, strain, dt, temperature_C, next);
-      test_stress = stress.head<3>().mean();
-    } else {
-      // Lateral normal stresses zero: Newton on the two lateral strains, starting from the last
-      // ones plus the incompressible guess for the increment.
-      const double increment = value - previous_strain[axis];
-      strain = previous_strain;
-      strain[axis] = value;
-      for (int l : lateral) strain[l] -= 0.5 * increment;
-      bool converged = false;
-      for (int iteration = 0; iteration < 30; ++iteration) {
-        stress = point.update(state, strain, dt, temperature_C, next, &tangent);
-        const Eigen::Vector2d residual(stress[lateral[0]], stress[lateral[1]]);
-        const double scale = 1.0 + std::abs(stress[axis]);
-        if (residual.cwiseAbs().maxCoeff() <= 1e-10 * scale) {
-          converged = true;
-          break;
-        }
-        Eigen::Matrix2d J;
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) J(a, b) = tangent(lateral[a], lateral[b]);
-        const Eigen::Vector2d step = J.partialPivLu().solve(-residual);
-        strain[lateral[0]] += step[0];
-        strain[lateral[1]] += step[1];
-      }
-      if (!converged)
-        throw core::NumericalError("fritzson: uniaxial lateral-stress iteration did not converge at t = " +
-                                   std::to_string(history.time_s[n]) + " s");
-      test_stress = stress[axis];
-    }
+    const double test_stress = test_step(point, loading, state, history.strain[n], dt,
+                                         temperature_C, history.time_s[n], strain, next);
     state = next;
-    previous_strain = strain;
     out.stress.push_back(test_stress);
     out.strain.push_back(strain);
     out.driver_amplitude.push_back(state.driver_amplitude);

@@ -42,6 +42,14 @@ std::vector<double> time_grid(const DataSummary& d, int n) {
   return t;
 }
 
+// Start of a series model: the first constant, n equal weights, times on the data's grid.
+std::vector<double> series_start(double first, double weight, const DataSummary& d, int n) {
+  std::vector<double> p{first};
+  p.insert(p.end(), static_cast<std::size_t>(n), weight);
+  for (double t : time_grid(d, n)) p.push_back(t);
+  return p;
+}
+
 // ---- kernels: complex modulus re + i·im at angular frequency ω (reference temperature) ----
 
 struct Prony {
@@ -69,11 +77,8 @@ struct Prony {
     return {p[0], std::vector<double>(p + 1, p + 1 + n), std::vector<double>(p + 1 + n, p + 1 + 2 * n)};
   }
   static std::vector<double> start(const DataSummary& d, int n) {
-    std::vector<double> p{std::max(d.storage_min_MPa, 1e-9)};
     const double spread = std::max(d.storage_max_MPa - d.storage_min_MPa, 1e-3 * d.storage_max_MPa);
-    for (int i = 0; i < n; ++i) p.push_back(std::max(spread / n, 1e-12));
-    for (double t : time_grid(d, n)) p.push_back(t);
-    return p;
+    return series_start(std::max(d.storage_min_MPa, 1e-9), std::max(spread / n, 1e-12), d, n);
   }
 };
 
@@ -136,10 +141,7 @@ struct Retardation {
   static std::vector<double> start(const DataSummary& d, int n) {
     const double jg = 1.0 / std::max(d.storage_max_MPa, 1e-9);
     const double jr = 1.0 / std::max(d.storage_min_MPa, 1e-9);
-    std::vector<double> p{jg};
-    for (int i = 0; i < n; ++i) p.push_back(std::max((jr - jg) / n, 1e-3 * jg));
-    for (double t : time_grid(d, n)) p.push_back(t);
-    return p;
+    return series_start(jg, std::max((jr - jg) / n, 1e-3 * jg), d, n);
   }
 };
 

@@ -151,20 +151,8 @@ void apply_section(Scene& s, Reader& r) {
                         "cog_land_half_width_mm", "cog_root_fillet_mm", "cog_tip_radius_mm"})
     if (auto v = r.number(k, 0.0, 1e6, true)) s.extra_geometry_mm[k] = *v;
 }
-// [segment]: load case, law, elastic constants per role, mesh and solver knobs, user points.
-SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
-  Reader r(t, "segment", source);
-  r.allow({"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps", "integration",
-           "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "points",
-           "materials"});
-  SegmentSpec g;
-  auto& sec = g.setup.section;
-  sec = cog_section(scene);
-  try {
-    sec.validate();
-  } catch (const InputError& e) {
-    throw InputError(e.detail().empty() ? e.what() : e.detail(), source, 0, 0, e.key());
-  }
+// [segment] load case: strain, curvature (or radius), pressure.
+void parse_segment_load(Reader& r, SegmentSpec& g) {
   g.load.strain = r.number_or("strain", 0.0, -0.5, 1.0);
   g.load.curvature_1_mm = r.number_or("curvature_1_mm", 0.0, -10.0, 10.0);
   if (auto R = r.number("radius_mm", 0.0, 1e9, true)) {
@@ -172,6 +160,10 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
     g.load.curvature_1_mm = 1.0 / *R;
   }
   g.load.pressure_MPa = r.number_or("pressure_MPa", 0.0, 0.0, 1e3);
+}
+
+// [segment] law, end condition, integration, load steps and mesh knobs.
+void parse_segment_solver(Reader& r, SegmentSpec& g) {
   const std::string law = r.string("law").value_or("hencky");
   if (law != "neo-hookean" && law != "stvk" && law != "hencky")
     r.fail("law", "law must be \"hencky\", \"neo-hookean\" or \"stvk\"");
@@ -189,39 +181,64 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 100.0, true);
   mk.end_pitches = r.number_or("end_pitches", mk.end_pitches, 0.0, 100.0);
   mk.cushion_rows = static_cast<int>(r.number_or("cushion_rows", mk.cushion_rows, 1, 100));
-  if (const toml::table* mt = r.table("materials")) {
-    Reader mr(*mt, "segment.materials", source);
-    mr.allow({"bottom", "cushion"});
-    for (int role = 0; role < 2; ++role) {
-      const char* name = role == 0 ? "bottom" : "cushion";
-      if (const toml::table* et = mr.table(name)) {
-        Reader er(*et, std::string("segment.materials.") + name, source);
-        er.allow({"E_MPa", "nu"});
-        g.setup.materials[role].E_MPa = er.number_or("E_MPa", g.setup.materials[role].E_MPa, 0.0, 1e7, true);
-        g.setup.materials[role].nu = er.number_or("nu", g.setup.materials[role].nu, -0.99, 0.49999);
-        er.finish();
-      }
-    }
-    mr.finish();
-  }
-  if (const toml::node* pts = r.node("points")) {
-    const toml::array* a = pts->as_array();
-    if (!a) r.fail("points", "expects an array of {name, x_mm, y_mm}");
-    std::size_t i = 0;
-    for (const toml::node& pn : *a) {
-      if (!pn.as_table()) r.fail("points", "points[" + std::to_string(i) + "] must be a table", pn.source());
-      Reader pr(*pn.as_table(), "segment.points[" + std::to_string(i) + "]", source);
-      pr.allow({"name", "x_mm", "y_mm"});
-      segment::NamedPoint p;
-      p.name = pr.string("name").value_or("point" + std::to_string(i + 1));
-      const auto x = pr.number("x_mm"), y = pr.number("y_mm");
-      if (!x || !y) pr.fail("x_mm", "a point needs x_mm and y_mm", pn.source());
-      p.x_mm = *x, p.y_mm = *y;
-      pr.finish();
-      g.setup.points.push_back(p);
-      ++i;
+}
+
+// [segment.materials.bottom|cushion]: E_MPa and nu per role.
+void parse_segment_materials(const toml::table& mt, SegmentSpec& g, const std::string& source) {
+  Reader mr(mt, "segment.materials", source);
+  mr.allow({"bottom", "cushion"});
+  for (int role = 0; role < 2; ++role) {
+    const char* name = role == 0 ? "bottom" : "cushion";
+    if (const toml::table* et = mr.table(name)) {
+      Reader er(*et, std::string("segment.materials.") + name, source);
+      er.allow({"E_MPa", "nu"});
+      g.setup.materials[role].E_MPa = er.number_or("E_MPa", g.setup.materials[role].E_MPa, 0.0, 1e7, true);
+      g.setup.materials[role].nu = er.number_or("nu", g.setup.materials[role].nu, -0.99, 0.49999);
+      er.finish();
     }
   }
+  mr.finish();
+}
+
+// [segment] points = [{name, x_mm, y_mm}, ...]: the user's named points.
+void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
+                          const std::string& source) {
+  const toml::array* a = pts.as_array();
+  if (!a) r.fail("points", "expects an array of {name, x_mm, y_mm}");
+  std::size_t i = 0;
+  for (const toml::node& pn : *a) {
+    if (!pn.as_table()) r.fail("points", "points[" + std::to_string(i) + "] must be a table", pn.source());
+    Reader pr(*pn.as_table(), "segment.points[" + std::to_string(i) + "]", source);
+    pr.allow({"name", "x_mm", "y_mm"});
+    segment::NamedPoint p;
+    p.name = pr.string("name").value_or("point" + std::to_string(i + 1));
+    const auto x = pr.number("x_mm"), y = pr.number("y_mm");
+    if (!x || !y) pr.fail("x_mm", "a point needs x_mm and y_mm", pn.source());
+    p.x_mm = *x, p.y_mm = *y;
+    pr.finish();
+    g.setup.points.push_back(p);
+    ++i;
+  }
+}
+
+// [segment]: load case, law, elastic constants per role, mesh and solver knobs, user points.
+SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
+  Reader r(t, "segment", source);
+  r.allow({"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps", "integration",
+           "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "points",
+           "materials"});
+  SegmentSpec g;
+  auto& sec = g.setup.section;
+  sec = cog_section(scene);
+  try {
+    sec.validate();
+  } catch (const InputError& e) {
+    throw InputError(e.detail().empty() ? e.what() : e.detail(), source, 0, 0, e.key());
+  }
+  parse_segment_load(r, g);
+  parse_segment_solver(r, g);
+  if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, g, source);
+  if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
   r.finish();
   return g;
 }

@@ -83,6 +83,71 @@ ConstraintGroup derivative_constraints(const Surface& s, std::size_t axis, int o
   return group;
 }
 
+namespace {
+
+std::size_t axis_named(const Surface& s, const std::string& name, const std::string& source,
+                       const std::string& key) {
+  for (std::size_t k = 0; k < s.axes.size(); ++k)
+    if (s.axes[k].name == name) return k;
+  throw core::InputError("no axis named '" + name + "'", source, 0, 0, key);
+}
+
+// {"terms": [{"index": [...], "coefficient": c}, ...], "rhs": r}: one equation on control points.
+ConstraintGroup linear_constraint(const nlohmann::json& item, const Surface& s,
+                                  const std::string& source, const std::string& key) {
+  LinearConstraint c;
+  c.rhs = item.value("rhs", 0.0);
+  for (std::size_t t = 0; t < item["terms"].size(); ++t) {
+    const auto& term = item["terms"][t];
+    const auto index = term.at("index").get<std::vector<int>>();
+    bool valid = index.size() == s.axes.size();
+    for (std::size_t k = 0; valid && k < index.size(); ++k)
+      valid = index[k] >= 0 && index[k] <= s.axes[k].degree;
+    if (!valid)
+      throw core::InputError("control-point index out of range for the surface's degrees",
+                             source, 0, 0, key + ".terms[" + std::to_string(t) + "].index");
+    c.terms.emplace_back(s.flat_index(index), term.at("coefficient").get<double>());
+  }
+  ConstraintGroup group;
+  group.equations.push_back(c);
+  group.description = item.value("description", "user linear constraint");
+  return group;
+}
+
+// The parameter u of a fixed axis: "start" (0), "end" (1) or a number in [0, 1].
+double fixed_parameter(const nlohmann::json& where, const std::string& source,
+                       const std::string& key) {
+  if (where.is_string() && where == "start") return 0.0;
+  if (where.is_string() && where == "end") return 1.0;
+  if (where.is_number() && where.get<double>() >= 0.0 && where.get<double>() <= 1.0)
+    return where.get<double>();
+  throw core::InputError("must be \"start\", \"end\" or a parameter in [0, 1]", source, 0, 0, key);
+}
+
+// {"derivative": {"axis": a, "order": n, "at": {axis: u, ...}}}: d^n y/du_a^n = 0 there.
+ConstraintGroup derivative_constraint(const nlohmann::json& spec, const Surface& s,
+                                      const std::string& source, const std::string& key) {
+  const std::size_t axis = axis_named(s, spec.at("axis").get<std::string>(), source, key + ".axis");
+  const int order = spec.value("order", 2);
+  if (order < 1 || order > s.axes[axis].degree)
+    throw core::InputError("order must be between 1 and the axis's degree (" +
+                               std::to_string(s.axes[axis].degree) + ")",
+                           source, 0, 0, key + ".derivative.order");
+  std::vector<std::pair<std::size_t, double>> fixed;
+  const nlohmann::json at = spec.value("at", nlohmann::json::object());
+  for (const auto& [name, where] : at.items()) {
+    const std::size_t b = axis_named(s, name, source, key + ".derivative.at");
+    const double u = fixed_parameter(where, source, key + ".derivative.at." + name);
+    if (b == axis)
+      throw core::InputError("the derivative axis cannot also be fixed", source, 0, 0,
+                             key + ".derivative.at." + name);
+    fixed.emplace_back(b, u);
+  }
+  return derivative_constraints(s, axis, order, fixed);
+}
+
+}  // namespace
+
 std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, const Surface& s,
                                                     const std::string& source) {
   std::vector<ConstraintGroup> groups;
@@ -91,61 +156,17 @@ std::vector<ConstraintGroup> parse_user_constraints(const nlohmann::json& j, con
   if (!list.is_array())
     throw core::InputError("constraints must be an array (or {\"constraints\": [...]})", source, 0,
                            0, "constraints");
-  auto axis_named = [&](const std::string& name, const std::string& key) {
-    for (std::size_t k = 0; k < s.axes.size(); ++k)
-      if (s.axes[k].name == name) return k;
-    throw core::InputError("no axis named '" + name + "'", source, 0, 0, key);
-  };
   for (std::size_t q = 0; q < list.size(); ++q) {
     const std::string key = "constraints[" + std::to_string(q) + "]";
     const auto& item = list[q];
     ConstraintGroup group;
     try {
-      if (item.contains("terms")) {
-        LinearConstraint c;
-        c.rhs = item.value("rhs", 0.0);
-        for (std::size_t t = 0; t < item["terms"].size(); ++t) {
-          const auto& term = item["terms"][t];
-          const auto index = term.at("index").get<std::vector<int>>();
-          bool valid = index.size() == s.axes.size();
-          for (std::size_t k = 0; valid && k < index.size(); ++k)
-            valid = index[k] >= 0 && index[k] <= s.axes[k].degree;
-          if (!valid)
-            throw core::InputError("control-point index out of range for the surface's degrees",
-                                   source, 0, 0, key + ".terms[" + std::to_string(t) + "].index");
-          c.terms.emplace_back(s.flat_index(index), term.at("coefficient").get<double>());
-        }
-        group.equations.push_back(c);
-        group.description = item.value("description", "user linear constraint");
-      } else if (item.contains("derivative")) {
-        const auto& spec = item["derivative"];
-        const std::size_t axis = axis_named(spec.at("axis").get<std::string>(), key + ".axis");
-        const int order = spec.value("order", 2);
-        if (order < 1 || order > s.axes[axis].degree)
-          throw core::InputError("order must be between 1 and the axis's degree (" +
-                                     std::to_string(s.axes[axis].degree) + ")",
-                                 source, 0, 0, key + ".derivative.order");
-        std::vector<std::pair<std::size_t, double>> fixed;
-        const nlohmann::json at = spec.value("at", nlohmann::json::object());
-        for (const auto& [name, where] : at.items()) {
-          const std::size_t b = axis_named(name, key + ".derivative.at");
-          double u = 0.0;
-          if (where.is_string() && where == "start") u = 0.0;
-          else if (where.is_string() && where == "end") u = 1.0;
-          else if (where.is_number() && where.get<double>() >= 0.0 && where.get<double>() <= 1.0)
-            u = where.get<double>();
-          else
-            throw core::InputError("must be \"start\", \"end\" or a parameter in [0, 1]", source,
-                                   0, 0, key + ".derivative.at." + name);
-          if (b == axis)
-            throw core::InputError("the derivative axis cannot also be fixed", source, 0, 0,
-                                   key + ".derivative.at." + name);
-          fixed.emplace_back(b, u);
-        }
-        group = derivative_constraints(s, axis, order, fixed);
-      } else {
+      if (item.contains("terms"))
+        group = linear_constraint(item, s, source, key);
+      else if (item.contains("derivative"))
+        group = derivative_constraint(item["derivative"], s, source, key);
+      else
         throw core::InputError("a constraint needs \"terms\" or \"derivative\"", source, 0, 0, key);
-      }
     } catch (const nlohmann::json::exception& e) {
       throw core::InputError(std::string("malformed constraint: ") + e.what(), source, 0, 0, key);
     }
