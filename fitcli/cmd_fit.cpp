@@ -22,8 +22,9 @@
 namespace fitcli {
 namespace {
 
-// ---- --master-curve (fit/master_curve.hpp): raw isotherms → free per-isotherm shifts → the
-// model is fitted to the master table at --reference-c; the card gets the WLF law fitted to the
+// ---- --master-curve (fit/master_curve.hpp): raw isotherms → free per-isotherm shifts (with
+// --terms auto refined with the spectrum, card::refine_master_curve) → the model is fitted to
+// the master table at --reference-c; the card gets the WLF law fitted to the
 // shifts (C1, C2 fixed). Shift table with the summary (stderr with --json), CSV with --shifts-out.
 struct MasterCurveArgs {
   bool enabled = false;
@@ -34,7 +35,8 @@ struct MasterCurveArgs {
 
 fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double reference_C, bool json,
                                                   const std::string& temperature_law,
-                                                  const fitlib::data::DynamicTestTable& raw) {
+                                                  const fitlib::data::DynamicTestTable& raw,
+                                                  const fitlib::card::FitCardOptions& card_options) {
   if (!m.enabled && m.shifts_in.empty()) return raw;
   if (temperature_law != "none" && temperature_law != "wlf" && temperature_law != "polynomial")
     throw fitlib::core::UsageError("--master-curve/--shifts fit the card's temperature law to the shifts: "
@@ -45,7 +47,7 @@ fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double ref
   } else {
     fitlib::fit::MasterCurveOptions options;
     options.reference_C = reference_C;
-    m.curve = fitlib::fit::build_master_curve(raw, options);
+    m.curve = fitlib::card::refine_master_curve(raw, fitlib::fit::build_master_curve(raw, options), card_options);
   }
   const std::string table = fitlib::fit::format_shift_table(*m.curve) + "\n";
   if (!json) summary() << table;
@@ -217,7 +219,7 @@ void run_fit(FitArgs a) {
     read.default_mode = model::parse_test_mode(a.mode);
   }
   const auto raw = read_tables(data, a.format, read);
-  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law, raw);
+  const auto table = master_curve_table(a.master, a.reference_C, a.json, a.temperature_law, raw, options);
   if (a.master.curve) {
     options.shifts = isotherm_shifts(a, *a.master.curve);
     options.provenance.measured = &raw;  // the data window of the measured isotherms
@@ -242,7 +244,7 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")
       ->capture_default_str();
   cmd->add_option("--term-method", a->term_method,
-                  "--terms auto: spectrum (smooth spectrum, GCV; Prony without a temperature law) | sweep")
+                  "--terms auto: spectrum (smooth spectrum, GCV; series models, any temperature law; with --master-curve the shifts are refined with it) | sweep")
       ->capture_default_str()->check(CLI::IsMember({"spectrum", "sweep"}));
   cmd->add_option("--smoothness", a->smoothness,
                   "Spectrum: second-difference penalty weight lambda (default: chosen by GCV)");

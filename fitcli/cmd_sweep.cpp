@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "fitlib/scene/sweep_run.hpp"
 #ifdef FITLIB_HAVE_MPI
 #include "fitlib/mpi/sweep_mpi.hpp"
@@ -17,7 +18,7 @@ namespace {
 
 struct SweepArgs {
   std::string sweep, out = "-";
-  bool json = false, quiet = false, verbose = false;
+  bool json = false;
   int threads = 0;
   std::size_t stop_after = 0;
 };
@@ -26,7 +27,7 @@ void run(const SweepArgs& a) {
   const bool to_file = a.out != "-";
   fitlib::scene::SweepRunOptions options;
   options.out_path = to_file ? a.out : "";
-  options.progress = !a.quiet;
+  options.progress = !quiet();
   options.stop_after = a.stop_after;
   const auto sweep = fitlib::scene::load_sweep(a.sweep);
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -39,7 +40,7 @@ void run(const SweepArgs& a) {
   }
 #endif
   if (!executor) executor = std::make_unique<fitlib::scene::ThreadExecutor>(a.threads > 0 ? a.threads : hardware);
-  if (a.verbose && executor->writes())
+  if (verbose() && executor->writes())
     std::cerr << "sweep: " << sweep.case_count << " cases, " << executor->workers() << " workers, sha256 "
               << sweep.sha256 << "\n";
   const auto result = fitlib::scene::run_sweep(sweep, *executor, options);
@@ -50,7 +51,7 @@ void run(const SweepArgs& a) {
   }
   if (a.json) std::cout << fitlib::scene::sweep_json(sweep, result.table).dump(2) << "\n";
   else if (!to_file) std::cout << result.table;
-  if (to_file && !a.quiet)
+  if (to_file && !quiet())
     std::cerr << "wrote " << a.out << " (" << sweep.case_count << " cases, " << result.resumed << " read back)\n";
 }
 
@@ -60,12 +61,11 @@ void register_sweep(CLI::App& app) {
   auto* cmd = app.add_subcommand("sweep", "Grid of scene runs (scenes x cards x temperatures x loads) as one table");
   auto a = std::make_shared<SweepArgs>();
   cmd->add_option("--sweep", a->sweep, "Sweep file (TOML, docs/sweep.md)")->required();
-  cmd->add_option("--out", a->out, "Result CSV, resumable (- = stdout, the default; no resume)");
-  cmd->add_flag("--json", a->json, "Print the table as one JSON document on stdout");
+  cmd->add_option("--out", a->out, "Result CSV file, resumable (- = stdout, the default; no resume)");
+  add_json_flag(cmd, a->json, "the table, on stdout");
   cmd->add_option("--threads", a->threads, "Threads per process (default: all cores; 1 per rank under mpirun)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_flag("--quiet", a->quiet, "No progress or notes on stderr");
-  cmd->add_flag("--verbose", a->verbose, "Grid size, workers and sweep hash on stderr");
+  add_verbosity_flags(cmd);  // --quiet: no progress; --verbose: grid size, workers and sweep hash
   cmd->add_option("--stop-after", a->stop_after, "Tests: stop once N cases are done, as if killed")->group("");
   cmd->callback([a] { run(*a); });
 }

@@ -231,13 +231,15 @@ void bind_card(py::module_& m) {
            py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(), py::arg("strain_amplitude") = 0.0,
            py::arg("mode") = "", py::arg("orientation") = "", "fitcli eval over broadcast arrays")
       .def("export",
-           [](const Card& c, const std::string& format, double poisson_ratio, int material_id, bool allow_inadmissible) {
+           [](const Card& c, const std::string& format, double poisson_ratio, int material_id, bool allow_inadmissible,
+              double density_t_per_mm3) {
              card::ExportOptions o;
              o.poisson_ratio = poisson_ratio, o.material_id = material_id, o.allow_inadmissible = allow_inadmissible;
+             o.density_t_per_mm3 = density_t_per_mm3;
              return card::export_card(c, format, o);
            },
            py::arg("format"), py::arg("poisson_ratio") = 0.4995, py::arg("material_id") = 1,
-           py::arg("allow_inadmissible") = false, "FE keywords: abaqus | ansys | lsdyna (fitlib.export_formats())")
+           py::arg("allow_inadmissible") = false, py::arg("density_t_per_mm3") = 0.0, "FE keywords: abaqus | ansys | lsdyna (fitlib.export_formats())")
       .def("admissibility_problems", &card::admissibility_problems);
 
   m.def("load_card", &card::load_card, py::arg("path"));

@@ -226,6 +226,7 @@ TEST(CliGrammar, JsonParsesForEverySubcommand) {
       {"plot", "plot --data " + source_path(kShearCsv) + " --card " + card + " --out " + dir + "/fig.png"},
       {"segment", "segment --scene " + scene},
       {"life", "life --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + dir + "/life"},
+      {"sweep", "sweep --sweep " + source_path("tests/data/sweep/small.toml") + " --threads 1 -q"},
   };
   std::set<std::string> covered;
   for (const auto& [name, args] : runs) {

@@ -3,6 +3,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/fit/relaxation.hpp"
 #include "fitlib/fit/shift_laws.hpp"
+#include "fitlib/fit/spectrum.hpp"
 #include "fitlib/model/model.hpp"
 
 namespace fitlib::card {
@@ -70,21 +71,45 @@ FitCardResult finish(const FitCardOptions& o, fit::FitResult result, const data:
   return out;
 }
 
+// --terms auto by the spectrum fits with its own objective unless the user chose one.
+bool by_spectrum(const FitCardOptions& o) {
+  return o.terms == "auto" && term_options(o).method == fit::TermMethod::spectrum;
+}
+fit::FitOptions auto_fit_options(const FitCardOptions& o) {
+  fit::FitOptions fit = o.fit;
+  if (by_spectrum(o) && !o.objective_given) {
+    fit.residual = fit::kSpectrumResidual;  // the default objective of --terms auto
+    fit.storage_weight = fit::kSpectrumStorageWeight;
+  }
+  return fit;
+}
+
 }  // namespace
+
+fit::MasterCurve refine_master_curve(const data::DynamicTestTable& raw, fit::MasterCurve curve,
+                                     const FitCardOptions& o) {
+  if (curve.isotherms.size() < 2 || !by_spectrum(o) || raw.rows.empty()) return curve;
+  nlohmann::json options = model_options(o, raw.rows.front().condition.mode);
+  options["temperature_law"] = "none";  // the master is fitted at the reference, the law comes after
+  options["reference_C"] = curve.reference_C;
+  if (!model::make_model(o.model, options)->options().contains("terms")) return curve;
+  const auto make = [&](int n) {
+    nlohmann::json with_terms = options;
+    with_terms["terms"] = n;
+    return model::make_model(o.model, with_terms);
+  };
+  fit::SpectrumOptions spectrum = term_options(o).spectrum;
+  return fit::refine_shifts_with_spectrum(make, raw, std::move(curve), auto_fit_options(o), spectrum).curve;
+}
 
 FitCardResult fit_card(const data::DynamicTestTable& table, const FitCardOptions& o) {
   if (table.rows.empty()) throw core::InputError("no usable rows", joined(table.source_files));
   // The model describes the mode of the data unless the data mix modes.
   nlohmann::json options = model_options(o, table.rows.front().condition.mode);
-  fit::FitOptions fit = o.fit;
+  const fit::FitOptions fit = auto_fit_options(o);
   const bool has_terms = model::make_model(o.model, options)->options().contains("terms");
   if (has_terms && o.terms == "auto") {
-    const auto terms = term_options(o);
-    if (terms.method == fit::TermMethod::spectrum && !o.objective_given) {
-      fit.residual = fit::kSpectrumResidual;  // the default objective of --terms auto
-      fit.storage_weight = fit::kSpectrumStorageWeight;
-    }
-    auto selection = fit::select_terms(o.model, options, table, fit, terms);
+    auto selection = fit::select_terms(o.model, options, table, fit, term_options(o));
     auto result = take_result(selection);
     FitCardOptions used = o;
     used.fit = fit;

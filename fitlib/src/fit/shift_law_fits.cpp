@@ -187,6 +187,14 @@ FitResult with_law_from_shifts(const FitResult& result, const std::vector<double
     out.values.push_back(p.value);
     out.parameters.push_back(p);
   }
+  // A law that misses the shifts moves every other temperature's moduli along the frequency axis
+  // by that much (docs/fitting.md, "Quality verdict"): a warning, not a note.
+  if (constants.rms_decades > kShiftLawWarnDecades)
+    out.quality.warnings.push_back("the " + model::to_string(law) + " law misses the isotherm shifts by " +
+                                   core::format_number(constants.rms_decades, 3) + " decades rms (threshold " +
+                                   core::format_number(kShiftLawWarnDecades, 3) +
+                                   "): away from the reference temperature the card's moduli are shifted by as "
+                                   "much; another --temperature-law (polynomial) may follow them");
   out.messages.push_back("master curve: " + constants.summary + " at T_ref = " + core::format_number(reference_C, 6) +
                          " degC, fitted to " + std::to_string(temperatures_C.size()) + " isotherm shifts");
   return out;

@@ -256,7 +256,9 @@ TEST(Trust, LsDynaCapOnPyviscoMasterGivesFiveAdmissibleTermsAndReportsTheCost) {
   EXPECT_EQ(sel.chosen, cap);
   expect_admissible(sel.result, o, table, "--max-terms 5");
   const card::Card card = card_of(sel.result, o, table);
-  EXPECT_NO_THROW(card::export_card(card, "lsdyna"));
+  card::ExportOptions rubber;
+  rubber.density_t_per_mm3 = 1.2e-9;
+  EXPECT_NO_THROW(card::export_card(card, "lsdyna", rubber));
   // The cost of the cap, in the report: rows, ratios and a message.
   EXPECT_NEAR(sel.cap_cost_ratio, sel.rows[1].cost / sel.rows[0].cost, 1e-12);
   EXPECT_GT(sel.cap_storage_rms_ratio, 1.0);

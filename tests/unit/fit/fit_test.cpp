@@ -5,6 +5,9 @@
 #include "fit_testing.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/shift_laws.hpp"
+
+#include <algorithm>
 
 using namespace fitlib;
 using namespace fitlib::fit::testing;
@@ -201,4 +204,29 @@ TEST(Fit, SeriesTermsComeSortedByTimeConstant) {
   for (int k = 8; k < 13; ++k) EXPECT_LT(r.values[k - 1], r.values[k]);
   for (std::size_t i = 0; i < truth.size(); ++i)
     EXPECT_NEAR(r.values[i], truth[i], 0.25 * truth[i]) << r.parameters[i].name;
+}
+
+// A temperature law fitted to isotherm shifts it cannot follow says so in the verdict (docs/
+// fitting.md, "Quality verdict"); shifts the law reproduces exactly give no such warning.
+TEST(ShiftLawVerdict, LawThatMissesTheShiftsWarns) {
+  const auto model = fitlib::fit::testing::prony(1);
+  const auto p = fitlib::fit::testing::prony_parameters(1.0, {2.0}, {0.1});
+  const auto table = fitlib::fit::testing::synthetic_table(*model, p, fitlib::fit::testing::log_frequencies(0.01, 100, 9), 0.0, 1);
+  const fitlib::fit::FitResult result = fitlib::fit::fit(fitlib::fit::testing::prony(1), table, {});
+  const std::vector<double> T{-20, 0, 20, 40, 60, 80};
+  std::vector<double> wlf, kinked;
+  for (double t : T) {
+    wlf.push_back(-8.86 * (t - 20) / (101.6 + t - 20));   // WLF itself, T_ref 20 degC
+    kinked.push_back(t < 40 ? -0.15 * (t - 20) : -3.0 - 0.02 * (t - 40) + 1.5 * (t >= 60));  // a step
+  }
+  const auto law_warning = [](const fitlib::fit::FitResult& r) {
+    return std::any_of(r.quality.warnings.begin(), r.quality.warnings.end(), [](const std::string& w) {
+      return w.find("misses the isotherm shifts") != std::string::npos;
+    });
+  };
+  const auto exact = fitlib::fit::with_law_from_shifts(result, T, wlf, 20.0, fitlib::model::ShiftLaw::wlf, 3);
+  EXPECT_FALSE(law_warning(exact));
+  const auto missed = fitlib::fit::with_law_from_shifts(result, T, kinked, 20.0, fitlib::model::ShiftLaw::wlf, 3);
+  EXPECT_TRUE(law_warning(missed));
+  EXPECT_FALSE(missed.quality.acceptable());
 }

@@ -11,6 +11,7 @@
 #include "fitlib/card/from_fit.hpp"
 #include "fitlib/data/relaxation.hpp"
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/terms.hpp"
 
 namespace fitlib::card {
@@ -47,6 +48,13 @@ struct FitCardResult {
 
 // Frequency-domain rows (non-empty; InputError otherwise, naming the files).
 FitCardResult fit_card(const data::DynamicTestTable& table, const FitCardOptions& options);
+
+// Raw isotherms with --terms auto by the spectrum: the isotherm shifts of `curve` (pairwise) and
+// the spectrum refined together (fit::refine_shifts_with_spectrum, docs/fitting.md); `curve`
+// unchanged for a fixed number of terms, the sweep, or a model without terms. `fit_card` on the
+// result's master then fits the card.
+fit::MasterCurve refine_master_curve(const data::DynamicTestTable& raw, fit::MasterCurve curve,
+                                     const FitCardOptions& options);
 
 // Relaxation rows (t, M(t)); the model must be a series model (UsageError otherwise).
 FitCardResult fit_relaxation_card(const data::RelaxationTable& table, const FitCardOptions& options);

@@ -34,7 +34,9 @@ data::RelaxationTable shift_relaxation_table(const data::RelaxationTable& raw, c
 
 // The model of `result` (fitted at T_ref without a law) with temperature law `law` (wlf or
 // polynomial) at reference_C, its constants fitted to the shift points and held fixed in the
-// slots the model names (Model::temperature_law_info).
+// slots the model names (Model::temperature_law_info). A law whose rms misfit to the shifts
+// exceeds kShiftLawWarnDecades adds a quality warning.
+inline constexpr double kShiftLawWarnDecades = 0.2;  // a factor 1.6 in frequency
 FitResult with_law_from_shifts(const FitResult& result, const std::vector<double>& temperatures_C,
                                const std::vector<double>& log10_aT, double reference_C, model::ShiftLaw law,
                                int polynomial_degree = 3);
