@@ -152,7 +152,7 @@ struct FractionalZener {
     out.push_back(modulus_spec(P + "_0", 1.0, "elastic"));
     out.push_back(modulus_spec(P + "_delta", 10.0, "viscous"));
     out.push_back(time_spec("tau", 1.0));
-    out.push_back({"alpha", "-", 0.02, 0.98, Transform::linear, "viscous", 0.5, false});
+    out.push_back({"alpha", "-", 0.02, 0.98, Transform::linear, "shape", 0.5, false});
   }
   template <typename T>
   static void complex(const T* p, int, const T& omega, T& re, T& im) {
