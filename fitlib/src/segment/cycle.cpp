@@ -225,6 +225,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.increments = out.final_state.increments;
   out.newton_iterations = out.final_state.newton_iterations;
   out.cuts = out.final_state.cuts;
+  out.factorizations = out.final_state.factorizations;
   out.elements = m.element_count();
   out.equations = out.final_state.equations;
   return out;

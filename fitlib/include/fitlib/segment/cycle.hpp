@@ -63,7 +63,7 @@ struct CycleResult {
   double equilibrium_error = 0.0;
   double max_cord_reaction_N_mm = 0.0;  // largest |Σ cord-line reactions| (per mm of width)
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
-  int increments = 0, newton_iterations = 0, cuts = 0, elements = 0, equations = 0;
+  int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
   StaticSolution final_state;
 };
 
