@@ -47,10 +47,9 @@ scene::Scene life_scene(const std::string& load, const std::string& fidelity) {
   return s;
 }
 
-// The segment meshes of the convergence table (docs/segment.md §Cost); "medium" is the default.
+// The segment meshes of the convergence table (docs/segment.md §Cost).
 segment::MeshKnobs mesh_named(const std::string& name) {
-  segment::MeshKnobs m;
-  if (name == "coarse") m.fine_size_mm = 1.0, m.coarse_size_mm = 2.5, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
+  segment::MeshKnobs m = fatigue::life_mesh();  // "coarse", the life's default
   if (name == "medium") m.fine_size_mm = 0.6, m.coarse_size_mm = 2.0, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
   if (name == "fine") m.fine_size_mm = 0.4, m.coarse_size_mm = 1.5, m.central_pitches = 2, m.end_pitches = 2, m.cushion_rows = 2;
   return m;
@@ -67,8 +66,9 @@ struct Outcome {
   double wall_s = 0.0;
 };
 
-Outcome run_probe(const Probe& pr) {
-  const scene::Scene s = reference(pr.load);
+Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's E 20/8 MPa, ν 0.49
+  const scene::Scene s = pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
+                                              : reference(pr.load);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   fatigue::SegmentLifeSetup setup;

@@ -213,6 +213,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
     out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
+    out.loads.push_back({tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied});
   };
 
   SolverKnobs k = solver;

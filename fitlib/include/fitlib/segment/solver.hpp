@@ -31,7 +31,7 @@ struct SolverKnobs {
   int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
   std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
   int max_iterations = 30;        // assemblies per increment (Newton iterations and halvings)
-  int stall_iterations = 6;       // assemblies without a new lowest residual before a cut
+  int stall_iterations = 8;       // assemblies without a new lowest residual before a cut
   int max_cuts = 6;               // halvings of an increment before giving up
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
