@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <cstdio>
-#include <cstdlib>
 
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
@@ -326,9 +324,6 @@ class Newton {
       o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
       const double res = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
       o.residual = res;
-      if (std::getenv("FITLIB_NEWTON_TRACE"))
-        std::fprintf(stderr, "lam %.9f it %d fresh %d pred %d res %.3e tol %.3e\n", lambda, it, fresh, predictor, res,
-                     knobs_.tolerance * (free_norm(r_, d_, false) + 1.0));
       const bool worse = !(res < res_prev) && !(std::isfinite(res) && energy(dq) < 0.8 * energy_prev);
       if (worse && std::isfinite(res_prev) && stale_step) {
         q_ = q_prev, fresh = true, stale_step = false, res_prev = inf;
@@ -339,20 +334,33 @@ class Newton {
         move(q_prev, dq, alpha);
         continue;
       }
+      if (worse && std::isfinite(res_prev) && res_prev <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0)) {
+        q_ = q_prev;  // no step lowers the residual, which is below the loose tolerance: accept its start
+        o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);  // the trial states at q_prev
+        o.residual = res_prev;
+        o.converged = o.bad_element < 0;
+        return o;
+      }
       if (!std::isfinite(res)) return o;
+      const double scale = free_norm(r_, d_, false) + 1.0;
+      // Giving up at this iterate (stalled, or no step to take): accepted at the loose tolerance.
+      auto give_up = [&] {
+        o.converged = !predictor && res <= knobs_.stall_tolerance * scale;
+        return o;
+      };
       if (res < best) best = res, since_best = 0;
-      else if (++since_best > knobs_.stall_iterations) return o;  // diverging: cut the increment sooner
-      if (!predictor && res <= knobs_.tolerance * (free_norm(r_, d_, false) + 1.0)) {
+      else if (++since_best > knobs_.stall_iterations) return give_up();
+      if (!predictor && res <= knobs_.tolerance * scale) {
         o.converged = true;
         return o;
       }
-      if (fresh && !linear_.factorize(K_.K)) return o;
+      if (fresh && !linear_.factorize(K_.K)) return give_up();
       o.factorizations += fresh;
       for (int i = 0; i < r_.size(); ++i)
         if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
       if (predictor) rhs -= coupling_;
       dq = linear_.solve(rhs);
-      if (!dq.allFinite()) return o;
+      if (!dq.allFinite()) return give_up();
       const bool slow = stale_step && !(res <= knobs_.reuse_contraction * res_prev);
       stale_step = !fresh;
       q_prev = predictor ? q_start : q_;  // the predictor step is taken whole

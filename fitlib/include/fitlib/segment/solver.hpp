@@ -32,6 +32,9 @@ struct SolverKnobs {
   std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
   int max_iterations = 30;        // assemblies per increment (Newton iterations and halvings)
   int stall_iterations = 8;       // assemblies without a new lowest residual before a cut
+  // A stalled iterate is accepted below this (a point law whose tangent is not exactly consistent,
+  // e.g. Fritzson's damage, converges only linearly near round-off; docs/segment.md §Solver).
+  double stall_tolerance = 1e-5;
   int max_cuts = 6;               // halvings of an increment before giving up
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
