@@ -9,7 +9,7 @@
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
 // `bench_life quick` leaves out the complete level (minutes per drive).
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse]` runs one segment life and prints its counts
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [stall=N] [cuts=N]` runs one segment life and prints its counts
 // (MESH: coarse | medium | fine; `reuse`: modified Newton, SolverKnobs::reuse_tangent).
 #include <cmath>
 #include <cstdio>
@@ -61,6 +61,7 @@ struct Probe {
   std::string load = "medium", fidelity = "elastic", mesh = "medium";
   int steps = 60;
   bool reuse = false;
+  int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
 };
 
 struct Outcome {
@@ -77,6 +78,7 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   setup.section = scene::cog_section(s);
   setup.mesh = mesh_named(pr.mesh);
   setup.solver.reuse_tangent = pr.reuse;
+  setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -196,7 +198,13 @@ void beam_sweep() {
 
 int main(int argc, char** argv) {
   if (argc >= 6 && std::string(argv[1]) == "probe") {
-    const Probe p{argv[2], argv[3], argv[4], std::atoi(argv[5]), argc > 6 && std::string(argv[6]) == "reuse"};
+    Probe p{argv[2], argv[3], argv[4], std::atoi(argv[5])};
+    for (int k = 6; k < argc; ++k) {
+      const std::string a = argv[k];
+      if (a == "reuse") p.reuse = true;
+      if (a.rfind("stall=", 0) == 0) p.stall = std::atoi(a.c_str() + 6);
+      if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
+    }
     std::printf("%s", kProbeHeader);
     print_probe(p, run_probe(p));
     return 0;
