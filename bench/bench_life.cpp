@@ -1,70 +1,194 @@
-// Life accuracy versus time per fidelity level (issue 11 item 5; plain main, prints its tables):
-// 1. For every bundled reference drive (datasets/drives/ref-0500-*.toml) and every fidelity level
-//    of [life] (kLevels): life per mode, governing mode, wall time of the whole scene run (mean
-//    of repeated runs) and of its stress and fatigue effects. A level this build cannot run is
-//    printed with the planner's reason; it gets numbers as soon as the planner can run it.
-// 2. The beam level's 1000-drive sweep through the planner (torque 2…50 N·m × 25, driver speed
-//    1000…4000 rpm × 4, temperature 60…120 °C × 10): total time, drives refused (belt slips).
+// Life accuracy versus time per fidelity level (issue 11; plain main, prints its tables):
+// 1. For every bundled reference drive (datasets/drives/ref-0500-*.toml with the thesis-like
+//    cards material-1-true (bottom) and material-2-true (cushion)) and every fidelity level of
+//    [life]: life per mode, governing mode, wall time of the whole scene run (`fitcli life`'s
+//    route, 2 load cycles) and its ratio to the beam row.
+// 2. The segment's convergence on the medium drive: life versus mesh (the default 144 elements and
+//    a 0.6/2.0 mm mesh) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
+//    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' levels, relative to the finer.
+// 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
+// 4. The beam level's 1000-drive sweep through the planner.
+// `bench_life quick` leaves out the complete level (minutes per drive).
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [stall=N] [cuts=N]` runs one segment life and prints its counts
+// (MESH: coarse | medium | fine; `reuse`: modified Newton, SolverKnobs::reuse_tangent).
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "drive_sweep.hpp"
+#include "fitlib/card/card.hpp"
 #include "fitlib/core/timer.hpp"
+#include "fitlib/fatigue/card.hpp"
+#include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "fitlib/segment/point_law.hpp"
 
 using namespace fitlib;
 
 namespace {
 
-const std::vector<std::string> kLevels = {"beam", "elastic", "complete"};  // one line per level
+const std::string kRoot = FITLIB_SOURCE_DIR;
+const char* kLoads[] = {"light", "medium", "heavy", "severe"};
 
-scene::Scene reference(const std::string& load, const std::string& fidelity) {
-  auto s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-" + load + ".toml");
-  s.outputs = {{"life", true}};
-  s.life = scene::LifeSpec{};
-  s.life->fidelity = fidelity;
+scene::Scene reference(const std::string& load) {
+  auto s = scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + load + ".toml");
+  s.materials["bottom"] = kRoot + "/datasets/cards/material-1-true.json";
+  s.materials["cushion"] = kRoot + "/datasets/cards/material-2-true.json";
   return s;
 }
 
-double effect_ms(const scene::SceneResult& r, const std::string& name) {
+scene::Scene life_scene(const std::string& load, const std::string& fidelity) {
+  scene::Scene s = reference(load);
+  s.outputs = {{"life", true}};
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = fidelity;
+  s.life->cycles = 2;
+  return s;
+}
+
+// The segment meshes of the convergence table (docs/segment.md §Cost).
+segment::MeshKnobs mesh_named(const std::string& name) {
+  segment::MeshKnobs m = fatigue::life_mesh();  // "coarse", the life's default
+  if (name == "medium") m.fine_size_mm = 0.6, m.coarse_size_mm = 2.0, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
+  if (name == "fine") m.fine_size_mm = 0.4, m.coarse_size_mm = 1.5, m.central_pitches = 2, m.end_pitches = 2, m.cushion_rows = 2;
+  return m;
+}
+
+struct Probe {
+  std::string load = "medium", fidelity = "elastic", mesh = "medium";
+  int steps = 60;
+  bool reuse = false;
+  int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
+};
+
+struct Outcome {
+  fatigue::SegmentLife life;
+  double wall_s = 0.0;
+};
+
+Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's E 20/8 MPa, ν 0.49
+  const scene::Scene s = pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
+                                              : reference(pr.load);
+  const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
+  const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
+  fatigue::SegmentLifeSetup setup;
+  setup.section = scene::cog_section(s);
+  setup.mesh = mesh_named(pr.mesh);
+  setup.solver.reuse_tangent = pr.reuse;
+  setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
+  setup.cycle.cycles = 2;
+  setup.cycle.steps_per_cycle = pr.steps;
+  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  segment::RoleMaterialOptions o;
+  o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
+  o.temperature_C = s.temperature_C;
+  o.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+  for (int k = 0; k < 2 && pr.fidelity == "iso"; ++k)  // Report I's exploratory isotropic runs
+    setup.materials[k] = model::make_material_point(*model::make_model("elastic-iso", nlohmann::json::object()),
+                                                    {k == 0 ? 20.0 : 8.0, 0.49});
+  for (int k = 0; k < 2 && pr.fidelity != "iso"; ++k) {
+    const card::Card c = card::load_card(s.materials.at(k == 0 ? "bottom" : "cushion"));
+    setup.materials[k] = segment::role_point(*c.model(), c.values(), o);
+  }
+  setup.temperature_C = s.temperature_C;
+  const core::Stopwatch watch;
+  Outcome out{fatigue::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
+  out.wall_s = watch.seconds();
+  return out;
+}
+
+void print_probe(const Probe& p, const Outcome& o) {
+  const auto& r = o.life.run;
+  const auto& m = o.life.report.modes;
+  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %.2f s |\n", p.load.c_str(),
+              p.fidelity.c_str(), p.mesh.c_str(), r.elements, p.steps, r.increments, r.newton_iterations,
+              r.factorizations, r.cuts, m[0].life_cycles, m[1].life_cycles, o.life.report.governing.c_str(),
+              o.wall_s);
+}
+
+const char* kProbeHeader =
+    "| drive | fidelity | mesh | elements | steps/cycle | increments | iterations | factorisations | cuts "
+    "| N1 | N2 | governing | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+
+double effect_s(const scene::SceneResult& r, const std::string& name) {
   for (const auto& e : r.plan.effects)
-    if (e.name == name) return 1e3 * e.wall_s;
+    if (e.name == name) return e.wall_s;
   return 0.0;
 }
 
-std::string reason_not_run(const scene::SceneResult& r) {
-  for (const auto& e : r.plan.effects)
-    if (e.name == "fatigue") return e.reason;
-  return "?";
-}
-
-void level_table() {
-  std::printf("## 1. Life per fidelity level\n\n");
-  std::printf("| drive | fidelity | N1 radial crack (cycles) | N2 separation (cycles) | governing | life (h) "
-              "| scene run | stresses | fatigue |\n|---|---|---|---|---|---|---|---|---|\n");
-  for (const char* load : {"light", "medium", "heavy", "severe"})
-    for (const auto& level : kLevels) {
-      const scene::Scene s = reference(load, level);
-      const scene::SceneResult r = scene::run_scene(s);
-      if (!r.life) {
-        std::printf("| %s | %s | — | — | — | — | — | — | %s |\n", load, level.c_str(), reason_not_run(r).c_str());
+void level_table(const std::vector<const char*>& levels) {
+  std::printf("## 1. Life per fidelity level (scene run = fitcli life's route, 2 load cycles)\n\n");
+  std::printf("| drive | fidelity | N1 radial crack | N2 separation | governing | life (h) | scene run | "
+              "stresses | vs beam |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const char* load : kLoads) {
+    double beam_s = 0.0;
+    for (const char* level : levels) {
+      const scene::Scene s = life_scene(load, level);
+      const core::Stopwatch watch;
+      scene::SceneResult r;
+      try {
+        r = scene::run_scene(s);
+      } catch (const std::exception& e) {
+        std::printf("| %s | %s | refused: %.90s… |\n", load, level, e.what());
         continue;
       }
-      const double t_run = core::seconds_per_call([&] { scene::run_scene(s); });
+      double t_run = watch.seconds();
+      if (std::strcmp(level, "beam") == 0) t_run = beam_s = core::seconds_per_call([&] { scene::run_scene(s); });
       const auto& m = r.life->report.modes;
-      std::printf("| %s | %s | %.4g | %.4g | %s | %.4g | %.3f ms | %.3f ms | %.3f ms |\n", load, level.c_str(),
-                  m[0].life_cycles, m[1].life_cycles, r.life->report.governing.c_str(), r.life->report.life_h,
-                  1e3 * t_run, effect_ms(r, level == "beam" ? "beam_stresses" : "segment_fe"),
-                  effect_ms(r, "fatigue"));
+      std::printf("| %s | %s | %.4g | %.4g | %s | %.4g | %.4g s | %.4g s | %.3g |\n", load, level, m[0].life_cycles,
+                  m[1].life_cycles, r.life->report.governing.c_str(), r.life->report.life_h, t_run,
+                  effect_s(r, std::strcmp(level, "beam") == 0 ? "beam_stresses" : "segment_fe"), t_run / beam_s);
+      std::fflush(stdout);
     }
+  }
+}
+
+// Least-squares slope of log t against log x.
+double exponent(const std::vector<double>& x, const std::vector<double>& t) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double a = std::log(x[k]), b = std::log(t[k]);
+    sx += a, sy += b, sxx += a * a, sxy += a * b;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+void convergence(const std::string& fidelity) {
+  std::printf("\n## 2–3. Convergence and cost, medium drive, %s\n\n%s", fidelity.c_str(), kProbeHeader);
+  std::vector<double> elements, t_mesh, steps, t_steps;
+  std::vector<Outcome> by_mesh, by_steps;
+  for (const char* mesh : {"coarse", "medium"}) {
+    const Probe p{"medium", fidelity, mesh, 60, false};
+    by_mesh.push_back(run_probe(p));
+    print_probe(p, by_mesh.back());
+    elements.push_back(by_mesh.back().life.run.elements), t_mesh.push_back(by_mesh.back().wall_s);
+  }
+  for (int n : {20, 40, 80}) {
+    const Probe p{"medium", fidelity, "coarse", n, false};
+    by_steps.push_back(run_probe(p));
+    print_probe(p, by_steps.back());
+    steps.push_back(n), t_steps.push_back(by_steps.back().wall_s);
+  }
+  auto change = [](const Outcome& a, const Outcome& ref, int mode) {
+    return 100.0 * (a.life.report.modes[mode].life_cycles / ref.life.report.modes[mode].life_cycles - 1.0);
+  };
+  std::printf("\nlife change against the finer (%%): mesh coarse vs medium N1 %+.1f N2 %+.1f; steps 20 vs 80 "
+              "N1 %+.1f N2 %+.1f, 40 vs 80 N1 %+.1f N2 %+.1f\n",
+              change(by_mesh[0], by_mesh[1], 0), change(by_mesh[0], by_mesh[1], 1), change(by_steps[0], by_steps[2], 0),
+              change(by_steps[0], by_steps[2], 1), change(by_steps[1], by_steps[2], 0), change(by_steps[1], by_steps[2], 1));
+  std::printf("scaling: time ~ elements^%.2f, time ~ steps^%.2f\n", exponent(elements, t_mesh), exponent(steps, t_steps));
+  std::fflush(stdout);
 }
 
 void beam_sweep() {
-  std::printf("\n## 2. Beam level: sweep of 1000 drives through the planner\n\n");
-  const SweepCounts c = sweep_1000_drives(reference("medium", "beam"), [](const scene::Scene& s) {
-    return scene::run_scene(s).life->report.governing;
+  std::printf("\n## 4. Beam level: sweep of 1000 drives through the planner\n\n");
+  scene::Scene s = life_scene("medium", "beam");
+  const SweepCounts c = sweep_1000_drives(s, [](const scene::Scene& d) {
+    return scene::run_scene(d).life->report.governing;
   });
   std::printf("1000 drives in %.3f s (%.3f ms per drive): %d computed, %d refused (belt slips), "
               "%d governed by separation\n", c.seconds, c.seconds, c.done, c.refused, c.separation);
@@ -72,8 +196,24 @@ void beam_sweep() {
 
 }  // namespace
 
-int main() {
-  level_table();
+int main(int argc, char** argv) {
+  if (argc >= 6 && std::string(argv[1]) == "probe") {
+    Probe p{argv[2], argv[3], argv[4], std::atoi(argv[5])};
+    for (int k = 6; k < argc; ++k) {
+      const std::string a = argv[k];
+      if (a == "reuse") p.reuse = true;
+      if (a.rfind("stall=", 0) == 0) p.stall = std::atoi(a.c_str() + 6);
+      if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
+    }
+    std::printf("%s", kProbeHeader);
+    print_probe(p, run_probe(p));
+    return 0;
+  }
+  const bool quick = argc > 1 && std::string(argv[1]) == "quick";  // no complete rows (minutes each)
+  level_table(quick ? std::vector<const char*>{"beam", "elastic"} : std::vector<const char*>{"beam", "elastic", "complete"});
+  convergence("iso");
+  convergence("elastic");
+  if (!quick) convergence("complete");
   beam_sweep();
   return 0;
 }

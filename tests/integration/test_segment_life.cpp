@@ -21,7 +21,40 @@ model::MaterialPointPtr iso(double E, double nu) {
   return model::make_material_point(*m, {E, nu});
 }
 
+fatigue::SegmentLife reference_life(const std::string& load, int steps_per_cycle) {
+  const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-" + load + ".toml");
+  const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
+  const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
+  fatigue::SegmentLifeSetup setup;  // the life's default mesh
+  setup.cycle.cycles = 2;
+  setup.cycle.steps_per_cycle = steps_per_cycle;
+  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
+  setup.temperature_C = s.temperature_C;
+  return fatigue::segment_life(cycle, drive, setup, fatigue::default_card());
+}
+
 }  // namespace
+
+// fatigue.md §3's consequence to check: because n2 ≫ n1, raising the load switches the predicted
+// mode from radial crack to separation. The segment (Report I's exploratory isotropic elastic
+// materials, E 20/8 MPa, ν 0.49; the bundled drives, no constant tuned) shows it between the light
+// and the severe reference drive.
+TEST(SegmentLife, ModeSwitchesFromRadialCrackOnTheLightDriveToSeparationOnTheSevereDrive) {
+  const fatigue::SegmentLife light = reference_life("light", 40), severe = reference_life("severe", 40);
+  EXPECT_EQ(light.report.governing, "radial_crack");
+  EXPECT_EQ(severe.report.governing, "separation");
+  for (const auto* l : {&light, &severe}) {
+    EXPECT_LT(l->run.equilibrium_error, 1e-6);
+    for (const auto& m : l->report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
+  }
+  // Separation's life falls much faster with load than the radial crack's (n2 ≫ n1).
+  const double n1 = light.report.modes[0].life_cycles / severe.report.modes[0].life_cycles;
+  const double n2 = light.report.modes[1].life_cycles / severe.report.modes[1].life_cycles;
+  EXPECT_GT(n2, 10.0 * n1);
+  std::printf("light N1 %.4g N2 %.4g; severe N1 %.4g N2 %.4g cycles\n", light.report.modes[0].life_cycles,
+              light.report.modes[1].life_cycles, severe.report.modes[0].life_cycles, severe.report.modes[1].life_cycles);
+}
 
 TEST(SegmentLife, ReferenceDriveGivesFiniteLivesFromTheSegment) {
   const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-light.toml");

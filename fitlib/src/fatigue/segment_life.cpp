@@ -10,6 +10,12 @@
 
 namespace fitlib::fatigue {
 
+segment::MeshKnobs life_mesh() {
+  segment::MeshKnobs m;
+  m.fine_size_mm = 1.0, m.coarse_size_mm = 2.5, m.central_pitches = 1.0, m.end_pitches = 1.0, m.cushion_rows = 1;
+  return m;
+}
+
 std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run) {
   std::vector<PointHistory> out;
   for (const segment::MonitoredHistory& m : run.points) {

@@ -114,9 +114,10 @@ LifePlan choose_life_plan(const Scene& s) {
     return {"beam", "default: the scene gives neither bottom and cushion cards nor a [segment] table"};
   const std::string finest = cards ? "complete" : "elastic";
   const std::string why = cards ? "the scene gives bottom and cushion cards" : "the scene has a [segment] table";
-  // The segment levels take minutes per drive at the default mesh (docs/segment.md): asked, not default.
+  // The segment levels miss their time targets (elastic 8–20 s per drive, complete fails on the
+  // medium drive; docs/segment.md "Cost"): asked, not default.
   return {"beam", "default: beam; " + why + ", so [life] fidelity = \"" + finest +
-                      "\" runs the segment FE (minutes per drive at the default mesh)"};
+                      "\" runs the segment FE (about 10-20 s per drive at the elastic level)"};
 }
 
 }  // namespace fitlib::scene

@@ -213,6 +213,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
     out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
+    out.loads.push_back({tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied});
   };
 
   SolverKnobs k = solver;
@@ -225,6 +226,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.increments = out.final_state.increments;
   out.newton_iterations = out.final_state.newton_iterations;
   out.cuts = out.final_state.cuts;
+  out.factorizations = out.final_state.factorizations;
   out.elements = m.element_count();
   out.equations = out.final_state.equations;
   return out;

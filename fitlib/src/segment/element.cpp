@@ -101,7 +101,7 @@ bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<E
     if (!(J > 0.0)) return false;
     PointResponse r;
     try {
-      r = law.respond(F, {step.state_n + q * ns, step.state_next + q * ns, step.dt_s, step.temperature_C});
+      r = law.respond(F, {step.state_n + q * ns, step.state_next + q * ns, step.dt_s, step.temperature_C, K != nullptr});
     } catch (const core::NumericalError&) {
       return false;
     }

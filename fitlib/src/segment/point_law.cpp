@@ -14,7 +14,9 @@ PointResponse ContractLaw::respond(const Matrix2& F2, const PointStep& step) con
   Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
   F.topLeftCorner<2, 2>() = F2;
   const model::FirstPiolaResult r = model::first_piola(*point_, step.state_n, F, step.dt_s, step.temperature_C,
-                                                       step.state_next, model::TangentColumns::in_plane);
+                                                       step.state_next,
+                                                       step.tangent ? model::TangentColumns::in_plane
+                                                                    : model::TangentColumns::none);
   PointResponse out;
   out.P = r.P.topLeftCorner<2, 2>();
   for (int i = 0; i < 2; ++i)

@@ -273,6 +273,129 @@ double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
   return std::sqrt(s);
 }
 
+// One load increment's Newton iterations (docs/segment.md §Solver). With `reuse_tangent` the
+// factorisation in hand is kept while the free residual contracts by `reuse_contraction` per
+// iteration (modified Newton: a residual-only assembly and a back-substitution); a slower
+// contraction asks for a fresh tangent at the next iterate, and a step on a kept factorisation
+// that does not lower the residual is retaken from its start on a fresh one. A step on a fresh
+// tangent that lowers neither the residual norm nor the energy measure |Δq·r| below 0.8 of its
+// start (a near-incompressible body's residual may rise on the way), or inverts an element, is
+// halved up to five times.
+struct NewtonOutcome {
+  bool converged = false;
+  int iterations = 0, factorizations = 0, bad_element = -1;
+  double residual = std::numeric_limits<double>::infinity();
+};
+
+class Newton {
+ public:
+  Newton(const Assembler& a, Pattern& K, LinearSolver& linear, const Dofs& d, const SolverKnobs& knobs,
+         Eigen::VectorXd& q)
+      : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q) {}
+
+  // From the converged q to load level λ; q_start holds the prescribed components at λ and the
+  // free ones' start (`on_kept_factor`: an extrapolation to iterate on the kept factorisation;
+  // otherwise the last converged values, and the first iteration is the linear predictor).
+  NewtonOutcome solve(double lambda, const Eigen::VectorXd& q_start, bool on_kept_factor) {
+    NewtonOutcome o = iterate(lambda, q_start, on_kept_factor);
+    if (o.converged || !on_kept_factor) return o;
+    const int spent = o.iterations, factorizations = o.factorizations;
+    Eigen::VectorXd linear_start = q_start;  // the extrapolation led astray: the linear predictor
+    for (int i = 0; i < q_start.size(); ++i)
+      if (d_.eq[i] >= 0) linear_start(i) = q_last_(i);
+    q_ = q_last_;
+    o = iterate(lambda, linear_start, false);
+    o.iterations += spent, o.factorizations += factorizations;
+    return o;
+  }
+
+ private:
+  NewtonOutcome iterate(double lambda, const Eigen::VectorXd& q_start, bool on_kept_factor) {
+    const double inf = std::numeric_limits<double>::infinity();
+    NewtonOutcome o;
+    bool predictor = !on_kept_factor, fresh = predictor || !knobs_.reuse_tangent, stale_step = false;
+    const Eigen::VectorXd dq_p = q_start - q_;
+    q_last_ = q_;
+    if (on_kept_factor) q_ = q_start;
+    Eigen::VectorXd q_prev, dq, rhs(d_.equations);
+    double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf;
+    int since_best = 0;
+    for (int it = 0; it < knobs_.max_iterations; ++it) {
+      o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
+      const double res = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
+      o.residual = res;
+      const bool worse = !(res < res_prev) && !(std::isfinite(res) && energy(dq) < 0.8 * energy_prev);
+      if (worse && std::isfinite(res_prev) && stale_step) {
+        q_ = q_prev, fresh = true, stale_step = false, res_prev = inf;
+        continue;
+      }
+      if (worse && std::isfinite(res_prev) && alpha > 1.0 / 32.0) {
+        alpha *= 0.5;
+        move(q_prev, dq, alpha);
+        continue;
+      }
+      if (worse && std::isfinite(res_prev) && res_prev <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0)) {
+        q_ = q_prev;  // no step lowers the residual, which is below the loose tolerance: accept its start
+        o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);  // the trial states at q_prev
+        o.residual = res_prev;
+        o.converged = o.bad_element < 0;
+        return o;
+      }
+      if (!std::isfinite(res)) return o;
+      const double scale = free_norm(r_, d_, false) + 1.0;
+      // Giving up at this iterate (stalled, or no step to take): accepted at the loose tolerance.
+      auto give_up = [&] {
+        o.converged = !predictor && res <= knobs_.stall_tolerance * scale;
+        return o;
+      };
+      if (res < best) best = res, since_best = 0;
+      else if (++since_best > knobs_.stall_iterations) return give_up();
+      if (!predictor && res <= knobs_.tolerance * scale) {
+        o.converged = true;
+        return o;
+      }
+      if (fresh && !linear_.factorize(K_.K)) return give_up();
+      o.factorizations += fresh;
+      for (int i = 0; i < r_.size(); ++i)
+        if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
+      if (predictor) rhs -= coupling_;
+      dq = linear_.solve(rhs);
+      if (!dq.allFinite()) return give_up();
+      const bool slow = stale_step && !(res <= knobs_.reuse_contraction * res_prev);
+      stale_step = !fresh;
+      q_prev = predictor ? q_start : q_;  // the predictor step is taken whole
+      res_prev = predictor ? inf : res;
+      energy_prev = std::abs(rhs.dot(dq));
+      alpha = 1.0;
+      move(q_prev, dq, 1.0);
+      predictor = false;
+      fresh = !knobs_.reuse_tangent || slow;
+      o.iterations++;
+    }
+    return o;
+  }
+
+  double energy(const Eigen::VectorXd& dq) const {
+    double e = 0.0;
+    for (int i = 0; i < r_.size() && dq.size(); ++i)
+      if (d_.eq[i] >= 0) e += r_(i) * dq(d_.eq[i]);
+    return std::abs(e);
+  }
+  void move(const Eigen::VectorXd& from, const Eigen::VectorXd& dq, double alpha) {
+    q_ = from;
+    for (int i = 0; i < q_.size(); ++i)
+      if (d_.eq[i] >= 0) q_(i) += alpha * dq(d_.eq[i]);
+  }
+
+  const Assembler& a_;
+  Pattern& K_;
+  LinearSolver& linear_;
+  const Dofs& d_;
+  const SolverKnobs& knobs_;
+  Eigen::VectorXd& q_;
+  Eigen::VectorXd q_last_, r_, coupling_;
+};
+
 }  // namespace
 
 namespace {
@@ -309,7 +432,8 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   LinearSolver linear(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent());
   Pattern pattern = build_pattern(m, d);
   const int nn = m.node_count();
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(2 * nn), r, coupling;
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(2 * nn), r;
+  Newton newton(assembler, pattern, linear, d, knobs, q);
   std::vector<std::array<double, 2>> values(p.constraints.size());
   StaticSolution out;
   out.equations = d.equations;
@@ -351,8 +475,10 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
 
   const std::vector<double> targets = breakpoints(knobs);
   std::size_t next = 0;
-  double lambda = 0.0, max_step = 2.0, last_dt = 0.0;
+  double lambda = 0.0, max_step = 2.0, last_dt = 0.0, last_dlambda = 0.0;
   int cuts_in_row = 0;
+  bool have_factor = false;
+  Eigen::VectorXd velocity;  // Δq of the last converged increment (local components)
   while (next < targets.size()) {
     const double target = std::min(targets[next], lambda + max_step);
     if (p.rotate) {  // turn the constrained bases, keeping the displacements
@@ -367,59 +493,21 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
     const Eigen::VectorXd q_saved = q;
     const double dt = time_at(target) - time_at(lambda);
     assembler.set_step(states.committed.data(), states.trial.data(), dt);
-    // The first iteration is a predictor: K_fp·Δq_p moves the free dofs with the prescribed ones.
-    const Eigen::VectorXd q_start = prescribed_at(target);
-    const Eigen::VectorXd dq_p = q_start - q;
-    int bad = -1, it = 0;
-    double res = std::numeric_limits<double>::infinity();
-    bool converged = false;
-    // Backtracking line search: a Newton step that lowers neither the free residual norm nor the
-    // energy measure |Δq·r| below 0.8 of its value at the step's start (a near-incompressible
-    // body's residual norm may rise on the way to convergence), or inverts an element, is halved,
-    // up to five times.
-    Eigen::VectorXd q_prev, dq_prev;
-    double res_prev = std::numeric_limits<double>::infinity(), alpha = 1.0, energy_prev = 0.0;
-    auto energy = [&](const Eigen::VectorXd& res_all) {
-      double e = 0.0;
+    // Start: the free dofs extrapolated from the last increment (capped at its size, the history
+    // turns at transitions) on the kept factorisation; or, first and after a cut, the linear
+    // predictor K_fp·Δq_p on a fresh tangent.
+    Eigen::VectorXd q_start = prescribed_at(target);
+    const bool extrapolate = knobs.reuse_tangent && have_factor && cuts_in_row == 0 && velocity.size() == q.size();
+    if (extrapolate) {
+      const double ratio = std::min(1.0, (target - lambda) / last_dlambda);
       for (int i = 0; i < 2 * nn; ++i)
-        if (d.eq[i] >= 0) e += res_all(i) * dq_prev(d.eq[i]);
-      return std::abs(e);
-    };
-    auto move = [&](const Eigen::VectorXd& from, double a) {
-      q = from;
-      for (int i = 0; i < 2 * nn; ++i)
-        if (d.eq[i] >= 0) q(i) += a * dq_prev(d.eq[i]);
-    };
-    for (it = 0; it < knobs.max_iterations; ++it) {
-      const bool predictor = it == 0;
-      bad = assembler.run(q, target, predictor ? &dq_p : nullptr, r, &pattern, &coupling);
-      res = bad >= 0 ? std::numeric_limits<double>::infinity() : free_norm(r, d, true);
-      const bool worse = !(res < res_prev) && !(std::isfinite(res) && energy(r) < 0.8 * energy_prev);
-      if (worse && std::isfinite(res_prev) && alpha > 1.0 / 32.0) {
-        alpha *= 0.5;
-        move(q_prev, alpha);
-        continue;
-      }
-      if (!std::isfinite(res)) break;
-      if (!predictor && res <= knobs.tolerance * (free_norm(r, d, false) + 1.0)) {
-        converged = true;
-        break;
-      }
-      if (!linear.factorize(pattern.K)) break;
-      Eigen::VectorXd rhs(d.equations);
-      for (int i = 0; i < 2 * nn; ++i)
-        if (d.eq[i] >= 0) rhs(d.eq[i]) = -r(i);
-      if (predictor) rhs -= coupling;
-      dq_prev = linear.solve(rhs);
-      if (!dq_prev.allFinite()) break;
-      q_prev = predictor ? q_start : q;  // the predictor step is taken whole
-      res_prev = predictor ? std::numeric_limits<double>::infinity() : res;
-      energy_prev = std::abs(rhs.dot(dq_prev));
-      alpha = 1.0;
-      move(q_prev, 1.0);
-      out.newton_iterations++;
+        if (d.eq[i] >= 0) q_start(i) += ratio * velocity(i);
     }
-    if (converged) {
+    const NewtonOutcome o = newton.solve(target, q_start, extrapolate);
+    out.newton_iterations += o.iterations;
+    out.factorizations += o.factorizations;
+    have_factor = have_factor || o.factorizations > 0;
+    if (o.converged) {
       if (p.on_increment) {
         StaticSolution view;
         snapshot(target, states.committed, dt, view);
@@ -427,16 +515,19 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
         p.on_increment(target, view);
       }
       states.committed.swap(states.trial);  // the last assembly was at the converged q
+      velocity = q - q_saved;
       last_dt = dt;
+      last_dlambda = target - lambda;
       lambda = target;
       if (target >= targets[next]) ++next;
       out.increments++;
-      out.final_residual = res;
+      out.final_residual = o.residual;
       cuts_in_row = 0;
+      max_step = std::min(2.0, 2.0 * max_step);  // a cut step grows back after each success
       continue;
     }
     q = q_saved;
-    if (++cuts_in_row > knobs.max_cuts) fail(out.increments + 1, target, bad, res, it);
+    if (++cuts_in_row > knobs.max_cuts) fail(out.increments + 1, target, o.bad_element, o.residual, o.iterations);
     max_step = 0.5 * (target - lambda);
     out.cuts++;
   }

@@ -17,9 +17,14 @@ namespace fitlib::fatigue {
 // 2 longitudinal), the role from the element's material.
 std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run);
 
+// The life's default mesh: 1.0 mm central (one pitch), 2.5 mm ends (one pitch each), one cushion
+// row, 144 elements; the life is within 3.5 % of a 0.6/2.0 mm mesh (docs/decisions.md "Segment
+// life: default mesh and steps").
+segment::MeshKnobs life_mesh();
+
 struct SegmentLifeSetup {
   segment::CogSection section;
-  segment::MeshKnobs mesh;
+  segment::MeshKnobs mesh = life_mesh();
   segment::SolverKnobs solver;
   segment::CycleKnobs cycle;
   std::array<model::MaterialPointPtr, 2> materials;  // by segment::Role: bottom, cushion

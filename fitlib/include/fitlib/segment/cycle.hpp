@@ -55,6 +55,12 @@ struct MonitoredHistory {
   std::vector<CycleSample> samples;
 };
 
+struct IncrementLoads {                // totals per mm of width at the end of an increment, global x–y
+  double t_s = 0.0, s_mm = 0.0;
+  Eigen::Vector2d cord_reaction_N_mm = Eigen::Vector2d::Zero();  // Σ reactions of the cord-line nodes
+  Eigen::Vector2d body_force_N_mm = Eigen::Vector2d::Zero();     // ∫ b dV (contact, friction, inertia)
+};
+
 struct CycleResult {
   std::vector<MonitoredHistory> points;
   double cycle_time_s = 0.0;
@@ -62,8 +68,9 @@ struct CycleResult {
   // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).
   double equilibrium_error = 0.0;
   double max_cord_reaction_N_mm = 0.0;  // largest |Σ cord-line reactions| (per mm of width)
+  std::vector<IncrementLoads> loads;    // per converged increment
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
-  int increments = 0, newton_iterations = 0, cuts = 0, elements = 0, equations = 0;
+  int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
   StaticSolution final_state;
 };
 

@@ -22,7 +22,7 @@ using Tangent = Eigen::Matrix4d;  // A(2i+J, 2k+L) = ∂P_iJ/∂F_kL
 
 struct PointResponse {
   Matrix2 P;             // first Piola–Kirchhoff stress, MPa
-  Tangent A;             // ∂P/∂F, MPa
+  Tangent A = Tangent::Zero();  // ∂P/∂F, MPa (zero when the step asked for no tangent)
   double sigma33_MPa = 0.0;  // out-of-plane Cauchy stress (plane-strain constraint)
 };
 
@@ -31,6 +31,7 @@ struct PointStep {                      // one update of one integration point
   double* state_next = nullptr;        // state_size() doubles, written
   double dt_s = 0.0;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the card's reference
+  bool tangent = true;                 // false: a residual-only pass; A may be left zero
 };
 
 class PlaneStrainLaw {

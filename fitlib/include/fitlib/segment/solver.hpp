@@ -30,10 +30,19 @@ using Prescribe = std::function<void(double lambda, std::vector<std::array<doubl
 struct SolverKnobs {
   int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
   std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
-  int max_iterations = 20;        // Newton iterations per increment
+  int max_iterations = 30;        // assemblies per increment (Newton iterations and halvings)
+  int stall_iterations = 8;       // assemblies without a new lowest residual before a cut
+  // A stalled iterate is accepted below this (a point law whose tangent is not exactly consistent,
+  // e.g. Fritzson's damage, converges only linearly near round-off; docs/segment.md §Solver).
+  double stall_tolerance = 1e-5;
   int max_cuts = 6;               // halvings of an increment before giving up
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
+  // Modified Newton: keep a factorisation while the residual contracts by this factor per
+  // iteration, and start each increment from the last one's extrapolated motion. Off by default:
+  // slower on the load cycle, whose transitions need fresh tangents (docs/segment.md §Cost).
+  bool reuse_tangent = false;
+  double reuse_contraction = 0.25;
 };
 
 struct StaticSolution;
@@ -70,7 +79,7 @@ struct StaticSolution {
   std::vector<std::vector<IntegrationPointStress>> points;  // per element
   std::vector<double> state;       // all integration points' committed states, one block
   std::vector<std::size_t> state_offset;  // per element, into `state`
-  int increments = 0, newton_iterations = 0, cuts = 0;
+  int increments = 0, newton_iterations = 0, cuts = 0, factorizations = 0;
   double final_residual = 0.0;
   int equations = 0;
 };
