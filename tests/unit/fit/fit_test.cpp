@@ -230,3 +230,25 @@ TEST(ShiftLawVerdict, LawThatMissesTheShiftsWarns) {
   EXPECT_TRUE(law_warning(missed));
   EXPECT_FALSE(missed.quality.acceptable());
 }
+
+// A fractional Zener fitted to a power law seen over three decades (no plateau in the window):
+// its central time and modulus stay inside the admissible window (docs/fitting.md "Admissible
+// terms") instead of running to τ = 1e-10 s with E_delta 40× the largest measured storage.
+TEST(AdmissibleWindow, FractionalZenerStaysInsideTheWindowOnAPowerLaw) {
+  fitlib::data::DynamicTestTable table;
+  for (double f : fitlib::fit::testing::log_frequencies(0.1, 100, 7)) {
+    fitlib::data::DynamicTestRow row;
+    row.condition.mode = fitlib::model::TestMode::uniaxial;
+    row.condition.frequency_Hz = f;
+    row.storage_MPa = 3.0 + 2.0 * std::pow(f, 0.3);
+    row.loss_MPa = 0.2 * row.storage_MPa * std::pow(f, 0.05);
+    table.rows.push_back(row);
+  }
+  const auto r = fitlib::fit::fit(fitlib::model::make_model("fractional-zener", {{"mode", "uniaxial"}}), table, {});
+  ASSERT_TRUE(r.admissible.applies);
+  const double e_delta = r.values[1], tau = r.values[2];
+  EXPECT_GE(tau, r.admissible.tau_min_s * (1 - 1e-12));
+  EXPECT_LE(tau, r.admissible.tau_max_s * (1 + 1e-12));
+  EXPECT_LE(e_delta, r.admissible.modulus_max_MPa * (1 + 1e-12));
+  EXPECT_LT(r.metrics.max_rel_error, 0.15);
+}
