@@ -34,7 +34,8 @@ std::string excess_text(const fitlib::card::WindowExcess& x) {
   const bool f = x.quantity == "frequency_Hz", T = x.quantity == "temperature_C";
   const std::string option = f ? "--frequency-hz" : T ? "--temperature-c" : "--amplitude";
   return option + " " + exact(x.value) + " is outside the card's data window [" + exact(x.low) + ", " +
-         exact(x.high) + "]" + (f ? " Hz" : T ? " degC" : "");
+         exact(x.high) + "]" + (f ? " Hz" : T ? " degC" : "") +
+         (x.key != x.quantity ? " (its measured frequencies shifted to this temperature by the card's law)" : "");
 }
 
 // Conditions beyond the card's data window: the first is an error, or with
@@ -50,7 +51,7 @@ class WindowCheck {
     if (!a_.allow_extrapolation)
       throw fitlib::core::InputError("eval: " + excess_text(excess.front()) +
                                          "; pass --allow-extrapolation to evaluate there anyway",
-                                     a_.card, 0, 0, "fit.data_window." + excess.front().quantity);
+                                     a_.card, 0, 0, "fit.data_window." + excess.front().key);
     for (const auto& x : excess) {
       const bool added = seen_.emplace(x.quantity, x).second;
       double& lo = lowest_[x.quantity];

@@ -80,7 +80,7 @@ Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,
               {"messages", r.messages}};
   card.fit["quality"] = quality_json(r.quality);
   if (r.admissible.applies) card.fit["admissible"] = admissible_to_json(r.admissible);
-  const auto window = data_window_json(provenance.measured ? *provenance.measured : table);
+  const auto window = data_window_json(provenance.measured ? *provenance.measured : table, r.model.get(), r.values);
   if (!window.empty()) card.fit["data_window"] = window;
   if (provenance.record_timing) card.fit["wall_time_s"] = m.wall_time_s;
   drop_non_finite(card.fit);

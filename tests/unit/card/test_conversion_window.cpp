@@ -100,3 +100,40 @@ TEST(DataWindow, BoxOfMeasuredConditionsWithSlackAtTheBounds) {
   card.fit.erase("data_window");  // a card without a window is not checked
   EXPECT_TRUE(card::outside_data_window(card, c).empty());
 }
+
+// With a temperature law the frequency bound is the rows' reduced frequency f·a_T(T): 100 Hz
+// measured at 60 °C is data at 100·a_T(60) Hz at the reference, and at temperature T the window
+// is [lo, hi] / a_T(T) (closed-form WLF below).
+TEST(DataWindow, ReducedFrequencyWithATemperatureLaw) {
+  card::Card card;
+  card.model_kind = "prony";
+  card.model_options = {{"terms", 2}, {"mode", "shear"}, {"temperature_law", "wlf"}, {"reference_C", 23.0}};
+  const auto model = card.model();
+  ASSERT_EQ(model->parameters().size(), 7u);  // M_inf, M_1, M_2, tau_1, tau_2, C1, C2
+  for (double v : {2.0, 3.0, 5.0, 0.1, 10.0, 8.86, 101.6}) {
+    card::ParameterEstimate p;
+    p.value = v;
+    card.parameters.push_back(p);
+  }
+  const auto log_aT = [](double T) { return -8.86 * (T - 23.0) / (101.6 + T - 23.0); };
+  data::DynamicTestTable t;
+  for (double f : {0.1, 100.0})
+    for (double T : {23.0, 60.0}) {
+      data::DynamicTestRow row;
+      row.condition.frequency_Hz = f;
+      row.condition.temperature_C = T;
+      t.rows.push_back(row);
+    }
+  card.fit["data_window"] = card::data_window_json(t, model.get(), card.values());
+  const auto& reduced = card.fit["data_window"]["reduced_frequency_Hz"];
+  EXPECT_NEAR(reduced[0].get<double>(), 0.1 * std::pow(10.0, log_aT(60.0)), 1e-12 * 0.1);
+  EXPECT_NEAR(reduced[1].get<double>(), 100.0, 1e-12 * 100.0);
+  model::TestCondition c = at(model::TestMode::shear, 1e-3);  // below 0.1 Hz, inside at 23 °C
+  c.temperature_C = 23.0;
+  EXPECT_TRUE(card::outside_data_window(card, c).empty());
+  c.temperature_C = 40.0;  // at 40 °C the same frequency reduces below the window's low end
+  const auto x = card::outside_data_window(card, c);
+  ASSERT_EQ(x.size(), 1u);
+  EXPECT_EQ(x[0].key, "reduced_frequency_Hz");
+  EXPECT_NEAR(x[0].low, reduced[0].get<double>() / std::pow(10.0, log_aT(40.0)), 1e-9 * x[0].low);
+}

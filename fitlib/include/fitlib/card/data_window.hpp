@@ -13,16 +13,22 @@
 namespace fitlib::card {
 
 // {"frequency_Hz": [lo, hi], "temperature_C": [lo, hi], "strain_amplitude": [lo, hi]}, each
-// present only when the rows give it (finite temperatures, amplitudes above 0).
-nlohmann::json data_window_json(const data::DynamicTestTable& measured);
+// present only when the rows give it (finite temperatures, amplitudes above 0). With a model
+// that carries a temperature law (and its parameters p), also "reduced_frequency_Hz": the
+// rows' f·a_T(T) — time–temperature superposition makes a frequency measured at another
+// temperature data at the reference, so eval checks f·a_T against it instead of f.
+nlohmann::json data_window_json(const data::DynamicTestTable& measured, const model::Model* model = nullptr,
+                                const std::vector<double>& p = {});
 
 // One condition outside the window: which quantity, the value and the window's bounds.
 struct WindowExcess {
   std::string quantity;  // "frequency_Hz" | "temperature_C" | "strain_amplitude"
+  std::string key;       // the window's key: the quantity, or "reduced_frequency_Hz"
   double value = 0.0, low = 0.0, high = 0.0;
 };
 
-// The quantities of `c` beyond the card's window (none when the card stores no window).
+// The quantities of `c` beyond the card's window (none when the card stores no window); with a
+// reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T).
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c);
 
 }  // namespace fitlib::card
