@@ -28,7 +28,14 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
     add(r.stiffness->k1_source, "radial stiffness k1");
     add(r.stiffness->EI_source, "bending stiffness EI (and the beam level's layer moduli EI/I)");
   }
-  if (use.empty()) use = "not read at fidelity " + r.plan.life->fidelity;
+  // The segment levels make the bottom and cushion rubber's material points from their cards
+  // (segment_materials below).
+  const std::string& fidelity = r.plan.life->fidelity;
+  if (fidelity != "beam" && (role == "bottom" || role == "cushion"))
+    use += std::string(use.empty() ? "" : ", ") +
+           (fidelity == "elastic" ? "segment FE material (storage stiffness at the scene's temperature and load frequency)"
+                                  : "segment FE material (the card's full model)");
+  if (use.empty()) use = "not read at fidelity " + fidelity;
   return use;
 }
 

@@ -293,6 +293,15 @@ class Newton {
          Eigen::VectorXd& q)
       : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q) {}
 
+  // The node carrying the largest free residual component of the last assembly (-1: none).
+  int worst_node() const {
+    int worst = -1;
+    double largest = -1.0;
+    for (int i = 0; i < r_.size(); ++i)
+      if (d_.eq[i] >= 0 && std::abs(r_(i)) > largest) largest = std::abs(r_(i)), worst = i / 2;
+    return worst;
+  }
+
   // From the converged q to load level λ; q_start holds the prescribed components at λ and the
   // free ones' start (`on_kept_factor`: an extrapolation to iterate on the kept factorisation;
   // otherwise the last converged values, and the first iteration is the linear predictor).
@@ -455,6 +464,11 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
     if (element >= 0) msg << ", element " << element << " inverted or with a non-finite stress";
     msg << ", free residual " << residual << " N/mm after " << iterations << " iterations and "
         << knobs.max_cuts << " step cuts";
+    // Where: a residual stuck at one node with no inverted element is a non-smooth point response
+    // there (docs/segment.md "Cost", complete level).
+    if (const int n = newton.worst_node(); n >= 0)
+      msg << "; largest residual at node " << n << " (reference x " << m.X[n].x() << ", y " << m.X[n].y()
+          << " mm)";
     throw core::NumericalError(msg.str());
   };
   // Stresses, displacements and reactions at the converged q (states from `from` over dt).

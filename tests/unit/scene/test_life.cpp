@@ -152,3 +152,29 @@ TEST(SceneLife, LifeJsonWithoutWallTimesIsByteIdenticalAndFinite) {
   EXPECT_EQ(j["modes"].size(), 2u);
   EXPECT_TRUE(scene::life_json(s, scene::run_scene(s), true)["effects"][0].contains("wall_s"));
 }
+
+TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
+  // life.json's inputs at fidelity elastic: the segment FE makes its bottom and cushion points from
+  // the cards, so neither may say "not read" (it did before 2026-11-25); one cycle on the life mesh.
+  auto s = with_life("light");
+  s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+  s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = "elastic";
+  s.life->cycles = 1;
+  const auto j = scene::life_json(s, scene::run_scene(s), false);
+  EXPECT_EQ(j["fidelity"], "elastic");
+  int roles = 0;
+  for (const auto& in : j["inputs"]) {
+    if (in["role"] != "bottom" && in["role"] != "cushion") continue;
+    ++roles;
+    const std::string use = in["used_for"];
+    EXPECT_NE(use.find("segment FE material (storage stiffness"), std::string::npos) << in["role"] << ": " << use;
+    EXPECT_EQ(use.find("not read"), std::string::npos) << in["role"] << ": " << use;
+  }
+  EXPECT_EQ(roles, 2);
+  // The beam level does not read the cushion card.
+  s.life->fidelity = "beam";
+  for (const auto& in : scene::life_json(s, scene::run_scene(s), false)["inputs"])
+    if (in["role"] == "cushion") EXPECT_EQ(in["used_for"], "not read at fidelity beam");
+}
