@@ -413,6 +413,90 @@ void clamp_to_bounds(Problem& problem) {
   }
 }
 
+// What the chosen backend ran: its last stage's outcome and what the assessment must know of it.
+struct BackendRun {
+  StageOutcome outcome;
+  bool linear_only = false;     // nnls: only the linear parameters were fitted
+  bool last_stage_set = false;  // staged: the covariance is over the last stage's set
+  std::string used;             // the backends that ran, as the card records them
+};
+
+// The ceres and nlopt backends start from the linear solve, reviving moduli it set to 0.
+void linear_start(Problem& problem, FitResult& result) {
+  if (!has_free_linear(problem)) return;
+  linear_stage(problem, result, false);
+  revive_zero_moduli(problem, result);
+}
+
+BackendRun run_backend(Problem& problem, FitResult& result, const FitOptions& options) {
+  BackendRun run;
+  Backend backend = options.backend;
+  if (backend == Backend::automatic && !has_free_nonlinear(problem)) backend = Backend::nnls;
+  run.used = to_string(backend);
+  switch (backend) {
+    case Backend::nnls:
+      run.outcome = linear_stage(problem, result, options.polish);
+      run.linear_only = true;
+      if (has_free_nonlinear(problem))
+        result.messages.push_back("nnls: non-linear parameters held at their start values");
+      break;
+    case Backend::ceres:
+      linear_start(problem, result);
+      run.outcome = ceres_stage(problem, result);
+      break;
+    case Backend::nlopt:
+      linear_start(problem, result);
+      nlopt_stage(problem, result, options.multistart, options.max_iterations);
+      run.outcome = ceres_stage(problem, result);
+      run.used = "nlopt+ceres";
+      break;
+    case Backend::staged:
+      run.outcome = run_schedule(problem, result);
+      run.last_stage_set = true;
+      break;
+    case Backend::automatic:
+      run.used = has_free_linear(problem) ? "nnls+ceres" : "ceres";
+      linear_start(problem, result);
+      if (options.global) {
+        nlopt_stage(problem, result, options.multistart, options.max_iterations);
+        run.used += "+nlopt";
+      }
+      run.outcome = ceres_with_fallback(problem, result, run.used);
+      break;
+  }
+  return run;
+}
+
+// Covariance over what was fitted: the positive linear parameters (nnls), the last stage's set
+// (staged) or every movable parameter; unidentifiable terms merged and the fit assessed again.
+void assess_with_merges(Problem& problem, FitResult& result, const BackendRun& run) {
+  const std::vector<int> last_free = problem.free();
+  auto assess_fit = [&] {
+    sort_series_terms(problem, result);
+    clamp_to_bounds(problem);
+    std::vector<int> fitted = movable(problem, run.last_stage_set ? last_free : all_free(problem));
+    if (run.linear_only)
+      fitted.erase(std::remove_if(fitted.begin(), fitted.end(),
+                                  [&](int i) { return !problem.specs()[i].linear; }),
+                   fitted.end());
+    problem.set_free(fitted);
+    detail::assess(problem, result);
+  };
+  assess_fit();
+  for (int round = 0; round < 6 && merge_unidentifiable_terms(problem, result, run.linear_only);
+       ++round)
+    assess_fit();
+  if (run.linear_only)
+    for (int i : all_free(problem))
+      if (!problem.specs()[i].linear) {
+        result.parameters[i].fixed = true;
+        result.parameters[i].reason = "held at its start (the nnls backend fits linear parameters)";
+      }
+  for (const auto& pr : result.parameters)
+    if (!std::isfinite(pr.value))
+      throw core::NumericalError("fit: parameter " + pr.name + " is not finite after the fit");
+}
+
 }  // namespace
 
 FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
@@ -433,85 +517,13 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
                                "' cannot be evaluated at the start: " +
                                problem.diagnose(problem.natural()));
 
-  StageOutcome outcome;
-  bool linear_only = false, last_stage_set = false;
-  Backend backend = options.backend;
-  if (backend == Backend::automatic && !has_free_nonlinear(problem)) backend = Backend::nnls;
-  std::string used = to_string(backend);
-  switch (backend) {
-    case Backend::nnls:
-      outcome = linear_stage(problem, result, options.polish);
-      linear_only = true;
-      if (has_free_nonlinear(problem))
-        result.messages.push_back("nnls: non-linear parameters held at their start values");
-      break;
-    case Backend::ceres:
-      if (has_free_linear(problem)) {
-        linear_stage(problem, result, false);
-        revive_zero_moduli(problem, result);
-      }
-      outcome = ceres_stage(problem, result);
-      break;
-    case Backend::nlopt:
-      if (has_free_linear(problem)) {
-        linear_stage(problem, result, false);
-        revive_zero_moduli(problem, result);
-      }
-      nlopt_stage(problem, result, options.multistart, options.max_iterations);
-      outcome = ceres_stage(problem, result);
-      used = "nlopt+ceres";
-      break;
-    case Backend::staged:
-      outcome = run_schedule(problem, result);
-      last_stage_set = true;
-      break;
-    case Backend::automatic:
-      used = "nnls+ceres";
-      if (has_free_linear(problem)) {
-        linear_stage(problem, result, false);
-        revive_zero_moduli(problem, result);
-      } else {
-        used = "ceres";
-      }
-      if (options.global) {
-        nlopt_stage(problem, result, options.multistart, options.max_iterations);
-        used += "+nlopt";
-      }
-      outcome = ceres_with_fallback(problem, result, used);
-      break;
-  }
-  result.backend_used = used;
-  readmit(problem, result, linear_only);
-
-  // Covariance over what was fitted: the positive linear parameters (nnls), the last stage's
-  // set (staged) or every movable parameter.
-  const std::vector<int> last_free = problem.free();
-  auto assess_fit = [&] {
-    sort_series_terms(problem, result);
-    clamp_to_bounds(problem);
-    std::vector<int> fitted = movable(problem, last_stage_set ? last_free : all_free(problem));
-    if (linear_only)
-      fitted.erase(std::remove_if(fitted.begin(), fitted.end(),
-                                  [&](int i) { return !problem.specs()[i].linear; }),
-                   fitted.end());
-    problem.set_free(fitted);
-    detail::assess(problem, result);
-  };
-  assess_fit();
-  for (int round = 0; round < 6 && merge_unidentifiable_terms(problem, result, linear_only); ++round)
-    assess_fit();
-  if (linear_only)
-    for (int i : all_free(problem))
-      if (!problem.specs()[i].linear) {
-        result.parameters[i].fixed = true;
-        result.parameters[i].reason = "held at its start (the nnls backend fits linear parameters)";
-      }
-  for (const auto& pr : result.parameters)
-    if (!std::isfinite(pr.value))
-      throw core::NumericalError("fit: parameter " + pr.name + " is not finite after the fit");
+  const BackendRun run = run_backend(problem, result, options);
+  result.backend_used = run.used;
+  readmit(problem, result, run.linear_only);
+  assess_with_merges(problem, result, run);
   result.quality = detail::quality_verdict(problem, problem.natural());
-  result.metrics.converged = outcome.converged;
-  result.metrics.iterations = outcome.iterations;
+  result.metrics.converged = run.outcome.converged;
+  result.metrics.iterations = run.outcome.iterations;
   result.metrics.wall_time_s = clock.seconds();
   return result;
 }
