@@ -156,6 +156,75 @@ RelaxationMeasures measure_relaxation(const model::Model& model, const std::vect
   return out;
 }
 
+namespace {
+
+// Log-space Levenberg-Marquardt polish of the free parameters from the linear solve, inside the
+// parameters' bounds; an unusable solve keeps the linear one, with a message.
+void polish_relaxation(const model::Model& model, const data::RelaxationTable& table,
+                       const Coordinates& coords, const FitOptions& options, std::vector<double>& p,
+                       FitResult& result) {
+  const auto& specs = *coords.specs;
+  const int nf = static_cast<int>(coords.free.size());
+  std::vector<double> x(nf);
+  for (int k = 0; k < nf; ++k) x[k] = coords.to_x(coords.free[k], p[coords.free[k]]);
+  auto* cost = new LogResidual(model, table, coords, p);
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  for (int k = 0; k < nf; ++k) {
+    const int i = coords.free[k];
+    const double lo = coords.is_log(i) ? (specs[i].lower > 0.0 ? std::log(specs[i].lower) : -HUGE_VAL) : specs[i].lower;
+    const double hi = coords.is_log(i) ? std::log(specs[i].upper) : specs[i].upper;
+    if (std::isfinite(lo)) problem.SetParameterLowerBound(x.data(), k, lo);
+    if (std::isfinite(hi)) problem.SetParameterUpperBound(x.data(), k, hi);
+  }
+  ceres::Solver::Options so;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.use_nonmonotonic_steps = true;
+  so.num_threads = 1;  // determinism
+  so.max_num_iterations = options.max_iterations;
+  so.function_tolerance = options.tolerance;
+  so.parameter_tolerance = 1e-10;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  if (summary.IsSolutionUsable()) {
+    p = cost->natural_at(x.data());
+    result.backend_used = "nnls+ceres";
+    result.metrics.converged = summary.termination_type == ceres::CONVERGENCE;
+    result.metrics.iterations = static_cast<int>(summary.iterations.size());
+  } else {
+    result.messages.push_back("relaxation polish: no usable solution (" + summary.message + "); linear solve kept");
+  }
+}
+
+// Cost, errors and information criteria of the fitted relaxation modulus; a log parameter at 0 is
+// an inactive term and does not count as free.
+void measure_fit(const model::Model& model, const data::RelaxationTable& table,
+                 const Coordinates& coords, const std::vector<double>& p, FitMetrics& mt) {
+  const int m = static_cast<int>(table.rows.size());
+  const RelaxationMeasures measures = measure_relaxation(model, p, table);
+  double cost = 0.0;
+  for (const auto& row : table.rows) {
+    const double r = std::log10(model.relaxation_modulus(p.data(), condition_of(row), row.time_s) / row.modulus_MPa);
+    cost += 0.5 * row.weight * r * r;
+  }
+  int active = 0;
+  for (int i : coords.free) active += coords.is_log(i) ? p[i] > 0.0 : 1;
+  mt.n_points = m;
+  mt.n_residuals = m;
+  mt.n_free = active;
+  mt.cost = cost;
+  mt.rms_log10_storage = measures.rms_log10;
+  mt.mean_rel_error = measures.mean_relative;
+  mt.max_rel_error = measures.max_relative;
+  const double variance = std::max(2.0 * cost / m, 1e-300);
+  mt.aic = m * std::log(variance) + 2.0 * active;
+  mt.bic = m * std::log(variance) + active * std::log(static_cast<double>(m));
+}
+
+}  // namespace
+
 FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::RelaxationTable& table,
                          const FitOptions& options) {
   const core::Stopwatch clock;
@@ -183,63 +252,13 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
     if (coords.is_log(i) && !(p[i] > 0.0)) continue;  // inactive term after the linear solve
     coords.free.push_back(i);
   }
-  const int m = static_cast<int>(table.rows.size()), nf = static_cast<int>(coords.free.size());
-  if (options.polish && nf > 0) {
-    std::vector<double> x(nf);
-    for (int k = 0; k < nf; ++k) x[k] = coords.to_x(coords.free[k], p[coords.free[k]]);
-    auto* cost = new LogResidual(model, table, coords, p);
-    ceres::Problem problem;
-    problem.AddResidualBlock(cost, nullptr, x.data());
-    for (int k = 0; k < nf; ++k) {
-      const int i = coords.free[k];
-      const double lo = coords.is_log(i) ? (specs[i].lower > 0.0 ? std::log(specs[i].lower) : -HUGE_VAL) : specs[i].lower;
-      const double hi = coords.is_log(i) ? std::log(specs[i].upper) : specs[i].upper;
-      if (std::isfinite(lo)) problem.SetParameterLowerBound(x.data(), k, lo);
-      if (std::isfinite(hi)) problem.SetParameterUpperBound(x.data(), k, hi);
-    }
-    ceres::Solver::Options so;
-    so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.use_nonmonotonic_steps = true;
-    so.num_threads = 1;  // determinism
-    so.max_num_iterations = options.max_iterations;
-    so.function_tolerance = options.tolerance;
-    so.parameter_tolerance = 1e-10;
-    so.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    if (summary.IsSolutionUsable()) {
-      p = cost->natural_at(x.data());
-      result.backend_used = "nnls+ceres";
-      result.metrics.converged = summary.termination_type == ceres::CONVERGENCE;
-      result.metrics.iterations = static_cast<int>(summary.iterations.size());
-    } else {
-      result.messages.push_back("relaxation polish: no usable solution (" + summary.message + "); linear solve kept");
-    }
-  } else {
+  if (options.polish && !coords.free.empty())
+    polish_relaxation(model, table, coords, options, p, result);
+  else
     result.metrics.converged = true;
-  }
   for (double v : p)
     if (!std::isfinite(v)) throw core::NumericalError("relaxation fit: a parameter is not finite");
-  const RelaxationMeasures measures = measure_relaxation(model, p, table);
-  double cost = 0.0;
-  for (const auto& row : table.rows) {
-    const double r = std::log10(model.relaxation_modulus(p.data(), condition_of(row), row.time_s) / row.modulus_MPa);
-    cost += 0.5 * row.weight * r * r;
-  }
-  int active = 0;
-  for (int i : coords.free) active += coords.is_log(i) ? p[i] > 0.0 : 1;
-  FitMetrics& mt = result.metrics;
-  mt.n_points = m;
-  mt.n_residuals = m;
-  mt.n_free = active;
-  mt.cost = cost;
-  mt.rms_log10_storage = measures.rms_log10;
-  mt.mean_rel_error = measures.mean_relative;
-  mt.max_rel_error = measures.max_relative;
-  const double variance = std::max(2.0 * cost / m, 1e-300);
-  mt.aic = m * std::log(variance) + 2.0 * active;
-  mt.bic = m * std::log(variance) + active * std::log(static_cast<double>(m));
+  measure_fit(model, table, coords, p, result.metrics);
   result.values = p;
   for (int i = 0; i < static_cast<int>(specs.size()); ++i) {
     ParameterResult pr;
@@ -251,7 +270,7 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
     result.parameters.push_back(pr);
     result.values[i] = pr.value;
   }
-  mt.wall_time_s = clock.seconds();
+  result.metrics.wall_time_s = clock.seconds();
   return result;
 }
 
