@@ -45,11 +45,21 @@ std::string percent(double x) {
   return s.str();
 }
 
-}  // namespace
+// Frequencies where storage fits and the loss it implies misses (Kramers–Kronig).
+struct KramersKronigSpan {
+  double lo_Hz = INFINITY, hi_Hz = 0.0, worst_factor = 1.0;
+  void add(double f, double factor) {
+    lo_Hz = std::min(lo_Hz, f);
+    hi_Hz = std::max(hi_Hz, f);
+    worst_factor = std::max(worst_factor, factor);
+  }
+};
 
-QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>& p,
-                               const QualityThresholds& th) {
-  const auto& rows = problem.table().rows;
+// (group, component) → errors; group "" = all rows.
+using ErrorGroups = std::map<std::pair<std::string, int>, Accumulator>;
+
+// Groups by temperature when the isotherms differ, by mode when the modes do.
+std::pair<bool, bool> grouping(const std::vector<data::DynamicTestRow>& rows) {
   double t_min = INFINITY, t_max = -INFINITY;
   bool mixed_modes = false;
   for (const auto& r : rows) {
@@ -59,11 +69,13 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
     }
     mixed_modes = mixed_modes || r.condition.mode != rows.front().condition.mode;
   }
-  const bool by_temperature = t_max - t_min >= kSameTemperature_C;
-  // (group, component) → errors; group "" = all rows.
-  std::map<std::pair<std::string, int>, Accumulator> acc;
-  // Kramers–Kronig: rows where storage fits and loss does not.
-  double kk_lo = INFINITY, kk_hi = 0.0, kk_worst = 1.0;
+  return {t_max - t_min >= kSameTemperature_C, mixed_modes};
+}
+
+void accumulate_errors(const Problem& problem, const std::vector<double>& p,
+                       const QualityThresholds& th, ErrorGroups& acc, KramersKronigSpan& kk) {
+  const auto& rows = problem.table().rows;
+  const auto [by_temperature, mixed_modes] = grouping(rows);
   int current = -1;
   model::Moduli<double> m{};
   std::vector<double> storage_error(rows.size(), 0.0);
@@ -85,44 +97,53 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
     if (e.component == 0) storage_error[e.row] = err;
     if (e.component == 1 && storage_error[e.row] <= th.storage_mean) {
       const double factor = std::max(value / e.data, e.data / value);
-      if (factor > kKramersKronigLossFactor) {
-        kk_lo = std::min(kk_lo, f);
-        kk_hi = std::max(kk_hi, f);
-        kk_worst = std::max(kk_worst, factor);
-      }
+      if (factor > kKramersKronigLossFactor) kk.add(f, factor);
     }
   }
+}
+
+// The figures of one (group, component); a warning when they pass the thresholds.
+ErrorFigures figures_of(const std::pair<std::string, int>& key, const Accumulator& a,
+                        const QualityThresholds& th, std::vector<std::string>& warnings) {
   static const char* names[] = {"storage", "loss", "mean"};
-  QualityVerdict v;
-  for (const auto& [key, a] : acc) {
-    ErrorFigures fig;
-    fig.group = key.first.empty() ? "all" : key.first;
-    fig.modulus = names[key.second];
-    fig.count = a.count;
-    fig.mean_rel_error = a.sum / std::max(a.count, 1);
-    fig.max_rel_error = a.max;
-    fig.max_at_frequency_Hz = a.max_f;
-    const bool loss = key.second == 1;
-    const double mean_limit = loss ? th.loss_mean : th.storage_mean;
-    const double max_limit = loss ? th.loss_max : th.storage_max;
-    if (fig.mean_rel_error > mean_limit || fig.max_rel_error > max_limit) {
-      std::ostringstream s;
-      s << "fit misses the " << fig.modulus << " modulus (" << fig.group << "): mean relative error "
-        << percent(fig.mean_rel_error) << ", max " << percent(fig.max_rel_error) << " at "
-        << fig.max_at_frequency_Hz << " Hz (thresholds " << percent(mean_limit) << ", "
-        << percent(max_limit) << ")";
-      v.warnings.push_back(s.str());
-    }
-    v.figures.push_back(fig);
+  ErrorFigures fig;
+  fig.group = key.first.empty() ? "all" : key.first;
+  fig.modulus = names[key.second];
+  fig.count = a.count;
+  fig.mean_rel_error = a.sum / std::max(a.count, 1);
+  fig.max_rel_error = a.max;
+  fig.max_at_frequency_Hz = a.max_f;
+  const bool loss = key.second == 1;
+  const double mean_limit = loss ? th.loss_mean : th.storage_mean;
+  const double max_limit = loss ? th.loss_max : th.storage_max;
+  if (fig.mean_rel_error > mean_limit || fig.max_rel_error > max_limit) {
+    std::ostringstream s;
+    s << "fit misses the " << fig.modulus << " modulus (" << fig.group << "): mean relative error "
+      << percent(fig.mean_rel_error) << ", max " << percent(fig.max_rel_error) << " at "
+      << fig.max_at_frequency_Hz << " Hz (thresholds " << percent(mean_limit) << ", "
+      << percent(max_limit) << ")";
+    warnings.push_back(s.str());
   }
+  return fig;
+}
+
+}  // namespace
+
+QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>& p,
+                               const QualityThresholds& th) {
+  ErrorGroups acc;
+  KramersKronigSpan kk;
+  accumulate_errors(problem, p, th, acc, kk);
+  QualityVerdict v;
+  for (const auto& [key, a] : acc) v.figures.push_back(figures_of(key, a, th, v.warnings));
   // "all" first, then the groups in their sorted order.
   std::stable_partition(v.figures.begin(), v.figures.end(), [](const ErrorFigures& f) { return f.group == "all"; });
-  if (!series_terms(problem.specs()).empty() && kk_hi > 0.0) {
+  if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
     std::ostringstream s;
-    s << "data not Kramers-Kronig consistent between " << kk_lo << " and " << kk_hi
+    s << "data not Kramers-Kronig consistent between " << kk.lo_Hz << " and " << kk.hi_Hz
       << " Hz: the storage modulus is fitted within " << percent(th.storage_mean)
       << " there, but the loss modulus it implies differs from the measured one by up to a factor "
-      << kk_worst << " (no relaxation spectrum fits both; the weights choose between them)";
+      << kk.worst_factor << " (no relaxation spectrum fits both; the weights choose between them)";
     v.warnings.push_back(s.str());
   }
   return v;
