@@ -34,6 +34,41 @@ ConditionKey condition_key(const model::TestCondition& c) {
 // stays finite and pushes the value back up.
 double floored(double value, double data) { return std::max(value, 1e-12 * data); }
 
+// A row's weight and moduli as the residuals need them; the error names its file, line and column.
+void check_row(const data::DynamicTestRow& row) {
+  if (!(row.weight >= 0.0) || !std::isfinite(row.weight))
+    throw core::InputError("row weight must be finite and >= 0", row.source_file,
+                           row.source_line, 0, "weight");
+  if (!(row.storage_MPa > 0.0) || !std::isfinite(row.storage_MPa))
+    throw core::InputError("storage modulus must be positive and finite", row.source_file,
+                           row.source_line, 0, "storage");
+  if (!(row.loss_MPa >= 0.0) || !std::isfinite(row.loss_MPa))
+    throw core::InputError("loss modulus must be >= 0 and finite", row.source_file,
+                           row.source_line, 0, "loss");
+}
+
+// The residual of component c (0 storage, 1 loss, 2 mean) of row r, measured value `data`.
+ResidualEntry entry_of(const data::DynamicTestRow& row, int r, int c, double data, double weight,
+                       ResidualKind residual) {
+  ResidualEntry e;
+  e.row = r;
+  e.component = c;
+  e.data = data;
+  e.sqrt_weight = std::sqrt(weight);
+  // Loss below tan δ = 1e-6, or a non-positive mean modulus: absolute residual on E′'s scale.
+  const bool tiny = c == 1 ? data < Problem::kLossFloor * row.storage_MPa : !(data > 0.0);
+  if (tiny || residual != ResidualKind::log10) {
+    e.absolute = true;
+    // complex: E′ and E″ errors relative to the row's |E*| (docs/fitting.md "Objective").
+    const double ref = residual == ResidualKind::complex && c < 2
+                           ? std::hypot(row.storage_MPa, row.loss_MPa)
+                       : tiny ? row.storage_MPa
+                              : data;
+    e.scale = residual == ResidualKind::log10 ? ref * kLn10 : ref;
+  }
+  return e;
+}
+
 }  // namespace
 
 const char* component_name(int component) {
@@ -58,37 +93,13 @@ Problem::Problem(model::ModelPtr model, const data::DynamicTestTable& table, Fit
 
   for (int r = 0; r < static_cast<int>(table.rows.size()); ++r) {
     const auto& row = table.rows[r];
-    if (!(row.weight >= 0.0) || !std::isfinite(row.weight))
-      throw core::InputError("row weight must be finite and >= 0", row.source_file,
-                             row.source_line, 0, "weight");
-    if (!(row.storage_MPa > 0.0) || !std::isfinite(row.storage_MPa))
-      throw core::InputError("storage modulus must be positive and finite", row.source_file,
-                             row.source_line, 0, "storage");
-    if (!(row.loss_MPa >= 0.0) || !std::isfinite(row.loss_MPa))
-      throw core::InputError("loss modulus must be >= 0 and finite", row.source_file,
-                             row.source_line, 0, "loss");
+    check_row(row);
     const double values[3] = {row.storage_MPa, row.loss_MPa, row.mean_modulus_MPa};
     for (int c = 0; c < 3; ++c) {
       if (c == 2 && !row.has_mean_modulus) continue;
       const double w = row.weight * weights[c];
       if (w == 0.0) continue;
-      ResidualEntry e;
-      e.row = r;
-      e.component = c;
-      e.data = values[c];
-      e.sqrt_weight = std::sqrt(w);
-      // Loss below tan δ = 1e-6, or a non-positive mean modulus: absolute residual on E′'s scale.
-      const bool tiny = c == 1 ? values[c] < kLossFloor * row.storage_MPa : !(values[c] > 0.0);
-      if (tiny || options_.residual != ResidualKind::log10) {
-        e.absolute = true;
-        // complex: E′ and E″ errors relative to the row's |E*| (docs/fitting.md "Objective").
-        const double ref = options_.residual == ResidualKind::complex && c < 2
-                               ? std::hypot(row.storage_MPa, row.loss_MPa)
-                           : tiny ? row.storage_MPa
-                                  : values[c];
-        e.scale = options_.residual == ResidualKind::log10 ? ref * kLn10 : ref;
-      }
-      entries_.push_back(e);
+      entries_.push_back(entry_of(row, r, c, values[c], w, options_.residual));
     }
   }
   if (entries_.empty()) throw core::UsageError("fit: every residual has zero weight");
