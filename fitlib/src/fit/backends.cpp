@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -194,6 +195,71 @@ StageOutcome run_ceres(Problem& problem, int max_iterations) {
   return outcome;
 }
 
+namespace {
+
+// Fitted coordinates scaled to O(1): u = (x − x0)/s with s = 1 for log parameters (a factor
+// e), half the magnitude (at least 1e-3, or 1 at zero) for linear ones.
+struct ScaledBox {
+  Eigen::VectorXd x0, s;
+  Eigen::VectorXd lo, hi;          // optimisation bounds: the true ones, else ±30 scales
+  Eigen::VectorXd box_lo, box_hi;  // sampling box of the random starts: ±3 scales
+  Eigen::VectorXd x_at(const std::vector<double>& u) const {
+    return x0 + s.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(u.data(), u.size()));
+  }
+};
+
+ScaledBox scaled_box(const Problem& problem) {
+  const int nf = problem.num_free();
+  ScaledBox b;
+  b.x0 = problem.to_x(problem.natural());
+  b.s.resize(nf), b.lo.resize(nf), b.hi.resize(nf), b.box_lo.resize(nf), b.box_hi.resize(nf);
+  for (int k = 0; k < nf; ++k) {
+    const int i = problem.free()[k];
+    const double x0 = b.x0[k];
+    b.s[k] = problem.is_log(i) ? 1.0 : (x0 == 0.0 ? 1.0 : std::max(0.5 * std::abs(x0), 1e-3));
+    b.lo[k] = std::max((problem.lower_x(k) - x0) / b.s[k], -30.0);
+    b.hi[k] = std::min((problem.upper_x(k) - x0) / b.s[k], 30.0);
+    b.box_lo[k] = std::max(b.lo[k], -3.0);
+    b.box_hi[k] = std::min(b.hi[k], 3.0);
+  }
+  return b;
+}
+
+using Objective = std::function<double(const std::vector<double>&)>;
+
+// One LN_BOBYQA run from u (moved to the point reached); returns the value there, inf when the
+// start failed (the reason in `note`).
+double bobyqa_from(Objective& objective, const ScaledBox& b, double tolerance, int max_iterations,
+                   std::vector<double>& u, int& evaluations, std::string& note) {
+  const int nf = static_cast<int>(u.size());
+  auto trampoline = [](const std::vector<double>& v, std::vector<double>&, void* data) {
+    return (*static_cast<Objective*>(data))(v);
+  };
+  nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(nf));
+  opt.set_lower_bounds(std::vector<double>(b.lo.data(), b.lo.data() + nf));
+  opt.set_upper_bounds(std::vector<double>(b.hi.data(), b.hi.data() + nf));
+  opt.set_min_objective(+trampoline, &objective);
+  opt.set_xtol_rel(1e-8);
+  opt.set_ftol_rel(tolerance);
+  opt.set_maxeval(std::max(4 * max_iterations, 10 * (nf + 1)));
+  std::vector<double> step(nf);
+  for (int k = 0; k < nf; ++k) step[k] = std::min(0.5, 0.25 * (b.hi[k] - b.lo[k]));
+  opt.set_initial_step(step);
+  double value = kInf;
+  try {
+    opt.optimize(u, value);
+  } catch (const nlopt::roundoff_limited&) {
+    value = objective(u);  // the point reached is still usable
+  } catch (const std::exception& e) {
+    note = std::string("nlopt: a start failed: ") + e.what();
+    value = kInf;
+  }
+  evaluations += opt.get_numevals();
+  return value;
+}
+
+}  // namespace
+
 StageOutcome run_nlopt(Problem& problem, int starts, int max_iterations) {
   StageOutcome outcome;
   const int nf = problem.num_free();
@@ -201,29 +267,13 @@ StageOutcome run_nlopt(Problem& problem, int starts, int max_iterations) {
     outcome.converged = true;
     return outcome;
   }
-  const Eigen::VectorXd x0 = problem.to_x(problem.natural());
-  // Fitted coordinates scaled to O(1): u = (x − x0)/s with s = 1 for log parameters (a factor
-  // e), half the magnitude (at least 1e-3, or 1 at zero) for linear ones.
-  Eigen::VectorXd s(nf), lo(nf), hi(nf), box_lo(nf), box_hi(nf);
-  for (int k = 0; k < nf; ++k) {
-    const int i = problem.free()[k];
-    s[k] = problem.is_log(i) ? 1.0 : (x0[k] == 0.0 ? 1.0 : std::max(0.5 * std::abs(x0[k]), 1e-3));
-    // Optimisation bounds: the true ones, else ±30 scales; sampling box: ±3 scales.
-    lo[k] = std::max((problem.lower_x(k) - x0[k]) / s[k], -30.0);
-    hi[k] = std::min((problem.upper_x(k) - x0[k]) / s[k], 30.0);
-    box_lo[k] = std::max(lo[k], -3.0);
-    box_hi[k] = std::min(hi[k], 3.0);
-  }
+  const ScaledBox box = scaled_box(problem);
   std::vector<double> natural = problem.natural();
-  auto objective = [&](const std::vector<double>& u) {
-    Eigen::VectorXd x = x0 + s.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(u.data(), nf));
+  Objective objective = [&](const std::vector<double>& u) {
+    const Eigen::VectorXd x = box.x_at(u);
     problem.from_x(x.data(), natural);
     const double c = problem.cost(natural);
     return std::isfinite(c) ? c : 1e300;
-  };
-  using Objective = decltype(objective);
-  auto trampoline = [](const std::vector<double>& u, std::vector<double>&, void* data) {
-    return (*static_cast<Objective*>(data))(u);
   };
   core::Rng rng(problem.options().seed);
   std::optional<core::Progress> progress;
@@ -235,35 +285,17 @@ StageOutcome run_nlopt(Problem& problem, int starts, int max_iterations) {
   for (int start = 0; start < std::max(starts, 1); ++start) {
     std::vector<double> u(nf, 0.0);
     if (start > 0)
-      for (int k = 0; k < nf; ++k) u[k] = rng.uniform(box_lo[k], box_hi[k]);
-    for (int k = 0; k < nf; ++k) u[k] = std::clamp(u[k], lo[k], hi[k]);
-    nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(nf));
-    opt.set_lower_bounds(std::vector<double>(lo.data(), lo.data() + nf));
-    opt.set_upper_bounds(std::vector<double>(hi.data(), hi.data() + nf));
-    opt.set_min_objective(+trampoline, &objective);
-    opt.set_xtol_rel(1e-8);
-    opt.set_ftol_rel(problem.options().tolerance);
-    opt.set_maxeval(std::max(4 * max_iterations, 10 * (nf + 1)));
-    std::vector<double> step(nf);
-    for (int k = 0; k < nf; ++k) step[k] = std::min(0.5, 0.25 * (hi[k] - lo[k]));
-    opt.set_initial_step(step);
-    double value = kInf;
-    try {
-      opt.optimize(u, value);
-    } catch (const nlopt::roundoff_limited&) {
-      value = objective(u);  // the point reached is still usable
-    } catch (const std::exception& e) {
-      outcome.note = std::string("nlopt: a start failed: ") + e.what();
-      value = kInf;
-    }
-    evaluations += opt.get_numevals();
+      for (int k = 0; k < nf; ++k) u[k] = rng.uniform(box.box_lo[k], box.box_hi[k]);
+    for (int k = 0; k < nf; ++k) u[k] = std::clamp(u[k], box.lo[k], box.hi[k]);
+    const double value = bobyqa_from(objective, box, problem.options().tolerance, max_iterations,
+                                     u, evaluations, outcome.note);
     if (std::isfinite(value) && value < best) {
       best = value;
       best_u = u;
     }
     if (progress) progress->advance();
   }
-  Eigen::VectorXd x = x0 + s.cwiseProduct(Eigen::Map<const Eigen::VectorXd>(best_u.data(), nf));
+  const Eigen::VectorXd x = box.x_at(best_u);
   problem.from_x(x.data(), problem.natural());
   outcome.converged = best < 1e300;
   outcome.iterations = evaluations;
