@@ -73,6 +73,55 @@ Eigen::VectorXd active_set(const Eigen::VectorXd& gradient_at_zero,
   return x;
 }
 
+// Largest violation of the KKT conditions of min ‖A x − b‖, x ≥ 0 (negative x, positive
+// gradient at a bound, any gradient off it).
+double kkt_violation(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd g = a.transpose() * (b - a * x);
+  double violation = 0.0;
+  for (int j = 0; j < static_cast<int>(x.size()); ++j) {
+    if (x[j] < 0.0) violation = std::max(violation, -x[j]);
+    if (x[j] == 0.0) violation = std::max(violation, g[j]);
+    else violation = std::max(violation, std::abs(g[j]));
+  }
+  return violation;
+}
+
+// The fast path: passive solves on the normal equations (LDLT of AᵀA).
+Eigen::VectorXd active_set_normal(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+                                  int max_iterations, double tol, int& iterations) {
+  const int n = static_cast<int>(a.cols());
+  const Eigen::MatrixXd ata = a.transpose() * a;
+  const Eigen::VectorXd atb = a.transpose() * b;
+  auto gradient = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd { return atb - ata * x; };
+  auto solve = [&](const std::vector<int>& p) {
+    const int k = static_cast<int>(p.size());
+    Eigen::MatrixXd m(k, k);
+    Eigen::VectorXd r(k);
+    for (int i = 0; i < k; ++i) {
+      r[i] = atb[p[i]];
+      for (int j = 0; j < k; ++j) m(i, j) = ata(p[i], p[j]);
+    }
+    return Eigen::VectorXd(m.ldlt().solve(r));
+  };
+  return active_set(atb, gradient, n, max_iterations, tol, solve, iterations);
+}
+
+// The fallback when the normal equations lose too much: passive solves by pivoted QR of A.
+Eigen::VectorXd active_set_qr(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+                              int max_iterations, double tol, int& iterations) {
+  const int n = static_cast<int>(a.cols());
+  auto gradient = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+    return a.transpose() * (b - a * x);
+  };
+  auto solve = [&](const std::vector<int>& p) {
+    Eigen::MatrixXd m(a.rows(), static_cast<int>(p.size()));
+    for (int k = 0; k < static_cast<int>(p.size()); ++k) m.col(k) = a.col(p[k]);
+    return Eigen::VectorXd(m.colPivHouseholderQr().solve(b));
+  };
+  return active_set(gradient(Eigen::VectorXd::Zero(n)), gradient, n, max_iterations, tol, solve,
+                    iterations);
+}
+
 }  // namespace
 
 NnlsResult nnls(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, int max_iterations) {
@@ -86,51 +135,16 @@ NnlsResult nnls(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, int max_iter
     scale[j] = norm > 0.0 ? 1.0 / norm : 0.0;
   }
   const Eigen::MatrixXd as = a * scale.asDiagonal();
-  const Eigen::MatrixXd ata = as.transpose() * as;
-  const Eigen::VectorXd atb = as.transpose() * b;
   const double tol = 1e-10 * std::max(b.norm(), 1e-300);
-
-  auto kkt = [&](const Eigen::VectorXd& x) {
-    const Eigen::VectorXd g = as.transpose() * (b - as * x);
-    double violation = 0.0;
-    for (int j = 0; j < n; ++j) {
-      if (x[j] < 0.0) violation = std::max(violation, -x[j]);
-      if (x[j] == 0.0) violation = std::max(violation, g[j]);
-      else violation = std::max(violation, std::abs(g[j]));
-    }
-    return violation;
-  };
-
   int iterations = 0;
-  auto normal_gradient = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd { return atb - ata * x; };
-  auto normal_solve = [&](const std::vector<int>& p) {
-    const int k = static_cast<int>(p.size());
-    Eigen::MatrixXd m(k, k);
-    Eigen::VectorXd r(k);
-    for (int i = 0; i < k; ++i) {
-      r[i] = atb[p[i]];
-      for (int j = 0; j < k; ++j) m(i, j) = ata(p[i], p[j]);
-    }
-    return Eigen::VectorXd(m.ldlt().solve(r));
-  };
-  Eigen::VectorXd xs =
-      active_set(atb, normal_gradient, n, max_iterations, tol, normal_solve, iterations);
-  double violation = kkt(xs);
+  Eigen::VectorXd xs = active_set_normal(as, b, max_iterations, tol, iterations);
+  double violation = kkt_violation(as, b, xs);
   const double accept = 1e-7 * std::max(b.norm(), 1e-300);
   if (!(violation <= accept) || !xs.allFinite()) {
-    auto qr_gradient = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
-      return as.transpose() * (b - as * x);
-    };
-    auto qr_solve = [&](const std::vector<int>& p) {
-      Eigen::MatrixXd m(as.rows(), static_cast<int>(p.size()));
-      for (int k = 0; k < static_cast<int>(p.size()); ++k) m.col(k) = as.col(p[k]);
-      return Eigen::VectorXd(m.colPivHouseholderQr().solve(b));
-    };
     int qr_iterations = 0;
-    xs = active_set(qr_gradient(Eigen::VectorXd::Zero(n)), qr_gradient, n, max_iterations, tol,
-                    qr_solve, qr_iterations);
+    xs = active_set_qr(as, b, max_iterations, tol, qr_iterations);
     iterations += qr_iterations;
-    violation = kkt(xs);
+    violation = kkt_violation(as, b, xs);
     result.used_qr = true;
   }
   result.x = scale.asDiagonal() * xs;
