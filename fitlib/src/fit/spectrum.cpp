@@ -169,6 +169,30 @@ std::pair<model::ModelPtr, std::vector<double>> positive_terms(const std::functi
   return {reduced, values};
 }
 
+// The spectrum's notes ahead of the fit's messages, and why the time constants (and refined law
+// constants) carry no standard error of their own.
+void annotate(SpectrumFit& out, const model::Model& reduced, const Grid& grid,
+              const SpectrumOptions& so, const std::string& law_note) {
+  const detail::SeriesTerms rs = detail::series_terms(reduced.parameters());
+  std::ostringstream s;
+  s << "smooth spectrum: " << grid.n << " time constants (" << so.per_decade << " per decade over ["
+    << grid.tau_lo << ", " << grid.tau_hi << "] s), second-difference penalty lambda " << out.lambda
+    << (so.lambda >= 0.0 ? " (given)" : " (GCV)") << ", " << rs.times.size() << " positive terms kept";
+  if (out.polish_steps > 0)
+    s << ", polished on the exact log10 objective with the penalty (" << out.polish_steps << " Gauss-Newton steps)";
+  std::vector<std::string> notes{s.str()};
+  if (!law_note.empty()) notes.push_back(law_note);
+  if (out.law_rounds > 0)
+    notes.push_back("law constants refined with the spectrum (moduli projected out, lambda held): " +
+                    std::to_string(out.law_rounds) + " round(s), " + std::to_string(out.law_evaluations) +
+                    " evaluations");
+  out.result.messages.insert(out.result.messages.begin(), notes.begin(), notes.end());
+  for (int i : rs.times) out.result.parameters[i].reason = "on the smooth spectrum's time grid (held)";
+  if (out.law_rounds > 0)
+    for (int i : reduced.temperature_law_info().shift_parameters)
+      out.result.parameters[i].reason = "refined with the smooth spectrum (moduli projected out, lambda held)";
+}
+
 }  // namespace
 
 bool spectrum_applies(const std::function<model::ModelPtr(int)>& make) {
@@ -220,24 +244,7 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make, const 
   polish.linear_start = false;
   polish.polish = false;  // polished above, with the penalty
   out.result = fit(reduced, table, polish, &values);
-  const detail::SeriesTerms rs = detail::series_terms(reduced->parameters());
-  std::ostringstream s;
-  s << "smooth spectrum: " << grid.n << " time constants (" << so.per_decade << " per decade over ["
-    << grid.tau_lo << ", " << grid.tau_hi << "] s), second-difference penalty lambda " << out.lambda
-    << (so.lambda >= 0.0 ? " (given)" : " (GCV)") << ", " << rs.times.size() << " positive terms kept";
-  if (out.polish_steps > 0)
-    s << ", polished on the exact log10 objective with the penalty (" << out.polish_steps << " Gauss-Newton steps)";
-  std::vector<std::string> notes{s.str()};
-  if (!law.note.empty()) notes.push_back(law.note);
-  if (out.law_rounds > 0)
-    notes.push_back("law constants refined with the spectrum (moduli projected out, lambda held): " +
-                    std::to_string(out.law_rounds) + " round(s), " + std::to_string(out.law_evaluations) +
-                    " evaluations");
-  out.result.messages.insert(out.result.messages.begin(), notes.begin(), notes.end());
-  for (int i : rs.times) out.result.parameters[i].reason = "on the smooth spectrum's time grid (held)";
-  if (out.law_rounds > 0)
-    for (int i : reduced->temperature_law_info().shift_parameters)
-      out.result.parameters[i].reason = "refined with the smooth spectrum (moduli projected out, lambda held)";
+  annotate(out, *reduced, grid, so, law.note);
   out.result.backend_used = "spectrum+" + out.result.backend_used;
   out.wall_time_s = clock.seconds();
   out.result.metrics.wall_time_s = out.wall_time_s;
