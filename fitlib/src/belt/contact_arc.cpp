@@ -7,6 +7,7 @@
 
 #include <boost/numeric/odeint.hpp>
 
+#include "fitlib/core/enum_names.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
 
@@ -35,14 +36,10 @@ double bisect(G g, double lo, double hi) {
 }
 }  // namespace
 
-const char* to_string(PulleyRole role) {
-  switch (role) {
-    case PulleyRole::driver: return "driver";
-    case PulleyRole::driven: return "driven";
-    case PulleyRole::idler: return "idler";
-  }
-  return "?";
-}
+constexpr core::EnumName<PulleyRole> kPulleyRoleNames[] = {
+    {PulleyRole::driver, "driver"}, {PulleyRole::driven, "driven"}, {PulleyRole::idler, "idler"}};
+
+const char* to_string(PulleyRole role) { return core::enum_name(kPulleyRoleNames, role); }
 
 void validate(const ArcParameters& a) {
   if (!(a.friction >= 0.0) || !std::isfinite(a.friction))

@@ -13,44 +13,26 @@
 #include "fitlib/core/units.hpp"
 #include "fitlib/fit/problem.hpp"
 #include "fitlib/fit/staged.hpp"
+#include "fitlib/core/enum_names.hpp"
 
 namespace fitlib::fit {
 
-Backend parse_backend(const std::string& text) {
-  if (text == "auto" || text == "automatic") return Backend::automatic;
-  if (text == "nnls") return Backend::nnls;
-  if (text == "ceres") return Backend::ceres;
-  if (text == "nlopt") return Backend::nlopt;
-  if (text == "staged") return Backend::staged;
-  throw core::UsageError("unknown backend '" + text + "' (expected auto, nnls, ceres, nlopt, staged)");
-}
+namespace {
+constexpr core::EnumName<Backend> kBackendNames[] = {{Backend::automatic, "auto"}, {Backend::nnls, "nnls"},
+                                                    {Backend::ceres, "ceres"},    {Backend::nlopt, "nlopt"},
+                                                    {Backend::staged, "staged"},  {Backend::automatic, "automatic"}};
+constexpr core::EnumName<ResidualKind> kResidualNames[] = {
+    {ResidualKind::log10, "log10"}, {ResidualKind::relative, "relative"}, {ResidualKind::complex, "complex"},
+    {ResidualKind::log10, "log"}};
+}  // namespace
 
-const char* to_string(Backend backend) {
-  switch (backend) {
-    case Backend::automatic: return "auto";
-    case Backend::nnls: return "nnls";
-    case Backend::ceres: return "ceres";
-    case Backend::nlopt: return "nlopt";
-    case Backend::staged: return "staged";
-  }
-  return "?";
-}
+Backend parse_backend(const std::string& text) { return core::parse_enum(kBackendNames, text, "backend"); }
+const char* to_string(Backend backend) { return core::enum_name(kBackendNames, backend); }
 
 ResidualKind parse_residual_kind(const std::string& text) {
-  if (text == "log10" || text == "log") return ResidualKind::log10;
-  if (text == "relative") return ResidualKind::relative;
-  if (text == "complex") return ResidualKind::complex;
-  throw core::UsageError("unknown residual kind '" + text + "' (expected log10, relative or complex)");
+  return core::parse_enum(kResidualNames, text, "residual kind");
 }
-
-const char* to_string(ResidualKind kind) {
-  switch (kind) {
-    case ResidualKind::log10: return "log10";
-    case ResidualKind::relative: return "relative";
-    case ResidualKind::complex: return "complex";
-  }
-  return "?";
-}
+const char* to_string(ResidualKind kind) { return core::enum_name(kResidualNames, kind); }
 
 model::DataSummary summarize(const data::DynamicTestTable& table) {
   model::DataSummary s;

@@ -8,31 +8,23 @@
 #include <limits>
 #include <sstream>
 
+#include "fitlib/core/enum_names.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 
 namespace fitlib::fit {
 
-TermRule parse_term_rule(const std::string& text) {
-  if (text == "bic") return TermRule::bic;
-  if (text == "aic") return TermRule::aic;
-  if (text == "ratio" || text == "pyvisco") return TermRule::residual_ratio;
-  throw core::UsageError("unknown term rule '" + text + "' (expected bic, aic or ratio)");
-}
+namespace {
+constexpr core::EnumName<TermRule> kTermRuleNames[] = {{TermRule::bic, "bic"}, {TermRule::aic, "aic"},
+    {TermRule::residual_ratio, "ratio"}, {TermRule::residual_ratio, "pyvisco"}};
+constexpr core::EnumName<TermMethod> kTermMethodNames[] = {{TermMethod::spectrum, "spectrum"}, {TermMethod::sweep, "sweep"}};
+}  // namespace
 
-const char* to_string(TermRule rule) {
-  switch (rule) {
-    case TermRule::bic: return "bic";
-    case TermRule::aic: return "aic";
-    case TermRule::residual_ratio: return "ratio";
-  }
-  return "?";
-}
+TermRule parse_term_rule(const std::string& text) { return core::parse_enum(kTermRuleNames, text, "term rule"); }
+const char* to_string(TermRule rule) { return core::enum_name(kTermRuleNames, rule); }
 
 TermMethod parse_term_method(const std::string& text) {
-  if (text == "spectrum") return TermMethod::spectrum;
-  if (text == "sweep") return TermMethod::sweep;
-  throw core::UsageError("unknown term method '" + text + "' (expected spectrum or sweep)");
+  return core::parse_enum(kTermMethodNames, text, "term method");
 }
 
 namespace {

@@ -2,6 +2,8 @@
 // laws), the drive case, κ, and the retardation spectrum and map of strain accumulation.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "fitlib/belt/stiffness.hpp"
 #include "fitlib/card/card.hpp"
@@ -45,15 +47,12 @@ Stiffness resolve_stiffness(const Scene& s) {
   };
   const auto cord = s.c_N ? std::nullopt : card_for("cord");
   const auto bottom = (s.k1_MPa && s.EI_Nmm2) ? std::nullopt : card_for("bottom");
-  if (s.c_N) {
-    k.c_N = *s.c_N, k.c_source = "belt.stiffness.c_N";
-  } else if (cord) {
-    // Cord data at ε_a = 0.0025, 5 Hz (Report I §6.1): c = A_c E′.
-    k.c_N = s.cord_area_mm2 * storage_modulus_MPa(*cord, "cord", "", 5.0, 0.0025, T);
-    k.c_source = "card " + s.materials.at("cord") + " (A_c E', 5 Hz, 0.0025)";
-  } else {
-    k.c_N = belt::cord_stiffness_N(T, s.cord_area_mm2), k.c_source = "Fritzson (6.1), E1 = 100 MPa";
-  }
+  // Cord data at ε_a = 0.0025, 5 Hz (Report I §6.1): c = A_c E′.
+  std::tie(k.c_N, k.c_source) =
+      s.c_N ? std::make_pair(*s.c_N, std::string("belt.stiffness.c_N"))
+      : cord ? std::make_pair(s.cord_area_mm2 * storage_modulus_MPa(*cord, "cord", "", 5.0, 0.0025, T),
+                              "card " + s.materials.at("cord") + " (A_c E', 5 Hz, 0.0025)")
+             : std::make_pair(belt::cord_stiffness_N(T, s.cord_area_mm2), std::string("Fritzson (6.1), E1 = 100 MPa"));
   double E33 = 0.0;
   if (s.k1_MPa) {
     k.k1_MPa = *s.k1_MPa, k.k1_source = "belt.stiffness.k1_MPa";
@@ -67,15 +66,13 @@ Stiffness resolve_stiffness(const Scene& s) {
     }
     k.k1_MPa = belt::radial_stiffness_MPa(s.belt.wedge_half_angle_rad, E33, s.belt.height_mm, s.belt.width_mm);
   }
-  if (s.EI_Nmm2) {
-    k.EI_Nmm2 = *s.EI_Nmm2, k.EI_source = "belt.stiffness.EI_Nmm2";
-  } else if (bottom) {
-    k.EI_Nmm2 = s.bending_inertia_mm4 * storage_modulus_MPa(*bottom, "bottom", "22", 34.0, 0.045, T);
-    k.EI_source = "card " + s.materials.at("bottom") + " (I E22', 34 Hz, 0.045)";
-  } else {
-    k.EI_Nmm2 = belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 / belt::FritzsonConstants::bending_inertia_mm4;
-    k.EI_source = "Fritzson (6.5), E0 = 10 MPa";
-  }
+  std::tie(k.EI_Nmm2, k.EI_source) =
+      s.EI_Nmm2 ? std::make_pair(*s.EI_Nmm2, std::string("belt.stiffness.EI_Nmm2"))
+      : bottom  ? std::make_pair(s.bending_inertia_mm4 * storage_modulus_MPa(*bottom, "bottom", "22", 34.0, 0.045, T),
+                                 "card " + s.materials.at("bottom") + " (I E22', 34 Hz, 0.045)")
+                : std::make_pair(belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 /
+                                     belt::FritzsonConstants::bending_inertia_mm4,
+                                 std::string("Fritzson (6.5), E0 = 10 MPa"));
   for (double v : {k.c_N, k.k1_MPa})
     if (!(v > 0.0) || !std::isfinite(v))
       throw InputError("belt stiffness from the material cards is not positive at " +

@@ -6,6 +6,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/fit/shift_laws.hpp"
+#include "fitlib/fit/terms.hpp"
 
 #include <algorithm>
 
@@ -251,4 +252,18 @@ TEST(AdmissibleWindow, FractionalZenerStaysInsideTheWindowOnAPowerLaw) {
   EXPECT_LE(tau, r.admissible.tau_max_s * (1 + 1e-12));
   EXPECT_LE(e_delta, r.admissible.modulus_max_MPa * (1 + 1e-12));
   EXPECT_LT(r.metrics.max_rel_error, 0.15);
+}
+
+// Every backend, residual kind, term rule and term method has a name that reads back.
+TEST(EnumNames, FitEnumsReadBack) {
+  using namespace fitlib::fit;
+  for (Backend b : {Backend::automatic, Backend::nnls, Backend::ceres, Backend::nlopt, Backend::staged})
+    EXPECT_EQ(parse_backend(to_string(b)), b);
+  for (ResidualKind k : {ResidualKind::log10, ResidualKind::relative, ResidualKind::complex})
+    EXPECT_EQ(parse_residual_kind(to_string(k)), k);
+  for (TermRule r : {TermRule::bic, TermRule::aic, TermRule::residual_ratio}) EXPECT_EQ(parse_term_rule(to_string(r)), r);
+  EXPECT_EQ(parse_backend("automatic"), Backend::automatic);
+  EXPECT_EQ(parse_term_rule("pyvisco"), TermRule::residual_ratio);
+  EXPECT_EQ(parse_term_method("sweep"), TermMethod::sweep);
+  EXPECT_THROW(parse_backend("gauss"), fitlib::core::UsageError);
 }
