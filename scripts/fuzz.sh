@@ -25,7 +25,8 @@ runs=()
 [ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
 
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(table pyvisco card scene schedule_json schedule_toml surface constraints waveform)
+[ ${#harnesses[@]} -gt 0 ] ||
+  harnesses=(table pyvisco card scene schedule_json schedule_toml surface constraints waveform waveform_analysis eplexor)
 
 # Seed files of a harness (globs relative to the repository).
 seeds() {
@@ -38,7 +39,18 @@ seeds() {
     schedule_toml) echo datasets/schedules/*.toml tests/data/bad/schedule/*.toml ;;
     surface) echo tests/data/bad/surface/* ;;
     constraints) echo tests/data/bad/constraints/* ;;
-    waveform) echo tests/data/waveforms/*.csv tests/data/bad/waveform/* ;;
+    waveform | waveform_analysis) echo tests/data/waveforms/*.csv tests/data/bad/waveform/* ;;
+    eplexor) echo datasets/materials/pyvisco-eplexor-*.xls ;;
+  esac
+}
+
+# Longest input libFuzzer makes: the .xls seeds are 84–95 kB; the analysis harness gets a few
+# hundred samples (its cost grows with the sample count, docs/reliability.md).
+max_len() {
+  case "$1" in
+    eplexor) echo 131072 ;;
+    waveform_analysis) echo 8192 ;;
+    *) echo 65536 ;;
   esac
 }
 
@@ -54,7 +66,7 @@ for h in "${harnesses[@]}"; do
   log=$build/fuzz-$h.log
   start=$(date +%s)
   if TMPDIR=$build/tmp "$build/fuzz/fuzz_$h" "$corpus" "${dict[@]}" "${runs[@]}" -max_total_time="$seconds" \
-      -max_len=65536 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+      -max_len="$(max_len "$h")" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$build/findings/$h-" >"$log" 2>&1; then
     result=ok
   else
