@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/finite_output.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "output.hpp"
@@ -34,11 +35,17 @@ std::string drive_csv(const fitlib::model::DriveResult& r) {
   return out;
 }
 
+// Every number checked finite before anything is written (NumericalError naming column and row).
+void emit_finite_csv(const std::string& out, const std::string& csv) {
+  fitlib::core::require_finite_csv(csv, "material-point " + (out.empty() ? std::string("output") : out));
+  emit(out, csv);
+}
+
 void run_case(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
   const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*card.model(), card.values());
   const auto& c = model::fritzson::thesis_case(a.case_id);
-  emit(a.out, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
+  emit_finite_csv(a.out, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
 }
 
 void run_cyclic(const Args& a, const fitlib::card::Card& card) {
@@ -60,7 +67,7 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
   c.temperature_C = a.temperature_C;
   const auto history = model::fritzson::cyclic_history(a.amplitude, a.mean_strain, a.frequency_Hz,
                                                        a.cycles, a.steps_per_cycle);
-  emit(a.out, drive_csv(model::drive(*point, model::test_program(c, history))));
+  emit_finite_csv(a.out, drive_csv(model::drive(*point, model::test_program(c, history))));
 }
 
 }  // namespace
