@@ -12,6 +12,10 @@
 namespace fitcli {
 namespace {
 
+// Work caps (docs/reliability.md): 1e6 steps of a Prony point take ~5 s and write ~70 MB.
+constexpr double kMaxSteps = 1e6;
+constexpr int kMaxStepsPerCycle = 10000;
+
 struct Args {
   std::string card, case_id, out, test = "shear", orientation, fidelity = "viscoelastic";
   int steps_per_cycle = 200, cycles = 5;
@@ -43,6 +47,8 @@ void emit_finite_csv(const std::string& out, const std::string& csv) {
 
 void run_case(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
+  if (a.steps_per_cycle < 4 || a.steps_per_cycle > kMaxStepsPerCycle)
+    throw core::UsageError("--steps-per-cycle must be in 4 … 1e4 for a --case (docs/reliability.md, work caps)");
   const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*card.model(), card.values());
   const auto& c = model::fritzson::thesis_case(a.case_id);
   emit_finite_csv(a.out, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
@@ -54,6 +60,8 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
     throw core::UsageError("--fidelity must be viscoelastic or elastic, not '" + a.fidelity + "'");
   if (a.cycles < 1 || a.steps_per_cycle < 4 || !(a.frequency_Hz > 0.0))
     throw core::UsageError("--cycles ≥ 1, --steps-per-cycle ≥ 4 and --frequency > 0 are needed");
+  if (static_cast<double>(a.cycles) * a.steps_per_cycle > kMaxSteps)
+    throw core::UsageError("--cycles × --steps-per-cycle exceeds the work cap 1e6 steps (docs/reliability.md)");
   model::PointOptions options;
   options.fidelity = a.fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
                                              : model::PointOptions::Fidelity::viscoelastic;
