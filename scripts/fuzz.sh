@@ -2,7 +2,8 @@
 # Builds the libFuzzer harnesses (fuzz/) with clang into build-fuzz/ and runs each for SECONDS.
 #   scripts/fuzz.sh [SECONDS] [HARNESS...]   default 60 s, every harness
 #   FUZZ_RUNS=1000000 scripts/fuzz.sh 3600 table   stop after that many executions (or SECONDS)
-#   FUZZ_NO_BUILD=1 skips the build (harnesses already built)
+#   FUZZ_SEED=N fixes libFuzzer's seed (the test command's short runs); FUZZ_NO_BUILD=1 skips the
+#   build (harnesses already built)
 # Seeds: datasets/, tests/data/ (incl. the malformed corpus tests/data/bad/) and fuzz/seeds/.
 # The growing corpus stays in build-fuzz/corpus/<harness>; a finding (crash, sanitizer report,
 # unexpected exception type, accepted non-finite value) is saved in build-fuzz/findings/ and
@@ -28,6 +29,7 @@ if [ "${FUZZ_NO_BUILD:-0}" != 1 ]; then
 fi
 runs=()
 [ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
+[ -n "${FUZZ_SEED:-}" ] && runs+=(-seed="$FUZZ_SEED")
 
 # Seed files of a harness (globs relative to the repository).
 seeds() {
@@ -45,11 +47,13 @@ seeds() {
   esac
 }
 
-# Longest input libFuzzer makes: the .xls seeds are 84–95 kB; the analysis harness gets a few
-# hundred samples (its cost grows with the sample count, docs/reliability.md).
+# Longest input libFuzzer makes: the .xls seeds are 84–95 kB; the waveform harnesses get a few
+# hundred (analysis) or thousand (reading) samples: their cost grows with the sample count
+# (docs/reliability.md); longer waveform files are in the corpus (tests/data/bad).
 max_len() {
   case "$1" in
     eplexor) echo 131072 ;;
+    waveform) echo 16384 ;;
     waveform_analysis) echo 8192 ;;
     *) echo 65536 ;;
   esac
