@@ -86,7 +86,9 @@ void write_vtk(const Mesh& m, const std::string& path, const VtkFields& f) {
   // Shortest round trip, locale-independent (docs/decisions.md); a NaN/inf is a NumericalError
   // naming the field and the node or cell, before anything is written.
   const auto format_number = [&](double value, const std::string& field, std::size_t index) {
-    return core::format_number(core::require_finite(value, path + ": " + field + " " + std::to_string(index + 1)));
+    if (!std::isfinite(value))
+      throw core::NumericalError(path + ": " + field + " " + std::to_string(index + 1) + " is not finite");
+    return core::format_number(value);
   };
   std::ostringstream o;
   o << "# vtk DataFile Version 3.0\nfitlib segment mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";

@@ -14,9 +14,9 @@ namespace fitlib::core {
 void require_finite_json(const nlohmann::json& document, const std::string& what);
 
 // `csv` is a table as the writers make it: `#` comment lines, a header line of column names,
-// then rows. Throws
-// NumericalError "<what>: column '<name>', row <n> is not finite" (n counts data rows from 1) at
-// the first field that reads as NaN or inf (nan, -nan, inf, -inf, +inf, infinity, any case).
+// then rows. Throws NumericalError "<what>: column '<name>', row <n> is not finite" (n counts
+// data rows from 1) at the first field that reads as NaN or inf (nan, -nan, inf, -inf, +inf,
+// infinity, any case).
 // Columns named in `text_columns` hold labels and are not checked.
 void require_finite_csv(const std::string& csv, const std::string& what,
                         const std::set<std::string>& text_columns = {});
