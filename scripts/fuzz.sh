@@ -62,6 +62,8 @@ max_len() {
 # libfreexl's own leaks are suppressed (fuzz/lsan.supp says why); fitlib's are findings.
 export LSAN_OPTIONS=suppressions=$root/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}
 status=0
+passed=0
+failed=0
 mkdir -p "$build/findings" "$build/tmp"
 printf '%-14s %10s %6s %7s %7s %s\n' harness executions s edges features result
 for h in "${harnesses[@]}"; do
@@ -76,9 +78,11 @@ for h in "${harnesses[@]}"; do
       -max_len="$(max_len "$h")" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$build/findings/$h-" >"$log" 2>&1; then
     result=ok
+    passed=$((passed + 1))
   else
     result="FINDING (see $log)"
     status=1
+    failed=$((failed + 1))
   fi
   elapsed=$(( $(date +%s) - start ))
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
@@ -87,4 +91,5 @@ for h in "${harnesses[@]}"; do
   features=$(echo "$last" | grep -o 'ft: [0-9]*' | grep -o '[0-9]*' || true)
   printf '%-14s %10s %6s %7s %7s %s\n' "$h" "${execs:-?}" "$elapsed" "${edges:-?}" "${features:-?}" "$result"
 done
+echo "fuzz: $passed passed, $failed failed"
 exit $status

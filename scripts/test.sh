@@ -8,7 +8,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
 # Sanitizer runs (gcc, address + undefined, build-sanitize/): --sanitize builds everything and runs
-# every unit and integration test; --sanitize-readers (the CI step) builds the library, fitcli and
+# every unit and integration test; --sanitize-readers (a lighter check) builds the library, fitcli and
 # the reader modules' tests (core, data, card, surface) and runs those plus the integration tests
 # (the malformed-input corpus through a sanitized fitcli). Times: docs/reliability.md.
 if [ "${1:-}" = "--sanitize" ] || [ "${1:-}" = "--sanitize-readers" ]; then
