@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/finite_output.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "inputs.hpp"
@@ -13,6 +14,10 @@
 
 namespace fitcli {
 namespace {
+
+// Work caps (docs/reliability.md): 1e6 steps of a Prony point take ~5 s and write ~70 MB.
+constexpr double kMaxSteps = 1e6;
+constexpr int kMaxStepsPerCycle = 10000;
 
 struct Args {
   std::string card, case_id, out, test = "shear", orientation, fidelity = "viscoelastic";
@@ -23,8 +28,10 @@ struct Args {
   bool json = false;
 };
 
-// The CSV, or with --json the same rows as one JSON document.
+// The CSV, or with --json the same rows as one JSON document; every number checked finite before
+// anything is written (NumericalError naming column and row).
 void write_table(const Args& a, const std::string& csv) {
+  fitlib::core::require_finite_csv(csv, "material-point " + (a.out.empty() ? std::string("output") : a.out));
   if (!a.json) return emit(a.out, csv);
   const nlohmann::json j = {{"card", a.card}, {"case", a.case_id}, {"rows", csv_rows_json(csv)}};
   emit(a.out, j.dump(2) + "\n");
@@ -45,8 +52,11 @@ std::string drive_csv(const fitlib::model::DriveResult& r) {
   return out;
 }
 
+
 void run_case(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
+  if (a.steps_per_cycle < 4 || a.steps_per_cycle > kMaxStepsPerCycle)
+    throw core::UsageError("--steps-per-cycle must be in 4 … 1e4 for a --case (docs/reliability.md, work caps)");
   const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*card.model(), card.values());
   const auto& c = model::fritzson::thesis_case(a.case_id);
   write_table(a, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
@@ -58,6 +68,8 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
     throw core::UsageError("--fidelity must be viscoelastic or elastic, not '" + a.fidelity + "'");
   if (a.cycles < 1 || a.steps_per_cycle < 4 || !(a.frequency_Hz > 0.0))
     throw core::UsageError("--cycles ≥ 1, --steps-per-cycle ≥ 4 and --frequency > 0 are needed");
+  if (static_cast<double>(a.cycles) * a.steps_per_cycle > kMaxSteps)
+    throw core::UsageError("--cycles × --steps-per-cycle exceeds the work cap 1e6 steps (docs/reliability.md)");
   model::PointOptions options;
   options.fidelity = a.fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
                                              : model::PointOptions::Fidelity::viscoelastic;

@@ -3,8 +3,7 @@
 // name, write no NaN/inf, and (when it fails) leave a pre-existing output file byte for byte as
 // it was. Large cases
 // (huge files, 30 kB lines, deep nesting, a million columns, megabyte keys) are mutations of a
-// stored base file, made here at run time. Rows tagged pending-rel are defects fixed on branch
-// rel: their result is printed, not failed.
+// stored base file, made here at run time.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -133,7 +132,7 @@ bool has_non_finite(const std::string& text) {
 
 struct Row {
   int line = 0;
-  std::string file, args, tag;
+  std::string file, args;
   int expected = 0;
   std::vector<std::string> must;
 };
@@ -147,7 +146,9 @@ std::vector<Row> manifest() {
     if (text.empty() || text[0] == '#') continue;
     const auto f = split(text, '\t');
     if (f.size() != 5) ADD_FAILURE() << "manifest.tsv:" << number << ": " << f.size() << " fields, expected 5";
-    if (f.size() != 5 || f[4] == "base") continue;
+    if (f.size() == 5 && !f[4].empty() && f[4] != "base")
+      ADD_FAILURE() << "manifest.tsv:" << number << ": unknown tag '" << f[4] << "'";
+    if (f.size() != 5 || !f[4].empty()) continue;
     Row r;
     r.line = number;
     r.file = f[0];
@@ -155,7 +156,6 @@ std::vector<Row> manifest() {
     r.expected = std::stoi(f[2]);
     for (const auto& m : split(f[3], '|'))
       if (!m.empty()) r.must.push_back(m);
-    r.tag = f[4];
     rows.push_back(r);
   }
   return rows;
@@ -204,22 +204,13 @@ TEST(BadCorpus, EveryMalformedInputExitsWithItsCodeNamesTheLocationAndKeepsOutpu
   fs::create_directories(tmp);
   const auto rows = manifest();
   EXPECT_GE(rows.size(), 150u);
-  int passed = 0, pending = 0, pending_fixed = 0;
+  int passed = 0;
   for (const auto& r : rows) {
     const std::string problems = check_row(r, tmp);
-    if (r.tag == "pending-rel") {
-      ++pending;
-      if (problems.empty()) ++pending_fixed;
-      std::printf("[ pending  ] %s: %s\n", r.file.c_str(),
-                  problems.empty() ? "passes now (remove the pending-rel tag)"
-                                   : ("known pending, fixed on branch rel:" + problems).c_str());
-      continue;
-    }
     if (problems.empty()) ++passed;
     else ADD_FAILURE() << "manifest.tsv:" << r.line << " " << r.file << ":" << problems;
   }
-  std::printf("[ corpus   ] %zu rows: %d pass, %d pending on branch rel (%d of them pass already)\n",
-              rows.size(), passed, pending, pending_fixed);
+  std::printf("[ corpus   ] %zu rows: %d pass\n", rows.size(), passed);
   fs::remove_all(tmp);
 }
 

@@ -174,12 +174,12 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
   const std::string integ = r.string("integration").value_or("reduced");
   if (integ != "reduced" && integ != "full") r.fail("integration", "integration must be \"reduced\" or \"full\"");
   g.setup.solver.integration = integ == "reduced" ? segment::Integration::reduced : segment::Integration::full;
-  g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, 1e5));
+  g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, kMaxSegmentSteps));
   auto& mk = g.setup.mesh;
-  mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.01, 100.0);
-  mk.coarse_size_mm = r.number_or("coarse_size_mm", mk.coarse_size_mm, 0.01, 100.0);
-  mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 100.0, true);
-  mk.end_pitches = r.number_or("end_pitches", mk.end_pitches, 0.0, 100.0);
+  mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.05, 100.0);
+  mk.coarse_size_mm = r.number_or("coarse_size_mm", mk.coarse_size_mm, 0.05, 100.0);
+  mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 20.0, true);
+  mk.end_pitches = r.number_or("end_pitches", mk.end_pitches, 0.0, 20.0);
   mk.cushion_rows = static_cast<int>(r.number_or("cushion_rows", mk.cushion_rows, 1, 100));
 }
 
@@ -240,6 +240,12 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, g, source);
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
   r.finish();
+  // Work cap on the mesh these knobs give (bounded by the ranges above, so cheap to build).
+  const double elements = segment::build_mesh(sec, mk).element_count();
+  if (elements * g.setup.solver.steps > kMaxSegmentWork)
+    r.fail(r.has("steps") ? "steps" : "fine_size_mm",
+           std::to_string(static_cast<long>(elements)) + " elements x " + std::to_string(g.setup.solver.steps) +
+               " steps exceeds the work cap 2e4 (docs/reliability.md, work caps)");
   return g;
 }
 

@@ -1,6 +1,7 @@
 #include "fitlib/scene/segment_case.hpp"
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/finite_output.hpp"
 
 namespace fitlib::scene {
 
@@ -44,6 +45,7 @@ nlohmann::json segment_json(const Scene& scene, const segment::StaticResult& r) 
   const double B = scene.belt.width_mm;
   j["stiffness"] = {{"c_N_per_mm", r.c_N_per_mm}, {"EI_Nmm2_per_mm", r.EI_Nmm2_per_mm},
                     {"width_mm", B}, {"c_N", r.c_N_per_mm * B}, {"EI_Nmm2", r.EI_Nmm2_per_mm * B}};
+  core::require_finite_json(j, "segment result");  // printed as JSON or text: no NaN/inf
   return j;
 }
 

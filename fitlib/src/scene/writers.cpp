@@ -5,8 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
+#include "fitlib/core/finite_output.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
 
@@ -221,19 +223,30 @@ json life_json(const Scene& s, const SceneResult& r, bool wall_times) {
 
 std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, const std::string& dir,
                                        bool wall_times) {
-  core::prepare_output_dir(dir);
-  std::vector<std::string> written;
-  auto put = [&](const std::string& name, const std::string& text) {
-    const std::string path = (std::filesystem::path(dir) / name).string();
-    core::write_file_atomically(path, text);
-    written.push_back(path);
+  // Every file is made and checked finite before the first is written, so a NaN anywhere leaves
+  // the folder as it was (NumericalError naming file, column or key, and row).
+  std::vector<std::pair<std::string, std::string>> files;
+  const auto csv = [&](const std::string& name, std::string text, const std::set<std::string>& labels) {
+    core::require_finite_csv(text, name, labels);
+    files.emplace_back(name, std::move(text));
+  };
+  const auto json_file = [&](const std::string& name, const json& j) {
+    core::require_finite_json(j, name);
+    files.emplace_back(name, j.dump(2) + "\n");
   };
   const auto history = s.outputs.find("load_history");
-  if (r.cycle && history != s.outputs.end() && history->second) put("load_history.csv", load_history_csv(r));
-  if (r.accumulation) put("accumulation.csv", accumulation_csv(*r.accumulation));
-  if (r.tension_test) put("tension_test.csv", tension_test_csv(r.tension_test->result));
-  if (r.life) put("life.json", life_json(s, r, wall_times).dump(2) + "\n");
-  put("summary.json", summary_json(s, r, wall_times).dump(2) + "\n");
+  if (r.cycle && history != s.outputs.end() && history->second)
+    csv("load_history.csv", load_history_csv(r), {"pulley", "zone"});
+  if (r.accumulation) csv("accumulation.csv", accumulation_csv(*r.accumulation), {});
+  if (r.tension_test) csv("tension_test.csv", tension_test_csv(r.tension_test->result), {"phase"});
+  if (r.life) json_file("life.json", life_json(s, r, wall_times));
+  json_file("summary.json", summary_json(s, r, wall_times));
+  core::prepare_output_dir(dir);
+  std::vector<std::string> written;
+  for (const auto& [name, text] : files) {
+    written.push_back((std::filesystem::path(dir) / name).string());
+    core::write_file_atomically(written.back(), text);
+  }
   return written;
 }
 

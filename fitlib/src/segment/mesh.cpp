@@ -83,11 +83,18 @@ Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
 }
 
 void write_vtk(const Mesh& m, const std::string& path, const VtkFields& f) {
-  using core::format_number;  // shortest round trip, locale-independent (docs/decisions.md)
+  // Shortest round trip, locale-independent (docs/decisions.md); a NaN/inf is a NumericalError
+  // naming the field and the node or cell, before anything is written.
+  const auto format_number = [&](double value, const std::string& field, std::size_t index) {
+    if (!std::isfinite(value))
+      throw core::NumericalError(path + ": " + field + " " + std::to_string(index + 1) + " is not finite");
+    return core::format_number(value);
+  };
   std::ostringstream o;
   o << "# vtk DataFile Version 3.0\nfitlib segment mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
   o << "POINTS " << m.node_count() << " double\n";
-  for (const auto& x : m.X) o << format_number(x.x()) << " " << format_number(x.y()) << " 0\n";
+  for (std::size_t i = 0; i < m.X.size(); ++i)
+    o << format_number(m.X[i].x(), "x of node", i) << " " << format_number(m.X[i].y(), "y of node", i) << " 0\n";
   const int npe = m.nodes_per_element;
   o << "CELLS " << m.element_count() << " " << m.element_count() * (npe + 1) << "\n";
   for (const auto& e : m.elements) {
@@ -103,12 +110,17 @@ void write_vtk(const Mesh& m, const std::string& path, const VtkFields& f) {
     const char* names[4] = {"sigma_xx_MPa", "sigma_yy_MPa", "sigma_xy_MPa", "sigma_zz_MPa"};
     for (int c = 0; c < 4; ++c) {
       o << "SCALARS " << names[c] << " double 1\nLOOKUP_TABLE default\n";
-      for (const auto& s : f.cell_stress_MPa) o << format_number(s[c]) << "\n";
+      for (std::size_t i = 0; i < f.cell_stress_MPa.size(); ++i)
+        o << format_number(f.cell_stress_MPa[i][c], std::string(names[c]) + " of cell", i) << "\n";
     }
   }
   if (!f.displacement_mm.empty()) {
     o << "POINT_DATA " << m.node_count() << "\nVECTORS displacement_mm double\n";
-    for (const auto& u : f.displacement_mm) o << format_number(u.x()) << " " << format_number(u.y()) << " 0\n";
+    for (std::size_t i = 0; i < f.displacement_mm.size(); ++i) {
+      const auto& u = f.displacement_mm[i];
+      o << format_number(u.x(), "x displacement of node", i) << " " << format_number(u.y(), "y displacement of node", i)
+        << " 0\n";
+    }
   }
   core::write_file_atomically(path, o.str());
 }

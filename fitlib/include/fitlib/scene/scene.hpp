@@ -30,6 +30,8 @@ constexpr double kMaxAccumulationPoints = 1e5;       // cycle_points, omega_poin
 constexpr double kMaxAccumulationWork = 1e6;         // cycle_points × omega_points
 constexpr double kMaxTensionNodes = 1e4, kMaxTensionSteps = 1e5;
 constexpr double kMaxTensionWork = 2e6;              // nodes × steps
+constexpr double kMaxSegmentSteps = 1000;            // [segment] steps (load increments)
+constexpr double kMaxSegmentWork = 2e4;              // [segment] elements × steps (~10 s)
 
 // Strain accumulation request ([accumulation], Zupancic–Emri).
 struct AccumulationSpec {
