@@ -241,7 +241,7 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
   r.finish();
   // Work cap on the mesh these knobs give (bounded by the ranges above, so cheap to build).
-  const double elements = segment::build_mesh(sec, mk).element_count();
+  const double elements = segment::build_mesh(sec, g.setup.mesh).element_count();
   if (elements * g.setup.solver.steps > kMaxSegmentWork)
     r.fail(r.has("steps") ? "steps" : "fine_size_mm",
            std::to_string(static_cast<long>(elements)) + " elements x " + std::to_string(g.setup.solver.steps) +
