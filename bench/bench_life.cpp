@@ -206,7 +206,10 @@ int main(int argc, char** argv) {
       if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
     }
     std::printf("%s", kProbeHeader);
-    print_probe(p, run_probe(p));
+    const Outcome o = run_probe(p);
+    print_probe(p, o);
+    std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
+                o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
     return 0;
   }
   const bool quick = argc > 1 && std::string(argv[1]) == "quick";  // no complete rows (minutes each)
