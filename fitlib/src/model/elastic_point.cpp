@@ -8,11 +8,21 @@
 namespace fitlib::model::points {
 namespace {
 
+// C = λ 1⊗1 + 2μ I (Voigt, engineering shears: shear diagonal μ = (C11 − C12)/2), to round-off.
+bool is_isotropic(const Matrix6& C) {
+  const double lambda = C(0, 1), mu = 0.5 * (C(0, 0) - C(0, 1)), tol = 1e-10 * C.cwiseAbs().maxCoeff();
+  Matrix6 iso = Matrix6::Zero();
+  iso.topLeftCorner<3, 3>().setConstant(lambda);
+  iso.diagonal() << lambda + 2.0 * mu, lambda + 2.0 * mu, lambda + 2.0 * mu, mu, mu, mu;
+  return (C - iso).cwiseAbs().maxCoeff() <= tol;
+}
+
 class ElasticPoint final : public MaterialPoint {
  public:
   ElasticPoint(const Matrix6& C, std::string description)
       : C_(C), description_(std::move(description)) {
     if (!C_.allFinite()) throw core::NumericalError(description_ + ": stiffness is not finite");
+    isotropic_ = is_isotropic(C_);
   }
   std::string describe() const override { return description_; }
   std::size_t state_size() const override { return 0; }
@@ -26,10 +36,12 @@ class ElasticPoint final : public MaterialPoint {
   ComplexMatrix6 complex_stiffness(double, double) const override {
     return C_.cast<std::complex<double>>();
   }
+  bool symmetric_tangent() const override { return isotropic_; }
 
  private:
   Matrix6 C_;
   std::string description_;
+  bool isotropic_ = false;
 };
 
 }  // namespace

@@ -128,3 +128,23 @@ TEST(SegmentPointLaw, HenckyContractPointAgreesWithStVenantKirchhoffAtSmallStrai
   EXPECT_LT((a.P - b.P).cwiseAbs().maxCoeff(), 1e-3 * b.P.cwiseAbs().maxCoeff());
   EXPECT_NEAR(a.sigma33_MPa, b.sigma33_MPa, 1e-3 * std::abs(b.sigma33_MPa));
 }
+
+// The typed capability behind the LDLᵀ path: an isotropic elastic point says its tangent is
+// symmetric, and its in-plane dP/dF is major-symmetric at a general F; an orthotropic elastic point
+// (τ_U = C ln U not coaxial with U: no energy) and a viscoelastic one say no, and the orthotropic
+// tangent is measurably unsymmetric.
+TEST(SegmentPointLaw, OnlyIsotropicElasticPointsSayTheirTangentIsSymmetric) {
+  const auto iso = point_of("elastic-iso", nlohmann::json::object(), {20.0, 0.49});
+  auto asymmetry = [](const model::MaterialPoint& p) {
+    const Eigen::Matrix2d F2 = general_F().topLeftCorner<2, 2>();
+    const segment::PointResponse r = segment::ContractLaw(model::MaterialPointPtr(&p, [](const model::MaterialPoint*) {})).respond(F2);
+    return (r.A - r.A.transpose()).cwiseAbs().maxCoeff() / r.A.cwiseAbs().maxCoeff();
+  };
+  EXPECT_TRUE(iso->symmetric_tangent());
+  EXPECT_TRUE(segment::ContractLaw(iso).symmetric_tangent());
+  EXPECT_LT(asymmetry(*iso), 1e-10);
+  EXPECT_FALSE(ortho()->symmetric_tangent());
+  EXPECT_GT(asymmetry(*ortho()), 1e-4);
+  EXPECT_FALSE(prony()->symmetric_tangent());
+  EXPECT_FALSE(segment::ContractLaw(prony()).symmetric_tangent());
+}

@@ -81,6 +81,12 @@ class MaterialPoint {
   // σ̂ = C*(ω) ε̂ (storage + i·loss). The elastic equivalent is its real part.
   virtual ComplexMatrix6 complex_stiffness(double frequency_Hz, double temperature_C) const = 0;
 
+  // Whether the finite-strain response is hyperelastic, so an FE code's tangent dP/dF is
+  // major-symmetric and may be factored by LDLᵀ: true only for an isotropic elastic point (the
+  // Hencky energy ½ ln U : C : ln U, whose τ_U = C ln U is coaxial with U). A rate-dependent,
+  // damaging or anisotropic point (τ_U need not be conjugate to ln U) says false.
+  virtual bool symmetric_tangent() const { return false; }
+
   // Finite strain, total logarithmic form (see the top of this file). Returns the Kirchhoff
   // stress τ in the current frame (3 × 3); optional: τ_U (Voigt) and dτ_U/d(ln U).
   Eigen::Matrix3d update_deformation(const double* state_n, const Eigen::Matrix3d& F, double dt_s,
