@@ -1,5 +1,7 @@
 // The linear elastic material point and the elastic equivalent of any point (docs/model.md
 // §"Elastic fidelity").
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
@@ -8,13 +10,14 @@
 namespace fitlib::model::points {
 namespace {
 
-// C = λ 1⊗1 + 2μ I (Voigt, engineering shears: shear diagonal μ = (C11 − C12)/2), to round-off.
-bool is_isotropic(const Matrix6& C) {
-  const double lambda = C(0, 1), mu = 0.5 * (C(0, 0) - C(0, 1)), tol = 1e-10 * C.cwiseAbs().maxCoeff();
-  Matrix6 iso = Matrix6::Zero();
-  iso.topLeftCorner<3, 3>().setConstant(lambda);
-  iso.diagonal() << lambda + 2.0 * mu, lambda + 2.0 * mu, lambda + 2.0 * mu, mu, mu, mu;
-  return (C - iso).cwiseAbs().maxCoeff() <= tol;
+// In plane strain (ε33 = γ13 = γ23 = 0) the in-plane stress is λ' tr(ε) I + 2μ' ε when C11 = C22,
+// C66 = (C11 − C12)/2 and the shear γ12 couples to no normal stress (and C is symmetric), to round-off.
+bool isotropic_in_plane(const Matrix6& C) {
+  const double tol = 1e-10 * C.cwiseAbs().maxCoeff();
+  const double worst = std::max({std::abs(C(0, 0) - C(1, 1)), std::abs(C(5, 5) - 0.5 * (C(0, 0) - C(0, 1))),
+                                 std::abs(C(0, 5)), std::abs(C(1, 5)), std::abs(C(2, 5)),
+                                 (C - C.transpose()).cwiseAbs().maxCoeff()});
+  return worst <= tol;
 }
 
 class ElasticPoint final : public MaterialPoint {
@@ -22,7 +25,7 @@ class ElasticPoint final : public MaterialPoint {
   ElasticPoint(const Matrix6& C, std::string description)
       : C_(C), description_(std::move(description)) {
     if (!C_.allFinite()) throw core::NumericalError(description_ + ": stiffness is not finite");
-    isotropic_ = is_isotropic(C_);
+    isotropic_in_plane_ = isotropic_in_plane(C_);
   }
   std::string describe() const override { return description_; }
   std::size_t state_size() const override { return 0; }
@@ -36,12 +39,12 @@ class ElasticPoint final : public MaterialPoint {
   ComplexMatrix6 complex_stiffness(double, double) const override {
     return C_.cast<std::complex<double>>();
   }
-  bool symmetric_tangent() const override { return isotropic_; }
+  bool symmetric_tangent() const override { return isotropic_in_plane_; }
 
  private:
   Matrix6 C_;
   std::string description_;
-  bool isotropic_ = false;
+  bool isotropic_in_plane_ = false;
 };
 
 }  // namespace

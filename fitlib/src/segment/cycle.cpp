@@ -230,7 +230,11 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     IncrementLoads q{tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied};
     longitudinal_loads(p, s, curve, m, solver.integration, q);
     q.belt_force_N_mm = tau > 1.0 ? h.at_position(q.s_mm).F_N / drive.width_mm : 0.0;
-    q.span = tau > 1.0 && std::all_of(forces.begin(), forces.end(), [](const Eigen::Vector2d& b) { return b.isZero(0.0); });
+    const double K_mid = h.at_position(q.s_mm).K_1_mm;
+    q.span = tau > 1.0 && std::all_of(centre_x.begin(), centre_x.end(), [&](double x) {
+      const belt::LoadState state = h.at_position(q.s_mm + x);
+      return state.p_MPa == 0.0 && std::abs(state.K_1_mm - K_mid) <= 1e-6;
+    });
     if (q.span && q.belt_force_N_mm > 0.0) {
       out.span_cord_share = std::max(out.span_cord_share, std::abs(q.cord_longitudinal_N_mm) / q.belt_force_N_mm);
       const double balance = q.left_end_longitudinal_N_mm + q.left_cord_longitudinal_N_mm + q.rubber_section_N_mm;
