@@ -9,8 +9,9 @@
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
 // `bench_life quick` leaves out the complete level (minutes per drive).
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [stall=N] [cuts=N]` runs one segment life and prints its counts
-// (MESH: coarse | medium | fine; `reuse`: modified Newton, SolverKnobs::reuse_tangent).
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N]` runs one segment life and
+// prints its counts (MESH: coarse | medium | fine; `reuse`: modified Newton, SolverKnobs::reuse_tangent;
+// `extrapolate`: SolverKnobs::extrapolate_start).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -60,7 +61,7 @@ segment::MeshKnobs mesh_named(const std::string& name) {
 struct Probe {
   std::string load = "medium", fidelity = "elastic", mesh = "medium";
   int steps = 60;
-  bool reuse = false;
+  bool reuse = false, extrapolate = false;
   int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
 };
 
@@ -78,6 +79,7 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   setup.section = scene::cog_section(s);
   setup.mesh = mesh_named(pr.mesh);
   setup.solver.reuse_tangent = pr.reuse;
+  setup.solver.extrapolate_start = pr.extrapolate;
   setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
@@ -202,11 +204,15 @@ int main(int argc, char** argv) {
     for (int k = 6; k < argc; ++k) {
       const std::string a = argv[k];
       if (a == "reuse") p.reuse = true;
+      if (a == "extrapolate") p.extrapolate = true;
       if (a.rfind("stall=", 0) == 0) p.stall = std::atoi(a.c_str() + 6);
       if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
     }
     std::printf("%s", kProbeHeader);
-    print_probe(p, run_probe(p));
+    const Outcome o = run_probe(p);
+    print_probe(p, o);
+    std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
+                o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
     return 0;
   }
   const bool quick = argc > 1 && std::string(argv[1]) == "quick";  // no complete rows (minutes each)

@@ -1,5 +1,7 @@
 // The linear elastic material point and the elastic equivalent of any point (docs/model.md
 // §"Elastic fidelity").
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
@@ -8,11 +10,22 @@
 namespace fitlib::model::points {
 namespace {
 
+// In plane strain (ε33 = γ13 = γ23 = 0) the in-plane stress is λ' tr(ε) I + 2μ' ε when C11 = C22,
+// C66 = (C11 − C12)/2 and the shear γ12 couples to no normal stress (and C is symmetric), to round-off.
+bool isotropic_in_plane(const Matrix6& C) {
+  const double tol = 1e-10 * C.cwiseAbs().maxCoeff();
+  const double worst = std::max({std::abs(C(0, 0) - C(1, 1)), std::abs(C(5, 5) - 0.5 * (C(0, 0) - C(0, 1))),
+                                 std::abs(C(0, 5)), std::abs(C(1, 5)), std::abs(C(2, 5)),
+                                 (C - C.transpose()).cwiseAbs().maxCoeff()});
+  return worst <= tol;
+}
+
 class ElasticPoint final : public MaterialPoint {
  public:
   ElasticPoint(const Matrix6& C, std::string description)
       : C_(C), description_(std::move(description)) {
     if (!C_.allFinite()) throw core::NumericalError(description_ + ": stiffness is not finite");
+    isotropic_in_plane_ = isotropic_in_plane(C_);
   }
   std::string describe() const override { return description_; }
   std::size_t state_size() const override { return 0; }
@@ -26,10 +39,12 @@ class ElasticPoint final : public MaterialPoint {
   ComplexMatrix6 complex_stiffness(double, double) const override {
     return C_.cast<std::complex<double>>();
   }
+  bool symmetric_tangent() const override { return isotropic_in_plane_; }
 
  private:
   Matrix6 C_;
   std::string description_;
+  bool isotropic_in_plane_ = false;
 };
 
 }  // namespace

@@ -121,10 +121,12 @@ LifePlan choose_life_plan(const Scene& s) {
     return {"beam", "default: the scene gives neither bottom and cushion cards nor a [segment] table"};
   const std::string finest = cards ? "complete" : "elastic";
   const std::string why = cards ? "the scene gives bottom and cushion cards" : "the scene has a [segment] table";
-  // The segment levels miss their time targets (elastic 8–20 s per drive, complete fails on the
-  // medium drive; docs/segment.md "Cost"): asked, not default.
+  // The segment levels miss their time targets (elastic 0.7 s CPU isotropic, 2.1–2.4 s with the
+  // thesis cards per drive; complete fails on the medium drive; docs/segment.md "Cost"): asked,
+  // not default.
   return {"beam", "default: beam; " + why + ", so [life] fidelity = \"" + finest +
-                      "\" runs the segment FE (about 10-20 s per drive at the elastic level)"};
+                      "\" runs the segment FE (about 1 s per drive at the elastic level with isotropic "
+                      "materials, 2-4 s with the thesis cards)"};
 }
 
 }  // namespace fitlib::scene

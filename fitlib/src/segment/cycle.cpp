@@ -69,6 +69,20 @@ CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
   return c;
 }
 
+// The increment's forces along the cord tangent at the middle: the cord line's reactions, the left
+// end face's (without the cord node) and the rubber's section force through x = 0.
+void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const NeutralCurve& curve, const Mesh& m,
+                        Integration integration, IncrementLoads& q) {
+  const double phi = curve.at(curve.s_from_unstrained(0.0)).phi_rad;
+  const Eigen::Vector2d t(std::cos(phi), -std::sin(phi));
+  q.cord_longitudinal_N_mm = q.cord_reaction_N_mm.dot(t);
+  for (int node : m.left_nodes)
+    if (node != m.top_nodes.front()) q.left_end_longitudinal_N_mm += s.reaction_N_mm[node].dot(t);
+  for (int node : m.top_nodes)
+    if (m.X[node].x() < 0.0) q.left_cord_longitudinal_N_mm += s.reaction_N_mm[node].dot(t);
+  q.rubber_section_N_mm = section_force(p, s, 0.0, Eigen::Vector2d::Zero(), integration).force_N_mm.dot(t);
+}
+
 }  // namespace
 
 Eigen::Vector2d contact_body_force(const belt::LoadState& q, const CycleDrive& d) {
@@ -213,7 +227,20 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
     out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
-    out.loads.push_back({tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied});
+    IncrementLoads q{tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied};
+    longitudinal_loads(p, s, curve, m, solver.integration, q);
+    q.belt_force_N_mm = tau > 1.0 ? h.at_position(q.s_mm).F_N / drive.width_mm : 0.0;
+    const double K_mid = h.at_position(q.s_mm).K_1_mm;
+    q.span = tau > 1.0 && std::all_of(centre_x.begin(), centre_x.end(), [&](double x) {
+      const belt::LoadState state = h.at_position(q.s_mm + x);
+      return state.p_MPa == 0.0 && std::abs(state.K_1_mm - K_mid) <= 1e-6;
+    });
+    if (q.span && q.belt_force_N_mm > 0.0) {
+      out.span_cord_share = std::max(out.span_cord_share, std::abs(q.cord_longitudinal_N_mm) / q.belt_force_N_mm);
+      const double balance = q.left_end_longitudinal_N_mm + q.left_cord_longitudinal_N_mm + q.rubber_section_N_mm;
+      out.span_section_mismatch = std::max(out.span_section_mismatch, std::abs(balance) / std::abs(q.rubber_section_N_mm));
+    }
+    out.loads.push_back(q);
   };
 
   SolverKnobs k = solver;

@@ -48,26 +48,29 @@ Dofs number_dofs(const StaticProblem& p) {
   return d;
 }
 
-// Sparse direct solver: LDLᵀ for the symmetric tangent, UMFPACK's LU when a follower pressure or
-// a contract point makes it unsymmetric (Eigen's SparseLU took 80 % of the run; docs/decisions.md);
-// the sparsity pattern is analysed once.
+// Sparse direct solver: LDLᵀ for the symmetric tangent (every law says symmetric_tangent, no
+// follower pressure; body forces are dead), UMFPACK's LU otherwise (Eigen's SparseLU took 80 % of
+// the run; docs/decisions.md); the sparsity pattern is analysed once per run.
 class LinearSolver {
  public:
   explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
     lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;  // no iterative refinement: Newton corrects
   }
   bool factorize(const SparseMatrix& K) {
+    if (!analysed_) {  // once per run: the pattern is fixed (build_pattern)
+      if (symmetric_) ldlt_.analyzePattern(K);
+      else lu_.analyzePattern(K);
+      analysed_ = true, ++analyses_;
+    }
     if (symmetric_) {
-      if (!analysed_) ldlt_.analyzePattern(K);
       ldlt_.factorize(K);
-      analysed_ = true;
       return ldlt_.info() == Eigen::Success;
     }
-    if (!analysed_) lu_.analyzePattern(K);
     lu_.factorize(K);
-    analysed_ = true;
     return lu_.info() == Eigen::Success;
   }
+  int analyses() const { return analyses_; }
+  bool symmetric() const { return symmetric_; }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) {
     if (symmetric_) return ldlt_.solve(b);
     return lu_.solve(b);
@@ -75,6 +78,7 @@ class LinearSolver {
 
  private:
   bool symmetric_, analysed_ = false;
+  int analyses_ = 0;
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
 };
@@ -303,11 +307,12 @@ class Newton {
   }
 
   // From the converged q to load level λ; q_start holds the prescribed components at λ and the
-  // free ones' start (`on_kept_factor`: an extrapolation to iterate on the kept factorisation;
-  // otherwise the last converged values, and the first iteration is the linear predictor).
-  NewtonOutcome solve(double lambda, const Eigen::VectorXd& q_start, bool on_kept_factor) {
-    NewtonOutcome o = iterate(lambda, q_start, on_kept_factor);
-    if (o.converged || !on_kept_factor) return o;
+  // free ones' start (`extrapolated`: the last increment's motion extrapolated, iterated on the
+  // kept factorisation with `reuse_tangent`, else on a fresh tangent; otherwise the last converged
+  // values, and the first iteration is the linear predictor).
+  NewtonOutcome solve(double lambda, const Eigen::VectorXd& q_start, bool extrapolated) {
+    NewtonOutcome o = iterate(lambda, q_start, extrapolated);
+    if (o.converged || !extrapolated) return o;
     const int spent = o.iterations, factorizations = o.factorizations;
     Eigen::VectorXd linear_start = q_start;  // the extrapolation led astray: the linear predictor
     for (int i = 0; i < q_start.size(); ++i)
@@ -319,13 +324,13 @@ class Newton {
   }
 
  private:
-  NewtonOutcome iterate(double lambda, const Eigen::VectorXd& q_start, bool on_kept_factor) {
+  NewtonOutcome iterate(double lambda, const Eigen::VectorXd& q_start, bool extrapolated) {
     const double inf = std::numeric_limits<double>::infinity();
     NewtonOutcome o;
-    bool predictor = !on_kept_factor, fresh = predictor || !knobs_.reuse_tangent, stale_step = false;
+    bool predictor = !extrapolated, fresh = predictor || !knobs_.reuse_tangent, stale_step = false;
     const Eigen::VectorXd dq_p = q_start - q_;
     q_last_ = q_;
-    if (on_kept_factor) q_ = q_start;
+    if (extrapolated) q_ = q_start;
     Eigen::VectorXd q_prev, dq, rhs(d_.equations);
     double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf;
     int since_best = 0;
@@ -508,10 +513,11 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
     const double dt = time_at(target) - time_at(lambda);
     assembler.set_step(states.committed.data(), states.trial.data(), dt);
     // Start: the free dofs extrapolated from the last increment (capped at its size, the history
-    // turns at transitions) on the kept factorisation; or, first and after a cut, the linear
-    // predictor K_fp·Δq_p on a fresh tangent.
+    // turns at transitions); or, first and after a cut, the linear predictor K_fp·Δq_p on a fresh
+    // tangent.
     Eigen::VectorXd q_start = prescribed_at(target);
-    const bool extrapolate = knobs.reuse_tangent && have_factor && cuts_in_row == 0 && velocity.size() == q.size();
+    const bool extrapolate = (knobs.extrapolate_start || (knobs.reuse_tangent && have_factor)) && cuts_in_row == 0 &&
+                             velocity.size() == q.size();
     if (extrapolate) {
       const double ratio = std::min(1.0, (target - lambda) / last_dlambda);
       for (int i = 0; i < 2 * nn; ++i)
@@ -547,6 +553,8 @@ StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   }
   // After the swap, `trial` holds the states before the last increment.
   snapshot(1.0, states.trial, last_dt, out);
+  out.pattern_analyses = linear.analyses();
+  out.symmetric_solver = linear.symmetric();
   out.state = states.committed;
   out.state_offset = states.offset;
   return out;

@@ -200,6 +200,40 @@ TEST(SegmentCycle, NearIncompressibleBeltRunsTheCycle) {
               soft.increments, hard.increments);
 }
 
+// The solver factors with LDLᵀ when every law's tangent is symmetric (an isotropic elastic contract
+// point) and with LU otherwise; both give the same cycle, and the sparsity pattern is analysed
+// once per run, not per increment.
+namespace {
+struct SaysUnsymmetric final : PlaneStrainLaw {  // the same law, declared unsymmetric
+  explicit SaysUnsymmetric(const PlaneStrainLaw& law) : law_(law) {}
+  bool symmetric_tangent() const override { return false; }
+  using PlaneStrainLaw::respond;
+  PointResponse respond(const Matrix2& F, const PointStep& step) const override { return law_.respond(F, step); }
+  const PlaneStrainLaw& law_;
+};
+}  // namespace
+
+TEST(SegmentCycle, SymmetricSolverAgreesWithLuAndAnalysesThePatternOnce) {
+  Fixture f;
+  f.knobs.cycles = 1;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult ldlt = f.run(*bottom, *cushion);
+  const CycleResult lu = f.run(SaysUnsymmetric(*bottom), SaysUnsymmetric(*cushion));
+  EXPECT_TRUE(ldlt.final_state.symmetric_solver);
+  EXPECT_FALSE(lu.final_state.symmetric_solver);
+  for (const CycleResult* r : {&ldlt, &lu}) {
+    EXPECT_EQ(r->final_state.pattern_analyses, 1);
+    EXPECT_GT(r->factorizations, r->increments);
+  }
+  ASSERT_EQ(ldlt.points[0].samples.size(), lu.points[0].samples.size());
+  double diff = 0.0, size = 0.0;
+  for (std::size_t k = 0; k < ldlt.points[0].samples.size(); ++k) {
+    diff = std::max(diff, std::abs(ldlt.points[0].samples[k].s22_MPa - lu.points[0].samples[k].s22_MPa));
+    size = std::max(size, std::abs(lu.points[0].samples[k].s22_MPa));
+  }
+  EXPECT_LT(diff, 1e-7 * size);
+}
+
 TEST(SegmentCycle, ZeroSpeedIsRefusedWithAReason) {
   Fixture f;
   f.drive.speed_mm_s = 0.0;

@@ -128,3 +128,35 @@ TEST(SegmentPointLaw, HenckyContractPointAgreesWithStVenantKirchhoffAtSmallStrai
   EXPECT_LT((a.P - b.P).cwiseAbs().maxCoeff(), 1e-3 * b.P.cwiseAbs().maxCoeff());
   EXPECT_NEAR(a.sigma33_MPa, b.sigma33_MPa, 1e-3 * std::abs(b.sigma33_MPa));
 }
+
+// The typed capability behind the LDLᵀ path: an elastic point isotropic in the 1–2 plane says its
+// tangent is symmetric, and its plane-strain dP/dF is major-symmetric at a general F — the
+// isotropic card and the elastic equivalent of Fritzson's anisotropic material 1 (cord-direction
+// parts: transversely isotropic about axis 3); an in-plane orthotropic elastic point (τ_U = C ln U
+// not coaxial with U: no energy), a viscoelastic and a complete Fritzson point say no, and the
+// orthotropic tangent is measurably unsymmetric.
+TEST(SegmentPointLaw, OnlyElasticPointsIsotropicInThePlaneSayTheirTangentIsSymmetric) {
+  const auto iso = point_of("elastic-iso", nlohmann::json::object(), {20.0, 0.49});
+  const std::vector<double> material1{4000.0, 2.5, 2.0, 0.21, 0.008, 2.5, 0.25, 0.6, -2.0, 0.5, 0.5, 0.0065, 0.008,
+                                      0.6, 10.0, 8.0, 0.7, 0.008, 2.5, 0.4, 0.5, -2.2, 0.5, 0.5, 0.006, 0.008,
+                                      1.2, 1.0, 0.1, 0.008, 2.5, 0.35, 0.6, -2.0, 0.5, 0.5, 0.006, 0.008};
+  const model::ModelPtr fritzson = model::make_model("fritzson", {{"reference_C", 23.0}});
+  model::PointOptions elastic;
+  elastic.fidelity = model::PointOptions::Fidelity::elastic;
+  elastic.frequency_Hz = 10.0;
+  const auto fritzson_elastic = model::make_material_point(*fritzson, material1, elastic);
+  auto asymmetry = [](const model::MaterialPointPtr& p) {
+    const segment::PointResponse r = segment::ContractLaw(p).respond(general_F().topLeftCorner<2, 2>());
+    return (r.A - r.A.transpose()).cwiseAbs().maxCoeff() / r.A.cwiseAbs().maxCoeff();
+  };
+  for (const auto& p : {iso, fritzson_elastic}) {
+    EXPECT_TRUE(p->symmetric_tangent()) << p->describe();
+    EXPECT_TRUE(segment::ContractLaw(p).symmetric_tangent());
+    EXPECT_LT(asymmetry(p), 1e-9) << p->describe();
+  }
+  EXPECT_FALSE(ortho()->symmetric_tangent());
+  EXPECT_GT(asymmetry(ortho()), 1e-4);
+  EXPECT_FALSE(prony()->symmetric_tangent());
+  EXPECT_FALSE(segment::ContractLaw(prony()).symmetric_tangent());
+  EXPECT_FALSE(model::make_material_point(*fritzson, material1)->symmetric_tangent());
+}

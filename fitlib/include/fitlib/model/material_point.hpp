@@ -81,6 +81,14 @@ class MaterialPoint {
   // σ̂ = C*(ω) ε̂ (storage + i·loss). The elastic equivalent is its real part.
   virtual ComplexMatrix6 complex_stiffness(double frequency_Hz, double temperature_C) const = 0;
 
+  // Whether the finite-strain response in plane strain (the 1–2 plane, F e3 = e3: update_plane_strain,
+  // the segment FE) is hyperelastic, so the in-plane tangent dP/dF is major-symmetric and an FE code
+  // may factor with LDLᵀ: true for an elastic point whose stiffness is isotropic in the 1–2 plane
+  // (isotropic, or transversely isotropic about axis 3 as Fritzson's cord-direction parts), so
+  // the in-plane τ_U = C ln U is coaxial with U (Hencky energy). A rate-dependent, damaging or
+  // in-plane anisotropic point (τ_U need not be conjugate to ln U) says false.
+  virtual bool symmetric_tangent() const { return false; }
+
   // Finite strain, total logarithmic form (see the top of this file). Returns the Kirchhoff
   // stress τ in the current frame (3 × 3); optional: τ_U (Voigt) and dτ_U/d(ln U).
   Eigen::Matrix3d update_deformation(const double* state_n, const Eigen::Matrix3d& F, double dt_s,

@@ -59,6 +59,13 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   double t_s = 0.0, s_mm = 0.0;
   Eigen::Vector2d cord_reaction_N_mm = Eigen::Vector2d::Zero();  // Σ reactions of the cord-line nodes
   Eigen::Vector2d body_force_N_mm = Eigen::Vector2d::Zero();     // ∫ b dV (contact, friction, inertia)
+  // Along the cord tangent at the segment's middle (N/mm): the belt force F/B of the history there,
+  // the cord line's reactions (all; left of the middle), the left end face's (without the cord
+  // node), and the rubber's section force through the mid-section (docs/segment.md "Cord-line
+  // reactions and the belt force").
+  double belt_force_N_mm = 0.0, cord_longitudinal_N_mm = 0.0, left_cord_longitudinal_N_mm = 0.0;
+  double left_end_longitudinal_N_mm = 0.0, rubber_section_N_mm = 0.0;
+  bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
 
 struct CycleResult {
@@ -68,6 +75,12 @@ struct CycleResult {
   // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).
   double equilibrium_error = 0.0;
   double max_cord_reaction_N_mm = 0.0;  // largest |Σ cord-line reactions| (per mm of width)
+  // Largest |Σ cord-line reactions along the belt| / (F/B) over the increments in the spans: the
+  // thesis's "additional reaction forces at the neutral layer", small against the belt force.
+  double span_cord_share = 0.0;
+  // Largest |left end face + left cord reactions + rubber section force| / |rubber section force|
+  // over the span increments: the left half's longitudinal balance at the mid-section.
+  double span_section_mismatch = 0.0;
   std::vector<IncrementLoads> loads;    // per converged increment
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
   int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;

@@ -16,9 +16,8 @@ class ContractLaw final : public PlaneStrainLaw {
   using PlaneStrainLaw::respond;
   std::size_t state_size() const override { return point_->state_size(); }
   std::vector<double> initial_state() const override { return point_->initial_state(); }
-  // The contract does not say whether a point is hyperelastic (an anisotropic or viscoelastic
-  // point's τ_U need not be conjugate to ln U), so the tangent is treated as unsymmetric.
-  bool symmetric_tangent() const override { return false; }
+  // As the point says (model::MaterialPoint::symmetric_tangent: an isotropic elastic point).
+  bool symmetric_tangent() const override { return point_->symmetric_tangent(); }
   PointResponse respond(const Matrix2& F, const PointStep& step) const override;
   const model::MaterialPoint& point() const { return *point_; }
 

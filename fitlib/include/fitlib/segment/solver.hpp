@@ -43,6 +43,10 @@ struct SolverKnobs {
   // slower on the load cycle, whose transitions need fresh tangents (docs/segment.md §Cost).
   bool reuse_tangent = false;
   double reuse_contraction = 0.25;
+  // Start each increment (after a converged one, not after a cut) from the last increment's
+  // displacement extrapolated linearly in λ (time), capped at its size; a start that does not
+  // converge is retaken from the linear predictor (docs/segment.md §Solver).
+  bool extrapolate_start = false;
 };
 
 struct StaticSolution;
@@ -82,6 +86,8 @@ struct StaticSolution {
   int increments = 0, newton_iterations = 0, cuts = 0, factorizations = 0;
   double final_residual = 0.0;
   int equations = 0;
+  int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run)
+  bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
 };
 
 StaticSolution solve_static(const StaticProblem& problem, const SolverKnobs& knobs);
