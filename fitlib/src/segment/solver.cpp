@@ -432,132 +432,173 @@ std::vector<double> breakpoints(const SolverKnobs& knobs) {
 
 }  // namespace
 
-StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
-  if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
-    throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
-  const Mesh& m = *p.mesh;
-  Dofs d = number_dofs(p);
-  std::vector<double> angles(p.constraints.size());
-  Assembler assembler(p, d, gauss_order(m, knobs.integration));
-  StateBlock states = initial_states(p, assembler.points_per_element());
-  std::vector<double> scratch(states.committed.size());
-  assembler.set_offsets(&states.offset);
-  auto time_at = [&](double lambda) { return p.time_s ? p.time_s(lambda) : 0.0; };
-  LinearSolver linear(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent());
-  Pattern pattern = build_pattern(m, d);
-  const int nn = m.node_count();
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(2 * nn), r;
-  Newton newton(assembler, pattern, linear, d, knobs, q);
-  std::vector<std::array<double, 2>> values(p.constraints.size());
-  StaticSolution out;
-  out.equations = d.equations;
+namespace {
+
+// One run of solve_static: Newton increments from λ = 0 to 1 with step cuts that grow back.
+class StaticRun {
+ public:
+  StaticRun(const StaticProblem& p, const SolverKnobs& knobs)
+      : p_(p), knobs_(knobs), m_(*p.mesh), d_(number_dofs(p)), angles_(p.constraints.size()),
+        assembler_(p, d_, gauss_order(m_, knobs.integration)),
+        states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
+        linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent()),
+        pattern_(build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
+    assembler_.set_offsets(&states_.offset);
+    out_.equations = d_.equations;
+  }
+
+  StaticSolution run() {
+    const std::vector<double> targets = breakpoints(knobs_);
+    std::size_t next = 0;
+    while (next < targets.size()) {
+      const double target = std::min(targets[next], lambda_ + max_step_);
+      if (increment(target)) {
+        if (target >= targets[next]) ++next;
+      } else if (++cuts_in_row_ > knobs_.max_cuts) {
+        fail(out_.increments + 1, target, last_.bad_element, last_.residual, last_.iterations);
+      } else {
+        max_step_ = 0.5 * (target - lambda_);
+        out_.cuts++;
+      }
+    }
+    // After the swap, `trial` holds the states before the last increment.
+    snapshot(1.0, states_.trial, last_dt_, out_);
+    out_.pattern_analyses = linear_.analyses();
+    out_.symmetric_solver = linear_.symmetric();
+    out_.state = states_.committed;
+    out_.state_offset = states_.offset;
+    return out_;
+  }
+
+ private:
+  double time_at(double lambda) const { return p_.time_s ? p_.time_s(lambda) : 0.0; }
 
   // q with the prescribed components at λ.
-  auto prescribed_at = [&](double lambda) {
-    Eigen::VectorXd qp = q;
-    p.prescribe(lambda, values);
-    for (std::size_t c = 0; c < p.constraints.size(); ++c)
+  Eigen::VectorXd prescribed_at(double lambda) {
+    Eigen::VectorXd qp = q_;
+    p_.prescribe(lambda, values_);
+    for (std::size_t c = 0; c < p_.constraints.size(); ++c)
       for (int k = 0; k < 2; ++k)
-        if (p.constraints[c].fixed[k]) qp(2 * p.constraints[c].node + k) = values[c][k];
+        if (p_.constraints[c].fixed[k]) qp(2 * p_.constraints[c].node + k) = values_[c][k];
     return qp;
-  };
-  auto fail = [&](int increment, double lambda, int element, double residual, int iterations) {
+  }
+
+  [[noreturn]] void fail(int increment, double lambda, int element, double residual, int iterations) {
     std::ostringstream msg;
     msg << "segment: Newton failed in load increment " << increment << " (lambda " << lambda;
-    if (p.time_s) msg << ", t " << time_at(lambda) << " s";
+    if (p_.time_s) msg << ", t " << time_at(lambda) << " s";
     msg << ")";
     if (element >= 0) msg << ", element " << element << " inverted or with a non-finite stress";
     msg << ", free residual " << residual << " N/mm after " << iterations << " iterations and "
-        << knobs.max_cuts << " step cuts";
+        << knobs_.max_cuts << " step cuts";
     // Where: a residual stuck at one node with no inverted element is a non-smooth point response
     // there (docs/segment.md "Cost", complete level).
-    if (const int n = newton.worst_node(); n >= 0)
-      msg << "; largest residual at node " << n << " (reference x " << m.X[n].x() << ", y " << m.X[n].y()
+    if (const int n = newton_.worst_node(); n >= 0)
+      msg << "; largest residual at node " << n << " (reference x " << m_.X[n].x() << ", y " << m_.X[n].y()
           << " mm)";
     throw core::NumericalError(msg.str());
-  };
-  // Stresses, displacements and reactions at the converged q (states from `from` over dt).
-  auto snapshot = [&](double lambda, const std::vector<double>& from, double dt, StaticSolution& s) {
-    assembler.set_step(from.data(), scratch.data(), dt);
-    const int bad = assembler.run(q, lambda, nullptr, r, nullptr, nullptr, &s.points);
-    if (bad >= 0) fail(out.increments, lambda, bad, out.final_residual, 0);
-    s.u_mm.resize(nn);
-    s.reaction_N_mm.assign(nn, Eigen::Vector2d::Zero());
-    for (int a = 0; a < nn; ++a) {
-      s.u_mm[a] = assembler.u_of(q, a);
-      Eigen::Vector2d rl = r.segment<2>(2 * a);
-      for (int k = 0; k < 2; ++k)
-        if (d.eq[2 * a + k] >= 0) rl(k) = 0.0;
-      s.reaction_N_mm[a] = d.R[a] * rl;
-    }
-  };
+  }
 
-  const std::vector<double> targets = breakpoints(knobs);
-  std::size_t next = 0;
-  double lambda = 0.0, max_step = 2.0, last_dt = 0.0, last_dlambda = 0.0;
-  int cuts_in_row = 0;
-  bool have_factor = false;
-  Eigen::VectorXd velocity;  // Δq of the last converged increment (local components)
-  while (next < targets.size()) {
-    const double target = std::min(targets[next], lambda + max_step);
-    if (p.rotate) {  // turn the constrained bases, keeping the displacements
-      p.rotate(target, angles);
-      for (std::size_t c = 0; c < p.constraints.size(); ++c) {
-        const int n = p.constraints[c].node;
-        const Eigen::Vector2d u = d.R[n] * q.segment<2>(2 * n);
-        d.R[n] << std::cos(angles[c]), -std::sin(angles[c]), std::sin(angles[c]), std::cos(angles[c]);
-        q.segment<2>(2 * n) = d.R[n].transpose() * u;
-      }
+  // Stresses, displacements and reactions at the converged q (states from `from` over dt).
+  void snapshot(double lambda, const std::vector<double>& from, double dt, StaticSolution& s) {
+    assembler_.set_step(from.data(), scratch_.data(), dt);
+    const int bad = assembler_.run(q_, lambda, nullptr, r_, nullptr, nullptr, &s.points);
+    if (bad >= 0) fail(out_.increments, lambda, bad, out_.final_residual, 0);
+    s.u_mm.resize(nn_);
+    s.reaction_N_mm.assign(nn_, Eigen::Vector2d::Zero());
+    for (int a = 0; a < nn_; ++a) {
+      s.u_mm[a] = assembler_.u_of(q_, a);
+      Eigen::Vector2d rl = r_.segment<2>(2 * a);
+      for (int k = 0; k < 2; ++k)
+        if (d_.eq[2 * a + k] >= 0) rl(k) = 0.0;
+      s.reaction_N_mm[a] = d_.R[a] * rl;
     }
-    const Eigen::VectorXd q_saved = q;
-    const double dt = time_at(target) - time_at(lambda);
-    assembler.set_step(states.committed.data(), states.trial.data(), dt);
+  }
+
+  // Turn the constrained bases to λ = target, keeping the displacements.
+  void rotate_bases(double target) {
+    if (!p_.rotate) return;
+    p_.rotate(target, angles_);
+    for (std::size_t c = 0; c < p_.constraints.size(); ++c) {
+      const int n = p_.constraints[c].node;
+      const Eigen::Vector2d u = d_.R[n] * q_.segment<2>(2 * n);
+      d_.R[n] << std::cos(angles_[c]), -std::sin(angles_[c]), std::sin(angles_[c]), std::cos(angles_[c]);
+      q_.segment<2>(2 * n) = d_.R[n].transpose() * u;
+    }
+  }
+
+  // One increment to `target`: true (states committed) when Newton converged, else q restored.
+  bool increment(double target) {
+    rotate_bases(target);
+    const Eigen::VectorXd q_saved = q_;
+    const double dt = time_at(target) - time_at(lambda_);
+    assembler_.set_step(states_.committed.data(), states_.trial.data(), dt);
     // Start: the free dofs extrapolated from the last increment (capped at its size, the history
     // turns at transitions); or, first and after a cut, the linear predictor K_fp·Δq_p on a fresh
     // tangent.
     Eigen::VectorXd q_start = prescribed_at(target);
-    const bool extrapolate = (knobs.extrapolate_start || (knobs.reuse_tangent && have_factor)) && cuts_in_row == 0 &&
-                             velocity.size() == q.size();
+    const bool extrapolate = (knobs_.extrapolate_start || (knobs_.reuse_tangent && have_factor_)) &&
+                             cuts_in_row_ == 0 && velocity_.size() == q_.size();
     if (extrapolate) {
-      const double ratio = std::min(1.0, (target - lambda) / last_dlambda);
-      for (int i = 0; i < 2 * nn; ++i)
-        if (d.eq[i] >= 0) q_start(i) += ratio * velocity(i);
+      const double ratio = std::min(1.0, (target - lambda_) / last_dlambda_);
+      for (int i = 0; i < 2 * nn_; ++i)
+        if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
-    const NewtonOutcome o = newton.solve(target, q_start, extrapolate);
-    out.newton_iterations += o.iterations;
-    out.factorizations += o.factorizations;
-    have_factor = have_factor || o.factorizations > 0;
-    if (o.converged) {
-      if (p.on_increment) {
-        StaticSolution view;
-        snapshot(target, states.committed, dt, view);
-        view.increments = out.increments + 1;
-        p.on_increment(target, view);
-      }
-      states.committed.swap(states.trial);  // the last assembly was at the converged q
-      velocity = q - q_saved;
-      last_dt = dt;
-      last_dlambda = target - lambda;
-      lambda = target;
-      if (target >= targets[next]) ++next;
-      out.increments++;
-      out.final_residual = o.residual;
-      cuts_in_row = 0;
-      max_step = std::min(2.0, 2.0 * max_step);  // a cut step grows back after each success
-      continue;
+    last_ = newton_.solve(target, q_start, extrapolate);
+    out_.newton_iterations += last_.iterations;
+    out_.factorizations += last_.factorizations;
+    have_factor_ = have_factor_ || last_.factorizations > 0;
+    if (!last_.converged) {
+      q_ = q_saved;
+      return false;
     }
-    q = q_saved;
-    if (++cuts_in_row > knobs.max_cuts) fail(out.increments + 1, target, o.bad_element, o.residual, o.iterations);
-    max_step = 0.5 * (target - lambda);
-    out.cuts++;
+    if (p_.on_increment) {
+      StaticSolution view;
+      snapshot(target, states_.committed, dt, view);
+      view.increments = out_.increments + 1;
+      p_.on_increment(target, view);
+    }
+    states_.committed.swap(states_.trial);  // the last assembly was at the converged q
+    velocity_ = q_ - q_saved;
+    last_dt_ = dt;
+    last_dlambda_ = target - lambda_;
+    lambda_ = target;
+    out_.increments++;
+    out_.final_residual = last_.residual;
+    cuts_in_row_ = 0;
+    max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after each success
+    return true;
   }
-  // After the swap, `trial` holds the states before the last increment.
-  snapshot(1.0, states.trial, last_dt, out);
-  out.pattern_analyses = linear.analyses();
-  out.symmetric_solver = linear.symmetric();
-  out.state = states.committed;
-  out.state_offset = states.offset;
-  return out;
+
+  const StaticProblem& p_;
+  const SolverKnobs& knobs_;
+  const Mesh& m_;
+  Dofs d_;
+  std::vector<double> angles_;
+  Assembler assembler_;
+  StateBlock states_;
+  std::vector<double> scratch_;
+  LinearSolver linear_;
+  Pattern pattern_;
+  const int nn_;
+  Eigen::VectorXd q_, r_;
+  Newton newton_;
+  std::vector<std::array<double, 2>> values_;
+  StaticSolution out_;
+  NewtonOutcome last_;
+  double lambda_ = 0.0, max_step_ = 2.0, last_dt_ = 0.0, last_dlambda_ = 0.0;
+  int cuts_in_row_ = 0;
+  bool have_factor_ = false;
+  Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
+};
+
+}  // namespace
+
+StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
+  if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
+    throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
+  return StaticRun(p, knobs).run();
 }
 
 SectionForce section_force(const StaticProblem& p, const StaticSolution& s, double x_cut,
