@@ -74,7 +74,8 @@ TEST(ModeConversion, NativeModeIsTheModelsOwn) {
   EXPECT_DOUBLE_EQ(m.storage, prony(1.0).real());
 }
 
-TEST(DataWindow, BoxOfMeasuredConditionsWithSlackAtTheBounds) {
+// Rows at 0.1 and 100 Hz, 23 and 60 °C (moduli unused).
+static data::DynamicTestTable corners_0p1_100Hz_23_60C() {
   data::DynamicTestTable t;
   for (double f : {0.1, 100.0})
     for (double T : {23.0, 60.0}) {
@@ -83,6 +84,11 @@ TEST(DataWindow, BoxOfMeasuredConditionsWithSlackAtTheBounds) {
       row.condition.temperature_C = T;
       t.rows.push_back(row);
     }
+  return t;
+}
+
+TEST(DataWindow, BoxOfMeasuredConditionsWithSlackAtTheBounds) {
+  const data::DynamicTestTable t = corners_0p1_100Hz_23_60C();
   const auto w = card::data_window_json(t);
   EXPECT_EQ(w, (nlohmann::json{{"frequency_Hz", {0.1, 100.0}}, {"temperature_C", {23.0, 60.0}}}));  // no amplitude
   card::Card card = two_term_card("shear");
@@ -116,14 +122,7 @@ TEST(DataWindow, ReducedFrequencyWithATemperatureLaw) {
     card.parameters.push_back(p);
   }
   const auto log_aT = [](double T) { return -8.86 * (T - 23.0) / (101.6 + T - 23.0); };
-  data::DynamicTestTable t;
-  for (double f : {0.1, 100.0})
-    for (double T : {23.0, 60.0}) {
-      data::DynamicTestRow row;
-      row.condition.frequency_Hz = f;
-      row.condition.temperature_C = T;
-      t.rows.push_back(row);
-    }
+  const data::DynamicTestTable t = corners_0p1_100Hz_23_60C();
   card.fit["data_window"] = card::data_window_json(t, model.get(), card.values());
   const auto& reduced = card.fit["data_window"]["reduced_frequency_Hz"];
   EXPECT_NEAR(reduced[0].get<double>(), 0.1 * std::pow(10.0, log_aT(60.0)), 1e-12 * 0.1);
