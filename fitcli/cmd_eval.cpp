@@ -29,12 +29,15 @@ struct EvalArgs {
   bool json = false, allow_extrapolation = false;
 };
 
-// "--temperature-c 300 is outside the card's data window [23, 60] degC".
-std::string excess_text(const fitlib::card::WindowExcess& x) {
+// "--temperature-c 300 is outside the card's data window [23, 60] degC", or for a range of values
+// "--frequency-hz 1e-12 … 1e+14 reaches beyond the card's data window [0.1, 100] Hz".
+std::string excess_text(const fitlib::card::WindowExcess& x, double highest) {
   const bool f = x.quantity == "frequency_Hz", T = x.quantity == "temperature_C";
   const std::string option = f ? "--frequency-hz" : T ? "--temperature-c" : "--amplitude";
-  return option + " " + exact(x.value) + " is outside the card's data window [" + exact(x.low) + ", " +
-         exact(x.high) + "]" + (f ? " Hz" : T ? " degC" : "") +
+  const std::string values = highest != x.value ? exact(x.value) + " … " + exact(highest) + " reaches beyond"
+                                                : exact(x.value) + " is outside";
+  return option + " " + values + " the card's data window [" + exact(x.low) + ", " + exact(x.high) + "]" +
+         (f ? " Hz" : T ? " degC" : "") +
          (x.key != x.quantity ? " (its measured frequencies shifted to this temperature by the card's law)" : "");
 }
 
@@ -42,42 +45,38 @@ std::string excess_text(const fitlib::card::WindowExcess& x) {
 // --allow-extrapolation each quantity's range is one warning at the end.
 class WindowCheck {
  public:
-  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), card_(card) {}
+  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), window_(card) {}
 
   // True when `c` lies beyond the window (and extrapolation is allowed).
   bool beyond(const fitlib::model::TestCondition& c) {
-    const auto excess = fitlib::card::outside_data_window(card_, c);
+    const auto excess = window_.outside(c);
     if (excess.empty()) return false;
     if (!a_.allow_extrapolation)
-      throw fitlib::core::InputError("eval: " + excess_text(excess.front()) +
+      throw fitlib::core::InputError("eval: " + excess_text(excess.front(), excess.front().value) +
                                          "; pass --allow-extrapolation to evaluate there anyway",
                                      a_.card, 0, 0, "fit.data_window." + excess.front().key);
     for (const auto& x : excess) {
-      const bool added = seen_.emplace(x.quantity, x).second;
-      double& lo = lowest_[x.quantity];
-      double& hi = highest_[x.quantity];
-      lo = added ? x.value : std::min(lo, x.value);
-      hi = added ? x.value : std::max(hi, x.value);
+      const auto [it, added] = seen_.emplace(x.quantity, Seen{x, x.value});
+      if (added) continue;
+      it->second.first.value = std::min(it->second.first.value, x.value);
+      it->second.highest = std::max(it->second.highest, x.value);
     }
     return true;
   }
 
   ~WindowCheck() {
-    for (auto [quantity, x] : seen_) {
-      x.value = lowest_[quantity];
-      std::string text = excess_text(x);
-      const auto at = text.find(" is outside");
-      if (highest_[quantity] != lowest_[quantity])
-        text.replace(at, 11, " … " + exact(highest_[quantity]) + " reaches beyond");
-      warning("extrapolating: " + text + " (" + a_.card + ")");
-    }
+    for (const auto& [quantity, s] : seen_)
+      warning("extrapolating: " + excess_text(s.first, s.highest) + " (" + a_.card + ")");
   }
 
  private:
+  struct Seen {
+    fitlib::card::WindowExcess first;  // its value the lowest seen
+    double highest;
+  };
   const EvalArgs& a_;
-  const fitlib::card::Card& card_;
-  std::map<std::string, fitlib::card::WindowExcess> seen_;
-  std::map<std::string, double> lowest_, highest_;
+  const fitlib::card::DataWindow window_;
+  std::map<std::string, Seen> seen_;
 };
 
 // --time-s: relaxation modulus M(t) after a unit strain step and creep compliance J(t) after a

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 namespace fitlib::card {
 namespace {
@@ -9,10 +11,16 @@ namespace {
 // Values within this relative distance of a bound are inside (the card's decimal form of it).
 constexpr double kBoundSlack = 1e-9;
 
-void widen(double x, double& lo, double& hi) {
-  lo = std::min(lo, x);
-  hi = std::max(hi, x);
-}
+// [lo, hi] of the values seen; empty until one is.
+struct Range {
+  double lo = INFINITY, hi = -INFINITY;
+  void widen(double x) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  bool empty() const { return !(lo <= hi); }
+  nlohmann::json json() const { return {lo, hi}; }
+};
 
 // a_T of the model's law at T (1 at the reference or without a law); NaN where the law has none
 // (beyond a WLF pole).
@@ -26,54 +34,70 @@ bool has_law(const model::Model* model) {
   return model && model->temperature_law_info().law != model::ShiftLaw::none;
 }
 
+// The stored [lo, hi] of `key`, when the window holds two numbers there.
+std::optional<std::pair<double, double>> bounds(const nlohmann::json& w, const char* key) {
+  const auto it = w.find(key);
+  if (it == w.end() || !it->is_array() || it->size() != 2) return std::nullopt;
+  return std::make_pair((*it)[0].get<double>(), (*it)[1].get<double>());
+}
+
 }  // namespace
 
 nlohmann::json data_window_json(const data::DynamicTestTable& measured, const model::Model* model,
                                 const std::vector<double>& p) {
-  nlohmann::json w = nlohmann::json::object();
-  if (has_law(model)) {
-    double lo = INFINITY, hi = -INFINITY;
-    for (const auto& row : measured.rows) {
-      const double reduced = row.condition.frequency_Hz * shift_factor(*model, p, row.condition.temperature_C);
-      if (std::isfinite(reduced)) widen(reduced, lo, hi);
-    }
-    if (lo <= hi) w["reduced_frequency_Hz"] = {lo, hi};
-  }
-  double f_lo = INFINITY, f_hi = -INFINITY, T_lo = INFINITY, T_hi = -INFINITY, a_lo = INFINITY, a_hi = -INFINITY;
+  const bool law = has_law(model);
+  Range reduced, frequency, temperature, amplitude;
   for (const auto& row : measured.rows) {
     const auto& c = row.condition;
-    if (std::isfinite(c.frequency_Hz)) widen(c.frequency_Hz, f_lo, f_hi);
-    if (std::isfinite(c.temperature_C)) widen(c.temperature_C, T_lo, T_hi);
-    if (std::isfinite(c.strain_amplitude) && c.strain_amplitude > 0.0) widen(c.strain_amplitude, a_lo, a_hi);
+    if (law) {
+      const double f_reduced = c.frequency_Hz * shift_factor(*model, p, c.temperature_C);
+      if (std::isfinite(f_reduced)) reduced.widen(f_reduced);
+    }
+    if (std::isfinite(c.frequency_Hz)) frequency.widen(c.frequency_Hz);
+    if (std::isfinite(c.temperature_C)) temperature.widen(c.temperature_C);
+    if (std::isfinite(c.strain_amplitude) && c.strain_amplitude > 0.0) amplitude.widen(c.strain_amplitude);
   }
-  if (f_lo <= f_hi) w["frequency_Hz"] = {f_lo, f_hi};
-  if (T_lo <= T_hi) w["temperature_C"] = {T_lo, T_hi};
-  if (a_lo <= a_hi) w["strain_amplitude"] = {a_lo, a_hi};
+  nlohmann::json w = nlohmann::json::object();
+  if (!reduced.empty()) w["reduced_frequency_Hz"] = reduced.json();
+  if (!frequency.empty()) w["frequency_Hz"] = frequency.json();
+  if (!temperature.empty()) w["temperature_C"] = temperature.json();
+  if (!amplitude.empty()) w["strain_amplitude"] = amplitude.json();
   return w;
 }
 
-std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c) {
-  std::vector<WindowExcess> out;
+DataWindow::DataWindow(const Card& card) {
   const auto w = card.fit.value("data_window", nlohmann::json::object());
-  if (!w.is_object()) return out;
+  if (!w.is_object()) return;
+  frequency_ = bounds(w, "frequency_Hz");
+  temperature_ = bounds(w, "temperature_C");
+  amplitude_ = bounds(w, "strain_amplitude");
+  if ((reduced_ = bounds(w, "reduced_frequency_Hz"))) {
+    model_ = card.model();
+    values_ = card.values();
+    if (!has_law(model_.get())) reduced_.reset();
+  }
+}
+
+std::vector<WindowExcess> DataWindow::outside(const model::TestCondition& c) const {
+  std::vector<WindowExcess> out;
   // `scale` divides the stored bounds: the reduced-frequency window seen at c's temperature.
-  const auto check = [&](const char* quantity, const char* key, double value, double scale = 1.0) {
-    const auto it = w.find(key);
-    if (it == w.end() || !it->is_array() || it->size() != 2 || !std::isfinite(value)) return;
-    const double lo = (*it)[0].get<double>() / scale, hi = (*it)[1].get<double>() / scale;
+  const auto check = [&](const char* quantity, const char* key, const std::optional<std::pair<double, double>>& b,
+                         double value, double scale = 1.0) {
+    if (!b || !std::isfinite(value)) return;
+    const double lo = b->first / scale, hi = b->second / scale;
     const double slack = kBoundSlack * std::max(std::abs(lo), std::abs(hi));
     if (value < lo - slack || value > hi + slack) out.push_back({quantity, key, value, lo, hi});
   };
-  double a_T = NAN;
-  if (w.contains("reduced_frequency_Hz")) {
-    const auto model = card.model();
-    if (has_law(model.get())) a_T = shift_factor(*model, card.values(), c.temperature_C);
-  }
-  if (std::isfinite(a_T)) check("frequency_Hz", "reduced_frequency_Hz", c.frequency_Hz, a_T);
-  else check("frequency_Hz", "frequency_Hz", c.frequency_Hz);
-  check("temperature_C", "temperature_C", c.temperature_C);
-  if (c.strain_amplitude > 0.0) check("strain_amplitude", "strain_amplitude", c.strain_amplitude);
+  const double a_T = reduced_ ? shift_factor(*model_, values_, c.temperature_C) : NAN;
+  if (std::isfinite(a_T)) check("frequency_Hz", "reduced_frequency_Hz", reduced_, c.frequency_Hz, a_T);
+  else check("frequency_Hz", "frequency_Hz", frequency_, c.frequency_Hz);
+  check("temperature_C", "temperature_C", temperature_, c.temperature_C);
+  if (c.strain_amplitude > 0.0) check("strain_amplitude", "strain_amplitude", amplitude_, c.strain_amplitude);
   return out;
+}
+
+std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c) {
+  return DataWindow(card).outside(c);
 }
 
 }  // namespace fitlib::card

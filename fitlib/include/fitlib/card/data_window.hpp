@@ -4,7 +4,9 @@
 // (docs/formats.md §3). fitcli eval refuses conditions outside it unless told to extrapolate
 // (docs/decisions.md, "eval: the data window").
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fitlib/card/card.hpp"
@@ -27,8 +29,22 @@ struct WindowExcess {
   double value = 0.0, low = 0.0, high = 0.0;
 };
 
-// The quantities of `c` beyond the card's window (none when the card stores no window); with a
-// reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T).
+// A card's window, read once (and its model built once when the window is in reduced frequency)
+// for evaluating many conditions.
+class DataWindow {
+ public:
+  explicit DataWindow(const Card& card);
+  // The quantities of `c` beyond the window (none when the card stores no window); with a
+  // reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T).
+  std::vector<WindowExcess> outside(const model::TestCondition& c) const;
+
+ private:
+  std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;
+  model::ModelPtr model_;  // the card's model, for a_T, when reduced_ is set
+  std::vector<double> values_;
+};
+
+// DataWindow(card).outside(c), for one condition.
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c);
 
 }  // namespace fitlib::card
