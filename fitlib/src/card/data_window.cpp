@@ -85,10 +85,16 @@ std::vector<WindowExcess> DataWindow::outside(const model::TestCondition& c) con
                          double value, double scale = 1.0) {
     if (!b || !std::isfinite(value)) return;
     const double lo = b->first / scale, hi = b->second / scale;
-    const double slack = kBoundSlack * std::max(std::abs(lo), std::abs(hi));
-    if (value < lo - slack || value > hi + slack) out.push_back({quantity, key, value, lo, hi});
+    // Slack relative to each bound: one scaled by the larger bound would swallow a low bound
+    // many decades below the high one (a reduced-frequency window spans 10+ decades).
+    if (value < lo - kBoundSlack * std::abs(lo) || value > hi + kBoundSlack * std::abs(hi))
+      out.push_back({quantity, key, value, lo, hi});
   };
-  const double a_T = reduced_ ? shift_factor(*model_, values_, c.temperature_C) : NAN;
+  // The reduced window holds within the measured temperatures; beyond them the law's a_T is an
+  // extrapolation itself: the temperature is named and the frequency checked against its box.
+  const bool measured_T = !temperature_ || !std::isfinite(c.temperature_C) ||
+                          (c.temperature_C >= temperature_->first && c.temperature_C <= temperature_->second);
+  const double a_T = reduced_ && measured_T ? shift_factor(*model_, values_, c.temperature_C) : NAN;
   if (std::isfinite(a_T)) check("frequency_Hz", "reduced_frequency_Hz", reduced_, c.frequency_Hz, a_T);
   else check("frequency_Hz", "frequency_Hz", frequency_, c.frequency_Hz);
   check("temperature_C", "temperature_C", temperature_, c.temperature_C);

@@ -136,3 +136,15 @@ TEST(DataWindow, ReducedFrequencyWithATemperatureLaw) {
   EXPECT_EQ(x[0].key, "reduced_frequency_Hz");
   EXPECT_NEAR(x[0].low, reduced[0].get<double>() / std::pow(10.0, log_aT(40.0)), 1e-9 * x[0].low);
 }
+
+// The low bound holds however many decades lie below the high one (the slack is relative to each
+// bound): 1e-6 Hz at the reference is below a reduced window that starts at 6.6e-5 Hz.
+TEST(DataWindow, LowBoundHoldsManyDecadesBelowTheHighOne) {
+  card::Card card = two_term_card("shear");
+  card.fit["data_window"] = {{"frequency_Hz", {1e-5, 1e9}}};
+  const auto x = card::outside_data_window(card, at(model::TestMode::shear, 1e-6));
+  ASSERT_EQ(x.size(), 1u);
+  EXPECT_EQ(x[0].low, 1e-5);
+  EXPECT_TRUE(card::outside_data_window(card, at(model::TestMode::shear, 1e-5 * (1 - 1e-12))).empty());
+}
+

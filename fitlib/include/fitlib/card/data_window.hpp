@@ -35,7 +35,8 @@ class DataWindow {
  public:
   explicit DataWindow(const Card& card);
   // The quantities of `c` beyond the window (none when the card stores no window); with a
-  // reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T).
+  // reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T)
+  // when that temperature is within the measured ones, else the measured frequencies' box.
   std::vector<WindowExcess> outside(const model::TestCondition& c) const;
 
  private:
