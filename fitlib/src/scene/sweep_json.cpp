@@ -32,9 +32,7 @@ nlohmann::json sweep_json(const Sweep& sweep, const std::string& table) {
     const auto fields = split_csv_row(line);
     nlohmann::json row = nlohmann::json::object();
     for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) {
-      const bool text_column = header[i] == "scene" || header[i] == "status" || header[i] == "message" ||
-                               header[i] == "fidelity" || header[i] == "governing_mode";
-      row[header[i]] = text_column ? (fields[i].empty() ? nlohmann::json(nullptr) : nlohmann::json(fields[i]))
+      row[header[i]] = sweep_text_column(header[i]) ? (fields[i].empty() ? nlohmann::json(nullptr) : nlohmann::json(fields[i]))
                                    : field_json(fields[i]);
     }
     rows.push_back(std::move(row));

@@ -46,6 +46,7 @@ Column mode_life(const std::string& mode, bool hours) {
 struct ColumnSpec {
   const char* output;  // the scene output it needs: load_history or life
   Column column;
+  bool text = false;   // a word, not a number (JSON keeps it a string)
 };
 
 const std::map<std::string, ColumnSpec>& columns() {
@@ -68,8 +69,8 @@ const std::map<std::string, ColumnSpec>& columns() {
        }}},
       {"centrifugal_tension_N", {"load_history", [](const SceneResult& r) { return number(r.cycle->centrifugal_tension_N); }}},
       {"cycle_time_s", {"load_history", [](const SceneResult& r) { return number(r.cycle->cycle_time_s); }}},
-      {"fidelity", {"life", [](const SceneResult& r) { return r.life->plan.fidelity; }}},
-      {"governing_mode", {"life", [](const SceneResult& r) { return r.life->report.governing; }}},
+      {"fidelity", {"life", [](const SceneResult& r) { return r.life->plan.fidelity; }, true}},
+      {"governing_mode", {"life", [](const SceneResult& r) { return r.life->report.governing; }, true}},
       {"life_cycles", {"life", [](const SceneResult& r) { return number(r.life->report.life_cycles); }}},
       {"life_h", {"life", [](const SceneResult& r) { return number(r.life->report.life_h); }}},
       {"radial_crack_life_cycles", {"life", mode_life("radial_crack", false)}},
@@ -107,6 +108,12 @@ const std::vector<std::string>& sweep_column_names() {
     return n;
   }();
   return names;
+}
+
+bool sweep_text_column(const std::string& name) {
+  if (name == "scene" || name == "status" || name == "message") return true;
+  const auto it = columns().find(name);
+  return it != columns().end() && it->second.text;
 }
 
 std::vector<std::string> sweep_header(const Sweep& sweep) {

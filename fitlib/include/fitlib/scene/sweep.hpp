@@ -59,6 +59,8 @@ const std::vector<std::string>& sweep_column_names();
 
 // The table's header fields: case, scene, one per axis key, the asked columns, status, message.
 std::vector<std::string> sweep_header(const Sweep& sweep);
+// True for a header column that holds words (scene, status, message, fidelity, governing mode).
+bool sweep_text_column(const std::string& name);
 
 // The CSV row of case i (no newline). A case whose scene is rejected (a drive that slips) or
 // whose solver fails gives status input_error or numerical_error, its message and empty result
