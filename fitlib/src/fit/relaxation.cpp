@@ -10,7 +10,8 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fit/nnls.hpp"
-#include "term_sweep.hpp"
+#include "admissible.hpp"
+#include "relaxation_checks.hpp"
 
 namespace fitlib::fit {
 namespace {
@@ -31,12 +32,52 @@ struct Coordinates {
   double from_x(int i, double x) const { return is_log(i) ? std::exp(x) : x; }
 };
 
-// r_i = √w_i (log10 M(t_i) − log10 M_i); Jacobian by central differences in x (step ∝ |x|).
+// Role of each free parameter in M(t) = E∞ + Σ E_j exp(−t/τ_j) when the model's relaxation
+// modulus is that plain series (no law, native mode; checked numerically by plain_series_roles),
+// so that its derivative is analytic; kNumeric for the others.
+constexpr int kNumeric = -1, kRelaxed = -2;
+struct Role {
+  int term = kNumeric;  // j ≥ 0: term j's modulus or time; kRelaxed; kNumeric
+  bool time = false;
+};
+
+double plain_series(const detail::SeriesTerms& s, const double* p, double t) {
+  double m = s.relaxed >= 0 ? p[s.relaxed] : 0.0;
+  for (std::size_t j = 0; j < s.times.size(); ++j) m += p[s.moduli[j]] * std::exp(-t / p[s.times[j]]);
+  return m;
+}
+
+std::vector<Role> plain_series_roles(const model::Model& model, const data::RelaxationTable& table,
+                                     const std::vector<int>& free, std::vector<double> p) {
+  std::vector<Role> roles(free.size());
+  const detail::SeriesTerms s = detail::series_terms(model.parameters());
+  if (s.empty() || model.temperature_law_info().law != model::ShiftLaw::none) return roles;
+  for (int i : s.moduli) p[i] = 1.0;  // every term visible in the check
+  if (s.relaxed >= 0) p[s.relaxed] = 1.0;
+  for (const auto& row : table.rows) {
+    if (row.mode != model.native_mode()) return roles;
+    const double want = model.relaxation_modulus(p.data(), condition_of(row), row.time_s);
+    if (!(std::abs(plain_series(s, p.data(), row.time_s) - want) <= 1e-12 * std::abs(want))) return roles;
+  }
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    if (free[k] == s.relaxed) roles[k].term = kRelaxed;
+    for (std::size_t j = 0; j < s.times.size(); ++j) {
+      if (free[k] == s.moduli[j]) roles[k].term = static_cast<int>(j);
+      if (free[k] == s.times[j]) roles[k] = {static_cast<int>(j), true};
+    }
+  }
+  return roles;
+}
+
+// r_i = √w_i (log10 M(t_i) − log10 M_i); the Jacobian in x analytic for the plain series'
+// parameters, by central differences (step ∝ |x|) for the others.
 class LogResidual : public ceres::CostFunction {
  public:
   LogResidual(const model::Model& model, const data::RelaxationTable& table, const Coordinates& coords,
               std::vector<double> natural)
-      : model_(model), table_(table), coords_(coords), natural_(std::move(natural)) {
+      : model_(model), table_(table), coords_(coords), natural_(std::move(natural)),
+        series_(detail::series_terms(model.parameters())),
+        roles_(plain_series_roles(model, table, coords.free, natural_)) {
     set_num_residuals(static_cast<int>(table.rows.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(coords.free.size()));
   }
@@ -45,18 +86,49 @@ class LogResidual : public ceres::CostFunction {
     std::vector<double> p = natural_at(x[0]);
     if (!residuals_at(p, residuals)) return false;
     if (!jacobians || !jacobians[0]) return true;
-    const int m = num_residuals(), n = static_cast<int>(coords_.free.size());
-    std::vector<double> up(m), down(m);
-    for (int k = 0; k < n; ++k) {
-      const int i = coords_.free[k];
-      const double h = 1e-6 * std::max(1.0, std::abs(x[0][k]));
-      std::vector<double> q = p;
-      q[i] = coords_.from_x(i, x[0][k] + h);
-      if (!residuals_at(q, up.data())) return false;
-      q[i] = coords_.from_x(i, x[0][k] - h);
-      if (!residuals_at(q, down.data())) return false;
-      for (int r = 0; r < m; ++r) jacobians[0][r * n + k] = (up[r] - down[r]) / (2.0 * h);
+    series_columns(p, jacobians[0]);
+    for (int k = 0; k < static_cast<int>(coords_.free.size()); ++k)
+      if (roles_[k].term == kNumeric && !numeric_column(p, x[0], k, jacobians[0])) return false;
+    return true;
+  }
+
+  // ∂r_i/∂x_k = √w_i ∂M/∂p · (dp/dx) / (M ln 10) for the plain series' parameters, one row at
+  // a time (each term's exponential computed once).
+  void series_columns(const std::vector<double>& p, double* jac) const {
+    const int n = static_cast<int>(coords_.free.size()), terms = static_cast<int>(series_.times.size());
+    std::vector<double> decay(terms);
+    for (std::size_t r = 0; r < table_.rows.size(); ++r) {
+      const auto& row = table_.rows[r];
+      double m = series_.relaxed >= 0 ? p[series_.relaxed] : 0.0;
+      for (int j = 0; j < terms; ++j) {
+        decay[j] = std::exp(-row.time_s / p[series_.times[j]]);
+        m += p[series_.moduli[j]] * decay[j];
+      }
+      const double scale = std::sqrt(row.weight) / (m * std::log(10.0));
+      for (int k = 0; k < n; ++k) {
+        const Role role = roles_[k];
+        if (role.term == kNumeric) continue;
+        const int i = coords_.free[k];
+        double dm = role.term == kRelaxed ? 1.0 : decay[role.term];
+        if (role.time) {
+          const double tau = p[series_.times[role.term]];
+          dm *= p[series_.moduli[role.term]] * row.time_s / (tau * tau);
+        }
+        jac[r * n + k] = scale * dm * (coords_.is_log(i) ? p[i] : 1.0);
+      }
     }
+  }
+
+  bool numeric_column(const std::vector<double>& p, const double* x, int k, double* jac) const {
+    const int m = num_residuals(), n = static_cast<int>(coords_.free.size()), i = coords_.free[k];
+    std::vector<double> up(m), down(m);
+    const double h = 1e-6 * std::max(1.0, std::abs(x[k]));
+    std::vector<double> q = p;
+    q[i] = coords_.from_x(i, x[k] + h);
+    if (!residuals_at(q, up.data())) return false;
+    q[i] = coords_.from_x(i, x[k] - h);
+    if (!residuals_at(q, down.data())) return false;
+    for (int r = 0; r < m; ++r) jac[r * n + k] = (up[r] - down[r]) / (2.0 * h);
     return true;
   }
 
@@ -81,31 +153,9 @@ class LogResidual : public ceres::CostFunction {
   const data::RelaxationTable& table_;
   const Coordinates& coords_;
   std::vector<double> natural_;
+  detail::SeriesTerms series_;
+  std::vector<Role> roles_;
 };
-
-model::DataSummary summarize_relaxation(const data::RelaxationTable& table) {
-  model::DataSummary s;
-  double t_min = HUGE_VAL, t_max = 0.0, m_min = HUGE_VAL, m_max = 0.0;
-  s.temperature_min_C = HUGE_VAL;
-  s.temperature_max_C = -HUGE_VAL;
-  for (const auto& r : table.rows) {
-    t_min = std::min(t_min, r.time_s);
-    t_max = std::max(t_max, r.time_s);
-    m_min = std::min(m_min, r.modulus_MPa);
-    m_max = std::max(m_max, r.modulus_MPa);
-    if (!std::isnan(r.temperature_C)) {
-      s.temperature_min_C = std::min(s.temperature_min_C, r.temperature_C);
-      s.temperature_max_C = std::max(s.temperature_max_C, r.temperature_C);
-    }
-  }
-  if (s.temperature_min_C > s.temperature_max_C) s.temperature_min_C = s.temperature_max_C = 23.0;
-  // A relaxation time τ is seen at t ≈ τ, as a frequency ω ≈ 1/τ is.
-  s.omega_min_rad_s = 1.0 / t_max;
-  s.omega_max_rad_s = 1.0 / t_min;
-  s.storage_min_MPa = m_min;
-  s.storage_max_MPa = m_max;
-  return s;
-}
 
 // Non-negative weights of the linear parameters with the others held: rows scaled by 1/M_i
 // (first-order form of the log10 residual).
@@ -163,7 +213,6 @@ namespace {
 void polish_relaxation(const model::Model& model, const data::RelaxationTable& table,
                        const Coordinates& coords, const FitOptions& options, std::vector<double>& p,
                        FitResult& result) {
-  const auto& specs = *coords.specs;
   const int nf = static_cast<int>(coords.free.size());
   std::vector<double> x(nf);
   for (int k = 0; k < nf; ++k) x[k] = coords.to_x(coords.free[k], p[coords.free[k]]);
@@ -172,8 +221,9 @@ void polish_relaxation(const model::Model& model, const data::RelaxationTable& t
   problem.AddResidualBlock(cost, nullptr, x.data());
   for (int k = 0; k < nf; ++k) {
     const int i = coords.free[k];
-    const double lo = coords.is_log(i) ? (specs[i].lower > 0.0 ? std::log(specs[i].lower) : -HUGE_VAL) : specs[i].lower;
-    const double hi = coords.is_log(i) ? std::log(specs[i].upper) : specs[i].upper;
+    const auto [lower, upper] = detail::window_bounds(model, result.admissible, i);
+    const double lo = coords.is_log(i) ? (lower > 0.0 ? std::log(lower) : -HUGE_VAL) : lower;
+    const double hi = coords.is_log(i) ? std::log(upper) : upper;
     if (std::isfinite(lo)) problem.SetParameterLowerBound(x.data(), k, lo);
     if (std::isfinite(hi)) problem.SetParameterUpperBound(x.data(), k, hi);
   }
@@ -223,6 +273,30 @@ void measure_fit(const model::Model& model, const data::RelaxationTable& table,
   mt.bic = m * std::log(variance) + active * std::log(static_cast<double>(m));
 }
 
+// The linear solve's values moved into the admissible window (a relaxed modulus the solve left
+// at 0 goes to its floor and stays free), with a message saying so.
+template <typename Fixed>
+void hold_in_window(const model::Model& model, const AdmissibleWindow& w, const Fixed& user_fixed,
+                    std::vector<double>& p, FitResult& result) {
+  if (!w.applies) return;
+  int moved = 0;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    if (user_fixed(i) || (model.parameters()[i].transform == core::Transform::log && p[i] == 0.0 &&
+                          detail::window_bounds(model, w, i).first <= 0.0))
+      continue;  // a term the linear solve left out stays out
+    const auto [lo, hi] = detail::window_bounds(model, w, i);
+    const double held = std::clamp(p[i], lo, hi);
+    moved += held != p[i];
+    p[i] = held;
+  }
+  std::ostringstream s;
+  s << "admissible terms: time constants in [" << w.tau_min_s << ", " << w.tau_max_s << "] s";
+  if (w.modulus_max_MPa > 0.0) s << ", moduli <= " << w.modulus_max_MPa << " MPa";
+  if (w.relaxed_min_MPa > 0.0) s << ", relaxed modulus >= " << w.relaxed_min_MPa << " MPa";
+  if (moved > 0) s << " (" << moved << " start value(s) moved inside)";
+  result.messages.push_back(s.str());
+}
+
 }  // namespace
 
 FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::RelaxationTable& table,
@@ -231,7 +305,7 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
   if (table.rows.empty()) throw core::InputError("relaxation fit: no data rows");
   const model::Model& model = *model_ptr;
   const auto& specs = model.parameters();
-  std::vector<double> p = model.initial_parameters(summarize_relaxation(table));
+  std::vector<double> p = model.initial_parameters(detail::summarize_relaxation(table));
   const auto user_fixed = [&](int i) {
     return std::find(options.fixed.begin(), options.fixed.end(), specs[i].name) != options.fixed.end();
   };
@@ -246,6 +320,8 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
   result.model = model_ptr;
   result.objective = "sum of squared log10 errors of the relaxation modulus M(t)";
   result.backend_used = "nnls";
+  result.admissible = detail::relaxation_window(model, table, options);
+  hold_in_window(model, result.admissible, user_fixed, p, result);
   Coordinates coords{&specs, {}};
   for (int i = 0; i < static_cast<int>(specs.size()); ++i) {
     if (user_fixed(i)) continue;
@@ -259,6 +335,7 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
   for (double v : p)
     if (!std::isfinite(v)) throw core::NumericalError("relaxation fit: a parameter is not finite");
   measure_fit(model, table, coords, p, result.metrics);
+  result.quality = detail::relaxation_verdict(model, p, table);
   result.values = p;
   for (int i = 0; i < static_cast<int>(specs.size()); ++i) {
     ParameterResult pr;
@@ -272,36 +349,6 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
   }
   result.metrics.wall_time_s = clock.seconds();
   return result;
-}
-
-TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::json& model_options,
-                                      const data::RelaxationTable& table, const FitOptions& options,
-                                      const TermOptions& terms) {
-  int max_terms = terms.max_terms;
-  if (max_terms <= 0) {
-    const auto s = summarize_relaxation(table);
-    max_terms = std::clamp(static_cast<int>(std::ceil(std::log10(s.omega_max_rad_s / s.omega_min_rad_s))) + 2, 1, 40);
-  }
-  const int min_terms = std::max(terms.min_terms, 1);
-  if (max_terms < min_terms) throw core::UsageError("relaxation terms: max below min");
-  TermSelection sel;
-  sel.rule = terms.rule;
-  // Each N is ranked on its linear solve (τ on the model's start grid); only the chosen N is
-  // polished, so the search costs one polish (docs/fitting.md, "Relaxation data").
-  FitOptions linear_only = options;
-  linear_only.polish = false;
-  auto fit_n = [&](int n) {
-    nlohmann::json o = model_options.is_object() ? model_options : nlohmann::json::object();
-    o["terms"] = n;
-    return fit_relaxation(model::make_model(kind, o), table, linear_only);
-  };
-  std::vector<FitResult> results = detail::sweep_terms(min_terms, max_terms, fit_n, terms, false, sel);
-  sel.unconstrained = choose_terms(sel.rows, terms.rule, terms.residual_ratio, 0);
-  sel.chosen = choose_terms(sel.rows, terms.rule, terms.residual_ratio, terms.solver_cap);
-  if (sel.chosen == 0) throw core::NumericalError("relaxation terms: no usable fit");
-  sel.result = options.polish ? fit_relaxation(results[sel.chosen - min_terms].model, table, options)
-                              : std::move(results[sel.chosen - min_terms]);
-  return sel;
 }
 
 }  // namespace fitlib::fit

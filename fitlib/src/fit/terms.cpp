@@ -234,6 +234,7 @@ std::string format_term_table(const TermSelection& sel) {
     if (r.terms == sel.by_aic) marks += " aic";
     if (r.terms == sel.by_bic) marks += " bic";
     if (r.terms == sel.by_ratio) marks += " ratio";
+    if (r.terms == sel.by_accuracy) marks += " accuracy";
     if (r.terms == sel.chosen) marks += " <- chosen";
     if (r.failed) marks += " FAILED: " + r.message;
     std::snprintf(line, sizeof line, "%5d %10.3f %10.5f %10.5f %12.6g %12.6g %12.6g %s\n",

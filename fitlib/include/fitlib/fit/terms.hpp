@@ -14,6 +14,9 @@
 namespace fitlib::fit {
 
 enum class TermRule { bic, aic, residual_ratio };
+// Accuracy target of relaxation term selection: rms log10 error 0.00215 = 0.5 % rms, half
+// pyvisco's published 0.0043 (docs/decisions.md "Relaxation terms: BIC or an accuracy target").
+constexpr double kRelaxationAccuracyLog10 = 0.00215;
 // spectrum (default where it applies): one smooth-spectrum fit (fit/spectrum.hpp), its positive
 // terms are the count; sweep: fit N = min..max terms with free times and rank them by `rule`.
 enum class TermMethod { spectrum, sweep };
@@ -28,6 +31,10 @@ struct TermOptions {
   int solver_cap = 0;    // e.g. 13 (Abaqus), 6 (LS-DYNA hyperelastic); 0 = none
   TermRule rule = TermRule::bic;
   double residual_ratio = 1.5;  // pyvisco's rule: smallest N with cost ≤ ratio × minimum
+  // Relaxation data (fit/relaxation.hpp): the smallest N whose linear solve reaches this rms
+  // log10 error of M(t) is chosen when `rule` asks for more (docs/fitting.md "Relaxation data";
+  // 0: off).
+  double accuracy_log10 = kRelaxationAccuracyLog10;
   TermMethod method = TermMethod::spectrum;  // sweep where the spectrum does not apply
   SpectrumOptions spectrum;
 };
@@ -46,6 +53,7 @@ struct TermRow {
 struct TermSelection {
   std::vector<TermRow> rows;  // one per N tried, increasing
   int by_aic = 0, by_bic = 0, by_ratio = 0;  // N chosen by each rule (over all N tried)
+  int by_accuracy = 0;  // relaxation data: smallest N reaching TermOptions::accuracy_log10 (0: none)
   TermRule rule = TermRule::bic;
   int unconstrained = 0;  // N chosen by `rule`
   int chosen = 0;         // N chosen by `rule` among N ≤ solver_cap (= unconstrained without cap)

@@ -1,0 +1,98 @@
+// Admissible window and quality verdict of relaxation fits (docs/fitting.md "Relaxation data").
+#include "relaxation_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "admissible.hpp"
+#include "quality.hpp"
+
+namespace fitlib::fit::detail {
+
+model::DataSummary summarize_relaxation(const data::RelaxationTable& table) {
+  model::DataSummary s;
+  double t_min = HUGE_VAL, t_max = 0.0, m_min = HUGE_VAL, m_max = 0.0;
+  s.temperature_min_C = HUGE_VAL;
+  s.temperature_max_C = -HUGE_VAL;
+  for (const auto& r : table.rows) {
+    t_min = std::min(t_min, r.time_s);
+    t_max = std::max(t_max, r.time_s);
+    m_min = std::min(m_min, r.modulus_MPa);
+    m_max = std::max(m_max, r.modulus_MPa);
+    if (!std::isnan(r.temperature_C)) {
+      s.temperature_min_C = std::min(s.temperature_min_C, r.temperature_C);
+      s.temperature_max_C = std::max(s.temperature_max_C, r.temperature_C);
+    }
+  }
+  if (s.temperature_min_C > s.temperature_max_C) s.temperature_min_C = s.temperature_max_C = 23.0;
+  // A relaxation time τ is seen at t ≈ τ, as a frequency ω ≈ 1/τ is.
+  s.omega_min_rad_s = 1.0 / t_max;
+  s.omega_max_rad_s = 1.0 / t_min;
+  s.storage_min_MPa = m_min;
+  s.storage_max_MPa = m_max;
+  return s;
+}
+
+AdmissibleWindow relaxation_window(const model::Model& model, const data::RelaxationTable& table,
+                                   const FitOptions& options) {
+  AdmissibleWindow w;
+  const SeriesTerms series = series_terms(model.parameters());
+  if (series.empty() || table.rows.empty() || model.temperature_law_info().law != model::ShiftLaw::none) return w;
+  const model::DataSummary s = summarize_relaxation(table);
+  const double margin = std::pow(10.0, options.tau_margin_decades);
+  w.applies = true;
+  w.tau_min_s = 1.0 / (s.omega_max_rad_s * margin);
+  w.tau_max_s = margin / s.omega_min_rad_s;
+  const auto& specs = model.parameters();
+  const bool linear = std::all_of(series.moduli.begin(), series.moduli.end(), [&](int i) { return specs[i].linear; });
+  if (linear && options.modulus_ceiling > 0.0) w.modulus_max_MPa = options.modulus_ceiling * s.storage_max_MPa;
+  if (series.relaxed >= 0 && specs[series.relaxed].linear && options.relaxed_floor > 0.0)
+    w.relaxed_min_MPa = options.relaxed_floor * s.storage_min_MPa;
+  return w;
+}
+
+std::pair<double, double> window_bounds(const model::Model& model, const AdmissibleWindow& w, int i) {
+  const auto& spec = model.parameters()[i];
+  double lo = spec.lower, hi = spec.upper;
+  if (!w.applies) return {lo, hi};
+  const SeriesTerms series = series_terms(model.parameters());
+  auto has = [](const std::vector<int>& v, int k) { return std::find(v.begin(), v.end(), k) != v.end(); };
+  if (has(series.times, i)) lo = std::max(lo, w.tau_min_s), hi = std::min(hi, w.tau_max_s);
+  if (has(series.moduli, i) && w.modulus_max_MPa > 0.0) hi = std::min(hi, w.modulus_max_MPa);
+  if (i == series.relaxed && w.relaxed_min_MPa > 0.0) lo = std::max(lo, w.relaxed_min_MPa);
+  return {lo, hi};
+}
+
+QualityVerdict relaxation_verdict(const model::Model& model, const std::vector<double>& p,
+                                  const data::RelaxationTable& table) {
+  const QualityThresholds th;
+  ErrorFigures fig;
+  fig.group = "all";
+  fig.modulus = "relaxation";
+  double worst_t = 0.0;
+  for (const auto& row : table.rows) {
+    model::TestCondition c;
+    c.mode = row.mode;
+    c.temperature_C = row.temperature_C;
+    const double err = std::abs(model.relaxation_modulus(p.data(), c, row.time_s) / row.modulus_MPa - 1.0);
+    ++fig.count;
+    fig.mean_rel_error += err;
+    if (err >= fig.max_rel_error) fig.max_rel_error = err, worst_t = row.time_s;
+  }
+  fig.mean_rel_error /= std::max(fig.count, 1);
+  fig.max_at_frequency_Hz = worst_t > 0.0 ? 1.0 / (2.0 * M_PI * worst_t) : 0.0;
+  QualityVerdict v;
+  v.figures.push_back(fig);
+  if (fig.mean_rel_error > th.storage_mean || fig.max_rel_error > th.storage_max) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "fit misses the relaxation modulus M(t): mean relative error " << 100.0 * fig.mean_rel_error << " %, max "
+      << 100.0 * fig.max_rel_error << " % at t = " << worst_t << " s (thresholds " << 100.0 * th.storage_mean
+      << " %, " << 100.0 * th.storage_max << " %)";
+    v.warnings.push_back(s.str());
+  }
+  return v;
+}
+
+}  // namespace fitlib::fit::detail

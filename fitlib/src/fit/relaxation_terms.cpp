@@ -1,0 +1,80 @@
+// Term-count selection for relaxation data (docs/fitting.md "Relaxation data"): the rules of
+// frequency data on a sweep of linear solves, stopped at an accuracy target where the data show
+// no noise floor.
+#include <algorithm>
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
+#include "fitlib/fit/relaxation.hpp"
+#include "relaxation_checks.hpp"
+#include "term_sweep.hpp"
+
+namespace fitlib::fit {
+namespace {
+
+// Smallest usable N (≤ cap when cap > 0) whose rms log10 error reaches `target`; 0 if none.
+int first_reaching(const std::vector<TermRow>& rows, double target, int cap) {
+  if (!(target > 0.0)) return 0;
+  for (const auto& r : rows)
+    if (!r.failed && (cap <= 0 || r.terms <= cap) && r.rms_log10_storage <= target) return r.terms;
+  return 0;
+}
+
+// The rule's N, or the accuracy target's when that is smaller; a message says which and why,
+// and a warning when the count chosen is the edge of the search (the data set no floor).
+void choose_relaxation_terms(const TermOptions& terms, int max_terms, TermSelection& sel,
+                             std::vector<std::string>& warnings) {
+  sel.by_accuracy = first_reaching(sel.rows, terms.accuracy_log10, 0);
+  const int by_rule = choose_terms(sel.rows, terms.rule, terms.residual_ratio, 0);
+  sel.unconstrained = sel.by_accuracy > 0 ? std::min(by_rule, sel.by_accuracy) : by_rule;
+  sel.chosen = choose_terms(sel.rows, terms.rule, terms.residual_ratio, terms.solver_cap);
+  if (sel.chosen == 0) throw core::NumericalError("relaxation terms: no usable fit");
+  const int accurate = first_reaching(sel.rows, terms.accuracy_log10, terms.solver_cap);
+  const std::string rule = to_string(terms.rule);
+  if (accurate > 0 && accurate < sel.chosen) {
+    sel.messages.push_back("relaxation terms: " + std::to_string(accurate) + " (the smallest N whose linear solve reaches rms log10 " +
+                           core::format_number(terms.accuracy_log10, 3) + "); " + rule + " asked for " +
+                           std::to_string(sel.chosen) + (sel.chosen == max_terms ? ", the edge of the search: no noise floor" : ""));
+    sel.chosen = accurate;
+  } else if (sel.chosen == max_terms && max_terms > 1) {
+    warnings.push_back("relaxation terms: " + rule + " chose " + std::to_string(max_terms) +
+                       ", the largest N tried (more terms kept paying: the data show no noise floor and no N reached rms log10 " +
+                       core::format_number(terms.accuracy_log10, 3) + "); raise --max-terms or give --terms N");
+  }
+}
+
+}  // namespace
+
+TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::json& model_options,
+                                      const data::RelaxationTable& table, const FitOptions& options,
+                                      const TermOptions& terms) {
+  int max_terms = terms.max_terms;
+  if (max_terms <= 0) {
+    const auto s = detail::summarize_relaxation(table);
+    max_terms = std::clamp(static_cast<int>(std::ceil(std::log10(s.omega_max_rad_s / s.omega_min_rad_s))) + 2, 1, 40);
+  }
+  const int min_terms = std::max(terms.min_terms, 1);
+  if (max_terms < min_terms) throw core::UsageError("relaxation terms: max below min");
+  TermSelection sel;
+  sel.rule = terms.rule;
+  // Each N is ranked on its linear solve (τ on the model's start grid); only the chosen N is
+  // polished, so the search costs one polish (docs/fitting.md, "Relaxation data").
+  FitOptions linear_only = options;
+  linear_only.polish = false;
+  auto fit_n = [&](int n) {
+    nlohmann::json o = model_options.is_object() ? model_options : nlohmann::json::object();
+    o["terms"] = n;
+    return fit_relaxation(model::make_model(kind, o), table, linear_only);
+  };
+  std::vector<FitResult> results = detail::sweep_terms(min_terms, max_terms, fit_n, terms, false, sel);
+  std::vector<std::string> warnings;
+  choose_relaxation_terms(terms, max_terms, sel, warnings);
+  sel.result = options.polish ? fit_relaxation(results[sel.chosen - min_terms].model, table, options)
+                              : std::move(results[sel.chosen - min_terms]);
+  auto& q = sel.result.quality.warnings;
+  q.insert(q.end(), warnings.begin(), warnings.end());
+  return sel;
+}
+
+}  // namespace fitlib::fit
