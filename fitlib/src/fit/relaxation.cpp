@@ -300,12 +300,13 @@ void hold_in_window(const model::Model& model, const AdmissibleWindow& w, const 
 }  // namespace
 
 FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::RelaxationTable& table,
-                         const FitOptions& options) {
+                         const FitOptions& options, const std::vector<double>* start) {
   const core::Stopwatch clock;
   if (table.rows.empty()) throw core::InputError("relaxation fit: no data rows");
   const model::Model& model = *model_ptr;
   const auto& specs = model.parameters();
-  std::vector<double> p = model.initial_parameters(detail::summarize_relaxation(table));
+  std::vector<double> p = start ? *start : model.initial_parameters(detail::summarize_relaxation(table));
+  if (p.size() != specs.size()) throw core::UsageError("relaxation fit: start has the wrong size");
   const auto user_fixed = [&](int i) {
     return std::find(options.fixed.begin(), options.fixed.end(), specs[i].name) != options.fixed.end();
   };
@@ -314,7 +315,7 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
   std::vector<int> linear;
   for (int i = 0; i < static_cast<int>(specs.size()); ++i)
     if (specs[i].linear && !user_fixed(i)) linear.push_back(i);
-  solve_linear(model, table, linear, p);
+  if (!start) solve_linear(model, table, linear, p);
 
   FitResult result;
   result.model = model_ptr;

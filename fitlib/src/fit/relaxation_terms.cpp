@@ -8,6 +8,8 @@
 #include "fitlib/core/format.hpp"
 #include "fitlib/fit/relaxation.hpp"
 #include "relaxation_checks.hpp"
+#include "spectrum_system.hpp"
+#include "term_merge.hpp"
 #include "term_sweep.hpp"
 
 namespace fitlib::fit {
@@ -44,6 +46,61 @@ void choose_relaxation_terms(const TermOptions& terms, int max_terms, TermSelect
   }
 }
 
+// The terms of a fit with a positive modulus, in order of ln τ.
+std::vector<detail::Term> active_terms(const FitResult& r) {
+  const detail::SeriesTerms s = detail::series_terms(r.model->parameters());
+  std::vector<detail::Term> out;
+  for (std::size_t j = 0; j < s.times.size(); ++j)
+    if (r.values[s.moduli[j]] > 0.0) out.push_back({r.values[s.moduli[j]], std::log(r.values[s.times[j]])});
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.log_tau < b.log_tau; });
+  return out;
+}
+
+// The model with `terms`, started from them and the other values of `from`, polished.
+FitResult refit_with(const std::string& kind, const nlohmann::json& model_options, const data::RelaxationTable& table,
+                     const FitOptions& options, const std::vector<detail::Term>& terms, const FitResult& from) {
+  nlohmann::json o = model_options.is_object() ? model_options : nlohmann::json::object();
+  o["terms"] = static_cast<int>(terms.size());
+  const model::ModelPtr m = model::make_model(kind, o);
+  const detail::SeriesTerms s = detail::series_terms(m->parameters());
+  std::vector<double> start(m->size(), 0.0);
+  for (std::size_t j = 0; j < terms.size(); ++j) {
+    start[s.moduli[j]] = terms[j].modulus;
+    start[s.times[j]] = std::exp(terms[j].log_tau);
+  }
+  detail::set_non_series_values(*m, detail::non_series_values(*from.model, from.values), start);
+  return fit_relaxation(m, table, options, &start);
+}
+
+// Unused terms dropped, then the cheapest adjacent pair (Ward's criterion) merged and the fit
+// re-polished while its BIC does not rise or its cost stays within 0.1 % (+ 1e-10 per row, the
+// rule for flagged terms of docs/fitting.md "Admissible terms"). The sweep's fixed grid splits a
+// term between two nodes or adds one at noise level; this takes them back.
+FitResult compact(const std::string& kind, const nlohmann::json& model_options, const data::RelaxationTable& table,
+                  const FitOptions& options, FitResult fitted) {
+  std::vector<detail::Term> terms = active_terms(fitted);
+  const int before = static_cast<int>(detail::series_terms(fitted.model->parameters()).times.size());
+  if (terms.empty() || !options.fixed.empty() || !options.polish) return fitted;
+  FitResult kept = static_cast<int>(terms.size()) < before ? refit_with(kind, model_options, table, options, terms, fitted)
+                                                            : std::move(fitted);
+  int merged = 0;
+  while (terms.size() > 1) {
+    const std::vector<detail::Term> fewer = detail::merge_to(terms, static_cast<int>(terms.size()) - 1);
+    FitResult trial = refit_with(kind, model_options, table, options, fewer, kept);
+    const bool holds = trial.metrics.cost <= 1.001 * kept.metrics.cost + 1e-10 * table.rows.size();
+    if (!holds && !(trial.metrics.bic <= kept.metrics.bic)) break;
+    kept = std::move(trial);
+    terms = active_terms(kept);
+    ++merged;
+  }
+  const int after = static_cast<int>(terms.size());
+  if (after < before)
+    kept.messages.push_back("relaxation terms: " + std::to_string(before) + " polished, " +
+                            std::to_string(before - after - merged) + " unused dropped, " + std::to_string(merged) +
+                            " merged into a neighbour (BIC not higher or cost within 0.1 %): " + std::to_string(after) + " kept");
+  return kept;
+}
+
 }  // namespace
 
 TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::json& model_options,
@@ -70,7 +127,8 @@ TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::j
   std::vector<FitResult> results = detail::sweep_terms(min_terms, max_terms, fit_n, terms, false, sel);
   std::vector<std::string> warnings;
   choose_relaxation_terms(terms, max_terms, sel, warnings);
-  sel.result = options.polish ? fit_relaxation(results[sel.chosen - min_terms].model, table, options)
+  sel.result = options.polish ? compact(kind, model_options, table, options,
+                                        fit_relaxation(results[sel.chosen - min_terms].model, table, options))
                               : std::move(results[sel.chosen - min_terms]);
   auto& q = sel.result.quality.warnings;
   q.insert(q.end(), warnings.begin(), warnings.end());

@@ -26,11 +26,14 @@ RelaxationMeasures measure_relaxation(const model::Model& model, const std::vect
 // Fits `model` to `table`. FitResult::metrics: rms_log10_storage holds the rms log10 error of
 // M(t) (rms_log10_loss = 0), mean/max_rel_error the relative errors of M(t).
 // Uses FitOptions::fixed, tolerance, max_iterations and polish; throws NumericalError on failure.
+// `start` (natural values) replaces the model's start and the linear solve.
 FitResult fit_relaxation(const model::ModelPtr& model, const data::RelaxationTable& table,
-                         const FitOptions& options);
+                         const FitOptions& options, const std::vector<double>* start = nullptr);
 
-// N = min…max terms (max 0: one per decade of the time span + 2, at most 40), chosen by
-// choose_terms with `terms.rule`.
+// N = min…max terms (max 0: one per decade of the time span + 2, at most 40) ranked on their
+// linear solves by `terms.rule`, or the smallest N reaching `terms.accuracy_log10` when that is
+// fewer; the chosen N polished, its unused terms dropped and adjacent ones merged while the
+// polished cost holds (docs/fitting.md "Relaxation data").
 TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::json& model_options,
                                       const data::RelaxationTable& table, const FitOptions& options,
                                       const TermOptions& terms);
