@@ -21,6 +21,7 @@
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/spectrum.hpp"
+#include "fitlib/fit/relaxation.hpp"
 #include "fitlib/fit/terms.hpp"
 #include "fitlib/model/model.hpp"
 
@@ -133,18 +134,16 @@ constexpr double kPyviscoMasterFit_s = 0.130, kPyviscoMasterReduction_s = 2.35, 
 // 91 ms for the 206 × 26 master, which takes 130 ms.
 double pyvisco_estimate_s(int points, int terms) { return kPyvisco5000x20_s * points * terms / (5000.0 * 20.0); }
 
-// Median wall time of the whole `fitcli fit --terms auto` process on the master (the binary
-// next to this benchmark); < 0 when it is not there.
-double whole_process_s(const char* argv0) {
+// Median wall time of `runs` whole `fitcli fit <args>` processes (the binary next to this
+// benchmark); < 0 when it is not there or fails.
+double whole_process_s(const char* argv0, const std::string& args, int runs = 11) {
   std::string dir(argv0);
   dir = dir.find('/') == std::string::npos ? "." : dir.substr(0, dir.rfind('/'));
   const std::string fitcli = dir + "/fitcli";
   if (!std::ifstream(fitcli)) return -1.0;
-  const std::string command = fitcli + " fit --data " FITLIB_SOURCE_DIR
-                              "/datasets/materials/pyvisco-freq-master.csv --format pyvisco --model prony "
-                              "--terms auto > /dev/null 2>&1";
+  const std::string command = fitcli + " fit " + args + " > /dev/null 2>&1";
   int failures = 0;
-  const double t = median_time(11, [&] { failures += std::system(command.c_str()) != 0; });
+  const double t = median_time(runs, [&] { failures += std::system(command.c_str()) != 0; });
   return failures == 0 ? t : -1.0;
 }
 
@@ -158,6 +157,40 @@ double children_cpu_s() {
 
 void scaling_table(const fit::FitOptions& o);
 
+// pyvisco's time_user_master.csv fitted with 31 terms to rms 0.0043 in 1.3 s CPU (issue 10,
+// published; pyvisco is not installed here, so not measured in this run).
+constexpr double kPyviscoTimeMaster_s = 1.3;
+
+// --terms auto on relaxation data (fit/relaxation.hpp): pyvisco's time master, in-process and
+// whole process, against pyvisco's published figure.
+void relaxation_table(const char* argv0) {
+  const auto table = data::read_relaxation_table(kMaterials + "pyvisco-time-master.csv");
+  fit::TermSelection sel;
+  const double t_auto = median_time(5, [&] { sel = fit::select_relaxation_terms("prony", {{"mode", "uniaxial"}}, table, {}, {}); });
+  const double cpu_clock = std::clock();
+  for (int k = 0; k < 5; ++k) fit::select_relaxation_terms("prony", {{"mode", "uniaxial"}}, table, {}, {});
+  const double cpu_auto = (std::clock() - cpu_clock) / CLOCKS_PER_SEC / 5.0;
+  const double cpu_before = children_cpu_s();
+  const double t_process = whole_process_s(
+      argv0, "--data " FITLIB_SOURCE_DIR "/datasets/materials/pyvisco-time-master.csv --format pyvisco --model prony --terms auto", 5);
+  const double cpu_process = (children_cpu_s() - cpu_before) / 5.0;
+  const auto m = fit::measure_relaxation(*sel.result.model, sel.result.values, table);
+  const int terms = static_cast<int>(sel.result.values.size() - 1) / 2;
+  std::printf("## --terms auto on relaxation data: pyvisco's time_user_master.csv, %zu points\n", table.rows.size());
+  std::printf("| what | wall time | CPU time | terms | rms log10 M(t) | rms / max relative | pyvisco CPU / this CPU |\n|---|---|---|---|---|---|---|\n");
+  std::printf("| fitlib, in-process (median / mean of 5) | %.1f ms | %.1f ms | %d | %.5f | %.5f / %.4f | x%.0f |\n", 1e3 * t_auto,
+              1e3 * cpu_auto, terms, m.rms_log10, m.rms_relative, m.max_relative, kPyviscoTimeMaster_s / cpu_auto);
+  if (t_process > 0.0)
+    std::printf("| fitlib `fitcli fit --terms auto`, whole process (median / mean of 5) | %.1f ms | %.1f ms | %d | same | same | x%.0f |\n",
+                1e3 * t_process, 1e3 * cpu_process, terms, kPyviscoTimeMaster_s / cpu_process);
+  else
+    std::printf("| fitlib whole process | fitcli not found next to this benchmark | | | | | |\n");
+  const bool python = std::system("python3 -c 'import pyvisco' > /dev/null 2>&1") == 0;
+  std::printf("| pyvisco, 31 terms (published; %s) | - | %.0f ms | 31 | 0.0043 | - | x1 |\n\n",
+              python ? "pyvisco importable here but not timed by this benchmark" : "pyvisco not installed here",
+              1e3 * kPyviscoTimeMaster_s);
+}
+
 // --terms auto (the smooth spectrum, fit/spectrum.hpp) on the master, and the scaling table.
 void spectrum_tables(const data::DynamicTestTable& master, const LogRms& ansys, const char* argv0) {
   fit::FitOptions o;
@@ -168,7 +201,8 @@ void spectrum_tables(const data::DynamicTestTable& master, const LogRms& ansys, 
     sel = fit::select_terms("prony", {{"mode", "uniaxial"}}, master, o, fit::TermOptions{});
   });
   const double cpu_before = children_cpu_s();
-  const double t_process = whole_process_s(argv0);
+  const double t_process = whole_process_s(
+      argv0, "--data " FITLIB_SOURCE_DIR "/datasets/materials/pyvisco-freq-master.csv --format pyvisco --model prony --terms auto");
   const double cpu_process = (children_cpu_s() - cpu_before) / 11.0;
   const double cpu_clock = std::clock();
   for (int k = 0; k < 11; ++k) fit::select_terms("prony", {{"mode", "uniaxial"}}, master, o, fit::TermOptions{});
@@ -339,6 +373,7 @@ int main(int, char** argv) {
   const auto master = pyvisco_dataset("pyvisco-freq-master.csv");
   const LogRms ansys = ansys_terms(master, kMaterials + "pyvisco-ansys-prony-terms.MPL");
   spectrum_tables(master, ansys, argv[0]);
+  relaxation_table(argv[0]);
   law_tables();
   std::printf("## Accuracy vs time, pyvisco freq_user_master.csv (%zu points), N = 2..40\n",
               master.rows.size());
