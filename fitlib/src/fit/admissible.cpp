@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "fitlib/core/units.hpp"
 
@@ -80,6 +81,15 @@ int apply_admissible_bounds(Problem& problem, const AdmissibleWindow& w) {
     for (int i : series.moduli) restrict(i, 0.0, w.modulus_max_MPa);
   if (w.relaxed_min_MPa > 0.0) restrict(series.relaxed, w.relaxed_min_MPa, kInf);
   return moved;
+}
+
+std::string describe_window(const AdmissibleWindow& w, int moved) {
+  std::ostringstream s;
+  s << "admissible terms: time constants in [" << w.tau_min_s << ", " << w.tau_max_s << "] s";
+  if (w.modulus_max_MPa > 0.0) s << ", term moduli <= " << w.modulus_max_MPa << " MPa";
+  if (w.relaxed_min_MPa > 0.0) s << ", relaxed modulus >= " << w.relaxed_min_MPa << " MPa";
+  if (moved > 0) s << " (" << moved << " start values moved inside)";
+  return s.str();
 }
 
 }  // namespace fitlib::fit::detail

@@ -2,6 +2,7 @@
 // Admissible terms of series models (docs/fitting.md "Admissible terms"): the window of
 // relaxation times the data can inform, a ceiling on each term's modulus, a floor on the relaxed
 // modulus; applied as bounds before the solve and enforced after it (private to the fit module).
+#include <string>
 #include <vector>
 
 #include "fitlib/fit/problem.hpp"
@@ -25,5 +26,8 @@ AdmissibleWindow admissible_window(const Problem& problem, const std::vector<dou
 // Sets the window's bounds on the problem (times, moduli, relaxed modulus) and moves the
 // current point inside them. Returns the number of values moved.
 int apply_admissible_bounds(Problem& problem, const AdmissibleWindow& window);
+
+// The message that records a window in a fit's messages ("admissible terms: ...").
+std::string describe_window(const AdmissibleWindow& window, int moved);
 
 }  // namespace fitlib::fit::detail

@@ -278,12 +278,7 @@ void admit_start(Problem& problem, FitResult& result) {
   const AdmissibleWindow& w = result.admissible;
   if (!w.applies) return;
   const int moved = detail::apply_admissible_bounds(problem, w);
-  std::ostringstream s;
-  s << "admissible terms: time constants in [" << w.tau_min_s << ", " << w.tau_max_s << "] s";
-  if (w.modulus_max_MPa > 0.0) s << ", term moduli <= " << w.modulus_max_MPa << " MPa";
-  if (w.relaxed_min_MPa > 0.0) s << ", relaxed modulus >= " << w.relaxed_min_MPa << " MPa";
-  if (moved > 0) s << " (" << moved << " start values moved inside)";
-  result.messages.push_back(s.str());
+  result.messages.push_back(detail::describe_window(w, moved));
 }
 
 constexpr int kRepolishIterations = 100;

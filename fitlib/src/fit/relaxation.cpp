@@ -289,12 +289,7 @@ void hold_in_window(const model::Model& model, const AdmissibleWindow& w, const 
     moved += held != p[i];
     p[i] = held;
   }
-  std::ostringstream s;
-  s << "admissible terms: time constants in [" << w.tau_min_s << ", " << w.tau_max_s << "] s";
-  if (w.modulus_max_MPa > 0.0) s << ", moduli <= " << w.modulus_max_MPa << " MPa";
-  if (w.relaxed_min_MPa > 0.0) s << ", relaxed modulus >= " << w.relaxed_min_MPa << " MPa";
-  if (moved > 0) s << " (" << moved << " start value(s) moved inside)";
-  result.messages.push_back(s.str());
+  result.messages.push_back(detail::describe_window(w, moved));
 }
 
 }  // namespace
