@@ -23,9 +23,9 @@ int first_reaching(const std::vector<TermRow>& rows, double target, int cap) {
   return 0;
 }
 
-// The rule's N, or the accuracy target's when that is smaller; a message says which and why,
-// and a warning when the count chosen is the edge of the search (the data set no floor).
-void choose_relaxation_terms(const TermOptions& terms, int max_terms, TermSelection& sel,
+// The rule's N, or the accuracy target's when that is smaller (returns true then); a message
+// says which and why, and a warning when the count chosen is the edge of the search.
+bool choose_relaxation_terms(const TermOptions& terms, int max_terms, TermSelection& sel,
                              std::vector<std::string>& warnings) {
   sel.by_accuracy = first_reaching(sel.rows, terms.accuracy_log10, 0);
   const int by_rule = choose_terms(sel.rows, terms.rule, terms.residual_ratio, 0);
@@ -39,11 +39,14 @@ void choose_relaxation_terms(const TermOptions& terms, int max_terms, TermSelect
                            core::format_number(terms.accuracy_log10, 3) + "); " + rule + " asked for " +
                            std::to_string(sel.chosen) + (sel.chosen == max_terms ? ", the edge of the search: no noise floor" : ""));
     sel.chosen = accurate;
-  } else if (sel.chosen == max_terms && max_terms > 1) {
+    return true;
+  }
+  if (sel.chosen == max_terms && max_terms > 1) {
     warnings.push_back("relaxation terms: " + rule + " chose " + std::to_string(max_terms) +
                        ", the largest N tried (more terms kept paying: the data show no noise floor and no N reached rms log10 " +
                        core::format_number(terms.accuracy_log10, 3) + "); raise --max-terms or give --terms N");
   }
+  return false;
 }
 
 // The terms of a fit with a positive modulus, in order of ln τ.
@@ -105,13 +108,12 @@ FitResult compact(const std::string& kind, const nlohmann::json& model_options, 
 // polished too while the polished BIC falls: a linear solve on the fixed grid undervalues small
 // N on short tables (9 rows: 1 term ranked first, 14.8 % mean error, where 3 polished terms fit).
 FitResult polish_upward(const std::vector<FitResult>& results, int min_terms, const data::RelaxationTable& table,
-                        const FitOptions& options, const TermOptions& terms, TermSelection& sel) {
+                        const FitOptions& options, int solver_cap, bool by_target, TermSelection& sel) {
   FitResult best = fit_relaxation(results[sel.chosen - min_terms].model, table, options);
-  if (sel.chosen == sel.by_accuracy && sel.by_accuracy != choose_terms(sel.rows, terms.rule, terms.residual_ratio, 0))
-    return best;
+  if (by_target) return best;
   const int last = min_terms + static_cast<int>(results.size()) - 1;
   const int first = sel.chosen;
-  for (int n = first + 1; n <= last && (terms.solver_cap <= 0 || n <= terms.solver_cap); ++n) {
+  for (int n = first + 1; n <= last && (solver_cap <= 0 || n <= solver_cap); ++n) {
     if (sel.rows[n - min_terms].failed) continue;
     FitResult next = fit_relaxation(results[n - min_terms].model, table, options);
     if (!(next.metrics.bic < best.metrics.bic)) break;
@@ -140,8 +142,8 @@ TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::j
   if (max_terms < min_terms) throw core::UsageError("relaxation terms: max below min");
   TermSelection sel;
   sel.rule = terms.rule;
-  // Each N is ranked on its linear solve (τ on the model's start grid); only the chosen N is
-  // polished, so the search costs one polish (docs/fitting.md, "Relaxation data").
+  // Each N is ranked on its linear solve (τ on the model's start grid); only the chosen N and
+  // the trials after it are polished (docs/fitting.md, "Relaxation data").
   FitOptions linear_only = options;
   linear_only.polish = false;
   auto fit_n = [&](int n) {
@@ -151,9 +153,11 @@ TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::j
   };
   std::vector<FitResult> results = detail::sweep_terms(min_terms, max_terms, fit_n, terms, false, sel);
   std::vector<std::string> warnings;
-  choose_relaxation_terms(terms, max_terms, sel, warnings);
-  sel.result = options.polish ? compact(kind, model_options, table, options, polish_upward(results, min_terms, table, options, terms, sel))
-                              : std::move(results[sel.chosen - min_terms]);
+  const bool by_target = choose_relaxation_terms(terms, max_terms, sel, warnings);
+  sel.result = options.polish
+                   ? compact(kind, model_options, table, options,
+                             polish_upward(results, min_terms, table, options, terms.solver_cap, by_target, sel))
+                   : std::move(results[sel.chosen - min_terms]);
   auto& q = sel.result.quality.warnings;
   q.insert(q.end(), warnings.begin(), warnings.end());
   return sel;
