@@ -43,9 +43,7 @@ model::MaterialPointPtr role_point(const model::Model& model, const std::vector<
   po.temperature_C = o.temperature_C;
   po.frequency_Hz = o.frequency_Hz;
   po.bulk_modulus_MPa = o.bulk_modulus_MPa;
-  // The complete level's global Newton cannot follow a damage switch within the step (Fritzson's
-  // amplitude memory, 4.37): damage lagged by one increment (docs/segment.md §"Complete level").
-  po.damage_update = model::PointOptions::DamageUpdate::lagged;
+  po.damage_update = o.damage_update;
   return model::make_material_point(model, values, po);
 }
 
