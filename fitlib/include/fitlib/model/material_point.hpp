@@ -61,7 +61,7 @@ struct PointOptions {
   //   lagged — the stress of step n+1 uses the damage of the converged step n (explicit in damage,
   //   implicit in the viscoelastic part) and the damage is advanced from the step's strain for
   //   step n+2: an O(Δt) difference, and a stress smooth in the strain for an FE Newton iteration
-  //   (docs/model.md §"Damage update", docs/decisions.md "Lagged damage update").
+  //   (docs/model.md §"Material point", docs/decisions.md "Lagged damage update").
   enum class DamageUpdate { implicit, lagged };
   DamageUpdate damage_update = DamageUpdate::implicit;
 };
