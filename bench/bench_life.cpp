@@ -8,10 +8,13 @@
 //    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' levels, relative to the finer.
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
-// `bench_life quick` leaves out the complete level (minutes per drive).
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N]` runs one segment life and
-// prints its counts (MESH: coarse | medium | fine; `reuse`: modified Newton, SolverKnobs::reuse_tangent;
-// `extrapolate`: SolverKnobs::extrapolate_start).
+// `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
+// table 1 only, complete rows included.
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [full] [lagged]
+// [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
+// `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
+// `full`: 3×3 Gauss integration; `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter
+// of both cards, e.g. set=C_d=0.001).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -61,8 +64,9 @@ segment::MeshKnobs mesh_named(const std::string& name) {
 struct Probe {
   std::string load = "medium", fidelity = "elastic", mesh = "medium";
   int steps = 60;
-  bool reuse = false, extrapolate = false;
+  bool reuse = false, extrapolate = false, full = false, lagged = false;
   int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
+  std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
 };
 
 struct Outcome {
@@ -80,6 +84,7 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   setup.mesh = mesh_named(pr.mesh);
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
+  if (pr.full) setup.solver.integration = segment::Integration::full;
   setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
@@ -88,12 +93,17 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
   o.temperature_C = s.temperature_C;
   o.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+  if (pr.lagged) o.damage_update = model::PointOptions::DamageUpdate::lagged;
   for (int k = 0; k < 2 && pr.fidelity == "iso"; ++k)  // Report I's exploratory isotropic runs
     setup.materials[k] = model::make_material_point(*model::make_model("elastic-iso", nlohmann::json::object()),
                                                     {k == 0 ? 20.0 : 8.0, 0.49});
   for (int k = 0; k < 2 && pr.fidelity != "iso"; ++k) {
     const card::Card c = card::load_card(s.materials.at(k == 0 ? "bottom" : "cushion"));
-    setup.materials[k] = segment::role_point(*c.model(), c.values(), o);
+    std::vector<double> values = c.values();
+    for (const auto& [name, value] : pr.overrides)
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (c.model()->parameters()[i].name == name) values[i] = value;
+    setup.materials[k] = segment::role_point(*c.model(), values, o);
   }
   setup.temperature_C = s.temperature_C;
   const core::Stopwatch watch;
@@ -205,6 +215,10 @@ int main(int argc, char** argv) {
       const std::string a = argv[k];
       if (a == "reuse") p.reuse = true;
       if (a == "extrapolate") p.extrapolate = true;
+      if (a == "full") p.full = true;
+      if (a == "lagged") p.lagged = true;
+      if (a.rfind("set=", 0) == 0 && a.find('=', 4) != std::string::npos)
+        p.overrides.emplace_back(a.substr(4, a.find('=', 4) - 4), std::atof(a.c_str() + a.find('=', 4) + 1));
       if (a.rfind("stall=", 0) == 0) p.stall = std::atoi(a.c_str() + 6);
       if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
     }
@@ -213,6 +227,10 @@ int main(int argc, char** argv) {
     print_probe(p, o);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows
+    level_table({"beam", "elastic", "complete"});
     return 0;
   }
   const bool quick = argc > 1 && std::string(argv[1]) == "quick";  // no complete rows (minutes each)

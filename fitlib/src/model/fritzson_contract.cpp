@@ -13,12 +13,14 @@ namespace {
 // The integrator of fritzson_point.cpp on the contract's flat state (FlatState, no copies).
 class FritzsonContractPoint final : public model::MaterialPoint {
  public:
-  FritzsonContractPoint(std::vector<double> p, bool anisotropic, double reference_C, Scheme scheme)
-      : point_(std::move(p), anisotropic, reference_C, scheme), reference_C_(reference_C) {}
+  FritzsonContractPoint(std::vector<double> p, bool anisotropic, double reference_C, Scheme scheme,
+                        DamageUpdate damage_update)
+      : point_(std::move(p), anisotropic, reference_C, scheme, damage_update), reference_C_(reference_C) {}
 
   std::string describe() const override {
     return std::string(point_.anisotropic() ? "fritzson" : "fritzson-iso") +
-           (point_.scheme() == Scheme::exponential ? " (exponential)" : " (backward Euler)");
+           (point_.scheme() == Scheme::exponential ? " (exponential" : " (backward Euler") +
+           (point_.damage_update() == DamageUpdate::lagged ? ", lagged damage)" : ")");
   }
   std::size_t state_size() const override { return kFlatStateSize; }
   // The virgin MaterialState is all zeros.
@@ -63,7 +65,7 @@ model::MaterialPointPtr make_contract_point(std::vector<double> p, bool anisotro
                                             double reference_C, const PointOptions& options) {
   const auto point = std::make_shared<FritzsonContractPoint>(
       std::move(p), anisotropic, reference_C,
-      options.fritzson_exponential ? Scheme::exponential : Scheme::backward_euler);
+      options.fritzson_exponential ? Scheme::exponential : Scheme::backward_euler, options.damage_update);
   if (options.fidelity == PointOptions::Fidelity::elastic)
     return points::elastic_equivalent(*point, options.frequency_Hz, options.temperature_C);
   return point;

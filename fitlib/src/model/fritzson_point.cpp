@@ -162,9 +162,9 @@ MaterialState::MaterialState() {
 }
 
 MaterialPoint::MaterialPoint(std::vector<double> parameters, bool anisotropic, double reference_C,
-                             Scheme scheme)
+                             Scheme scheme, DamageUpdate damage_update)
     : p_(std::move(parameters)), anisotropic_(anisotropic), reference_C_(reference_C),
-      scheme_(scheme) {
+      scheme_(scheme), damage_update_(damage_update) {
   const size_t expected = anisotropic ? kAnisotropicCount : kIsotropicCount;
   if (p_.size() != expected)
     throw core::UsageError("fritzson material point: expected " + std::to_string(expected) +
@@ -186,11 +186,16 @@ void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
 
   T osc[3];
   oscillation_norms(k.e_osc, osc);
-  T amplitude[3];
+  // amplitude: e^a_{n+1}, recorded; driver: what this step's stress uses (e^a_{n+1}, or e^a_n
+  // when lagged, so the stress is smooth in the strain: no switch, no |Δe^o|).
+  T amplitude[3], driver[3];
   const int parts = anisotropic_ ? 3 : 1;
-  for (int j = 0; j < parts; ++j)
+  const bool lagged = damage_update_ == DamageUpdate::lagged;
+  for (int j = 0; j < parts; ++j) {
     amplitude[j] = evolve_damage_driver(state.driver_amplitude[j], state.driver_oscillating[j], osc[j],
-                                 p[kCd]);
+                                        p[kCd]);
+    driver[j] = lagged ? T(state.driver_amplitude[j]) : amplitude[j];
+  }
 
   // Volumetric part (4.39): σ_p = K tr ε.
   const T pressure = p[kK] * (strain[0] + strain[1] + strain[2]);
@@ -199,14 +204,14 @@ void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
   };
   T s[6];
   const double* part = p + kPartI;
-  isotropic_part(part, factors(part, amplitude[0]), maxwell_step(part, dt, scheme_), k, state,
+  isotropic_part(part, factors(part, driver[0]), maxwell_step(part, dt, scheme_), k, state,
                  next, s);
   if (anisotropic_) {
     part = p + kPartA1;
-    fibre_uniaxial_part(part, factors(part, amplitude[1]), maxwell_step(part, dt, scheme_), k,
+    fibre_uniaxial_part(part, factors(part, driver[1]), maxwell_step(part, dt, scheme_), k,
                         state, next, s);
     part = p + kPartA2;
-    fibre_shear_part(part, factors(part, amplitude[2]), maxwell_step(part, dt, scheme_), k, state,
+    fibre_shear_part(part, factors(part, driver[2]), maxwell_step(part, dt, scheme_), k, state,
                      next, s);
   }
 

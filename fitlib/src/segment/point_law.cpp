@@ -43,6 +43,7 @@ model::MaterialPointPtr role_point(const model::Model& model, const std::vector<
   po.temperature_C = o.temperature_C;
   po.frequency_Hz = o.frequency_Hz;
   po.bulk_modulus_MPa = o.bulk_modulus_MPa;
+  po.damage_update = o.damage_update;
   return model::make_material_point(model, values, po);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
@@ -62,6 +63,39 @@ TEST(FritzsonCases, InterruptedRampRelaxesDuringTheHold) {
     EXPECT_LE(l.stress_MPa[k], l.stress_MPa[k - 1] + 1e-12);
   EXPECT_LT(l.stress_MPa.back(), 0.8 * peak);
   EXPECT_THROW(thesis_case("7.6"), fitlib::core::UsageError);
+}
+
+// Lagged damage (PointOptions::DamageUpdate::lagged: the step's stress uses the converged e^a_n)
+// against the thesis's implicit update on the four cyclic cases, same steps: the difference is the
+// lag's time-integration error, O(Δt) — halving the step halves it (ratio ≈ 2), and it vanishes
+// once damage has settled (the last cycle differs far less than the first).
+double largest_difference(const CaseLoops& a, const CaseLoops& b, std::size_t from, std::size_t to) {
+  double d = 0.0, scale = 0.0;
+  for (std::size_t k = from; k < to; ++k)
+    d = std::max(d, std::abs(a.stress_MPa[k] - b.stress_MPa[k])), scale = std::max(scale, std::abs(b.stress_MPa[k]));
+  return d / scale;
+}
+
+TEST(FritzsonCases, LaggedDamageConvergesToTheImplicitUpdateAtFirstOrder) {
+  const std::vector<double> p = fritzson_test::material1_parameters();
+  const MaterialPoint implicit(p, true, 23.0, Scheme::exponential, DamageUpdate::implicit);
+  const MaterialPoint lagged(p, true, 23.0, Scheme::exponential, DamageUpdate::lagged);
+  for (const char* id : {"7.1", "7.2", "7.3", "7.4"}) {
+    std::vector<double> first_cycle, last_cycle;
+    for (int steps : {100, 200, 400}) {
+      const CaseLoops a = run_thesis_case(lagged, thesis_case(id), steps);
+      const CaseLoops b = run_thesis_case(implicit, thesis_case(id), steps);
+      first_cycle.push_back(largest_difference(a, b, 0, steps + 1));
+      last_cycle.push_back(largest_difference(a, b, 9 * steps, a.stress_MPa.size()));
+    }
+    std::printf("case %s: lagged − implicit, first cycle %.3g / %.3g / %.3g of the peak at 100 / 200 / 400 "
+                "steps per cycle; last cycle %.3g\n", id, first_cycle[0], first_cycle[1], first_cycle[2],
+                last_cycle[0]);
+    EXPECT_NEAR(first_cycle[0] / first_cycle[1], 2.0, 0.3) << id;
+    EXPECT_NEAR(first_cycle[1] / first_cycle[2], 2.0, 0.3) << id;
+    EXPECT_LT(first_cycle[0], 0.05) << id;
+    EXPECT_LT(last_cycle[0], 0.2 * first_cycle[0]) << id;
+  }
 }
 
 }  // namespace

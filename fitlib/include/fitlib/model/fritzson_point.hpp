@@ -31,6 +31,11 @@ using model::log_strain;  // ln U and R of F = R U (material_point.hpp)
 // Damage evolution is backward Euler in both.
 enum class Scheme { backward_euler, exponential };
 
+// implicit: the step's stress uses e^a_{n+1} (4.37 within the step, the thesis's update);
+// lagged: it uses the converged e^a_n, and e^a_{n+1} is recorded for the next step
+// (model::PointOptions::DamageUpdate; docs/fritzson.md §4).
+using DamageUpdate = model::PointOptions::DamageUpdate;
+
 // Backward-Euler damage evolution (4.37, with the dot the print lacks): ė_a = C_d(1 − e_a/e_o)|ė_o|
 // while e_o > e_a, else 0. Implicit in e_a: e_a' = (e_a + C_d|Δe_o|)/(1 + C_d|Δe_o|/e_o), which
 // lies in [e_a, e_o] for every C_d (stable and never overshoots the driver).
@@ -87,7 +92,8 @@ class MaterialPoint {
  public:
   // parameters: 14 (isotropic) or 38 (anisotropic) in the order of fritzson.hpp.
   MaterialPoint(std::vector<double> parameters, bool anisotropic, double reference_C,
-                Scheme scheme = Scheme::backward_euler);
+                Scheme scheme = Scheme::backward_euler,
+                DamageUpdate damage_update = DamageUpdate::implicit);
 
   // One increment to strain_{n+1} over dt ≥ 0 at temperature T (°C; NaN = reference). Writes
   // state_{n+1} to `next` (state is untouched, so Newton iterations may call it repeatedly) and,
@@ -110,6 +116,7 @@ class MaterialPoint {
 
   bool anisotropic() const { return anisotropic_; }
   Scheme scheme() const { return scheme_; }
+  DamageUpdate damage_update() const { return damage_update_; }
   const std::vector<double>& parameters() const { return p_; }
 
   // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
@@ -126,6 +133,7 @@ class MaterialPoint {
   bool anisotropic_;
   double reference_C_;
   Scheme scheme_;
+  DamageUpdate damage_update_;
 };
 
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses

@@ -56,6 +56,14 @@ struct PointOptions {
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();
   // Fritzson only: the thesis's backward Euler (default) or the exponential scheme.
   bool fritzson_exponential = false;
+  // Models with damage (ignored by the others): implicit — the damage variables of step n+1 follow
+  //   from the strain of step n+1 and enter its stress and tangent (the model's own update);
+  //   lagged — the stress of step n+1 uses the damage of the converged step n (explicit in damage,
+  //   implicit in the viscoelastic part) and the damage is advanced from the step's strain for
+  //   step n+2: an O(Δt) difference, and a stress smooth in the strain for an FE Newton iteration
+  //   (docs/model.md §"Material point", docs/decisions.md "Lagged damage update").
+  enum class DamageUpdate { implicit, lagged };
+  DamageUpdate damage_update = DamageUpdate::implicit;
 };
 
 class MaterialPoint {

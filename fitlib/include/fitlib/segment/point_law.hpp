@@ -36,6 +36,9 @@ struct RoleMaterialOptions {
   double temperature_C = 20.0;   // elastic fidelity: where the storage stiffness is taken
   double frequency_Hz = 10.0;    // elastic fidelity: the load cycle's frequency
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();  // for shear cards without K
+  // complete fidelity, models with damage: the model's own (implicit) update, or damage lagged by
+  // one increment (model::PointOptions::DamageUpdate; docs/segment.md §Cost, "Complete level").
+  model::PointOptions::DamageUpdate damage_update = model::PointOptions::DamageUpdate::implicit;
 };
 
 // The point of a card (its model and parameter values) for one role.
