@@ -88,8 +88,11 @@ struct CycleResult {
 };
 
 // The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
-// 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change.
-std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight);
+// 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change — with each
+// change spread over ±reach_mm (the segment's half-length: it feels a change before its middle
+// reaches it).
+std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight,
+                                      double reach_mm = 0.0);
 
 // Body force (N/mm³, local: along the belt l and radial outward r) at a load state, 6.6–6.7.
 Eigen::Vector2d contact_body_force(const belt::LoadState& state, const CycleDrive& drive);
