@@ -185,7 +185,12 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const Mesh m = wrapped(straight, K_m);
   std::vector<double> path_x;
   for (const Eigen::Vector2d& X : straight.X) path_x.push_back(X.x());
-  const double reach = 1.5 * straight.half_length_mm, T = 1.0 + knobs.cycles;
+  const std::vector<double>& at_s = knobs.positions_mm;
+  for (std::size_t k = 0; k < at_s.size(); ++k)
+    if (!(at_s[k] > (k ? at_s[k - 1] : 0.0)) || !std::isfinite(at_s[k]))
+      throw core::UsageError("segment cycle: positions_mm must be positive and increasing");
+  const double reach = 1.5 * straight.half_length_mm;
+  const double T = 1.0 + (at_s.empty() ? knobs.cycles : at_s.back() / h.length_mm());
   const int n = knobs.curve_intervals;
   const CurvatureIntegral integral(h);
   auto curve_at = [&h, &integral, K_m, reach, n, T](double lambda) {
@@ -303,10 +308,14 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   SolverKnobs k = solver;
   k.schedule.clear();
   for (int i = 1; i <= knobs.bend_steps; ++i) k.schedule.push_back(static_cast<double>(i) / knobs.bend_steps / T);
-  const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight,
-                                                              straight.half_length_mm);
-  for (int c = 0; c < knobs.cycles; ++c)
-    for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
+  if (!at_s.empty()) {
+    for (double s_mm : at_s) k.schedule.push_back(std::min(1.0, (1.0 + s_mm / h.length_mm()) / T));
+  } else {
+    const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight,
+                                                                straight.half_length_mm);
+    for (int c = 0; c < knobs.cycles; ++c)
+      for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
+  }
   out.final_state = solve_static(p, k);
   out.increments = out.final_state.increments;
   out.newton_iterations = out.final_state.newton_iterations;

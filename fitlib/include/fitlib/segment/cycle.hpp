@@ -36,6 +36,10 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
+  // Optional: step 2's increments end where the segment's middle reaches these path positions
+  // (mm from the start of cycle 1, increasing) instead of the planned ones, and the run stops at
+  // the last (a few increments at a transition, of any size; `cycles` is then unused).
+  std::vector<double> positions_mm;
   // Full-field stress (VTK, cell means, global x–y) when the segment's middle first reaches each
   // path position of the last cycle: <vtk_prefix>-<k>.vtk. Empty prefix: none.
   std::vector<double> vtk_at_s_mm;
