@@ -392,3 +392,29 @@ TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
                 law == 0 ? "hencky" : "prony", tenth, n_tenth, hundredth, n_hundredth);
   }
 }
+
+// A curvature jump (a pulley entered without a ramp) passing the middle of the cord curve's first
+// interval: the interval's curvature is the history's mean over it, so the cord line moves
+// continuously and a step of 10⁻⁶ of the cycle across that instant changes the stresses no more
+// than its neighbours (a sample at the interval's middle turned the curve beyond by ds·K at once).
+TEST(SegmentCycle, CurvatureJumpPassingTheCordCurveMovesItContinuously) {
+  belt::LoadCycle c = synthetic_cycle(0.0);
+  c.samples[2].s_mm = 90.0, c.samples[2].t_s = 0.09;  // K jumps from 0 to 1/40 at s = 90 mm
+  Fixture f(c);
+  const double L = 400.0, tiny = 1e-6 * L;
+  const double ds = 1.5 * build_mesh(CogSection{}, f.mesh).half_length_mm / 24.0;
+  const double crossing = 90.0 - 0.5 * ds;  // the first interval's middle (ahead of the segment's) meets the jump
+  f.knobs.positions_mm = {30.0, 60.0, 75.0, 80.0, crossing - 3 * tiny};
+  for (int k = -2; k <= 3; ++k) f.knobs.positions_mm.push_back(crossing + (k - 0.5) * tiny);
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult r = f.run(*bottom, *cushion);
+  const std::vector<CycleSample>& q = point(r, "gap_bottom").samples;
+  const std::size_t n = q.size();
+  double across = 0.0, others = 0.0;
+  for (std::size_t k = n - 5; k < n; ++k) {  // steps of 10⁻⁶ of the cycle; n − 3 is the one across
+    const double change = std::abs(q[k].s22_MPa - q[k - 1].s22_MPa);
+    (k == n - 3 ? across : others) = std::max(k == n - 3 ? across : others, change);
+  }
+  EXPECT_LE(across, 3.0 * others + 1e-7);
+  std::printf("gap s22 change per 1e-6 cycle: across the interval middle %.3g, others <= %.3g MPa\n", across, others);
+}
