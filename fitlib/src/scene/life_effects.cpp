@@ -78,7 +78,11 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity);
     setup.temperature_C = s.temperature_C;
-    r.stresses = fatigue::segment_point_histories(fatigue::segment_run(*r.cycle, *r.drive, setup));
+    const segment::CycleResult run = fatigue::segment_run(*r.cycle, *r.drive, setup);
+    r.stresses = fatigue::segment_point_histories(run);
+    SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0};
+    for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
+    r.segment_equilibrium = check;
     r.life_conditions = fatigue::cycle_conditions(*r.cycle, *r.drive, s.temperature_C);
   });
 }
@@ -109,10 +113,17 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
+  life.equilibrium = r.segment_equilibrium;
   r.life = std::move(life);
 }
 
 }  // namespace detail
+
+bool SegmentEquilibrium::within_bounds() const {
+  using B = segment::EquilibriumBounds;
+  return equilibrium_error <= B::equilibrium_error && span_cord_share <= B::span_cord_share &&
+         span_section_mismatch <= B::span_section_mismatch;
+}
 
 LifePlan choose_life_plan(const Scene& s) {
   if (s.life && s.life->fidelity) return {*s.life->fidelity, "[life] fidelity = " + *s.life->fidelity};
@@ -121,12 +132,12 @@ LifePlan choose_life_plan(const Scene& s) {
     return {"beam", "default: the scene gives neither bottom and cushion cards nor a [segment] table"};
   const std::string finest = cards ? "complete" : "elastic";
   const std::string why = cards ? "the scene gives bottom and cushion cards" : "the scene has a [segment] table";
-  // The segment levels miss their time targets (elastic 0.7 s CPU isotropic, 2.1–2.4 s with the
+  // The segment levels miss their time targets (elastic 0.7 s CPU isotropic, 1.1–1.4 s with the
   // thesis cards per drive; complete fails on the medium drive; docs/segment.md "Cost"): asked,
   // not default.
   return {"beam", "default: beam; " + why + ", so [life] fidelity = \"" + finest +
                       "\" runs the segment FE (about 1 s per drive at the elastic level with isotropic "
-                      "materials, 2-4 s with the thesis cards)"};
+                      "materials, 1-2 s with the thesis cards)"};
 }
 
 }  // namespace fitlib::scene

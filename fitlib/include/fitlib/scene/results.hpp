@@ -93,10 +93,19 @@ struct InputFile {
   std::string used_for;
 };
 
+// The segment run's equilibrium check (segment::CycleResult, docs/segment.md "Cord-line
+// reactions and the belt force"); the segment levels only.
+struct SegmentEquilibrium {
+  double equilibrium_error = 0.0, span_cord_share = 0.0, span_section_mismatch = 0.0;
+  int span_increments = 0;  // increments the span checks saw (none: the checks are vacuous)
+  bool within_bounds() const;
+};
+
 struct LifeResult {
   LifePlan plan;
   std::vector<InputFile> inputs;
   fatigue::LifeReport report;
+  std::optional<SegmentEquilibrium> equilibrium;
 };
 
 struct SceneResult {
@@ -112,6 +121,7 @@ struct SceneResult {
   std::optional<TensionTest> tension_test;
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
+  std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
 };

@@ -72,6 +72,14 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
 
+// The built-in equilibrium check's bounds (docs/segment.md "Cord-line reactions and the belt
+// force"): what the tests hold a run to and what `fitcli life` warns beyond.
+struct EquilibriumBounds {
+  static constexpr double equilibrium_error = 1e-6;      // |Σ reactions + ∫ b dV| / Σ magnitudes
+  static constexpr double span_cord_share = 1e-5;        // |Σ cord-line reactions along| / (F/B)
+  static constexpr double span_section_mismatch = 1e-6;  // the left half's longitudinal balance
+};
+
 struct CycleResult {
   std::vector<MonitoredHistory> points;
   double cycle_time_s = 0.0;
