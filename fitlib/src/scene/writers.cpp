@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "fitlib/core/finite_output.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/segment/cycle.hpp"
@@ -132,6 +133,12 @@ json life_summary_json(const LifeResult& l) {
                                 {"span_section_mismatch_bound", B::span_section_mismatch},
                                 {"span_increments", e.span_increments}, {"within_bounds", e.within_bounds()}};
   }
+  if (!l.fields.empty()) {  // full-field stress files (VTK) by name, so the bytes do not depend on the folder
+    json fields = json::array();
+    for (const FieldFile& f : l.fields)
+      fields.push_back({{"at", f.at}, {"s_mm", f.s_mm}, {"file", std::filesystem::path(f.path).filename().string()}});
+    j["fields"] = fields;
+  }
   return j;
 }
 
@@ -197,6 +204,8 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "to the stated tolerance (docs/segment.md \"Cord-line reactions\")\n";
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
   }
+  for (const FieldFile& f : l.fields)
+    o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";
   o << "inputs:\n";
   for (const auto& f : l.inputs)
     o << "  " << std::left << std::setw(8) << f.role << std::right << f.path << "\n           sha256 " << f.sha256

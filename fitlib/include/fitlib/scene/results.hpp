@@ -101,11 +101,18 @@ struct SegmentEquilibrium {
   bool within_bounds() const;
 };
 
+struct FieldFile {         // a full-field stress written by the segment run
+  std::string at;           // as asked: "entrance" or a position in mm
+  double s_mm = 0.0;        // path position of the segment's middle in the last cycle
+  std::string path;
+};
+
 struct LifeResult {
   LifePlan plan;
   std::vector<InputFile> inputs;
   fatigue::LifeReport report;
   std::optional<SegmentEquilibrium> equilibrium;
+  std::vector<FieldFile> fields;
 };
 
 struct SceneResult {
@@ -122,6 +129,7 @@ struct SceneResult {
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
   std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
+  std::vector<FieldFile> segment_fields;
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
 };
