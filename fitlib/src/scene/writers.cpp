@@ -194,11 +194,12 @@ std::string life_text(const Scene& s, const SceneResult& r) {
   if (l.equilibrium) {
     using B = segment::EquilibriumBounds;
     const SegmentEquilibrium& e = *l.equilibrium;
+    const auto precision = o.precision();
     o << std::setprecision(2) << std::scientific << "segment equilibrium: error " << e.equilibrium_error << " (bound "
       << B::equilibrium_error << "), span cord-line share of F/B " << e.span_cord_share << " (bound "
       << B::span_cord_share << "), span section mismatch " << e.span_section_mismatch << " (bound "
       << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
-      << std::defaultfloat;
+      << std::defaultfloat << std::setprecision(static_cast<int>(precision));
     if (!e.within_bounds())
       o << "WARNING: the segment's equilibrium check exceeds its bounds: the stresses are not in equilibrium "
            "to the stated tolerance (docs/segment.md \"Cord-line reactions\")\n";

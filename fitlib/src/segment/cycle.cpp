@@ -69,8 +69,9 @@ NeutralCurve cord_curve(double tau, const belt::LoadHistory& h, const CurvatureI
     const double sign = side == 0 ? 1.0 : -1.0;
     for (int i = 0; i <= n; ++i) {
       eps[side].push_back(w * h.at_position(s0 + sign * i * ds).strain);
+      if (i == n) break;
       const double mean = (integral(s0 + sign * (i + 1) * ds) - integral(s0 + sign * i * ds)) / (sign * ds);
-      if (i < n) K[side].push_back((1.0 - w) * K_m + w * mean);
+      K[side].push_back((1.0 - w) * K_m + w * mean);
     }
   }
   return NeutralCurve(ds, K[0], eps[0], K[1], eps[1]);
@@ -134,12 +135,12 @@ namespace {
 std::vector<double> windowed(const std::vector<double>& v, int half_width) {
   const int M = static_cast<int>(v.size());
   if (half_width <= 0) return v;
-  std::vector<double> prefix(2 * M + 1, 0.0), out(M);
-  for (int i = 0; i < 2 * M; ++i) prefix[i + 1] = prefix[i] + v[i % M];
+  std::vector<double> prefix(3 * M + 1, 0.0), out(M);  // v three times over: the window never leaves it
+  for (int i = 0; i < 3 * M; ++i) prefix[i + 1] = prefix[i] + v[i % M];
   const int w = std::min(half_width, M / 2 - 1);
   for (int i = 0; i < M; ++i) {
     const int lo = i - w + M;  // cells i − w … i + w, shifted by one period
-    out[i] = (prefix[std::min(lo + 2 * w + 1, 2 * M)] - prefix[lo]) / (2 * w + 1);
+    out[i] = (prefix[lo + 2 * w + 1] - prefix[lo]) / (2 * w + 1);
   }
   return out;
 }
