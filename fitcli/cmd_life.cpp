@@ -1,10 +1,12 @@
 // fitcli life: a scene's fatigue life — life per mode in cycles and hours, governing mode,
 // design points, the effects that ran and the cost of each (the table always shows wall times;
 // life.json and summary.json in DIR only with --record-timing, so that files stay byte-identical).
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "inputs.hpp"
@@ -18,16 +20,29 @@ void register_life(CLI::App& app) {
   auto out_dir = std::make_shared<std::string>("life-out");
   auto json = std::make_shared<bool>(false);
   auto record_timing = std::make_shared<bool>(false);
+  auto field_at = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; [life] optional; - = stdin)")
       ->required();
   cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)")->capture_default_str();
   add_json_flag(cmd, *json, "life.json, on stdout");
   add_verbosity_flags(cmd);
+  cmd->add_option("--field-at", *field_at,
+                  "Write the segment's full-field stress (VTK, DIR/field-<k>.vtk) when its middle reaches this path "
+                  "position of the last cycle: 'entrance' (the first pulley's) or mm; repeatable; segment levels only");
   cmd->add_flag("--record-timing", *record_timing,
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
     auto scene = load_scene_input(*scene_path);
     scene.outputs["life"] = true;  // the command asks for the life
+    if (!field_at->empty()) {
+      const auto plan = fitlib::scene::choose_life_plan(scene);
+      if (plan.fidelity == "beam")
+        throw fitlib::core::UsageError("--field-at needs the segment FE ([life] fidelity = \"elastic\" or "
+                                       "\"complete\"); this scene runs the beam level (" + plan.reason + ")");
+      scene.life_field_at = *field_at;
+      scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();
+      fitlib::core::prepare_output_dir(*out_dir);  // the segment run writes the fields into it
+    }
     const auto result = fitlib::scene::run_scene(scene);
     if (!result.life) {
       for (const auto& e : result.plan.effects)

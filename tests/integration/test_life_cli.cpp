@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -92,3 +94,57 @@ TEST(LifeCli, ElasticLevelRunsTheSegmentOnTheLoadCycle) {
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
 }
 
+
+// The segment levels report their built-in equilibrium check (docs/segment.md "Cord-line reactions
+// and the belt force") in life.json under "segment_equilibrium", with its bounds, and in the table;
+// --field-at entrance writes the stress field where the first pulley's side pressure starts.
+TEST(LifeCli, ElasticLevelReportsTheSegmentEquilibriumCheckAndTheEntranceField) {
+  const std::string base = slurp(source_path("datasets/drives/ref-0500-light.toml"));
+  const std::string scene = unique_dir("life_equilibrium") + ".toml", out = unique_dir("life_equilibrium_out");
+  std::ofstream(scene) << base
+                       << "\n[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1.0\n"
+                          "end_pitches = 1.0\ncushion_rows = 1\n[segment.materials]\n"
+                          "bottom = {E_MPa = 20, nu = 0.49}\ncushion = {E_MPa = 8, nu = 0.49}\n"
+                          "[life]\nfidelity = \"elastic\"\ncycles = 1\n";
+  const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out + " --field-at entrance");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("segment equilibrium: error "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("stress field at entrance"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("WARNING"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(out + "/life.json"));
+  ASSERT_TRUE(j.contains("segment_equilibrium")) << j.dump(2);
+  const auto& e = j["segment_equilibrium"];
+  for (const char* key : {"equilibrium_error", "span_cord_share", "span_section_mismatch"}) {
+    const double value = e[key].get<double>(), bound = e[std::string(key) + "_bound"].get<double>();
+    EXPECT_TRUE(std::isfinite(value)) << key;
+    EXPECT_GE(value, 0.0) << key;
+    EXPECT_LE(value, bound) << key;
+  }
+  EXPECT_EQ(e["span_cord_share_bound"].get<double>(), 1e-5);
+  EXPECT_EQ(e["span_section_mismatch_bound"].get<double>(), 1e-6);
+  EXPECT_GT(e["span_increments"].get<int>(), 0);  // the span checks saw increments
+  EXPECT_TRUE(e["within_bounds"].get<bool>());
+  // The field: a legacy VTK with the cell stresses, at the first load-history row with side pressure.
+  ASSERT_EQ(j["fields"].size(), 1u) << j.dump(2);
+  EXPECT_EQ(j["fields"][0]["at"], "entrance");
+  const std::string vtk = slurp(out + "/" + j["fields"][0]["file"].get<std::string>());
+  EXPECT_EQ(vtk.rfind("# vtk DataFile Version 3.0", 0), 0u);
+  EXPECT_NE(vtk.find("SCALARS sigma_xx_MPa double 1"), std::string::npos);
+  EXPECT_EQ(vtk.find("nan"), std::string::npos);
+  std::istringstream history(slurp(out + "/load_history.csv"));
+  std::string line;
+  std::getline(history, line);  // s_mm,t_s,pulley,zone,F_N,K_1_per_mm,p_MPa,...
+  double first_contact = -1.0;
+  while (first_contact < 0.0 && std::getline(history, line)) {
+    std::vector<std::string> cell;
+    std::stringstream row(line);
+    for (std::string c; std::getline(row, c, ',');) cell.push_back(c);
+    if (std::stod(cell.at(6)) > 0.0) first_contact = std::stod(cell.at(0));
+  }
+  EXPECT_NEAR(j["fields"][0]["s_mm"].get<double>(), first_contact, 1e-6);
+  // The beam level has no segment run and no check.
+  std::ofstream(scene) << base << "\n[life]\nfidelity = \"beam\"\n";
+  const auto beam = run_fitcli("life --scene " + scene + " --json --out-dir " + out);
+  ASSERT_EQ(beam.exit_code, 0) << beam.err;
+  EXPECT_FALSE(nlohmann::json::parse(beam.out).contains("segment_equilibrium"));
+}

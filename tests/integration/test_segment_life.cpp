@@ -87,8 +87,8 @@ TEST(SegmentLife, CordLineReactionsInTheSpansAreSmallAgainstTheBeltForce) {
   std::printf("span cord share %.4g, section mismatch %.3g over %d increments\n", r.span_cord_share,
               r.span_section_mismatch, spans);
   EXPECT_GE(spans, 5);
-  EXPECT_LT(r.span_cord_share, 1e-5);          // measured 3e-8: zero to the Newton tolerance
-  EXPECT_LT(r.span_section_mismatch, 1e-6);    // measured 7e-14
+  EXPECT_LT(r.span_cord_share, segment::EquilibriumBounds::span_cord_share);  // measured 3e-8: zero to the Newton tolerance
+  EXPECT_LT(r.span_section_mismatch, segment::EquilibriumBounds::span_section_mismatch);  // measured 7e-14
   EXPECT_LT(r.equilibrium_error, 1e-6);
 }
 

@@ -2,6 +2,8 @@
 // histories at the monitored points (beam level; the segment levels once they land) and the
 // fatigue life on them.
 #include "effects.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/card.hpp"
@@ -9,8 +11,10 @@
 #include "fitlib/card/card.hpp"
 #include "fitlib/segment/point_law.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace fitlib::scene {
 namespace detail {
@@ -69,6 +73,26 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   return points;
 }
 
+// Path position (mm, within the cycle) of a --field-at request: "entrance" = the first sample with
+// side pressure (the first pulley met from the slack span's middle), or a number in [0, L).
+double field_position(const std::string& at, const belt::LoadCycle& cycle) {
+  if (at == "entrance") {
+    for (const belt::LoadSample& q : cycle.samples)
+      if (q.p_MPa > 0.0) return q.s_mm;
+    throw core::InputError("life field at the entrance: the load cycle has no contact");
+  }
+  std::size_t used = 0;
+  double s_mm = std::numeric_limits<double>::quiet_NaN();
+  try {
+    s_mm = std::stod(at, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != at.size() || !(s_mm >= 0.0 && s_mm < cycle.cycle_length_mm))
+    throw core::UsageError("life field at '" + at + "': expected \"entrance\" or a path position in mm within [0, " +
+                           core::format_number(cycle.cycle_length_mm) + ")");
+  return s_mm;
+}
+
 void segment_stresses(const Scene& s, SceneResult& r) {
   in_scene(s, [&] {
     fatigue::SegmentLifeSetup setup;
@@ -78,7 +102,18 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity);
     setup.temperature_C = s.temperature_C;
-    r.stresses = fatigue::segment_point_histories(fatigue::segment_run(*r.cycle, *r.drive, setup));
+    for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
+    setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
+    const segment::CycleResult run = fatigue::segment_run(*r.cycle, *r.drive, setup);
+    r.stresses = fatigue::segment_point_histories(run);
+    SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0};
+    for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
+    r.segment_equilibrium = check;
+    for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
+      const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
+      if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
+        r.segment_fields.push_back({s.life_field_at[k], setup.cycle.vtk_at_s_mm[k], path});
+    }
     r.life_conditions = fatigue::cycle_conditions(*r.cycle, *r.drive, s.temperature_C);
   });
 }
@@ -109,10 +144,18 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
+  life.equilibrium = r.segment_equilibrium;
+  life.fields = r.segment_fields;
   r.life = std::move(life);
 }
 
 }  // namespace detail
+
+bool SegmentEquilibrium::within_bounds() const {
+  using B = segment::EquilibriumBounds;
+  return equilibrium_error <= B::equilibrium_error && span_cord_share <= B::span_cord_share &&
+         span_section_mismatch <= B::span_section_mismatch;
+}
 
 LifePlan choose_life_plan(const Scene& s) {
   if (s.life && s.life->fidelity) return {*s.life->fidelity, "[life] fidelity = " + *s.life->fidelity};
@@ -121,12 +164,12 @@ LifePlan choose_life_plan(const Scene& s) {
     return {"beam", "default: the scene gives neither bottom and cushion cards nor a [segment] table"};
   const std::string finest = cards ? "complete" : "elastic";
   const std::string why = cards ? "the scene gives bottom and cushion cards" : "the scene has a [segment] table";
-  // The segment levels miss their time targets (elastic 0.7 s CPU isotropic, 2.1–2.4 s with the
+  // The segment levels miss their time targets (elastic 0.7 s CPU isotropic, 1.1–1.4 s with the
   // thesis cards per drive; complete fails on the medium drive; docs/segment.md "Cost"): asked,
   // not default.
   return {"beam", "default: beam; " + why + ", so [life] fidelity = \"" + finest +
                       "\" runs the segment FE (about 1 s per drive at the elastic level with isotropic "
-                      "materials, 2-4 s with the thesis cards)"};
+                      "materials, 1-2 s with the thesis cards)"};
 }
 
 }  // namespace fitlib::scene

@@ -9,8 +9,10 @@
 #include <sstream>
 
 #include "fitlib/core/finite_output.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
+#include "fitlib/segment/cycle.hpp"
 
 namespace fitlib::scene {
 namespace {
@@ -122,6 +124,21 @@ json life_summary_json(const LifeResult& l) {
   for (const auto& f : l.inputs)
     inputs.push_back({{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"used_for", f.used_for}});
   j["inputs"] = inputs;
+  if (l.equilibrium) {  // the segment's equilibrium check with its bounds (docs/formats.md §5)
+    using B = segment::EquilibriumBounds;
+    const SegmentEquilibrium& e = *l.equilibrium;
+    j["segment_equilibrium"] = {{"equilibrium_error", e.equilibrium_error}, {"equilibrium_error_bound", B::equilibrium_error},
+                                {"span_cord_share", e.span_cord_share}, {"span_cord_share_bound", B::span_cord_share},
+                                {"span_section_mismatch", e.span_section_mismatch},
+                                {"span_section_mismatch_bound", B::span_section_mismatch},
+                                {"span_increments", e.span_increments}, {"within_bounds", e.within_bounds()}};
+  }
+  if (!l.fields.empty()) {  // full-field stress files (VTK) by name, so the bytes do not depend on the folder
+    json fields = json::array();
+    for (const FieldFile& f : l.fields)
+      fields.push_back({{"at", f.at}, {"s_mm", f.s_mm}, {"file", std::filesystem::path(f.path).filename().string()}});
+    j["fields"] = fields;
+  }
   return j;
 }
 
@@ -173,7 +190,24 @@ std::string life_text(const Scene& s, const SceneResult& r) {
   std::ostringstream o;
   o << "scene: " << s.name << " (" << s.temperature_C << " degC)\n"
     << "fidelity: " << l.plan.fidelity << " (" << l.plan.reason << ")\n"
-    << fatigue::life_table(l.report) << "inputs:\n";
+    << fatigue::life_table(l.report);
+  if (l.equilibrium) {
+    using B = segment::EquilibriumBounds;
+    const SegmentEquilibrium& e = *l.equilibrium;
+    const auto precision = o.precision();
+    o << std::setprecision(2) << std::scientific << "segment equilibrium: error " << e.equilibrium_error << " (bound "
+      << B::equilibrium_error << "), span cord-line share of F/B " << e.span_cord_share << " (bound "
+      << B::span_cord_share << "), span section mismatch " << e.span_section_mismatch << " (bound "
+      << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
+      << std::defaultfloat << std::setprecision(static_cast<int>(precision));
+    if (!e.within_bounds())
+      o << "WARNING: the segment's equilibrium check exceeds its bounds: the stresses are not in equilibrium "
+           "to the stated tolerance (docs/segment.md \"Cord-line reactions\")\n";
+    if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
+  }
+  for (const FieldFile& f : l.fields)
+    o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";
+  o << "inputs:\n";
   for (const auto& f : l.inputs)
     o << "  " << std::left << std::setw(8) << f.role << std::right << f.path << "\n           sha256 " << f.sha256
       << ": " << f.used_for << "\n";

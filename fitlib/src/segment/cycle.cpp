@@ -27,9 +27,41 @@ Mesh wrapped(const Mesh& straight, double K_m) {
   return m;
 }
 
+// ∫ K ds of the history's curvature from its first sample to s (any real s, periodic), exact for
+// the piecewise-linear interpolation with its jumps (belt::LoadHistory).
+class CurvatureIntegral {
+ public:
+  explicit CurvatureIntegral(const belt::LoadHistory& h) : L_(h.length_mm()) {
+    const auto& q = h.samples();
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const belt::LoadState& b = k + 1 < q.size() ? q[k + 1] : q.front();
+      const double end = k + 1 < q.size() ? b.s_mm : b.s_mm + L_;
+      pieces_.push_back({q[k].s_mm, end, q[k].K_1_mm, b.K_1_mm, total_});
+      total_ += 0.5 * (end - q[k].s_mm) * (q[k].K_1_mm + b.K_1_mm);
+    }
+  }
+  double operator()(double s) const {
+    const double t = s - pieces_.front().a, turns = std::floor(t / L_), x = pieces_.front().a + (t - turns * L_);
+    auto it = std::upper_bound(pieces_.begin(), pieces_.end(), x, [](double v, const Piece& p) { return v < p.a; });
+    const Piece& p = *(it - 1);
+    const double w = p.b > p.a ? (x - p.a) / (p.b - p.a) : 0.0;
+    return turns * total_ + p.before + 0.5 * (x - p.a) * (2.0 * p.Ka + w * (p.Kb - p.Ka));
+  }
+
+ private:
+  struct Piece {
+    double a, b, Ka, Kb, before;
+  };
+  double L_, total_ = 0.0;
+  std::vector<Piece> pieces_;
+};
+
 // Cord curve at pseudo time τ: step 1 (τ ≤ 1) blends the mould curvature into the cycle's start
-// state; step 2 reads the history at s0 + ξ, s0 = (τ − 1) L.
-NeutralCurve cord_curve(double tau, const belt::LoadHistory& h, double K_m, double reach_mm, int n) {
+// state; step 2 reads the history at s0 + ξ, s0 = (τ − 1) L. Each interval's curvature is the
+// history's mean over it (not a sample at its middle), so the curve moves continuously in τ when
+// a curvature jump (a pulley's entrance) passes through the segment (docs/decisions.md).
+NeutralCurve cord_curve(double tau, const belt::LoadHistory& h, const CurvatureIntegral& integral, double K_m,
+                        double reach_mm, int n) {
   const double w = std::min(1.0, tau), s0 = std::max(0.0, tau - 1.0) * h.length_mm();
   const double ds = reach_mm / n;
   std::array<std::vector<double>, 2> K, eps;
@@ -37,7 +69,9 @@ NeutralCurve cord_curve(double tau, const belt::LoadHistory& h, double K_m, doub
     const double sign = side == 0 ? 1.0 : -1.0;
     for (int i = 0; i <= n; ++i) {
       eps[side].push_back(w * h.at_position(s0 + sign * i * ds).strain);
-      if (i < n) K[side].push_back((1.0 - w) * K_m + w * h.at_position(s0 + sign * (i + 0.5) * ds).K_1_mm);
+      if (i == n) break;
+      const double mean = (integral(s0 + sign * (i + 1) * ds) - integral(s0 + sign * i * ds)) / (sign * ds);
+      K[side].push_back((1.0 - w) * K_m + w * mean);
     }
   }
   return NeutralCurve(ds, K[0], eps[0], K[1], eps[1]);
@@ -95,7 +129,25 @@ Eigen::Vector2d contact_body_force(const belt::LoadState& q, const CycleDrive& d
   return {B_l, B_r};
 }
 
-std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, double weight) {
+namespace {
+
+// Periodic moving average of v over ±half_width cells (the total is kept).
+std::vector<double> windowed(const std::vector<double>& v, int half_width) {
+  const int M = static_cast<int>(v.size());
+  if (half_width <= 0) return v;
+  std::vector<double> prefix(3 * M + 1, 0.0), out(M);  // v three times over: the window never leaves it
+  for (int i = 0; i < 3 * M; ++i) prefix[i + 1] = prefix[i] + v[i % M];
+  const int w = std::min(half_width, M / 2 - 1);
+  for (int i = 0; i < M; ++i) {
+    const int lo = i - w + M;  // cells i − w … i + w, shifted by one period
+    out[i] = (prefix[lo + 2 * w + 1] - prefix[lo]) / (2 * w + 1);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, double weight, double reach_mm) {
   if (steps < 1) throw core::UsageError("segment cycle: steps_per_cycle must be ≥ 1");
   const int M = 4000;
   const double L = h.length_mm(), ds = L / M;
@@ -106,6 +158,9 @@ std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, dou
     dK[i] = std::abs(b.K_1_mm - a.K_1_mm), dp[i] = std::abs(b.p_MPa - a.p_MPa);
     tvK += dK[i], tvp += dp[i];
   }
+  // The segment feels a change while any of it is over it: spread each change over ±reach.
+  const int half_width = static_cast<int>(std::lround(reach_mm / ds));
+  dK = windowed(dK, half_width), dp = windowed(dp, half_width);
   std::vector<double> cumulative(M + 1, 0.0);
   for (int i = 0; i < M; ++i)
     cumulative[i + 1] = cumulative[i] + 1.0 / M + weight * 0.5 * ((tvK > 0 ? dK[i] / tvK : 0.0) + (tvp > 0 ? dp[i] / tvp : 0.0));
@@ -131,9 +186,17 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const Mesh m = wrapped(straight, K_m);
   std::vector<double> path_x;
   for (const Eigen::Vector2d& X : straight.X) path_x.push_back(X.x());
-  const double reach = 1.5 * straight.half_length_mm, T = 1.0 + knobs.cycles;
+  const std::vector<double>& at_s = knobs.positions_mm;
+  for (std::size_t k = 0; k < at_s.size(); ++k)
+    if (!(at_s[k] > (k ? at_s[k - 1] : 0.0)) || !std::isfinite(at_s[k]))
+      throw core::UsageError("segment cycle: positions_mm must be positive and increasing");
+  const double reach = 1.5 * straight.half_length_mm;
+  const double T = 1.0 + (at_s.empty() ? knobs.cycles : at_s.back() / h.length_mm());
   const int n = knobs.curve_intervals;
-  auto curve_at = [&h, K_m, reach, n, T](double lambda) { return cord_curve(lambda * T, h, K_m, reach, n); };
+  const CurvatureIntegral integral(h);
+  auto curve_at = [&h, &integral, K_m, reach, n, T](double lambda) {
+    return cord_curve(lambda * T, h, integral, K_m, reach, n);
+  };
   StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, EndCondition::radial);
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
@@ -246,9 +309,14 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   SolverKnobs k = solver;
   k.schedule.clear();
   for (int i = 1; i <= knobs.bend_steps; ++i) k.schedule.push_back(static_cast<double>(i) / knobs.bend_steps / T);
-  const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight);
-  for (int c = 0; c < knobs.cycles; ++c)
-    for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
+  if (!at_s.empty()) {
+    for (double s_mm : at_s) k.schedule.push_back(std::min(1.0, (1.0 + s_mm / h.length_mm()) / T));
+  } else {
+    const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight,
+                                                                straight.half_length_mm);
+    for (int c = 0; c < knobs.cycles; ++c)
+      for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
+  }
   out.final_state = solve_static(p, k);
   out.increments = out.final_state.increments;
   out.newton_iterations = out.final_state.newton_iterations;

@@ -344,6 +344,7 @@ class Newton {
         continue;
       }
       if (worse && std::isfinite(res_prev) && alpha > 1.0 / 32.0) {
+        if (++since_best > knobs_.stall_iterations) return o;  // halvings count towards the stall
         alpha *= 0.5;
         move(q_prev, dq, alpha);
         continue;

@@ -333,3 +333,88 @@ TEST(SegmentCycle, TenthOfACycleStepsAgreeWithFineStepsOnTheArc) {
   EXPECT_LT(std::max(e10, e40), 1e-6);
   std::printf("gap s22 mid-arc: 10 steps %.5f, 40 steps %.5f MPa\n", coarse, fine);
 }
+
+// Issue 11's hard case "steps from 10⁻⁶ to 10⁻¹ of the cycle": increments of 10⁻⁶ of the cycle
+// (0.4 µm of travel, 0.4 µs) in the entrance ramp converge, and each changes the stresses by no more
+// than the local slope says (continuity; also for a viscoelastic law updated over dt = 10⁻⁶ of the
+// cycle); increments of 10⁻¹ of the cycle across the whole entrance converge and agree with steps
+// of 10⁻² on the wrap within 1 %.
+TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
+  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const double L = 400.0, tiny = 1e-6 * L;
+  for (int law = 0; law < 2; ++law) {
+    Fixture f;
+    f.knobs.positions_mm = {30.0, 60.0, 80.0, 88.0, 92.0, 94.0, 95.0};
+    for (int k = 1; k <= 4; ++k) f.knobs.positions_mm.push_back(95.0 + k * tiny);
+    const CycleResult r = law == 0 ? f.run(*bottom, *cushion) : f.run(visco, visco);
+    EXPECT_EQ(r.cuts, 0);
+    EXPECT_LT(r.equilibrium_error, 1e-6);
+    for (const char* name : {"gap_bottom", "mid_cushion"}) {
+      const std::vector<CycleSample>& q = point(r, name).samples;
+      ASSERT_EQ(q.size(), static_cast<std::size_t>(f.knobs.bend_steps) + f.knobs.positions_mm.size());
+      const std::size_t n = q.size();
+      for (const CycleSample& c : q) ASSERT_TRUE(std::isfinite(c.s11_MPa + c.s22_MPa + c.s12_MPa + c.s33_MPa));
+      EXPECT_NEAR(q[n - 1].s_mm - q[n - 5].s_mm, 4 * tiny, 1e-12);
+      // Slope over the last millimetre (94 → 95 mm), per µ-step.
+      const double slope22 = std::abs(q[n - 5].s22_MPa - q[n - 6].s22_MPa) * tiny;
+      const double slope12 = std::abs(q[n - 5].s12_MPa - q[n - 6].s12_MPa) * tiny;
+      for (std::size_t k = n - 4; k < n; ++k) {
+        EXPECT_LE(std::abs(q[k].s22_MPa - q[k - 1].s22_MPa), 3.0 * slope22 + 1e-8) << name << ' ' << k;
+        EXPECT_LE(std::abs(q[k].s12_MPa - q[k - 1].s12_MPa), 3.0 * slope12 + 1e-8) << name << ' ' << k;
+      }
+      std::printf("%s %s: s22 %.9f -> %.9f MPa over 4 steps of 1e-6 cycle (slope x step %.3g MPa)\n",
+                  law == 0 ? "hencky" : "prony", name, q[n - 5].s22_MPa, q[n - 1].s22_MPa, slope22);
+    }
+  }
+  // Tenths of the cycle (the 80 → 120 mm increment takes the whole entrance) against hundredths.
+  auto wrap_stress = [&](double step_mm, const PlaneStrainLaw& b, const PlaneStrainLaw& c, int* increments) {
+    Fixture f;
+    for (double s = step_mm; s <= 120.0 + 1e-9; s += step_mm) f.knobs.positions_mm.push_back(s);
+    const CycleResult r = f.run(b, c);
+    *increments = r.increments;
+    const CycleSample& q = point(r, "gap_bottom").samples.back();
+    EXPECT_NEAR(q.s_mm, 120.0, 1e-9);
+    EXPECT_TRUE(std::isfinite(q.s22_MPa));
+    return q.s22_MPa;
+  };
+  // The elastic law is path independent: only convergence is at stake. The viscoelastic one
+  // integrates over the path: the time step's error shows.
+  for (int law = 0; law < 2; ++law) {
+    const PlaneStrainLaw& b = law == 0 ? *bottom : static_cast<const PlaneStrainLaw&>(visco);
+    const PlaneStrainLaw& c = law == 0 ? *cushion : static_cast<const PlaneStrainLaw&>(visco);
+    int n_tenth = 0, n_hundredth = 0;
+    const double tenth = wrap_stress(0.1 * L, b, c, &n_tenth), hundredth = wrap_stress(0.01 * L, b, c, &n_hundredth);
+    ASSERT_LT(hundredth, 0.0);
+    EXPECT_NEAR(tenth, hundredth, 0.01 * std::abs(hundredth));
+    std::printf("%s gap s22 at 120 mm: steps of 1/10 %.6f (%d increments), 1/100 %.6f MPa (%d increments)\n",
+                law == 0 ? "hencky" : "prony", tenth, n_tenth, hundredth, n_hundredth);
+  }
+}
+
+// A curvature jump (a pulley entered without a ramp) passing the middle of the cord curve's first
+// interval: the interval's curvature is the history's mean over it, so the cord line moves
+// continuously and a step of 10⁻⁶ of the cycle across that instant changes the stresses no more
+// than its neighbours (a sample at the interval's middle turned the curve beyond by ds·K at once).
+TEST(SegmentCycle, CurvatureJumpPassingTheCordCurveMovesItContinuously) {
+  belt::LoadCycle c = synthetic_cycle(0.0);
+  c.samples[2].s_mm = 90.0, c.samples[2].t_s = 0.09;  // K jumps from 0 to 1/40 at s = 90 mm
+  Fixture f(c);
+  const double L = 400.0, tiny = 1e-6 * L;
+  const double ds = 1.5 * build_mesh(CogSection{}, f.mesh).half_length_mm / 24.0;
+  const double crossing = 90.0 - 0.5 * ds;  // the first interval's middle (ahead of the segment's) meets the jump
+  f.knobs.positions_mm = {30.0, 60.0, 75.0, 80.0, crossing - 3 * tiny};
+  for (int k = -2; k <= 3; ++k) f.knobs.positions_mm.push_back(crossing + (k - 0.5) * tiny);
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult r = f.run(*bottom, *cushion);
+  const std::vector<CycleSample>& q = point(r, "gap_bottom").samples;
+  const std::size_t n = q.size();
+  double across = 0.0, others = 0.0;
+  for (std::size_t k = n - 5; k < n; ++k) {  // steps of 10⁻⁶ of the cycle; n − 3 is the one across
+    const double change = std::abs(q[k].s22_MPa - q[k - 1].s22_MPa);
+    (k == n - 3 ? across : others) = std::max(k == n - 3 ? across : others, change);
+  }
+  EXPECT_LE(across, 3.0 * others + 1e-7);
+  std::printf("gap s22 change per 1e-6 cycle: across the interval middle %.3g, others <= %.3g MPa\n", across, others);
+}

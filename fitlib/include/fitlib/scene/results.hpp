@@ -93,10 +93,26 @@ struct InputFile {
   std::string used_for;
 };
 
+// The segment run's equilibrium check (segment::CycleResult, docs/segment.md "Cord-line
+// reactions and the belt force"); the segment levels only.
+struct SegmentEquilibrium {
+  double equilibrium_error = 0.0, span_cord_share = 0.0, span_section_mismatch = 0.0;
+  int span_increments = 0;  // increments the span checks saw (none: the checks are vacuous)
+  bool within_bounds() const;
+};
+
+struct FieldFile {         // a full-field stress written by the segment run
+  std::string at;           // as asked: "entrance" or a position in mm
+  double s_mm = 0.0;        // path position of the segment's middle in the last cycle
+  std::string path;
+};
+
 struct LifeResult {
   LifePlan plan;
   std::vector<InputFile> inputs;
   fatigue::LifeReport report;
+  std::optional<SegmentEquilibrium> equilibrium;
+  std::vector<FieldFile> fields;
 };
 
 struct SceneResult {
@@ -112,6 +128,8 @@ struct SceneResult {
   std::optional<TensionTest> tension_test;
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
+  std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
+  std::vector<FieldFile> segment_fields;
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
 };

@@ -102,6 +102,11 @@ struct Scene {
   std::optional<TensionTestSpec> tension_test;
   std::optional<SegmentSpec> segment;
   std::optional<LifeSpec> life;
+  // Full-field stress of the segment levels (VTK) when the segment's middle reaches these path
+  // positions in the last load cycle: "entrance" (the first pulley's, where its side pressure
+  // starts) or a position in mm; written as <life_field_prefix>-<k>.vtk (fitcli life --field-at).
+  std::vector<std::string> life_field_at;
+  std::string life_field_prefix;
 };
 
 // The cogged section of the scene's belt ([belt] cog_* keys over the section's defaults).

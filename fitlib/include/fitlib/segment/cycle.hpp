@@ -36,6 +36,10 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
+  // Optional: step 2's increments end where the segment's middle reaches these path positions
+  // (mm from the start of cycle 1, increasing) instead of the planned ones, and the run stops at
+  // the last (a few increments at a transition, of any size; `cycles` is then unused).
+  std::vector<double> positions_mm;
   // Full-field stress (VTK, cell means, global x–y) when the segment's middle first reaches each
   // path position of the last cycle: <vtk_prefix>-<k>.vtk. Empty prefix: none.
   std::vector<double> vtk_at_s_mm;
@@ -68,6 +72,14 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
 
+// The built-in equilibrium check's bounds (docs/segment.md "Cord-line reactions and the belt
+// force"): what the tests hold a run to and what `fitcli life` warns beyond.
+struct EquilibriumBounds {
+  static constexpr double equilibrium_error = 1e-6;      // |Σ reactions + ∫ b dV| / Σ magnitudes
+  static constexpr double span_cord_share = 1e-5;        // |Σ cord-line reactions along| / (F/B)
+  static constexpr double span_section_mismatch = 1e-6;  // the left half's longitudinal balance
+};
+
 struct CycleResult {
   std::vector<MonitoredHistory> points;
   double cycle_time_s = 0.0;
@@ -88,8 +100,11 @@ struct CycleResult {
 };
 
 // The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
-// 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change.
-std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight);
+// 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change — with each
+// change spread over ±reach_mm (the segment's half-length: it feels a change before its middle
+// reaches it).
+std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight,
+                                      double reach_mm = 0.0);
 
 // Body force (N/mm³, local: along the belt l and radial outward r) at a load state, 6.6–6.7.
 Eigen::Vector2d contact_body_force(const belt::LoadState& state, const CycleDrive& drive);
