@@ -115,12 +115,11 @@ bool volume_field(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen
 
 // J̄ at (ξ, η) and d(ln J̄)/du; false when the interpolated volume is not positive.
 bool interpolated_volume(const VolumeField& v, double xi, double eta, double& Jbar, ElementVector& dlnJbar) {
-  const double a = 1.0 / std::sqrt(3.0);
   Jbar = 0.0;
   dlnJbar.setZero(v.dlnJ.front().size());
   for (std::size_t m = 0; m < v.points.size(); ++m) {
-    const double w = v.points.size() == 1 ? 1.0
-                                          : (a + xi * v.points[m].xi / a) / (2 * a) * (a + eta * v.points[m].eta / a) / (2 * a);
+    // Bilinear Lagrange weight of the point at (±1/√3, ±1/√3): ¼ (1 + 3 ξ ξ_m)(1 + 3 η η_m).
+    const double w = v.points.size() == 1 ? 1.0 : 0.25 * (1 + 3 * xi * v.points[m].xi) * (1 + 3 * eta * v.points[m].eta);
     Jbar += w * v.J[m];
     dlnJbar += w * v.J[m] * v.dlnJ[m];
   }
@@ -152,7 +151,7 @@ void add_material_stiffness(const PointKinematics& k, const Eigen::Matrix4d& A, 
 }
 
 // F-bar's extra tangent: with P_eff = P(F̄)/α, α = (J̄/J)^½, F̄ = α F,
-// dP_eff = A:dF + (A:F − P_eff) ½ (dJ̄/J̄ − dJ/J)  (de Souza Neto et al. 1996, eq. 27 in P form).
+// dP_eff = A:dF + (A:F − P_eff) ½ (dJ̄/J̄ − dJ/J)  (docs/segment.md §Element choice).
 void add_volume_stiffness(const PointKinematics& k, const Eigen::Matrix4d& A, const Eigen::Matrix2d& P_eff,
                           const ElementVector& dlnJbar, const ElementVector& dlnJ, int n, ElementMatrix& K) {
   Eigen::Matrix2d Q = -P_eff;
