@@ -257,7 +257,7 @@ void pressure_load(const std::vector<Eigen::Vector2d>& x, double p, ElementVecto
 }  // namespace fitlib::segment::detail
 
 namespace fitlib::segment {
-// F-bar's internal force is not the gradient of an energy (de Souza Neto et al. 1996 §3).
+// F-bar's internal force is not the gradient of an energy: its tangent is unsymmetric.
 bool symmetric_tangent(Integration integration) { return integration != Integration::fbar; }
 
 Integration integration_from_string(const std::string& name) {
