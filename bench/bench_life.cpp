@@ -10,11 +10,12 @@
 // 4. The beam level's 1000-drive sweep through the planner.
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [full] [lagged]
-// [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [full|fbar|reduced]
+// [lagged] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
-// `full`: 3×3 Gauss integration; `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter
-// of both cards, e.g. set=C_d=0.001).
+// `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
+// setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
+// set=C_d=0.001).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -64,7 +65,8 @@ segment::MeshKnobs mesh_named(const std::string& name) {
 struct Probe {
   std::string load = "medium", fidelity = "elastic", mesh = "medium";
   int steps = 60;
-  bool reuse = false, extrapolate = false, full = false, lagged = false;
+  bool reuse = false, extrapolate = false, lagged = false;
+  std::string integration{};  // empty: fatigue::SegmentLifeSetup's default
   int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
   std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
 };
@@ -84,7 +86,7 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   setup.mesh = mesh_named(pr.mesh);
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
-  if (pr.full) setup.solver.integration = segment::Integration::full;
+  if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
   setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
@@ -215,7 +217,7 @@ int main(int argc, char** argv) {
       const std::string a = argv[k];
       if (a == "reuse") p.reuse = true;
       if (a == "extrapolate") p.extrapolate = true;
-      if (a == "full") p.full = true;
+      if (a == "full" || a == "fbar" || a == "reduced") p.integration = a;
       if (a == "lagged") p.lagged = true;
       if (a.rfind("set=", 0) == 0 && a.find('=', 4) != std::string::npos)
         p.overrides.emplace_back(a.substr(4, a.find('=', 4) - 4), std::atof(a.c_str() + a.find('=', 4) + 1));

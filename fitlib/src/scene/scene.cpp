@@ -172,8 +172,9 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
   if (ends != "radial" && ends != "free") r.fail("ends", "ends must be \"radial\" or \"free\"");
   g.setup.ends = ends == "radial" ? segment::EndCondition::radial : segment::EndCondition::free;
   const std::string integ = r.string("integration").value_or("reduced");
-  if (integ != "reduced" && integ != "full") r.fail("integration", "integration must be \"reduced\" or \"full\"");
-  g.setup.solver.integration = integ == "reduced" ? segment::Integration::reduced : segment::Integration::full;
+  if (integ != "reduced" && integ != "full" && integ != "fbar")
+    r.fail("integration", "integration must be \"reduced\", \"full\" or \"fbar\"");
+  g.setup.solver.integration = segment::integration_from_string(integ);
   g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, kMaxSegmentSteps));
   auto& mk = g.setup.mesh;
   mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.05, 100.0);

@@ -8,9 +8,11 @@
 
 namespace fitlib::segment {
 
-std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElastic, 2>& materials, int increments) {
+std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElastic, 2>& materials, int increments,
+                          ElasticLaw law) {
   const Mesh& m = *p.mesh;
   if (m.nodes_per_element != 8) throw core::UsageError("calculix_deck: CPE8R needs the 8-node mesh");
+  if (law == ElasticLaw::hencky) throw core::UsageError("calculix_deck: no CalculiX Hencky law");
   // 13 significant digits: at most 20 characters, CalculiX's field (docs/formats.md §3).
   const auto num = [](double x) { return core::format_number(x, 13); };
   std::ostringstream o;
@@ -28,7 +30,10 @@ std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElas
   o << "*ELSET, ELSET=EALL\nEbottom, Ecushion\n";
   for (Role role : {Role::bottom, Role::cushion}) {
     const auto& mat = materials[static_cast<int>(role)];
-    o << "*MATERIAL, NAME=M" << to_string(role) << "\n*ELASTIC\n" << num(mat.E_MPa) << ", " << num(mat.nu) << "\n";
+    o << "*MATERIAL, NAME=M" << to_string(role) << "\n";
+    const double mu = mat.E_MPa / (2.0 * (1.0 + mat.nu)), K = mat.E_MPa / (3.0 * (1.0 - 2.0 * mat.nu));
+    if (law == ElasticLaw::neo_hookean) o << "*HYPERELASTIC, NEO HOOKE\n" << num(0.5 * mu) << ", " << num(2.0 / K) << "\n";
+    else o << "*ELASTIC\n" << num(mat.E_MPa) << ", " << num(mat.nu) << "\n";
     o << "*SOLID SECTION, ELSET=E" << to_string(role) << ", MATERIAL=M" << to_string(role) << "\n1.\n";
   }
   std::vector<std::array<double, 2>> values(p.constraints.size());

@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/segment/solver.hpp"
 
 namespace fitlib::segment::detail {
 
@@ -66,66 +67,159 @@ bool reference_gradients(const std::vector<Eigen::Vector2d>& X, const GaussPoint
   dV = detJ0 * g.weight;
   return true;
 }
+
+// One integration point's kinematics: ∂N/∂X, dV, F and J = det F; false when inverted.
+struct PointKinematics {
+  double N[8];
+  Eigen::Matrix<double, 8, 2> G;
+  double dV = 0.0, J = 0.0;
+  Eigen::Matrix2d F;
+};
+
+bool point_kinematics(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
+                      const GaussPoint& g, PointKinematics& k) {
+  if (!reference_gradients(X, g, k.N, k.G, k.dV)) return false;
+  k.F.setIdentity();
+  for (std::size_t a = 0; a < X.size(); ++a) k.F += u[a] * k.G.row(static_cast<int>(a));
+  k.J = k.F.determinant();
+  return k.J > 0.0;
+}
+
+// d(ln J)/du: ∂J/∂u_bk = J (F⁻ᵀ)_kL ∂N_b/∂X_L.
+ElementVector dlnJ_du(const PointKinematics& k, int n) {
+  const Eigen::Matrix2d FinvT = k.F.inverse().transpose();
+  ElementVector d(2 * n);
+  for (int b = 0; b < n; ++b) d.segment<2>(2 * b) = FinvT * k.G.row(b).transpose();
+  return d;
+}
+
+// F-bar's volume field (docs/segment.md §Element choice): J at the reduced points (2×2 for
+// 8 nodes, the centre for 4) and d(ln J)/du there; J̄ at (ξ, η) is their bilinear interpolation.
+struct VolumeField {
+  std::vector<GaussPoint> points;
+  std::vector<double> J;
+  std::vector<ElementVector> dlnJ;
+};
+
+bool volume_field(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u, VolumeField& v) {
+  const int n = static_cast<int>(X.size());
+  v.points = n == 8 ? gauss_rule(2) : std::vector<GaussPoint>{{0.0, 0.0, 4.0}};
+  PointKinematics k;
+  for (const GaussPoint& g : v.points) {
+    if (!point_kinematics(X, u, g, k)) return false;
+    v.J.push_back(k.J);
+    v.dlnJ.push_back(dlnJ_du(k, n));
+  }
+  return true;
+}
+
+// J̄ at (ξ, η) and d(ln J̄)/du; false when the interpolated volume is not positive.
+bool interpolated_volume(const VolumeField& v, double xi, double eta, double& Jbar, ElementVector& dlnJbar) {
+  Jbar = 0.0;
+  dlnJbar.setZero(v.dlnJ.front().size());
+  for (std::size_t m = 0; m < v.points.size(); ++m) {
+    // Bilinear Lagrange weight of the point at (±1/√3, ±1/√3): ¼ (1 + 3 ξ ξ_m)(1 + 3 η η_m).
+    const double w = v.points.size() == 1 ? 1.0 : 0.25 * (1 + 3 * xi * v.points[m].xi) * (1 + 3 * eta * v.points[m].eta);
+    Jbar += w * v.J[m];
+    dlnJbar += w * v.J[m] * v.dlnJ[m];
+  }
+  if (!(Jbar > 0.0)) return false;
+  dlnJbar /= Jbar;
+  return true;
+}
+
+void add_force(const PointKinematics& k, const Eigen::Matrix2d& P, int n, ElementVector& f) {
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 2; ++i) f(2 * a + i) += (P(i, 0) * k.G(a, 0) + P(i, 1) * k.G(a, 1)) * k.dV;
+}
+
+// K_aibk += ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L dV.
+void add_material_stiffness(const PointKinematics& k, const Eigen::Matrix4d& A, int n, ElementMatrix& K) {
+  const auto& G = k.G;
+  // H(a, 2i + k, L) = Σ_J G(a, J) A_iJkL, then K_aibk = Σ_L H G(b, L): 2 × fewer products.
+  Eigen::Matrix<double, 8, 8> H;
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 2; ++i)
+      for (int c = 0; c < 2; ++c)
+        for (int L = 0; L < 2; ++L)
+          H(a, 4 * i + 2 * c + L) = (G(a, 0) * A(2 * i, 2 * c + L) + G(a, 1) * A(2 * i + 1, 2 * c + L)) * k.dV;
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 2; ++i)
+      for (int b = 0; b < n; ++b)
+        for (int c = 0; c < 2; ++c)
+          K(2 * a + i, 2 * b + c) += H(a, 4 * i + 2 * c) * G(b, 0) + H(a, 4 * i + 2 * c + 1) * G(b, 1);
+}
+
+// F-bar's extra tangent: with P_eff = P(F̄)/α, α = (J̄/J)^½, F̄ = α F,
+// dP_eff = A:dF + (A:F − P_eff) ½ (dJ̄/J̄ − dJ/J)  (docs/segment.md §Element choice).
+void add_volume_stiffness(const PointKinematics& k, const Eigen::Matrix4d& A, const Eigen::Matrix2d& P_eff,
+                          const ElementVector& dlnJbar, const ElementVector& dlnJ, int n, ElementMatrix& K) {
+  Eigen::Matrix2d Q = -P_eff;
+  for (int i = 0; i < 2; ++i)
+    for (int J = 0; J < 2; ++J)
+      for (int c = 0; c < 2; ++c)
+        for (int L = 0; L < 2; ++L) Q(i, J) += A(2 * i + J, 2 * c + L) * k.F(c, L);
+  ElementVector v = ElementVector::Zero(2 * n);
+  add_force(k, Q, n, v);
+  K.noalias() += v * (0.5 * (dlnJbar - dlnJ)).transpose();
+}
+
+PointResponse respond(const PlaneStrainLaw& law, const Eigen::Matrix2d& F, const ElementStep& step, std::size_t q,
+                      bool tangent, bool& ok) {
+  const std::size_t ns = law.state_size();
+  PointResponse r;
+  try {
+    r = law.respond(F, {step.state_n + q * ns, step.state_next + q * ns, step.dt_s, step.temperature_C, tangent});
+  } catch (const core::NumericalError&) {
+    ok = false;
+    return r;
+  }
+  ok = r.P.allFinite() && r.A.allFinite();
+  return r;
+}
 }  // namespace
 
 void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,
                     const std::vector<Eigen::Matrix2d>& piola, ElementVector& f) {
   const int n = static_cast<int>(X.size());
   f.setZero(2 * n);
-  double N[8], dV = 0.0;
-  Eigen::Matrix<double, 8, 2> G;
-  for (std::size_t q = 0; q < rule.size(); ++q) {
-    if (!reference_gradients(X, rule[q], N, G, dV)) continue;
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 2; ++i) f(2 * a + i) += (piola[q](i, 0) * G(a, 0) + piola[q](i, 1) * G(a, 1)) * dV;
-  }
+  PointKinematics k;
+  for (std::size_t q = 0; q < rule.size(); ++q)
+    if (reference_gradients(X, rule[q], k.N, k.G, k.dV)) add_force(k, piola[q], n, f);
 }
 
-// f_aI = ∫ P_iJ ∂N_a/∂X_J dV;  K_aibk = ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L dV (unit thickness).
+// f_aI = ∫ P_iJ ∂N_a/∂X_J dV;  K_aibk = ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L dV (unit thickness). With
+// F-bar, P is the law's at F̄ divided by α (the Cauchy stress of F̄ on the current volume).
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
                       const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
-                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states) {
+                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar) {
   const int n = static_cast<int>(X.size());
   f.setZero(2 * n);
   if (K) K->setZero(2 * n, 2 * n);
   if (states) states->clear();
-  const std::size_t ns = law.state_size();
-  double N[8], dV = 0.0;
-  Eigen::Matrix<double, 8, 2> G;  // ∂N/∂X
+  VolumeField volume;
+  if (f_bar && !volume_field(X, u, volume)) return false;
+  PointKinematics k;
+  ElementVector dlnJbar;
   for (std::size_t q = 0; q < rule.size(); ++q) {
-    const GaussPoint& g = rule[q];
-    if (!reference_gradients(X, g, N, G, dV)) return false;
-    Eigen::Matrix2d F = Eigen::Matrix2d::Identity();
-    for (int a = 0; a < n; ++a) F += u[a] * G.row(a);
-    const double J = F.determinant();
-    if (!(J > 0.0)) return false;
-    PointResponse r;
-    try {
-      r = law.respond(F, {step.state_n + q * ns, step.state_next + q * ns, step.dt_s, step.temperature_C, K != nullptr});
-    } catch (const core::NumericalError&) {
-      return false;
+    if (!point_kinematics(X, u, rule[q], k)) return false;
+    double alpha = 1.0, Jbar = k.J;
+    if (f_bar) {
+      if (!interpolated_volume(volume, rule[q].xi, rule[q].eta, Jbar, dlnJbar)) return false;
+      alpha = std::sqrt(Jbar / k.J);
     }
-    if (!r.P.allFinite() || !r.A.allFinite()) return false;
-    for (int a = 0; a < n; ++a)
-      for (int i = 0; i < 2; ++i) f(2 * a + i) += (r.P(i, 0) * G(a, 0) + r.P(i, 1) * G(a, 1)) * dV;
-    if (K) {
-      // H(a, 2i + k, L) = Σ_J G(a, J) A_iJkL, then K_aibk = Σ_L H G(b, L): 2 × fewer products.
-      Eigen::Matrix<double, 8, 8> H;
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < 2; ++i)
-          for (int k = 0; k < 2; ++k)
-            for (int L = 0; L < 2; ++L)
-              H(a, 4 * i + 2 * k + L) = (G(a, 0) * r.A(2 * i, 2 * k + L) + G(a, 1) * r.A(2 * i + 1, 2 * k + L)) * dV;
-      for (int a = 0; a < n; ++a)
-        for (int i = 0; i < 2; ++i)
-          for (int b = 0; b < n; ++b)
-            for (int k = 0; k < 2; ++k)
-              (*K)(2 * a + i, 2 * b + k) += H(a, 4 * i + 2 * k) * G(b, 0) + H(a, 4 * i + 2 * k + 1) * G(b, 1);
-    }
+    const Eigen::Matrix2d Fbar = alpha * k.F;
+    bool ok = true;
+    const PointResponse r = respond(law, Fbar, step, q, K != nullptr, ok);
+    if (!ok) return false;
+    const Eigen::Matrix2d P_eff = r.P / alpha;
+    add_force(k, P_eff, n, f);
+    if (K) add_material_stiffness(k, r.A, n, *K);
+    if (K && f_bar) add_volume_stiffness(k, r.A, P_eff, dlnJbar, dlnJ_du(k, n), n, *K);
     if (states) {
       Eigen::Vector2d Xg = Eigen::Vector2d::Zero();
-      for (int a = 0; a < n; ++a) Xg += N[a] * X[a];
-      states->push_back({r.P * F.transpose() / J, r.sigma33_MPa, Xg, r.P, F});
+      for (int a = 0; a < n; ++a) Xg += k.N[a] * X[a];
+      states->push_back({r.P * Fbar.transpose() / Jbar, r.sigma33_MPa, Xg, P_eff, Fbar});
     }
   }
   return true;
@@ -161,3 +255,19 @@ void pressure_load(const std::vector<Eigen::Vector2d>& x, double p, ElementVecto
 }
 
 }  // namespace fitlib::segment::detail
+
+namespace fitlib::segment {
+// F-bar's internal force is not the gradient of an energy: its tangent is unsymmetric.
+bool symmetric_tangent(Integration integration) { return integration != Integration::fbar; }
+
+Integration integration_from_string(const std::string& name) {
+  if (name == "reduced") return Integration::reduced;
+  if (name == "full") return Integration::full;
+  if (name == "fbar") return Integration::fbar;
+  throw core::UsageError("integration must be \"reduced\", \"full\" or \"fbar\", not \"" + name + "\"");
+}
+
+const char* to_string(Integration integration) {
+  return integration == Integration::reduced ? "reduced" : integration == Integration::full ? "full" : "fbar";
+}
+}  // namespace fitlib::segment

@@ -42,10 +42,12 @@ struct ElementStep {
 };
 
 // Internal force and tangent of one element; false (with nothing written) when an integration
-// point is inverted (J ≤ 0) or the law returns a non-finite stress.
+// point is inverted (J ≤ 0) or the law returns a non-finite stress. `f_bar`: the law sees
+// F̄ = (J̄/J)^½ F, J̄ interpolated from the reduced points (docs/segment.md §Element choice); the
+// states then hold F̄, its Cauchy stress and the effective first Piola stress P(F̄)/α.
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
                       const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
-                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states);
+                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar = false);
 
 // Internal force f_a = Σ P ∂N_a/∂X dV from given first Piola–Kirchhoff stresses at the points.
 void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,

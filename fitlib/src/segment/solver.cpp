@@ -15,7 +15,7 @@
 namespace fitlib::segment {
 
 int gauss_order(const Mesh& mesh, Integration integration) {
-  return (mesh.nodes_per_element == 8 && integration == Integration::full) ? 3 : 2;
+  return (mesh.nodes_per_element == 8 && integration != Integration::reduced) ? 3 : 2;
 }
 
 namespace {
@@ -152,8 +152,8 @@ Pattern build_pattern(const Mesh& m, const Dofs& d) {
 
 class Assembler {
  public:
-  Assembler(const StaticProblem& p, const Dofs& d, int order)
-      : p_(p), d_(d), rule_(detail::gauss_rule(order)) {}
+  Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar)
+      : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar) {}
 
   std::size_t points_per_element() const { return rule_.size(); }
   // The step the point states are updated over (state_n → state_next).
@@ -189,7 +189,7 @@ class Assembler {
       const std::size_t at = (*offset_)[e];
       const detail::ElementStep step{state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};
       if (!detail::element_response(X, u, *p_.laws[static_cast<int>(m.roles[e])], rule_, step, f,
-                                    K ? &Ke : nullptr, states ? &gp : nullptr))
+                                    K ? &Ke : nullptr, states ? &gp : nullptr, f_bar_))
         return e;
       scatter(nodes, f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->element_slots[e] : nullptr, coupling);
       if (states)
@@ -263,6 +263,7 @@ class Assembler {
   const StaticProblem& p_;
   const Dofs& d_;
   std::vector<detail::GaussPoint> rule_;
+  bool f_bar_ = false;
   const std::vector<std::size_t>* offset_ = nullptr;
   const double* state_n_ = nullptr;
   double* state_next_ = nullptr;
@@ -440,9 +441,10 @@ class StaticRun {
  public:
   StaticRun(const StaticProblem& p, const SolverKnobs& knobs)
       : p_(p), knobs_(knobs), m_(*p.mesh), d_(number_dofs(p)), angles_(p.constraints.size()),
-        assembler_(p, d_, gauss_order(m_, knobs.integration)),
+        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
-        linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent()),
+        linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
+                symmetric_tangent(knobs.integration)),
         pattern_(build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);

@@ -4,11 +4,14 @@
 #include <cstdio>
 #include <set>
 
+#include <Eigen/SVD>
 #include <gtest/gtest.h>
 
+#include "fitlib/core/error.hpp"
 #include "fitlib/segment/elastic.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/solver.hpp"
+#include "../../../fitlib/src/segment/element.hpp"
 
 using namespace fitlib::segment;
 
@@ -37,9 +40,11 @@ std::vector<int> boundary_nodes(const Mesh& m) {
 
 }  // namespace
 
-TEST(SegmentElement, FiniteStrainPatchTestIsExactToRoundOff) {
-  // The cogged mesh has distorted, curved-edge elements; a homogeneous F on the boundary must be
-  // reproduced inside exactly, with the stress of the law at F everywhere.
+namespace {
+
+// The cogged mesh has distorted, curved-edge elements; a homogeneous F on the boundary must be
+// reproduced inside exactly, with the stress of the law at F everywhere.
+void expect_patch_exact(Integration integration) {
   MeshKnobs k;
   k.central_pitches = 1.0, k.end_pitches = 0.5, k.fine_size_mm = 0.6, k.coarse_size_mm = 1.5;
   const Mesh m = build_mesh(CogSection{}, k);
@@ -59,6 +64,7 @@ TEST(SegmentElement, FiniteStrainPatchTestIsExactToRoundOff) {
   };
   SolverKnobs knobs;
   knobs.steps = 2;
+  knobs.integration = integration;
   const StaticSolution s = solve_static(p, knobs);
   double worst_u = 0.0, worst_s = 0.0;
   const PointResponse exact = law->respond(F);
@@ -67,8 +73,17 @@ TEST(SegmentElement, FiniteStrainPatchTestIsExactToRoundOff) {
     worst_u = std::max(worst_u, (s.u_mm[a] - (F - Eigen::Matrix2d::Identity()) * m.X[a]).norm());
   for (const auto& el : s.points)
     for (const auto& g : el) worst_s = std::max(worst_s, (g.cauchy_MPa - sigma).cwiseAbs().maxCoeff());
-  EXPECT_LT(worst_u, 1e-12);
-  EXPECT_LT(worst_s, 1e-10 * sigma.cwiseAbs().maxCoeff());
+  EXPECT_LT(worst_u, 1e-12) << to_string(integration);
+  EXPECT_LT(worst_s, 1e-10 * sigma.cwiseAbs().maxCoeff()) << to_string(integration);
+}
+
+}  // namespace
+
+TEST(SegmentElement, FiniteStrainPatchTestIsExactToRoundOff) { expect_patch_exact(Integration::reduced); }
+
+TEST(SegmentElement, FbarElementPassesTheFiniteStrainPatchTestToRoundOff) {
+  // F̄ = F when F is homogeneous (J̄ = J everywhere), so the patch is exact as for CPE8R.
+  expect_patch_exact(Integration::fbar);
 }
 
 namespace {
@@ -130,4 +145,55 @@ TEST(SegmentElement, FullyIntegratedBilinearElementLocksNearIncompressibility) {
   EXPECT_LT(std::abs(compressible - 1.0), 0.1);
   EXPECT_GT(nearly_incompressible, 3.0);
   EXPECT_NEAR(bending_moment_ratio(8, Integration::reduced, 0.4995, 0.5), 1.0, 0.02);
+}
+
+TEST(SegmentElement, FbarQuadraticElementBendsLikeBeamTheoryNearIncompressibility) {
+  // F-bar keeps the reduced rule's volumetric constraint count: no locking at ν = 0.4995, where
+  // the fully integrated Q8 is too stiff.
+  const double fbar = bending_moment_ratio(8, Integration::fbar, 0.4995, 0.5);
+  const double full = bending_moment_ratio(8, Integration::full, 0.4995, 0.5);
+  std::printf("Q8 nu 0.4995: M/M_beam = %.5f F-bar, %.5f full 3x3\n", fbar, full);
+  EXPECT_NEAR(fbar, 1.0, 0.02);
+}
+
+namespace {
+
+// Zero singular values (relative 1e-10) of one distorted 8-node element's tangent at the
+// reference state: the null space of the linearised element.
+int zero_modes(Integration integration) {
+  const std::vector<Eigen::Vector2d> X = {{0, 0}, {1.2, 0.1}, {1.1, 0.9}, {-0.1, 1.0},
+                                          {0.6, 0.02}, {1.2, 0.5}, {0.5, 0.97}, {-0.05, 0.5}};
+  const std::vector<Eigen::Vector2d> u(8, Eigen::Vector2d::Zero());
+  const auto law = make_elastic(ElasticLaw::neo_hookean, 10.0, 0.49);
+  const auto rule = detail::gauss_rule(integration == Integration::reduced ? 2 : 3);
+  const detail::ElementStep step{};
+  detail::ElementVector f;
+  detail::ElementMatrix K;
+  EXPECT_TRUE(detail::element_response(X, u, *law, rule, step, f, &K, nullptr, integration == Integration::fbar));
+  const Eigen::MatrixXd Kd = K;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Kd);
+  const Eigen::VectorXd sv = svd.singularValues();
+  int zeros = 0;
+  for (int i = 0; i < sv.size(); ++i) zeros += sv(i) < 1e-10 * sv(0);
+  std::printf("%s: smallest singular values %.3e %.3e %.3e %.3e (largest %.3e)\n", to_string(integration),
+              sv(sv.size() - 1), sv(sv.size() - 2), sv(sv.size() - 3), sv(sv.size() - 4), sv(0));
+  return zeros;
+}
+
+}  // namespace
+
+TEST(SegmentElement, FbarElementHasOnlyTheThreeRigidModesWhereCpe8rHasAFourth) {
+  EXPECT_EQ(zero_modes(Integration::fbar), 3);
+  EXPECT_EQ(zero_modes(Integration::full), 3);
+  // CPE8R: 2 translations, 1 rotation and the 2×2 rule's hourglass (spurious) mode.
+  EXPECT_EQ(zero_modes(Integration::reduced), 4);
+}
+
+TEST(SegmentElement, FbarTangentIsUnsymmetricAndTheSolverUsesLu) {
+  EXPECT_FALSE(symmetric_tangent(Integration::fbar));
+  EXPECT_TRUE(symmetric_tangent(Integration::reduced));
+  EXPECT_TRUE(symmetric_tangent(Integration::full));
+  EXPECT_EQ(integration_from_string("fbar"), Integration::fbar);
+  EXPECT_STREQ(to_string(integration_from_string("full")), "full");
+  EXPECT_THROW(integration_from_string("bbar"), fitlib::core::UsageError);
 }

@@ -89,32 +89,55 @@ TEST(SegmentPointLaw, KirchhoffStressIsTheContractsRotatedStress) {
   EXPECT_LT((r.P * F.transpose() - tau).cwiseAbs().maxCoeff(), 1e-12 * tau.cwiseAbs().maxCoeff());
 }
 
+namespace {
+
+// Largest difference between an element's tangent and central differences of its internal force,
+// relative to the tangent's largest entry.
+double element_tangent_error(const segment::PlaneStrainLaw& law, const std::vector<Eigen::Vector2d>& X, int order,
+                             bool f_bar) {
+  std::vector<Eigen::Vector2d> u;
+  for (std::size_t a = 0; a < X.size(); ++a) u.push_back({0.05 * X[a].y() + 0.01 * a, -0.04 * X[a].x() + 0.003 * a * a});
+  const auto rule = segment::detail::gauss_rule(order);
+  std::vector<double> state;
+  for (std::size_t q = 0; q < rule.size(); ++q)
+    for (double v : law.initial_state()) state.push_back(v);
+  std::vector<double> next(state.size());
+  const segment::detail::ElementStep step{state.data(), next.data(), 0.02, NAN};
+  segment::detail::ElementVector f, fp, fm;
+  segment::detail::ElementMatrix K;
+  EXPECT_TRUE(segment::detail::element_response(X, u, law, rule, step, f, &K, nullptr, f_bar));
+  const double h = 1e-7;
+  double err = 0.0;
+  for (std::size_t b = 0; b < X.size(); ++b)
+    for (int k = 0; k < 2; ++k) {
+      auto up = u, um = u;
+      up[b][k] += h, um[b][k] -= h;
+      segment::detail::element_response(X, up, law, rule, step, fp, nullptr, nullptr, f_bar);
+      segment::detail::element_response(X, um, law, rule, step, fm, nullptr, nullptr, f_bar);
+      err = std::max(err, ((fp - fm) / (2 * h) - K.col(2 * b + k)).cwiseAbs().maxCoeff());
+    }
+  return err / K.cwiseAbs().maxCoeff();
+}
+
+const std::vector<Eigen::Vector2d> kDistortedQ8 = {{0, 0},      {1.2, 0.1}, {1.1, 0.9},  {-0.1, 1.0},
+                                                   {0.6, 0.02}, {1.2, 0.5}, {0.5, 0.97}, {-0.05, 0.5}};
+
+}  // namespace
+
 TEST(SegmentPointLaw, ElementTangentMatchesCentralDifferencesOfItsInternalForce) {
   // A distorted 8-node element, orthotropic contract point, reduced and full integration.
   const segment::ContractLaw law(ortho());
-  const std::vector<Eigen::Vector2d> X = {{0, 0}, {1.2, 0.1}, {1.1, 0.9}, {-0.1, 1.0},
-                                          {0.6, 0.02}, {1.2, 0.5}, {0.5, 0.97}, {-0.05, 0.5}};
-  std::vector<Eigen::Vector2d> u;
-  for (std::size_t a = 0; a < X.size(); ++a) u.push_back({0.05 * X[a].y() + 0.01 * a, -0.04 * X[a].x() + 0.003 * a * a});
-  for (int order : {2, 3}) {
-    const auto rule = segment::detail::gauss_rule(order);
-    std::vector<double> state(rule.size() * law.state_size()), next(state.size());
-    const segment::detail::ElementStep step{state.data(), next.data(), 0.0, NAN};
-    segment::detail::ElementVector f, fp, fm;
-    segment::detail::ElementMatrix K;
-    ASSERT_TRUE(segment::detail::element_response(X, u, law, rule, step, f, &K, nullptr));
-    const double h = 1e-7;
-    double err = 0.0;
-    for (std::size_t b = 0; b < X.size(); ++b)
-      for (int k = 0; k < 2; ++k) {
-        auto up = u, um = u;
-        up[b][k] += h, um[b][k] -= h;
-        segment::detail::element_response(X, up, law, rule, step, fp, nullptr, nullptr);
-        segment::detail::element_response(X, um, law, rule, step, fm, nullptr, nullptr);
-        err = std::max(err, ((fp - fm) / (2 * h) - K.col(2 * b + k)).cwiseAbs().maxCoeff());
-      }
-    EXPECT_LT(err, 1e-6 * K.cwiseAbs().maxCoeff()) << "order " << order;
-  }
+  for (int order : {2, 3}) EXPECT_LT(element_tangent_error(law, kDistortedQ8, order, false), 1e-6) << "order " << order;
+}
+
+TEST(SegmentPointLaw, FbarElementTangentMatchesCentralDifferencesOfItsInternalForce) {
+  // dF̄ = α[dF + ½F(dJ̄/J̄ − dJ/J)] (docs/segment.md §Element choice): 8 nodes (J̄ from the 2×2
+  // points) and 4 nodes (J̄ at the centre), an orthotropic and a viscoelastic point over a step.
+  const segment::ContractLaw ortho_law(ortho()), prony_law(prony());
+  const std::vector<Eigen::Vector2d> q4(kDistortedQ8.begin(), kDistortedQ8.begin() + 4);
+  EXPECT_LT(element_tangent_error(ortho_law, kDistortedQ8, 3, true), 1e-6);
+  EXPECT_LT(element_tangent_error(prony_law, kDistortedQ8, 3, true), 1e-6);
+  EXPECT_LT(element_tangent_error(ortho_law, q4, 2, true), 1e-6);
 }
 
 TEST(SegmentPointLaw, HenckyContractPointAgreesWithStVenantKirchhoffAtSmallStrain) {

@@ -15,8 +15,10 @@
 
 namespace fitlib::segment {
 
+// `law`: St Venant–Kirchhoff (*ELASTIC) or neo-Hookean (*HYPERELASTIC, NEO HOOKE with C10 = μ/2,
+// D1 = 2/K: the same small-strain moduli as make_elastic's neo-Hookean, the same law when J = 1).
 std::string calculix_deck(const StaticProblem& problem, const std::array<IsotropicElastic, 2>& materials,
-                          int increments);
+                          int increments, ElasticLaw law = ElasticLaw::st_venant_kirchhoff);
 
 // Integration-point Cauchy stresses from a CalculiX .dat (*EL PRINT S), per element, in the
 // 2 × 2 order of the segment solver (ξ fastest); the solution's other fields stay empty.

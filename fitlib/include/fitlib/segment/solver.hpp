@@ -8,6 +8,7 @@
 #include <array>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,7 +18,9 @@
 
 namespace fitlib::segment {
 
-enum class Integration { reduced, full };  // 2×2 or 3×3 Gauss (8 nodes); 2×2 or 2×2 (4 nodes)
+// 2×2 or 3×3 Gauss (8 nodes; 2×2 for 4 nodes); `fbar`: 3×3 (2×2) with F̄ = (J̄/J)^½ F, J̄ from the
+// 2×2 (centre) points — neither locks nor has spurious modes (docs/segment.md §Element choice).
+enum class Integration { reduced, full, fbar };
 
 struct NodeConstraint {
   int node = 0;
@@ -108,5 +111,10 @@ Eigen::Matrix2d stress_at(const Mesh& mesh, const StaticSolution& solution, cons
                           Integration integration, double* sigma33_MPa = nullptr);
 
 int gauss_order(const Mesh& mesh, Integration integration);
+// Whether the element's tangent is symmetric for a symmetric law tangent (F-bar's is not), so the
+// solver may factorise it with LDLᵀ.
+bool symmetric_tangent(Integration integration);
+Integration integration_from_string(const std::string& name);  // "reduced" | "full" | "fbar"
+const char* to_string(Integration integration);
 
 }  // namespace fitlib::segment
