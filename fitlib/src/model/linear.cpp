@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
@@ -207,6 +208,14 @@ struct Options {
   bool vertical_shift = false, linear_factor = false, bulk_modulus = false;
 };
 
+// A whole-number option; a float with a fraction or beyond int's range is refused (not cast).
+int whole_option(const nlohmann::json& value, const std::string& key) {
+  const double x = value.get<double>();
+  if (!(x == std::floor(x) && std::abs(x) <= std::numeric_limits<int>::max()))
+    throw core::UsageError("model option '" + key + "' must be a whole number");
+  return static_cast<int>(x);
+}
+
 Options parse_options(const nlohmann::json& j, bool has_terms) {
   Options o;
   if (!j.is_null() && !j.is_object()) throw core::UsageError("model options must be a JSON object");
@@ -214,10 +223,10 @@ Options parse_options(const nlohmann::json& j, bool has_terms) {
     const std::string& key = it.key();
     try {
       if (key == "mode") o.mode = parse_test_mode(it->get<std::string>());
-      else if (key == "terms" && has_terms) o.terms = it->get<int>();
+      else if (key == "terms" && has_terms) o.terms = whole_option(*it, key);
       else if (key == "temperature_law") o.law = parse_shift_law(it->get<std::string>());
       else if (key == "reference_C") o.reference_C = it->get<double>();
-      else if (key == "polynomial_degree") o.polynomial_degree = it->get<int>();
+      else if (key == "polynomial_degree") o.polynomial_degree = whole_option(*it, key);
       else if (key == "vertical_shift") o.vertical_shift = it->get<bool>();
       else if (key == "linear_factor") o.linear_factor = it->get<bool>();
       else if (key == "bulk_modulus") o.bulk_modulus = it->get<bool>();

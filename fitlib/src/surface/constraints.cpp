@@ -99,13 +99,8 @@ ConstraintGroup linear_constraint(const nlohmann::json& item, const Surface& s,
   c.rhs = item.value("rhs", 0.0);
   for (std::size_t t = 0; t < item["terms"].size(); ++t) {
     const auto& term = item["terms"][t];
-    const auto index = term.at("index").get<std::vector<int>>();
-    bool valid = index.size() == s.axes.size();
-    for (std::size_t k = 0; valid && k < index.size(); ++k)
-      valid = index[k] >= 0 && index[k] <= s.axes[k].degree;
-    if (!valid)
-      throw core::InputError("control-point index out of range for the surface's degrees",
-                             source, 0, 0, key + ".terms[" + std::to_string(t) + "].index");
+    const auto index = control_point_index_from_json(term.at("index"), s, source,
+                                                     key + ".terms[" + std::to_string(t) + "].index");
     c.terms.emplace_back(s.flat_index(index), term.at("coefficient").get<double>());
   }
   ConstraintGroup group;

@@ -295,6 +295,19 @@ Axis axis_from_json(const nlohmann::json& j, const std::string& source, const st
   return a;
 }
 
+// Empty cells of a constraint group: level indices per axis, whole numbers within int's range.
+std::vector<std::vector<int>> cells_from_json(const nlohmann::json& cells, const std::string& source) {
+  std::vector<std::vector<int>> out;
+  for (const auto& cell : cells) {
+    std::vector<int> levels;
+    for (const auto& level : cell)
+      levels.push_back(static_cast<int>(core::json_integer(level, 0, std::numeric_limits<int>::max(),
+                                                           source, "constraints[].cells")));
+    out.push_back(levels);
+  }
+  return out;
+}
+
 // Constraint groups on the control points of `s` (its axes read already).
 std::vector<ConstraintGroup> constraints_from_json(const nlohmann::json& groups, const Surface& s,
                                                    const std::string& source) {
@@ -304,17 +317,13 @@ std::vector<ConstraintGroup> constraints_from_json(const nlohmann::json& groups,
       ConstraintGroup group;
       group.origin = g.value("origin", "");
       group.description = g.value("description", "");
-      if (g.contains("cells")) group.cells = g["cells"].get<std::vector<std::vector<int>>>();
+      if (g.contains("cells")) group.cells = cells_from_json(g["cells"], source);
       for (const auto& e : g.value("equations", nlohmann::json::array())) {
         LinearConstraint c;
         c.rhs = e.value("rhs", 0.0);
         for (const auto& t : e.value("terms", nlohmann::json::array())) {
-          const auto index = t.at("index").get<std::vector<int>>();
-          bool valid = index.size() == s.axes.size();
-          for (std::size_t k = 0; valid && k < index.size(); ++k) valid = index[k] >= 0 && index[k] <= s.axes[k].degree;
-          if (!valid)
-            throw core::InputError("control-point index out of range", source, 0, 0,
-                                   "constraints[].equations[].terms[].index");
+          const auto index = control_point_index_from_json(t.at("index"), s, source,
+                                                           "constraints[].equations[].terms[].index");
           c.terms.emplace_back(s.flat_index(index), t.at("coefficient").get<double>());
         }
         group.equations.push_back(c);
@@ -389,6 +398,18 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
   } catch (const nlohmann::json::exception& e) {
     throw core::InputError(std::string("malformed surface: ") + e.what(), source);
   }
+}
+
+std::vector<int> control_point_index_from_json(const nlohmann::json& index, const Surface& s,
+                                               const std::string& source, const std::string& key) {
+  if (!index.is_array() || index.size() != s.axes.size())
+    throw core::InputError("a control-point index needs one whole number per axis (" +
+                               std::to_string(s.axes.size()) + ")", source, 0, 0, key);
+  std::vector<int> out;
+  for (std::size_t k = 0; k < index.size(); ++k)
+    out.push_back(static_cast<int>(core::json_integer(index[k], 0, s.axes[k].degree, source,
+                                                      key + "[" + std::to_string(k) + "]")));
+  return out;
 }
 
 Surface load_surface(const std::string& path) {

@@ -121,6 +121,10 @@ nlohmann::json surface_to_json(const Surface& s);
 // Validates as it reads; InputError names the source and key.
 Surface surface_from_json(const nlohmann::json& j, const std::string& source = "surface");
 Surface load_surface(const std::string& path);
+// A control-point index of `s` read from JSON: one whole number per axis, each in [0, degree];
+// InputError naming `source` and `key` otherwise (a float beyond int's range included).
+std::vector<int> control_point_index_from_json(const nlohmann::json& index, const Surface& s,
+                                               const std::string& source, const std::string& key);
 void save_surface(const std::string& path, const Surface& s);
 
 }  // namespace fitlib::surface
