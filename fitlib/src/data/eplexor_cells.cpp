@@ -42,8 +42,8 @@ Sheet active_sheet(const void* book, const char* name) {
   for (unsigned r = 0; r < sheet.rows; ++r)
     for (unsigned c = 0; c < sheet.columns; ++c) {
       FreeXL_CellValue v;
-      if (freexl_get_cell_value(book, r, static_cast<unsigned short>(c), &v) == FREEXL_OK && v.type != FREEXL_CELL_NULL)
-        sheet.cells[{r, c}] = cell_of(v);
+      const bool read = freexl_get_cell_value(book, r, static_cast<unsigned short>(c), &v) == FREEXL_OK;
+      if (read && v.type != FREEXL_CELL_NULL) sheet.cells[{r, c}] = cell_of(v);
     }
   return sheet;
 }
@@ -134,7 +134,8 @@ std::string answer_of_child(const std::string& path, const std::function<std::st
   ::close(fds[1]);
   if (pid < 0) {
     ::close(fds[0]);
-    throw core::InputError(std::string("libfreexl could not read it (no process: ") + std::strerror(errno) + ")", path);
+    throw core::InputError(std::string("libfreexl could not read it (no process: ") + std::strerror(errno) + ")",
+                           path);
   }
   std::string bytes;
   bool complete = false;

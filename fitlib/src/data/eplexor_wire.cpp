@@ -86,9 +86,10 @@ std::vector<Sheet> parse_sheets(const std::string& bytes, const std::string& pat
   for (;;) {
     const char tag = r.get<char>();
     if (tag == 'Z') return sheets;
-    if (tag == 'E')
-      throw core::InputError("not a readable .xls workbook (libfreexl error " + std::to_string(r.get<std::int32_t>()) + ")",
-                             path);
+    if (tag == 'E') {
+      const std::int32_t code = r.get<std::int32_t>();
+      throw core::InputError("not a readable .xls workbook (libfreexl error " + std::to_string(code) + ")", path);
+    }
     if (tag == 'S') {
       Sheet& s = sheets.emplace_back();
       s.name = r.text(), s.rows = r.get<std::uint32_t>(), s.columns = r.get<std::uint32_t>();

@@ -59,7 +59,7 @@ void check_segment_work(const Scene& s, const fatigue::SegmentLifeSetup& setup) 
                              core::short_number(elements) + " elements of " + mesh + " = " +
                              core::short_number(work) + " element-increments exceeds the work cap " +
                              core::short_number(kMaxSegmentLifeWork) +
-                             " (about a minute; docs/reliability.md §4): fewer cycles or a coarser mesh",
+                             " (~30 s of CPU; docs/reliability.md §4): fewer cycles or a coarser mesh",
                          s.path, 0, 0, "life.cycles");
 }
 
