@@ -175,9 +175,13 @@ TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
   }
   EXPECT_EQ(roles, 2);
   // The beam level does not read the cushion card.
+  // (The document is held by a name: a range-for over `life_json(...)["inputs"]` iterated a member of
+  // a destroyed temporary, ASan heap-use-after-free.)
   s.life->fidelity = "beam";
-  for (const auto& in : scene::life_json(s, scene::run_scene(s), false)["inputs"])
+  const auto beam = scene::life_json(s, scene::run_scene(s), false);
+  for (const auto& in : beam["inputs"]) {
     if (in["role"] == "cushion") EXPECT_EQ(in["used_for"], "not read at fidelity beam");
+  }
 }
 
 // The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
