@@ -127,6 +127,7 @@ std::string answer_of_child(const std::string& path, const std::function<std::st
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw core::InputError(std::string("libfreexl could not read it (no pipe: ") + std::strerror(errno) + ")", path);
   const pid_t pid = ::fork();
+  const int fork_errno = errno;
   if (pid == 0) {
     ::close(fds[0]);
     run_child(fds[1], answer);
@@ -134,7 +135,7 @@ std::string answer_of_child(const std::string& path, const std::function<std::st
   ::close(fds[1]);
   if (pid < 0) {
     ::close(fds[0]);
-    throw core::InputError(std::string("libfreexl could not read it (no process: ") + std::strerror(errno) + ")",
+    throw core::InputError(std::string("libfreexl could not read it (no process: ") + std::strerror(fork_errno) + ")",
                            path);
   }
   std::string bytes;
