@@ -43,7 +43,7 @@ seeds() {
     surface) echo tests/data/bad/surface/* ;;
     constraints) echo tests/data/bad/constraints/* ;;
     waveform | waveform_analysis) echo tests/data/waveforms/*.csv tests/data/bad/waveform/* ;;
-    eplexor) echo datasets/materials/pyvisco-eplexor-*.xls ;;
+    eplexor) echo datasets/materials/pyvisco-eplexor-*.xls tests/data/eplexor/*.xls tests/data/bad/xls/* ;;
   esac
 }
 

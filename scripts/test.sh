@@ -3,6 +3,7 @@
 # benchmarks), runs every test (unit, integration, notebooks) with ctest.
 #   scripts/test.sh              all tests
 #   scripts/test.sh --sanitize   unit and integration tests under address+undefined sanitizers
+#                                (about 57 min cold build + 7 min tests on the loaded 2-core machine)
 #   scripts/test.sh --sanitize-readers   the reader modules' tests and the integration tests only
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,7 +20,12 @@ if [ "${1:-}" = "--sanitize" ] || [ "${1:-}" = "--sanitize-readers" ]; then
   if [ "$1" = "--sanitize" ]; then
     cmake --build "$BUILD_DIR" -j "${JOBS:-$(nproc)}"
     cd "$BUILD_DIR"
-    ctest -j "$(nproc)" --output-on-failure -LE notebook
+    # Not under the sanitizers: the notebooks, and the package test (its consumer project is built
+    # without -fsanitize, so it cannot link the sanitized library). The MPI sweep tests run without
+    # leak detection: Open MPI's own allocations (libmpi, its plug-ins) are reported as leaks at
+    # exit (docs/reliability.md §5).
+    ctest -j "$(nproc)" --output-on-failure -LE 'notebook|package' -E SweepMpi
+    ASAN_OPTIONS=detect_leaks=0 ctest -j "$(nproc)" --output-on-failure -R SweepMpi
     exit 0
   fi
   tests=(test_core test_data test_card test_surface test_integration)

@@ -1,14 +1,12 @@
 // EPLEXOR .xls exports through libfreexl (docs/data.md §5).
 #include "fitlib/data/eplexor.hpp"
 
-#include <freexl.h>
-
 #include <charconv>
 #include <cmath>
-#include <memory>
 #include <optional>
 #include <vector>
 
+#include "eplexor_cells.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
@@ -26,58 +24,39 @@ std::string column_letters(unsigned column) {
   return s;
 }
 
-// One open workbook; cells as text or number.
+// One workbook's sheets, read by libfreexl in a child process (eplexor_cells.hpp); cells as text
+// or number.
 class Workbook {
  public:
-  explicit Workbook(const std::string& path) : path_(path) {
-    const void* handle = nullptr;
-    const int rc = freexl_open(path.c_str(), &handle);
-    handle_.reset(handle);
-    if (rc != FREEXL_OK)
-      throw core::InputError("not a readable .xls workbook (libfreexl error " + std::to_string(rc) + ")", path);
-  }
+  Workbook(const std::string& path, const std::vector<std::string>& sheets)
+      : path_(path), sheets_(xls::read_sheets(path, sheets)) {}
 
   // Selects the sheet called `name`; false if there is none.
   bool select(const std::string& name) {
-    unsigned count = 0;
-    freexl_get_info(handle_.get(), FREEXL_BIFF_SHEET_COUNT, &count);
-    for (unsigned s = 0; s < count; ++s) {
-      const char* sheet = nullptr;
-      if (freexl_get_worksheet_name(handle_.get(), static_cast<unsigned short>(s), &sheet) == FREEXL_OK && sheet &&
-          name == sheet) {
-        freexl_select_active_worksheet(handle_.get(), static_cast<unsigned short>(s));
-        unsigned short columns = 0;
-        freexl_worksheet_dimensions(handle_.get(), &rows_, &columns);
-        columns_ = columns;
-        sheet_ = name;
+    for (const auto& sheet : sheets_)
+      if (sheet.name == name) {
+        sheet_ = &sheet;
         return true;
       }
-    }
     return false;
   }
-  unsigned rows() const { return rows_; }
-  unsigned columns() const { return columns_; }
+  unsigned rows() const { return sheet_->rows; }
+  unsigned columns() const { return sheet_->columns; }
 
-  // Text of a cell ("" when empty); numbers as nullopt text with `number` set.
+  // Text of a cell ("" when empty or a real number); numbers also in `number`.
   std::string text(unsigned row, unsigned column, std::optional<double>* number = nullptr) const {
-    FreeXL_CellValue v;
     if (number) number->reset();
-    if (freexl_get_cell_value(handle_.get(), row, static_cast<unsigned short>(column), &v) != FREEXL_OK) return "";
-    switch (v.type) {
-      case FREEXL_CELL_INT:
-        if (number) *number = v.value.int_value;
-        return std::to_string(v.value.int_value);
-      case FREEXL_CELL_DOUBLE:
-        if (number) *number = v.value.double_value;
-        return "";
-      case FREEXL_CELL_NULL: return "";
-      default: return v.value.text_value ? v.value.text_value : "";
-    }
+    const auto at = sheet_->cells.find({row, column});
+    if (at == sheet_->cells.end()) return "";
+    const xls::Cell& cell = at->second;
+    if (cell.kind == xls::Cell::Kind::text) return cell.text;
+    if (number) *number = cell.number;
+    return cell.kind == xls::Cell::Kind::integer ? std::to_string(static_cast<int>(cell.number)) : "";
   }
 
   core::InputError error(const std::string& message, unsigned row, std::optional<unsigned> column = {},
                          const std::string& column_name = {}) const {
-    std::string where = "sheet '" + sheet_ + "'";
+    std::string where = "sheet '" + sheet_->name + "'";
     if (column) where += ", column " + column_letters(*column) + (column_name.empty() ? "" : " '" + column_name + "'");
     return core::InputError(where + ": " + message, path_, static_cast<int>(row) + 1,
                             column ? static_cast<int>(*column) + 1 : 0);
@@ -100,14 +79,9 @@ class Workbook {
   }
 
  private:
-  struct Closer {
-    void operator()(const void* h) const {
-      if (h) freexl_close(h);
-    }
-  };
-  std::string path_, sheet_;
-  std::unique_ptr<const void, Closer> handle_;
-  unsigned rows_ = 0, columns_ = 0;
+  std::string path_;
+  std::vector<xls::Sheet> sheets_;
+  const xls::Sheet* sheet_ = nullptr;
 };
 
 // Number after "<label> :" in texts such as "C1 : 13.50" or "25.0 °C"; nullopt if none.
@@ -232,7 +206,7 @@ EplexorExport read_eplexor(const std::string& path, const ReadOptions& options) 
   DynamicTestTable& table = out.table;
   table.source_files.push_back(path);
   table.source_sha256.push_back(core::sha256_hex(bytes));
-  Workbook book(path);
+  Workbook book(path, {kShiftSheet, kDataSheet});
   if (book.select(kShiftSheet)) read_shift_list(book, out, path);
   if (!book.select(kDataSheet)) throw core::InputError(std::string("no sheet '") + kDataSheet + "'", path);
   if (book.rows() < 3) throw book.error("needs a names row, a units row and data rows", book.rows());

@@ -29,6 +29,11 @@ std::vector<PointHistory> segment_point_histories(const segment::CycleResult& ru
   return out;
 }
 
+double segment_run_work(const SegmentLifeSetup& setup) {
+  const double elements = segment::build_mesh(setup.section, setup.mesh).element_count();
+  return elements * (setup.cycle.bend_steps + static_cast<double>(setup.cycle.cycles) * setup.cycle.steps_per_cycle);
+}
+
 segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
                                  const SegmentLifeSetup& setup) {
   if (!setup.materials[0] || !setup.materials[1])

@@ -43,6 +43,30 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
   return use;
 }
 
+// Work cap of the segment levels (docs/reliability.md §4): element-increments of one run. The
+// dearest rate measured, 0.94 ms CPU each (complete level, 450 elements), gives 28 s at the cap:
+// under a minute even with the 2-core machine shared twice over; the default (144 elements,
+// 3 cycles: 26 496) passes.
+constexpr double kMaxSegmentLifeWork = 3e4;
+
+// Refuses a run beyond the cap before the FE starts, naming the scene and the keys that set it.
+void check_segment_work(const Scene& s, const fatigue::SegmentLifeSetup& setup) {
+  const double work = fatigue::segment_run_work(setup);
+  if (work <= kMaxSegmentLifeWork) return;
+  const auto& c = setup.cycle;
+  const double elements = work / (c.bend_steps + static_cast<double>(c.cycles) * c.steps_per_cycle);
+  const std::string mesh = s.segment ? "the [segment] mesh (fine_size_mm, coarse_size_mm, central_pitches, "
+                                       "end_pitches, cushion_rows)"
+                                     : "the life's default mesh";
+  throw core::InputError("cycles " + std::to_string(c.cycles) + " x " + std::to_string(c.steps_per_cycle) +
+                             " steps per cycle (+ " + std::to_string(c.bend_steps) + " bending steps) x " +
+                             core::short_number(elements) + " elements of " + mesh + " = " +
+                             core::short_number(work) + " element-increments exceeds the work cap " +
+                             core::short_number(kMaxSegmentLifeWork) +
+                             " (~30 s of CPU; docs/reliability.md §4): fewer cycles or a coarser mesh",
+                         s.path, 0, 0, "life.cycles");
+}
+
 InputFile file_input(const std::string& role, const std::string& path, const std::string& use) {
   return {role, path, core::sha256_hex(core::read_file(path)), use};
 }
@@ -99,6 +123,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.section = cog_section(s);
     if (s.segment) setup.mesh = s.segment->setup.mesh, setup.solver = s.segment->setup.solver;
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
+    check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity);
     setup.temperature_C = s.temperature_C;

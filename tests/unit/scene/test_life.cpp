@@ -11,6 +11,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
+#include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 
@@ -174,7 +175,57 @@ TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
   }
   EXPECT_EQ(roles, 2);
   // The beam level does not read the cushion card.
+  // (The document is held by a name: a range-for over `life_json(...)["inputs"]` iterated a member of
+  // a destroyed temporary, ASan heap-use-after-free.)
   s.life->fidelity = "beam";
-  for (const auto& in : scene::life_json(s, scene::run_scene(s), false)["inputs"])
+  const auto beam = scene::life_json(s, scene::run_scene(s), false);
+  for (const auto& in : beam["inputs"]) {
     if (in["role"] == "cushion") EXPECT_EQ(in["used_for"], "not read at fidelity beam");
+  }
+}
+
+// The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
+// cycle); the life's mesh has 144 elements (docs/segment.md "Cost").
+TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
+  fatigue::SegmentLifeSetup setup;
+  setup.section = scene::cog_section(scene::load_scene(kDrives + "ref-0500-light.toml"));
+  setup.cycle.cycles = 3;
+  EXPECT_EQ(fatigue::segment_run_work(setup), 144.0 * (4 + 3 * 60));
+  setup.cycle.cycles = 10000, setup.cycle.steps_per_cycle = 30, setup.cycle.bend_steps = 2;
+  EXPECT_EQ(fatigue::segment_run_work(setup), 144.0 * (2 + 10000.0 * 30));
+}
+
+// [life] cycles × mesh elements × steps beyond the cap: refused before the FE starts (10⁴ cycles
+// would take hours), naming the scene file, the key and where the mesh comes from. On the life's
+// mesh (144 elements) the default 3 cycles are 26 496 element-increments and run, 4 are
+// 35 136 > 30 000.
+TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
+  const std::string base = core::read_file(kDrives + "ref-0500-light.toml") + "\n[life]\nfidelity = \"elastic\"\n";
+  const auto scene_with = [&](const std::string& tables) {
+    auto s = scene::parse_scene(base + tables, "/drives/long-life.toml");
+    s.outputs["life"] = true;
+    return s;
+  };
+  const auto refusal = [&](const std::string& tables) {
+    try {
+      scene::run_scene(scene_with(tables));
+    } catch (const core::InputError& e) {
+      EXPECT_EQ(e.file(), "/drives/long-life.toml");
+      EXPECT_EQ(e.key(), "life.cycles");
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "ran " << tables;
+    return std::string();
+  };
+  auto m = refusal("cycles = 10000\n[segment]\nsteps = 4\n");  // the [segment] mesh: 1 260 elements
+  EXPECT_NE(m.find("cycles 10000 x 60 steps per cycle (+ 4 bending steps) x 1260 elements of the [segment] mesh "
+                   "(fine_size_mm, coarse_size_mm, central_pitches, end_pitches, cushion_rows) = 7.56005e+08 "
+                   "element-increments exceeds the work cap 30000"),
+            std::string::npos)
+      << m;
+  m = refusal("cycles = 4\n");
+  EXPECT_NE(m.find("x 144 elements of the life's default mesh = 35136 element-increments"), std::string::npos) << m;
+  const auto r = scene::run_scene(scene_with("cycles = 3\n"));
+  ASSERT_TRUE(r.life.has_value());
+  EXPECT_EQ(r.life->plan.fidelity, "elastic");
 }

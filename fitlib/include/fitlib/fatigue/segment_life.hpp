@@ -39,6 +39,11 @@ struct SegmentLife {
   double wall_s = 0.0;
 };
 
+// The work of a segment run in element-increments: the mesh's elements × (bend steps + cycles ×
+// steps per cycle), the nominal increments (cuts add more). Its cap is the scene's
+// (docs/reliability.md §4, "[life] cycles × mesh elements × steps").
+double segment_run_work(const SegmentLifeSetup& setup);
+
 // The segment driven by the load cycle (no life): what segment_life evaluates.
 segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
                                  const SegmentLifeSetup& setup);

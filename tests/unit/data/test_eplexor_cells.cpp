@@ -1,0 +1,124 @@
+// libfreexl in a child process (fitlib/src/data/eplexor_cells.hpp): whatever the child does, the
+// caller gets the cells or an InputError naming the file, the child is reaped and no fd is left open.
+#include <dirent.h>
+#include <errno.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "../../../fitlib/src/data/eplexor_cells.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/data/eplexor.hpp"
+
+namespace {
+
+using namespace fitlib;
+using data::xls::Cell;
+
+int open_fds() {
+  int n = 0;
+  DIR* d = ::opendir("/proc/self/fd");
+  while (::readdir(d)) ++n;
+  ::closedir(d);
+  return n;
+}
+
+bool has_unreaped_child() { return !(::waitpid(-1, nullptr, WNOHANG) < 0 && errno == ECHILD); }
+
+// The InputError message of answer_of_child(path, answer); checks the file, the reaping and the fds.
+std::string refusal(const std::function<std::string()>& answer) {
+  const int fds = open_fds();
+  std::string message;
+  try {
+    data::xls::parse_sheets(data::xls::answer_of_child("book.xls", answer), "book.xls");
+    ADD_FAILURE() << "accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.file(), "book.xls");
+    message = e.what();
+  }
+  EXPECT_FALSE(has_unreaped_child());
+  EXPECT_EQ(open_fds(), fds);
+  return message;
+}
+
+data::xls::Sheet example_sheet() {
+  data::xls::Sheet s;
+  s.name = "Exported Data", s.rows = 70000, s.columns = 256;
+  s.cells[{0, 0}] = Cell{Cell::Kind::text, 0.0, "f"};
+  s.cells[{1, 255}] = Cell{Cell::Kind::text, 0.0, std::string("°C\0x", 4)};
+  s.cells[{2, 0}] = Cell{Cell::Kind::real, -1.0 / 3.0, ""};
+  s.cells[{69999, 3}] = Cell{Cell::Kind::integer, -2147483648.0, ""};
+  return s;
+}
+
+TEST(EplexorCells, SheetsComeThroughThePipeExactly) {
+  const data::xls::Sheet sent = example_sheet();
+  const int fds = open_fds();
+  const auto got = data::xls::parse_sheets(
+      data::xls::answer_of_child("book.xls", [&] { return data::xls::serialize_sheets({sent, sent}); }), "book.xls");
+  EXPECT_FALSE(has_unreaped_child());
+  EXPECT_EQ(open_fds(), fds);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[1].name, sent.name);
+  EXPECT_EQ(got[1].rows, 70000u);
+  EXPECT_EQ(got[1].columns, 256u);
+  ASSERT_EQ(got[1].cells.size(), 4u);
+  for (const auto& [at, cell] : sent.cells) {
+    const Cell& back = got[1].cells.at(at);
+    EXPECT_EQ(back.kind, cell.kind);
+    EXPECT_EQ(back.text, cell.text);
+    EXPECT_EQ(back.number, cell.number);  // bit for bit: 8 bytes as they are
+  }
+}
+
+TEST(EplexorCells, ChildKilledBySignalIsBadInputNamingTheFile) {
+  const auto m = refusal([]() -> std::string {
+    ::raise(SIGKILL);
+    return {};
+  });
+  EXPECT_NE(m.find("libfreexl could not read it (its reader process was killed by signal 9)"), std::string::npos) << m;
+}
+
+TEST(EplexorCells, ChildFailingWithAStatusIsBadInput) {  // e.g. a sanitizer report in libfreexl
+  const auto m = refusal([]() -> std::string { ::_exit(1); });
+  EXPECT_NE(m.find("libfreexl could not read it (its reader process failed with status 1)"), std::string::npos) << m;
+}
+
+TEST(EplexorCells, TruncatedOrMalformedAnswerIsBadInput) {
+  std::string whole = data::xls::serialize_sheets({example_sheet()});
+  const auto m = refusal([&] { return whole.substr(0, whole.size() - 1); });  // no end record
+  EXPECT_NE(m.find("libfreexl could not read it (its reader process gave a malformed answer)"), std::string::npos) << m;
+  EXPECT_NE(refusal([] { return std::string("C"); }).find("malformed"), std::string::npos);  // a cell before any sheet
+  EXPECT_NE(refusal([] { return std::string("?Z"); }).find("malformed"), std::string::npos);
+}
+
+TEST(EplexorCells, OversizedAnswerIsRefusedAndTheChildKilled) {
+  const auto m = refusal([] { return std::string((std::size_t{64} << 20) + 1, 'Z'); });
+  EXPECT_NE(m.find("more than 64 MiB"), std::string::npos) << m;
+}
+
+TEST(EplexorCells, LibfreexlRefusalKeepsItsErrorCode) {
+  const auto m = refusal([] { return data::xls::serialize_refusal(-20); });
+  EXPECT_NE(m.find("not a readable .xls workbook (libfreexl error -20)"), std::string::npos) << m;
+}
+
+// The fuzz finding (docs/reliability.md §2): libfreexl 1.0.6 overreads a stack buffer in
+// freexl_open on this workbook. Without sanitizers it refuses the file (-20); under ASan its child
+// dies. Either way: bad input naming the file, and this process unharmed.
+TEST(EplexorCells, LibfreexlOverreadWorkbookIsBadInputNamingTheFile) {
+  const std::string path = std::string(FITLIB_TEST_DATA_DIR) + "/bad/xls/freexl_iconv_overread.xls";
+  try {
+    data::read_eplexor(path);
+    FAIL() << "accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_NE(std::string(e.what()).find("libfreexl"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(has_unreaped_child());
+}
+
+}  // namespace
