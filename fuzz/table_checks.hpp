@@ -4,6 +4,7 @@
 // to bit-identical values (the promise of format_dynamic_table).
 #include <cstring>
 
+#include "fitlib/data/eplexor.hpp"
 #include "fitlib/data/table.hpp"
 #include "fuzz_common.hpp"
 
@@ -34,6 +35,17 @@ inline void check_table(const data::DynamicTestTable& table) {
         a.condition.mode != b.condition.mode || a.material != b.material ||
         a.specimen != b.specimen || a.set != b.set)
       finding("written table does not read back to the same values (row " + std::to_string(i) + ")");
+  }
+}
+
+// An accepted EPLEXOR export: the table as above, the shift list finite.
+inline void check_eplexor(const data::EplexorExport& exported) {
+  check_table(exported.table);
+  if (!exported.has_shift_list) return;
+  require_finite(exported.shifts.reference_C, "EPLEXOR Ref.Temp.");
+  for (const auto& s : exported.shifts.factors) {
+    require_finite(s.temperature_C, "shift temperature");
+    require_finite(s.log10_aT, "log10 a_T");
   }
 }
 

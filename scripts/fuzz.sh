@@ -19,7 +19,7 @@ if ! command -v clang++ >/dev/null; then
 fi
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] ||
-  harnesses=(table pyvisco card scene schedule_json schedule_toml surface constraints waveform waveform_analysis eplexor)
+  harnesses=(table pyvisco card scene schedule_json schedule_toml surface constraints waveform waveform_analysis eplexor eplexor_sheets)
 # Only the harnesses asked for are built, with the library modules they link (fuzz/CMakeLists.txt):
 # the data-module harnesses alone need no Ceres-heavy module.
 if [ "${FUZZ_NO_BUILD:-0}" != 1 ]; then

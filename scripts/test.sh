@@ -50,7 +50,7 @@ fuzz_runs=${FITLIB_FUZZ_RUNS:-2000}
 if [ "$fuzz_runs" != 0 ] && command -v clang++ >/dev/null &&
    [ -f "$(clang++ -print-file-name=libclang_rt.fuzzer-x86_64.a)" ]; then
   # shellcheck disable=SC2086  # a list of harness names
-  FUZZ_RUNS=$fuzz_runs FUZZ_SEED=1 "$root/scripts/fuzz.sh" 30 ${FITLIB_FUZZ_HARNESSES:-table pyvisco waveform waveform_analysis}
+  FUZZ_RUNS=$fuzz_runs FUZZ_SEED=1 "$root/scripts/fuzz.sh" 30 ${FITLIB_FUZZ_HARNESSES:-table pyvisco waveform waveform_analysis eplexor_sheets}
 else
   echo "test: fuzzing skipped (no clang++ with libFuzzer, or FITLIB_FUZZ_RUNS=0)"
 fi

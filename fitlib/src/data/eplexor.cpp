@@ -28,8 +28,8 @@ std::string column_letters(unsigned column) {
 // or number.
 class Workbook {
  public:
-  Workbook(const std::string& path, const std::vector<std::string>& sheets)
-      : path_(path), sheets_(xls::read_sheets(path, sheets)) {}
+  Workbook(const std::string& path, std::vector<xls::Sheet> sheets)
+      : path_(path), sheets_(std::move(sheets)) {}
 
   // Selects the sheet called `name`; false if there is none.
   bool select(const std::string& name) {
@@ -202,11 +202,17 @@ DynamicTestRow read_data_row(Workbook& book, const DataColumns& d, unsigned r,
 EplexorExport read_eplexor(const std::string& path, const ReadOptions& options) {
   const std::string bytes = core::read_file(path);
   if (!is_ole_compound_file(bytes)) throw core::InputError("not an .xls (OLE compound) file", path);
+  EplexorExport out = xls::eplexor_from_sheets(xls::read_sheets(path, {kShiftSheet, kDataSheet}), path, options);
+  out.table.source_sha256.push_back(core::sha256_hex(bytes));
+  return out;
+}
+
+EplexorExport xls::eplexor_from_sheets(std::vector<Sheet> sheets, const std::string& path,
+                                       const ReadOptions& options) {
   EplexorExport out;
   DynamicTestTable& table = out.table;
   table.source_files.push_back(path);
-  table.source_sha256.push_back(core::sha256_hex(bytes));
-  Workbook book(path, {kShiftSheet, kDataSheet});
+  Workbook book(path, std::move(sheets));
   if (book.select(kShiftSheet)) read_shift_list(book, out, path);
   if (!book.select(kDataSheet)) throw core::InputError(std::string("no sheet '") + kDataSheet + "'", path);
   if (book.rows() < 3) throw book.error("needs a names row, a units row and data rows", book.rows());

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "fitlib/data/eplexor.hpp"
+
 namespace fitlib::data::xls {
 
 struct Cell {
@@ -40,5 +42,10 @@ std::string answer_of_child(const std::string& path, const std::function<std::st
 std::string serialize_sheets(const std::vector<Sheet>& sheets);
 std::string serialize_refusal(int freexl_error);
 std::vector<Sheet> parse_sheets(const std::string& bytes, const std::string& path);
+
+// The export in the sheets `Shiftlist` and `Exported Data` (read_eplexor after read_sheets; the
+// table's source_sha256 is left to the caller). Public for the fuzz harness of fitlib's side.
+EplexorExport eplexor_from_sheets(std::vector<Sheet> sheets, const std::string& path,
+                                  const ReadOptions& options = {});
 
 }  // namespace fitlib::data::xls
