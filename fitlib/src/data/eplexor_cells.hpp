@@ -21,6 +21,9 @@ struct Cell {
   std::string text;     // text cells (dates and times too, as libfreexl gives them)
 };
 
+// BIFF8's sheet limits (.xls, Excel 97–2003): parse_sheets refuses larger claimed dimensions.
+constexpr unsigned kMaxRows = 65536, kMaxColumns = 256;
+
 struct Sheet {
   std::string name;
   unsigned rows = 0, columns = 0;                       // libfreexl's worksheet dimensions

@@ -93,6 +93,13 @@ std::vector<Sheet> parse_sheets(const std::string& bytes, const std::string& pat
     if (tag == 'S') {
       Sheet& s = sheets.emplace_back();
       s.name = r.text(), s.rows = r.get<std::uint32_t>(), s.columns = r.get<std::uint32_t>();
+      // The readers loop over the claimed dimensions: hold them to BIFF8's (a malformed DIMENSION
+      // record may claim 2^32 rows).
+      if (s.rows > kMaxRows || s.columns > kMaxColumns)
+        throw core::InputError("sheet '" + s.name + "' claims " + std::to_string(s.rows) + " rows x " +
+                                   std::to_string(s.columns) + " columns, beyond the .xls limits (" +
+                                   std::to_string(kMaxRows) + " x " + std::to_string(kMaxColumns) + ")",
+                               path);
       continue;
     }
     if (tag != 'C' || sheets.empty()) r.fail();

@@ -47,11 +47,11 @@ std::string refusal(const std::function<std::string()>& answer) {
 
 data::xls::Sheet example_sheet() {
   data::xls::Sheet s;
-  s.name = "Exported Data", s.rows = 70000, s.columns = 256;
+  s.name = "Exported Data", s.rows = 65536, s.columns = 256;  // BIFF8's largest sheet
   s.cells[{0, 0}] = Cell{Cell::Kind::text, 0.0, "f"};
   s.cells[{1, 255}] = Cell{Cell::Kind::text, 0.0, std::string("°C\0x", 4)};
   s.cells[{2, 0}] = Cell{Cell::Kind::real, -1.0 / 3.0, ""};
-  s.cells[{69999, 3}] = Cell{Cell::Kind::integer, -2147483648.0, ""};
+  s.cells[{65535, 3}] = Cell{Cell::Kind::integer, -2147483648.0, ""};
   return s;
 }
 
@@ -64,7 +64,7 @@ TEST(EplexorCells, SheetsComeThroughThePipeExactly) {
   EXPECT_EQ(open_fds(), fds);
   ASSERT_EQ(got.size(), 2u);
   EXPECT_EQ(got[1].name, sent.name);
-  EXPECT_EQ(got[1].rows, 70000u);
+  EXPECT_EQ(got[1].rows, 65536u);
   EXPECT_EQ(got[1].columns, 256u);
   ASSERT_EQ(got[1].cells.size(), 4u);
   for (const auto& [at, cell] : sent.cells) {
@@ -94,6 +94,22 @@ TEST(EplexorCells, TruncatedOrMalformedAnswerIsBadInput) {
   EXPECT_NE(m.find("libfreexl could not read it (its reader process gave a malformed answer)"), std::string::npos) << m;
   EXPECT_NE(refusal([] { return std::string("C"); }).find("malformed"), std::string::npos);  // a cell before any sheet
   EXPECT_NE(refusal([] { return std::string("?Z"); }).find("malformed"), std::string::npos);
+}
+
+// Fuzz finding (fuzz_eplexor_sheets, timeout): a sheet claiming 2^32 − 1 columns made the column
+// search loop for minutes; dimensions beyond BIFF8's are refused where the answer is read.
+TEST(EplexorCells, DimensionsBeyondTheXlsLimitsAreBadInput) {
+  for (const auto& [rows, columns] : {std::pair{65537u, 1u}, std::pair{1u, 257u}, std::pair{4294967295u, 4294967295u}}) {
+    data::xls::Sheet s = example_sheet();
+    s.rows = rows, s.columns = columns;
+    try {
+      data::xls::parse_sheets(data::xls::serialize_sheets({s}), "book.xls");
+      ADD_FAILURE() << rows << " x " << columns << " accepted";
+    } catch (const core::InputError& e) {
+      EXPECT_EQ(e.file(), "book.xls");
+      EXPECT_NE(std::string(e.what()).find("beyond the .xls limits (65536 x 256)"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(EplexorCells, OversizedAnswerIsRefusedAndTheChildKilled) {
