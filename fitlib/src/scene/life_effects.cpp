@@ -190,11 +190,12 @@ LifePlan choose_life_plan(const Scene& s) {
   const std::string finest = cards ? "complete" : "elastic";
   const std::string why = cards ? "the scene gives bottom and cushion cards" : "the scene has a [segment] table";
   // The segment levels miss their time targets (elastic 0.7 s CPU isotropic, 1.1–1.4 s with the
-  // thesis cards per drive; complete fails on the medium drive; docs/segment.md "Cost"): asked,
-  // not default.
+  // thesis cards per drive; complete ~11 s on the light drive and fails on medium and heavy;
+  // docs/segment.md "Cost"): asked, not default.
   return {"beam", "default: beam; " + why + ", so [life] fidelity = \"" + finest +
                       "\" runs the segment FE (about 1 s per drive at the elastic level with isotropic "
-                      "materials, 1-2 s with the thesis cards)"};
+                      "materials, 1-2 s with the thesis cards; the complete level about 10 s, and it "
+                      "fails on the medium and heavy reference drives: docs/segment.md)"};
 }
 
 }  // namespace fitlib::scene
