@@ -84,14 +84,15 @@ class Workbook {
   const xls::Sheet* sheet_ = nullptr;
 };
 
-// Number after "<label> :" in texts such as "C1 : 13.50" or "25.0 °C"; nullopt if none.
+// Finite number after "<label> :" in texts such as "C1 : 13.50" or "25.0 °C"; nullopt if none
+// (from_chars also reads "inf" and "nan").
 std::optional<double> leading_number(const std::string& text) {
   std::size_t start = text.find(':');
   start = start == std::string::npos ? 0 : start + 1;
   while (start < text.size() && text[start] == ' ') ++start;
   double value = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data() + start, text.data() + text.size(), value);
-  if (ec != std::errc() || ptr == text.data() + start) return std::nullopt;
+  if (ec != std::errc() || ptr == text.data() + start || !std::isfinite(value)) return std::nullopt;
   return value;
 }
 
@@ -103,7 +104,7 @@ void read_shift_list(Workbook& book, EplexorExport& out, const std::string& path
     const std::string label = book.text(row, 0);
     if (label == "Ref.Temp.") {
       const auto t = leading_number(book.text(row, 1));
-      if (!t) throw book.error("reference temperature '" + book.text(row, 1) + "' is not a number", row, 1u);
+      if (!t) throw book.error("reference temperature '" + book.text(row, 1) + "' is not a finite number", row, 1u);
       out.shifts.reference_C = *t;
     } else if (label == "WLF") {
       if (const auto c1 = leading_number(book.text(row, 1))) out.wlf_C1 = *c1;

@@ -138,3 +138,25 @@ TEST(EplexorCells, LibfreexlOverreadWorkbookIsBadInputNamingTheFile) {
 }
 
 }  // namespace
+
+// Fuzz finding (fuzz_eplexor_sheets): "inf °C" as the shift list's Ref.Temp. was read by from_chars
+// and accepted as an infinite reference temperature.
+TEST(EplexorCells, NonFiniteReferenceTemperatureIsBadInputNamingTheCell) {
+  data::xls::Sheet shifts;
+  shifts.name = "Shiftlist", shifts.rows = 4, shifts.columns = 2;
+  shifts.cells[{0, 0}] = Cell{Cell::Kind::text, 0.0, "Ref.Temp."};
+  shifts.cells[{1, 0}] = Cell{Cell::Kind::text, 0.0, "Temp."};
+  shifts.cells[{2, 0}] = Cell{Cell::Kind::real, 25.0, ""};
+  shifts.cells[{2, 1}] = Cell{Cell::Kind::real, 0.0, ""};
+  for (const char* text : {"inf °C", "nan °C", "-infinity"}) {
+    shifts.cells[{0, 1}] = Cell{Cell::Kind::text, 0.0, text};
+    try {
+      data::xls::eplexor_from_sheets({shifts}, "book.xls");
+      ADD_FAILURE() << text << " accepted";
+    } catch (const core::InputError& e) {
+      EXPECT_EQ(e.file(), "book.xls");
+      EXPECT_EQ(e.line(), 1);
+      EXPECT_NE(std::string(e.what()).find("is not a finite number"), std::string::npos) << e.what();
+    }
+  }
+}
