@@ -126,6 +126,7 @@ void read_shift_list(Workbook& book, EplexorExport& out, const std::string& path
     out.shifts.factors.push_back(s);
   }
   if (out.shifts.factors.empty()) throw book.error("no 'Temp.' / 'Shift' rows", row);
+  if (std::isnan(out.shifts.reference_C)) throw book.error("no 'Ref.Temp.' row before 'Temp.'", 0);
 }
 
 }  // namespace

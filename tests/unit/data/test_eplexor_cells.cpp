@@ -159,4 +159,11 @@ TEST(EplexorCells, NonFiniteReferenceTemperatureIsBadInputNamingTheCell) {
       EXPECT_NE(std::string(e.what()).find("is not a finite number"), std::string::npos) << e.what();
     }
   }
+  shifts.cells.erase({0, 0});  // no Ref.Temp. row at all: the reference stayed NaN
+  try {
+    data::xls::eplexor_from_sheets({shifts}, "book.xls");
+    ADD_FAILURE() << "a shift list without Ref.Temp. accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no 'Ref.Temp.' row"), std::string::npos) << e.what();
+  }
 }
