@@ -2,7 +2,9 @@
 // Both ends are the same binary, so numbers go in native byte order. Records: 'S' name rows columns
 // (a sheet; the cells after it are its own), 'C' row column kind value (a cell: an 8-byte double or
 // a text), 'E' code (libfreexl refused the file), 'Z' (the end: a stream without it is truncated).
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include "eplexor_cells.hpp"
@@ -80,6 +82,13 @@ std::string serialize_refusal(int freexl_error) {
   return w.take();
 }
 
+namespace {
+bool is_int32(double x) {
+  return x == std::floor(x) && x >= std::numeric_limits<std::int32_t>::min() &&
+         x <= std::numeric_limits<std::int32_t>::max();
+}
+}  // namespace
+
 std::vector<Sheet> parse_sheets(const std::string& bytes, const std::string& path) {
   Reader r(bytes, path);
   std::vector<Sheet> sheets;
@@ -109,6 +118,7 @@ std::vector<Sheet> parse_sheets(const std::string& bytes, const std::string& pat
     if (cell.kind == Cell::Kind::text) cell.text = r.text();
     else if (cell.kind == Cell::Kind::integer || cell.kind == Cell::Kind::real) cell.number = r.get<double>();
     else r.fail();
+    if (cell.kind == Cell::Kind::integer && !is_int32(cell.number)) r.fail();  // libfreexl's int
     sheets.back().cells[{row, column}] = std::move(cell);
   }
 }

@@ -167,3 +167,18 @@ TEST(EplexorCells, NonFiniteReferenceTemperatureIsBadInputNamingTheCell) {
     EXPECT_NE(std::string(e.what()).find("no 'Ref.Temp.' row"), std::string::npos) << e.what();
   }
 }
+
+// Fuzz finding (fuzz_eplexor_sheets, UBSan): an integer cell of 7.3e215 in the answer was cast to
+// int when its text was asked for; libfreexl's integer cells are ints, so the answer must say so.
+TEST(EplexorCells, IntegerCellBeyondIntIsAMalformedAnswer) {
+  for (double x : {7.3436e215, 2147483648.0, 0.5}) {
+    data::xls::Sheet s = example_sheet();
+    s.cells[{3, 0}] = Cell{Cell::Kind::integer, x, ""};
+    try {
+      data::xls::parse_sheets(data::xls::serialize_sheets({s}), "book.xls");
+      ADD_FAILURE() << x << " accepted";
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("malformed"), std::string::npos) << e.what();
+    }
+  }
+}
