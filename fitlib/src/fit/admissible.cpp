@@ -54,12 +54,17 @@ AdmissibleWindow admissible_window(const Problem& problem, const std::vector<dou
     storage_max = std::max(storage_max, row.storage_MPa);
   }
   if (!(omega_min > 0.0) || !std::isfinite(omega_max)) return w;
-  const FitOptions& o = problem.options();
+  return window_over(series, problem.specs(), problem.options(), omega_min, omega_max, storage_min, storage_max);
+}
+
+AdmissibleWindow window_over(const SeriesTerms& series, const std::vector<core::ParameterSpec>& specs,
+                             const FitOptions& o, double omega_min, double omega_max, double storage_min,
+                             double storage_max) {
+  AdmissibleWindow w;
   const double margin = std::pow(10.0, o.tau_margin_decades);
   w.applies = true;
   w.tau_min_s = 1.0 / (omega_max * margin);
   w.tau_max_s = margin / omega_min;
-  const auto& specs = problem.specs();
   const bool moduli = std::all_of(series.moduli.begin(), series.moduli.end(),
                                   [&](int i) { return specs[i].linear; });
   if (moduli && o.modulus_ceiling > 0.0) w.modulus_max_MPa = o.modulus_ceiling * storage_max;

@@ -23,6 +23,14 @@ SeriesTerms series_terms(const std::vector<core::ParameterSpec>& specs);
 // (ShiftLaw::other; then no bound is set).
 AdmissibleWindow admissible_window(const Problem& problem, const std::vector<double>& p);
 
+// The window over measured ranges (ω in rad/s after shifting, storage or M(t) in MPa):
+// τ ∈ [1/(ω_max 10^m), 10^m/ω_min], moduli ≤ modulus_ceiling × storage_max when every modulus is
+// linear, the relaxed modulus ≥ relaxed_floor × storage_min when it is linear. Frequency and
+// relaxation fits share it.
+AdmissibleWindow window_over(const SeriesTerms& series, const std::vector<core::ParameterSpec>& specs,
+                             const FitOptions& options, double omega_min, double omega_max,
+                             double storage_min, double storage_max);
+
 // Sets the window's bounds on the problem (times, moduli, relaxed modulus) and moves the
 // current point inside them. Returns the number of values moved.
 int apply_admissible_bounds(Problem& problem, const AdmissibleWindow& window);

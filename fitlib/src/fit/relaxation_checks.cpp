@@ -36,20 +36,11 @@ model::DataSummary summarize_relaxation(const data::RelaxationTable& table) {
 
 AdmissibleWindow relaxation_window(const model::Model& model, const data::RelaxationTable& table,
                                    const FitOptions& options) {
-  AdmissibleWindow w;
   const SeriesTerms series = series_terms(model.parameters());
-  if (series.empty() || table.rows.empty() || model.temperature_law_info().law != model::ShiftLaw::none) return w;
+  if (series.empty() || table.rows.empty() || model.temperature_law_info().law != model::ShiftLaw::none) return {};
   const model::DataSummary s = summarize_relaxation(table);
-  const double margin = std::pow(10.0, options.tau_margin_decades);
-  w.applies = true;
-  w.tau_min_s = 1.0 / (s.omega_max_rad_s * margin);
-  w.tau_max_s = margin / s.omega_min_rad_s;
-  const auto& specs = model.parameters();
-  const bool linear = std::all_of(series.moduli.begin(), series.moduli.end(), [&](int i) { return specs[i].linear; });
-  if (linear && options.modulus_ceiling > 0.0) w.modulus_max_MPa = options.modulus_ceiling * s.storage_max_MPa;
-  if (series.relaxed >= 0 && specs[series.relaxed].linear && options.relaxed_floor > 0.0)
-    w.relaxed_min_MPa = options.relaxed_floor * s.storage_min_MPa;
-  return w;
+  return window_over(series, model.parameters(), options, s.omega_min_rad_s, s.omega_max_rad_s, s.storage_min_MPa,
+                     s.storage_max_MPa);
 }
 
 std::pair<double, double> window_bounds(const model::Model& model, const AdmissibleWindow& w, int i) {
