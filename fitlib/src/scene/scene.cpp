@@ -171,10 +171,11 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
   const std::string ends = r.string("ends").value_or("radial");
   if (ends != "radial" && ends != "free") r.fail("ends", "ends must be \"radial\" or \"free\"");
   g.setup.ends = ends == "radial" ? segment::EndCondition::radial : segment::EndCondition::free;
-  const std::string integ = r.string("integration").value_or("reduced");
-  if (integ != "reduced" && integ != "full" && integ != "fbar")
-    r.fail("integration", "integration must be \"reduced\", \"full\" or \"fbar\"");
-  g.setup.solver.integration = segment::integration_from_string(integ);
+  try {  // the segment module holds the names; the scene adds the file and key
+    g.setup.solver.integration = segment::integration_from_string(r.string("integration").value_or("reduced"));
+  } catch (const core::UsageError& e) {
+    r.fail("integration", e.what());
+  }
   g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, kMaxSegmentSteps));
   auto& mk = g.setup.mesh;
   mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.05, 100.0);
