@@ -285,7 +285,8 @@ double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
 // that does not lower the residual is retaken from its start on a fresh one. A step on a fresh
 // tangent that lowers neither the residual norm nor the energy measure |Δq·r| below 0.8 of its
 // start (a near-incompressible body's residual may rise on the way), or inverts an element, is
-// halved up to five times.
+// retaken on the shifted tangent K + μ·diag|K| (`levenberg`), and beyond the largest shift halved up
+// to five times.
 struct NewtonOutcome {
   bool converged = false;
   int iterations = 0, factorizations = 0, bad_element = -1;
@@ -296,7 +297,12 @@ class Newton {
  public:
   Newton(const Assembler& a, Pattern& K, LinearSolver& linear, const Dofs& d, const SolverKnobs& knobs,
          Eigen::VectorXd& q)
-      : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q) {}
+      : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q) {
+    const int* outer = K.K.outerIndexPtr();
+    const int* inner = K.K.innerIndexPtr();
+    for (int j = 0; j < d.equations; ++j)
+      diagonal_.push_back(static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], j) - inner));
+  }
 
   // The node carrying the largest free residual component of the last assembly (-1: none).
   int worst_node() const {
@@ -333,7 +339,8 @@ class Newton {
     q_last_ = q_;
     if (extrapolated) q_ = q_start;
     Eigen::VectorXd q_prev, dq, rhs(d_.equations);
-    double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf;
+    double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf, mu = 0.0;
+    bool shifted_retake = false;
     int since_best = 0;
     for (int it = 0; it < knobs_.max_iterations; ++it) {
       o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
@@ -342,6 +349,12 @@ class Newton {
       const bool worse = !(res < res_prev) && !(std::isfinite(res) && energy(dq) < 0.8 * energy_prev);
       if (worse && std::isfinite(res_prev) && stale_step) {
         q_ = q_prev, fresh = true, stale_step = false, res_prev = inf;
+        continue;
+      }
+      if (worse && std::isfinite(res_prev) && alpha == 1.0 && knobs_.levenberg > 0.0 && mu < 1e4 * knobs_.levenberg) {
+        if (++since_best > knobs_.stall_iterations) return o;
+        mu = mu > 0.0 ? 10.0 * mu : knobs_.levenberg;  // retake the step from its start on K + μ·diag|K|
+        q_ = q_prev, fresh = true, res_prev = inf, shifted_retake = true;
         continue;
       }
       if (worse && std::isfinite(res_prev) && alpha > 1.0 / 32.0) {
@@ -370,6 +383,10 @@ class Newton {
         o.converged = true;
         return o;
       }
+      // After a shifted step the shift follows the residual (switched evolution relaxation).
+      if (!shifted_retake && mu > 0.0) mu = mu * res / res_prev < 1e-9 ? 0.0 : mu * res / res_prev;
+      shifted_retake = false;
+      if (fresh && mu > 0.0) shift_diagonal(mu);
       if (fresh && !linear_.factorize(K_.K)) return give_up();
       o.factorizations += fresh;
       for (int i = 0; i < r_.size(); ++i)
@@ -388,7 +405,15 @@ class Newton {
       fresh = !knobs_.reuse_tangent || slow;
       o.iterations++;
     }
+    // Out of assemblies: accepted at the loose tolerance, as a stalled iterate is.
+    o.converged = o.residual <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0);
     return o;
+  }
+
+  // K_ii += μ |K_ii| (Marquardt's scaling: the shift is unit-free and leaves stiff dofs stiff).
+  void shift_diagonal(double mu) {
+    double* K = K_.K.valuePtr();
+    for (int e = 0; e < d_.equations; ++e) K[diagonal_[e]] += mu * std::abs(K[diagonal_[e]]);
   }
 
   double energy(const Eigen::VectorXd& dq) const {
@@ -410,6 +435,7 @@ class Newton {
   const SolverKnobs& knobs_;
   Eigen::VectorXd& q_;
   Eigen::VectorXd q_last_, r_, coupling_;
+  std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
 };
 
 }  // namespace

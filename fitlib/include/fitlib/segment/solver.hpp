@@ -50,6 +50,13 @@ struct SolverKnobs {
   // displacement extrapolated linearly in λ (time), capped at its size; a start that does not
   // converge is retaken from the linear predictor (docs/segment.md §Solver).
   bool extrapolate_start = false;
+  // Levenberg–Marquardt shift (0 = off): a full Newton step that lowers neither the residual nor
+  // the energy measure is retaken from its start on K + μ·diag|K|, μ from this value and ×10 per
+  // failed retake, then scaled by each step's residual ratio; the line search halves only beyond
+  // μ = 10⁴ × this. The residual is not changed, so the solution is Newton's; the shift turns the
+  // step towards steepest descent where the tangent is nearly singular, the near-incompressible
+  // rubber at the load cycle's transitions (docs/segment.md §Solver, "Levenberg–Marquardt retake").
+  double levenberg = 3e-3;
 };
 
 struct StaticSolution;
