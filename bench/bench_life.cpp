@@ -84,9 +84,14 @@ struct Outcome {
   segment::Integration integration{};
 };
 
-Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's E 20/8 MPa, ν 0.49
-  const scene::Scene s = pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
-                                              : reference(pr.load);
+// "iso": the bare drive file (Report I's E 20/8 MPa, ν 0.49 are set by run_probe); else the cards.
+scene::Scene probe_scene(const Probe& pr) {
+  return pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
+                              : reference(pr.load);
+}
+
+Outcome run_probe(const Probe& pr) {
+  const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   fatigue::SegmentLifeSetup setup;
@@ -141,8 +146,7 @@ void print_probe(const Probe& p, const Outcome& o) {
 // from the wrapped reference, mould radius L/2π), its peak |σ11|, |σ12| over the last cycle and the
 // life of that point alone (docs/segment.md §"Mode 2 through the cushion").
 void print_cushion_points(const Probe& pr, const Outcome& o) {
-  const scene::Scene s = pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
-                                              : reference(pr.load);
+  const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const fatigue::LifeConditions conditions =
       fatigue::cycle_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C);
