@@ -17,7 +17,8 @@
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`: the mesh's cushion rows and element sizes
 // (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
-// prints each cushion point's integration point (its depth below the cord line) and its own N2.
+// prints each cushion point's integration point (its depth below the cord line) and its own N2 (all
+// cycles' peaks, as the library counts them, and the last cycle's).
 #include <cmath>
 #include <cstdio>
 #include <cstring>

@@ -8,9 +8,9 @@
 #include "fitlib/belt/accumulation.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/scene/results.hpp"
-#include "fitlib/segment/cycle.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/writers.hpp"
+#include "fitlib/segment/cycle.hpp"
 
 namespace fitlib::scene {
 
