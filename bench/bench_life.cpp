@@ -15,7 +15,10 @@
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
-// set=C_d=0.001).
+// set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`: the mesh's cushion rows and element sizes
+// (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
+// prints each cushion point's integration point (its depth below the cord line) and its own N2 (all
+// cycles' peaks, as the library counts them, and the last cycle's).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -25,6 +28,7 @@
 #include "drive_sweep.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/timer.hpp"
+#include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -70,21 +74,36 @@ struct Probe {
   int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
   std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
   double levenberg = segment::SolverKnobs{}.levenberg;  // lm=μ0 (0: off)
+  int rows = 0;                                 // rows=N: cushion rows (0: the mesh's)
+  double fine_mm = 0.0, coarse_mm = 0.0;        // fine=, coarse=: element sizes (0: the mesh's)
+  bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
 };
 
 struct Outcome {
   fatigue::SegmentLife life;
   double wall_s = 0.0;
+  segment::MeshKnobs mesh{};
+  segment::Integration integration{};
 };
 
-Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's E 20/8 MPa, ν 0.49
-  const scene::Scene s = pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
-                                              : reference(pr.load);
+// "iso": the bare drive file (Report I's E 20/8 MPa, ν 0.49 are set by run_probe); else the cards.
+scene::Scene probe_scene(const Probe& pr) {
+  return pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
+                              : reference(pr.load);
+}
+
+Outcome run_probe(const Probe& pr) {
+  const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   fatigue::SegmentLifeSetup setup;
   setup.section = scene::cog_section(s);
   setup.mesh = mesh_named(pr.mesh);
+  if (pr.rows > 0) setup.mesh.cushion_rows = pr.rows;
+  if (pr.fine_mm > 0.0) setup.mesh.fine_size_mm = pr.fine_mm;
+  if (pr.coarse_mm > 0.0) setup.mesh.coarse_size_mm = pr.coarse_mm;
+  for (int k = 1; k < 10 && pr.profile; ++k)
+    setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
@@ -113,6 +132,7 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   const core::Stopwatch watch;
   Outcome out{fatigue::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
   out.wall_s = watch.seconds();
+  out.mesh = setup.mesh, out.integration = setup.solver.integration;
   return out;
 }
 
@@ -123,6 +143,35 @@ void print_probe(const Probe& p, const Outcome& o) {
               p.fidelity.c_str(), p.mesh.c_str(), r.elements, p.steps, r.increments, r.newton_iterations,
               r.factorizations, r.cuts, m[0].life_cycles, m[1].life_cycles, o.life.report.governing.c_str(),
               o.wall_s);
+}
+
+// Each cushion point of a probe: the integration point that samples it (straight-section position
+// from the wrapped reference, mould radius L/2π), its peak |σ11|, |σ12| over the last cycle and the
+// life of that point alone (docs/segment.md §"Mode 2 through the cushion").
+void print_cushion_points(const Probe& pr, const Outcome& o) {
+  const scene::Scene s = probe_scene(pr);
+  const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
+  const fatigue::LifeConditions conditions =
+      fatigue::cycle_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C);
+  const double R = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  const auto histories = fatigue::segment_point_histories(o.life.run);
+  std::printf("cushion point | IP (x, depth) mm | max |s11| | max |s12| MPa | N2 of the point\n");
+  for (std::size_t k = 0; k < histories.size(); ++k) {
+    if (histories[k].role != fatigue::Role::cushion) continue;
+    const segment::MonitoredHistory& mh = o.life.run.points[k];
+    const Eigen::Vector2d X = o.life.run.final_state.points[mh.element][mh.gauss_point].X_mm;
+    const double depth = R - std::hypot(X.x(), X.y() + R), x = R * std::atan2(X.x(), X.y() + R);
+    double s11 = 0.0, s12 = 0.0;
+    for (const auto& q : histories[k].samples)
+      if (q.t_s > histories[k].samples.back().t_s - o.life.run.cycle_time_s)
+        s11 = std::max(s11, std::abs(q.s11_MPa)), s12 = std::max(s12, std::abs(q.s12_MPa));
+    const auto one = fatigue::evaluate_life({histories[k]}, fatigue::default_card(), conditions);
+    fatigue::LifeConditions last = conditions;
+    last.cycle_time_s = o.life.run.cycle_time_s;
+    const auto one_last = fatigue::evaluate_life({histories[k]}, fatigue::default_card(), last);
+    std::printf("%s | (%.4f, %.4f) | %.4f | %.4f | %.4g | last cycle %.4g (%zu peaks vs %zu)\n", histories[k].name.c_str(), x, depth, s11, s12,
+                one.modes[0].life_cycles, one_last.modes[0].life_cycles, one_last.modes[0].peaks.size(), one.modes[0].peaks.size());
+  }
 }
 
 const char* kProbeHeader =
@@ -226,12 +275,20 @@ int main(int argc, char** argv) {
       if (a.rfind("stall=", 0) == 0) p.stall = std::atoi(a.c_str() + 6);
       if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
       if (a.rfind("lm=", 0) == 0) p.levenberg = std::atof(a.c_str() + 3);
+      if (a.rfind("rows=", 0) == 0) p.rows = std::atoi(a.c_str() + 5);
+      if (a.rfind("fine=", 0) == 0) p.fine_mm = std::atof(a.c_str() + 5);
+      if (a.rfind("coarse=", 0) == 0) p.coarse_mm = std::atof(a.c_str() + 7);
+      if (a == "profile") p.profile = true;
     }
     std::printf("%s", kProbeHeader);
     const Outcome o = run_probe(p);
     print_probe(p, o);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
+    const segment::MeshKnobs m = o.mesh;
+    std::printf("mesh: fine %.3g mm, coarse %.3g mm, %d cushion rows, %s\n", m.fine_size_mm, m.coarse_size_mm,
+                m.cushion_rows, segment::to_string(o.integration));
+    print_cushion_points(p, o);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows

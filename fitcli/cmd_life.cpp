@@ -13,6 +13,24 @@
 #include "output.hpp"
 
 namespace fitcli {
+namespace {
+
+// The segment run writes the fields into DIR, so it must exist before the run; a folder made here
+// is removed again when the run fails (e.g. a --field-at position beyond the load cycle).
+fitlib::scene::SceneResult run_with_field_folder(const fitlib::scene::Scene& scene, const std::string& out_dir) {
+  if (scene.life_field_at.empty()) return fitlib::scene::run_scene(scene);
+  const bool existed = std::filesystem::exists(out_dir);
+  fitlib::core::prepare_output_dir(out_dir);
+  try {
+    return fitlib::scene::run_scene(scene);
+  } catch (...) {
+    std::error_code ec;
+    if (!existed) std::filesystem::remove_all(out_dir, ec);
+    throw;
+  }
+}
+
+}  // namespace
 
 void register_life(CLI::App& app) {
   auto* cmd = app.add_subcommand("life", "Fatigue life of a drive scene: life per mode, governing mode, hours");
@@ -39,11 +57,11 @@ void register_life(CLI::App& app) {
       if (plan.fidelity == "beam")
         throw fitlib::core::UsageError("--field-at needs the segment FE ([life] fidelity = \"elastic\" or "
                                        "\"complete\"); this scene runs the beam level (" + plan.reason + ")");
+      for (const std::string& at : *field_at) fitlib::scene::field_at_mm(at);  // exit 2 before any folder is made
       scene.life_field_at = *field_at;
       scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();
-      fitlib::core::prepare_output_dir(*out_dir);  // the segment run writes the fields into it
     }
-    const auto result = fitlib::scene::run_scene(scene);
+    const auto result = run_with_field_folder(scene, *out_dir);
     if (!result.life) {
       for (const auto& e : result.plan.effects)
         if (e.name == "fatigue")

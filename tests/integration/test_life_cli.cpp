@@ -148,3 +148,26 @@ TEST(LifeCli, ElasticLevelReportsTheSegmentEquilibriumCheckAndTheEntranceField) 
   ASSERT_EQ(beam.exit_code, 0) << beam.err;
   EXPECT_FALSE(nlohmann::json::parse(beam.out).contains("segment_equilibrium"));
 }
+
+// A bad --field-at is a usage error (exit 2) that leaves no output folder behind: a word that is
+// neither "entrance" nor a number is refused before the folder is made, a position beyond the load
+// cycle (known only once the cycle is computed) removes the folder the command made; a folder that
+// existed before stays with its content.
+TEST(LifeCli, BadFieldAtExitsTwoAndLeavesNoOutputFolder) {
+  const std::string scene = source_path("tests/data/bad/scene/life_segment_ok.toml");
+  for (const char* at : {"banana", "-3", "1e9"}) {
+    const std::string out = unique_dir(std::string("life_field_") + (at[0] == '-' ? "neg" : at));
+    const auto r = run_fitcli("life --scene " + scene + " --field-at " + at + " --out-dir " + out);
+    EXPECT_EQ(r.exit_code, 2) << at << ": " << r.err;
+    EXPECT_NE(r.err.find(std::string("'") + at + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("entrance"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << at << " left " << out;
+  }
+  const std::string kept = unique_dir("life_field_kept");
+  std::filesystem::create_directories(kept);
+  std::ofstream(kept + "/mine.txt") << "keep\n";
+  const auto r = run_fitcli("life --scene " + scene + " --field-at 1e9 --out-dir " + kept);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(slurp(kept + "/mine.txt"), "keep\n");
+  std::filesystem::remove_all(kept);
+}

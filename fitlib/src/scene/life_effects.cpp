@@ -105,13 +105,8 @@ double field_position(const std::string& at, const belt::LoadCycle& cycle) {
       if (q.p_MPa > 0.0) return q.s_mm;
     throw core::InputError("life field at the entrance: the load cycle has no contact");
   }
-  std::size_t used = 0;
-  double s_mm = std::numeric_limits<double>::quiet_NaN();
-  try {
-    s_mm = std::stod(at, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != at.size() || !(s_mm >= 0.0 && s_mm < cycle.cycle_length_mm))
+  const double s_mm = field_at_mm(at);
+  if (!(s_mm < cycle.cycle_length_mm))
     throw core::UsageError("life field at '" + at + "': expected \"entrance\" or a path position in mm within [0, " +
                            core::format_number(cycle.cycle_length_mm) + ")");
   return s_mm;
@@ -131,9 +126,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
     const segment::CycleResult run = fatigue::segment_run(*r.cycle, *r.drive, setup);
     r.stresses = fatigue::segment_point_histories(run);
-    SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0};
-    for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
-    r.segment_equilibrium = check;
+    r.segment_equilibrium = segment_equilibrium(run);
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
       const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
@@ -175,6 +168,26 @@ void fatigue_life(const Scene& s, SceneResult& r) {
 }
 
 }  // namespace detail
+
+double field_at_mm(const std::string& at) {
+  if (at == "entrance") return std::numeric_limits<double>::quiet_NaN();
+  std::size_t used = 0;
+  double s_mm = std::numeric_limits<double>::quiet_NaN();
+  try {
+    s_mm = std::stod(at, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != at.size() || !(s_mm >= 0.0 && std::isfinite(s_mm)))
+    throw core::UsageError("life field at '" + at + "': expected \"entrance\" or a path position in mm (>= 0, within "
+                           "the load cycle)");
+  return s_mm;
+}
+
+SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run) {
+  SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0};
+  for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
+  return check;
+}
 
 bool SegmentEquilibrium::within_bounds() const {
   using B = segment::EquilibriumBounds;

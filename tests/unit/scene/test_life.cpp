@@ -12,6 +12,7 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/model/model.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 
@@ -228,4 +229,43 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
   const auto r = scene::run_scene(scene_with("cycles = 3\n"));
   ASSERT_TRUE(r.life.has_value());
   EXPECT_EQ(r.life->plan.fidelity, "elastic");
+}
+
+// The life table's WARNING line (docs/fatigue.md §8): a segment run with a deliberately loose Newton
+// tolerance (10⁻³ of the reactions instead of 10⁻⁹) is out of equilibrium beyond the 10⁻⁶ bound;
+// its check, put into a life result, makes the table warn and life.json say within_bounds false.
+// The same run at the default tolerance stays within the bounds and the table does not warn.
+TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
+  const auto s = with_life("light");
+  const auto drive = scene::make_drive(s, scene::resolve_stiffness(s));
+  const auto cycle = belt::compute_load_cycle(drive);
+  fatigue::SegmentLifeSetup setup;
+  setup.section = scene::cog_section(s);
+  setup.cycle.cycles = 1;
+  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  for (int k = 0; k < 2; ++k)  // Report I's isotropic rubber, E 20/8 MPa, ν 0.49
+    setup.materials[k] = model::make_material_point(*model::make_model("elastic-iso", nlohmann::json::object()),
+                                                    {k == 0 ? 20.0 : 8.0, 0.49});
+  setup.temperature_C = s.temperature_C;
+  auto result = scene::run_scene(s);  // the beam level's life result carries the check below
+  ASSERT_TRUE(result.life.has_value());
+  const std::string warning = "WARNING: the segment's equilibrium check exceeds its bounds";
+  for (const double tolerance : {1e-9, 1e-3}) {
+    setup.solver.tolerance = tolerance, setup.solver.stall_tolerance = std::max(tolerance, 1e-5);
+    const scene::SegmentEquilibrium check = scene::segment_equilibrium(fatigue::segment_run(cycle, drive, setup));
+    const bool loose = tolerance > 1e-6;
+    EXPECT_EQ(check.within_bounds(), !loose) << "tolerance " << tolerance << ": error " << check.equilibrium_error;
+    std::printf("tolerance %g: equilibrium error %.3g, span cord share %.3g, span section mismatch %.3g\n", tolerance,
+                check.equilibrium_error, check.span_cord_share, check.span_section_mismatch);
+    if (loose) {
+      EXPECT_GT(check.equilibrium_error, segment::EquilibriumBounds::equilibrium_error);
+    }
+    EXPECT_GT(check.span_increments, 0);
+    result.life->equilibrium = check;
+    const std::string table = scene::life_text(s, result);
+    EXPECT_EQ(table.find(warning) != std::string::npos, loose) << table;
+    EXPECT_NE(table.find("segment equilibrium: error "), std::string::npos) << table;
+    const auto j = scene::life_json(s, result, false);
+    EXPECT_EQ(j["segment_equilibrium"]["within_bounds"].get<bool>(), !loose) << j.dump(2);
+  }
 }

@@ -10,6 +10,7 @@
 #include "fitlib/scene/results.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/writers.hpp"
+#include "fitlib/segment/cycle.hpp"
 
 namespace fitlib::scene {
 
@@ -19,6 +20,14 @@ Plan make_plan(const Scene& scene);
 // and this build has (complete with bottom and cushion cards, elastic with a [segment] table,
 // else beam; docs/decisions.md "scene: default fidelity of life").
 LifePlan choose_life_plan(const Scene& scene);
+
+// A --field-at word (Scene::life_field_at) checked before anything runs: "entrance" gives NaN, a
+// number its path position in mm (>= 0; the cycle length bounds it once the load cycle is known).
+// UsageError (exit 2) for anything else, e.g. "banana".
+double field_at_mm(const std::string& at);
+
+// The segment run's equilibrium check as the life reports it (the span increments counted).
+SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run);
 
 SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options = {});
 
