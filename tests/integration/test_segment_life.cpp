@@ -39,6 +39,25 @@ fatigue::SegmentLife reference_life(const std::string& load, int steps_per_cycle
 
 }  // namespace
 
+// fatigue.md §3: only the last load cycle's peaks count. Report I's isotropic elastic segment
+// repeats its cycle, so two simulated cycles give the life of one (counting both halved it).
+TEST(SegmentLife, TwoSimulatedCyclesGiveTheLifeOfOne) {
+  fatigue::SegmentLife one = reference_life("medium", 40), two = one;
+  {
+    const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-medium.toml");
+    const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
+    fatigue::SegmentLifeSetup setup;
+    setup.cycle.cycles = 1;
+    setup.cycle.steps_per_cycle = 40;
+    setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+    setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
+    setup.temperature_C = s.temperature_C;
+    one = fatigue::segment_life(belt::compute_load_cycle(drive), drive, setup, fatigue::default_card());
+  }
+  for (int k = 0; k < 2; ++k)
+    EXPECT_NEAR(two.report.modes[k].life_cycles / one.report.modes[k].life_cycles, 1.0, 1e-6) << "mode " << k;
+}
+
 // fatigue.md §3's consequence to check: because n2 ≫ n1, raising the load switches the predicted
 // mode from radial crack to separation. The segment (Report I's exploratory isotropic elastic
 // materials, E 20/8 MPa, ν 0.49; the bundled drives, no constant tuned) shows it between the light

@@ -60,6 +60,7 @@ SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& dr
   conditions.peaks = setup.peaks;
   SegmentLife out;
   out.run = segment_run(cycle, drive, setup);
+  conditions.cycle_time_s = out.run.cycle_time_s;  // peaks of the last simulated cycle only (fatigue.md §3)
   out.report = evaluate_life(segment_point_histories(out.run), card, conditions);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

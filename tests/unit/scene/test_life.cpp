@@ -185,6 +185,27 @@ TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
   }
 }
 
+// fatigue.md §3: the peaks are those of the last load cycle. The segment levels simulate several
+// cycles (bending step, then `[life] cycles`), and the elastic level repeats its cycle, so one and
+// two cycles give the same lives; counting every simulated cycle (as before 2026-11-25, when the
+// scene passed the conditions of a one-cycle history) halved the two-cycle lives.
+TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
+  auto s = with_life("light");
+  s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+  s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = "elastic";
+  std::vector<double> lives[2];
+  for (int cycles : {1, 2}) {
+    s.life->cycles = cycles;
+    const auto r = scene::run_scene(s);
+    ASSERT_TRUE(r.life.has_value());
+    for (const auto& m : r.life->report.modes) lives[cycles - 1].push_back(m.life_cycles);
+  }
+  ASSERT_EQ(lives[0].size(), 2u);
+  for (int k = 0; k < 2; ++k) EXPECT_NEAR(lives[1][k] / lives[0][k], 1.0, 1e-6) << "mode " << k;
+}
+
 // The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
 // cycle); the life's mesh has 144 elements (docs/segment.md "Cost").
 TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
