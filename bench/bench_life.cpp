@@ -17,8 +17,7 @@
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`: the mesh's cushion rows and element sizes
 // (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
-// prints each cushion point's integration point (its depth below the cord line) and its own N2 (all
-// cycles' peaks, as the library counts them, and the last cycle's).
+// prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -145,32 +144,29 @@ void print_probe(const Probe& p, const Outcome& o) {
               o.wall_s);
 }
 
-// Each cushion point of a probe: the integration point that samples it (straight-section position
-// from the wrapped reference, mould radius L/2π), its peak |σ11|, |σ12| over the last cycle and the
+// Each cushion point of a probe: its straight-section position (from the wrapped reference, mould
+// radius L/2π), its peak |σ11|, |σ12| over the last cycle and the
 // life of that point alone (docs/segment.md §"Mode 2 through the cushion").
 void print_cushion_points(const Probe& pr, const Outcome& o) {
   const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
-  const fatigue::LifeConditions conditions =
-      fatigue::cycle_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C);
+  fatigue::LifeConditions conditions = fatigue::cycle_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C);
+  conditions.cycle_time_s = o.life.run.cycle_time_s;  // the last simulated cycle, as segment_life counts
   const double R = drive.geometry.belt_length_mm / (2.0 * M_PI);
   const auto histories = fatigue::segment_point_histories(o.life.run);
-  std::printf("cushion point | IP (x, depth) mm | max |s11| | max |s12| MPa | N2 of the point\n");
+  std::printf("cushion point | (x, depth) mm | max |s11| | max |s12| MPa | N2 of the point\n");
   for (std::size_t k = 0; k < histories.size(); ++k) {
     if (histories[k].role != fatigue::Role::cushion) continue;
     const segment::MonitoredHistory& mh = o.life.run.points[k];
-    const Eigen::Vector2d X = o.life.run.final_state.points[mh.element][mh.gauss_point].X_mm;
+    const Eigen::Vector2d X = mh.X_mm;
     const double depth = R - std::hypot(X.x(), X.y() + R), x = R * std::atan2(X.x(), X.y() + R);
     double s11 = 0.0, s12 = 0.0;
     for (const auto& q : histories[k].samples)
       if (q.t_s > histories[k].samples.back().t_s - o.life.run.cycle_time_s)
         s11 = std::max(s11, std::abs(q.s11_MPa)), s12 = std::max(s12, std::abs(q.s12_MPa));
     const auto one = fatigue::evaluate_life({histories[k]}, fatigue::default_card(), conditions);
-    fatigue::LifeConditions last = conditions;
-    last.cycle_time_s = o.life.run.cycle_time_s;
-    const auto one_last = fatigue::evaluate_life({histories[k]}, fatigue::default_card(), last);
-    std::printf("%s | (%.4f, %.4f) | %.4f | %.4f | %.4g | last cycle %.4g (%zu peaks vs %zu)\n", histories[k].name.c_str(), x, depth, s11, s12,
-                one.modes[0].life_cycles, one_last.modes[0].life_cycles, one_last.modes[0].peaks.size(), one.modes[0].peaks.size());
+    std::printf("%s | (%.4f, %.4f) | %.4f | %.4f | %.4g (%zu peaks)\n", histories[k].name.c_str(), x, depth, s11, s12,
+                one.modes[0].life_cycles, one.modes[0].peaks.size());
   }
 }
 

@@ -202,7 +202,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
 
-  const auto rule = detail::gauss_rule(gauss_order(m, solver.integration));
+  const int order = gauss_order(m, solver.integration);
+  const auto rule = detail::gauss_rule(order);
   std::vector<double> area(m.element_count()), centre_x(m.element_count());
   for (int e = 0; e < m.element_count(); ++e) {
     area[e] = reference_area(m, e, rule);
@@ -251,7 +252,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     }
   };
   p.on_increment = [&](double lambda, const StaticSolution& s) {
-    if (out.points.empty()) {  // the integration point nearest each named point (reference)
+    if (out.points.empty()) {  // each named point in the moulded reference mesh
       const Mesh one_point = wrapped([&] {
         Mesh q = straight;
         q.X.clear();
@@ -261,20 +262,16 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       for (std::size_t k = 0; k < named.size(); ++k) {
         MonitoredHistory mh;
         mh.point = named[k];
-        double best = std::numeric_limits<double>::infinity();
-        for (int e = 0; e < m.element_count(); ++e)
-          for (std::size_t g = 0; g < s.points[e].size(); ++g) {
-            const double dist = (s.points[e][g].X_mm - one_point.X[k]).norm();
-            if (dist < best) best = dist, mh.element = e, mh.gauss_point = static_cast<int>(g);
-          }
-        mh.role = m.roles[mh.element];
+        mh.X_mm = one_point.X[k];
+        mh.at = locate(m, mh.X_mm);
+        mh.role = m.roles[mh.at.element];
         out.points.push_back(mh);
       }
     }
     const double tau = lambda * T;
     const NeutralCurve curve = curve_at(lambda);
     for (MonitoredHistory& mh : out.points) {
-      CycleSample c = local_sample(s.points[mh.element][mh.gauss_point],
+      CycleSample c = local_sample(interpolate(s, mh.at, order, mh.X_mm),
                                    curve.at(curve.s_from_unstrained(mh.point.x_mm)).phi_rad);
       c.t_s = tau * period;
       c.s_mm = std::max(0.0, tau - 1.0) * h.length_mm();

@@ -663,10 +663,8 @@ SectionForce section_force(const StaticProblem& p, const StaticSolution& s, doub
   return out;
 }
 
-Eigen::Matrix2d stress_at(const Mesh& m, const StaticSolution& s, const Eigen::Vector2d& P,
-                          Integration integration, double* sigma33) {
-  const int npe = m.nodes_per_element, n = gauss_order(m, integration);
-  const std::vector<double> g = detail::gauss_abscissae(n);
+PointLocation locate(const Mesh& m, const Eigen::Vector2d& P) {
+  const int npe = m.nodes_per_element;
   double N[8], dxi[8], deta[8];
   for (int e = 0; e < m.element_count(); ++e) {
     Eigen::Vector2d lo = m.X[m.elements[e][0]], hi = lo;
@@ -685,27 +683,37 @@ Eigen::Matrix2d stress_at(const Mesh& m, const StaticSolution& s, const Eigen::V
       }
       xi += J.inverse() * (P - x);
     }
-    if (!xi.allFinite() || xi.cwiseAbs().maxCoeff() > 1.0 + 1e-7) continue;
-    auto lagrange = [&](int i, double t) {
-      double v = 1.0;
-      for (int j = 0; j < n; ++j)
-        if (j != i) v *= (t - g[j]) / (g[i] - g[j]);
-      return v;
-    };
-    Eigen::Matrix2d sigma = Eigen::Matrix2d::Zero();
-    double s33 = 0.0;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const double w = lagrange(i, xi.x()) * lagrange(j, xi.y());
-        sigma += w * s.points[e][j * n + i].cauchy_MPa;
-        s33 += w * s.points[e][j * n + i].sigma33_MPa;
-      }
-    if (sigma33) *sigma33 = s33;
-    return sigma;
+    if (xi.allFinite() && xi.cwiseAbs().maxCoeff() <= 1.0 + 1e-7) return {e, xi};
   }
   std::ostringstream msg;
   msg << "point (" << P.x() << ", " << P.y() << ") mm is outside the segment mesh";
   throw core::InputError(msg.str());
+}
+
+IntegrationPointStress interpolate(const StaticSolution& s, const PointLocation& at, int n, const Eigen::Vector2d& X) {
+  const std::vector<double> g = detail::gauss_abscissae(n);
+  auto lagrange = [&](int i, double t) {
+    double v = 1.0;
+    for (int j = 0; j < n; ++j)
+      if (j != i) v *= (t - g[j]) / (g[i] - g[j]);
+    return v;
+  };
+  IntegrationPointStress out{X, Eigen::Matrix2d::Zero(), 0.0, Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Zero()};
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double w = lagrange(i, at.xi.x()) * lagrange(j, at.xi.y());
+      const IntegrationPointStress& q = s.points[at.element][j * n + i];
+      out.cauchy_MPa += w * q.cauchy_MPa, out.sigma33_MPa += w * q.sigma33_MPa;
+      out.piola_MPa += w * q.piola_MPa, out.F += w * q.F;
+    }
+  return out;
+}
+
+Eigen::Matrix2d stress_at(const Mesh& m, const StaticSolution& s, const Eigen::Vector2d& P,
+                          Integration integration, double* sigma33) {
+  const IntegrationPointStress q = interpolate(s, locate(m, P), gauss_order(m, integration), P);
+  if (sigma33) *sigma33 = q.sigma33_MPa;
+  return q.cauchy_MPa;
 }
 
 }  // namespace fitlib::segment

@@ -55,7 +55,10 @@ struct CycleSample {                    // a monitored point at the end of an in
 struct MonitoredHistory {
   NamedPoint point;
   Role role = Role::bottom;
-  int element = 0, gauss_point = 0;     // the integration point nearest the named point
+  // The named point in the (moulded) reference mesh: its stresses are interpolated there from its
+  // element's integration points, as `stress_at` does for the static cases.
+  PointLocation at;
+  Eigen::Vector2d X_mm = Eigen::Vector2d::Zero();
   std::vector<CycleSample> samples;
 };
 

@@ -112,8 +112,21 @@ struct SectionForce {
 SectionForce section_force(const StaticProblem& problem, const StaticSolution& solution, double x_cut_mm,
                            const Eigen::Vector2d& about_mm, Integration integration);
 
-// Cauchy stress at a reference point, extrapolated from the integration points of the element
-// that contains it (Lagrange interpolation through the Gauss points). Throws if outside the mesh.
+// A reference point's element and isoparametric coordinates (ξ, η) ∈ [−1, 1]². Throws
+// core::InputError if the point is outside the mesh.
+struct PointLocation {
+  int element = -1;
+  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+};
+PointLocation locate(const Mesh& mesh, const Eigen::Vector2d& X_mm);
+
+// The integration points' Cauchy stress, σ33, first Piola stress and F of the located element,
+// interpolated to the point by Lagrange polynomials through the Gauss points (extrapolated beyond
+// the outermost ones, e.g. to a surface); X_mm is the point's reference position.
+IntegrationPointStress interpolate(const StaticSolution& solution, const PointLocation& at, int gauss_order_1d,
+                                   const Eigen::Vector2d& X_mm);
+
+// Cauchy stress at a reference point: locate + interpolate.
 Eigen::Matrix2d stress_at(const Mesh& mesh, const StaticSolution& solution, const Eigen::Vector2d& X_mm,
                           Integration integration, double* sigma33_MPa = nullptr);
 
