@@ -171,3 +171,23 @@ TEST(LifeCli, BadFieldAtExitsTwoAndLeavesNoOutputFolder) {
   EXPECT_EQ(slurp(kept + "/mine.txt"), "keep\n");
   std::filesystem::remove_all(kept);
 }
+
+// The complete level on the medium drive with the thesis cards stops in cycle 1 (docs/segment.md
+// "Cost", complete level): exit 4, the message says where in the cycle (path position and the load
+// there), the solver's step and node, and what runs instead; no output folder is left.
+TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereAndWhatRuns) {
+  const std::string scene = unique_dir("life_complete_medium") + ".toml";
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml"))
+                       << "\n[belt.materials]\nbottom = \"" << source_path("datasets/cards/material-1-true.json")
+                       << "\"\ncushion = \"" << source_path("datasets/cards/material-2-true.json")
+                       << "\"\n[life]\nfidelity = \"complete\"\ncycles = 1\n";
+  const std::string out = unique_dir("life_complete_medium_out");
+  const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  for (const char* part : {"segment load cycle: failed in cycle 1 after path position", "side pressure",
+                           "Newton failed in load increment", "largest residual at node",
+                           "[life] fidelity = \"elastic\" runs"})
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in: " << r.err;
+  EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}

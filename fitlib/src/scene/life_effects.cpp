@@ -112,6 +112,24 @@ double field_position(const std::string& at, const belt::LoadCycle& cycle) {
   return s_mm;
 }
 
+namespace {
+
+// The segment run; a numerical failure of the complete level says what the user can do.
+segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
+                                 const fatigue::SegmentLifeSetup& setup, const std::string& fidelity) {
+  try {
+    return fatigue::segment_run(cycle, drive, setup);
+  } catch (const core::NumericalError& e) {
+    if (fidelity != "complete") throw;
+    throw core::NumericalError(std::string(e.what()) +
+                               ". The complete level stops like this on the medium and heavy reference drives with "
+                               "the thesis cards (docs/segment.md \"Cost\", complete level); [life] fidelity = "
+                               "\"elastic\" runs the segment with the cards' elastic equivalents");
+  }
+}
+
+}  // namespace
+
 void segment_stresses(const Scene& s, SceneResult& r) {
   in_scene(s, [&] {
     fatigue::SegmentLifeSetup setup;
@@ -124,7 +142,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
-    const segment::CycleResult run = fatigue::segment_run(*r.cycle, *r.drive, setup);
+    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity);
     r.stresses = fatigue::segment_point_histories(run);
     r.segment_equilibrium = segment_equilibrium(run);
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 #include <Eigen/Eigenvalues>
 
 #include "element.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/segment/curve.hpp"
 
 namespace fitlib::segment {
@@ -174,6 +176,29 @@ std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, dou
   return tau;
 }
 
+namespace {
+
+// Where the last converged increment was, in the user's terms: the bending step, or the cycle and
+// the path position with the load there (the message's prefix).
+std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
+  std::ostringstream m;
+  m << "segment load cycle: ";
+  if (tau < 1.0) {
+    m << "failed in the bending step (" << core::format_number(100.0 * tau, 3) << " % of it); ";
+    return m.str();
+  }
+  const int cycle = static_cast<int>(std::floor(tau - 1.0)) + 1;
+  const double s = (tau - cycle) * h.length_mm();
+  const belt::LoadState at = h.at_position(s);
+  m << "failed in cycle " << cycle << " after path position " << core::format_number(s, 4) << " mm of "
+    << core::format_number(h.length_mm(), 4) << " mm from the slack span's middle (curvature "
+    << core::format_number(at.K_1_mm, 4) << " 1/mm, side pressure " << core::format_number(at.p_MPa, 4)
+    << " MPa there); ";
+  return m.str();
+}
+
+}  // namespace
+
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
                       const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
                       const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
@@ -251,7 +276,9 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       written[k] = true;
     }
   };
+  double converged_lambda = 0.0;  // the last converged increment, for a failure's message
   p.on_increment = [&](double lambda, const StaticSolution& s) {
+    converged_lambda = lambda;
     if (out.points.empty()) {  // each named point in the moulded reference mesh
       const Mesh one_point = wrapped([&] {
         Mesh q = straight;
@@ -314,7 +341,11 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     for (int c = 0; c < knobs.cycles; ++c)
       for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
   }
-  out.final_state = solve_static(p, k);
+  try {
+    out.final_state = solve_static(p, k);
+  } catch (const core::NumericalError& e) {
+    throw core::NumericalError(where_in_cycle(converged_lambda * T, h) + e.what());
+  }
   out.increments = out.final_state.increments;
   out.newton_iterations = out.final_state.newton_iterations;
   out.cuts = out.final_state.cuts;
