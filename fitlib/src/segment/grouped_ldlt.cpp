@@ -1,0 +1,89 @@
+#include "grouped_ldlt.hpp"
+
+#include <algorithm>
+
+#include <amd.h>
+
+#include "fitlib/core/error.hpp"
+
+namespace fitlib::segment::detail {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+bool same_column_pattern(const SparseMatrix& K, int a, int b) {
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  return outer[a + 1] - outer[a] == outer[b + 1] - outer[b] &&
+         std::equal(inner + outer[a], inner + outer[a + 1], inner + outer[b]);
+}
+
+}  // namespace
+
+std::vector<int> grouped_amd_order(const SparseMatrix& K) {
+  const int n = static_cast<int>(K.cols());
+  std::vector<int> group(n), first;  // group of each equation, first equation of each group
+  for (int j = 0; j < n; ++j) {
+    if (j == 0 || !same_column_pattern(K, j, j - 1)) first.push_back(j);
+    group[j] = static_cast<int>(first.size()) - 1;
+  }
+  const int groups = static_cast<int>(first.size());
+  std::vector<int> quotient_outer{0}, quotient_inner, group_order(groups);  // the groups' graph
+  for (int g = 0; g < groups; ++g) {
+    for (SparseMatrix::InnerIterator it(K, first[g]); it; ++it)
+      if (quotient_inner.size() == static_cast<std::size_t>(quotient_outer.back()) || quotient_inner.back() != group[it.index()])
+        quotient_inner.push_back(group[it.index()]);  // rows ascend, so a group's rows are consecutive
+    quotient_outer.push_back(static_cast<int>(quotient_inner.size()));
+  }
+  double control[AMD_CONTROL], info[AMD_INFO];
+  amd_defaults(control);
+  if (amd_order(groups, quotient_outer.data(), quotient_inner.data(), group_order.data(), control, info) != AMD_OK)
+    throw core::NumericalError("segment: AMD ordering of the tangent's pattern failed");
+  std::vector<int> order;
+  for (int p = 0; p < groups; ++p) {
+    const int g = group_order[p];
+    const int end = g + 1 < groups ? first[g + 1] : n;
+    for (int j = first[g]; j < end; ++j) order.push_back(j);
+  }
+  return order;
+}
+
+void GroupedLdlt::analyze(const SparseMatrix& K) {
+  order_ = grouped_amd_order(K);
+  const int n = static_cast<int>(K.cols());
+  std::vector<int> position(n);
+  for (int p = 0; p < n; ++p) position[order_[p]] = p;
+  // Each kept entry carries its index in K's value array through setFromTriplets (no duplicates).
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < n; ++j)
+    for (int k = K.outerIndexPtr()[j]; k < K.outerIndexPtr()[j + 1]; ++k) {
+      const int r = position[K.innerIndexPtr()[k]], c = position[j];
+      if (r <= c) t.emplace_back(r, c, static_cast<double>(k));
+    }
+  upper_.resize(n, n);
+  upper_.setFromTriplets(t.begin(), t.end());
+  upper_.makeCompressed();
+  from_.assign(upper_.valuePtr(), upper_.valuePtr() + upper_.nonZeros());
+  ldlt_.analyzePattern(upper_);
+}
+
+bool GroupedLdlt::factorize(const SparseMatrix& K) {
+  double* values = upper_.valuePtr();
+  const double* source = K.valuePtr();
+  for (std::size_t k = 0; k < from_.size(); ++k) values[k] = source[from_[k]];
+  ldlt_.factorize(upper_);
+  return ldlt_.info() == Eigen::Success;
+}
+
+Eigen::VectorXd GroupedLdlt::solve(const Eigen::VectorXd& b) const {
+  const int n = static_cast<int>(order_.size());
+  Eigen::VectorXd permuted(n), x(n);
+  for (int p = 0; p < n; ++p) permuted[p] = b[order_[p]];
+  const Eigen::VectorXd y = ldlt_.solve(permuted);
+  for (int p = 0; p < n; ++p) x[order_[p]] = y[p];
+  return x;
+}
+
+long GroupedLdlt::factor_nonzeros() const { return static_cast<long>(ldlt_.matrixL().nestedExpression().nonZeros()); }
+
+}  // namespace fitlib::segment::detail
