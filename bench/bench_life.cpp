@@ -10,7 +10,7 @@
 // 4. The beam level's 1000-drive sweep through the planner.
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [full|fbar|reduced]
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [tol=X] [full|fbar|reduced]
 // [lagged] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
@@ -68,6 +68,7 @@ struct Probe {
   bool reuse = false, extrapolate = false, lagged = false;
   std::string integration{};  // empty: fatigue::SegmentLifeSetup's default
   int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
+  double tolerance = segment::SolverKnobs{}.tolerance;  // tol=X: Newton's relative residual tolerance
   std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
 };
 
@@ -88,6 +89,7 @@ Outcome run_probe(const Probe& pr) {  // "iso": the bare drive file, Report I's 
   setup.solver.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
   setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
+  setup.solver.tolerance = pr.tolerance;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -223,6 +225,7 @@ int main(int argc, char** argv) {
         p.overrides.emplace_back(a.substr(4, a.find('=', 4) - 4), std::atof(a.c_str() + a.find('=', 4) + 1));
       if (a.rfind("stall=", 0) == 0) p.stall = std::atoi(a.c_str() + 6);
       if (a.rfind("cuts=", 0) == 0) p.cuts = std::atoi(a.c_str() + 5);
+      if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
     }
     std::printf("%s", kProbeHeader);
     const Outcome o = run_probe(p);
