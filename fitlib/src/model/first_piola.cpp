@@ -23,6 +23,17 @@ double inverse_sqrt_divided(double a, double b) {
   return -1.0 / (sa * sb * (sa + sb));
 }
 
+// Θ of ½ ln c and c^(−½) over the eigenvalues c (spectral_derivative).
+template <int N>
+void divided_differences(const Eigen::Matrix<double, N, 1>& c, Eigen::Matrix<double, N, N>& theta_log,
+                         Eigen::Matrix<double, N, N>& theta_w) {
+  for (int a = 0; a < N; ++a)
+    for (int b = 0; b < N; ++b) {
+      theta_log(a, b) = half_log_divided(c[a], c[b]);
+      theta_w(a, b) = inverse_sqrt_divided(c[a], c[b]);
+    }
+}
+
 Eigen::Matrix3d from_voigt(const Vector6& s) {
   Eigen::Matrix3d m;
   m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
@@ -37,7 +48,7 @@ Vector6 to_voigt_strain(const Eigen::Matrix3d& e) {  // engineering shears
 
 // Plane strain (F = diag(F2, 1)): C = diag(C2, 1), so Q = diag(Q2, 1) with Q2 the rotation to
 // C2's eigenvectors in closed form (no iterative 3 × 3 solver), and every in-plane direction dC
-// stays in the 2 × 2 block (docs/model.md §"Plane strain").
+// stays in the 2 × 2 block (docs/segment.md §"Cost (knobs)").
 struct PlaneSpectrum {
   Eigen::Matrix2d Q;  // columns: eigenvectors of C2
   Eigen::Vector2d c;  // eigenvalues, c[0] ≥ c[1] > 0
@@ -92,11 +103,7 @@ FirstPiolaResult plane_first_piola(const MaterialPoint& point, const double* sta
   if (!tangent) return out;
 
   Eigen::Matrix2d theta_log, theta_w;
-  for (int a = 0; a < 2; ++a)
-    for (int b = 0; b < 2; ++b) {
-      theta_log(a, b) = half_log_divided(s.c[a], s.c[b]);
-      theta_w(a, b) = inverse_sqrt_divided(s.c[a], s.c[b]);
-    }
+  divided_differences(s.c, theta_log, theta_w);
   for (int k = 0; k < 2; ++k)
     for (int L = 0; L < 2; ++L) {
       const Eigen::Vector2d a = s.Q.transpose() * F2.row(k).transpose(), b = s.Q.row(L).transpose();
@@ -153,11 +160,7 @@ FirstPiolaResult first_piola(const MaterialPoint& point, const double* state_n, 
   if (!tangent) return out;
 
   Eigen::Matrix3d theta_log, theta_w;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      theta_log(a, b) = half_log_divided(c[a], c[b]);
-      theta_w(a, b) = inverse_sqrt_divided(c[a], c[b]);
-    }
+  divided_differences(c, theta_log, theta_w);
   for (int k = 0; k < 3; ++k)
     for (int L = 0; L < 3; ++L) {
       if (columns == TangentColumns::in_plane && (k == 2 || L == 2)) continue;
