@@ -28,9 +28,9 @@ template <int N>
 void divided_differences(const Eigen::Matrix<double, N, 1>& c, Eigen::Matrix<double, N, N>& theta_log,
                          Eigen::Matrix<double, N, N>& theta_w) {
   for (int a = 0; a < N; ++a)
-    for (int b = 0; b < N; ++b) {
-      theta_log(a, b) = half_log_divided(c[a], c[b]);
-      theta_w(a, b) = inverse_sqrt_divided(c[a], c[b]);
+    for (int b = a; b < N; ++b) {  // symmetric: f[c_a, c_b] = f[c_b, c_a]
+      theta_log(a, b) = theta_log(b, a) = half_log_divided(c[a], c[b]);
+      theta_w(a, b) = theta_w(b, a) = inverse_sqrt_divided(c[a], c[b]);
     }
 }
 
@@ -57,7 +57,7 @@ struct PlaneSpectrum {
 PlaneSpectrum plane_spectrum(const Eigen::Matrix2d& F2) {
   const Eigen::Matrix2d C2 = F2.transpose() * F2;
   const double mean = 0.5 * (C2(0, 0) + C2(1, 1)), half_gap = 0.5 * (C2(0, 0) - C2(1, 1));
-  const double radius = std::hypot(half_gap, C2(0, 1));
+  const double radius = std::sqrt(half_gap * half_gap + C2(0, 1) * C2(0, 1));  // C2's entries are O(1)
   PlaneSpectrum s;
   const double J = F2.determinant();
   s.c << mean + radius, J * J / (mean + radius);  // c0 c1 = det C2 = J²: no cancellation in c1
