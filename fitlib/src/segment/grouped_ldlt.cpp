@@ -1,6 +1,7 @@
 #include "grouped_ldlt.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <amd.h>
 
@@ -64,26 +65,100 @@ void GroupedLdlt::analyze(const SparseMatrix& K) {
   upper_.setFromTriplets(t.begin(), t.end());
   upper_.makeCompressed();
   from_.assign(upper_.valuePtr(), upper_.valuePtr() + upper_.nonZeros());
-  ldlt_.analyzePattern(upper_);
+  symbolic();
+}
+
+// LDL's ldl_symbolic: the elimination tree and the count of each column of L, by walking from each
+// entry of column k of the upper triangle up the tree to k.
+void GroupedLdlt::symbolic() {
+  const int n = static_cast<int>(upper_.cols());
+  const int* outer = upper_.outerIndexPtr();
+  const int* inner = upper_.innerIndexPtr();
+  parent_.assign(n, -1), flag_.assign(n, -1), filled_.assign(n, 0);
+  for (int k = 0; k < n; ++k) {
+    flag_[k] = k;
+    for (int p = outer[k]; p < outer[k + 1]; ++p)
+      for (int i = inner[p]; i < k && flag_[i] != k; i = parent_[i]) {
+        if (parent_[i] == -1) parent_[i] = k;
+        ++filled_[i], flag_[i] = k;
+      }
+  }
+  L_start_.assign(n + 1, 0);
+  for (int j = 0; j < n; ++j) L_start_[j + 1] = L_start_[j] + filled_[j];
+  pair_first_.assign(n, 0);
+  for (int j = 0; j + 1 < n; ++j)
+    pair_first_[j] = parent_[j] == j + 1 && filled_[j] == filled_[j + 1] + 1 && !(j > 0 && pair_first_[j - 1]);
+  L_rows_.resize(L_start_[n]), L_values_.resize(L_start_[n]);
+  D_.resize(n), y_.assign(n, 0.0), pair_y_.assign(n, 0.0), pattern_.resize(n);
+}
+
+// LDL's ldl_numeric, row k of L at a time. Where columns j, j + 1 form a pair, j's update of the
+// rows they share waits (its y kept in pair_y_[j]) for j + 1's, and both go in one pass: those rows
+// are ancestors of j + 1 in the tree, so none is read before j + 1 is eliminated.
+bool GroupedLdlt::numeric() {
+  const int n = static_cast<int>(upper_.cols());
+  const int* outer = upper_.outerIndexPtr();
+  const int* inner = upper_.innerIndexPtr();
+  const double* a = upper_.valuePtr();
+  int* rows = L_rows_.data();
+  double* values = L_values_.data();
+  double* y = y_.data();
+  for (int k = 0; k < n; ++k) {
+    int top = n;  // pattern of row k of L, topological order, in pattern_[top, n)
+    flag_[k] = k, filled_[k] = 0, y[k] = 0.0;
+    for (int p = outer[k]; p < outer[k + 1]; ++p) {
+      int i = inner[p], len = 0;
+      y[i] += a[p];
+      for (; flag_[i] != k; i = parent_[i]) pattern_[len++] = i, flag_[i] = k;
+      while (len > 0) pattern_[--top] = pattern_[--len];
+    }
+    double d = y[k];
+    y[k] = 0.0;
+    for (; top < n; ++top) {
+      const int i = pattern_[top];
+      const double yi = y[i];
+      y[i] = 0.0;
+      const int begin = L_start_[i], end = begin + filled_[i];
+      if (pair_first_[i]) {
+        if (end > begin) y[i + 1] -= values[begin] * yi;  // row i + 1 is column i's first
+        pair_y_[i] = yi;
+      } else if (i > 0 && pair_first_[i - 1] && flag_[i - 1] == k) {
+        const int shift = L_start_[i - 1] + 1 - begin;  // column i − 1 past its row i, aligned with i
+        const double y_first = pair_y_[i - 1];
+        for (int p = begin; p < end; ++p) y[rows[p]] -= values[p] * yi + values[p + shift] * y_first;
+      } else {
+        for (int p = begin; p < end; ++p) y[rows[p]] -= values[p] * yi;
+      }
+      const double l_ki = yi / D_[i];
+      d -= l_ki * yi;
+      rows[end] = k, values[end] = l_ki, ++filled_[i];
+    }
+    if (d == 0.0 || !std::isfinite(d)) return false;
+    D_[k] = d;
+  }
+  return true;
 }
 
 bool GroupedLdlt::factorize(const SparseMatrix& K) {
   double* values = upper_.valuePtr();
   const double* source = K.valuePtr();
   for (std::size_t k = 0; k < from_.size(); ++k) values[k] = source[from_[k]];
-  ldlt_.factorize(upper_);
-  return ldlt_.info() == Eigen::Success;
+  return numeric();
 }
 
 Eigen::VectorXd GroupedLdlt::solve(const Eigen::VectorXd& b) const {
   const int n = static_cast<int>(order_.size());
-  Eigen::VectorXd permuted(n), x(n);
-  for (int p = 0; p < n; ++p) permuted[p] = b[order_[p]];
-  const Eigen::VectorXd y = ldlt_.solve(permuted);
+  Eigen::VectorXd y(n), x(n);
+  for (int p = 0; p < n; ++p) y[p] = b[order_[p]];
+  for (int j = 0; j < n; ++j)  // L y = P b
+    for (int p = L_start_[j]; p < L_start_[j + 1]; ++p) y[L_rows_[p]] -= L_values_[p] * y[j];
+  for (int j = 0; j < n; ++j) y[j] /= D_[j];
+  for (int j = n - 1; j >= 0; --j)  // Lᵀ
+    for (int p = L_start_[j]; p < L_start_[j + 1]; ++p) y[j] -= L_values_[p] * y[L_rows_[p]];
   for (int p = 0; p < n; ++p) x[order_[p]] = y[p];
   return x;
 }
 
-long GroupedLdlt::factor_nonzeros() const { return static_cast<long>(ldlt_.matrixL().nestedExpression().nonZeros()); }
+int GroupedLdlt::pairs() const { return static_cast<int>(std::count(pair_first_.begin(), pair_first_.end(), 1)); }
 
 }  // namespace fitlib::segment::detail

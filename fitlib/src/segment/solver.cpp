@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include <Eigen/LU>
-#include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 
 #include "element.hpp"

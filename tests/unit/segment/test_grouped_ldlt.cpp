@@ -1,6 +1,7 @@
 // The segment's LDLᵀ on the node groups' AMD order (fitlib/src/segment/grouped_ldlt.hpp): the
-// solution of a grid-shaped symmetric system against a dense LDLᵀ, the order a permutation that
-// keeps each node's equations together, and a refactorisation with new values on the same pattern.
+// solution of grid-shaped symmetric systems (definite and indefinite) against a dense LDLᵀ, the
+// order a permutation that keeps each node's equations together, a refactorisation with new values
+// on the same pattern, and a zero pivot refused.
 #include <algorithm>
 #include <random>
 
@@ -52,6 +53,7 @@ TEST(SegmentGroupedLdlt, SolvesAGridSystemAsADenseLdltDoes) {
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), -1.0, 2.0);
   const Eigen::VectorXd expected = Eigen::MatrixXd(K).ldlt().solve(b);
   EXPECT_LT((ldlt.solve(b) - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
+  EXPECT_GT(ldlt.pairs(), 10);  // the fused two-column updates are exercised
   // Fill: the factor holds more than K's lower triangle, fewer than the dense triangle.
   EXPECT_GT(ldlt.factor_nonzeros(), (K.nonZeros() - K.rows()) / 2);
   EXPECT_LT(ldlt.factor_nonzeros(), K.rows() * (K.rows() - 1) / 2);
@@ -66,7 +68,9 @@ TEST(SegmentGroupedLdlt, OrderIsAPermutationKeepingEachNodesEquationsTogether) {
   for (int e : order) ++seen.at(e);
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), K.rows());
   for (std::size_t p = 0; p + 1 < order.size(); ++p)  // a node's two equations: consecutive, in order
-    if (node_of[order[p]] == node_of[order[p + 1]]) EXPECT_EQ(order[p + 1], order[p] + 1);
+    if (node_of[order[p]] == node_of[order[p + 1]]) {
+      EXPECT_EQ(order[p + 1], order[p] + 1);
+    }
   int pairs = 0;
   for (std::size_t p = 0; p + 1 < order.size(); ++p) pairs += node_of[order[p]] == node_of[order[p + 1]];
   EXPECT_EQ(pairs, 9 * 4);  // every node above the bottom row
@@ -81,4 +85,22 @@ TEST(SegmentGroupedLdlt, RefactorisesNewValuesOnTheAnalysedPattern) {
   ASSERT_TRUE(ldlt.factorize(K2));
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(K2.rows());
   EXPECT_LT((K2 * ldlt.solve(b) - b).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(SegmentGroupedLdlt, IndefiniteSystemAsADenseLdltAndAZeroPivotRefused) {
+  // No pivoting, as the tangent's LDLᵀ: an indefinite matrix (negative diagonal on half the
+  // equations) is solved as a dense LDLᵀ solves it; all-zero values give a zero pivot → false.
+  std::vector<int> node_of;
+  Eigen::SparseMatrix<double> K = grid_system(7, 4, 3, node_of);
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it)
+      if (it.row() == it.col() && j % 2 == 1) it.valueRef() = -it.value();
+  GroupedLdlt ldlt;
+  ldlt.analyze(K);
+  ASSERT_TRUE(ldlt.factorize(K));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, -3.0);
+  const Eigen::VectorXd expected = Eigen::MatrixXd(K).ldlt().solve(b);
+  EXPECT_LT((ldlt.solve(b) - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff());
+  EXPECT_LT((K * ldlt.solve(b) - b).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_FALSE(ldlt.factorize(Eigen::SparseMatrix<double>(K * 0.0)));
 }
