@@ -10,7 +10,7 @@
 // 4. The beam level's 1000-drive sweep through the planner.
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [full|fbar|reduced]
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [tol=X] [full|fbar|reduced]
 // [lagged] [lm=MU] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
@@ -71,6 +71,7 @@ struct Probe {
   bool reuse = false, extrapolate = false, lagged = false;
   std::string integration{};  // empty: fatigue::SegmentLifeSetup's default
   int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
+  double tolerance = segment::SolverKnobs{}.tolerance;  // tol=X: Newton's relative residual tolerance
   std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
   double levenberg = segment::SolverKnobs{}.levenberg;  // lm=μ0 (0: off)
   int rows = 0;                                 // rows=N: cushion rows (0: the mesh's)
@@ -108,6 +109,7 @@ Outcome run_probe(const Probe& pr) {
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
   setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
   setup.solver.levenberg = pr.levenberg;
+  setup.solver.tolerance = pr.tolerance;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -275,6 +277,7 @@ int main(int argc, char** argv) {
       if (a.rfind("fine=", 0) == 0) p.fine_mm = std::atof(a.c_str() + 5);
       if (a.rfind("coarse=", 0) == 0) p.coarse_mm = std::atof(a.c_str() + 7);
       if (a == "profile") p.profile = true;
+      if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
     }
     std::printf("%s", kProbeHeader);
     const Outcome o = run_probe(p);

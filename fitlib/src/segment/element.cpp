@@ -133,21 +133,17 @@ void add_force(const PointKinematics& k, const Eigen::Matrix2d& P, int n, Elemen
     for (int i = 0; i < 2; ++i) f(2 * a + i) += (P(i, 0) * k.G(a, 0) + P(i, 1) * k.G(a, 1)) * k.dV;
 }
 
-// K_aibk += ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L dV.
+// K_aibk += ∫ ∂N_a/∂X_J A_iJkL ∂N_b/∂X_L dV, as K(:, 2b + k) += Σ_L H(:, 2k + L) ∂N_b/∂X_L with
+// H(2a + i, 2k + L) = Σ_J ∂N_a/∂X_J A_iJkL dV: whole contiguous columns (vectorised) at a time.
 void add_material_stiffness(const PointKinematics& k, const Eigen::Matrix4d& A, int n, ElementMatrix& K) {
   const auto& G = k.G;
-  // H(a, 2i + k, L) = Σ_J G(a, J) A_iJkL, then K_aibk = Σ_L H G(b, L): 2 × fewer products.
-  Eigen::Matrix<double, 8, 8> H;
+  Eigen::Matrix<double, 16, 4> H;
   for (int a = 0; a < n; ++a)
-    for (int i = 0; i < 2; ++i)
-      for (int c = 0; c < 2; ++c)
-        for (int L = 0; L < 2; ++L)
-          H(a, 4 * i + 2 * c + L) = (G(a, 0) * A(2 * i, 2 * c + L) + G(a, 1) * A(2 * i + 1, 2 * c + L)) * k.dV;
-  for (int a = 0; a < n; ++a)
-    for (int i = 0; i < 2; ++i)
-      for (int b = 0; b < n; ++b)
-        for (int c = 0; c < 2; ++c)
-          K(2 * a + i, 2 * b + c) += H(a, 4 * i + 2 * c) * G(b, 0) + H(a, 4 * i + 2 * c + 1) * G(b, 1);
+    for (int i = 0; i < 2; ++i) H.row(2 * a + i) = (G(a, 0) * A.row(2 * i) + G(a, 1) * A.row(2 * i + 1)) * k.dV;
+  const int m = 2 * n;
+  for (int b = 0; b < n; ++b)
+    for (int c = 0; c < 2; ++c)
+      K.col(2 * b + c).head(m) += H.col(2 * c).head(m) * G(b, 0) + H.col(2 * c + 1).head(m) * G(b, 1);
 }
 
 // F-bar's extra tangent: with P_eff = P(F̄)/α, α = (J̄/J)^½, F̄ = α F,

@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include <Eigen/LU>
-#include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 
 #include "element.hpp"
+#include "grouped_ldlt.hpp"
 #include "fitlib/core/error.hpp"
 
 namespace fitlib::segment {
@@ -49,8 +49,9 @@ Dofs number_dofs(const StaticProblem& p) {
 }
 
 // Sparse direct solver: LDLᵀ for the symmetric tangent (every law says symmetric_tangent, no
-// follower pressure; body forces are dead), UMFPACK's LU otherwise (Eigen's SparseLU took 80 % of
-// the run; docs/decisions.md); the sparsity pattern is analysed once per run.
+// follower pressure; body forces are dead) on the node groups' AMD order (grouped_ldlt.hpp),
+// UMFPACK's LU otherwise (Eigen's SparseLU took 80 % of the run; docs/decisions.md); the sparsity
+// pattern is analysed once per run.
 class LinearSolver {
  public:
   explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
@@ -58,13 +59,12 @@ class LinearSolver {
   }
   bool factorize(const SparseMatrix& K) {
     if (!analysed_) {  // once per run: the pattern is fixed (build_pattern)
-      if (symmetric_) ldlt_.analyzePattern(K);
+      if (symmetric_) ldlt_.analyze(K);
       else lu_.analyzePattern(K);
       analysed_ = true, ++analyses_;
     }
     if (symmetric_) {
-      ldlt_.factorize(K);
-      return ldlt_.info() == Eigen::Success;
+      return ldlt_.factorize(K);
     }
     lu_.factorize(K);
     return lu_.info() == Eigen::Success;
@@ -79,7 +79,7 @@ class LinearSolver {
  private:
   bool symmetric_, analysed_ = false;
   int analyses_ = 0;
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
+  detail::GroupedLdlt ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
 };
 

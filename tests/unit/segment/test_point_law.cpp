@@ -89,6 +89,48 @@ TEST(SegmentPointLaw, KirchhoffStressIsTheContractsRotatedStress) {
   EXPECT_LT((r.P * F.transpose() - tau).cwiseAbs().maxCoeff(), 1e-12 * tau.cwiseAbs().maxCoeff());
 }
 
+TEST(SegmentPointLaw, PlaneStrainClosedFormAgreesWithTheGeneralThreeByThreePath) {
+  // F = diag(F2, 1) takes the closed-form 2 × 2 spectrum (in-plane columns or none); the general
+  // path (all columns, Eigen's 3 × 3 solver) is the independent reference: P, τ_U and the in-plane
+  // columns of dP/dF agree to round-off, also at repeated stretches.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(-1.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Eigen::Matrix3d shear = Eigen::Matrix3d::Identity();
+  shear.topLeftCorner<2, 2>() << 1.12, 0.21, -0.13, 0.93;
+  for (const auto& point : std::vector<model::MaterialPointPtr>{ortho(), prony()})
+    for (const Eigen::Matrix3d& F : {shear, Eigen::Matrix3d(0.97 * R), Eigen::Matrix3d(Eigen::Matrix3d::Identity())}) {
+      const std::vector<double> state = point->initial_state();
+      std::vector<double> next(point->state_size());
+      const auto general = model::first_piola(*point, state.data(), F, 0.01, NAN, next.data(), model::TangentColumns::all);
+      const auto plane = model::first_piola(*point, state.data(), F, 0.01, NAN, next.data(), model::TangentColumns::in_plane);
+      const double P_size = general.P.cwiseAbs().maxCoeff() + 1e-300, A_size = general.dP_dF.cwiseAbs().maxCoeff();
+      EXPECT_LT((plane.P - general.P).cwiseAbs().maxCoeff(), 1e-12 * P_size) << point->describe() << "\n" << F;
+      EXPECT_LT((plane.stress_unrotated - general.stress_unrotated).cwiseAbs().maxCoeff(), 1e-12 * P_size);
+      for (int k = 0; k < 2; ++k)
+        for (int L = 0; L < 2; ++L)
+          EXPECT_LT((plane.dP_dF.col(3 * k + L) - general.dP_dF.col(3 * k + L)).cwiseAbs().maxCoeff(), 1e-11 * A_size)
+              << point->describe() << " column " << k << L << "\n" << F;
+      EXPECT_EQ(plane.dP_dF.col(2).cwiseAbs().maxCoeff(), 0.0);  // columns not asked stay zero
+    }
+}
+
+TEST(SegmentPointLaw, PlaneStrainClosedFormIsExactAtAHundredToOneStretch) {
+  // F = R diag(10, 0.1, 1): U = diag(10, 0.1, 1) and ln U known exactly, so τ_U = C ln U and
+  // P = R τ_U U⁻¹. The closed form's smaller eigenvalue comes from det C = J² (no cancellation).
+  const auto point = ortho();
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(-1.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d U(10.0, 0.1, 1.0);
+  model::Vector6 lnU;
+  lnU << std::log(10.0), std::log(0.1), 0.0, 0.0, 0.0, 0.0;
+  std::vector<double> next;
+  const auto r = model::first_piola(*point, nullptr, R * U.asDiagonal(), 0.0, NAN, next.data(), model::TangentColumns::none);
+  const model::Vector6 tau_v = point->update(nullptr, lnU, 0.0, NAN, nullptr, nullptr);
+  Eigen::Matrix3d tau;
+  tau << tau_v[0], tau_v[5], tau_v[4], tau_v[5], tau_v[1], tau_v[3], tau_v[4], tau_v[3], tau_v[2];
+  const Eigen::Matrix3d P = R * tau * U.cwiseInverse().asDiagonal();
+  EXPECT_LT((r.stress_unrotated - tau_v).cwiseAbs().maxCoeff(), 1e-13 * tau_v.cwiseAbs().maxCoeff());
+  EXPECT_LT((r.P - P).cwiseAbs().maxCoeff(), 1e-13 * P.cwiseAbs().maxCoeff());
+}
+
 namespace {
 
 // Largest difference between an element's tangent and central differences of its internal force,
