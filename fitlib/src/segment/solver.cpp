@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <Eigen/LU>
+#include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 
 #include "element.hpp"
@@ -59,12 +60,13 @@ class LinearSolver {
   }
   bool factorize(const SparseMatrix& K) {
     if (!analysed_) {  // once per run: the pattern is fixed (build_pattern)
-      if (symmetric_) ldlt_.analyze(K);
+      if (symmetric_) ldlt_.analyzePattern(K);
       else lu_.analyzePattern(K);
       analysed_ = true, ++analyses_;
     }
     if (symmetric_) {
-      return ldlt_.factorize(K);
+      ldlt_.factorize(K);
+      return ldlt_.info() == Eigen::Success;
     }
     lu_.factorize(K);
     return lu_.info() == Eigen::Success;
@@ -79,7 +81,7 @@ class LinearSolver {
  private:
   bool symmetric_, analysed_ = false;
   int analyses_ = 0;
-  detail::GroupedLdlt ldlt_;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, detail::GroupedAmdOrdering> ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
 };
 
