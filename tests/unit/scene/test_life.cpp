@@ -87,9 +87,13 @@ TEST(SceneLife, DefaultFidelityIsTheFinestLevelTheSceneFeedsAndTheBuildHas) {
   EXPECT_NE(plan.reason.find("neither"), std::string::npos) << plan.reason;
   s.materials = {{"bottom", "b.json"}, {"cushion", "c.json"}};
   plan = scene::choose_life_plan(s);
-  EXPECT_EQ(plan.fidelity, "beam");  // the segment levels are asked for, not the default
+  EXPECT_EQ(plan.fidelity, "elastic");  // the complete level is asked for (it stops on medium and heavy)
   EXPECT_NE(plan.reason.find("bottom and cushion cards"), std::string::npos) << plan.reason;
   EXPECT_NE(plan.reason.find("fidelity = \"complete\""), std::string::npos) << plan.reason;
+  s.materials.clear();
+  s.segment = scene::SegmentSpec{};
+  EXPECT_EQ(scene::choose_life_plan(s).fidelity, "elastic");
+  EXPECT_NE(scene::choose_life_plan(s).reason.find("[segment] table"), std::string::npos);
   s.life = scene::LifeSpec{};
   s.life->fidelity = "elastic";
   EXPECT_EQ(scene::choose_life_plan(s).fidelity, "elastic");
