@@ -4,7 +4,7 @@
 //    [life]: life per mode, governing mode, wall time of the whole scene run (`fitcli life`'s
 //    route, 2 load cycles) and its ratio to the beam row.
 // 2. The segment's convergence on the medium drive: life versus mesh (the default 144 elements and
-//    a 0.6/2.0 mm mesh) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
+//    a 0.6/2.0 mm mesh), versus the segment's length (27, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
 //    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' levels, relative to the finer.
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
@@ -15,8 +15,8 @@
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
-// set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`: the mesh's cushion rows and element sizes
-// (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
+// set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
+// element sizes and section lengths in cog pitches (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
 // prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
 #include <cmath>
 #include <cstdio>
@@ -62,6 +62,8 @@ segment::MeshKnobs mesh_named(const std::string& name) {
   segment::MeshKnobs m = fatigue::life_mesh();  // "coarse", the life's default
   if (name == "medium") m.fine_size_mm = 0.6, m.coarse_size_mm = 2.0, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
   if (name == "fine") m.fine_size_mm = 0.4, m.coarse_size_mm = 1.5, m.central_pitches = 2, m.end_pitches = 2, m.cushion_rows = 2;
+  if (name == "long") m.central_pitches = 2, m.end_pitches = 2;    // the life mesh's sizes, 54 mm long
+  if (name == "longer") m.central_pitches = 3, m.end_pitches = 3;  // 81 mm
   return m;
 }
 
@@ -76,6 +78,7 @@ struct Probe {
   double levenberg = segment::SolverKnobs{}.levenberg;  // lm=μ0 (0: off)
   int rows = 0;                                 // rows=N: cushion rows (0: the mesh's)
   double fine_mm = 0.0, coarse_mm = 0.0;        // fine=, coarse=: element sizes (0: the mesh's)
+  double central = 0.0, ends = 0.0;             // central=, ends=: section lengths in pitches (0: the mesh's)
   bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
 };
 
@@ -101,6 +104,8 @@ Outcome run_probe(const Probe& pr) {
   setup.mesh = mesh_named(pr.mesh);
   if (pr.rows > 0) setup.mesh.cushion_rows = pr.rows;
   if (pr.fine_mm > 0.0) setup.mesh.fine_size_mm = pr.fine_mm;
+  if (pr.central > 0.0) setup.mesh.central_pitches = pr.central;
+  if (pr.ends > 0.0) setup.mesh.end_pitches = pr.ends;
   if (pr.coarse_mm > 0.0) setup.mesh.coarse_size_mm = pr.coarse_mm;
   for (int k = 1; k < 10 && pr.profile; ++k)
     setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
@@ -223,12 +228,18 @@ double exponent(const std::vector<double>& x, const std::vector<double>& t) {
 void convergence(const std::string& fidelity) {
   std::printf("\n## 2–3. Convergence and cost, medium drive, %s\n\n%s", fidelity.c_str(), kProbeHeader);
   std::vector<double> elements, t_mesh, steps, t_steps;
-  std::vector<Outcome> by_mesh, by_steps;
+  std::vector<Outcome> by_mesh, by_steps, by_length;
   for (const char* mesh : {"coarse", "medium"}) {
     const Probe p{"medium", fidelity, mesh, 60, false};
     by_mesh.push_back(run_probe(p));
     print_probe(p, by_mesh.back());
     elements.push_back(by_mesh.back().life.run.elements), t_mesh.push_back(by_mesh.back().wall_s);
+  }
+  by_length.push_back(by_mesh[0]);
+  for (const char* mesh : {"long", "longer"}) {  // the segment's length: 27, 54, 81 mm
+    const Probe p{"medium", fidelity, mesh, 60, false};
+    by_length.push_back(run_probe(p));
+    print_probe(p, by_length.back());
   }
   for (int n : {20, 40, 80}) {
     const Probe p{"medium", fidelity, "coarse", n, false};
@@ -243,6 +254,9 @@ void convergence(const std::string& fidelity) {
               "N1 %+.1f N2 %+.1f, 40 vs 80 N1 %+.1f N2 %+.1f\n",
               change(by_mesh[0], by_mesh[1], 0), change(by_mesh[0], by_mesh[1], 1), change(by_steps[0], by_steps[2], 0),
               change(by_steps[0], by_steps[2], 1), change(by_steps[1], by_steps[2], 0), change(by_steps[1], by_steps[2], 1));
+  std::printf("segment length (27 / 54 mm against 81 mm): N1 %+.1f / %+.1f, N2 %+.1f / %+.1f\n",
+              change(by_length[0], by_length[2], 0), change(by_length[1], by_length[2], 0),
+              change(by_length[0], by_length[2], 1), change(by_length[1], by_length[2], 1));
   std::printf("scaling: time ~ elements^%.2f, time ~ steps^%.2f\n", exponent(elements, t_mesh), exponent(steps, t_steps));
   std::fflush(stdout);
 }
@@ -275,6 +289,8 @@ int main(int argc, char** argv) {
       if (a.rfind("lm=", 0) == 0) p.levenberg = std::atof(a.c_str() + 3);
       if (a.rfind("rows=", 0) == 0) p.rows = std::atoi(a.c_str() + 5);
       if (a.rfind("fine=", 0) == 0) p.fine_mm = std::atof(a.c_str() + 5);
+      if (a.rfind("central=", 0) == 0) p.central = std::atof(a.c_str() + 8);
+      if (a.rfind("ends=", 0) == 0) p.ends = std::atof(a.c_str() + 5);
       if (a.rfind("coarse=", 0) == 0) p.coarse_mm = std::atof(a.c_str() + 7);
       if (a == "profile") p.profile = true;
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);

@@ -223,8 +223,8 @@ TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
 
 // [life] cycles × mesh elements × steps beyond the cap: refused before the FE starts (10⁴ cycles
 // would take hours), naming the scene file, the key and where the mesh comes from. On the life's
-// mesh (144 elements) the default 3 cycles are 26 496 element-increments and run, 4 are
-// 35 136 > 30 000.
+// mesh (144 elements) the default 3 cycles are 26 496 element-increments and run, 12 are
+// 104 256 > 100 000.
 TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
   const std::string base = core::read_file(kDrives + "ref-0500-light.toml") + "\n[life]\nfidelity = \"elastic\"\n";
   const auto scene_with = [&](const std::string& tables) {
@@ -246,11 +246,11 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
   auto m = refusal("cycles = 10000\n[segment]\nsteps = 4\n");  // the [segment] mesh: 1 260 elements
   EXPECT_NE(m.find("cycles 10000 x 60 steps per cycle (+ 4 bending steps) x 1260 elements of the [segment] mesh "
                    "(fine_size_mm, coarse_size_mm, central_pitches, end_pitches, cushion_rows) = 7.56005e+08 "
-                   "element-increments exceeds the work cap 30000"),
+                   "element-increments exceeds the work cap 100000"),
             std::string::npos)
       << m;
-  m = refusal("cycles = 4\n");
-  EXPECT_NE(m.find("x 144 elements of the life's default mesh = 35136 element-increments"), std::string::npos) << m;
+  m = refusal("cycles = 12\n");
+  EXPECT_NE(m.find("x 144 elements of the life's default mesh = 104256 element-increments"), std::string::npos) << m;
   const auto r = scene::run_scene(scene_with("cycles = 3\n"));
   ASSERT_TRUE(r.life.has_value());
   EXPECT_EQ(r.life->plan.fidelity, "elastic");
