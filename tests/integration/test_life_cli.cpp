@@ -111,6 +111,7 @@ TEST(LifeCli, ElasticLevelReportsTheSegmentEquilibriumCheckAndTheEntranceField) 
   EXPECT_NE(r.out.find("segment equilibrium: error "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("stress field at entrance"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("WARNING"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("life's default segment"), std::string::npos) << r.out;  // the scene's [segment] mesh
   const auto j = nlohmann::json::parse(slurp(out + "/life.json"));
   ASSERT_TRUE(j.contains("segment_equilibrium")) << j.dump(2);
   const auto& e = j["segment_equilibrium"];

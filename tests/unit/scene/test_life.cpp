@@ -14,6 +14,7 @@
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/model/model.hpp"
 #include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/writers.hpp"
 #include "fitlib/scene/scene.hpp"
 
 using namespace fitlib;
@@ -205,6 +206,9 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
     const auto r = scene::run_scene(s);
     ASSERT_TRUE(r.life.has_value());
     for (const auto& m : r.life->report.modes) lives[cycles - 1].push_back(m.life_cycles);
+    // The life's default mesh: the table says how far its N2 is from a converged segment length.
+    EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (144 elements, 27 mm long)"),
+              std::string::npos);
   }
   ASSERT_EQ(lives[0].size(), 2u);
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(lives[1][k] / lives[0][k], 1.0, 1e-6) << "mode " << k;
