@@ -144,7 +144,8 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
     const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity);
     r.stresses = fatigue::segment_point_histories(run);
-    r.segment_equilibrium = segment_equilibrium(run);
+    r.segment_equilibrium =
+        segment_equilibrium(run, setup.materials[0]->state_size() > 0 || setup.materials[1]->state_size() > 0);
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
       const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
@@ -202,17 +203,20 @@ double field_at_mm(const std::string& at) {
   return s_mm;
 }
 
-SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run) {
-  SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0};
+SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run, bool history) {
+  using B = segment::EquilibriumBounds;
+  SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0,
+                           history ? B::span_cord_share_with_history : B::span_cord_share};
   for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
   return check;
 }
 
-bool SegmentEquilibrium::within_bounds() const {
+bool SegmentEquilibrium::in_equilibrium() const {
   using B = segment::EquilibriumBounds;
-  return equilibrium_error <= B::equilibrium_error && span_cord_share <= B::span_cord_share &&
-         span_section_mismatch <= B::span_section_mismatch;
+  return equilibrium_error <= B::equilibrium_error && span_section_mismatch <= B::span_section_mismatch;
 }
+
+bool SegmentEquilibrium::within_bounds() const { return in_equilibrium() && span_cord_share <= span_cord_share_bound; }
 
 LifePlan choose_life_plan(const Scene& s) {
   if (s.life && s.life->fidelity) return {*s.life->fidelity, "[life] fidelity = " + *s.life->fidelity};

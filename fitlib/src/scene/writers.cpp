@@ -128,7 +128,7 @@ json life_summary_json(const LifeResult& l) {
     using B = segment::EquilibriumBounds;
     const SegmentEquilibrium& e = *l.equilibrium;
     j["segment_equilibrium"] = {{"equilibrium_error", e.equilibrium_error}, {"equilibrium_error_bound", B::equilibrium_error},
-                                {"span_cord_share", e.span_cord_share}, {"span_cord_share_bound", B::span_cord_share},
+                                {"span_cord_share", e.span_cord_share}, {"span_cord_share_bound", e.span_cord_share_bound},
                                 {"span_section_mismatch", e.span_section_mismatch},
                                 {"span_section_mismatch_bound", B::span_section_mismatch},
                                 {"span_increments", e.span_increments}, {"within_bounds", e.within_bounds()}};
@@ -197,12 +197,15 @@ std::string life_text(const Scene& s, const SceneResult& r) {
     const auto precision = o.precision();
     o << std::setprecision(2) << std::scientific << "segment equilibrium: error " << e.equilibrium_error << " (bound "
       << B::equilibrium_error << "), span cord-line share of F/B " << e.span_cord_share << " (bound "
-      << B::span_cord_share << "), span section mismatch " << e.span_section_mismatch << " (bound "
+      << e.span_cord_share_bound << "), span section mismatch " << e.span_section_mismatch << " (bound "
       << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
       << std::defaultfloat << std::setprecision(static_cast<int>(precision));
-    if (!e.within_bounds())
+    if (!e.in_equilibrium())
       o << "WARNING: the segment's equilibrium check exceeds its bounds: the stresses are not in equilibrium "
            "to the stated tolerance (docs/segment.md \"Cord-line reactions\")\n";
+    else if (!e.within_bounds())
+      o << "WARNING: the cord line carries more of the belt force in the spans than its bound: the segment's "
+           "ends or its length disturb the middle (docs/segment.md \"Cord-line reactions\")\n";
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
     if (!s.segment)  // measured accuracy of the life's default mesh (docs/segment.md §Cost, "Segment length")
       o << "note: the life's default segment (144 elements, 27 mm long) gives N2 about 4.5 x an 81 mm segment's on "

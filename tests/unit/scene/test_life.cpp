@@ -206,6 +206,8 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
     const auto r = scene::run_scene(s);
     ASSERT_TRUE(r.life.has_value());
     for (const auto& m : r.life->report.modes) lives[cycles - 1].push_back(m.life_cycles);
+    ASSERT_TRUE(r.life->equilibrium.has_value());  // elastic points carry no history: the tight span bound
+    EXPECT_EQ(r.life->equilibrium->span_cord_share_bound, segment::EquilibriumBounds::span_cord_share);
     // The life's default mesh: the table says how far its N2 is from a converged segment length.
     EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (144 elements, 27 mm long)"),
               std::string::npos);
@@ -296,5 +298,21 @@ TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
     EXPECT_NE(table.find("segment equilibrium: error "), std::string::npos) << table;
     const auto j = scene::life_json(s, result, false);
     EXPECT_EQ(j["segment_equilibrium"]["within_bounds"].get<bool>(), !loose) << j.dump(2);
+  }
+  // In equilibrium but with the cord line carrying 2·10⁻³ of F/B in the spans: beyond the bound of
+  // time-independent points (10⁻⁵), a warning of its own, not "not in equilibrium"; within the
+  // bound of points with history (10⁻², the complete level's viscous relaxation: 0.8–1.0·10⁻³).
+  for (const bool history : {false, true}) {
+    using B = segment::EquilibriumBounds;
+    const scene::SegmentEquilibrium span{1e-11, 2e-3, 1e-11, 8, history ? B::span_cord_share_with_history : B::span_cord_share};
+    EXPECT_TRUE(span.in_equilibrium());
+    EXPECT_EQ(span.within_bounds(), history);
+    result.life->equilibrium = span;
+    const std::string table = scene::life_text(s, result);
+    EXPECT_EQ(table.find(warning), std::string::npos) << table;
+    EXPECT_EQ(table.find("WARNING: the cord line carries more of the belt force in the spans") != std::string::npos,
+              !history) << table;
+    EXPECT_EQ(scene::life_json(s, result, false)["segment_equilibrium"]["span_cord_share_bound"].get<double>(),
+              history ? 1e-2 : 1e-5);
   }
 }

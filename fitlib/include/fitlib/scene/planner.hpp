@@ -27,7 +27,9 @@ LifePlan choose_life_plan(const Scene& scene);
 double field_at_mm(const std::string& at);
 
 // The segment run's equilibrium check as the life reports it (the span increments counted).
-SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run);
+// `history`: the segment's points carry state (viscoelastic, damage), so the span cord share's
+// bound is the looser one (segment::EquilibriumBounds).
+SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run, bool history = false);
 
 SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options = {});
 
