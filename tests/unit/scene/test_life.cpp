@@ -35,6 +35,16 @@ scene::Scene with_life(const std::string& load) {
   return s;
 }
 
+// A reference drive with the thesis cards (bottom material 1, cushion material 2) at the elastic level.
+scene::Scene with_cards_elastic(const std::string& load) {
+  auto s = with_life(load);
+  s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+  s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = "elastic";
+  return s;
+}
+
 // The fatigue module's own route, as bench_beam and the beam-life tests take it.
 fatigue::LifeReport beam_route(const scene::Scene& s, const fatigue::FatigueCard& card) {
   const auto drive = scene::make_drive(s, scene::resolve_stiffness(s));
@@ -163,11 +173,7 @@ TEST(SceneLife, LifeJsonWithoutWallTimesIsByteIdenticalAndFinite) {
 TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
   // life.json's inputs at fidelity elastic: the segment FE makes its bottom and cushion points from
   // the cards, so neither may say "not read" (it did before 2026-11-25); one cycle on the life mesh.
-  auto s = with_life("light");
-  s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
-  s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
-  s.life = scene::LifeSpec{};
-  s.life->fidelity = "elastic";
+  auto s = with_cards_elastic("light");
   s.life->cycles = 1;
   const auto j = scene::life_json(s, scene::run_scene(s), false);
   EXPECT_EQ(j["fidelity"], "elastic");
@@ -195,11 +201,7 @@ TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
 // two cycles give the same lives; counting every simulated cycle (as before 2026-11-25, when the
 // scene passed the conditions of a one-cycle history) halved the two-cycle lives.
 TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
-  auto s = with_life("light");
-  s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
-  s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
-  s.life = scene::LifeSpec{};
-  s.life->fidelity = "elastic";
+  auto s = with_cards_elastic("light");
   std::vector<double> lives[2];
   for (int cycles : {1, 2}) {
     s.life->cycles = cycles;
