@@ -53,13 +53,9 @@ void register_life(CLI::App& app) {
     auto scene = load_scene_input(*scene_path);
     scene.outputs["life"] = true;  // the command asks for the life
     if (!field_at->empty()) {
-      const auto plan = fitlib::scene::choose_life_plan(scene);
-      if (plan.fidelity == "beam")
-        throw fitlib::core::UsageError("--field-at needs the segment FE ([life] fidelity = \"elastic\" or "
-                                       "\"complete\"); this scene runs the beam level (" + plan.reason + ")");
-      for (const std::string& at : *field_at) fitlib::scene::field_at_mm(at);  // exit 2 before any folder is made
       scene.life_field_at = *field_at;
       scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();
+      fitlib::scene::check_life_fields(scene);  // exit 2 before any folder is made
     }
     const auto result = run_with_field_folder(scene, *out_dir);
     if (!result.life) {

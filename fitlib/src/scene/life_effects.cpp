@@ -203,6 +203,15 @@ double field_at_mm(const std::string& at) {
   return s_mm;
 }
 
+void check_life_fields(const Scene& s) {
+  if (s.life_field_at.empty()) return;
+  const LifePlan plan = choose_life_plan(s);
+  if (plan.fidelity == "beam")
+    throw core::UsageError("life fields (fitcli life --field-at) need the segment FE ([life] fidelity = \"elastic\" or "
+                           "\"complete\"); this scene runs the beam level (" + plan.reason + ")");
+  for (const std::string& at : s.life_field_at) field_at_mm(at);
+}
+
 SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run, bool history) {
   using B = segment::EquilibriumBounds;
   SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0,

@@ -78,7 +78,7 @@ Plan make_plan(const Scene& s) {
   std::map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < reg.size(); ++i) index[reg[i].name] = i;
   Plan p;
-  if (flag(s.outputs, "life")) p.life = choose_life_plan(s);
+  if (flag(s.outputs, "life")) p.life = choose_life_plan(s), check_life_fields(s);
   const auto blocked = blocked_effects(s, reg, index);
   const auto by = askers(s, reg, index, blocked);
   for (std::size_t i = 0; i < reg.size(); ++i) {

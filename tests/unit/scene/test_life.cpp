@@ -192,7 +192,9 @@ TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
   s.life->fidelity = "beam";
   const auto beam = scene::life_json(s, scene::run_scene(s), false);
   for (const auto& in : beam["inputs"]) {
-    if (in["role"] == "cushion") EXPECT_EQ(in["used_for"], "not read at fidelity beam");
+    if (in["role"] == "cushion") {
+      EXPECT_EQ(in["used_for"], "not read at fidelity beam");
+    }
   }
 }
 

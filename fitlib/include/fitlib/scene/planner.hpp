@@ -26,6 +26,11 @@ LifePlan choose_life_plan(const Scene& scene);
 // UsageError (exit 2) for anything else, e.g. "banana".
 double field_at_mm(const std::string& at);
 
+// The scene's life fields (Scene::life_field_at) before anything runs: each word as field_at_mm
+// reads it, and a life at the segment levels (the beam level has no field); UsageError otherwise.
+// make_plan calls it; fitcli life calls it before it makes the output folder.
+void check_life_fields(const Scene& scene);
+
 // The segment run's equilibrium check as the life reports it (the span increments counted).
 // `history`: the segment's points carry state (viscoelastic, damage), so the span cord share's
 // bound is the looser one (segment::EquilibriumBounds).
