@@ -73,18 +73,21 @@ AdmissibleWindow window_over(const SeriesTerms& series, const std::vector<core::
   return w;
 }
 
+std::optional<std::pair<double, double>> window_limits(const SeriesTerms& series, const AdmissibleWindow& w, int i) {
+  auto has = [](const std::vector<int>& v, int k) { return std::find(v.begin(), v.end(), k) != v.end(); };
+  if (has(series.times, i)) return std::make_pair(w.tau_min_s, w.tau_max_s);
+  if (has(series.moduli, i) && w.modulus_max_MPa > 0.0) return std::make_pair(0.0, w.modulus_max_MPa);
+  if (i == series.relaxed && w.relaxed_min_MPa > 0.0) return std::make_pair(w.relaxed_min_MPa, kInf);
+  return std::nullopt;
+}
+
 int apply_admissible_bounds(Problem& problem, const AdmissibleWindow& w) {
   if (!w.applies) return 0;
   const SeriesTerms series = series_terms(problem.specs());
   int moved = 0;
-  auto restrict = [&](int i, double lo, double hi) {
-    if (problem.user_fixed()[i]) return;
-    moved += problem.restrict_bounds(i, lo, hi) ? 1 : 0;
-  };
-  for (int i : series.times) restrict(i, w.tau_min_s, w.tau_max_s);
-  if (w.modulus_max_MPa > 0.0)
-    for (int i : series.moduli) restrict(i, 0.0, w.modulus_max_MPa);
-  if (w.relaxed_min_MPa > 0.0) restrict(series.relaxed, w.relaxed_min_MPa, kInf);
+  for (int i = 0; i < static_cast<int>(problem.specs().size()); ++i)
+    if (const auto limits = window_limits(series, w, i); limits && !problem.user_fixed()[i])
+      moved += problem.restrict_bounds(i, limits->first, limits->second) ? 1 : 0;
   return moved;
 }
 

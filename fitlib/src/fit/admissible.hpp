@@ -2,7 +2,9 @@
 // Admissible terms of series models (docs/fitting.md "Admissible terms"): the window of
 // relaxation times the data can inform, a ceiling on each term's modulus, a floor on the relaxed
 // modulus; applied as bounds before the solve and enforced after it (private to the fit module).
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fitlib/fit/problem.hpp"
@@ -30,6 +32,12 @@ AdmissibleWindow admissible_window(const Problem& problem, const std::vector<dou
 AdmissibleWindow window_over(const SeriesTerms& series, const std::vector<core::ParameterSpec>& specs,
                              const FitOptions& options, double omega_min, double omega_max,
                              double storage_min, double storage_max);
+
+// The window's own limits on parameter i: [τ_min, τ_max] for a time, [0, modulus_max] for a
+// term modulus (with a ceiling), [relaxed_min, ∞) for the relaxed modulus (with a floor);
+// nullopt for any other parameter.
+std::optional<std::pair<double, double>> window_limits(const SeriesTerms& series, const AdmissibleWindow& window,
+                                                       int i);
 
 // Sets the window's bounds on the problem (times, moduli, relaxed modulus) and moves the
 // current point inside them. Returns the number of values moved.

@@ -281,10 +281,10 @@ void hold_in_window(const model::Model& model, const AdmissibleWindow& w, const 
   if (!w.applies) return;
   int moved = 0;
   for (int i = 0; i < static_cast<int>(p.size()); ++i) {
-    if (user_fixed(i) || (model.parameters()[i].transform == core::Transform::log && p[i] == 0.0 &&
-                          detail::window_bounds(model, w, i).first <= 0.0))
-      continue;  // a term the linear solve left out stays out
+    if (user_fixed(i)) continue;
     const auto [lo, hi] = detail::window_bounds(model, w, i);
+    if (model.parameters()[i].transform == core::Transform::log && p[i] == 0.0 && lo <= 0.0)
+      continue;  // a term the linear solve left out stays out
     const double held = std::clamp(p[i], lo, hi);
     moved += held != p[i];
     p[i] = held;

@@ -45,14 +45,10 @@ AdmissibleWindow relaxation_window(const model::Model& model, const data::Relaxa
 
 std::pair<double, double> window_bounds(const model::Model& model, const AdmissibleWindow& w, int i) {
   const auto& spec = model.parameters()[i];
-  double lo = spec.lower, hi = spec.upper;
-  if (!w.applies) return {lo, hi};
-  const SeriesTerms series = series_terms(model.parameters());
-  auto has = [](const std::vector<int>& v, int k) { return std::find(v.begin(), v.end(), k) != v.end(); };
-  if (has(series.times, i)) lo = std::max(lo, w.tau_min_s), hi = std::min(hi, w.tau_max_s);
-  if (has(series.moduli, i) && w.modulus_max_MPa > 0.0) hi = std::min(hi, w.modulus_max_MPa);
-  if (i == series.relaxed && w.relaxed_min_MPa > 0.0) lo = std::max(lo, w.relaxed_min_MPa);
-  return {lo, hi};
+  if (!w.applies) return {spec.lower, spec.upper};
+  const auto limits = window_limits(series_terms(model.parameters()), w, i);
+  if (!limits) return {spec.lower, spec.upper};
+  return {std::max(spec.lower, limits->first), std::min(spec.upper, limits->second)};
 }
 
 QualityVerdict relaxation_verdict(const model::Model& model, const std::vector<double>& p,
