@@ -27,7 +27,6 @@
 #include "drive_sweep.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/timer.hpp"
-#include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -157,8 +156,8 @@ void print_probe(const Probe& p, const Outcome& o) {
 void print_cushion_points(const Probe& pr, const Outcome& o) {
   const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
-  fatigue::LifeConditions conditions = fatigue::cycle_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C);
-  conditions.cycle_time_s = o.life.run.cycle_time_s;  // the last simulated cycle, as segment_life counts
+  const fatigue::LifeConditions conditions =
+      fatigue::segment_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C, o.life.run);
   const double R = drive.geometry.belt_length_mm / (2.0 * M_PI);
   const auto histories = fatigue::segment_point_histories(o.life.run);
   std::printf("cushion point | (x, depth) mm | max |s11| | max |s12| MPa | N2 of the point\n");

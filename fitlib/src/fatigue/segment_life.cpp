@@ -53,14 +53,20 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
                             setup.extra_points);
 }
 
+LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,
+                                  const segment::CycleResult& run) {
+  LifeConditions c = cycle_conditions(cycle, drive, temperature_C);
+  c.cycle_time_s = run.cycle_time_s;
+  return c;
+}
+
 SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
                          const FatigueCard& card) {
   const auto t0 = std::chrono::steady_clock::now();
-  LifeConditions conditions = cycle_conditions(cycle, drive, setup.temperature_C);
-  conditions.peaks = setup.peaks;
   SegmentLife out;
   out.run = segment_run(cycle, drive, setup);
-  conditions.cycle_time_s = out.run.cycle_time_s;  // peaks of the last simulated cycle only (fatigue.md §3)
+  LifeConditions conditions = segment_conditions(cycle, drive, setup.temperature_C, out.run);
+  conditions.peaks = setup.peaks;
   out.report = evaluate_life(segment_point_histories(out.run), card, conditions);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

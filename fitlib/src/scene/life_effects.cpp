@@ -151,8 +151,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
         r.segment_fields.push_back({s.life_field_at[k], setup.cycle.vtk_at_s_mm[k], path});
     }
-    r.life_conditions = fatigue::cycle_conditions(*r.cycle, *r.drive, s.temperature_C);
-    r.life_conditions->cycle_time_s = run.cycle_time_s;  // the run holds several cycles: the last one counts
+    r.life_conditions = fatigue::segment_conditions(*r.cycle, *r.drive, s.temperature_C, run);
   });
 }
 

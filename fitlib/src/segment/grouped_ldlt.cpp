@@ -1,7 +1,6 @@
 #include "grouped_ldlt.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include <amd.h>
 

@@ -48,6 +48,12 @@ double segment_run_work(const SegmentLifeSetup& setup);
 segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
                                  const SegmentLifeSetup& setup);
 
+// The life conditions of a segment run: the load cycle's (cycle_conditions), with the run's cycle
+// time, so that only its last simulated cycle counts (fatigue.md §3; the bending step and the
+// earlier cycles are the transient).
+LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,
+                                  const segment::CycleResult& run);
+
 // InputError for a standing belt or a drive without a load cycle; NumericalError (exit 4) when
 // the segment's Newton fails, naming increment and element.
 SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
