@@ -144,8 +144,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
     const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity);
     r.stresses = fatigue::segment_point_histories(run);
-    r.segment_equilibrium =
-        segment_equilibrium(run, setup.materials[0]->state_size() > 0 || setup.materials[1]->state_size() > 0);
+    r.segment_equilibrium = segment_equilibrium(run);
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
       const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
@@ -211,10 +210,10 @@ void check_life_fields(const Scene& s) {
   for (const std::string& at : s.life_field_at) field_at_mm(at);
 }
 
-SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run, bool history) {
+SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run) {
   using B = segment::EquilibriumBounds;
   SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0,
-                           history ? B::span_cord_share_with_history : B::span_cord_share};
+                           run.history ? B::span_cord_share_with_history : B::span_cord_share};
   for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
   return check;
 }

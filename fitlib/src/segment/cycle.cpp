@@ -351,6 +351,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.cuts = out.final_state.cuts;
   out.factorizations = out.final_state.factorizations;
   out.elements = m.element_count();
+  out.history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;
   out.equations = out.final_state.equations;
   return out;
 }

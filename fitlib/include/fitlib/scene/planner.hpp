@@ -31,10 +31,9 @@ double field_at_mm(const std::string& at);
 // make_plan calls it; fitcli life calls it before it makes the output folder.
 void check_life_fields(const Scene& scene);
 
-// The segment run's equilibrium check as the life reports it (the span increments counted).
-// `history`: the segment's points carry state (viscoelastic, damage), so the span cord share's
-// bound is the looser one (segment::EquilibriumBounds).
-SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run, bool history = false);
+// The segment run's equilibrium check as the life reports it (the span increments counted; the
+// span cord share's bound the looser one when the run's laws carry history, segment::EquilibriumBounds).
+SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run);
 
 SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options = {});
 

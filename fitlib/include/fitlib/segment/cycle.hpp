@@ -103,6 +103,7 @@ struct CycleResult {
   std::vector<IncrementLoads> loads;    // per converged increment
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
   int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
+  bool history = false;  // a role's law carries state (viscoelastic, damage): EquilibriumBounds' looser span share
   StaticSolution final_state;
 };
 
