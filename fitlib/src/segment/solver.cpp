@@ -407,7 +407,10 @@ class Newton {
       fresh = !knobs_.reuse_tangent || slow;
       o.iterations++;
     }
-    // Out of assemblies: accepted at the loose tolerance, as a stalled iterate is.
+    // Out of assemblies: the last iterate, evaluated (the loop may end on a step not yet assembled,
+    // and the committed states must be its own), accepted at the loose tolerance as a stalled one is.
+    o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);
+    o.residual = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
     o.converged = o.residual <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0);
     return o;
   }
