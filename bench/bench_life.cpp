@@ -11,12 +11,14 @@
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [tol=X] [full|fbar|reduced]
-// [lagged] [lm=MU] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
+// [lagged] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
-// element sizes and section lengths in cog pitches (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
+// element sizes and section lengths in cog pitches (after MESH); `fillet=`, `tip=`: the cogs' root
+// fillet and tip radius (mm); `diagnose`: SolverKnobs::diagnose_failure (a failure prints the tangent
+// check, the lowest eigenvalues and the residual along Newton's direction); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
 // prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
 #include <cmath>
 #include <cstdio>
@@ -79,6 +81,8 @@ struct Probe {
   double fine_mm = 0.0, coarse_mm = 0.0;        // fine=, coarse=: element sizes (0: the mesh's)
   double central = 0.0, ends = 0.0;             // central=, ends=: section lengths in pitches (0: the mesh's)
   bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
+  bool diagnose = false;                        // SolverKnobs::diagnose_failure
+  double fillet_mm = -1.0, tip_mm = -1.0;       // fillet=, tip=: the cogs' root fillet and tip radius (< 0: the scene's)
 };
 
 struct Outcome {
@@ -100,6 +104,8 @@ Outcome run_probe(const Probe& pr) {
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   fatigue::SegmentLifeSetup setup;
   setup.section = scene::cog_section(s);
+  if (pr.fillet_mm >= 0.0) setup.section.root_fillet_mm = pr.fillet_mm;
+  if (pr.tip_mm >= 0.0) setup.section.tip_radius_mm = pr.tip_mm;
   setup.mesh = mesh_named(pr.mesh);
   if (pr.rows > 0) setup.mesh.cushion_rows = pr.rows;
   if (pr.fine_mm > 0.0) setup.mesh.fine_size_mm = pr.fine_mm;
@@ -114,6 +120,7 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
   setup.solver.levenberg = pr.levenberg;
   setup.solver.tolerance = pr.tolerance;
+  setup.solver.diagnose_failure = pr.diagnose;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -292,10 +299,19 @@ int main(int argc, char** argv) {
       if (a.rfind("ends=", 0) == 0) p.ends = std::atof(a.c_str() + 5);
       if (a.rfind("coarse=", 0) == 0) p.coarse_mm = std::atof(a.c_str() + 7);
       if (a == "profile") p.profile = true;
+      if (a == "diagnose") p.diagnose = true;
+      if (a.rfind("fillet=", 0) == 0) p.fillet_mm = std::atof(a.c_str() + 7);
+      if (a.rfind("tip=", 0) == 0) p.tip_mm = std::atof(a.c_str() + 4);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
     }
     std::printf("%s", kProbeHeader);
-    const Outcome o = run_probe(p);
+    Outcome o;
+    try {
+      o = run_probe(p);
+    } catch (const std::exception& e) {
+      std::printf("failed: %s\n", e.what());
+      return 4;
+    }
     print_probe(p, o);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
 
+#include "diagnosis.hpp"
 #include "element.hpp"
 #include "grouped_ldlt.hpp"
 #include "fitlib/core/error.hpp"
@@ -166,6 +167,20 @@ class Assembler {
 
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
 
+  // One element's response at q, as run() computes it (the failure diagnosis).
+  bool element_at(const Eigen::VectorXd& q, int e, ElementVector& f, ElementMatrix* Ke,
+                  std::vector<detail::ElementState>* states = nullptr) const {
+    const Mesh& m = *p_.mesh;
+    std::vector<Eigen::Vector2d> X, u;
+    for (int a = 0; a < m.nodes_per_element; ++a) X.push_back(m.X[m.elements[e][a]]), u.push_back(u_of(q, m.elements[e][a]));
+    return detail::element_response(X, u, law_of(e), rule_, step_of(e), f, Ke, states, f_bar_);
+  }
+  const PlaneStrainLaw& law_of(int e) const { return *p_.laws[static_cast<int>(p_.mesh->roles[e])]; }
+  detail::ElementStep step_of(int e) const {
+    const std::size_t at = (*offset_)[e];
+    return {state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};
+  }
+
   // Residual (local components, all dofs) and, if asked, the free-free tangent into the pattern's
   // values and K_fp·dq_p into coupling. Returns the failing element, or −1.
   int run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
@@ -315,6 +330,9 @@ class Newton {
     return worst;
   }
 
+  // The iterate with the lowest residual of the last solve (empty before one).
+  const Eigen::VectorXd& best_iterate() const { return best_q_; }
+
   // From the converged q to load level λ; q_start holds the prescribed components at λ and the
   // free ones' start (`extrapolated`: the last increment's motion extrapolated, iterated on the
   // kept factorisation with `reuse_tangent`, else on a fresh tangent; otherwise the last converged
@@ -379,7 +397,7 @@ class Newton {
         o.converged = !predictor && res <= knobs_.stall_tolerance * scale;
         return o;
       };
-      if (res < best) best = res, since_best = 0;
+      if (res < best) best = res, since_best = 0, best_q_ = q_;
       else if (++since_best > knobs_.stall_iterations) return give_up();
       if (!predictor && res <= knobs_.tolerance * scale) {
         o.converged = true;
@@ -439,7 +457,7 @@ class Newton {
   const Dofs& d_;
   const SolverKnobs& knobs_;
   Eigen::VectorXd& q_;
-  Eigen::VectorXd q_last_, r_, coupling_;
+  Eigen::VectorXd q_last_, r_, coupling_, best_q_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
 };
 
@@ -531,7 +549,36 @@ class StaticRun {
     if (const int n = newton_.worst_node(); n >= 0)
       msg << "; largest residual at node " << n << " (reference x " << m_.X[n].x() << ", y " << m_.X[n].y()
           << " mm)";
+    if (knobs_.diagnose_failure) msg << diagnose(lambda);
     throw core::NumericalError(msg.str());
+  }
+
+  // The failure diagnosis at the increment's start (the last converged q with the prescribed motion
+  // at λ) and at its best iterate, both on the step from the committed states.
+  std::string diagnose(double lambda) {
+    assembler_.set_step(states_.committed.data(), scratch_.data(), time_at(lambda) - time_at(lambda_));
+    detail::DiagnosisProblem p;
+    p.mesh = &m_, p.eq = &d_.eq, p.basis = &d_.R;
+    p.residual = [&](const Eigen::VectorXd& q) {
+      Eigen::VectorXd r;
+      return assembler_.run(q, lambda, nullptr, r, nullptr, nullptr) >= 0 ? Eigen::VectorXd() : r;
+    };
+    p.tangent = [&](const Eigen::VectorXd& q) {
+      Eigen::VectorXd r;
+      assembler_.run(q, lambda, nullptr, r, &pattern_, nullptr);
+      return pattern_.K;
+    };
+    p.element = [&](const Eigen::VectorXd& q, int e, detail::ElementVector& f, detail::ElementMatrix* K,
+                    std::vector<detail::ElementState>* states) { return assembler_.element_at(q, e, f, K, states); };
+    p.point = [&](int e, int g, const Eigen::Matrix2d& F, bool tangent) {
+      const PlaneStrainLaw& law = assembler_.law_of(e);
+      const detail::ElementStep step = assembler_.step_of(e);
+      const std::size_t at = static_cast<std::size_t>(g) * law.state_size();
+      return law.respond(F, {step.state_n + at, step.state_next + at, step.dt_s, step.temperature_C, tangent});
+    };
+    std::string text = detail::diagnose(p, prescribed_at(lambda), "increment start");
+    if (newton_.best_iterate().size() == q_.size()) text += detail::diagnose(p, newton_.best_iterate(), "best iterate");
+    return text;
   }
 
   // Stresses, displacements and reactions at the converged q (states from `from` over dt).

@@ -57,6 +57,11 @@ struct SolverKnobs {
   // step towards steepest descent where the tangent is nearly singular, the near-incompressible
   // rubber at the load cycle's transitions (docs/segment.md §Solver, "Levenberg–Marquardt retake").
   double levenberg = 3e-3;
+  // On failure, check the assembled tangent against central differences of the residual (per
+  // element and per integration point) and scan the residual along Newton's direction at the
+  // failing increment's best iterate; the findings go into the exit-4 message (docs/segment.md
+  // §Solver, "Failure diagnosis"). Costs two residual assemblies per equation, once.
+  bool diagnose_failure = false;
 };
 
 struct StaticSolution;
