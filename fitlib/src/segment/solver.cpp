@@ -362,6 +362,8 @@ class Newton {
     double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf, mu = 0.0;
     bool shifted_retake = false;
     int since_best = 0;
+    double best_iterate_res = inf;
+    best_q_.resize(0);
     for (int it = 0; it < knobs_.max_iterations; ++it) {
       o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
       const double res = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
@@ -397,7 +399,8 @@ class Newton {
         o.converged = !predictor && res <= knobs_.stall_tolerance * scale;
         return o;
       };
-      if (res < best) best = res, since_best = 0, best_q_ = q_;
+      if (!predictor && res < best_iterate_res) best_iterate_res = res, best_q_ = q_;  // (the predictor's is the old q)
+      if (res < best) best = res, since_best = 0;
       else if (++since_best > knobs_.stall_iterations) return give_up();
       if (!predictor && res <= knobs_.tolerance * scale) {
         o.converged = true;

@@ -68,6 +68,34 @@ TEST(SegmentPointLaw, FirstPiolaTangentMatchesCentralDifferences) {
   }
 }
 
+TEST(SegmentPointLaw, PlaneStrainTangentIsSmoothAcrossTheNearlyRepeatedStretchSwitch) {
+  // ½ ln c's divided difference switches to its series where c0/c1 − 1 < 10⁻⁶ (first_piola.cpp), and
+  // the eigenvector angle's half-angle formula is singular as C2 → a multiple of I. Central
+  // differences with h = 10⁻⁶ straddle both, from gaps of 10⁻⁷ to 10⁻³, for a non-coaxial point.
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(0.4).toRotationMatrix();
+  const auto point = ortho();
+  const std::vector<double> state = point->initial_state();
+  std::vector<double> next(point->state_size());
+  for (const double gap : {1e-7, 5e-7, 1e-6, 2e-6, 1e-5, 1e-3}) {
+    Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+    F.topLeftCorner<2, 2>() = R * Eigen::Vector2d(0.9 * std::sqrt(1.0 + gap), 0.9).asDiagonal();  // c0/c1 = 1 + gap
+    const auto r = model::first_piola(*point, state.data(), F, 0.0, NAN, next.data(), model::TangentColumns::in_plane);
+    const double h = 1e-6;
+    double err = 0.0;
+    for (int k = 0; k < 2; ++k)
+      for (int L = 0; L < 2; ++L) {
+        Eigen::Matrix3d Fp = F, Fm = F;
+        Fp(k, L) += h, Fm(k, L) -= h;
+        const Eigen::Matrix3d dP =
+            (model::first_piola(*point, state.data(), Fp, 0.0, NAN, next.data(), model::TangentColumns::none).P -
+             model::first_piola(*point, state.data(), Fm, 0.0, NAN, next.data(), model::TangentColumns::none).P) / (2 * h);
+        for (int i = 0; i < 2; ++i)
+          for (int J = 0; J < 2; ++J) err = std::max(err, std::abs(dP(i, J) - r.dP_dF(3 * i + J, 3 * k + L)));
+      }
+    EXPECT_LT(err / r.dP_dF.cwiseAbs().maxCoeff(), 1e-8) << "gap " << gap;
+  }
+}
+
 TEST(SegmentPointLaw, ViscoelasticTangentOverAStepMatchesCentralDifferences) {
   const auto point = prony();
   std::vector<double> state = point->initial_state(), next(point->state_size());
