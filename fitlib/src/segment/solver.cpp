@@ -547,8 +547,9 @@ class StaticRun {
     if (element >= 0) msg << ", element " << element << " inverted or with a non-finite stress";
     msg << ", free residual " << residual << " N/mm after " << iterations << " iterations and "
         << knobs_.max_cuts << " step cuts";
-    // Where: a residual stuck at one node with no inverted element is a non-smooth point response
-    // there (docs/segment.md "Cost", complete level).
+    // Where: on the complete level a residual stuck near one node with no inverted element is a fold
+    // of the load path there (docs/segment.md "Cost", "Diagnosis at the failing state");
+    // `diagnose_failure` says which.
     if (const int n = newton_.worst_node(); n >= 0)
       msg << "; largest residual at node " << n << " (reference x " << m_.X[n].x() << ", y " << m_.X[n].y()
           << " mm)";
