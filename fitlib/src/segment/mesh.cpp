@@ -161,7 +161,7 @@ MeshQuality mesh_quality(const Mesh& m) {
     double area = 0.0, worst = std::numeric_limits<double>::infinity();
     for (const detail::GaussPoint& g : detail::gauss_rule(3)) area += g.weight * jacobian(m, e, g.xi, g.eta);
     for (double xi : {-1.0, 0.0, 1.0})
-      for (double eta : {-1.0, 0.0, 1.0}) worst = std::min(worst, jacobian(m, e, xi, eta) / (0.25 * area));
+      for (double eta : {-1.0, 0.0, 1.0}) worst = std::min(worst, jacobian(m, e, xi, eta) / (0.25 * std::abs(area)));
     if (worst < q.min_jacobian_ratio) q.min_jacobian_ratio = worst, q.worst_jacobian_element = e;
     double longest = 0.0, shortest = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 4; ++a) {

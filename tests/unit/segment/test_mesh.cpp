@@ -101,7 +101,8 @@ TEST(SegmentMesh, GradedRowsGrowGeometricallyFromTheProfile) {
   }
 }
 
-// The check sees a folded element (a corner pulled across the opposite side) and a long one.
+// The check sees a folded element (a corner pulled across the opposite side), an inverted
+// (clockwise) one and a long one.
 TEST(SegmentMesh, QualityCheckFindsAFoldedAndAStretchedElement) {
   Mesh m;
   m.nodes_per_element = 4;
@@ -115,4 +116,9 @@ TEST(SegmentMesh, QualityCheckFindsAFoldedAndAStretchedElement) {
   q = mesh_quality(m);
   EXPECT_LE(q.min_jacobian_ratio, 0.0);
   EXPECT_EQ(q.worst_jacobian_element, 0);
+  m.X[2] = {1, 1};
+  m.elements[1] = {1, 2, 5, 4, -1, -1, -1, -1};  // clockwise: wholly inverted
+  q = mesh_quality(m);
+  EXPECT_NEAR(q.min_jacobian_ratio, -1.0, 1e-12);
+  EXPECT_EQ(q.worst_jacobian_element, 1);
 }

@@ -54,7 +54,7 @@ struct Mesh {
 Mesh build_mesh(const CogSection& section, const MeshKnobs& knobs);
 
 // Shape of the mesh's elements: det(∂X/∂ξ) at the 3 × 3 points ξ, η ∈ {−1, 0, 1} against the
-// element's mean (area / 4; ≤ 0: inverted or folded), and the longest corner-to-corner side over
+// element's mean magnitude (|area| / 4; ≤ 0: inverted or folded), and the longest corner-to-corner side over
 // the shortest.
 struct MeshQuality {
   double min_jacobian_ratio = 0.0;
