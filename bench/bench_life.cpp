@@ -18,7 +18,10 @@
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
 // element sizes and section lengths in cog pitches (after MESH); `fillet=`, `tip=`: the cogs' root
 // fillet and tip radius (mm); `diagnose`: SolverKnobs::diagnose_failure (a failure prints the tangent
-// check, the lowest eigenvalues and the residual along Newton's direction); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
+// check, the lowest eigenvalues and the residual along Newton's direction); `gap=MM`, `cgrowth=X`,
+// `rgrowth=R`: the grading knobs gap_size_mm, column_growth, row_growth (docs/segment.md §Mesh);
+// `vtk=FILE`: write the mesh (straight reference) as VTK; `profile`: also monitor the cushion at
+// x = 0 every tenth of its depth. The probe
 // prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
 #include <cmath>
 #include <cstdio>
@@ -80,6 +83,8 @@ struct Probe {
   int rows = 0;                                 // rows=N: cushion rows (0: the mesh's)
   double fine_mm = 0.0, coarse_mm = 0.0;        // fine=, coarse=: element sizes (0: the mesh's)
   double central = 0.0, ends = 0.0;             // central=, ends=: section lengths in pitches (0: the mesh's)
+  double gap_mm = -1.0, column_growth = 0.0, row_growth = 0.0;  // gap=, cgrowth=, rgrowth= (≤ 0 / −1: the mesh's)
+  std::string vtk{};                            // vtk=FILE: the mesh as VTK
   bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
   bool diagnose = false;                        // SolverKnobs::diagnose_failure
   double fillet_mm = -1.0, tip_mm = -1.0;       // fillet=, tip=: the cogs' root fillet and tip radius (< 0: the scene's)
@@ -112,6 +117,10 @@ Outcome run_probe(const Probe& pr) {
   if (pr.central > 0.0) setup.mesh.central_pitches = pr.central;
   if (pr.ends > 0.0) setup.mesh.end_pitches = pr.ends;
   if (pr.coarse_mm > 0.0) setup.mesh.coarse_size_mm = pr.coarse_mm;
+  if (pr.gap_mm >= 0.0) setup.mesh.gap_size_mm = pr.gap_mm;
+  if (pr.column_growth > 0.0) setup.mesh.column_growth = pr.column_growth;
+  if (pr.row_growth > 0.0) setup.mesh.row_growth = pr.row_growth;
+  if (!pr.vtk.empty()) segment::write_vtk(segment::build_mesh(setup.section, setup.mesh), pr.vtk);
   for (int k = 1; k < 10 && pr.profile; ++k)
     setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
   setup.solver.reuse_tangent = pr.reuse;
@@ -298,6 +307,10 @@ int main(int argc, char** argv) {
       if (a.rfind("central=", 0) == 0) p.central = std::atof(a.c_str() + 8);
       if (a.rfind("ends=", 0) == 0) p.ends = std::atof(a.c_str() + 5);
       if (a.rfind("coarse=", 0) == 0) p.coarse_mm = std::atof(a.c_str() + 7);
+      if (a.rfind("gap=", 0) == 0) p.gap_mm = std::atof(a.c_str() + 4);
+      if (a.rfind("cgrowth=", 0) == 0) p.column_growth = std::atof(a.c_str() + 8);
+      if (a.rfind("rgrowth=", 0) == 0) p.row_growth = std::atof(a.c_str() + 8);
+      if (a.rfind("vtk=", 0) == 0) p.vtk = a.substr(4);
       if (a == "profile") p.profile = true;
       if (a == "diagnose") p.diagnose = true;
       if (a.rfind("fillet=", 0) == 0) p.fillet_mm = std::atof(a.c_str() + 7);
@@ -316,8 +329,15 @@ int main(int argc, char** argv) {
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
     const segment::MeshKnobs m = o.mesh;
-    std::printf("mesh: fine %.3g mm, coarse %.3g mm, %d cushion rows, %s\n", m.fine_size_mm, m.coarse_size_mm,
-                m.cushion_rows, segment::to_string(o.integration));
+    const segment::MeshQuality q = segment::mesh_quality(segment::build_mesh(scene::cog_section(probe_scene(p)), m));
+    std::printf("mesh: fine %.3g mm, coarse %.3g mm, %d cushion rows, gap %.3g mm, column growth %.3g, row growth "
+                "%.3g, %s; min det J / mean %.3f, max aspect ratio %.2f\n",
+                m.fine_size_mm, m.coarse_size_mm, m.cushion_rows, m.gap_size_mm, m.column_growth, m.row_growth,
+                segment::to_string(o.integration), q.min_jacobian_ratio, q.max_aspect_ratio);
+    const fatigue::ModeLife& n1 = o.life.report.modes[0];
+    std::printf("N1 at %s (%.3f, %.3f): peaks", n1.design_point.c_str(), n1.x_mm, n1.y_mm);
+    for (const fatigue::Peak& q : n1.peaks) std::printf(" %.4f MPa at %.4f s;", q.stress_MPa, q.t_s);
+    std::printf("\n");
     print_cushion_points(p, o);
     return 0;
   }

@@ -173,15 +173,19 @@ TEST(LifeCli, BadFieldAtExitsTwoAndLeavesNoOutputFolder) {
   std::filesystem::remove_all(kept);
 }
 
-// The complete level on the medium drive with the thesis cards stops in cycle 1 (docs/segment.md
-// "Cost", complete level): exit 4, the message says where in the cycle (path position and the load
-// there), the solver's step and node, and what runs instead; no output folder is left.
+// The complete level on the medium drive with the thesis cards stops in cycle 1 on the ungraded
+// 144-element mesh (docs/segment.md "Cost", complete level; the graded life mesh passes this one
+// cycle by its increments and stops at the same place with two): exit 4,
+// the message says where in the cycle (path position and the load there), the solver's step and
+// node, and what runs instead; no output folder is left.
 TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereAndWhatRuns) {
   const std::string scene = unique_dir("life_complete_medium") + ".toml";
   std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml"))
                        << "\n[belt.materials]\nbottom = \"" << source_path("datasets/cards/material-1-true.json")
                        << "\"\ncushion = \"" << source_path("datasets/cards/material-2-true.json")
-                       << "\"\n[life]\nfidelity = \"complete\"\ncycles = 1\n";
+                       << "\"\n[life]\nfidelity = \"complete\"\ncycles = 1\n"
+                       << "[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\nend_pitches = 1\n"
+                          "cushion_rows = 1\n";
   const std::string out = unique_dir("life_complete_medium_out");
   const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
   EXPECT_EQ(r.exit_code, 4) << r.err;

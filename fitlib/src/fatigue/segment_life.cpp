@@ -13,6 +13,9 @@ namespace fitlib::fatigue {
 segment::MeshKnobs life_mesh() {
   segment::MeshKnobs m;
   m.fine_size_mm = 1.0, m.coarse_size_mm = 2.5, m.central_pitches = 1.0, m.end_pitches = 1.0, m.cushion_rows = 1;
+  // Graded at the gap bottom, where N1 is read (docs/decisions.md "Segment: the life mesh is graded
+  // towards the gap bottom"): 0.3 mm columns growing by 0.25 mm per mm, rows thinning by 1.1.
+  m.gap_size_mm = 0.3, m.column_growth = 0.25, m.row_growth = 1.1;
   return m;
 }
 

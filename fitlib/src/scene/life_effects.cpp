@@ -46,7 +46,7 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
 // Work cap of the segment levels (docs/reliability.md §4): element-increments of one run. The
 // dearest rate measured, 0.94 ms CPU each (complete level, 450 elements), gives 94 s at the cap;
 // it admits the segments that N2 needs (54 mm, 272 elements, 3 cycles: 50 048; 81 mm: 73 600;
-// docs/segment.md §Cost), and the default (144 elements, 3 cycles: 26 496).
+// docs/segment.md §Cost), and the default (192 elements, 3 cycles: 35 328).
 constexpr double kMaxSegmentLifeWork = 1e5;
 
 // Refuses a run beyond the cap before the FE starts, naming the scene and the keys that set it.

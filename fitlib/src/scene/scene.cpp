@@ -183,6 +183,9 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
   mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 20.0, true);
   mk.end_pitches = r.number_or("end_pitches", mk.end_pitches, 0.0, 20.0);
   mk.cushion_rows = static_cast<int>(r.number_or("cushion_rows", mk.cushion_rows, 1, 100));
+  mk.gap_size_mm = r.number_or("gap_size_mm", mk.gap_size_mm, 0.0, 100.0);  // 0: no grading
+  mk.column_growth = r.number_or("column_growth", mk.column_growth, 0.05, 10.0);
+  mk.row_growth = r.number_or("row_growth", mk.row_growth, 1.0, 3.0);
 }
 
 // [segment.materials.bottom|cushion]: E_MPa and nu per role.
@@ -227,7 +230,8 @@ void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
 SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
   Reader r(t, "segment", source);
   r.allow({"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps", "integration",
-           "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "points",
+           "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "gap_size_mm",
+           "column_growth", "row_growth", "points",
            "materials"});
   SegmentSpec g;
   auto& sec = g.setup.section;

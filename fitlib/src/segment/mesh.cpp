@@ -1,12 +1,15 @@
 #include "fitlib/segment/mesh.hpp"
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
+#include "element.hpp"
 
 namespace fitlib::segment {
 
@@ -15,7 +18,7 @@ const char* to_string(Role role) { return role == Role::bottom ? "bottom" : "cus
 namespace {
 
 // Column boundaries: coarse | fine (even count, so a column line falls on the gap centre x = 0) | coarse.
-std::vector<double> column_lines(const CogSection& s, const MeshKnobs& k) {
+std::vector<double> uniform_column_lines(const CogSection& s, const MeshKnobs& k) {
   const double fine = k.central_pitches * s.cog_pitch_mm, end = k.end_pitches * s.cog_pitch_mm;
   int nf = static_cast<int>(std::ceil(fine / k.fine_size_mm - 1e-9));
   nf += nf % 2;
@@ -28,6 +31,70 @@ std::vector<double> column_lines(const CogSection& s, const MeshKnobs& k) {
   return x;
 }
 
+// Lines a = x_0 < … < x_n = b at equal steps of ∫ dx / width(x) (midpoint rule on 2048 slices),
+// n the least count whose columns are no wider than width(x); x_n is left out.
+std::vector<double> graded_lines(double a, double b, const std::function<double(double)>& width) {
+  constexpr int kSlices = 2048;
+  std::vector<double> phi(kSlices + 1, 0.0);
+  const double dx = (b - a) / kSlices;
+  for (int i = 0; i < kSlices; ++i) phi[i + 1] = phi[i] + dx / width(a + (i + 0.5) * dx);
+  const int n = std::max(1, static_cast<int>(std::ceil(phi.back() - 1e-9)));
+  std::vector<double> x{a};
+  for (int j = 1, i = 0; j < n; ++j) {
+    const double target = phi.back() * j / n;
+    while (phi[i + 1] < target) ++i;
+    x.push_back(a + dx * (i + (target - phi[i]) / (phi[i + 1] - phi[i])));
+  }
+  return x;
+}
+
+// Graded columns (MeshKnobs::gap_size_mm > 0): each half built from the centre outwards and
+// mirrored, so x = 0 is a line and the mesh is symmetric.
+std::vector<double> graded_column_lines(const CogSection& s, const MeshKnobs& k) {
+  const double half = 0.5 * k.central_pitches * s.cog_pitch_mm, end = k.end_pitches * s.cog_pitch_mm;
+  std::vector<double> gaps;  // gap centres in the central section, x ≥ 0
+  for (double g = 0.0; g <= half + 1e-9; g += s.cog_pitch_mm) gaps.push_back(g);
+  const auto width = [&](double base) {
+    return [&, base](double x) {
+      double d = std::abs(x - gaps.front());
+      for (double g : gaps) d = std::min(d, std::abs(x - g));
+      return std::min(base, k.gap_size_mm + k.column_growth * d);
+    };
+  };
+  std::vector<double> right = graded_lines(0.0, half, width(k.fine_size_mm));
+  if (end > 0.0)
+    for (double x : graded_lines(half, half + end, width(k.coarse_size_mm))) right.push_back(x);
+  right.push_back(half + end);
+  std::vector<double> x;
+  for (auto it = right.rbegin(); it != right.rend(); ++it) x.push_back(-*it);
+  x.insert(x.end(), right.begin() + 1, right.end());
+  return x;
+}
+
+std::vector<double> column_lines(const CogSection& s, const MeshKnobs& k) {
+  return k.gap_size_mm > 0.0 ? graded_column_lines(s, k) : uniform_column_lines(s, k);
+}
+
+// Depth of half-row J (0 … 2n) of the bottom rubber as a fraction of its height from the cushion
+// interface: rows growing by `growth` upwards from the profile; the midside half-rows halfway.
+double bottom_row_fraction(int J, int n, double growth) {
+  if (J % 2 == 1) return 0.5 * (bottom_row_fraction(J - 1, n, growth) + bottom_row_fraction(J + 1, n, growth));
+  const int above_profile = n - J / 2;
+  return 1.0 - (std::pow(growth, above_profile) - 1.0) / (std::pow(growth, n) - 1.0);
+}
+
+// det(∂X/∂ξ) of element e at (ξ, η).
+double jacobian(const Mesh& m, int e, double xi, double eta) {
+  double N[8], dN_dxi[8], dN_deta[8];
+  detail::shape(m.nodes_per_element, xi, eta, N, dN_dxi, dN_deta);
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  for (int a = 0; a < m.nodes_per_element; ++a) {
+    J.col(0) += dN_dxi[a] * m.X[m.elements[e][a]];
+    J.col(1) += dN_deta[a] * m.X[m.elements[e][a]];
+  }
+  return J.determinant();
+}
+
 }  // namespace
 
 Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
@@ -37,6 +104,8 @@ Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
   if (!(k.fine_size_mm > 0.0) || !(k.coarse_size_mm > 0.0) || k.cushion_rows < 1 ||
       !(k.central_pitches > 0.0) || !(k.end_pitches >= 0.0))
     throw core::UsageError("mesh: element sizes and section lengths must be positive");
+  if (!(k.gap_size_mm >= 0.0) || !(k.column_growth > 0.0) || !(k.row_growth > 0.0))
+    throw core::UsageError("mesh: gap_size_mm must be ≥ 0, column_growth and row_growth positive");
   const bool quad8 = k.nodes_per_element == 8;
   const std::vector<double> xl = column_lines(s, k);
   const int nc = static_cast<int>(xl.size()) - 1;
@@ -58,8 +127,11 @@ Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
       const bool centre = (I % 2 == 1) && (J % 2 == 1);
       const bool needed = quad8 ? !centre : (I % 2 == 0 && J % 2 == 0);
       if (!needed) continue;
-      const double y = (J <= 2 * rows_c) ? -s.cushion_mm * J / (2.0 * rows_c)
-                                         : -s.cushion_mm + (yb + s.cushion_mm) * (J - 2 * rows_c) / (2.0 * rows_b);
+      const int Jb = J - 2 * rows_c;  // half-row in the bottom rubber
+      const double y = Jb <= 0 ? -s.cushion_mm * J / (2.0 * rows_c)
+                               : -s.cushion_mm + (yb + s.cushion_mm) * (k.row_growth == 1.0
+                                                                             ? Jb / (2.0 * rows_b)
+                                                                             : bottom_row_fraction(Jb, rows_b, k.row_growth));
       at(I, J) = static_cast<int>(m.X.size());
       m.X.emplace_back(x, y);
     }
@@ -80,6 +152,25 @@ Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
     if (at(NI - 1, J) >= 0) m.right_nodes.push_back(at(NI - 1, J));
   }
   return m;
+}
+
+MeshQuality mesh_quality(const Mesh& m) {
+  MeshQuality q;
+  q.min_jacobian_ratio = std::numeric_limits<double>::infinity();
+  for (int e = 0; e < m.element_count(); ++e) {
+    double area = 0.0, worst = std::numeric_limits<double>::infinity();
+    for (const detail::GaussPoint& g : detail::gauss_rule(3)) area += g.weight * jacobian(m, e, g.xi, g.eta);
+    for (double xi : {-1.0, 0.0, 1.0})
+      for (double eta : {-1.0, 0.0, 1.0}) worst = std::min(worst, jacobian(m, e, xi, eta) / (0.25 * std::abs(area)));
+    if (worst < q.min_jacobian_ratio) q.min_jacobian_ratio = worst, q.worst_jacobian_element = e;
+    double longest = 0.0, shortest = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 4; ++a) {
+      const double side = (m.X[m.elements[e][(a + 1) % 4]] - m.X[m.elements[e][a]]).norm();
+      longest = std::max(longest, side), shortest = std::min(shortest, side);
+    }
+    if (longest / shortest > q.max_aspect_ratio) q.max_aspect_ratio = longest / shortest, q.worst_aspect_element = e;
+  }
+  return q;
 }
 
 void write_vtk(const Mesh& m, const std::string& path, const VtkFields& f) {

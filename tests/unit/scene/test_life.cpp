@@ -213,7 +213,7 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
     ASSERT_TRUE(r.life->equilibrium.has_value());  // elastic points carry no history: the tight span bound
     EXPECT_EQ(r.life->equilibrium->span_cord_share_bound, segment::EquilibriumBounds::span_cord_share);
     // The life's default mesh: the table says how far its N2 is from a converged segment length.
-    EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (144 elements, 27 mm long)"),
+    EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (192 elements, 27 mm long)"),
               std::string::npos);
   }
   ASSERT_EQ(lives[0].size(), 2u);
@@ -221,20 +221,20 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
 }
 
 // The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
-// cycle); the life's mesh has 144 elements (docs/segment.md "Cost").
+// cycle); the life's mesh has 192 elements (docs/segment.md "Cost").
 TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
   fatigue::SegmentLifeSetup setup;
   setup.section = scene::cog_section(scene::load_scene(kDrives + "ref-0500-light.toml"));
   setup.cycle.cycles = 3;
-  EXPECT_EQ(fatigue::segment_run_work(setup), 144.0 * (4 + 3 * 60));
+  EXPECT_EQ(fatigue::segment_run_work(setup), 192.0 * (4 + 3 * 60));
   setup.cycle.cycles = 10000, setup.cycle.steps_per_cycle = 30, setup.cycle.bend_steps = 2;
-  EXPECT_EQ(fatigue::segment_run_work(setup), 144.0 * (2 + 10000.0 * 30));
+  EXPECT_EQ(fatigue::segment_run_work(setup), 192.0 * (2 + 10000.0 * 30));
 }
 
 // [life] cycles × mesh elements × steps beyond the cap: refused before the FE starts (10⁴ cycles
 // would take hours), naming the scene file, the key and where the mesh comes from. On the life's
-// mesh (144 elements) the default 3 cycles are 26 496 element-increments and run, 12 are
-// 104 256 > 100 000.
+// mesh (192 elements) the default 3 cycles are 35 328 element-increments and run, 12 are
+// 139 008 > 100 000.
 TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
   const std::string base = core::read_file(kDrives + "ref-0500-light.toml") + "\n[life]\nfidelity = \"elastic\"\n";
   const auto scene_with = [&](const std::string& tables) {
@@ -260,7 +260,7 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
             std::string::npos)
       << m;
   m = refusal("cycles = 12\n");
-  EXPECT_NE(m.find("x 144 elements of the life's default mesh = 104256 element-increments"), std::string::npos) << m;
+  EXPECT_NE(m.find("x 192 elements of the life's default mesh = 139008 element-increments"), std::string::npos) << m;
   const auto r = scene::run_scene(scene_with("cycles = 3\n"));
   ASSERT_TRUE(r.life.has_value());
   EXPECT_EQ(r.life->plan.fidelity, "elastic");

@@ -18,8 +18,9 @@ namespace fitlib::fatigue {
 std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run);
 
 // The life's default mesh: 1.0 mm central (one pitch), 2.5 mm ends (one pitch each), one cushion
-// row, 144 elements; the life is within 3.5 % of a 0.6/2.0 mm mesh (docs/decisions.md "Segment
-// life: default mesh and steps").
+// row, graded to 0.3 mm columns and thinner rows at the central gap bottom, 192 elements; N1 there
+// within 8 % of uniform 0.25–0.4 mm meshes (docs/decisions.md "Segment: the life mesh is graded
+// towards the gap bottom").
 segment::MeshKnobs life_mesh();
 
 struct SegmentLifeSetup {

@@ -1,7 +1,9 @@
 #pragma once
 // Structured quadrilateral mesh of the segment's longitudinal section (CogSection): vertical
 // element columns, a fine central section and coarse leading/trailing sections, rows mapped
-// linearly between the cord line, the cushion interface and the cogged bottom profile.
+// between the cord line, the cushion interface and the cogged bottom profile. Optional grading
+// (docs/segment.md §Mesh): narrower columns around the central section's gap centres and
+// bottom-rubber rows thinning towards the profile, where the gap bottom's stress gradient is.
 // Elements are 8-node serendipity quads (CalculiX CPE8 / VTK 23 node order) or 4-node quads.
 #include <array>
 #include <string>
@@ -23,6 +25,11 @@ struct MeshKnobs {
   double coarse_size_mm = 1.5;    // element width in the leading/trailing sections
   int cushion_rows = 2;
   int nodes_per_element = 8;      // 8 (quadratic) or 4 (bilinear)
+  // Grading (0 and 1: none, today's uniform mesh). Column width at distance d from the nearest gap
+  // centre of the central section: min(section size, gap_size_mm + column_growth · d).
+  double gap_size_mm = 0.0;
+  double column_growth = 0.25;    // width added per mm from the gap centre (≈ neighbour ratio − 1)
+  double row_growth = 1.0;        // each bottom-rubber row this × the one below it (towards the cord)
 };
 
 struct Edge {  // an element side on the bottom boundary: element, local corners a → b (+ midside)
@@ -45,6 +52,17 @@ struct Mesh {
 };
 
 Mesh build_mesh(const CogSection& section, const MeshKnobs& knobs);
+
+// Shape of the mesh's elements: det(∂X/∂ξ) at the 3 × 3 points ξ, η ∈ {−1, 0, 1} against the
+// element's mean magnitude (|area| / 4; ≤ 0: inverted or folded), and the longest corner-to-corner side over
+// the shortest.
+struct MeshQuality {
+  double min_jacobian_ratio = 0.0;
+  int worst_jacobian_element = -1;
+  double max_aspect_ratio = 0.0;
+  int worst_aspect_element = -1;
+};
+MeshQuality mesh_quality(const Mesh& mesh);
 
 // Legacy VTK unstructured grid (ParaView): roles as cell data; optional point vectors and cell
 // tensors (name → per-point (ux, uy) or per-cell (σ11, σ22, σ12, σ33)).
