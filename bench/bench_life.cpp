@@ -18,8 +18,12 @@
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
 // element sizes and section lengths in cog pitches (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
 // prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -31,6 +35,7 @@
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "fitlib/segment/end_faces.hpp"
 #include "fitlib/segment/point_law.hpp"
 
 using namespace fitlib;
@@ -79,7 +84,53 @@ struct Probe {
   double fine_mm = 0.0, coarse_mm = 0.0;        // fine=, coarse=: element sizes (0: the mesh's)
   double central = 0.0, ends = 0.0;             // central=, ends=: section lengths in pitches (0: the mesh's)
   bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
+  std::string end_condition{};                  // bc=radial|free (empty: the setup's)
+  double section_x = -1.0;                      // section=X: monitor x = ±X every 0.5 mm of depth
+  std::string csv{};                            // csv=PATH: the monitored histories
+  double line_depth = -1.0;                     // line=D: monitor x = -13 … 13 mm at depth D
+  std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
 };
+
+// The end faces' shear (column 0) or warping (column 1) from a longer run's CSV (section=X there,
+// X = this segment's half-length): σ12 or −∫ 2 e12 dh of left-k / right-k (depth 0.25 + 0.5k mm)
+// against the middle's path position, linear in both.
+std::function<double(int, double, double)> oracle_end(const std::string& path, int column) {
+  std::array<std::vector<std::vector<std::pair<double, double>>>, 2> table;
+  for (auto& t : table) t.resize(13);
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  char line[1024];
+  while (f && std::fgets(line, sizeof line, f)) {
+    char name[64];
+    double v[11];
+    if (std::sscanf(line, "%63[^,],%*[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", name, v, v + 1, v + 2, v + 3,
+                    v + 4, v + 5, v + 6, v + 7, v + 8, v + 9, v + 10) != 12)
+      continue;
+    const std::string n = name;
+    const int side = n.rfind("left-", 0) == 0 ? 0 : n.rfind("right-", 0) == 0 ? 1 : -1;
+    if (side >= 0) table[side][std::atoi(n.c_str() + (side ? 6 : 5))].emplace_back(v[3], column == 0 ? v[6] : v[10]);
+  }
+  if (f) std::fclose(f);
+  return [table, column](int side, double depth, double s) {
+    auto at = [&](int k) {
+      const auto& v = table[side][k];
+      auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(s, -1e300));
+      if (it == v.begin()) return v.front().second;
+      if (it == v.end()) return v.back().second;
+      const auto& a = *(it - 1);
+      const double w = it->first > a.first ? (s - a.first) / (it->first - a.first) : 1.0;
+      return a.second + w * (it->second - a.second);
+    };
+    const double u = std::clamp((depth - 0.25) / 0.5, 0.0, 12.0);
+    const int k = std::min(11, static_cast<int>(u));
+    if (column == 0) return at(k) + (u - k) * (at(k + 1) - at(k));
+    double w = -2.0 * at(0) * std::min(depth, 0.25);  // −∫ 2 e12 dh, trapezoids between the samples
+    for (int j = 0; j < 12 && depth > 0.25 + 0.5 * j; ++j) {
+      const double top = 0.25 + 0.5 * j, dz = std::min(depth, top + 0.5) - top, frac = dz / 0.5;
+      w -= 2.0 * dz * (at(j) + 0.5 * frac * (at(j + 1) - at(j)));
+    }
+    return w;
+  };
+}
 
 struct Outcome {
   fatigue::SegmentLife life;
@@ -108,6 +159,17 @@ Outcome run_probe(const Probe& pr) {
   if (pr.coarse_mm > 0.0) setup.mesh.coarse_size_mm = pr.coarse_mm;
   for (int k = 1; k < 10 && pr.profile; ++k)
     setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
+  for (int k = 0; pr.section_x >= 0.0 && k < 13; ++k)
+    for (double sign : {-1.0, 1.0})
+      setup.extra_points.push_back({(sign < 0 ? "left-" : "right-") + std::to_string(k), sign * pr.section_x,
+                                    -0.25 - 0.5 * k});
+  for (int x = -13; pr.line_depth >= 0.0 && x <= 13; ++x)
+    setup.extra_points.push_back({"line" + std::to_string(x), double(x), -pr.line_depth});
+  if (!pr.oracle.empty() && !std::getenv("HACK_NO_SHEAR")) setup.cycle.end_shear_MPa = oracle_end(pr.oracle, 0);
+  if (!pr.oracle.empty() && std::getenv("HACK_WARP")) setup.cycle.end_warping_mm = oracle_end(pr.oracle, 1);
+  if (pr.end_condition == "free") setup.cycle.ends = segment::EndCondition::free;
+  if (pr.end_condition == "sheared") setup.cycle.ends = segment::EndCondition::sheared;
+  if (pr.end_condition == "radial") setup.cycle.ends = segment::EndCondition::radial;
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
@@ -292,7 +354,35 @@ int main(int argc, char** argv) {
       if (a.rfind("ends=", 0) == 0) p.ends = std::atof(a.c_str() + 5);
       if (a.rfind("coarse=", 0) == 0) p.coarse_mm = std::atof(a.c_str() + 7);
       if (a == "profile") p.profile = true;
+      if (a.rfind("bc=", 0) == 0) p.end_condition = a.substr(3);
+      if (a.rfind("section=", 0) == 0) p.section_x = std::atof(a.c_str() + 8);
+      if (a.rfind("csv=", 0) == 0) p.csv = a.substr(4);
+      if (a.rfind("line=", 0) == 0) p.line_depth = std::atof(a.c_str() + 5);
+      if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
+    }
+    if (std::getenv("HACK_CMP") && !p.oracle.empty()) {
+      const scene::Scene sc = probe_scene(p);
+      const belt::DriveCase drive = scene::make_drive(sc, scene::resolve_stiffness(sc));
+      const belt::LoadHistory history(belt::compute_load_cycle(drive), drive.belt, sc.temperature_C);
+      segment::CycleDrive d;
+      d.history = &history, d.friction = drive.friction, d.wedge_half_angle_rad = drive.belt.wedge_half_angle_rad;
+      d.width_mm = drive.belt.width_mm, d.density_kg_m3 = drive.belt.density_kg_m3, d.speed_mm_s = drive.belt_speed_mm_s;
+      const auto iso20 = segment::make_elastic(segment::ElasticLaw::hencky, 20.0, 0.49);
+      const auto iso8 = segment::make_elastic(segment::ElasticLaw::hencky, 8.0, 0.49);
+      const segment::LongBeltSection fs(scene::cog_section(sc), 13.5, {iso20.get(), iso8.get()});
+      const auto ow = oracle_end(p.oracle, 1), os = oracle_end(p.oracle, 0);
+      for (double smid = 0.0; smid < 914.0; smid += 4.0) {
+        std::printf("s %.0f", smid);
+        for (int side = 0; side < 2; ++side) {
+          const double b = segment::contact_body_force(history.at_position(smid + (side ? 13.5 : -13.5)), d).x();
+          std::printf(" | %s b %.3f warp(4.1) %.4f/%.4f warp(6.2) %.4f/%.4f s12(0.25) %.3f/%.3f", side ? "R" : "L", b,
+                      ow(side, 4.1, smid + 914.4), fs.warping_mm({b}, 4.1), ow(side, 6.2, smid + 914.4),
+                      fs.warping_mm({b}, 6.2), os(side, 0.25, smid + 914.4), fs.shear_MPa({b}, 0.25));
+        }
+        std::printf("\n");
+      }
+      return 0;
     }
     std::printf("%s", kProbeHeader);
     const Outcome o = run_probe(p);
@@ -303,6 +393,12 @@ int main(int argc, char** argv) {
     std::printf("mesh: fine %.3g mm, coarse %.3g mm, %d cushion rows, %s\n", m.fine_size_mm, m.coarse_size_mm,
                 m.cushion_rows, segment::to_string(o.integration));
     print_cushion_points(p, o);
+    if (!p.csv.empty()) segment::write_cycle_csv(o.life.run, p.csv);
+    if (std::getenv("HACK_LOADS"))
+      for (const auto& q : o.life.run.loads)
+        std::printf("loads s %.1f body %.4f %.4f cord %.4f %.4f cord_long %.4f left_face_long %.4f rubber_mid %.4f F/B %.3f\n", q.s_mm,
+                    q.body_force_N_mm.x(), q.body_force_N_mm.y(), q.cord_reaction_N_mm.x(), q.cord_reaction_N_mm.y(),
+                    q.cord_longitudinal_N_mm, q.left_end_longitudinal_N_mm, q.rubber_section_N_mm, q.belt_force_N_mm);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows

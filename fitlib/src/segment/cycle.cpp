@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -13,6 +15,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/segment/curve.hpp"
+#include "fitlib/segment/end_faces.hpp"
 
 namespace fitlib::segment {
 namespace {
@@ -91,6 +94,29 @@ double reference_area(const Mesh& m, int e, const std::vector<detail::GaussPoint
     area += J.determinant() * g.weight;
   }
   return area;
+}
+
+// A face node's share of a traction t(h) on the end face: Σ over its edges ∫ N_a t dl by 3-point
+// Gauss, written as t at the Gauss points' depths times weights (one entry per node and point).
+struct FaceWeight {
+  int node;
+  double depth_mm, length_mm;
+};
+
+std::vector<FaceWeight> face_weights(const Mesh& straight, const std::vector<int>& face) {
+  std::vector<FaceWeight> out;
+  const int step = straight.nodes_per_element == 8 ? 2 : 1;
+  const double xi[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, wt[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  for (std::size_t a = 0; a + step < face.size(); a += step) {
+    const double ya = straight.X[face[a]].y(), yb = straight.X[face[a + step]].y(), half = 0.5 * std::abs(ya - yb);
+    for (int g = 0; g < 3; ++g) {
+      const double x = xi[g], depth = -(0.5 * (ya + yb) + 0.5 * x * (yb - ya));
+      const double N2[3] = {0.5 * x * (x - 1.0), 1.0 - x * x, 0.5 * x * (x + 1.0)}, N1[2] = {0.5 * (1.0 - x), 0.5 * (1.0 + x)};
+      for (int k = 0; k <= step; ++k)
+        out.push_back({face[a + k], depth, (step == 2 ? N2[k] : N1[k]) * wt[g] * half});
+    }
+  }
+  return out;
 }
 
 CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
@@ -199,6 +225,47 @@ std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
 
 }  // namespace
 
+namespace {
+
+// The sheared end condition: each face warped and sheared as a long belt's section under the
+// friction and the changes of strain and curvature at the face's path position, each smoothed by
+// the shear lag (segment/end_faces.hpp), tabulated once over the cycle.
+void long_belt_ends(const CogSection& section, const Mesh& straight, const std::array<const PlaneStrainLaw*, 2>& laws,
+                    const CycleDrive& drive, CycleKnobs::EndProfile& warping, CycleKnobs::EndProfile& shear) {
+  const double half = straight.half_length_mm;
+  const std::array<LongBeltSection, 2> faces{LongBeltSection(section, -half, laws), LongBeltSection(section, half, laws)};
+  const belt::LoadHistory& h = *drive.history;
+  const int M = 4000;
+  const double L = h.length_mm(), ds = L / M;
+  std::array<std::vector<double>, 3> load;  // b, ε, K
+  for (auto& v : load) v.resize(M);
+  for (int i = 0; i < M; ++i) {
+    const belt::LoadState q = h.at_position(i * ds);
+    load[0][i] = contact_body_force(q, drive).x(), load[1][i] = q.strain, load[2][i] = q.K_1_mm;
+  }
+  const double lag = std::getenv("HACK_LAG") ? std::atof(std::getenv("HACK_LAG")) : faces[0].shear_lag_mm();
+  if (std::getenv("HACK_PRINTLAG")) std::fprintf(stderr, "shear lag %.3f mm\n", faces[0].shear_lag_mm());
+  for (auto& v : load) if (lag > 0.0) v = shear_lag_smoothed(v, ds, lag);
+  std::vector<SectionGradients> g(M);
+  const double grad = std::getenv("HACK_NOGRAD") ? 0.0 : 1.0;
+  for (int i = 0; i < M; ++i) {
+    const int next = (i + 1) % M, prev = (i + M - 1) % M;
+    g[i] = {load[0][i], grad * (load[1][next] - load[1][prev]) / (2.0 * ds), grad * (load[2][next] - load[2][prev]) / (2.0 * ds)};
+  }
+  auto at = [g, ds, L, M, half](int side, double s_mm) {
+    const double u = std::fmod(std::fmod(s_mm + (side == 0 ? -half : half), L) + L, L) / ds, i = std::floor(u);
+    const int k = static_cast<int>(i) % M, k1 = (k + 1) % M;
+    const double w = u - i;
+    return SectionGradients{g[k].body_N_mm3 + w * (g[k1].body_N_mm3 - g[k].body_N_mm3),
+                            g[k].strain_per_mm + w * (g[k1].strain_per_mm - g[k].strain_per_mm),
+                            g[k].curvature_per_mm2 + w * (g[k1].curvature_per_mm2 - g[k].curvature_per_mm2)};
+  };
+  warping = [faces, at](int side, double depth_mm, double s_mm) { return faces[side].warping_mm(at(side, s_mm), depth_mm); };
+  shear = [faces, at](int side, double depth_mm, double s_mm) { return faces[side].shear_MPa(at(side, s_mm), depth_mm); };
+}
+
+}  // namespace
+
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
                       const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
                       const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
@@ -217,12 +284,23 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       throw core::UsageError("segment cycle: positions_mm must be positive and increasing");
   const double reach = 1.5 * straight.half_length_mm;
   const double T = 1.0 + (at_s.empty() ? knobs.cycles : at_s.back() / h.length_mm());
-  const int n = knobs.curve_intervals;
+  const int n = std::getenv("HACK_N") ? std::atoi(std::getenv("HACK_N")) : knobs.curve_intervals;
   const CurvatureIntegral integral(h);
   auto curve_at = [&h, &integral, K_m, reach, n, T](double lambda) {
     return cord_curve(lambda * T, h, integral, K_m, reach, n);
   };
-  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, EndCondition::radial);
+  CycleKnobs::EndProfile warping = knobs.end_warping_mm, shear = knobs.end_shear_MPa;
+  if (knobs.ends == EndCondition::sheared) long_belt_ends(section, straight, laws, drive, warping, shear);
+  EndShift shift;
+  if (warping)
+    shift = [&straight, &h, T, &warping](int node, double lambda) {
+      const double tau = lambda * T;
+      if (tau <= 1.0) return 0.0;
+      const Eigen::Vector2d& X = straight.X[node];
+      return warping(X.x() < 0.0 ? 0 : 1, -X.y(), (tau - 1.0) * h.length_mm());
+    };
+  const EndCondition ends = knobs.ends == EndCondition::free ? EndCondition::free : EndCondition::radial;
+  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, ends, shift);
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
@@ -241,19 +319,40 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     const NeutralCurve curve = curve_at(lambda);
     const double s0 = (tau - 1.0) * h.length_mm();
     for (int e = 0; e < m.element_count(); ++e) {
-      const Eigen::Vector2d lr = contact_body_force(h.at_position(s0 + centre_x[e]), drive);
+      Eigen::Vector2d lr = contact_body_force(h.at_position(s0 + centre_x[e]), drive);
+      if (const char* v = std::getenv("HACK_BL")) lr.x() *= std::atof(v);
+      if (const char* v = std::getenv("HACK_BR")) lr.y() *= std::atof(v);
       if (lr.isZero(0.0)) continue;
       const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
       b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
     }
   };
   p.body_force = body;
+  if (shear) {
+    const std::array<std::vector<FaceWeight>, 2> faces{face_weights(straight, straight.left_nodes),
+                                                       face_weights(straight, straight.right_nodes)};
+    p.nodal_force = [&, faces](double lambda, std::vector<Eigen::Vector2d>& f) {
+      f.assign(m.node_count(), Eigen::Vector2d::Zero());
+      const double tau = lambda * T;
+      if (tau <= 1.0) return;
+      const NeutralCurve curve = curve_at(lambda);
+      const double s0 = (tau - 1.0) * h.length_mm();
+      for (int side = 0; side < 2; ++side) {
+        const int end_node = side == 0 ? straight.top_nodes.front() : straight.top_nodes.back();
+        const double phi = curve.at(curve.s_from_unstrained(path_x[end_node])).phi_rad;
+        const Eigen::Vector2d n(std::sin(phi), std::cos(phi));  // radial, outward
+        const double outward = side == 0 ? -1.0 : 1.0;          // the face's normal is ∓ the tangent
+        for (const FaceWeight& w : faces[side])
+          f[w.node] += outward * w.length_mm * shear(side, w.depth_mm, s0) * n;
+      }
+    };
+  }
 
   CycleResult out;
   out.cycle_time_s = period;
   std::vector<NamedPoint> named = standard_points(section);
   named.insert(named.end(), extra_points.begin(), extra_points.end());
-  std::vector<Eigen::Vector2d> forces;
+  std::vector<Eigen::Vector2d> forces, nodal;
   std::vector<bool> written(knobs.vtk_at_s_mm.size(), false);
   auto write_fields = [&](double tau, const StaticSolution& s) {
     if (knobs.vtk_prefix.empty()) return;
@@ -310,6 +409,10 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     Eigen::Vector2d applied = Eigen::Vector2d::Zero(), reactions = Eigen::Vector2d::Zero(), cord = Eigen::Vector2d::Zero();
     double scale = 1e-300;  // Σ |nodal reactions| + Σ |element body forces|
     for (int e = 0; e < m.element_count(); ++e) applied += forces[e] * area[e], scale += (forces[e] * area[e]).norm();
+    if (p.nodal_force) {
+      p.nodal_force(lambda, nodal);
+      for (const Eigen::Vector2d& f : nodal) applied += f, scale += f.norm();
+    }
     for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);

@@ -8,6 +8,7 @@
 // (s0 = (τ − 1) L), and the cord-line nodes are placed on it. Where the section is in a sheave
 // (p > 0) contact pressure, friction and radial inertia act as body forces (6.6–6.9).
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,15 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
+  EndCondition ends = EndCondition::radial;  // of the end faces (static_case.hpp)
+  // Optional: the shear traction σ12 (MPa, the cord curve's local frame, 1 radial, 2 along) on the
+  // end faces at depth h below the cord line while the segment's middle is at path position s
+  // (side 0 left, 1 right), applied along the end's radial line; empty: shear-free ends.
+  using EndProfile = std::function<double(int side, double depth_mm, double s_mm)>;
+  EndProfile end_shear_MPa;
+  // Optional: the end faces' warping (mm along the cord tangent from the radial line) at depth h
+  // while the middle is at s (side 0 left, 1 right); empty: plane end faces.
+  EndProfile end_warping_mm;
   // Optional: step 2's increments end where the segment's middle reaches these path positions
   // (mm from the start of cycle 1, increasing) instead of the planned ones, and the run stops at
   // the last (a few increments at a transition, of any size; `cycles` is then unused).
