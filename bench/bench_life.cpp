@@ -4,7 +4,7 @@
 //    [life]: life per mode, governing mode, wall time of the whole scene run (`fitcli life`'s
 //    route, 2 load cycles) and its ratio to the beam row.
 // 2. The segment's convergence on the medium drive: life versus mesh (the default 144 elements and
-//    a 0.6/2.0 mm mesh), versus the segment's length (27, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
+//    a 0.6/2.0 mm mesh), versus the segment's length (27 mm sheared and radial ends, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
 //    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' levels, relative to the finer.
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
@@ -18,12 +18,15 @@
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
 // element sizes and section lengths in cog pitches (after MESH); `profile`: also monitor the cushion at x = 0 every tenth of its depth. The probe
 // prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
+// `bc=radial|free|sheared`: the end faces (default: the life's, sheared); `section=X`: also monitor
+// x = ±X every 0.5 mm of depth (0.25 … 6.25 mm; these points count in the lives); `csv=PATH`: the
+// monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
+// section=X CSV (X = this segment's half-length; docs/segment.md "End faces").
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -35,7 +38,6 @@
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
-#include "fitlib/segment/end_faces.hpp"
 #include "fitlib/segment/point_law.hpp"
 
 using namespace fitlib;
@@ -87,7 +89,6 @@ struct Probe {
   std::string end_condition{};                  // bc=radial|free (empty: the setup's)
   double section_x = -1.0;                      // section=X: monitor x = ±X every 0.5 mm of depth
   std::string csv{};                            // csv=PATH: the monitored histories
-  double line_depth = -1.0;                     // line=D: monitor x = -13 … 13 mm at depth D
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
 };
 
@@ -163,10 +164,7 @@ Outcome run_probe(const Probe& pr) {
     for (double sign : {-1.0, 1.0})
       setup.extra_points.push_back({(sign < 0 ? "left-" : "right-") + std::to_string(k), sign * pr.section_x,
                                     -0.25 - 0.5 * k});
-  for (int x = -13; pr.line_depth >= 0.0 && x <= 13; ++x)
-    setup.extra_points.push_back({"line" + std::to_string(x), double(x), -pr.line_depth});
-  if (!pr.oracle.empty() && !std::getenv("HACK_NO_SHEAR")) setup.cycle.end_shear_MPa = oracle_end(pr.oracle, 0);
-  if (!pr.oracle.empty() && std::getenv("HACK_WARP")) setup.cycle.end_warping_mm = oracle_end(pr.oracle, 1);
+  if (!pr.oracle.empty()) setup.cycle.end_shear_MPa = oracle_end(pr.oracle, 0), setup.cycle.end_warping_mm = oracle_end(pr.oracle, 1);
   if (pr.end_condition == "free") setup.cycle.ends = segment::EndCondition::free;
   if (pr.end_condition == "sheared") setup.cycle.ends = segment::EndCondition::sheared;
   if (pr.end_condition == "radial") setup.cycle.ends = segment::EndCondition::radial;
@@ -297,6 +295,10 @@ void convergence(const std::string& fidelity) {
     elements.push_back(by_mesh.back().life.run.elements), t_mesh.push_back(by_mesh.back().wall_s);
   }
   by_length.push_back(by_mesh[0]);
+  Probe radial{"medium", fidelity, "coarse", 60, false};  // the life mesh with the former radial ends
+  radial.end_condition = "radial";
+  by_length.push_back(run_probe(radial));
+  print_probe(radial, by_length.back());
   for (const char* mesh : {"long", "longer"}) {  // the segment's length: 27, 54, 81 mm
     const Probe p{"medium", fidelity, mesh, 60, false};
     by_length.push_back(run_probe(p));
@@ -315,9 +317,11 @@ void convergence(const std::string& fidelity) {
               "N1 %+.1f N2 %+.1f, 40 vs 80 N1 %+.1f N2 %+.1f\n",
               change(by_mesh[0], by_mesh[1], 0), change(by_mesh[0], by_mesh[1], 1), change(by_steps[0], by_steps[2], 0),
               change(by_steps[0], by_steps[2], 1), change(by_steps[1], by_steps[2], 0), change(by_steps[1], by_steps[2], 1));
-  std::printf("segment length (27 / 54 mm against 81 mm): N1 %+.1f / %+.1f, N2 %+.1f / %+.1f\n",
-              change(by_length[0], by_length[2], 0), change(by_length[1], by_length[2], 0),
-              change(by_length[0], by_length[2], 1), change(by_length[1], by_length[2], 1));
+  std::printf("segment length (27 mm sheared / 27 mm radial / 54 mm against 81 mm): N1 %+.1f / %+.1f / %+.1f, "
+              "N2 %+.1f / %+.1f / %+.1f\n",
+              change(by_length[0], by_length[3], 0), change(by_length[1], by_length[3], 0),
+              change(by_length[2], by_length[3], 0), change(by_length[0], by_length[3], 1),
+              change(by_length[1], by_length[3], 1), change(by_length[2], by_length[3], 1));
   std::printf("scaling: time ~ elements^%.2f, time ~ steps^%.2f\n", exponent(elements, t_mesh), exponent(steps, t_steps));
   std::fflush(stdout);
 }
@@ -357,32 +361,8 @@ int main(int argc, char** argv) {
       if (a.rfind("bc=", 0) == 0) p.end_condition = a.substr(3);
       if (a.rfind("section=", 0) == 0) p.section_x = std::atof(a.c_str() + 8);
       if (a.rfind("csv=", 0) == 0) p.csv = a.substr(4);
-      if (a.rfind("line=", 0) == 0) p.line_depth = std::atof(a.c_str() + 5);
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
-    }
-    if (std::getenv("HACK_CMP") && !p.oracle.empty()) {
-      const scene::Scene sc = probe_scene(p);
-      const belt::DriveCase drive = scene::make_drive(sc, scene::resolve_stiffness(sc));
-      const belt::LoadHistory history(belt::compute_load_cycle(drive), drive.belt, sc.temperature_C);
-      segment::CycleDrive d;
-      d.history = &history, d.friction = drive.friction, d.wedge_half_angle_rad = drive.belt.wedge_half_angle_rad;
-      d.width_mm = drive.belt.width_mm, d.density_kg_m3 = drive.belt.density_kg_m3, d.speed_mm_s = drive.belt_speed_mm_s;
-      const auto iso20 = segment::make_elastic(segment::ElasticLaw::hencky, 20.0, 0.49);
-      const auto iso8 = segment::make_elastic(segment::ElasticLaw::hencky, 8.0, 0.49);
-      const segment::LongBeltSection fs(scene::cog_section(sc), 13.5, {iso20.get(), iso8.get()});
-      const auto ow = oracle_end(p.oracle, 1), os = oracle_end(p.oracle, 0);
-      for (double smid = 0.0; smid < 914.0; smid += 4.0) {
-        std::printf("s %.0f", smid);
-        for (int side = 0; side < 2; ++side) {
-          const double b = segment::contact_body_force(history.at_position(smid + (side ? 13.5 : -13.5)), d).x();
-          std::printf(" | %s b %.3f warp(4.1) %.4f/%.4f warp(6.2) %.4f/%.4f s12(0.25) %.3f/%.3f", side ? "R" : "L", b,
-                      ow(side, 4.1, smid + 914.4), fs.warping_mm({b}, 4.1), ow(side, 6.2, smid + 914.4),
-                      fs.warping_mm({b}, 6.2), os(side, 0.25, smid + 914.4), fs.shear_MPa({b}, 0.25));
-        }
-        std::printf("\n");
-      }
-      return 0;
     }
     std::printf("%s", kProbeHeader);
     const Outcome o = run_probe(p);
@@ -394,11 +374,6 @@ int main(int argc, char** argv) {
                 m.cushion_rows, segment::to_string(o.integration));
     print_cushion_points(p, o);
     if (!p.csv.empty()) segment::write_cycle_csv(o.life.run, p.csv);
-    if (std::getenv("HACK_LOADS"))
-      for (const auto& q : o.life.run.loads)
-        std::printf("loads s %.1f body %.4f %.4f cord %.4f %.4f cord_long %.4f left_face_long %.4f rubber_mid %.4f F/B %.3f\n", q.s_mm,
-                    q.body_force_N_mm.x(), q.body_force_N_mm.y(), q.cord_reaction_N_mm.x(), q.cord_reaction_N_mm.y(),
-                    q.cord_longitudinal_N_mm, q.left_end_longitudinal_N_mm, q.rubber_section_N_mm, q.belt_force_N_mm);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows

@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -147,6 +145,12 @@ void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const N
 
 }  // namespace
 
+double span_cord_share_bound(const CycleResult& run) {
+  using B = EquilibriumBounds;
+  if (run.history) return B::span_cord_share_with_history;
+  return run.sheared_ends ? B::span_cord_share_sheared_ends : B::span_cord_share;
+}
+
 Eigen::Vector2d contact_body_force(const belt::LoadState& q, const CycleDrive& d) {
   if (!(q.p_MPa > 0.0)) return Eigen::Vector2d::Zero();
   const double cb = std::cos(d.wedge_half_angle_rad), sb = std::sin(d.wedge_half_angle_rad);
@@ -229,7 +233,7 @@ namespace {
 
 // The sheared end condition: each face warped and sheared as a long belt's section under the
 // friction and the changes of strain and curvature at the face's path position, each smoothed by
-// the shear lag (segment/end_faces.hpp), tabulated once over the cycle.
+// the shear lag (segment/end_faces.hpp); tabulated once over the cycle.
 void long_belt_ends(const CogSection& section, const Mesh& straight, const std::array<const PlaneStrainLaw*, 2>& laws,
                     const CycleDrive& drive, CycleKnobs::EndProfile& warping, CycleKnobs::EndProfile& shear) {
   const double half = straight.half_length_mm;
@@ -237,25 +241,21 @@ void long_belt_ends(const CogSection& section, const Mesh& straight, const std::
   const belt::LoadHistory& h = *drive.history;
   const int M = 4000;
   const double L = h.length_mm(), ds = L / M;
-  std::array<std::vector<double>, 3> load;  // b, ε, K
+  std::array<std::vector<double>, 3> load;  // b, ε, K along the cycle
   for (auto& v : load) v.resize(M);
   for (int i = 0; i < M; ++i) {
     const belt::LoadState q = h.at_position(i * ds);
     load[0][i] = contact_body_force(q, drive).x(), load[1][i] = q.strain, load[2][i] = q.K_1_mm;
   }
-  const double lag = std::getenv("HACK_LAG") ? std::atof(std::getenv("HACK_LAG")) : faces[0].shear_lag_mm();
-  if (std::getenv("HACK_PRINTLAG")) std::fprintf(stderr, "shear lag %.3f mm\n", faces[0].shear_lag_mm());
-  for (auto& v : load) if (lag > 0.0) v = shear_lag_smoothed(v, ds, lag);
+  for (auto& v : load) v = shear_lag_smoothed(v, ds, faces[0].shear_lag_mm());
   std::vector<SectionGradients> g(M);
-  const double grad = std::getenv("HACK_NOGRAD") ? 0.0 : 1.0;
   for (int i = 0; i < M; ++i) {
     const int next = (i + 1) % M, prev = (i + M - 1) % M;
-    g[i] = {load[0][i], grad * (load[1][next] - load[1][prev]) / (2.0 * ds), grad * (load[2][next] - load[2][prev]) / (2.0 * ds)};
+    g[i] = {load[0][i], (load[1][next] - load[1][prev]) / (2.0 * ds), (load[2][next] - load[2][prev]) / (2.0 * ds)};
   }
-  auto at = [g, ds, L, M, half](int side, double s_mm) {
-    const double u = std::fmod(std::fmod(s_mm + (side == 0 ? -half : half), L) + L, L) / ds, i = std::floor(u);
+  auto at = [g, ds, L, M, half](int side, double s_mm) {  // linear between the samples, periodic
+    const double u = std::fmod(std::fmod(s_mm + (side == 0 ? -half : half), L) + L, L) / ds, i = std::floor(u), w = u - i;
     const int k = static_cast<int>(i) % M, k1 = (k + 1) % M;
-    const double w = u - i;
     return SectionGradients{g[k].body_N_mm3 + w * (g[k1].body_N_mm3 - g[k].body_N_mm3),
                             g[k].strain_per_mm + w * (g[k1].strain_per_mm - g[k].strain_per_mm),
                             g[k].curvature_per_mm2 + w * (g[k1].curvature_per_mm2 - g[k].curvature_per_mm2)};
@@ -284,13 +284,14 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       throw core::UsageError("segment cycle: positions_mm must be positive and increasing");
   const double reach = 1.5 * straight.half_length_mm;
   const double T = 1.0 + (at_s.empty() ? knobs.cycles : at_s.back() / h.length_mm());
-  const int n = std::getenv("HACK_N") ? std::atoi(std::getenv("HACK_N")) : knobs.curve_intervals;
+  const int n = knobs.curve_intervals;
   const CurvatureIntegral integral(h);
   auto curve_at = [&h, &integral, K_m, reach, n, T](double lambda) {
     return cord_curve(lambda * T, h, integral, K_m, reach, n);
   };
   CycleKnobs::EndProfile warping = knobs.end_warping_mm, shear = knobs.end_shear_MPa;
-  if (knobs.ends == EndCondition::sheared) long_belt_ends(section, straight, laws, drive, warping, shear);
+  if (knobs.ends == EndCondition::sheared && !warping && !shear)
+    long_belt_ends(section, straight, laws, drive, warping, shear);
   EndShift shift;
   if (warping)
     shift = [&straight, &h, T, &warping](int node, double lambda) {
@@ -319,9 +320,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     const NeutralCurve curve = curve_at(lambda);
     const double s0 = (tau - 1.0) * h.length_mm();
     for (int e = 0; e < m.element_count(); ++e) {
-      Eigen::Vector2d lr = contact_body_force(h.at_position(s0 + centre_x[e]), drive);
-      if (const char* v = std::getenv("HACK_BL")) lr.x() *= std::atof(v);
-      if (const char* v = std::getenv("HACK_BR")) lr.y() *= std::atof(v);
+      const Eigen::Vector2d lr = contact_body_force(h.at_position(s0 + centre_x[e]), drive);
       if (lr.isZero(0.0)) continue;
       const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
       b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
@@ -455,6 +454,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.factorizations = out.final_state.factorizations;
   out.elements = m.element_count();
   out.history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;
+  out.sheared_ends = static_cast<bool>(warping) || static_cast<bool>(shear);
   out.equations = out.final_state.equations;
   return out;
 }

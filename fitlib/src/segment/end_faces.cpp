@@ -62,12 +62,18 @@ double LongBeltSection::combine(const Profiles& v, const SectionGradients& g, do
 
 std::vector<double> shear_lag_smoothed(const std::vector<double>& f, double ds_mm, double lag_mm) {
   const std::size_t M = f.size();
-  const double a = std::exp(-ds_mm / lag_mm), norm = (1.0 - a) / (1.0 + a);
-  std::vector<double> forward(3 * M), backward(3 * M);  // three periods: the middle one is periodic
-  for (std::size_t i = 0; i < 3 * M; ++i) forward[i] = f[i % M] + (i ? a * forward[i - 1] : 0.0);
-  for (std::size_t i = 3 * M; i-- > 0;) backward[i] = f[i % M] + (i + 1 < 3 * M ? a * backward[i + 1] : 0.0);
-  std::vector<double> out(M);
-  for (std::size_t i = 0; i < M; ++i) out[i] = norm * (forward[M + i] + backward[M + i] - f[i]);
+  const double a = std::exp(-ds_mm / lag_mm), norm = (1.0 - a) / (1.0 + a), wrap = 1.0 - std::pow(a, M);
+  // One-sided sums Σ_k a^k f[i ∓ k] over the periodic samples; each pass starts from the periodic
+  // value at its first sample (one period's sum over 1 − a^M).
+  double forward = 0.0, backward = 0.0;
+  for (std::size_t i = 0; i < M; ++i) forward = f[i] + a * forward, backward = f[M - 1 - i] + a * backward;
+  forward /= wrap, backward /= wrap;
+  std::vector<double> out(M), back(M);
+  for (std::size_t i = M; i-- > 0;) back[i] = backward = f[i] + a * backward;
+  for (std::size_t i = 0; i < M; ++i) {
+    forward = f[i] + a * forward;
+    out[i] = norm * (forward + back[i] - f[i]);
+  }
   return out;
 }
 

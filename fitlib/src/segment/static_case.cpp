@@ -23,7 +23,7 @@ StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_
   p.laws = laws;
   for (int n : m.top_nodes) p.constraints.push_back({n, 0.0, {true, true}});
   const std::size_t n_top = p.constraints.size();
-  if (ends == EndCondition::radial)
+  if (ends != EndCondition::free)  // radial (sheared adds the cycle's warping through end_shift_mm)
     for (const auto* side : {&m.left_nodes, &m.right_nodes})
       for (int n : *side)
         if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, {true, false}});
