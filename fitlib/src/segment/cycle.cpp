@@ -264,6 +264,39 @@ void long_belt_ends(const CogSection& section, const Mesh& straight, const std::
   shear = [faces, at](int side, double depth_mm, double s_mm) { return faces[side].shear_MPa(at(side, s_mm), depth_mm); };
 }
 
+// The sheared faces' warping as the constraints' shift along the cord tangent (none in step 1).
+EndShift end_shift(const Mesh& straight, const belt::LoadHistory& h, double T, const CycleKnobs::EndProfile& warping) {
+  if (!warping) return {};
+  return [&straight, &h, T, warping](int node, double lambda) {
+    const double tau = lambda * T;
+    if (tau <= 1.0) return 0.0;
+    const Eigen::Vector2d& X = straight.X[node];
+    return warping(X.x() < 0.0 ? 0 : 1, -X.y(), (tau - 1.0) * h.length_mm());
+  };
+}
+
+// The faces' shear traction as dead nodal forces along each end's radial line (none in step 1).
+std::function<void(double, std::vector<Eigen::Vector2d>&)> end_shear_forces(
+    int nodes, const Mesh& straight, const std::vector<double>& path_x, const belt::LoadHistory& h, double T,
+    std::function<NeutralCurve(double)> curve_at, CycleKnobs::EndProfile shear) {
+  const std::array<std::vector<FaceWeight>, 2> faces{face_weights(straight, straight.left_nodes),
+                                                     face_weights(straight, straight.right_nodes)};
+  const std::array<double, 2> end_x{path_x[straight.top_nodes.front()], path_x[straight.top_nodes.back()]};
+  return [=, &h](double lambda, std::vector<Eigen::Vector2d>& f) {
+    f.assign(nodes, Eigen::Vector2d::Zero());
+    const double tau = lambda * T;
+    if (tau <= 1.0) return;
+    const NeutralCurve curve = curve_at(lambda);
+    const double s0 = (tau - 1.0) * h.length_mm();
+    for (int side = 0; side < 2; ++side) {
+      const double phi = curve.at(curve.s_from_unstrained(end_x[side])).phi_rad;
+      const Eigen::Vector2d n(std::sin(phi), std::cos(phi));  // radial, outward
+      const double outward = side == 0 ? -1.0 : 1.0;          // the face's normal is ∓ the tangent
+      for (const FaceWeight& w : faces[side]) f[w.node] += outward * w.length_mm * shear(side, w.depth_mm, s0) * n;
+    }
+  };
+}
+
 }  // namespace
 
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
@@ -292,16 +325,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   CycleKnobs::EndProfile warping = knobs.end_warping_mm, shear = knobs.end_shear_MPa;
   if (knobs.ends == EndCondition::sheared && !warping && !shear)
     long_belt_ends(section, straight, laws, drive, warping, shear);
-  EndShift shift;
-  if (warping)
-    shift = [&straight, &h, T, &warping](int node, double lambda) {
-      const double tau = lambda * T;
-      if (tau <= 1.0) return 0.0;
-      const Eigen::Vector2d& X = straight.X[node];
-      return warping(X.x() < 0.0 ? 0 : 1, -X.y(), (tau - 1.0) * h.length_mm());
-    };
   const EndCondition ends = knobs.ends == EndCondition::free ? EndCondition::free : EndCondition::radial;
-  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, ends, shift);
+  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, ends, end_shift(straight, h, T, warping));
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
@@ -327,25 +352,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     }
   };
   p.body_force = body;
-  if (shear) {
-    const std::array<std::vector<FaceWeight>, 2> faces{face_weights(straight, straight.left_nodes),
-                                                       face_weights(straight, straight.right_nodes)};
-    p.nodal_force = [&, faces](double lambda, std::vector<Eigen::Vector2d>& f) {
-      f.assign(m.node_count(), Eigen::Vector2d::Zero());
-      const double tau = lambda * T;
-      if (tau <= 1.0) return;
-      const NeutralCurve curve = curve_at(lambda);
-      const double s0 = (tau - 1.0) * h.length_mm();
-      for (int side = 0; side < 2; ++side) {
-        const int end_node = side == 0 ? straight.top_nodes.front() : straight.top_nodes.back();
-        const double phi = curve.at(curve.s_from_unstrained(path_x[end_node])).phi_rad;
-        const Eigen::Vector2d n(std::sin(phi), std::cos(phi));  // radial, outward
-        const double outward = side == 0 ? -1.0 : 1.0;          // the face's normal is ∓ the tangent
-        for (const FaceWeight& w : faces[side])
-          f[w.node] += outward * w.length_mm * shear(side, w.depth_mm, s0) * n;
-      }
-    };
-  }
+  if (shear) p.nodal_force = end_shear_forces(m.node_count(), straight, path_x, h, T, curve_at, shear);
 
   CycleResult out;
   out.cycle_time_s = period;
