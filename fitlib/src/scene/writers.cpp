@@ -210,8 +210,9 @@ std::string life_text(const Scene& s, const SceneResult& r) {
     if (!s.segment)  // measured accuracy of the life's default mesh (docs/segment.md §Cost, "Segment length")
       o << "note: the life's default segment (144 elements, 27 mm long) with sheared end faces gives N2 within 10 % "
            "of an 81 mm segment's on the medium and heavy reference drives and N1 6 to 18 % (isotropic rubber) or "
-           "36 to 43 % (the thesis cards) shorter; [segment] central_pitches = 3, end_pitches = 3 selects the 81 mm "
-           "segment, at about 10 x the time (docs/segment.md \"End faces\")\n";
+           "36 to 43 % (the thesis cards) shorter; [segment] central_pitches = 3, end_pitches = 3, fine_size_mm = 1, "
+           "coarse_size_mm = 2.5, cushion_rows = 1 selects the 81 mm segment with the life's element sizes, at about "
+           "10 x the time (docs/segment.md \"End faces\")\n";
   }
   for (const FieldFile& f : l.fields)
     o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";
