@@ -4,7 +4,7 @@
 //    [life]: life per mode, governing mode, wall time of the whole scene run (`fitcli life`'s
 //    route, 2 load cycles) and its ratio to the beam row.
 // 2. The segment's convergence on the medium drive: life versus mesh (the default 144 elements and
-//    a 0.6/2.0 mm mesh), versus the segment's length (27, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
+//    a 0.6/2.0 mm mesh), versus the segment's length (27 mm sheared and radial ends, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
 //    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' levels, relative to the finer.
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
@@ -23,7 +23,14 @@
 // `vtk=FILE`: write the mesh (straight reference) as VTK; `profile`: also monitor the cushion at
 // x = 0 every tenth of its depth. The probe
 // prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
+// `bc=radial|free|sheared`: the end faces (default: the life's, sheared); `section=X`: also monitor
+// x = ±X every 0.5 mm of depth (0.25 … 6.25 mm; these points count in the lives); `csv=PATH`: the
+// monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
+// section=X CSV (X = this segment's half-length; docs/segment.md "End faces").
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -88,7 +95,52 @@ struct Probe {
   bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
   bool diagnose = false;                        // SolverKnobs::diagnose_failure
   double fillet_mm = -1.0, tip_mm = -1.0;       // fillet=, tip=: the cogs' root fillet and tip radius (< 0: the scene's)
+  std::string end_condition{};                  // bc=radial|free (empty: the setup's)
+  double section_x = -1.0;                      // section=X: monitor x = ±X every 0.5 mm of depth
+  std::string csv{};                            // csv=PATH: the monitored histories
+  std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
 };
+
+// The end faces' shear (column 0) or warping (column 1) from a longer run's CSV (section=X there,
+// X = this segment's half-length): σ12 or −∫ 2 e12 dh of left-k / right-k (depth 0.25 + 0.5k mm)
+// against the middle's path position, linear in both.
+std::function<double(int, double, double)> oracle_end(const std::string& path, int column) {
+  std::array<std::vector<std::vector<std::pair<double, double>>>, 2> table;
+  for (auto& t : table) t.resize(13);
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  char line[1024];
+  while (f && std::fgets(line, sizeof line, f)) {
+    char name[64];
+    double v[11];
+    if (std::sscanf(line, "%63[^,],%*[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", name, v, v + 1, v + 2, v + 3,
+                    v + 4, v + 5, v + 6, v + 7, v + 8, v + 9, v + 10) != 12)
+      continue;
+    const std::string n = name;
+    const int side = n.rfind("left-", 0) == 0 ? 0 : n.rfind("right-", 0) == 0 ? 1 : -1;
+    if (side >= 0) table[side][std::atoi(n.c_str() + (side ? 6 : 5))].emplace_back(v[3], column == 0 ? v[6] : v[10]);
+  }
+  if (f) std::fclose(f);
+  return [table, column](int side, double depth, double s) {
+    auto at = [&](int k) {
+      const auto& v = table[side][k];
+      auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(s, -1e300));
+      if (it == v.begin()) return v.front().second;
+      if (it == v.end()) return v.back().second;
+      const auto& a = *(it - 1);
+      const double w = it->first > a.first ? (s - a.first) / (it->first - a.first) : 1.0;
+      return a.second + w * (it->second - a.second);
+    };
+    const double u = std::clamp((depth - 0.25) / 0.5, 0.0, 12.0);
+    const int k = std::min(11, static_cast<int>(u));
+    if (column == 0) return at(k) + (u - k) * (at(k + 1) - at(k));
+    double w = -2.0 * at(0) * std::min(depth, 0.25);  // −∫ 2 e12 dh, trapezoids between the samples
+    for (int j = 0; j < 12 && depth > 0.25 + 0.5 * j; ++j) {
+      const double top = 0.25 + 0.5 * j, dz = std::min(depth, top + 0.5) - top, frac = dz / 0.5;
+      w -= 2.0 * dz * (at(j) + 0.5 * frac * (at(j + 1) - at(j)));
+    }
+    return w;
+  };
+}
 
 struct Outcome {
   fatigue::SegmentLife life;
@@ -123,6 +175,14 @@ Outcome run_probe(const Probe& pr) {
   if (!pr.vtk.empty()) segment::write_vtk(segment::build_mesh(setup.section, setup.mesh), pr.vtk);
   for (int k = 1; k < 10 && pr.profile; ++k)
     setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
+  for (int k = 0; pr.section_x >= 0.0 && k < 13; ++k)
+    for (double sign : {-1.0, 1.0})
+      setup.extra_points.push_back({(sign < 0 ? "left-" : "right-") + std::to_string(k), sign * pr.section_x,
+                                    -0.25 - 0.5 * k});
+  if (!pr.oracle.empty()) setup.cycle.end_shear_MPa = oracle_end(pr.oracle, 0), setup.cycle.end_warping_mm = oracle_end(pr.oracle, 1);
+  if (pr.end_condition == "free") setup.cycle.ends = segment::EndCondition::free;
+  if (pr.end_condition == "sheared") setup.cycle.ends = segment::EndCondition::sheared;
+  if (pr.end_condition == "radial") setup.cycle.ends = segment::EndCondition::radial;
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
@@ -251,6 +311,10 @@ void convergence(const std::string& fidelity) {
     elements.push_back(by_mesh.back().life.run.elements), t_mesh.push_back(by_mesh.back().wall_s);
   }
   by_length.push_back(by_mesh[0]);
+  Probe radial{"medium", fidelity, "coarse", 60, false};  // the life mesh with the former radial ends
+  radial.end_condition = "radial";
+  by_length.push_back(run_probe(radial));
+  print_probe(radial, by_length.back());
   for (const char* mesh : {"long", "longer"}) {  // the segment's length: 27, 54, 81 mm
     const Probe p{"medium", fidelity, mesh, 60, false};
     by_length.push_back(run_probe(p));
@@ -269,9 +333,11 @@ void convergence(const std::string& fidelity) {
               "N1 %+.1f N2 %+.1f, 40 vs 80 N1 %+.1f N2 %+.1f\n",
               change(by_mesh[0], by_mesh[1], 0), change(by_mesh[0], by_mesh[1], 1), change(by_steps[0], by_steps[2], 0),
               change(by_steps[0], by_steps[2], 1), change(by_steps[1], by_steps[2], 0), change(by_steps[1], by_steps[2], 1));
-  std::printf("segment length (27 / 54 mm against 81 mm): N1 %+.1f / %+.1f, N2 %+.1f / %+.1f\n",
-              change(by_length[0], by_length[2], 0), change(by_length[1], by_length[2], 0),
-              change(by_length[0], by_length[2], 1), change(by_length[1], by_length[2], 1));
+  std::printf("segment length (27 mm sheared / 27 mm radial / 54 mm against 81 mm): N1 %+.1f / %+.1f / %+.1f, "
+              "N2 %+.1f / %+.1f / %+.1f\n",
+              change(by_length[0], by_length[3], 0), change(by_length[1], by_length[3], 0),
+              change(by_length[2], by_length[3], 0), change(by_length[0], by_length[3], 1),
+              change(by_length[1], by_length[3], 1), change(by_length[2], by_length[3], 1));
   std::printf("scaling: time ~ elements^%.2f, time ~ steps^%.2f\n", exponent(elements, t_mesh), exponent(steps, t_steps));
   std::fflush(stdout);
 }
@@ -315,6 +381,10 @@ int main(int argc, char** argv) {
       if (a == "diagnose") p.diagnose = true;
       if (a.rfind("fillet=", 0) == 0) p.fillet_mm = std::atof(a.c_str() + 7);
       if (a.rfind("tip=", 0) == 0) p.tip_mm = std::atof(a.c_str() + 4);
+      if (a.rfind("bc=", 0) == 0) p.end_condition = a.substr(3);
+      if (a.rfind("section=", 0) == 0) p.section_x = std::atof(a.c_str() + 8);
+      if (a.rfind("csv=", 0) == 0) p.csv = a.substr(4);
+      if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
     }
     std::printf("%s", kProbeHeader);
@@ -339,6 +409,7 @@ int main(int argc, char** argv) {
     for (const fatigue::Peak& q : n1.peaks) std::printf(" %.4f MPa at %.4f s;", q.stress_MPa, q.t_s);
     std::printf("\n");
     print_cushion_points(p, o);
+    if (!p.csv.empty()) segment::write_cycle_csv(o.life.run, p.csv);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows

@@ -121,7 +121,7 @@ TEST(LifeCli, ElasticLevelReportsTheSegmentEquilibriumCheckAndTheEntranceField) 
     EXPECT_GE(value, 0.0) << key;
     EXPECT_LE(value, bound) << key;
   }
-  EXPECT_EQ(e["span_cord_share_bound"].get<double>(), 1e-5);
+  EXPECT_EQ(e["span_cord_share_bound"].get<double>(), 1e-2);  // the life's sheared end faces
   EXPECT_EQ(e["span_section_mismatch_bound"].get<double>(), 1e-6);
   EXPECT_GT(e["span_increments"].get<int>(), 0);  // the span checks saw increments
   EXPECT_TRUE(e["within_bounds"].get<bool>());

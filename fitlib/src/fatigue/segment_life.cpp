@@ -19,6 +19,12 @@ segment::MeshKnobs life_mesh() {
   return m;
 }
 
+segment::CycleKnobs life_cycle() {
+  segment::CycleKnobs c;
+  c.ends = segment::EndCondition::sheared;
+  return c;
+}
+
 std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run) {
   std::vector<PointHistory> out;
   for (const segment::MonitoredHistory& m : run.points) {

@@ -211,9 +211,8 @@ void check_life_fields(const Scene& s) {
 }
 
 SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run) {
-  using B = segment::EquilibriumBounds;
   SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0,
-                           run.history ? B::span_cord_share_with_history : B::span_cord_share};
+                           segment::span_cord_share_bound(run)};
   for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
   return check;
 }

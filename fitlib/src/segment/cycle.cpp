@@ -13,6 +13,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/segment/curve.hpp"
+#include "fitlib/segment/end_faces.hpp"
 
 namespace fitlib::segment {
 namespace {
@@ -93,6 +94,29 @@ double reference_area(const Mesh& m, int e, const std::vector<detail::GaussPoint
   return area;
 }
 
+// A face node's share of a traction t(h) on the end face: Σ over its edges ∫ N_a t dl by 3-point
+// Gauss, written as t at the Gauss points' depths times weights (one entry per node and point).
+struct FaceWeight {
+  int node;
+  double depth_mm, length_mm;
+};
+
+std::vector<FaceWeight> face_weights(const Mesh& straight, const std::vector<int>& face) {
+  std::vector<FaceWeight> out;
+  const int step = straight.nodes_per_element == 8 ? 2 : 1;
+  const double xi[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, wt[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  for (std::size_t a = 0; a + step < face.size(); a += step) {
+    const double ya = straight.X[face[a]].y(), yb = straight.X[face[a + step]].y(), half = 0.5 * std::abs(ya - yb);
+    for (int g = 0; g < 3; ++g) {
+      const double x = xi[g], depth = -(0.5 * (ya + yb) + 0.5 * x * (yb - ya));
+      const double N2[3] = {0.5 * x * (x - 1.0), 1.0 - x * x, 0.5 * x * (x + 1.0)}, N1[2] = {0.5 * (1.0 - x), 0.5 * (1.0 + x)};
+      for (int k = 0; k <= step; ++k)
+        out.push_back({face[a + k], depth, (step == 2 ? N2[k] : N1[k]) * wt[g] * half});
+    }
+  }
+  return out;
+}
+
 CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
   const Eigen::Vector2d t(std::cos(phi), -std::sin(phi)), n(std::sin(phi), std::cos(phi));
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(ip.F * ip.F.transpose());
@@ -120,6 +144,12 @@ void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const N
 }
 
 }  // namespace
+
+double span_cord_share_bound(const CycleResult& run) {
+  using B = EquilibriumBounds;
+  if (run.history) return B::span_cord_share_with_history;
+  return run.sheared_ends ? B::span_cord_share_sheared_ends : B::span_cord_share;
+}
 
 Eigen::Vector2d contact_body_force(const belt::LoadState& q, const CycleDrive& d) {
   if (!(q.p_MPa > 0.0)) return Eigen::Vector2d::Zero();
@@ -199,6 +229,76 @@ std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
 
 }  // namespace
 
+namespace {
+
+// The sheared end condition: each face warped and sheared as a long belt's section under the
+// friction and the changes of strain and curvature at the face's path position, each smoothed by
+// the shear lag (segment/end_faces.hpp); tabulated once over the cycle.
+void long_belt_ends(const CogSection& section, const Mesh& straight, const std::array<const PlaneStrainLaw*, 2>& laws,
+                    const CycleDrive& drive, CycleKnobs::EndProfile& warping, CycleKnobs::EndProfile& shear) {
+  const double half = straight.half_length_mm;
+  const std::array<LongBeltSection, 2> faces{LongBeltSection(section, -half, laws), LongBeltSection(section, half, laws)};
+  const belt::LoadHistory& h = *drive.history;
+  const int M = 4000;
+  const double L = h.length_mm(), ds = L / M;
+  std::array<std::vector<double>, 3> load;  // b, ε, K along the cycle
+  for (auto& v : load) v.resize(M);
+  for (int i = 0; i < M; ++i) {
+    const belt::LoadState q = h.at_position(i * ds);
+    load[0][i] = contact_body_force(q, drive).x(), load[1][i] = q.strain, load[2][i] = q.K_1_mm;
+  }
+  for (auto& v : load) v = shear_lag_smoothed(v, ds, faces[0].shear_lag_mm());
+  std::vector<SectionGradients> g(M);
+  for (int i = 0; i < M; ++i) {
+    const int next = (i + 1) % M, prev = (i + M - 1) % M;
+    g[i] = {load[0][i], (load[1][next] - load[1][prev]) / (2.0 * ds), (load[2][next] - load[2][prev]) / (2.0 * ds)};
+  }
+  auto at = [g, ds, L, M, half](int side, double s_mm) {  // linear between the samples, periodic
+    const double u = std::fmod(std::fmod(s_mm + (side == 0 ? -half : half), L) + L, L) / ds, i = std::floor(u), w = u - i;
+    const int k = static_cast<int>(i) % M, k1 = (k + 1) % M;
+    return SectionGradients{g[k].body_N_mm3 + w * (g[k1].body_N_mm3 - g[k].body_N_mm3),
+                            g[k].strain_per_mm + w * (g[k1].strain_per_mm - g[k].strain_per_mm),
+                            g[k].curvature_per_mm2 + w * (g[k1].curvature_per_mm2 - g[k].curvature_per_mm2)};
+  };
+  warping = [faces, at](int side, double depth_mm, double s_mm) { return faces[side].warping_mm(at(side, s_mm), depth_mm); };
+  shear = [faces, at](int side, double depth_mm, double s_mm) { return faces[side].shear_MPa(at(side, s_mm), depth_mm); };
+}
+
+// The sheared faces' warping as the constraints' shift along the cord tangent (none in step 1).
+EndShift end_shift(const Mesh& straight, const belt::LoadHistory& h, double T, const CycleKnobs::EndProfile& warping) {
+  if (!warping) return {};
+  return [&straight, &h, T, warping](int node, double lambda) {
+    const double tau = lambda * T;
+    if (tau <= 1.0) return 0.0;
+    const Eigen::Vector2d& X = straight.X[node];
+    return warping(X.x() < 0.0 ? 0 : 1, -X.y(), (tau - 1.0) * h.length_mm());
+  };
+}
+
+// The faces' shear traction as dead nodal forces along each end's radial line (none in step 1).
+std::function<void(double, std::vector<Eigen::Vector2d>&)> end_shear_forces(
+    int nodes, const Mesh& straight, const std::vector<double>& path_x, const belt::LoadHistory& h, double T,
+    std::function<NeutralCurve(double)> curve_at, CycleKnobs::EndProfile shear) {
+  const std::array<std::vector<FaceWeight>, 2> faces{face_weights(straight, straight.left_nodes),
+                                                     face_weights(straight, straight.right_nodes)};
+  const std::array<double, 2> end_x{path_x[straight.top_nodes.front()], path_x[straight.top_nodes.back()]};
+  return [=, &h](double lambda, std::vector<Eigen::Vector2d>& f) {
+    f.assign(nodes, Eigen::Vector2d::Zero());
+    const double tau = lambda * T;
+    if (tau <= 1.0) return;
+    const NeutralCurve curve = curve_at(lambda);
+    const double s0 = (tau - 1.0) * h.length_mm();
+    for (int side = 0; side < 2; ++side) {
+      const double phi = curve.at(curve.s_from_unstrained(end_x[side])).phi_rad;
+      const Eigen::Vector2d n(std::sin(phi), std::cos(phi));  // radial, outward
+      const double outward = side == 0 ? -1.0 : 1.0;          // the face's normal is ∓ the tangent
+      for (const FaceWeight& w : faces[side]) f[w.node] += outward * w.length_mm * shear(side, w.depth_mm, s0) * n;
+    }
+  };
+}
+
+}  // namespace
+
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
                       const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
                       const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
@@ -222,7 +322,11 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   auto curve_at = [&h, &integral, K_m, reach, n, T](double lambda) {
     return cord_curve(lambda * T, h, integral, K_m, reach, n);
   };
-  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, EndCondition::radial);
+  CycleKnobs::EndProfile warping = knobs.end_warping_mm, shear = knobs.end_shear_MPa;
+  if (knobs.ends == EndCondition::sheared && !warping && !shear)
+    long_belt_ends(section, straight, laws, drive, warping, shear);
+  const EndCondition ends = knobs.ends == EndCondition::free ? EndCondition::free : EndCondition::radial;
+  StaticProblem p = cord_curve_problem(m, path_x, laws, curve_at, ends, end_shift(straight, h, T, warping));
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
@@ -248,12 +352,13 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     }
   };
   p.body_force = body;
+  if (shear) p.nodal_force = end_shear_forces(m.node_count(), straight, path_x, h, T, curve_at, shear);
 
   CycleResult out;
   out.cycle_time_s = period;
   std::vector<NamedPoint> named = standard_points(section);
   named.insert(named.end(), extra_points.begin(), extra_points.end());
-  std::vector<Eigen::Vector2d> forces;
+  std::vector<Eigen::Vector2d> forces, nodal;
   std::vector<bool> written(knobs.vtk_at_s_mm.size(), false);
   auto write_fields = [&](double tau, const StaticSolution& s) {
     if (knobs.vtk_prefix.empty()) return;
@@ -310,6 +415,10 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     Eigen::Vector2d applied = Eigen::Vector2d::Zero(), reactions = Eigen::Vector2d::Zero(), cord = Eigen::Vector2d::Zero();
     double scale = 1e-300;  // Σ |nodal reactions| + Σ |element body forces|
     for (int e = 0; e < m.element_count(); ++e) applied += forces[e] * area[e], scale += (forces[e] * area[e]).norm();
+    if (p.nodal_force) {
+      p.nodal_force(lambda, nodal);
+      for (const Eigen::Vector2d& f : nodal) applied += f, scale += f.norm();
+    }
     for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
@@ -352,6 +461,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.factorizations = out.final_state.factorizations;
   out.elements = m.element_count();
   out.history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;
+  out.sheared_ends = static_cast<bool>(warping) || static_cast<bool>(shear);
   out.equations = out.final_state.equations;
   return out;
 }

@@ -224,6 +224,10 @@ class Assembler {
         scatter(en, f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->edge_slots[k] : nullptr, coupling);
       }
     if (p_.body_force) add_body_forces(q, lambda, r);
+    if (p_.nodal_force) {
+      p_.nodal_force(lambda, nodal_);
+      for (std::size_t n = 0; n < nodal_.size(); ++n) r.segment<2>(2 * n) -= d_.R[n].transpose() * nodal_[n];
+    }
     return -1;
   }
 
@@ -285,7 +289,7 @@ class Assembler {
   const double* state_n_ = nullptr;
   double* state_next_ = nullptr;
   double dt_s_ = 0.0;
-  mutable std::vector<Eigen::Vector2d> body_;
+  mutable std::vector<Eigen::Vector2d> body_, nodal_;
 };
 
 double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {

@@ -16,13 +16,14 @@ std::vector<NamedPoint> standard_points(const CogSection& s) {
 
 StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_x_mm,
                                  const std::array<const PlaneStrainLaw*, 2>& laws,
-                                 std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends) {
+                                 std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends,
+                                 EndShift end_shift_mm) {
   StaticProblem p;
   p.mesh = &m;
   p.laws = laws;
   for (int n : m.top_nodes) p.constraints.push_back({n, 0.0, {true, true}});
   const std::size_t n_top = p.constraints.size();
-  if (ends == EndCondition::radial)
+  if (ends != EndCondition::free)  // radial (sheared adds the cycle's warping through end_shift_mm)
     for (const auto* side : {&m.left_nodes, &m.right_nodes})
       for (int n : *side)
         if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, {true, false}});
@@ -32,7 +33,8 @@ StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_
     p.constraints[c].angle_rad = -full.at(full.s_from_unstrained(path_x_mm[p.constraints[c].node])).phi_rad;  // e0 = tangent
   const Mesh* mesh = &m;
   const std::vector<NodeConstraint> constraints = p.constraints;
-  p.prescribe = [mesh, constraints, n_top, curve_at, path_x_mm](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.prescribe = [mesh, constraints, n_top, curve_at, path_x_mm, end_shift_mm](double lambda,
+                                                                              std::vector<std::array<double, 2>>& v) {
     const NeutralCurve curve = curve_at(lambda);
     for (std::size_t c = 0; c < constraints.size(); ++c) {
       const int node = constraints[c].node;
@@ -43,7 +45,7 @@ StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_
       } else {  // stay on the radial line through the cord point: (x − q)·t = 0
         const Eigen::Vector2d t(std::cos(q.phi_rad), -std::sin(q.phi_rad));
         const Eigen::Vector2d r = Eigen::Vector2d(q.x_mm, q.y_mm) - X;
-        v[c] = {r.dot(t), 0.0};
+        v[c] = {r.dot(t) + (end_shift_mm ? end_shift_mm(node, lambda) : 0.0), 0.0};
       }
     }
   };

@@ -210,8 +210,8 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
     const auto r = scene::run_scene(s);
     ASSERT_TRUE(r.life.has_value());
     for (const auto& m : r.life->report.modes) lives[cycles - 1].push_back(m.life_cycles);
-    ASSERT_TRUE(r.life->equilibrium.has_value());  // elastic points carry no history: the tight span bound
-    EXPECT_EQ(r.life->equilibrium->span_cord_share_bound, segment::EquilibriumBounds::span_cord_share);
+    ASSERT_TRUE(r.life->equilibrium.has_value());  // no history, but the life's sheared end faces
+    EXPECT_EQ(r.life->equilibrium->span_cord_share_bound, segment::EquilibriumBounds::span_cord_share_sheared_ends);
     // The life's default mesh: the table says how far its N2 is from a converged segment length.
     EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (192 elements, 27 mm long)"),
               std::string::npos);

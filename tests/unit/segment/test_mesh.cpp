@@ -81,7 +81,9 @@ TEST(SegmentMesh, GradedColumnsNarrowTowardsTheGapCentreAndGrowByTheKnob) {
     EXPECT_LE(w, 1.25 * wanted) << "column at " << mid;
     EXPECT_GE(w, 0.7 * wanted) << "column at " << mid;
     const bool section_start = std::abs(x[i] - 4.5) < 1e-12;
-    if (i > n / 2) EXPECT_LE(w / (x[i] - x[i - 1]), section_start ? 1.5 : 1.0 + 1.3 * k.column_growth) << mid;
+    if (i > n / 2) {
+      EXPECT_LE(w / (x[i] - x[i - 1]), section_start ? 1.5 : 1.0 + 1.3 * k.column_growth) << mid;
+    }
   }
 }
 

@@ -23,11 +23,15 @@ std::vector<PointHistory> segment_point_histories(const segment::CycleResult& ru
 // towards the gap bottom").
 segment::MeshKnobs life_mesh();
 
+// The life's load-cycle knobs: CycleKnobs' defaults with the sheared end faces, which bring the
+// short life mesh's lives near a long segment's (docs/decisions.md "Segment life: sheared end faces").
+segment::CycleKnobs life_cycle();
+
 struct SegmentLifeSetup {
   segment::CogSection section;
   segment::MeshKnobs mesh = life_mesh();
   segment::SolverKnobs solver;
-  segment::CycleKnobs cycle;
+  segment::CycleKnobs cycle = life_cycle();
   std::array<model::MaterialPointPtr, 2> materials;  // by segment::Role: bottom, cushion
   std::vector<segment::NamedPoint> extra_points;
   double temperature_C = 20.0;

@@ -8,6 +8,7 @@
 // (s0 = (τ − 1) L), and the cord-line nodes are placed on it. Where the section is in a sheave
 // (p > 0) contact pressure, friction and radial inertia act as body forces (6.6–6.9).
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,15 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
+  // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
+  // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
+  EndCondition ends = EndCondition::radial;
+  // Optional, instead of the sheared condition's model (e.g. a longer run's sections, sub-modelling):
+  // σ12 (MPa, the cord curve's local frame) on the end faces and their warping (mm along the cord
+  // tangent from the radial line) at depth h below the cord line while the segment's middle is at
+  // path position s; side 0 left, 1 right. The shear acts along the end's radial line.
+  using EndProfile = std::function<double(int side, double depth_mm, double s_mm)>;
+  EndProfile end_shear_MPa, end_warping_mm;
   // Optional: step 2's increments end where the segment's middle reaches these path positions
   // (mm from the start of cycle 1, increasing) instead of the planned ones, and the run stops at
   // the last (a few increments at a transition, of any size; `cycles` is then unused).
@@ -84,6 +94,10 @@ struct EquilibriumBounds {
   // stress to the cord line: "small compared with the total belt force" (Fritzson §5), measured
   // 0.8–1.0·10⁻³ (docs/segment.md "Cord-line reactions and the belt force").
   static constexpr double span_cord_share_with_history = 1e-2;
+  // With sheared end faces (the life's default) the faces carry the long belt's shear, which decays
+  // over a few shear-lag lengths beyond a pulley, into the first span increments; measured
+  // 1.2·10⁻⁵–5.4·10⁻⁴ on the reference drives (docs/segment.md "End faces").
+  static constexpr double span_cord_share_sheared_ends = 1e-2;
   static constexpr double span_section_mismatch = 1e-6;  // the left half's longitudinal balance
 };
 
@@ -104,8 +118,13 @@ struct CycleResult {
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
   int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
   bool history = false;  // a role's law carries state (viscoelastic, damage): EquilibriumBounds' looser span share
+  bool sheared_ends = false;  // end faces warped and sheared (EndCondition::sheared or given profiles)
   StaticSolution final_state;
 };
+
+// The span share's bound of a run: EquilibriumBounds' tight one, or the looser one when its points
+// carry history or its end faces are sheared.
+double span_cord_share_bound(const CycleResult& run);
 
 // The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
 // 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change — with each

@@ -79,6 +79,8 @@ struct StaticProblem {
   std::function<double(double lambda)> time_s;
   // Optional: dead body forces per element (global, N/mm³ of reference volume) at λ.
   std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
+  // Optional: dead nodal forces per node (global, N per mm of width; zero where none) at λ.
+  std::function<void(double lambda, std::vector<Eigen::Vector2d>& f_N_mm)> nodal_force;
   // Optional: called after every converged increment with its stresses, displacements, reactions.
   std::function<void(double lambda, const StaticSolution& increment)> on_increment;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference

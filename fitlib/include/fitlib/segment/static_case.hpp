@@ -27,7 +27,10 @@ struct NamedPoint {
   double x_mm = 0.0, y_mm = 0.0;  // reference (unloaded, straight) section coordinates
 };
 
-enum class EndCondition { radial, free };
+// radial: end faces on the radial line through the cord line's end point, sliding along it (an
+// endless belt, exact for uniform states); free; sheared (load cycle only): radial faces warped and
+// sheared as a long belt's sections under the local friction (segment/end_faces.hpp).
+enum class EndCondition { radial, free, sheared };
 
 struct StaticSetup {
   CogSection section;
@@ -72,9 +75,13 @@ std::vector<NamedPoint> standard_points(const CogSection& section);
 // The problem of a cord line placed on a curve that changes with λ: every cord-line node on the
 // curve at its unstrained path position path_x_mm[node], the ends (radial) on the curve's normal
 // through the end point. `mesh` is the reference (it may be bent, path_x the straight x).
+// `end_shift_mm` (optional, radial ends): an end-face node's distance along the cord tangent from
+// the radial line at λ (the face's warping), by node.
+using EndShift = std::function<double(int node, double lambda)>;
 StaticProblem cord_curve_problem(const Mesh& mesh, const std::vector<double>& path_x_mm,
                                  const std::array<const PlaneStrainLaw*, 2>& laws,
-                                 std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends);
+                                 std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends,
+                                 EndShift end_shift_mm = {});
 
 // The problem of a load case on a mesh (constraints from the curve); laws must outlive it.
 StaticProblem static_problem(const Mesh& mesh, const std::array<const PlaneStrainLaw*, 2>& laws,
