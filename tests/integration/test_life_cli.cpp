@@ -177,22 +177,29 @@ TEST(LifeCli, BadFieldAtExitsTwoAndLeavesNoOutputFolder) {
 // 144-element mesh (docs/segment.md "Cost", complete level; the graded life mesh passes this one
 // cycle by its increments and stops at the same place with two): exit 4,
 // the message says where in the cycle (path position and the load there), the solver's step and
-// node, and what runs instead; no output folder is left.
-TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereAndWhatRuns) {
+// node, why (a fold: with [life] diagnose_failure the stiffness's lowest eigenvalue at the best
+// iterate is nearly zero, 5e-4 of 2e5 N/mm², its mode at the land), and what runs instead; no output
+// folder is left.
+TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereWhyAndWhatRuns) {
   const std::string scene = unique_dir("life_complete_medium") + ".toml";
   std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml"))
                        << "\n[belt.materials]\nbottom = \"" << source_path("datasets/cards/material-1-true.json")
                        << "\"\ncushion = \"" << source_path("datasets/cards/material-2-true.json")
-                       << "\"\n[life]\nfidelity = \"complete\"\ncycles = 1\n"
+                       << "\"\n[life]\nfidelity = \"complete\"\ncycles = 1\ndiagnose_failure = true\n"
                        << "[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\nend_pitches = 1\n"
                           "cushion_rows = 1\n";
   const std::string out = unique_dir("life_complete_medium_out");
   const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
   EXPECT_EQ(r.exit_code, 4) << r.err;
   for (const char* part : {"segment load cycle: failed in cycle 1 after path position", "side pressure",
-                           "Newton failed in load increment", "largest residual at node",
-                           "[life] fidelity = \"elastic\" runs"})
+                           "Newton failed in load increment", "largest residual at node", "the load path folds",
+                           "lowest eigenvalues of K's symmetric part", "[life] fidelity = \"elastic\" runs"})
     EXPECT_NE(r.err.find(part), std::string::npos) << part << " in: " << r.err;
+  EXPECT_EQ(r.err.find("diagnose_failure = true adds"), std::string::npos) << r.err;  // it did
+  const std::string key = "lowest eigenvalues of K's symmetric part ";
+  const std::size_t best = r.err.find(key, r.err.find("[best iterate]"));
+  ASSERT_NE(best, std::string::npos) << r.err;
+  EXPECT_LT(std::stod(r.err.substr(best + key.size())), 1e-3) << r.err;
   EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -121,10 +121,16 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
     return fatigue::segment_run(cycle, drive, setup);
   } catch (const core::NumericalError& e) {
     if (fidelity != "complete") throw;
+    const std::string evidence = setup.solver.diagnose_failure
+                                     ? ""
+                                     : "; [life] diagnose_failure = true adds the evidence (the stiffness's lowest "
+                                       "eigenvalues, a tangent check)";
     throw core::NumericalError(std::string(e.what()) +
                                ". The complete level stops like this on the medium and heavy reference drives with "
-                               "the thesis cards (docs/segment.md \"Cost\", complete level); [life] fidelity = "
-                               "\"elastic\" runs the segment with the cards' elastic equivalents");
+                               "the thesis cards: the load path folds at a gap's land, where the damaged rubber "
+                               "cannot carry Report I's dead contact loads further (docs/segment.md \"Diagnosis at "
+                               "the failing state\")" + evidence +
+                               "; [life] fidelity = \"elastic\" runs the segment with the cards' elastic equivalents");
   }
 }
 
@@ -136,6 +142,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.section = cog_section(s);
     if (s.segment) setup.mesh = s.segment->setup.mesh, setup.solver = s.segment->setup.solver;
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
+    setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity);

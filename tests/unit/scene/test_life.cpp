@@ -213,7 +213,7 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
     ASSERT_TRUE(r.life->equilibrium.has_value());  // no history, but the life's sheared end faces
     EXPECT_EQ(r.life->equilibrium->span_cord_share_bound, segment::EquilibriumBounds::span_cord_share_sheared_ends);
     // The life's default mesh: the table says how far its N2 is from a converged segment length.
-    EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (192 elements, 27 mm long)"),
+    EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (192 elements, 27 mm long"),
               std::string::npos);
   }
   ASSERT_EQ(lives[0].size(), 2u);

@@ -73,6 +73,7 @@ struct LifeSpec {
   std::string card;                       // fatigue card path (resolved); empty: the bundled default
   int cycles = 3;                         // load cycles the segment levels run (beam: one exact cycle)
   std::optional<double> crack_sweep_deg;  // overrides the card's mode-1 sweep
+  bool diagnose_failure = false;          // a failed segment run says why (SolverKnobs::diagnose_failure)
 };
 
 struct Scene {
