@@ -239,12 +239,12 @@ LifePlan choose_life_plan(const Scene& s) {
   const std::string why = cards ? "the scene gives bottom and cushion cards, so the segment FE runs with the cards' "
                                    "elastic equivalents"
                                  : "the scene has a [segment] table, so the segment FE runs with its elastic materials";
-  // The elastic level meets its time target (0.7-0.9 s CPU per drive with the thesis cards, 2
-  // cycles); the complete level is asked for: it stops on the medium and heavy reference drives
-  // (docs/segment.md "Cost").
+  // The elastic level takes about 1 s (1.1-1.2 s CPU per drive with the thesis cards, 2 cycles,
+  // graded life mesh); the complete level is asked for: it stops on the medium and heavy reference
+  // drives (docs/segment.md "Cost").
   return {"elastic", "default: " + why + " (about 1 s); "
-                     "[life] fidelity = \"complete\" runs the full card models (about 5 s on the light drive; it "
-                     "stops on the medium and heavy reference drives: docs/segment.md), \"beam\" the layered "
+                     "[life] fidelity = \"complete\" runs the full card models (about 8 s on the light drive; "
+                     "the load path folds on the medium and heavy reference drives: docs/segment.md), \"beam\" the layered "
                      "section (milliseconds)"};
 }
 
