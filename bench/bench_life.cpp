@@ -27,7 +27,8 @@
 // x = ±X every 0.5 mm of depth (0.25 … 6.25 mm; these points count in the lives); `csv=PATH`: the
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
-// planned steps plus one every DS mm of path over [A, B] mm of the last cycle.
+// planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
+// fronts' increment spacing (0 = off).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -101,6 +102,7 @@ struct Probe {
   std::string csv{};                            // csv=PATH: the monitored histories
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
+  double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
 };
 
 // The end faces' shear (column 0) or warping (column 1) from a longer run's CSV (section=X there,
@@ -212,6 +214,7 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.diagnose_failure = pr.diagnose;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
+  if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
   o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
@@ -407,6 +410,7 @@ int main(int argc, char** argv) {
       if (a.rfind("csv=", 0) == 0) p.csv = a.substr(4);
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
+      if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);
