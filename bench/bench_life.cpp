@@ -26,7 +26,9 @@
 // `bc=radial|free|sheared`: the end faces (default: the life's, sheared); `section=X`: also monitor
 // x = ±X every 0.5 mm of depth (0.25 … 6.25 mm; these points count in the lives); `csv=PATH`: the
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
-// section=X CSV (X = this segment's half-length; docs/segment.md "End faces").
+// section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
+// planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
+// fronts' increment spacing (0 = off).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -99,6 +101,8 @@ struct Probe {
   double section_x = -1.0;                      // section=X: monitor x = ±X every 0.5 mm of depth
   std::string csv{};                            // csv=PATH: the monitored histories
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
+  std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
+  double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
 };
 
 // The end faces' shear (column 0) or warping (column 1) from a longer run's CSV (section=X there,
@@ -140,6 +144,24 @@ std::function<double(int, double, double)> oracle_end(const std::string& path, i
     }
     return w;
   };
+}
+
+// The planned path positions of both cycles plus every ds mm over [a, b] of the last one (the
+// transient's peak sampled densely: docs/segment.md "The driver exit's peel transient").
+std::vector<double> dense_positions(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
+                                    const fatigue::SegmentLifeSetup& setup, const std::array<double, 3>& dense) {
+  const belt::LoadHistory h(cycle, drive.belt, setup.temperature_C);
+  const double L = h.length_mm(), half = segment::build_mesh(setup.section, setup.mesh).half_length_mm;
+  std::vector<double> s;
+  for (int c = 0; c < setup.cycle.cycles; ++c)
+    for (double b : segment::cycle_breakpoints(h, setup.cycle.steps_per_cycle, setup.cycle.change_weight, half))
+      s.push_back((c + b) * L);
+  for (double x = dense[0]; x <= dense[1] + 1e-9; x += dense[2]) s.push_back((setup.cycle.cycles - 1) * L + x);
+  std::sort(s.begin(), s.end());
+  std::vector<double> out;
+  for (double x : s)
+    if (out.empty() || x > out.back() + 1e-6) out.push_back(x);
+  return out;
 }
 
 struct Outcome {
@@ -192,6 +214,7 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.diagnose_failure = pr.diagnose;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
+  if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
   o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
@@ -210,6 +233,7 @@ Outcome run_probe(const Probe& pr) {
     setup.materials[k] = segment::role_point(*c.model(), values, o);
   }
   setup.temperature_C = s.temperature_C;
+  if (pr.dense[2] > 0.0) setup.cycle.positions_mm = dense_positions(cycle, drive, setup, pr.dense);
   const core::Stopwatch watch;
   Outcome out{fatigue::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
   out.wall_s = watch.seconds();
@@ -386,6 +410,8 @@ int main(int argc, char** argv) {
       if (a.rfind("csv=", 0) == 0) p.csv = a.substr(4);
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
+      if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
+      if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);
     Outcome o;

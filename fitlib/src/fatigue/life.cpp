@@ -75,6 +75,14 @@ void add_damage(std::vector<ShareDamage>& shares, const std::string& pulley, dou
   else it->damage_per_cycle += damage;
 }
 
+// Samples in the contiguous run around `index` at or above `level` (the history is one cycle).
+int samples_at_or_above(const std::vector<double>& v, std::size_t index, double level) {
+  int n = 1;
+  for (std::size_t i = index; i > 0 && v[i - 1] >= level; --i) ++n;
+  for (std::size_t i = index + 1; i < v.size() && v[i] >= level; ++i) ++n;
+  return n;
+}
+
 ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeConditions& c) {
   const PointHistory cycle = last_cycle(p, c.cycle_time_s);
   const Mode mode = mode_of(p.role);
@@ -88,8 +96,12 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
   const double t_start = c.cycle_time_s > 0.0 ? p.samples.back().t_s - c.cycle_time_s
                                               : cycle.samples.front().t_s;
   for (const StressSample& s : cycle.samples) m.t_s.push_back(s.t_s);
+  std::size_t dominant = 0;
   for (const Extremum& e : significant_peaks(m.effective_stress_MPa, c.peaks)) {
     const double t = m.t_s[e.index];
+    if (m.peaks.empty() || e.value > m.peaks[dominant].stress_MPa)
+      dominant = m.peaks.size(), m.dominant_peak_samples = samples_at_or_above(m.effective_stress_MPa, e.index,
+                                                                               e.value * std::exp2(-1.0 / law.n));
     m.peaks.push_back({t, e.value, share_at(c.pulleys, t - t_start)});
   }
   m.temperature_factor = temperature_factor(law, c.temperature_C, card.reference_temperature_C);
@@ -99,6 +111,7 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
     add_damage(m.shares, pk.pulley, term / m.temperature_factor);
   }
   if (m.sum_terms > 0.0) {
+    m.dominant_peak_share = std::pow(m.peaks[dominant].stress_MPa / law.sigma0_MPa, law.n) / m.sum_terms;
     m.life_cycles = m.temperature_factor / m.sum_terms;
     if (c.cycles_per_hour > 0.0) m.life_h = m.life_cycles / c.cycles_per_hour;
   }
@@ -106,6 +119,10 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
 }
 
 }  // namespace
+
+bool peak_under_resolved(const ModeLife& m) {
+  return m.dominant_peak_share > 0.9 && m.dominant_peak_samples < 3;
+}
 
 std::vector<double> cycle_peaks_MPa(const PointHistory& p, double crack_sweep_deg,
                                     const LifeConditions& c) {

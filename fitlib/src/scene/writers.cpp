@@ -215,6 +215,12 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "cushion_rows = 1, gap_size_mm = 0.3, column_growth = 0.25, row_growth = 1.1 selects the 81 mm segment "
            "with the life's element sizes, at about 10 x the time (docs/segment.md \"End faces\")\n";
   }
+  for (const fatigue::ModeLife& m : l.report.modes)
+    if (fatigue::peak_under_resolved(m))
+      o << "WARNING: the " << fatigue::to_string(m.mode) << " life is " << core::format_number(100.0 * m.dominant_peak_share, 3)
+        << " % one peak carried by " << m.dominant_peak_samples << " sample(s): the increments may miss its top, and the life "
+        << "moves with the peak to the life exponent's power (docs/segment.md \"The driver exit's "
+           "peel transient\")\n";
   for (const FieldFile& f : l.fields)
     o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";
   o << "inputs:\n";

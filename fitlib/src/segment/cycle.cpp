@@ -206,6 +206,24 @@ std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, dou
   return tau;
 }
 
+std::vector<double> front_positions(const belt::LoadHistory& h, const CycleDrive& d, const CycleKnobs& k) {
+  if (!(k.front_spacing_mm > 0.0)) return {};
+  const double L = h.length_mm(), ds = 0.5 * k.front_spacing_mm;
+  const int M = static_cast<int>(std::ceil(L / ds));
+  std::vector<Eigen::Vector2d> b(M + 1);
+  double largest = 0.0;
+  for (int i = 0; i <= M; ++i) b[i] = contact_body_force(h.at_position(i * ds), d), largest = std::max(largest, b[i].norm());
+  std::vector<bool> dense(M, false);
+  const int margin = static_cast<int>(std::ceil(k.front_margin_mm / ds));
+  for (int i = 0; i < M; ++i)
+    if ((b[i + 1] - b[i]).norm() > k.front_rate_per_mm * largest * ds)
+      for (int j = std::max(0, i - margin); j <= std::min(M - 1, i + 1 + margin); ++j) dense[j] = true;
+  std::vector<double> out;
+  for (int i = 0; i < M; i += 2)  // every other grid point: the spacing
+    if (dense[i] && i * ds < L) out.push_back(i * ds);
+  return out;
+}
+
 namespace {
 
 // Where the last converged increment was, in the user's terms: the bending step, or the cycle and
@@ -447,8 +465,15 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   } else {
     const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight,
                                                                 straight.half_length_mm);
+    // The last cycle (where the peaks are read) adds the load fronts' dense increments.
+    std::vector<double> last = per_cycle;
+    for (double s_mm : front_positions(h, drive, knobs)) last.push_back(s_mm / h.length_mm());
+    std::sort(last.begin(), last.end());
     for (int c = 0; c < knobs.cycles; ++c)
-      for (double b : per_cycle) k.schedule.push_back(std::min(1.0, (1.0 + c + b) / T));
+      for (double b : c + 1 == knobs.cycles ? last : per_cycle) {
+        const double lambda = std::min(1.0, (1.0 + c + b) / T);
+        if (k.schedule.empty() || lambda > k.schedule.back() + 1e-12) k.schedule.push_back(lambda);
+      }
   }
   try {
     out.final_state = solve_static(p, k);

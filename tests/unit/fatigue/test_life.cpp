@@ -69,6 +69,24 @@ TEST(Life, MEqualPeaksDivideTheLifeByM) {
   }
 }
 
+TEST(Life, OnePeakOfOneSampleThatCarriesTheSumIsFlaggedAndAResolvedOneIsNot) {
+  const FatigueCard card = default_card();  // mode 2: n = 11.69, half-term level 2^(-1/n) = 0.9425
+  // The peel transient as one sample at 0.63 MPa over a 0.35 MPa plateau (Σ 99.9 % that peak).
+  const LifeReport spike = evaluate_life({point("p", Role::cushion, {0, 0.35, 0.35, 0.63, 0.36, 0.35, 0})}, card, at(95.0));
+  EXPECT_EQ(spike.modes[0].dominant_peak_samples, 1);
+  EXPECT_GT(spike.modes[0].dominant_peak_share, 0.99);
+  EXPECT_TRUE(peak_under_resolved(spike.modes[0]));
+  // The same top carried by three samples within its half-term band (0.60 ≥ 0.9425 · 0.63 = 0.594).
+  const LifeReport resolved =
+      evaluate_life({point("p", Role::cushion, {0, 0.35, 0.60, 0.63, 0.61, 0.35, 0})}, card, at(95.0));
+  EXPECT_EQ(resolved.modes[0].dominant_peak_samples, 3);
+  EXPECT_FALSE(peak_under_resolved(resolved.modes[0]));
+  // Two equal single-sample peaks: each carries half the sum, so no one peak dominates.
+  const LifeReport two = evaluate_life({point("p", Role::cushion, {0, 0.63, 0.1, 0.63, 0})}, card, at(95.0));
+  EXPECT_NEAR(two.modes[0].dominant_peak_share, 0.5, 1e-12);
+  EXPECT_FALSE(peak_under_resolved(two.modes[0]));
+}
+
 TEST(Life, DesignPointIsTheLargestSumAndGoverningModeTheShortestLife) {
   FatigueCard card = default_card();
   // Point "one" has a single 30 MPa peak, point "many" four 20 MPa peaks: with n = 4.423,

@@ -76,7 +76,16 @@ struct ModeLife {
   double life_h = kUnbounded;
   std::vector<ShareDamage> shares;
   std::vector<double> t_s, effective_stress_MPa;  // σ_e history of the design point (last cycle)
+  // The largest peak's share of Σ(σ_e/σ0)ⁿ and how many samples carry it: the contiguous samples
+  // around it whose own term is at least half the peak's (σ_e ≥ 2^(−1/n) σ_peak).
+  double dominant_peak_share = 0.0;
+  int dominant_peak_samples = 0;
 };
+
+// A life dominated (> 90 % of the sum) by one peak that fewer than 3 samples carry: the increments
+// may have missed its top, so the life can be off by the life exponent (docs/segment.md "The driver
+// exit's peel transient").
+bool peak_under_resolved(const ModeLife& m);
 
 struct CordBreakLife {
   double mean_MPa = 0.0, amplitude_MPa = 0.0, equivalent_amplitude_MPa = 0.0;

@@ -37,6 +37,11 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
+  // Load fronts (docs/segment.md "The driver exit's peel transient"): where the contact body force
+  // at the segment's middle changes by more than `front_rate_per_mm` of its largest value per mm
+  // of path (the friction turning at a pulley's exit), ± `front_margin_mm`, the last cycle gets an
+  // increment every `front_spacing_mm` (0 = off): the monitored points' peaks there last ~0.6 mm.
+  double front_spacing_mm = 0.1, front_rate_per_mm = 0.3, front_margin_mm = 1.0;
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
   // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
   EndCondition ends = EndCondition::radial;
@@ -132,6 +137,9 @@ double span_cord_share_bound(const CycleResult& run);
 // reaches it).
 std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight,
                                       double reach_mm = 0.0);
+
+// The path positions (mm, within [0, L)) of the load fronts' dense increments (CycleKnobs::front_*).
+std::vector<double> front_positions(const belt::LoadHistory& history, const CycleDrive& drive, const CycleKnobs& knobs);
 
 // Body force (N/mm³, local: along the belt l and radial outward r) at a load state, 6.6–6.7.
 Eigen::Vector2d contact_body_force(const belt::LoadState& state, const CycleDrive& drive);
