@@ -51,7 +51,6 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
   const belt::LoadHistory history(cycle, drive.belt, setup.temperature_C);
   segment::CycleDrive d;
   d.history = &history;
-  d.friction = drive.friction;
   d.wedge_half_angle_rad = drive.belt.wedge_half_angle_rad;
   d.width_mm = drive.belt.width_mm;
   d.density_kg_m3 = drive.belt.density_kg_m3;

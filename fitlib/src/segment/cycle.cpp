@@ -156,8 +156,10 @@ Eigen::Vector2d contact_body_force(const belt::LoadState& q, const CycleDrive& d
   const double cb = std::cos(d.wedge_half_angle_rad), sb = std::sin(d.wedge_half_angle_rad);
   const double area_factor = q.p_MPa * 2.0 / d.width_mm / cb;  // cos β_s = 1 (docs/decisions.md)
   const double inertia = d.density_kg_m3 * 1e-12 * q.K_1_mm * d.speed_mm_s * d.speed_mm_s;  // ρKV², N/mm³
-  const double B_l = -d.friction * area_factor * std::sin(q.gamma_rad);                      // (6.6)
-  const double B_r = area_factor * (sb - d.friction * std::cos(q.gamma_rad)) + inertia;       // (6.7)
+  // μ is the load cycle's friction used: the drive's μ, ramped to zero and back at the driver's
+  // exit (belt-mechanics.md §2.5), as the beam level reads it.
+  const double B_l = -q.friction_used * area_factor * std::sin(q.gamma_rad);                  // (6.6)
+  const double B_r = area_factor * (sb - q.friction_used * std::cos(q.gamma_rad)) + inertia;   // (6.7)
   return {B_l, B_r};
 }
 

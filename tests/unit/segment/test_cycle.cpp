@@ -24,8 +24,9 @@ namespace {
 
 // 400 mm belt at 1000 mm/s: span (0–90), entrance ramp of K (90–100), wrap of R = 40 mm
 // (100–200) with side pressure, the last 40 mm sliding (γ = 0.4, force rising), exit ramp
-// (200–210), span. F 300 N in the slack span, 600 N after the sliding zone.
-belt::LoadCycle synthetic_cycle(double pressure_MPa = 0.4, double radius_mm = 40.0) {
+// (200–210), span. F 300 N in the slack span, 600 N after the sliding zone; friction used μ throughout
+// (no driver-exit ramp; it only acts where p > 0).
+belt::LoadCycle synthetic_cycle(double pressure_MPa = 0.4, double radius_mm = 40.0, double friction = 0.8) {
   belt::LoadCycle c;
   c.cycle_length_mm = 400.0;
   c.cycle_time_s = 0.4;
@@ -38,6 +39,7 @@ belt::LoadCycle synthetic_cycle(double pressure_MPa = 0.4, double radius_mm = 40
   for (const P& q : pts) {
     belt::LoadSample s;
     s.s_mm = q.s, s.t_s = q.s / 1000.0, s.F_N = q.F, s.K_1_mm = q.K, s.p_MPa = q.p, s.gamma_rad = q.g;
+    s.friction_used = friction;
     c.samples.push_back(s);
   }
   return c;
@@ -52,7 +54,6 @@ struct Fixture {
   explicit Fixture(const belt::LoadCycle& cycle = synthetic_cycle())
       : history(cycle, [] { belt::BeltSection b; b.c_N = 44000.0; return b; }(), 20.0) {
     drive.history = &history;
-    drive.friction = 0.8;
     drive.wedge_half_angle_rad = 19.0 * M_PI / 180.0;
     drive.speed_mm_s = 1000.0;
     mesh.fine_size_mm = 1.0, mesh.coarse_size_mm = 2.5, mesh.central_pitches = 1.0, mesh.end_pitches = 1.0;
@@ -122,8 +123,9 @@ TEST(SegmentCycle, FrictionChangesTheShearInTheSlidingZone) {
   f.knobs.cycles = 1;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult with = f.run(*bottom, *cushion);
-  f.drive.friction = 0.0;
-  const CycleResult without = f.run(*bottom, *cushion);
+  Fixture frictionless(synthetic_cycle(0.4, 40.0, 0.0));  // the load cycle's friction used is the segment's
+  frictionless.knobs = f.knobs;
+  const CycleResult without = frictionless.run(*bottom, *cushion);
   const double d_sliding = at(point(with, "mid_cushion"), 1, 190.0).s12_MPa - at(point(without, "mid_cushion"), 1, 190.0).s12_MPa;
   const double d_sticking = at(point(with, "mid_cushion"), 1, 130.0).s12_MPa - at(point(without, "mid_cushion"), 1, 130.0).s12_MPa;
   EXPECT_GT(std::abs(d_sliding), 10.0 * std::abs(d_sticking));
@@ -417,4 +419,29 @@ TEST(SegmentCycle, CurvatureJumpPassingTheCordCurveMovesItContinuously) {
   }
   EXPECT_LE(across, 3.0 * others + 1e-7);
   std::printf("gap s22 change per 1e-6 cycle: across the interval middle %.3g, others <= %.3g MPa\n", across, others);
+}
+
+// The body forces (6.6)–(6.7) take μ from the load cycle's friction used: the drive's μ, ramped
+// to zero and back at the driver's exit (belt-mechanics.md §2.5), as the beam level does. With the
+// drive's μ instead, the friction reversed in full at the exit: a peeling transient at mid-cushion
+// that the ramp exists to avoid.
+TEST(SegmentCycle, BodyForcesUseTheLoadCyclesFrictionUsedThroughTheDriverExitRamp) {
+  belt::LoadCycle c = synthetic_cycle();
+  for (belt::LoadSample& q : c.samples)
+    if (q.s_mm == 200.0) q.friction_used = 0.0;  // the ramp's middle at 200 mm
+  const belt::LoadHistory h(c, [] { belt::BeltSection b; b.c_N = 44000.0; return b; }(), 20.0);
+  CycleDrive d;
+  d.history = &h;
+  d.wedge_half_angle_rad = 19.0 * M_PI / 180.0;
+  const double area = 0.8 * 2.0 / d.width_mm / std::cos(d.wedge_half_angle_rad);  // p 0.8 MPa at 200 mm
+  const belt::LoadState at_ramp = h.at_position(200.0), before = h.at_position(170.0);
+  EXPECT_DOUBLE_EQ(at_ramp.friction_used, 0.0);
+  const Eigen::Vector2d b0 = contact_body_force(at_ramp, d);
+  EXPECT_NEAR(b0.x(), 0.0, 1e-15);                                          // no friction along the belt
+  EXPECT_NEAR(b0.y(), area * std::sin(d.wedge_half_angle_rad), 1e-12);     // the wedge alone (V = 0)
+  // Between samples μ is interpolated like p and γ: at 170 mm, 0.8 × (1 − 9.999/39.999).
+  EXPECT_NEAR(before.friction_used, 0.8 * (1.0 - (170.0 - 160.001) / (200.0 - 160.001)), 1e-9);
+  const Eigen::Vector2d b1 = contact_body_force(before, d);
+  const double a1 = before.p_MPa * 2.0 / d.width_mm / std::cos(d.wedge_half_angle_rad);
+  EXPECT_NEAR(b1.x(), -before.friction_used * a1 * std::sin(before.gamma_rad), 1e-12);
 }

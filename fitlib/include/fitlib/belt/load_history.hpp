@@ -1,7 +1,7 @@
 #pragma once
 // What a belt point goes through in one load cycle, as the segment solver reads it: path
 // position s, time t, belt force F, longitudinal strain ε = F/c (A.3), curvature K, side pressure
-// p, sliding angle γ and temperature, linearly interpolated between the load cycle's samples and
+// p, sliding angle γ, temperature and the friction used, linearly interpolated between the load cycle's samples and
 // periodic over the belt length (and over the cycle time).
 #include <vector>
 
@@ -17,6 +17,7 @@ struct LoadState {
   double p_MPa = 0.0;
   double gamma_rad = 0.0;
   double temperature_C = 0.0;
+  double friction_used = 0.0;  // μ × the friction utilisation (the driver exit's ramp; 0 off the pulleys)
 };
 
 class LoadHistory {

@@ -22,7 +22,6 @@ namespace fitlib::segment {
 
 struct CycleDrive {                     // what the body forces need beyond the history
   const belt::LoadHistory* history = nullptr;
-  double friction = 0.8;                // μ
   double wedge_half_angle_rad = 0.0;    // β
   double width_mm = 11.1542;            // B
   double density_kg_m3 = 1200.0;        // ρ
