@@ -334,6 +334,10 @@ class Newton {
     return worst;
   }
 
+  // Added to the predictor's step (local components; empty: none): the second-order part of the
+  // nodes' finite rotation with the loading.
+  void set_rotation(Eigen::VectorXd rotation) { rotation_ = std::move(rotation); }
+
   // The iterate with the lowest residual of the last solve (empty before one).
   const Eigen::VectorXd& best_iterate() const { return best_q_; }
 
@@ -365,6 +369,7 @@ class Newton {
     Eigen::VectorXd q_prev, dq, rhs(d_.equations);
     double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf, mu = 0.0;
     bool shifted_retake = false;
+    double retake_res = inf;
     int since_best = 0;
     double best_iterate_res = inf;
     best_q_.resize(0);
@@ -412,6 +417,8 @@ class Newton {
       }
       // After a shifted step the shift follows the residual (switched evolution relaxation).
       if (!shifted_retake && mu > 0.0) mu = mu * res / res_prev < 1e-9 ? 0.0 : mu * res / res_prev;
+      if (shifted_retake) retake_res = res;
+      else if (res < retake_res) mu = 0.0;  // below the overshoot's start: Newton's basin, no shift
       shifted_retake = false;
       if (fresh && mu > 0.0) shift_diagonal(mu);
       if (fresh && !linear_.factorize(K_.K)) return give_up();
@@ -428,6 +435,7 @@ class Newton {
       energy_prev = std::abs(rhs.dot(dq));
       alpha = 1.0;
       move(q_prev, dq, 1.0);
+      if (predictor && rotation_.size() == q_.size()) q_ += rotation_;
       predictor = false;
       fresh = !knobs_.reuse_tangent || slow;
       o.iterations++;
@@ -464,7 +472,7 @@ class Newton {
   const Dofs& d_;
   const SolverKnobs& knobs_;
   Eigen::VectorXd& q_;
-  Eigen::VectorXd q_last_, r_, coupling_, best_q_;
+  Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
 };
 
@@ -617,6 +625,23 @@ class StaticRun {
     }
   }
 
+  // Per free dof, (Q(θ) − I − θJ)(x − c) of its node's frame turn to λ = target (local components,
+  // bases already turned), x the converged position: what the linear predictor leaves out of a
+  // finite rotation.
+  Eigen::VectorXd rotation_terms(double target) {
+    p_.frame_turn(lambda_, target, turns_);
+    Eigen::VectorXd extra = Eigen::VectorXd::Zero(2 * nn_);
+    for (int a = 0; a < nn_; ++a) {
+      const double th = turns_[a].angle_rad;
+      const Eigen::Vector2d r = m_.X[a] + assembler_.u_of(q_, a) - turns_[a].centre_mm;
+      const Eigen::Vector2d second_order = (std::cos(th) - 1.0) * r + (std::sin(th) - th) * Eigen::Vector2d(-r.y(), r.x());
+      const Eigen::Vector2d local = d_.R[a].transpose() * second_order;
+      for (int k = 0; k < 2; ++k)
+        if (d_.eq[2 * a + k] >= 0) extra(2 * a + k) = local(k);
+    }
+    return extra;
+  }
+
   // One increment to `target`: true (states committed) when Newton converged, else q restored.
   bool increment(double target) {
     rotate_bases(target);
@@ -634,6 +659,8 @@ class StaticRun {
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
+    newton_.set_rotation(knobs_.rotated_predictor && p_.frame_turn && !extrapolate ? rotation_terms(target)
+                                                                                   : Eigen::VectorXd());
     last_ = newton_.solve(target, q_start, extrapolate);
     out_.newton_iterations += last_.iterations;
     out_.factorizations += last_.factorizations;
@@ -680,6 +707,7 @@ class StaticRun {
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
+  std::vector<StaticProblem::FrameTurn> turns_;
 };
 
 }  // namespace
