@@ -82,7 +82,9 @@ class LinearSolver {
  private:
   bool symmetric_, analysed_ = false;
   int analyses_ = 0;
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, detail::GroupedAmdOrdering> ldlt_;
+  // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
+  // reads K's upper triangle in place (no permuted copy per factorisation).
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
 };
 
@@ -151,6 +153,17 @@ Pattern build_pattern(const Mesh& m, const Dofs& d) {
     (b < m.elements.size() ? p.element_slots : p.edge_slots).push_back(std::move(slots));
   }
   return p;
+}
+
+// The pattern with the free equations renumbered in the node groups' AMD order (grouped_ldlt.hpp),
+// the elimination order of the symmetric solver.
+Pattern ordered_pattern(const Mesh& m, Dofs& d) {
+  const std::vector<int> order = detail::grouped_amd_order(build_pattern(m, d).K);
+  std::vector<int> position(order.size());
+  for (std::size_t p = 0; p < order.size(); ++p) position[order[p]] = static_cast<int>(p);
+  for (int& e : d.eq)
+    if (e >= 0) e = position[e];
+  return build_pattern(m, d);
 }
 
 class Assembler {
@@ -509,7 +522,7 @@ class StaticRun {
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
         linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
                 symmetric_tangent(knobs.integration)),
-        pattern_(build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        pattern_(linear_.symmetric() ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     out_.equations = d_.equations;
