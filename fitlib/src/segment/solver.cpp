@@ -672,9 +672,16 @@ class StaticRun {
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
-    newton_.set_rotation(knobs_.rotated_predictor && p_.frame_turn && !extrapolate ? rotation_terms(target)
-                                                                                   : Eigen::VectorXd());
+    const bool rotated = knobs_.rotated_predictor && p_.frame_turn && !extrapolate;
+    newton_.set_rotation(rotated ? rotation_terms(target) : Eigen::VectorXd());
     last_ = newton_.solve(target, q_start, extrapolate);
+    if (rotated && !last_.converged) {  // retaken on the plain linear predictor before a cut
+      out_.newton_iterations += last_.iterations;
+      out_.factorizations += last_.factorizations;
+      q_ = q_saved;
+      newton_.set_rotation(Eigen::VectorXd());
+      last_ = newton_.solve(target, q_start, false);
+    }
     out_.newton_iterations += last_.iterations;
     out_.factorizations += last_.factorizations;
     have_factor_ = have_factor_ || last_.factorizations > 0;
