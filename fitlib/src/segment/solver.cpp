@@ -82,7 +82,9 @@ class LinearSolver {
  private:
   bool symmetric_, analysed_ = false;
   int analyses_ = 0;
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, detail::GroupedAmdOrdering> ldlt_;
+  // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
+  // reads K's upper triangle in place (no permuted copy per factorisation).
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
 };
 
@@ -151,6 +153,17 @@ Pattern build_pattern(const Mesh& m, const Dofs& d) {
     (b < m.elements.size() ? p.element_slots : p.edge_slots).push_back(std::move(slots));
   }
   return p;
+}
+
+// The pattern with the free equations renumbered in the node groups' AMD order (grouped_ldlt.hpp),
+// the elimination order of the symmetric solver.
+Pattern ordered_pattern(const Mesh& m, Dofs& d) {
+  const std::vector<int> order = detail::grouped_amd_order(build_pattern(m, d).K);
+  std::vector<int> position(order.size());
+  for (std::size_t p = 0; p < order.size(); ++p) position[order[p]] = static_cast<int>(p);
+  for (int& e : d.eq)
+    if (e >= 0) e = position[e];
+  return build_pattern(m, d);
 }
 
 class Assembler {
@@ -334,6 +347,10 @@ class Newton {
     return worst;
   }
 
+  // Added to the predictor's step (local components; empty: none): the second-order part of the
+  // nodes' finite rotation with the loading.
+  void set_rotation(Eigen::VectorXd rotation) { rotation_ = std::move(rotation); }
+
   // The iterate with the lowest residual of the last solve (empty before one).
   const Eigen::VectorXd& best_iterate() const { return best_q_; }
 
@@ -365,6 +382,7 @@ class Newton {
     Eigen::VectorXd q_prev, dq, rhs(d_.equations);
     double res_prev = inf, alpha = 1.0, energy_prev = 0.0, best = inf, mu = 0.0;
     bool shifted_retake = false;
+    double retake_res = inf;
     int since_best = 0;
     double best_iterate_res = inf;
     best_q_.resize(0);
@@ -412,6 +430,8 @@ class Newton {
       }
       // After a shifted step the shift follows the residual (switched evolution relaxation).
       if (!shifted_retake && mu > 0.0) mu = mu * res / res_prev < 1e-9 ? 0.0 : mu * res / res_prev;
+      if (shifted_retake) retake_res = res;
+      else if (res < retake_res) mu = 0.0;  // below the overshoot's start: Newton's basin, no shift
       shifted_retake = false;
       if (fresh && mu > 0.0) shift_diagonal(mu);
       if (fresh && !linear_.factorize(K_.K)) return give_up();
@@ -428,6 +448,7 @@ class Newton {
       energy_prev = std::abs(rhs.dot(dq));
       alpha = 1.0;
       move(q_prev, dq, 1.0);
+      if (predictor && rotation_.size() == q_.size()) q_ += rotation_;
       predictor = false;
       fresh = !knobs_.reuse_tangent || slow;
       o.iterations++;
@@ -464,7 +485,7 @@ class Newton {
   const Dofs& d_;
   const SolverKnobs& knobs_;
   Eigen::VectorXd& q_;
-  Eigen::VectorXd q_last_, r_, coupling_, best_q_;
+  Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
 };
 
@@ -501,7 +522,7 @@ class StaticRun {
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
         linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
                 symmetric_tangent(knobs.integration)),
-        pattern_(build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        pattern_(linear_.symmetric() ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     out_.equations = d_.equations;
@@ -617,6 +638,23 @@ class StaticRun {
     }
   }
 
+  // Per free dof, (Q(θ) − I − θJ)(x − c) of its node's frame turn to λ = target (local components,
+  // bases already turned), x the converged position: what the linear predictor leaves out of a
+  // finite rotation.
+  Eigen::VectorXd rotation_terms(double target) {
+    p_.frame_turn(lambda_, target, turns_);
+    Eigen::VectorXd extra = Eigen::VectorXd::Zero(2 * nn_);
+    for (int a = 0; a < nn_; ++a) {
+      const double th = turns_[a].angle_rad;
+      const Eigen::Vector2d r = m_.X[a] + assembler_.u_of(q_, a) - turns_[a].centre_mm;
+      const Eigen::Vector2d second_order = (std::cos(th) - 1.0) * r + (std::sin(th) - th) * Eigen::Vector2d(-r.y(), r.x());
+      const Eigen::Vector2d local = d_.R[a].transpose() * second_order;
+      for (int k = 0; k < 2; ++k)
+        if (d_.eq[2 * a + k] >= 0) extra(2 * a + k) = local(k);
+    }
+    return extra;
+  }
+
   // One increment to `target`: true (states committed) when Newton converged, else q restored.
   bool increment(double target) {
     rotate_bases(target);
@@ -634,7 +672,16 @@ class StaticRun {
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
+    const bool rotated = knobs_.rotated_predictor && p_.frame_turn && !extrapolate;
+    newton_.set_rotation(rotated ? rotation_terms(target) : Eigen::VectorXd());
     last_ = newton_.solve(target, q_start, extrapolate);
+    if (rotated && !last_.converged) {  // retaken on the plain linear predictor before a cut
+      out_.newton_iterations += last_.iterations;
+      out_.factorizations += last_.factorizations;
+      q_ = q_saved;
+      newton_.set_rotation(Eigen::VectorXd());
+      last_ = newton_.solve(target, q_start, false);
+    }
     out_.newton_iterations += last_.iterations;
     out_.factorizations += last_.factorizations;
     have_factor_ = have_factor_ || last_.factorizations > 0;
@@ -680,6 +727,7 @@ class StaticRun {
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
+  std::vector<StaticProblem::FrameTurn> turns_;
 };
 
 }  // namespace

@@ -14,6 +14,32 @@ std::vector<NamedPoint> standard_points(const CogSection& s) {
   return {{"gap_bottom", 0.0, s.bottom_y_mm(0.0)}, {"mid_cushion", 0.0, -0.5 * s.cushion_mm}};
 }
 
+namespace {
+
+// Each node turns with the cord's frame at its unstrained path position, as a plane section of a
+// beam does; a column of nodes shares one path position, so frames are computed once per column.
+std::function<void(double, double, std::vector<StaticProblem::FrameTurn>&)> cord_frame_turn(
+    const std::vector<double>& path_x_mm, std::function<NeutralCurve(double lambda)> curve_at) {
+  std::vector<double> stations = path_x_mm;
+  std::sort(stations.begin(), stations.end());
+  stations.erase(std::unique(stations.begin(), stations.end()), stations.end());
+  std::vector<int> station_of;
+  for (double x : path_x_mm)
+    station_of.push_back(static_cast<int>(std::lower_bound(stations.begin(), stations.end(), x) - stations.begin()));
+  return [stations, station_of, curve_at](double from, double to, std::vector<StaticProblem::FrameTurn>& turns) {
+    const NeutralCurve a = curve_at(from), b = curve_at(to);
+    std::vector<StaticProblem::FrameTurn> at(stations.size());
+    for (std::size_t k = 0; k < stations.size(); ++k) {
+      const CurvePoint pa = a.at(a.s_from_unstrained(stations[k]));
+      at[k] = {pa.phi_rad - b.at(b.s_from_unstrained(stations[k])).phi_rad, {pa.x_mm, pa.y_mm}};  // φ turns clockwise
+    }
+    turns.resize(station_of.size());
+    for (std::size_t n = 0; n < station_of.size(); ++n) turns[n] = at[station_of[n]];
+  };
+}
+
+}  // namespace
+
 StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_x_mm,
                                  const std::array<const PlaneStrainLaw*, 2>& laws,
                                  std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends,
@@ -49,6 +75,7 @@ StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_
       }
     }
   };
+  p.frame_turn = cord_frame_turn(path_x_mm, curve_at);
   p.rotate = [constraints, n_top, curve_at, path_x_mm](double lambda, std::vector<double>& angles) {
     const NeutralCurve curve = curve_at(lambda);
     for (std::size_t c = n_top; c < angles.size(); ++c)

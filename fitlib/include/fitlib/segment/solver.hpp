@@ -50,12 +50,17 @@ struct SolverKnobs {
   // displacement extrapolated linearly in λ (time), capped at its size; a start that does not
   // converge is retaken from the linear predictor (docs/segment.md §Solver).
   bool extrapolate_start = false;
+  // Correct the linear predictor by the second-order part of each node's finite rotation with the
+  // loading (StaticProblem::frame_turn, when the problem has one): a linearised rotation θ strains
+  // a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
+  bool rotated_predictor = true;
   // Levenberg–Marquardt shift (0 = off): a full Newton step that lowers neither the residual nor
   // the energy measure is retaken from its start on K + μ·diag|K|, μ from this value and ×10 per
   // failed retake, then scaled by each step's residual ratio; the line search halves only beyond
   // μ = 10⁴ × this. The residual is not changed, so the solution is Newton's; the shift turns the
   // step towards steepest descent where the tangent is nearly singular, the near-incompressible
-  // rubber at the load cycle's transitions (docs/segment.md §Solver, "Levenberg–Marquardt retake").
+  // rubber at the load cycle's transitions; the shift is dropped once the residual is below the
+  // retaken step's start (docs/segment.md §Solver, "Levenberg–Marquardt retake").
   double levenberg = 3e-3;
   // On failure, check the assembled tangent against central differences of the residual (per
   // element and per integration point) and scan the residual along Newton's direction at the
@@ -81,6 +86,14 @@ struct StaticProblem {
   std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
   // Optional: dead nodal forces per node (global, N per mm of width; zero where none) at λ.
   std::function<void(double lambda, std::vector<Eigen::Vector2d>& f_N_mm)> nodal_force;
+  // Optional: per node, the turn of the loading's frame from λ_from to λ_to: its angle (rad,
+  // counter-clockwise) and the centre it turns about (global, mm, at λ_from; for the cord curve the
+  // cord point of the node's column). Used by SolverKnobs::rotated_predictor.
+  struct FrameTurn {
+    double angle_rad = 0.0;
+    Eigen::Vector2d centre_mm = Eigen::Vector2d::Zero();
+  };
+  std::function<void(double lambda_from, double lambda_to, std::vector<FrameTurn>& per_node)> frame_turn;
   // Optional: called after every converged increment with its stresses, displacements, reactions.
   std::function<void(double lambda, const StaticSolution& increment)> on_increment;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
