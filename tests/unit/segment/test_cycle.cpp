@@ -382,14 +382,16 @@ TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
     return q.s22_MPa;
   };
   // The elastic law is path independent: only convergence is at stake. The viscoelastic one
-  // integrates over the path: the time step's error shows.
+  // integrates over the path: the time step's error shows — backward Euler over one step of a
+  // tenth of the cycle across the whole entrance is 1.2 % off the hundredths (0.14 % while the
+  // solver still cut that step in two, before the rotated predictor).
   for (int law = 0; law < 2; ++law) {
     const PlaneStrainLaw& b = law == 0 ? *bottom : static_cast<const PlaneStrainLaw&>(visco);
     const PlaneStrainLaw& c = law == 0 ? *cushion : static_cast<const PlaneStrainLaw&>(visco);
     int n_tenth = 0, n_hundredth = 0;
     const double tenth = wrap_stress(0.1 * L, b, c, &n_tenth), hundredth = wrap_stress(0.01 * L, b, c, &n_hundredth);
     ASSERT_LT(hundredth, 0.0);
-    EXPECT_NEAR(tenth, hundredth, 0.01 * std::abs(hundredth));
+    EXPECT_NEAR(tenth, hundredth, (law == 0 ? 1e-6 : 0.02) * std::abs(hundredth));
     std::printf("%s gap s22 at 120 mm: steps of 1/10 %.6f (%d increments), 1/100 %.6f MPa (%d increments)\n",
                 law == 0 ? "hencky" : "prony", tenth, n_tenth, hundredth, n_hundredth);
   }

@@ -39,7 +39,8 @@ struct CycleKnobs {
   // Load fronts (docs/segment.md "The driver exit's peel transient"): where the contact body force
   // at the segment's middle changes by more than `front_rate_per_mm` of its largest value per mm
   // of path (the friction turning at a pulley's exit), ± `front_margin_mm`, the last cycle gets an
-  // increment every `front_spacing_mm` (0 = off): the monitored points' peaks there last ~0.6 mm.
+  // increment every `front_spacing_mm` (0 = off) when a point law carries history: the monitored
+  // points' peaks there last ~0.6 mm.
   double front_spacing_mm = 0.1, front_rate_per_mm = 0.3, front_margin_mm = 1.0;
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
   // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
