@@ -219,7 +219,7 @@ void check_life_fields(const Scene& s) {
 
 SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run) {
   SegmentEquilibrium check{run.equilibrium_error, run.span_cord_share, run.span_section_mismatch, 0,
-                           segment::span_cord_share_bound(run)};
+                           segment::span_cord_share_bound(run), run.history};
   for (const segment::IncrementLoads& q : run.loads) check.span_increments += q.span;
   return check;
 }

@@ -320,3 +320,25 @@ TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
               history ? 1e-2 : 1e-5);
   }
 }
+
+
+// The table warns of a life carried by one under-sampled peak only where the points carry history
+// (the complete level's glassy transients, docs/segment.md "The driver exit's peel transient"): the
+// elastic level's peaks read at the planned steps move N2 by ≤ 8 % with 0.1 mm sampling.
+TEST(SceneLife, UnderSampledPeakWarningOnlyForPointsWithHistory) {
+  const auto s = with_life("light");
+  auto result = scene::run_scene(s);  // beam level: a life result to dress up
+  ASSERT_TRUE(result.life.has_value());
+  fatigue::ModeLife& m = result.life->report.modes[1];
+  m.dominant_peak_share = 0.99, m.dominant_peak_samples = 2;
+  ASSERT_TRUE(fatigue::peak_under_resolved(m));
+  const std::string warning = "WARNING: the separation life is 99 % one peak carried by 2 sample(s)";
+  EXPECT_EQ(scene::life_text(s, result).find(warning), std::string::npos);  // beam: no segment run
+  scene::SegmentEquilibrium check;
+  result.life->equilibrium = check;  // a segment run without history (the elastic level)
+  EXPECT_EQ(scene::life_text(s, result).find(warning), std::string::npos);
+  check.history = true;  // the complete level
+  result.life->equilibrium = check;
+  EXPECT_NE(scene::life_text(s, result).find(warning), std::string::npos) << scene::life_text(s, result);
+}
+

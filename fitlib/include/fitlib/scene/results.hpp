@@ -99,6 +99,7 @@ struct SegmentEquilibrium {
   double equilibrium_error = 0.0, span_cord_share = 0.0, span_section_mismatch = 0.0;
   int span_increments = 0;  // increments the span checks saw (none: the checks are vacuous)
   double span_cord_share_bound = 1e-5;  // segment::EquilibriumBounds, by the points' history
+  bool history = false;                 // the points carry history (the complete level)
   bool within_bounds() const;
   bool in_equilibrium() const;  // the equilibrium error and the section balance within their bounds
 };
