@@ -239,7 +239,7 @@ LifePlan choose_life_plan(const Scene& s) {
   const std::string why = cards ? "the scene gives bottom and cushion cards, so the segment FE runs with the cards' "
                                    "elastic equivalents"
                                  : "the scene has a [segment] table, so the segment FE runs with its elastic materials";
-  // The elastic level takes about 1 s (1.1-1.2 s CPU per drive with the thesis cards, 2 cycles,
+  // The elastic level takes about 1 s (0.97-1.05 s CPU per drive with the thesis cards, 2 cycles,
   // graded life mesh); the complete level is asked for: it stops on the medium and heavy reference
   // drives (docs/segment.md "Cost").
   return {"elastic", "default: " + why + " (about 1 s); "

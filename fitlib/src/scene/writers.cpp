@@ -207,13 +207,14 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       o << "WARNING: the cord line carries more of the belt force in the spans than its bound: the segment's "
            "ends or its length disturb the middle (docs/segment.md \"Cord-line reactions\")\n";
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
-    if (!s.segment)  // measured accuracy of the life's default mesh (docs/segment.md §Cost, "Segment length")
+    if (!s.segment)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, sheared end "
            "faces) gives, against an 81 mm segment on the light, medium and heavy reference drives, the same "
            "governing mode; with the thesis cards N2 within 13 % and N1 33 to 74 % shorter; with isotropic rubber "
-           "N1 4 to 16 % shorter and N2 within 6 % on medium and heavy; [segment] central_pitches = 3, end_pitches = 3, fine_size_mm = 1, coarse_size_mm = 2.5, "
-           "cushion_rows = 1, gap_size_mm = 0.3, column_growth = 0.25, row_growth = 1.1 selects the 81 mm segment "
-           "with the life's element sizes, at about 10 x the time (docs/segment.md \"End faces\")\n";
+           "N1 4 to 16 % shorter and N2 within 6 % on medium and heavy; [segment] central_pitches = 3, "
+           "end_pitches = 3, fine_size_mm = 1, coarse_size_mm = 2.5, cushion_rows = 1, gap_size_mm = 0.3, "
+           "column_growth = 0.25, row_growth = 1.1 selects the 81 mm segment with the life's element sizes, at "
+           "about 10 x the time (docs/segment.md \"End faces\")\n";
   }
   // Only where the points carry history: the glassy transients that the load fronts resolve
   // (without history the planned steps read N2 within 8 % of 0.1 mm sampling: docs/segment.md).

@@ -81,16 +81,8 @@ NeutralCurve cord_curve(double tau, const belt::LoadHistory& h, const CurvatureI
 }
 
 double reference_area(const Mesh& m, int e, const std::vector<detail::GaussPoint>& rule) {
-  double N[8], dxi[8], deta[8], area = 0.0;
-  for (const auto& g : rule) {
-    detail::shape(m.nodes_per_element, g.xi, g.eta, N, dxi, deta);
-    Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
-    for (int a = 0; a < m.nodes_per_element; ++a) {
-      const Eigen::Vector2d& X = m.X[m.elements[e][a]];
-      J.col(0) += dxi[a] * X, J.col(1) += deta[a] * X;
-    }
-    area += J.determinant() * g.weight;
-  }
+  double area = 0.0;
+  for (const auto& g : rule) area += reference_jacobian(m, e, g.xi, g.eta) * g.weight;
   return area;
 }
 

@@ -83,8 +83,9 @@ double bottom_row_fraction(int J, int n, double growth) {
   return 1.0 - (std::pow(growth, above_profile) - 1.0) / (std::pow(growth, n) - 1.0);
 }
 
-// det(∂X/∂ξ) of element e at (ξ, η).
-double jacobian(const Mesh& m, int e, double xi, double eta) {
+}  // namespace
+
+double reference_jacobian(const Mesh& m, int e, double xi, double eta) {
   double N[8], dN_dxi[8], dN_deta[8];
   detail::shape(m.nodes_per_element, xi, eta, N, dN_dxi, dN_deta);
   Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
@@ -94,8 +95,6 @@ double jacobian(const Mesh& m, int e, double xi, double eta) {
   }
   return J.determinant();
 }
-
-}  // namespace
 
 Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
   s.validate();
@@ -159,9 +158,9 @@ MeshQuality mesh_quality(const Mesh& m) {
   q.min_jacobian_ratio = std::numeric_limits<double>::infinity();
   for (int e = 0; e < m.element_count(); ++e) {
     double area = 0.0, worst = std::numeric_limits<double>::infinity();
-    for (const detail::GaussPoint& g : detail::gauss_rule(3)) area += g.weight * jacobian(m, e, g.xi, g.eta);
+    for (const detail::GaussPoint& g : detail::gauss_rule(3)) area += g.weight * reference_jacobian(m, e, g.xi, g.eta);
     for (double xi : {-1.0, 0.0, 1.0})
-      for (double eta : {-1.0, 0.0, 1.0}) worst = std::min(worst, jacobian(m, e, xi, eta) / (0.25 * std::abs(area)));
+      for (double eta : {-1.0, 0.0, 1.0}) worst = std::min(worst, reference_jacobian(m, e, xi, eta) / (0.25 * std::abs(area)));
     if (worst < q.min_jacobian_ratio) q.min_jacobian_ratio = worst, q.worst_jacobian_element = e;
     double longest = 0.0, shortest = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 4; ++a) {

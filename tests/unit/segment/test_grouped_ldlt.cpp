@@ -45,6 +45,18 @@ Eigen::SparseMatrix<double> grid_system(int nx, int ny, unsigned seed, std::vect
   return symmetric.sparseView();
 }
 
+// The order as Eigen's ordering concept (SimplicialLDLT's third template argument): perm maps a
+// position of the elimination order to its equation, as Eigen's AMDOrdering does.
+struct GroupedAmdOrdering {
+  using PermutationType = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+  template <typename MatrixType>
+  void operator()(const MatrixType& A, PermutationType& perm) {
+    const std::vector<int> order = grouped_amd_order(Eigen::SparseMatrix<double>(A));
+    perm.resize(static_cast<int>(order.size()));
+    for (std::size_t p = 0; p < order.size(); ++p) perm.indices()(static_cast<int>(p)) = order[p];
+  }
+};
+
 template <typename Ordering>
 using Ldlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Ordering>;
 

@@ -53,6 +53,9 @@ struct Mesh {
 
 Mesh build_mesh(const CogSection& section, const MeshKnobs& knobs);
 
+// det(∂X/∂ξ) of element e's reference map at (ξ, η) ∈ [−1, 1]².
+double reference_jacobian(const Mesh& mesh, int element, double xi, double eta);
+
 // Shape of the mesh's elements: det(∂X/∂ξ) at the 3 × 3 points ξ, η ∈ {−1, 0, 1} against the
 // element's mean magnitude (|area| / 4; ≤ 0: inverted or folded), and the longest corner-to-corner side over
 // the shortest.
