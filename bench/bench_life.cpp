@@ -28,7 +28,8 @@
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
-// fronts' increment spacing (0 = off).
+// fronts' increment spacing (0 = off); `bodyds=MM`: the body forces' sampling over each element
+// (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -103,6 +104,7 @@ struct Probe {
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
   double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
+  double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
 };
 
 // The end faces' shear (column 0) or warping (column 1) from a longer run's CSV (section=X there,
@@ -215,6 +217,7 @@ Outcome run_probe(const Probe& pr) {
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
+  if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
   o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
@@ -411,6 +414,7 @@ int main(int argc, char** argv) {
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
+      if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);

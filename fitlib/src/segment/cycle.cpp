@@ -207,14 +207,23 @@ std::vector<double> front_positions(const belt::LoadHistory& h, const CycleDrive
   std::vector<Eigen::Vector2d> b(M + 1);
   double largest = 0.0;
   for (int i = 0; i <= M; ++i) b[i] = contact_body_force(h.at_position(i * ds), d), largest = std::max(largest, b[i].norm());
-  std::vector<bool> dense(M, false);
+  std::vector<bool> dense(M, false), band(M, false);
+  const bool banded = k.front_band_mm > 0.0 && k.front_band_spacing_mm > 0.0;
   const int margin = static_cast<int>(std::ceil(k.front_margin_mm / ds));
+  const int reach = banded ? static_cast<int>(std::ceil((k.front_margin_mm + k.front_band_mm) / ds)) : 0;
   for (int i = 0; i < M; ++i)
-    if ((b[i + 1] - b[i]).norm() > k.front_rate_per_mm * largest * ds)
+    if ((b[i + 1] - b[i]).norm() > k.front_rate_per_mm * largest * ds) {
       for (int j = std::max(0, i - margin); j <= std::min(M - 1, i + 1 + margin); ++j) dense[j] = true;
+      for (int j = std::max(0, i - reach); j <= std::min(M - 1, i + 1 + reach); ++j) band[j] = true;
+    }
   std::vector<double> out;
   for (int i = 0; i < M; i += 2)  // every other grid point: the spacing
     if (dense[i] && i * ds < L) out.push_back(i * ds);
+  // The band: a coarser grid of its own, where the dense one is not.
+  const int every = banded ? std::max(2, static_cast<int>(std::lround(k.front_band_spacing_mm / ds))) : M + 1;
+  for (int i = 0; i < M; i += every)
+    if (band[i] && !dense[i] && i * ds < L) out.push_back(i * ds);
+  std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -346,22 +355,46 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const int order = gauss_order(m, solver.integration);
   const auto rule = detail::gauss_rule(order);
   std::vector<double> area(m.element_count()), centre_x(m.element_count());
+  std::vector<std::pair<double, double>> extent_x(m.element_count());  // the element's path extent
   for (int e = 0; e < m.element_count(); ++e) {
     area[e] = reference_area(m, e, rule);
-    for (int a = 0; a < 4; ++a) centre_x[e] += 0.25 * path_x[m.elements[e][a]];
+    extent_x[e] = {path_x[m.elements[e][0]], path_x[m.elements[e][0]]};
+    for (int a = 0; a < 4; ++a) {
+      const double x = path_x[m.elements[e][a]];
+      centre_x[e] += 0.25 * x;
+      extent_x[e] = {std::min(extent_x[e].first, x), std::max(extent_x[e].second, x)};
+    }
   }
+  // 6.6–6.7 at the element's centre, or their mean over its path extent (CycleKnobs).
+  auto element_force = [&](int e, double s0) {
+    const double width = extent_x[e].second - extent_x[e].first, spacing = knobs.body_force_sampling_mm;
+    const int n = spacing > 0.0 ? std::max(1, static_cast<int>(std::ceil(width / spacing))) : 1;
+    if (n == 1) return contact_body_force(h.at_position(s0 + centre_x[e]), drive);
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (int i = 0; i < n; ++i)  // midpoint rule
+      sum += contact_body_force(h.at_position(s0 + extent_x[e].first + (i + 0.5) * width / n), drive);
+    return Eigen::Vector2d(sum / n);
+  };
+  double body_lambda = -1.0;  // the solver asks at every assembly: keep the last λ's forces
+  std::vector<Eigen::Vector2d> body_cache;
   auto body = [&](double lambda, std::vector<Eigen::Vector2d>& b) {
+    if (lambda == body_lambda) {
+      b = body_cache;
+      return;
+    }
     const double tau = lambda * T;
     b.assign(m.element_count(), Eigen::Vector2d::Zero());
-    if (tau <= 1.0) return;
-    const NeutralCurve curve = curve_at(lambda);
-    const double s0 = (tau - 1.0) * h.length_mm();
-    for (int e = 0; e < m.element_count(); ++e) {
-      const Eigen::Vector2d lr = contact_body_force(h.at_position(s0 + centre_x[e]), drive);
-      if (lr.isZero(0.0)) continue;
-      const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
-      b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
+    if (tau > 1.0) {
+      const NeutralCurve curve = curve_at(lambda);
+      const double s0 = (tau - 1.0) * h.length_mm();
+      for (int e = 0; e < m.element_count(); ++e) {
+        const Eigen::Vector2d lr = element_force(e, s0);
+        if (lr.isZero(0.0)) continue;
+        const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
+        b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
+      }
     }
+    body_lambda = lambda, body_cache = b;
   };
   p.body_force = body;
   if (shear) p.nodal_force = end_shear_forces(m.node_count(), straight, path_x, h, T, curve_at, shear);

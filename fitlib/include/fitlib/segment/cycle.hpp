@@ -42,6 +42,15 @@ struct CycleKnobs {
   // increment every `front_spacing_mm` (0 = off) when a point law carries history: the monitored
   // points' peaks there last ~0.6 mm.
   double front_spacing_mm = 0.1, front_rate_per_mm = 0.3, front_margin_mm = 1.0;
+  // Beyond that margin, over a further `front_band_mm`, an increment every `front_band_spacing_mm`
+  // (0 = off): the gap bottom's tension peaks ~2 mm wide while a pulley's exit passes under the
+  // neighbouring cog, half a pitch from the middle (docs/segment.md "The gap bottom's exit peak").
+  double front_band_mm = 4.5, front_band_spacing_mm = 0.5;
+  // Each element's contact body force is the mean of 6.6–6.9 over its path extent, sampled every
+  // `body_force_sampling_mm` (0 = at its centre only): the force then moves continuously in time
+  // when a pulley's exit passes, instead of switching an element at a time (docs/segment.md
+  // "The gap bottom's exit peak").
+  double body_force_sampling_mm = 0.1;
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
   // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
   EndCondition ends = EndCondition::radial;
