@@ -210,11 +210,14 @@ std::string life_text(const Scene& s, const SceneResult& r) {
     if (!s.segment)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, sheared end "
            "faces) gives, against an 81 mm segment on the light, medium and heavy reference drives, the same "
-           "governing mode; with the thesis cards N2 within 13 % and N1 33 to 74 % shorter; with isotropic rubber "
-           "N1 4 to 16 % shorter and N2 within 6 % on medium and heavy; [segment] central_pitches = 3, "
-           "end_pitches = 3, fine_size_mm = 1, coarse_size_mm = 2.5, cushion_rows = 1, gap_size_mm = 0.3, "
-           "column_growth = 0.25, row_growth = 1.1 selects the 81 mm segment with the life's element sizes, at "
-           "about 10 x the time (docs/segment.md \"End faces\")\n";
+           "governing mode and, with the thesis cards, N2 within 13 %; its N1 with the cards (elastic level) is 14 to 36 % "
+           "shorter than with 0.5 mm elements (conservative: the near-incompressible rubber's gap-bottom stress "
+           "needs finer elements over the cog flanks, whatever the length; with 0.5 mm elements the 27 and 81 mm "
+           "segments' N1 agree within 17 %, and the 81 mm segment with the default's 1 mm elements is no "
+           "reference: its N1 is up to 2.6 x its own with 0.5 mm); [segment] central_pitches = 1, end_pitches = 1, "
+           "fine_size_mm = 0.5, coarse_size_mm = 2.5, cushion_rows = 1, gap_size_mm = 0.3, column_growth = 0.25, "
+           "row_growth = 1.1 selects the 0.5 mm segment at about 3.5 x the time (docs/segment.md \"Which segment "
+           "N1 should be read from\")\n";
   }
   // Only where the points carry history: the glassy transients that the load fronts resolve
   // (without history the planned steps read N2 within 8 % of 0.1 mm sampling: docs/segment.md).
