@@ -447,3 +447,33 @@ TEST(SegmentCycle, BodyForcesUseTheLoadCyclesFrictionUsedThroughTheDriverExitRam
   const double a1 = before.p_MPa * 2.0 / d.width_mm / std::cos(d.wedge_half_angle_rad);
   EXPECT_NEAR(b1.x(), -before.friction_used * a1 * std::sin(before.gamma_rad), 1e-12);
 }
+
+// Each element's contact body force is its mean over its path extent (CycleKnobs::
+// body_force_sampling_mm): where the contact ends at once, the total force on the segment falls
+// smoothly as the end passes, instead of by one element's share whenever an element's centre
+// passes it (the gap bottom's exit hump showed those steps: docs/segment.md).
+TEST(SegmentCycle, ContactForceLeavesTheElementsGraduallyWhereTheContactEnds) {
+  belt::LoadCycle c = synthetic_cycle();
+  c.samples[6].s_mm = 200.001, c.samples[6].t_s = 0.200001;  // p 0.8 MPa → 0 at 200 mm
+  auto largest_step = [&c](double sampling_mm) {
+    Fixture f(c);
+    f.knobs.body_force_sampling_mm = sampling_mm;
+    f.knobs.positions_mm = {50.0, 100.0, 150.0, 180.0, 190.0, 196.0};
+    for (int k = 0; k <= 80; ++k) f.knobs.positions_mm.push_back(198.0 + 0.05 * k);
+    const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+    const CycleResult r = f.run(*bottom, *cushion);
+    double step = 0.0, total = 0.0;
+    for (std::size_t k = r.loads.size() - 80; k < r.loads.size(); ++k) {
+      step = std::max(step, (r.loads[k].body_force_N_mm - r.loads[k - 1].body_force_N_mm).norm());
+      total = std::max(total, r.loads[k - 1].body_force_N_mm.norm());
+    }
+    return std::make_pair(step, total);
+  };
+  const auto [mean_step, mean_total] = largest_step(0.1);
+  const auto [centre_step, centre_total] = largest_step(0.0);
+  std::printf("largest change of the contact force per 0.05 mm: element means %.4g, centres %.4g N/mm (of %.4g)\n",
+              mean_step, centre_step, centre_total);
+  EXPECT_GT(centre_step, 0.02 * centre_total);  // the centres switch whole elements
+  EXPECT_LT(mean_step, 0.3 * centre_step);
+  EXPECT_NEAR(mean_total / centre_total, 1.0, 0.05);
+}
