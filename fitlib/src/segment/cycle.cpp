@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -318,6 +319,45 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> end_shear_forces(
   };
 }
 
+// The contact body forces per element at load level λ (global, 6.6–6.9): at each element's centre,
+// or their mean over its path extent sampled every `sampling_mm` (CycleKnobs::body_force_sampling_mm),
+// turned by the cord's tangent at the centre. The solver asks at every assembly: the last λ's
+// forces are kept.
+std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(
+    std::vector<double> centre_x, std::vector<std::pair<double, double>> extent_x, const CycleDrive& drive,
+    double sampling_mm, double T, std::function<NeutralCurve(double)> curve_at) {
+  const belt::LoadHistory& h = *drive.history;
+  auto element_force = [=, &h](int e, double s0) {
+    const double width = extent_x[e].second - extent_x[e].first;
+    const int n = sampling_mm > 0.0 ? std::max(1, static_cast<int>(std::ceil(width / sampling_mm))) : 1;
+    if (n == 1) return contact_body_force(h.at_position(s0 + centre_x[e]), drive);
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (int i = 0; i < n; ++i)  // midpoint rule
+      sum += contact_body_force(h.at_position(s0 + extent_x[e].first + (i + 0.5) * width / n), drive);
+    return Eigen::Vector2d(sum / n);
+  };
+  auto cache = std::make_shared<std::pair<double, std::vector<Eigen::Vector2d>>>(-1.0, std::vector<Eigen::Vector2d>{});
+  return [=, &h](double lambda, std::vector<Eigen::Vector2d>& b) {
+    if (lambda == cache->first) {
+      b = cache->second;
+      return;
+    }
+    const double tau = lambda * T;
+    b.assign(centre_x.size(), Eigen::Vector2d::Zero());
+    if (tau > 1.0) {
+      const NeutralCurve curve = curve_at(lambda);
+      const double s0 = (tau - 1.0) * h.length_mm();
+      for (std::size_t e = 0; e < centre_x.size(); ++e) {
+        const Eigen::Vector2d lr = element_force(static_cast<int>(e), s0);
+        if (lr.isZero(0.0)) continue;
+        const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
+        b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
+      }
+    }
+    *cache = {lambda, b};
+  };
+}
+
 }  // namespace
 
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
@@ -365,37 +405,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       extent_x[e] = {std::min(extent_x[e].first, x), std::max(extent_x[e].second, x)};
     }
   }
-  // 6.6–6.7 at the element's centre, or their mean over its path extent (CycleKnobs).
-  auto element_force = [&](int e, double s0) {
-    const double width = extent_x[e].second - extent_x[e].first, spacing = knobs.body_force_sampling_mm;
-    const int n = spacing > 0.0 ? std::max(1, static_cast<int>(std::ceil(width / spacing))) : 1;
-    if (n == 1) return contact_body_force(h.at_position(s0 + centre_x[e]), drive);
-    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-    for (int i = 0; i < n; ++i)  // midpoint rule
-      sum += contact_body_force(h.at_position(s0 + extent_x[e].first + (i + 0.5) * width / n), drive);
-    return Eigen::Vector2d(sum / n);
-  };
-  double body_lambda = -1.0;  // the solver asks at every assembly: keep the last λ's forces
-  std::vector<Eigen::Vector2d> body_cache;
-  auto body = [&](double lambda, std::vector<Eigen::Vector2d>& b) {
-    if (lambda == body_lambda) {
-      b = body_cache;
-      return;
-    }
-    const double tau = lambda * T;
-    b.assign(m.element_count(), Eigen::Vector2d::Zero());
-    if (tau > 1.0) {
-      const NeutralCurve curve = curve_at(lambda);
-      const double s0 = (tau - 1.0) * h.length_mm();
-      for (int e = 0; e < m.element_count(); ++e) {
-        const Eigen::Vector2d lr = element_force(e, s0);
-        if (lr.isZero(0.0)) continue;
-        const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
-        b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
-      }
-    }
-    body_lambda = lambda, body_cache = b;
-  };
+  const auto body = contact_body_forces(centre_x, extent_x, drive, knobs.body_force_sampling_mm, T, curve_at);
   p.body_force = body;
   if (shear) p.nodal_force = end_shear_forces(m.node_count(), straight, path_x, h, T, curve_at, shear);
 
