@@ -376,7 +376,7 @@ TEST(SegmentLife, CompleteLevelFailsAtTheMediumDrivesExitWithEitherDamageUpdateA
 // The Levenberg–Marquardt retake (SolverKnobs::levenberg): at the load cycle's transitions a full
 // Newton step of the cards' near-incompressible rubber (K 4000 MPa) overshoots; retaking it on the
 // shifted tangent instead of halving and cutting the increment removes the cuts of the medium
-// drive's elastic level (life mesh, with the rotated predictor: 4 → 0). The residual is unchanged,
+// drive's elastic level (life mesh, rotated predictor, element-mean body forces: 2 → 0). The residual is unchanged,
 // so the lives are Newton's: they differ only by the increments the cuts add. Off (0), the same run
 // cuts (docs/segment.md §Cost).
 TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingTheLives) {
@@ -386,7 +386,7 @@ TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingThe
   const fatigue::SegmentLife a = card_life(shifted), b = card_life(plain);
   std::printf("medium, elastic level: cuts %d -> %d, iterations %d -> %d (levenberg off -> on)\n", b.run.cuts,
               a.run.cuts, b.run.newton_iterations, a.run.newton_iterations);
-  EXPECT_GE(b.run.cuts, 3);
+  EXPECT_GE(b.run.cuts, 2);  // 4 before the element-mean body forces smoothed the exits
   EXPECT_EQ(a.run.cuts, 0);
   EXPECT_LT(a.run.newton_iterations, b.run.newton_iterations);
   EXPECT_LT(a.run.equilibrium_error, 1e-6);
