@@ -342,6 +342,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
+  p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when SolverKnobs::inertia is on
 
   const int order = gauss_order(m, solver.integration);
   const auto rule = detail::gauss_rule(order);
@@ -431,6 +432,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       p.nodal_force(lambda, nodal);
       for (const Eigen::Vector2d& f : nodal) applied += f, scale += f.norm();
     }
+    applied -= s.inertia_N_mm, scale += s.inertia_N_mm.norm();  // d'Alembert's force (SolverKnobs::inertia)
     for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
