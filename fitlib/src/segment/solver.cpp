@@ -261,12 +261,12 @@ class Assembler {
     return -1;
   }
 
-  // Σ of the inertia forces m·a at q (global; zero without inertia).
-  Eigen::Vector2d inertia_total(const Eigen::VectorXd& q) const {
-    Eigen::Vector2d total = Eigen::Vector2d::Zero();
+  // Per node, the inertia force m·a at q (global; empty without inertia).
+  std::vector<Eigen::Vector2d> inertia_forces(const Eigen::VectorXd& q) const {
+    std::vector<Eigen::Vector2d> f;
     for (int n = 0; inertia_ && n < p_.mesh->node_count(); ++n)
-      if (moves(n)) total += inertia_->force(n, u_of(q, n));
-    return total;
+      f.push_back(moves(n) ? inertia_->force(n, u_of(q, n)) : Eigen::Vector2d::Zero());
+    return f;
   }
 
  private:
@@ -665,7 +665,7 @@ class StaticRun {
         if (d_.eq[2 * a + k] >= 0) rl(k) = 0.0;
       s.reaction_N_mm[a] = d_.R[a] * rl;
     }
-    s.inertia_N_mm = assembler_.inertia_total(q_);
+    s.inertia_N_mm = assembler_.inertia_forces(q_);
   }
 
   // Turn the constrained bases to λ = target, keeping the displacements.

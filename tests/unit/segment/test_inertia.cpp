@@ -129,8 +129,10 @@ TEST(SegmentInertia, SuddenShearLoadVibratesWithTheStripsFundamentalPeriodAboutT
   Eigen::Vector2d reactions = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : r.solution.reaction_N_mm) reactions += f;
   const double applied = b * kHeight_mm * 2.0 * m.half_length_mm;
-  EXPECT_NEAR(reactions.x() + applied - r.solution.inertia_N_mm.x(), 0.0, 1e-8 * applied);
-  EXPECT_GT(std::abs(r.solution.inertia_N_mm.x()), 0.05 * applied);  // still vibrating at 3T
+  Eigen::Vector2d inertia = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& f : r.solution.inertia_N_mm) inertia += f;
+  EXPECT_NEAR(reactions.x() + applied - inertia.x(), 0.0, 1e-8 * applied);
+  EXPECT_GT(std::abs(inertia.x()), 0.05 * applied);  // still vibrating at 3T
 }
 
 TEST(SegmentInertia, SlowLoadGivesTheStaticSolution) {

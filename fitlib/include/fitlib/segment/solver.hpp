@@ -128,9 +128,9 @@ struct StaticSolution {
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run)
   bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
-  // SolverKnobs::inertia: Σ of the nodes' inertia forces m·a (global, N/mm; in the residual as
-  // internal − external + inertia), so Σ reactions + external − this = 0.
-  Eigen::Vector2d inertia_N_mm = Eigen::Vector2d::Zero();
+  // SolverKnobs::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
+  // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
+  std::vector<Eigen::Vector2d> inertia_N_mm;
 };
 
 StaticSolution solve_static(const StaticProblem& problem, const SolverKnobs& knobs);
