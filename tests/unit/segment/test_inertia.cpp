@@ -10,6 +10,8 @@
 #include "fitlib/segment/elastic.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/solver.hpp"
+#include "fitlib/segment/static_case.hpp"
+#include <Eigen/Geometry>
 
 using namespace fitlib::segment;
 
@@ -143,4 +145,27 @@ TEST(SegmentInertia, SlowLoadGivesTheStaticSolution) {
   const ShearRun quasi = shear_run(m, b, 100.0 * period_s, 50, true, false);
   EXPECT_NEAR(slow.u_bottom_mm.back() / quasi.u_bottom_mm.back(), 1.0, 2e-3);
   EXPECT_NEAR(quasi.u_bottom_mm.back() / (b * kHeight_mm * kHeight_mm / (2.0 * kG_MPa)), 1.0, 0.01);
+}
+
+TEST(SegmentInertia, CordFramesCarryABentStripsNodesAsItsSolutionDoes) {
+  // The motion the inertia is measured against (StaticProblem::frame_motion): each node carried
+  // with its column's cord point and tangent. On a static bend to R = 40 mm it is the prescribed
+  // motion on the cord line and, below it, the FE solution up to the section's own strain (plane
+  // sections stay plane); turned the wrong way it would be off by twice the turn.
+  const Mesh m = strip(8);
+  const auto law = make_elastic(ElasticLaw::hencky, kE_MPa, 0.45);
+  const StaticProblem p = static_problem(m, {law.get(), law.get()}, {0.0, 1.0 / 40.0, 0.0}, EndCondition::radial);
+  const StaticSolution s = solve_static(p, SolverKnobs{});
+  std::vector<Eigen::Vector2d> frame;
+  p.frame_motion(1.0, frame);
+  double worst = 0.0, worst_reversed = 0.0;
+  for (int n = 0; n < m.node_count(); ++n) {
+    const double th = -m.X[n].x() / 40.0;  // the cord tangent's turn at the column (clockwise)
+    const Eigen::Vector2d offset = m.X[n] - Eigen::Vector2d(m.X[n].x(), 0.0);
+    const Eigen::Vector2d reversed = frame[n] + (Eigen::Rotation2Dd(-th).toRotationMatrix() - Eigen::Rotation2Dd(th).toRotationMatrix()) * offset;
+    worst = std::max(worst, (s.u_mm[n] - frame[n]).norm());
+    worst_reversed = std::max(worst_reversed, (s.u_mm[n] - reversed).norm());
+  }
+  for (int n : m.top_nodes) EXPECT_LT((s.u_mm[n] - frame[n]).norm(), 1e-12);
+  EXPECT_LT(worst, 0.25 * worst_reversed) << worst << " " << worst_reversed;
 }
