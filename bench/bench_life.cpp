@@ -29,7 +29,11 @@
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
 // fronts' increment spacing (0 = off); `bodyds=MM`: the body forces' sampling over each element
-// (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre).
+// (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
+// (implicit dynamics,
+// docs/segment.md "Inertia"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
+// stress field (VTK) when the middle first reaches each path position of the last cycle,
+// PREFIX-k.vtk.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -105,6 +109,10 @@ struct Probe {
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
   double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
   double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
+  bool inertia = false;                         // SolverKnobs::inertia
+  int cycles = 2;                               // cycles=N
+  std::string field_prefix{};                   // field=PREFIX:MM[:MM…]
+  std::vector<double> field_at_mm{};
 };
 
 // The end faces' shear (column 0) or warping (column 1) from a longer run's CSV (section=X there,
@@ -214,7 +222,9 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.levenberg = pr.levenberg;
   setup.solver.tolerance = pr.tolerance;
   setup.solver.diagnose_failure = pr.diagnose;
-  setup.cycle.cycles = 2;
+  setup.solver.inertia = pr.inertia;
+  setup.cycle.cycles = pr.cycles;
+  setup.cycle.vtk_prefix = pr.field_prefix, setup.cycle.vtk_at_s_mm = pr.field_at_mm;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
@@ -415,6 +425,17 @@ int main(int argc, char** argv) {
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
+      if (a == "inertia") p.inertia = true;
+      if (a.rfind("cycles=", 0) == 0) p.cycles = std::atoi(a.c_str() + 7);
+      if (a.rfind("field=", 0) == 0) {
+        const std::string spec = a.substr(6);
+        std::size_t at = spec.find(':');
+        p.field_prefix = spec.substr(0, at);
+        while (at != std::string::npos) {
+          p.field_at_mm.push_back(std::atof(spec.c_str() + at + 1));
+          at = spec.find(':', at + 1);
+        }
+      }
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);

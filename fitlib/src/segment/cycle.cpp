@@ -125,7 +125,7 @@ CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
 // The increment's forces along the cord tangent at the middle: the cord line's reactions, the left
 // end face's (without the cord node) and the rubber's section force through x = 0.
 void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const NeutralCurve& curve, const Mesh& m,
-                        Integration integration, IncrementLoads& q) {
+                        const std::vector<double>& path_x, Integration integration, IncrementLoads& q) {
   const double phi = curve.at(curve.s_from_unstrained(0.0)).phi_rad;
   const Eigen::Vector2d t(std::cos(phi), -std::sin(phi));
   q.cord_longitudinal_N_mm = q.cord_reaction_N_mm.dot(t);
@@ -133,6 +133,8 @@ void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const N
     if (node != m.top_nodes.front()) q.left_end_longitudinal_N_mm += s.reaction_N_mm[node].dot(t);
   for (int node : m.top_nodes)
     if (m.X[node].x() < 0.0) q.left_cord_longitudinal_N_mm += s.reaction_N_mm[node].dot(t);
+  for (std::size_t node = 0; node < s.inertia_N_mm.size(); ++node)  // SolverKnobs::inertia
+    if (path_x[node] < 0.0) q.left_inertia_longitudinal_N_mm += s.inertia_N_mm[node].dot(t);
   q.rubber_section_N_mm = section_force(p, s, 0.0, Eigen::Vector2d::Zero(), integration).force_N_mm.dot(t);
 }
 
@@ -391,6 +393,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
+  p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when SolverKnobs::inertia is on
 
   const int order = gauss_order(m, solver.integration);
   const auto rule = detail::gauss_rule(order);
@@ -474,12 +477,13 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       p.nodal_force(lambda, nodal);
       for (const Eigen::Vector2d& f : nodal) applied += f, scale += f.norm();
     }
+    for (const Eigen::Vector2d& f : s.inertia_N_mm) applied -= f, scale += f.norm();  // d'Alembert (SolverKnobs::inertia)
     for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
     out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
     IncrementLoads q{tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied};
-    longitudinal_loads(p, s, curve, m, solver.integration, q);
+    longitudinal_loads(p, s, curve, m, path_x, solver.integration, q);
     q.belt_force_N_mm = tau > 1.0 ? h.at_position(q.s_mm).F_N / drive.width_mm : 0.0;
     const double K_mid = h.at_position(q.s_mm).K_1_mm;
     q.span = tau > 1.0 && std::all_of(centre_x.begin(), centre_x.end(), [&](double x) {
@@ -488,7 +492,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     });
     if (q.span && q.belt_force_N_mm > 0.0) {
       out.span_cord_share = std::max(out.span_cord_share, std::abs(q.cord_longitudinal_N_mm) / q.belt_force_N_mm);
-      const double balance = q.left_end_longitudinal_N_mm + q.left_cord_longitudinal_N_mm + q.rubber_section_N_mm;
+      const double balance = q.left_end_longitudinal_N_mm + q.left_cord_longitudinal_N_mm + q.rubber_section_N_mm -
+                           q.left_inertia_longitudinal_N_mm;
       out.span_section_mismatch = std::max(out.span_section_mismatch, std::abs(balance) / std::abs(q.rubber_section_N_mm));
     }
     out.loads.push_back(q);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include <Eigen/LU>
@@ -12,6 +13,7 @@
 #include "diagnosis.hpp"
 #include "element.hpp"
 #include "grouped_ldlt.hpp"
+#include "inertia.hpp"
 #include "fitlib/core/error.hpp"
 
 namespace fitlib::segment {
@@ -155,6 +157,16 @@ Pattern build_pattern(const Mesh& m, const Dofs& d) {
   return p;
 }
 
+// Per equation: the slot of K_ii in K's values.
+std::vector<int> diagonal_slots(const SparseMatrix& K) {
+  std::vector<int> slots;
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  for (int j = 0; j < K.cols(); ++j)
+    slots.push_back(static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], j) - inner));
+  return slots;
+}
+
 // The pattern with the free equations renumbered in the node groups' AMD order (grouped_ldlt.hpp),
 // the elimination order of the symmetric solver.
 Pattern ordered_pattern(const Mesh& m, Dofs& d) {
@@ -177,6 +189,10 @@ class Assembler {
     state_n_ = state_n, state_next_ = state_next, dt_s_ = dt_s;
   }
   void set_offsets(const std::vector<std::size_t>* offset) { offset_ = offset; }
+  // SolverKnobs::inertia (segment/inertia.hpp); `diagonal`: per equation, the slot of K_ii.
+  void set_inertia(const detail::BackwardEulerInertia* inertia, const std::vector<int>* diagonal) {
+    inertia_ = inertia, diagonal_ = diagonal;
+  }
 
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
 
@@ -241,7 +257,16 @@ class Assembler {
       p_.nodal_force(lambda, nodal_);
       for (std::size_t n = 0; n < nodal_.size(); ++n) r.segment<2>(2 * n) -= d_.R[n].transpose() * nodal_[n];
     }
+    if (inertia_ && inertia_->active()) add_inertia(q, r, K);  // dynamics hook (SolverKnobs::inertia)
     return -1;
+  }
+
+  // Per node, the inertia force m·a at q (global; empty without inertia).
+  std::vector<Eigen::Vector2d> inertia_forces(const Eigen::VectorXd& q) const {
+    std::vector<Eigen::Vector2d> f;
+    for (int n = 0; inertia_ && n < p_.mesh->node_count(); ++n)
+      f.push_back(moves(n) ? inertia_->force(n, u_of(q, n)) : Eigen::Vector2d::Zero());
+    return f;
   }
 
  private:
@@ -269,6 +294,20 @@ class Assembler {
           r.segment<2>(2 * n) -= d_.R[n].transpose() * (N[a] * dV * body_[e]);
         }
       }
+    }
+  }
+
+  bool moves(int n) const { return d_.eq[2 * n] >= 0 || d_.eq[2 * n + 1] >= 0; }
+
+  // m·a of every node with a free component into the residual (a cord-line node follows its frame
+  // exactly), m/Δt² onto the diagonal of its free equations (the mass is isotropic, so a node's
+  // rotated basis leaves it diagonal and uncoupled from the prescribed components).
+  void add_inertia(const Eigen::VectorXd& q, Eigen::VectorXd& r, Pattern* K) const {
+    for (int n = 0; n < p_.mesh->node_count(); ++n) {
+      if (!moves(n)) continue;
+      r.segment<2>(2 * n) += d_.R[n].transpose() * inertia_->force(n, u_of(q, n));
+      for (int k = 0; K && k < 2; ++k)
+        if (d_.eq[2 * n + k] >= 0) K->K.valuePtr()[(*diagonal_)[d_.eq[2 * n + k]]] += inertia_->stiffness(n);
     }
   }
 
@@ -303,6 +342,8 @@ class Assembler {
   double* state_next_ = nullptr;
   double dt_s_ = 0.0;
   mutable std::vector<Eigen::Vector2d> body_, nodal_;
+  const detail::BackwardEulerInertia* inertia_ = nullptr;
+  const std::vector<int>* diagonal_ = nullptr;
 };
 
 double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
@@ -331,12 +372,7 @@ class Newton {
  public:
   Newton(const Assembler& a, Pattern& K, LinearSolver& linear, const Dofs& d, const SolverKnobs& knobs,
          Eigen::VectorXd& q)
-      : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q) {
-    const int* outer = K.K.outerIndexPtr();
-    const int* inner = K.K.innerIndexPtr();
-    for (int j = 0; j < d.equations; ++j)
-      diagonal_.push_back(static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], j) - inner));
-  }
+      : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q), diagonal_(diagonal_slots(K.K)) {}
 
   // The node carrying the largest free residual component of the last assembly (-1: none).
   int worst_node() const {
@@ -526,6 +562,11 @@ class StaticRun {
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     out_.equations = d_.equations;
+    if (knobs.inertia && p.density_t_mm3 > 0.0 && p.time_s) {  // dynamics hook (SolverKnobs::inertia)
+      inertia_ = std::make_unique<detail::BackwardEulerInertia>(detail::lumped_masses(m_, p.density_t_mm3), p.frame_motion);
+      diagonal_ = diagonal_slots(pattern_.K);
+      assembler_.set_inertia(inertia_.get(), &diagonal_);
+    }
   }
 
   StaticSolution run() {
@@ -624,6 +665,7 @@ class StaticRun {
         if (d_.eq[2 * a + k] >= 0) rl(k) = 0.0;
       s.reaction_N_mm[a] = d_.R[a] * rl;
     }
+    s.inertia_N_mm = assembler_.inertia_forces(q_);
   }
 
   // Turn the constrained bases to λ = target, keeping the displacements.
@@ -661,6 +703,7 @@ class StaticRun {
     const Eigen::VectorXd q_saved = q_;
     const double dt = time_at(target) - time_at(lambda_);
     assembler_.set_step(states_.committed.data(), states_.trial.data(), dt);
+    begin_inertia(target, dt);
     // Start: the free dofs extrapolated from the last increment (capped at its size, the history
     // turns at transitions); or, first and after a cut, the linear predictor K_fp·Δq_p on a fresh
     // tangent.
@@ -704,7 +747,21 @@ class StaticRun {
     out_.final_residual = last_.residual;
     cuts_in_row_ = 0;
     max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after each success
+    inertia_pending_ = true;
     return true;
+  }
+
+  // The inertia's history takes the last converged increment's motion when the next one begins (so
+  // the final snapshot still sees the last increment's step), then the step to `target`.
+  void begin_inertia(double target, double dt) {
+    if (!inertia_) return;
+    if (inertia_pending_) {
+      std::vector<Eigen::Vector2d> u(nn_);
+      for (int a = 0; a < nn_; ++a) u[a] = assembler_.u_of(q_, a);
+      inertia_->commit(u);
+      inertia_pending_ = false;
+    }
+    inertia_->begin(target, dt);
   }
 
   const StaticProblem& p_;
@@ -728,6 +785,9 @@ class StaticRun {
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
   std::vector<StaticProblem::FrameTurn> turns_;
+  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // SolverKnobs::inertia
+  std::vector<int> diagonal_;
+  bool inertia_pending_ = false;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include "fitlib/segment/curve.hpp"
 
@@ -35,6 +36,27 @@ std::function<void(double, double, std::vector<StaticProblem::FrameTurn>&)> cord
     }
     turns.resize(station_of.size());
     for (std::size_t n = 0; n < station_of.size(); ++n) turns[n] = at[station_of[n]];
+  };
+}
+
+// Each node carried rigidly with its column's cord frame from the reference (λ = 0): the motion the
+// segment's inertia is measured against (SolverKnobs::inertia; docs/segment.md "Inertia").
+std::function<void(double, std::vector<Eigen::Vector2d>&)> cord_frame_motion(
+    const Mesh& m, const std::vector<double>& path_x_mm, std::function<NeutralCurve(double lambda)> curve_at) {
+  const NeutralCurve reference = curve_at(0.0);
+  std::vector<CurvePoint> at_reference;
+  for (double x : path_x_mm) at_reference.push_back(reference.at(reference.s_from_unstrained(x)));
+  const Mesh* mesh = &m;
+  return [mesh, path_x_mm, curve_at, at_reference](double lambda, std::vector<Eigen::Vector2d>& u) {
+    const NeutralCurve curve = curve_at(lambda);
+    u.resize(path_x_mm.size());
+    for (std::size_t n = 0; n < path_x_mm.size(); ++n) {
+      const CurvePoint c = curve.at(curve.s_from_unstrained(path_x_mm[n])), &c0 = at_reference[n];
+      const double th = c0.phi_rad - c.phi_rad;  // φ turns clockwise
+      const Eigen::Vector2d r = mesh->X[n] - Eigen::Vector2d(c0.x_mm, c0.y_mm);
+      const Eigen::Vector2d x = Eigen::Vector2d(c.x_mm, c.y_mm) + Eigen::Rotation2Dd(th).toRotationMatrix() * r;
+      u[n] = x - mesh->X[n];
+    }
   };
 }
 
@@ -76,6 +98,7 @@ StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_
     }
   };
   p.frame_turn = cord_frame_turn(path_x_mm, curve_at);
+  p.frame_motion = cord_frame_motion(m, path_x_mm, curve_at);
   p.rotate = [constraints, n_top, curve_at, path_x_mm](double lambda, std::vector<double>& angles) {
     const NeutralCurve curve = curve_at(lambda);
     for (std::size_t c = n_top; c < angles.size(); ++c)

@@ -96,6 +96,7 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   // reactions and the belt force").
   double belt_force_N_mm = 0.0, cord_longitudinal_N_mm = 0.0, left_cord_longitudinal_N_mm = 0.0;
   double left_end_longitudinal_N_mm = 0.0, rubber_section_N_mm = 0.0;
+  double left_inertia_longitudinal_N_mm = 0.0;  // Σ m·a of the left half's nodes (SolverKnobs::inertia)
   bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
 

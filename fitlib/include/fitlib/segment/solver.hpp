@@ -67,6 +67,11 @@ struct SolverKnobs {
   // failing increment's best iterate; the findings go into the exit-4 message (docs/segment.md
   // §Solver, "Failure diagnosis"). Costs two residual assemblies per equation, once.
   bool diagnose_failure = false;
+  // Implicit dynamics (off: quasi-static): the rubber's lumped mass (StaticProblem::density_t_mm3)
+  // on the nodes' motion relative to StaticProblem::frame_motion, backward Euler in
+  // StaticProblem::time_s; tangent K + M/Δt². Lets the load path pass a limit point by a dynamic
+  // snap (docs/segment.md "Inertia"; segment/inertia.hpp).
+  bool inertia = false;
 };
 
 struct StaticSolution;
@@ -97,6 +102,11 @@ struct StaticProblem {
   // Optional: called after every converged increment with its stresses, displacements, reactions.
   std::function<void(double lambda, const StaticSolution& increment)> on_increment;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
+  // SolverKnobs::inertia: mass density (t/mm³ = 10¹² kg/m³) and, optionally, each node's
+  // displacement (global, mm) at λ when carried rigidly with its column's cord frame; the inertia
+  // acts on the motion relative to it (empty: relative to the reference).
+  double density_t_mm3 = 0.0;
+  std::function<void(double lambda, std::vector<Eigen::Vector2d>& u_mm)> frame_motion;
 };
 
 struct IntegrationPointStress {
@@ -118,6 +128,9 @@ struct StaticSolution {
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run)
   bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
+  // SolverKnobs::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
+  // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
+  std::vector<Eigen::Vector2d> inertia_N_mm;
 };
 
 StaticSolution solve_static(const StaticProblem& problem, const SolverKnobs& knobs);
