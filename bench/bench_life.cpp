@@ -30,8 +30,7 @@
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
 // fronts' increment spacing (0 = off); `bodyds=MM`: the body forces' sampling over each element
 // (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
-// (implicit dynamics,
-// docs/segment.md "Inertia"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
+// (implicit dynamics, docs/segment.md "Inertia"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
 // stress field (VTK) when the middle first reaches each path position of the last cycle,
 // PREFIX-k.vtk.
 #include <algorithm>

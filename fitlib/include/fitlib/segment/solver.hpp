@@ -110,11 +110,11 @@ struct StaticProblem {
 };
 
 struct IntegrationPointStress {
-  Eigen::Vector2d X_mm;           // reference position
-  Eigen::Matrix2d cauchy_MPa;     // global x, y components
+  Eigen::Vector2d X_mm = Eigen::Vector2d::Zero();          // reference position
+  Eigen::Matrix2d cauchy_MPa = Eigen::Matrix2d::Zero();    // global x, y components
   double sigma33_MPa = 0.0;
-  Eigen::Matrix2d piola_MPa;      // first Piola–Kirchhoff (section forces)
-  Eigen::Matrix2d F;              // deformation gradient
+  Eigen::Matrix2d piola_MPa = Eigen::Matrix2d::Zero();     // first Piola–Kirchhoff (section forces)
+  Eigen::Matrix2d F = Eigen::Matrix2d::Identity();         // deformation gradient
 };
 
 struct StaticSolution {
