@@ -28,7 +28,8 @@
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
-// fronts' increment spacing (0 = off).
+// fronts' increment spacing (0 = off); `threads=N`: the element loop's threads (SolverKnobs::threads;
+// default min(2, hardware); every table prints the count it ran with).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -102,6 +103,7 @@ struct Probe {
   std::string csv{};                            // csv=PATH: the monitored histories
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
+  int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
   double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
 };
 
@@ -212,6 +214,7 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.levenberg = pr.levenberg;
   setup.solver.tolerance = pr.tolerance;
   setup.solver.diagnose_failure = pr.diagnose;
+  setup.solver.threads = pr.threads;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
@@ -244,10 +247,10 @@ Outcome run_probe(const Probe& pr) {
 void print_probe(const Probe& p, const Outcome& o) {
   const auto& r = o.life.run;
   const auto& m = o.life.report.modes;
-  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %.2f s |\n", p.load.c_str(),
+  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %d | %.2f s |\n", p.load.c_str(),
               p.fidelity.c_str(), p.mesh.c_str(), r.elements, p.steps, r.increments, r.newton_iterations,
               r.factorizations, r.cuts, m[0].life_cycles, m[1].life_cycles, o.life.report.governing.c_str(),
-              o.wall_s);
+              r.final_state.threads, o.wall_s);
 }
 
 // Each cushion point of a probe: its straight-section position (from the wrapped reference, mould
@@ -278,7 +281,7 @@ void print_cushion_points(const Probe& pr, const Outcome& o) {
 
 const char* kProbeHeader =
     "| drive | fidelity | mesh | elements | steps/cycle | increments | iterations | factorisations | cuts "
-    "| N1 | N2 | governing | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    "| N1 | N2 | governing | threads | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 double effect_s(const scene::SceneResult& r, const std::string& name) {
   for (const auto& e : r.plan.effects)
@@ -287,7 +290,8 @@ double effect_s(const scene::SceneResult& r, const std::string& name) {
 }
 
 void level_table(const std::vector<const char*>& levels) {
-  std::printf("## 1. Life per fidelity level (scene run = fitcli life's route, 2 load cycles)\n\n");
+  std::printf("## 1. Life per fidelity level (scene run = fitcli life's route, 2 load cycles; the segment's "
+              "element loop on %d threads)\n\n", segment::solver_threads(segment::SolverKnobs{}));
   std::printf("| drive | fidelity | N1 radial crack | N2 separation | governing | life (h) | scene run | "
               "stresses | vs beam |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const char* load : kLoads) {
@@ -411,6 +415,7 @@ int main(int argc, char** argv) {
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
+      if (a.rfind("threads=", 0) == 0) p.threads = std::atoi(a.c_str() + 8);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);

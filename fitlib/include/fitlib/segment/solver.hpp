@@ -67,7 +67,13 @@ struct SolverKnobs {
   // failing increment's best iterate; the findings go into the exit-4 message (docs/segment.md
   // §Solver, "Failure diagnosis"). Costs two residual assemblies per equation, once.
   bool diagnose_failure = false;
+  // Threads of the element loop (0: min(2, the hardware's)). Each element's response is computed
+  // into its own buffer and the buffers are added in element order, so the result is bit-identical
+  // whatever the count (docs/segment.md §Solver, "Threads").
+  int threads = 0;
 };
+// The thread count a run with these knobs uses (resolves threads = 0).
+int solver_threads(const SolverKnobs& knobs);
 
 struct StaticSolution;
 
@@ -118,6 +124,7 @@ struct StaticSolution {
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run)
   bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
+  int threads = 1;                // of the element loop
 };
 
 StaticSolution solve_static(const StaticProblem& problem, const SolverKnobs& knobs);
