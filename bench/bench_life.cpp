@@ -104,6 +104,8 @@ struct Probe {
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
   int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
+  int krylov = -1;                              // krylov=N: SolverKnobs::krylov_iterations (< 0: the default)
+  double krylov_tolerance = -1.0;               // ktol=X: SolverKnobs::krylov_tolerance (< 0: the default)
   double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
 };
 
@@ -215,6 +217,8 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.tolerance = pr.tolerance;
   setup.solver.diagnose_failure = pr.diagnose;
   setup.solver.threads = pr.threads;
+  if (pr.krylov >= 0) setup.solver.krylov_iterations = pr.krylov;
+  if (pr.krylov_tolerance > 0.0) setup.solver.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.cycles = 2;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
@@ -416,6 +420,8 @@ int main(int argc, char** argv) {
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("threads=", 0) == 0) p.threads = std::atoi(a.c_str() + 8);
+      if (a.rfind("krylov=", 0) == 0) p.krylov = std::atoi(a.c_str() + 7);
+      if (a.rfind("ktol=", 0) == 0) p.krylov_tolerance = std::atof(a.c_str() + 5);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);
@@ -427,6 +433,8 @@ int main(int argc, char** argv) {
       return 4;
     }
     print_probe(p, o);
+    std::printf("unsymmetric tangents: %d GMRES iterations, %d fell back to the LU\n",
+                o.life.run.final_state.krylov_iterations, o.life.run.final_state.krylov_fallbacks);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
     const segment::MeshKnobs m = o.mesh;

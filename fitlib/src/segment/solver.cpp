@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
+#include <unsupported/Eigen/IterativeSolvers>
 
 #include "diagnosis.hpp"
 #include "element.hpp"
@@ -55,7 +56,9 @@ Dofs number_dofs(const StaticProblem& p) {
 // Sparse direct solver: LDLᵀ for the symmetric tangent (every law says symmetric_tangent, no
 // follower pressure; body forces are dead) on the node groups' AMD order (grouped_ldlt.hpp),
 // UMFPACK's LU otherwise (Eigen's SparseLU took 80 % of the run; docs/decisions.md); the sparsity
-// pattern is analysed once per run.
+// pattern is analysed once per run. An unsymmetric tangent is first solved by GMRES preconditioned
+// with the LDLᵀ of its symmetric part (inexact Newton, SolverKnobs::krylov_iterations), the LU only
+// when that does not converge (docs/segment.md §Solver, "Unsymmetric tangents").
 class LinearSolver {
  public:
   explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
@@ -76,18 +79,64 @@ class LinearSolver {
   }
   int analyses() const { return analyses_; }
   bool symmetric() const { return symmetric_; }
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) {
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
     if (symmetric_) return ldlt_.solve(b);
     return lu_.solve(b);
   }
+  // The unsymmetric K x = b by GMRES (restarted never) preconditioned with the LDLᵀ of ½(K + Kᵀ):
+  // true when the preconditioned residual fell below `tolerance` of its start within `iterations`.
+  // The symmetric part's LDLᵀ costs a fraction of the LU, and the Fritzson point's tangent is
+  // nearly symmetric, so ~3 iterations do (docs/segment.md §Cost).
+  bool krylov_solve(const SparseMatrix& K, const Eigen::VectorXd& b, int iterations, double tolerance,
+                    Eigen::VectorXd& x) {
+    if (symmetric_ || iterations <= 0 || !factorize_symmetric_part(K)) return false;
+    Eigen::Index used = iterations;
+    double error = tolerance;
+    x.setZero(b.size());
+    // Eigen's GMRES (unsupported/IterativeSolvers) called directly: its class would copy K per solve.
+    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{&ldlt_}, used, Eigen::Index(iterations), error);
+    krylov_iterations_ += static_cast<int>(used);
+    const bool converged = stopped && error <= tolerance && x.allFinite();
+    krylov_fallbacks_ += !converged;
+    return converged;
+  }
+  int krylov_iterations() const { return krylov_iterations_; }
+  int krylov_fallbacks() const { return krylov_fallbacks_; }
 
  private:
+  struct SymmetricPart {  // the preconditioner: Eigen's concept needs only solve()
+    const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>* ldlt;
+    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return ldlt->solve(b); }
+  };
+  // ½(K + Kᵀ) into sym_ (K's pattern is symmetric) and its LDLᵀ (K's numbering is the grouped AMD
+  // order, StaticRun).
+  bool factorize_symmetric_part(const SparseMatrix& K) {
+    if (transpose_.empty()) {
+      sym_ = K;
+      for (int j = 0; j < K.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(K, j); it; ++it) {
+          const int* column = K.innerIndexPtr() + K.outerIndexPtr()[it.row()];
+          const int* end = K.innerIndexPtr() + K.outerIndexPtr()[it.row() + 1];
+          transpose_.push_back(static_cast<int>(std::lower_bound(column, end, j) - K.innerIndexPtr()));
+        }
+      ldlt_.analyzePattern(sym_);
+      ++analyses_;
+    }
+    const double* v = K.valuePtr();
+    double* w = sym_.valuePtr();
+    for (std::size_t k = 0; k < transpose_.size(); ++k) w[k] = 0.5 * (v[k] + v[transpose_[k]]);
+    ldlt_.factorize(sym_);
+    return ldlt_.info() == Eigen::Success;
+  }
+
   bool symmetric_, analysed_ = false;
-  int analyses_ = 0;
+  int analyses_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
   // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
   // reads K's upper triangle in place (no permuted copy per factorisation).
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
+  SparseMatrix sym_;            // the unsymmetric tangent's symmetric part (krylov_solve)
+  std::vector<int> transpose_;  // per nonzero of K, the slot of its transposed entry
 };
 
 // All integration points' states in one contiguous block: element e's points start at offset[e].
@@ -470,12 +519,14 @@ class Newton {
       else if (res < retake_res) mu = 0.0;  // below the overshoot's start: Newton's basin, no shift
       shifted_retake = false;
       if (fresh && mu > 0.0) shift_diagonal(mu);
-      if (fresh && !linear_.factorize(K_.K)) return give_up();
-      o.factorizations += fresh;
       for (int i = 0; i < r_.size(); ++i)
         if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
       if (predictor) rhs -= coupling_;
-      dq = linear_.solve(rhs);
+      o.factorizations += fresh;  // of K, or of its symmetric part for GMRES
+      if (!(fresh && linear_.krylov_solve(K_.K, rhs, knobs_.krylov_iterations, knobs_.krylov_tolerance, dq))) {
+        if (fresh && !linear_.factorize(K_.K)) return give_up();
+        dq = linear_.solve(rhs);
+      }
       if (!dq.allFinite()) return give_up();
       const bool slow = stale_step && !(res <= knobs_.reuse_contraction * res_prev);
       stale_step = !fresh;
@@ -559,7 +610,7 @@ class StaticRun {
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
         linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
                 symmetric_tangent(knobs.integration)),
-        pattern_(linear_.symmetric() ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        pattern_(linear_.symmetric() || knobs.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     out_.equations = d_.equations;
@@ -583,6 +634,8 @@ class StaticRun {
     // After the swap, `trial` holds the states before the last increment.
     snapshot(1.0, states_.trial, last_dt_, out_);
     out_.pattern_analyses = linear_.analyses();
+    out_.krylov_iterations = linear_.krylov_iterations();
+    out_.krylov_fallbacks = linear_.krylov_fallbacks();
     out_.symmetric_solver = linear_.symmetric();
     out_.state = states_.committed;
     out_.state_offset = states_.offset;

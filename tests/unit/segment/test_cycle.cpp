@@ -187,6 +187,44 @@ TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
   }
 }
 
+// An unsymmetric tangent (a Prony point) solved by GMRES on its symmetric part's LDLᵀ (the default)
+// takes Newton through the same increments and iterations as UMFPACK's LU every time
+// (krylov_iterations = 0), to stresses equal within 10⁻⁸ of their scale; a GMRES allowed one
+// iteration at an unreachable tolerance falls back to the LU on every tangent, with the LU's result.
+TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterations) {
+  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
+  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  auto run = [&](int iterations, double tolerance) {
+    Fixture f;
+    f.knobs.cycles = 1;
+    f.solver.krylov_iterations = iterations, f.solver.krylov_tolerance = tolerance;
+    return f.run(visco, visco);
+  };
+  const CycleResult lu = run(0, 1e-8), gmres = run(SolverKnobs{}.krylov_iterations, SolverKnobs{}.krylov_tolerance),
+                    fallback = run(1, 1e-300);
+  EXPECT_FALSE(gmres.final_state.symmetric_solver);
+  EXPECT_EQ(lu.final_state.krylov_iterations, 0);
+  EXPECT_GT(gmres.final_state.krylov_iterations, gmres.factorizations);  // it iterated, on every tangent
+  EXPECT_EQ(gmres.final_state.krylov_fallbacks, 0);
+  EXPECT_EQ(fallback.final_state.krylov_fallbacks, fallback.factorizations);
+  for (const CycleResult* r : {&gmres, &fallback}) {
+    EXPECT_EQ(r->increments, lu.increments);
+    EXPECT_EQ(r->newton_iterations, lu.newton_iterations);
+    EXPECT_EQ(r->cuts, lu.cuts);
+    for (std::size_t p = 0; p < lu.points.size(); ++p)
+      for (std::size_t q = 0; q < lu.points[p].samples.size(); ++q) {
+        const CycleSample &a = r->points[p].samples[q], &b = lu.points[p].samples[q];
+        const double scale = 1e-8 * (1.0 + std::abs(b.s22_MPa) + std::abs(b.s11_MPa));
+        ASSERT_NEAR(a.s11_MPa, b.s11_MPa, scale) << lu.points[p].point.name << " " << q;
+        ASSERT_NEAR(a.s22_MPa, b.s22_MPa, scale) << lu.points[p].point.name << " " << q;
+        ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << lu.points[p].point.name << " " << q;
+      }
+  }
+  std::printf("prony cycle: %d tangents, %d GMRES iterations (%.2f per tangent), %d Newton iterations either way\n",
+              gmres.factorizations, gmres.final_state.krylov_iterations,
+              double(gmres.final_state.krylov_iterations) / gmres.factorizations, gmres.newton_iterations);
+}
+
 TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
   Fixture f(synthetic_cycle());
   f.knobs.cycles = 1;
