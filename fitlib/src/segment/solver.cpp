@@ -231,7 +231,7 @@ class Assembler {
  public:
   Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool)
       : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar), pool_(pool),
-        buffers_(p.mesh->element_count()) {}
+        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1) {}
 
   std::size_t points_per_element() const { return rule_.size(); }
   // The step the point states are updated over (state_n → state_next).
@@ -268,9 +268,13 @@ class Assembler {
     if (K) std::fill(K->K.valuePtr(), K->K.valuePtr() + K->K.nonZeros(), 0.0);
     if (coupling) coupling->setZero(d_.equations);
     if (states) states->assign(m.element_count(), {});
-    pool_.for_each(m.element_count(), [&](int e) { respond(q, e, K != nullptr, states != nullptr); });
+    // One thread: each element computed into one buffer and added at once (the same operations in
+    // the same order as with the team, without a pass over all buffers: cache).
+    const bool team = pool_.threads() > 1;
+    if (team) pool_.for_each(m.element_count(), [&](int e) { respond(q, e, K != nullptr, states != nullptr, buffers_[e]); });
     for (int e = 0; e < m.element_count(); ++e) {
-      const ElementBuffer& b = buffers_[e];
+      const ElementBuffer& b = team ? buffers_[e] : buffers_[0];
+      if (!team) respond(q, e, K != nullptr, states != nullptr, buffers_[0]);
       if (!b.ok) return e;
       scatter(m.elements[e], b.f, K ? &b.K : nullptr, dq_p, r, K, K ? &K->element_slots[e] : nullptr, coupling);
       if (states)
@@ -299,11 +303,10 @@ class Assembler {
   }
 
  private:
-  // Element e's response at q into its buffer (runs on any of the pool's threads: writes only
-  // buffers_[e] and element e's trial states).
-  void respond(const Eigen::VectorXd& q, int e, bool tangent, bool states) const {
+  // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
+  // buffer and element e's trial states).
+  void respond(const Eigen::VectorXd& q, int e, bool tangent, bool states, ElementBuffer& b) const {
     const Mesh& m = *p_.mesh;
-    ElementBuffer& b = buffers_[e];
     const int npe = m.nodes_per_element;
     const int* nodes = m.elements[e].data();
     b.X.resize(npe), b.u.resize(npe);
