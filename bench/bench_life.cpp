@@ -29,7 +29,9 @@
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
 // fronts' increment spacing (0 = off); `threads=N`: the element loop's threads (SolverKnobs::threads;
-// default min(2, hardware); every table prints the count it ran with).
+// default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
+// SolverKnobs::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
+// LU every time). The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -526,7 +526,9 @@ class Newton {
         if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
       if (predictor) rhs -= coupling_;
       o.factorizations += fresh;  // of K, or of its symmetric part for GMRES
-      if (!(fresh && linear_.krylov_solve(K_.K, rhs, knobs_.krylov_iterations, knobs_.krylov_tolerance, dq))) {
+      // (Modified Newton keeps a factorisation of K for its later steps: no GMRES then.)
+      const int krylov = knobs_.reuse_tangent ? 0 : knobs_.krylov_iterations;
+      if (!(fresh && linear_.krylov_solve(K_.K, rhs, krylov, knobs_.krylov_tolerance, dq))) {
         if (fresh && !linear_.factorize(K_.K)) return give_up();
         dq = linear_.solve(rhs);
       }

@@ -190,7 +190,8 @@ TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
 // An unsymmetric tangent (a Prony point) solved by GMRES on its symmetric part's LDLᵀ (the default)
 // takes Newton through the same increments and iterations as UMFPACK's LU every time
 // (krylov_iterations = 0), to stresses equal within 10⁻⁸ of their scale; a GMRES allowed one
-// iteration at an unreachable tolerance falls back to the LU on every tangent, with the LU's result.
+// iteration at an unreachable tolerance falls back to the LU on every tangent, with the LU's result;
+// modified Newton (reuse_tangent) factorises with the LU as before.
 TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterations) {
   const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
   const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
@@ -220,6 +221,14 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
         ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << lu.points[p].point.name << " " << q;
       }
   }
+  // Modified Newton keeps the LU for its later steps: no GMRES there, and the same solution.
+  Fixture modified;
+  modified.knobs.cycles = 1;
+  modified.solver.reuse_tangent = true;
+  const CycleResult reused = modified.run(visco, visco);
+  EXPECT_EQ(reused.final_state.krylov_iterations, 0);
+  const CycleSample &a = point(reused, "gap_bottom").samples.back(), &b = point(lu, "gap_bottom").samples.back();
+  EXPECT_NEAR(a.s22_MPa, b.s22_MPa, 1e-6 * (1.0 + std::abs(b.s22_MPa)));
   std::printf("prony cycle: %d tangents, %d GMRES iterations (%.2f per tangent), %d Newton iterations either way\n",
               gmres.factorizations, gmres.final_state.krylov_iterations,
               double(gmres.final_state.krylov_iterations) / gmres.factorizations, gmres.newton_iterations);

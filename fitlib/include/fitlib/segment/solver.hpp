@@ -74,7 +74,8 @@ struct SolverKnobs {
   // Unsymmetric tangents (the complete level, F-bar, follower pressure): GMRES preconditioned with
   // the LDLᵀ of the tangent's symmetric part, up to this many iterations to a preconditioned
   // residual below krylov_tolerance of its start; UMFPACK's LU only when that fails (0: the LU
-  // every time). Newton's iterations stay those of the exact solve (docs/segment.md §Solver).
+  // every time; not with reuse_tangent, which keeps the LU for its later steps). Newton's iterations
+  // stay those of the exact solve (docs/segment.md §Solver).
   int krylov_iterations = 10;
   double krylov_tolerance = 1e-8;
 };
