@@ -32,13 +32,17 @@
 // (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
 // (implicit dynamics, docs/segment.md "Inertia"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
 // stress field (VTK) when the middle first reaches each path position of the last cycle,
-// PREFIX-k.vtk.
+// PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
+// default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
+// SolverKnobs::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
+// LU every time). The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -106,6 +110,9 @@ struct Probe {
   std::string csv{};                            // csv=PATH: the monitored histories
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
+  int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
+  int krylov = -1;                              // krylov=N: SolverKnobs::krylov_iterations (< 0: the default)
+  double krylov_tolerance = -1.0;               // ktol=X: SolverKnobs::krylov_tolerance (< 0: the default)
   double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
   double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
   bool inertia = false;                         // SolverKnobs::inertia
@@ -176,9 +183,18 @@ std::vector<double> dense_positions(const belt::LoadCycle& cycle, const belt::Dr
 struct Outcome {
   fatigue::SegmentLife life;
   double wall_s = 0.0;
+  double main_cpu_s = 0.0;  // the calling thread's CPU time: the run's wall time on an idle machine, nearly
   segment::MeshKnobs mesh{};
   segment::Integration integration{};
 };
+
+// CPU time of the calling thread (s). With the element loop on helper threads, this is the run's
+// critical path: its wall time on an otherwise idle machine, up to the waits for the helpers.
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 // "iso": the bare drive file (Report I's E 20/8 MPa, ν 0.49 are set by run_probe); else the cards.
 scene::Scene probe_scene(const Probe& pr) {
@@ -224,6 +240,9 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.inertia = pr.inertia;
   setup.cycle.cycles = pr.cycles;
   setup.cycle.vtk_prefix = pr.field_prefix, setup.cycle.vtk_at_s_mm = pr.field_at_mm;
+  setup.solver.threads = pr.threads;
+  if (pr.krylov >= 0) setup.solver.krylov_iterations = pr.krylov;
+  if (pr.krylov_tolerance > 0.0) setup.solver.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
@@ -247,8 +266,10 @@ Outcome run_probe(const Probe& pr) {
   setup.temperature_C = s.temperature_C;
   if (pr.dense[2] > 0.0) setup.cycle.positions_mm = dense_positions(cycle, drive, setup, pr.dense);
   const core::Stopwatch watch;
+  const double cpu0 = thread_cpu_s();
   Outcome out{fatigue::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
   out.wall_s = watch.seconds();
+  out.main_cpu_s = thread_cpu_s() - cpu0;
   out.mesh = setup.mesh, out.integration = setup.solver.integration;
   return out;
 }
@@ -256,10 +277,10 @@ Outcome run_probe(const Probe& pr) {
 void print_probe(const Probe& p, const Outcome& o) {
   const auto& r = o.life.run;
   const auto& m = o.life.report.modes;
-  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %.2f s |\n", p.load.c_str(),
+  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %d | %.2f s |\n", p.load.c_str(),
               p.fidelity.c_str(), p.mesh.c_str(), r.elements, p.steps, r.increments, r.newton_iterations,
               r.factorizations, r.cuts, m[0].life_cycles, m[1].life_cycles, o.life.report.governing.c_str(),
-              o.wall_s);
+              r.final_state.threads, o.wall_s);
 }
 
 // Each cushion point of a probe: its straight-section position (from the wrapped reference, mould
@@ -290,7 +311,7 @@ void print_cushion_points(const Probe& pr, const Outcome& o) {
 
 const char* kProbeHeader =
     "| drive | fidelity | mesh | elements | steps/cycle | increments | iterations | factorisations | cuts "
-    "| N1 | N2 | governing | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    "| N1 | N2 | governing | threads | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 double effect_s(const scene::SceneResult& r, const std::string& name) {
   for (const auto& e : r.plan.effects)
@@ -299,7 +320,8 @@ double effect_s(const scene::SceneResult& r, const std::string& name) {
 }
 
 void level_table(const std::vector<const char*>& levels) {
-  std::printf("## 1. Life per fidelity level (scene run = fitcli life's route, 2 load cycles)\n\n");
+  std::printf("## 1. Life per fidelity level (scene run = fitcli life's route, 2 load cycles; the segment's "
+              "element loop on %d threads)\n\n", segment::solver_threads(segment::SolverKnobs{}));
   std::printf("| drive | fidelity | N1 radial crack | N2 separation | governing | life (h) | scene run | "
               "stresses | vs beam |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const char* load : kLoads) {
@@ -435,6 +457,9 @@ int main(int argc, char** argv) {
           at = spec.find(':', at + 1);
         }
       }
+      if (a.rfind("threads=", 0) == 0) p.threads = std::atoi(a.c_str() + 8);
+      if (a.rfind("krylov=", 0) == 0) p.krylov = std::atoi(a.c_str() + 7);
+      if (a.rfind("ktol=", 0) == 0) p.krylov_tolerance = std::atof(a.c_str() + 5);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
     }
     std::printf("%s", kProbeHeader);
@@ -446,6 +471,9 @@ int main(int argc, char** argv) {
       return 4;
     }
     print_probe(p, o);
+    std::printf("main thread CPU %.2f s (the wall time on an idle machine, nearly), wall %.2f s\n", o.main_cpu_s, o.wall_s);
+    std::printf("unsymmetric tangents: %d GMRES iterations, %d fell back to the LU\n",
+                o.life.run.final_state.krylov_iterations, o.life.run.final_state.krylov_fallbacks);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
     const segment::MeshKnobs m = o.mesh;

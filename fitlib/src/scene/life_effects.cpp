@@ -243,7 +243,7 @@ LifePlan choose_life_plan(const Scene& s) {
   // graded life mesh); the complete level is asked for: it stops on the medium and heavy reference
   // drives (docs/segment.md "Cost").
   return {"elastic", "default: " + why + " (about 1 s); "
-                     "[life] fidelity = \"complete\" runs the full card models (about 8 s on the light drive; "
+                     "[life] fidelity = \"complete\" runs the full card models (about 5 s on the light drive; "
                      "the load path folds on the medium and heavy reference drives: docs/segment.md), \"beam\" the layered "
                      "section (milliseconds)"};
 }

@@ -177,6 +177,11 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
     r.fail("integration", e.what());
   }
   g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, kMaxSegmentSteps));
+  // The element loop's threads (default min(2, hardware)); the results do not depend on it.
+  if (auto t = r.number("threads", 1, kMaxSegmentThreads)) {
+    if (*t != std::floor(*t)) r.fail("threads", "threads must be a whole number");
+    g.setup.solver.threads = static_cast<int>(*t);
+  }
   auto& mk = g.setup.mesh;
   mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.05, 100.0);
   mk.coarse_size_mm = r.number_or("coarse_size_mm", mk.coarse_size_mm, 0.05, 100.0);
@@ -231,7 +236,7 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   Reader r(t, "segment", source);
   r.allow({"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps", "integration",
            "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "gap_size_mm",
-           "column_growth", "row_growth", "points",
+           "column_growth", "row_growth", "points", "threads",
            "materials"});
   SegmentSpec g;
   auto& sec = g.setup.section;

@@ -5,15 +5,18 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
+#include <unsupported/Eigen/IterativeSolvers>
 
 #include "diagnosis.hpp"
 #include "element.hpp"
 #include "grouped_ldlt.hpp"
 #include "inertia.hpp"
+#include "worker_pool.hpp"
 #include "fitlib/core/error.hpp"
 
 namespace fitlib::segment {
@@ -55,7 +58,9 @@ Dofs number_dofs(const StaticProblem& p) {
 // Sparse direct solver: LDLᵀ for the symmetric tangent (every law says symmetric_tangent, no
 // follower pressure; body forces are dead) on the node groups' AMD order (grouped_ldlt.hpp),
 // UMFPACK's LU otherwise (Eigen's SparseLU took 80 % of the run; docs/decisions.md); the sparsity
-// pattern is analysed once per run.
+// pattern is analysed once per run. An unsymmetric tangent is first solved by GMRES preconditioned
+// with the LDLᵀ of its symmetric part (inexact Newton, SolverKnobs::krylov_iterations), the LU only
+// when that does not converge (docs/segment.md §Solver, "Unsymmetric tangents").
 class LinearSolver {
  public:
   explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
@@ -76,18 +81,64 @@ class LinearSolver {
   }
   int analyses() const { return analyses_; }
   bool symmetric() const { return symmetric_; }
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) {
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
     if (symmetric_) return ldlt_.solve(b);
     return lu_.solve(b);
   }
+  // The unsymmetric K x = b by GMRES (restarted never) preconditioned with the LDLᵀ of ½(K + Kᵀ):
+  // true when the preconditioned residual fell below `tolerance` of its start within `iterations`.
+  // The symmetric part's LDLᵀ costs a fraction of the LU, and the Fritzson point's tangent is
+  // nearly symmetric, so ~3 iterations do (docs/segment.md §Cost).
+  bool krylov_solve(const SparseMatrix& K, const Eigen::VectorXd& b, int iterations, double tolerance,
+                    Eigen::VectorXd& x) {
+    if (symmetric_ || iterations <= 0 || !factorize_symmetric_part(K)) return false;
+    Eigen::Index used = iterations;
+    double error = tolerance;
+    x.setZero(b.size());
+    // Eigen's GMRES (unsupported/IterativeSolvers) called directly: its class would copy K per solve.
+    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{&ldlt_}, used, Eigen::Index(iterations), error);
+    krylov_iterations_ += static_cast<int>(used);
+    const bool converged = stopped && error <= tolerance && x.allFinite();
+    krylov_fallbacks_ += !converged;
+    return converged;
+  }
+  int krylov_iterations() const { return krylov_iterations_; }
+  int krylov_fallbacks() const { return krylov_fallbacks_; }
 
  private:
+  struct SymmetricPart {  // the preconditioner: Eigen's concept needs only solve()
+    const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>* ldlt;
+    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return ldlt->solve(b); }
+  };
+  // ½(K + Kᵀ) into sym_ (K's pattern is symmetric) and its LDLᵀ (K's numbering is the grouped AMD
+  // order, StaticRun).
+  bool factorize_symmetric_part(const SparseMatrix& K) {
+    if (transpose_.empty()) {
+      sym_ = K;
+      for (int j = 0; j < K.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(K, j); it; ++it) {
+          const int* column = K.innerIndexPtr() + K.outerIndexPtr()[it.row()];
+          const int* end = K.innerIndexPtr() + K.outerIndexPtr()[it.row() + 1];
+          transpose_.push_back(static_cast<int>(std::lower_bound(column, end, j) - K.innerIndexPtr()));
+        }
+      ldlt_.analyzePattern(sym_);
+      ++analyses_;
+    }
+    const double* v = K.valuePtr();
+    double* w = sym_.valuePtr();
+    for (std::size_t k = 0; k < transpose_.size(); ++k) w[k] = 0.5 * (v[k] + v[transpose_[k]]);
+    ldlt_.factorize(sym_);
+    return ldlt_.info() == Eigen::Success;
+  }
+
   bool symmetric_, analysed_ = false;
-  int analyses_ = 0;
+  int analyses_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
   // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
   // reads K's upper triangle in place (no permuted copy per factorisation).
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
+  SparseMatrix sym_;            // the unsymmetric tangent's symmetric part (krylov_solve)
+  std::vector<int> transpose_;  // per nonzero of K, the slot of its transposed entry
 };
 
 // All integration points' states in one contiguous block: element e's points start at offset[e].
@@ -178,10 +229,21 @@ Pattern ordered_pattern(const Mesh& m, Dofs& d) {
   return build_pattern(m, d);
 }
 
+// One element's response as the scatter adds it: force and tangent in its nodes' local bases,
+// its points' states, and whether every point responded (the element loop's per-element buffer).
+struct ElementBuffer {
+  std::vector<Eigen::Vector2d> X, u;
+  ElementVector f;
+  ElementMatrix K;
+  std::vector<detail::ElementState> states;
+  bool ok = false;
+};
+
 class Assembler {
  public:
-  Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar)
-      : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar) {}
+  Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool)
+      : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar), pool_(pool),
+        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1) {}
 
   std::size_t points_per_element() const { return rule_.size(); }
   // The step the point states are updated over (state_n → state_next).
@@ -211,7 +273,9 @@ class Assembler {
   }
 
   // Residual (local components, all dofs) and, if asked, the free-free tangent into the pattern's
-  // values and K_fp·dq_p into coupling. Returns the failing element, or −1.
+  // values and K_fp·dq_p into coupling. Returns the failing element, or −1. The elements' responses
+  // are computed on the pool into their buffers, then added in element order up to the first
+  // failing one, exactly as a serial loop would (bit-identical whatever the thread count).
   int run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
           Pattern* K, Eigen::VectorXd* coupling,
           std::vector<std::vector<IntegrationPointStress>>* states = nullptr) const {
@@ -220,26 +284,17 @@ class Assembler {
     if (K) std::fill(K->K.valuePtr(), K->K.valuePtr() + K->K.nonZeros(), 0.0);
     if (coupling) coupling->setZero(d_.equations);
     if (states) states->assign(m.element_count(), {});
-    const int npe = m.nodes_per_element;
-    std::vector<Eigen::Vector2d> X(npe), u(npe);
-    std::vector<int> nodes(npe);
-    ElementVector f;
-    ElementMatrix Ke;
-    std::vector<detail::ElementState> gp;
+    // One thread: each element computed into one buffer and added at once (the same operations in
+    // the same order as with the team, without a pass over all buffers: cache).
+    const bool team = pool_.threads() > 1;
+    if (team) pool_.for_each(m.element_count(), [&](int e) { respond(q, e, K != nullptr, states != nullptr, buffers_[e]); });
     for (int e = 0; e < m.element_count(); ++e) {
-      for (int a = 0; a < npe; ++a) {
-        nodes[a] = m.elements[e][a];
-        X[a] = m.X[nodes[a]];
-        u[a] = u_of(q, nodes[a]);
-      }
-      const std::size_t at = (*offset_)[e];
-      const detail::ElementStep step{state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};
-      if (!detail::element_response(X, u, *p_.laws[static_cast<int>(m.roles[e])], rule_, step, f,
-                                    K ? &Ke : nullptr, states ? &gp : nullptr, f_bar_))
-        return e;
-      scatter(nodes, f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->element_slots[e] : nullptr, coupling);
+      const ElementBuffer& b = team ? buffers_[e] : buffers_[0];
+      if (!team) respond(q, e, K != nullptr, states != nullptr, buffers_[0]);
+      if (!b.ok) return e;
+      scatter(m.elements[e], b.f, K ? &b.K : nullptr, dq_p, r, K, K ? &K->element_slots[e] : nullptr, coupling);
       if (states)
-        for (const auto& s : gp) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
+        for (const auto& s : b.states) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
     }
     const double pressure = lambda * p_.pressure_MPa;
     if (pressure != 0.0)
@@ -247,10 +302,13 @@ class Assembler {
         const std::vector<int> en = edge_nodes(m.bottom_edges[k]);
         std::vector<Eigen::Vector2d> x;
         for (int a : en) x.push_back(m.X[a] + u_of(q, a));
+        ElementVector f;
+        ElementMatrix Ke;
         detail::pressure_load(x, pressure, f, Ke);
         f = -f;
         Ke = -Ke;
-        scatter(en, f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->edge_slots[k] : nullptr, coupling);
+        to_local(en.data(), static_cast<int>(en.size()), f, K ? &Ke : nullptr);
+        scatter(en.data(), f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->edge_slots[k] : nullptr, coupling);
       }
     if (p_.body_force) add_body_forces(q, lambda, r);
     if (p_.nodal_force) {
@@ -270,6 +328,33 @@ class Assembler {
   }
 
  private:
+  // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
+  // buffer and element e's trial states).
+  void respond(const Eigen::VectorXd& q, int e, bool tangent, bool states, ElementBuffer& b) const {
+    const Mesh& m = *p_.mesh;
+    const int npe = m.nodes_per_element;
+    const int* nodes = m.elements[e].data();
+    b.X.resize(npe), b.u.resize(npe);
+    for (int a = 0; a < npe; ++a) b.X[a] = m.X[nodes[a]], b.u[a] = u_of(q, nodes[a]);
+    b.ok = detail::element_response(b.X, b.u, law_of(e), rule_, step_of(e), b.f, tangent ? &b.K : nullptr,
+                                    states ? &b.states : nullptr, f_bar_);
+    if (b.ok) to_local(nodes, npe, b.f, tangent ? &b.K : nullptr);
+  }
+
+  // f and K from global components to the nodes' local bases (Rᵀf, R_aᵀ K_ab R_b); a node without
+  // a constraint has R = I and is left as it is.
+  void to_local(const int* nodes, int n, ElementVector& f, ElementMatrix* K) const {
+    for (int a = 0; a < n; ++a)
+      if (d_.constraint[nodes[a]] >= 0) f.segment<2>(2 * a) = d_.R[nodes[a]].transpose() * f.segment<2>(2 * a);
+    if (!K) return;
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        if (d_.constraint[nodes[a]] >= 0 || d_.constraint[nodes[b]] >= 0) {
+          const Eigen::Matrix2d k = d_.R[nodes[a]].transpose() * K->block<2, 2>(2 * a, 2 * b) * d_.R[nodes[b]];
+          K->block<2, 2>(2 * a, 2 * b) = k;
+        }
+  }
+
   // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
   // −∫ N_a b dV (the residual is internal minus external force).
   void add_body_forces(const Eigen::VectorXd& q, double lambda, Eigen::VectorXd& r) const {
@@ -311,25 +396,26 @@ class Assembler {
     }
   }
 
-  void scatter(const std::vector<int>& nodes, const ElementVector& f, const ElementMatrix* Ke,
-               const Eigen::VectorXd* dq_p, Eigen::VectorXd& r, Pattern* K, const std::vector<int>* slots,
-               Eigen::VectorXd* coupling) const {
-    const int n = static_cast<int>(nodes.size());
-    for (int a = 0; a < n; ++a) r.segment<2>(2 * nodes[a]) += d_.R[nodes[a]].transpose() * f.segment<2>(2 * a);
+  // Adds an element's (or edge's) local force and tangent: free-free entries into K's slots,
+  // free-prescribed ones times the prescribed step into coupling (the predictor).
+  template <typename Nodes>
+  void scatter(const Nodes& nodes, const ElementVector& f, const ElementMatrix* Ke, const Eigen::VectorXd* dq_p,
+               Eigen::VectorXd& r, Pattern* K, const std::vector<int>* slots, Eigen::VectorXd* coupling) const {
+    const int n = static_cast<int>(f.size() / 2);
+    for (int a = 0; a < n; ++a) r.segment<2>(2 * nodes[a]) += f.segment<2>(2 * a);
     if (!Ke) return;
     double* values = K->K.valuePtr();
     const int width = 2 * n;
     for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
-        const Eigen::Matrix2d k = d_.R[nodes[a]].transpose() * Ke->block<2, 2>(2 * a, 2 * b) * d_.R[nodes[b]];
-        for (int i = 0; i < 2; ++i) {
-          if (d_.eq[2 * nodes[a] + i] < 0) continue;
+      for (int i = 0; i < 2; ++i) {
+        const int row = d_.eq[2 * nodes[a] + i];
+        if (row < 0) continue;
+        for (int b = 0; b < n; ++b)
           for (int j = 0; j < 2; ++j) {
             const int slot = (*slots)[(2 * a + i) * width + 2 * b + j];
-            if (slot >= 0) values[slot] += k(i, j);
-            else if (dq_p) (*coupling)(d_.eq[2 * nodes[a] + i]) += k(i, j) * (*dq_p)(2 * nodes[b] + j);
+            if (slot >= 0) values[slot] += (*Ke)(2 * a + i, 2 * b + j);
+            else if (dq_p) (*coupling)(row) += (*Ke)(2 * a + i, 2 * b + j) * (*dq_p)(2 * nodes[b] + j);
           }
-        }
       }
   }
 
@@ -337,6 +423,8 @@ class Assembler {
   const Dofs& d_;
   std::vector<detail::GaussPoint> rule_;
   bool f_bar_ = false;
+  detail::WorkerPool& pool_;
+  mutable std::vector<ElementBuffer> buffers_;
   const std::vector<std::size_t>* offset_ = nullptr;
   const double* state_n_ = nullptr;
   double* state_next_ = nullptr;
@@ -470,12 +558,16 @@ class Newton {
       else if (res < retake_res) mu = 0.0;  // below the overshoot's start: Newton's basin, no shift
       shifted_retake = false;
       if (fresh && mu > 0.0) shift_diagonal(mu);
-      if (fresh && !linear_.factorize(K_.K)) return give_up();
-      o.factorizations += fresh;
       for (int i = 0; i < r_.size(); ++i)
         if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
       if (predictor) rhs -= coupling_;
-      dq = linear_.solve(rhs);
+      o.factorizations += fresh;  // of K, or of its symmetric part for GMRES
+      // (Modified Newton keeps a factorisation of K for its later steps: no GMRES then.)
+      const int krylov = knobs_.reuse_tangent ? 0 : knobs_.krylov_iterations;
+      if (!(fresh && linear_.krylov_solve(K_.K, rhs, krylov, knobs_.krylov_tolerance, dq))) {
+        if (fresh && !linear_.factorize(K_.K)) return give_up();
+        dq = linear_.solve(rhs);
+      }
       if (!dq.allFinite()) return give_up();
       const bool slow = stale_step && !(res <= knobs_.reuse_contraction * res_prev);
       stale_step = !fresh;
@@ -554,11 +646,12 @@ class StaticRun {
  public:
   StaticRun(const StaticProblem& p, const SolverKnobs& knobs)
       : p_(p), knobs_(knobs), m_(*p.mesh), d_(number_dofs(p)), angles_(p.constraints.size()),
-        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar),
+        pool_(solver_threads(knobs)),
+        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar, pool_),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
         linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
                 symmetric_tangent(knobs.integration)),
-        pattern_(linear_.symmetric() ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        pattern_(linear_.symmetric() || knobs.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     out_.equations = d_.equations;
@@ -567,6 +660,7 @@ class StaticRun {
       diagonal_ = diagonal_slots(pattern_.K);
       assembler_.set_inertia(inertia_.get(), &diagonal_);
     }
+    out_.threads = pool_.threads();
   }
 
   StaticSolution run() {
@@ -586,6 +680,8 @@ class StaticRun {
     // After the swap, `trial` holds the states before the last increment.
     snapshot(1.0, states_.trial, last_dt_, out_);
     out_.pattern_analyses = linear_.analyses();
+    out_.krylov_iterations = linear_.krylov_iterations();
+    out_.krylov_fallbacks = linear_.krylov_fallbacks();
     out_.symmetric_solver = linear_.symmetric();
     out_.state = states_.committed;
     out_.state_offset = states_.offset;
@@ -769,6 +865,7 @@ class StaticRun {
   const Mesh& m_;
   Dofs d_;
   std::vector<double> angles_;
+  detail::WorkerPool pool_;
   Assembler assembler_;
   StateBlock states_;
   std::vector<double> scratch_;
@@ -792,9 +889,15 @@ class StaticRun {
 
 }  // namespace
 
+int solver_threads(const SolverKnobs& knobs) {
+  if (knobs.threads > 0) return knobs.threads;
+  return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 2u));
+}
+
 StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
   if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
     throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
+  if (knobs.threads < 0) throw core::UsageError("solve_static: threads must be >= 1, or 0 for the default");
   return StaticRun(p, knobs).run();
 }
 

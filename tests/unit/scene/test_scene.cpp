@@ -274,3 +274,13 @@ TEST(Planner, SteadyDriveUsesStaticTensionsWithoutInertia) {
   const auto with_inertia = scene::run_scene(s);
   EXPECT_LT(with_inertia.viscoelastic->solution.driver.adhesion_rad * deg, 74.5);
 }
+
+TEST(SceneParse, SegmentThreadsReachTheSolverAndDefaultToTheSolversChoice) {
+  const auto set = scene::parse_scene(minimal_text() + "[segment]\nstrain = 0.01\nthreads = 3\n", "x.toml");
+  ASSERT_TRUE(set.segment.has_value());
+  EXPECT_EQ(set.segment->setup.solver.threads, 3);
+  const auto unset = scene::parse_scene(minimal_text() + "[segment]\nstrain = 0.01\n", "x.toml");
+  EXPECT_EQ(unset.segment->setup.solver.threads, 0);  // min(2, hardware) at the run
+  EXPECT_EQ(parse_error(minimal_text() + "[segment]\nthreads = 0\n").key(), "segment.threads");
+  EXPECT_EQ(parse_error(minimal_text() + "[segment]\nthreads = 2.5\n").key(), "segment.threads");
+}

@@ -144,6 +144,96 @@ TEST(SegmentCycle, ViscoelasticBeltDiffersBetweenCycleOneAndTwo) {
   std::printf("viscoelastic gap s22 cycle 2 − cycle 1: largest %.4g MPa\n", largest);
 }
 
+// The element loop on 1, 2 and 3 threads (SolverKnobs::threads): the same increments, iterations
+// and cuts, and every monitored stress, displacement and point state equal to the last bit — for a
+// point law with history (UMFPACK's LU, states carried between increments) and an elastic one (LDLᵀ).
+TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
+  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
+  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  for (const bool history : {true, false}) {
+    std::vector<CycleResult> runs;
+    for (const int threads : {1, 2, 3}) {
+      Fixture f;
+      f.knobs.cycles = history ? 2 : 1;
+      f.solver.threads = threads;
+      runs.push_back(history ? f.run(visco, visco) : f.run(*bottom, *cushion));
+      EXPECT_EQ(runs.back().final_state.threads, threads);
+    }
+    const CycleResult& one = runs.front();
+    EXPECT_EQ(one.final_state.symmetric_solver, !history);
+    for (std::size_t k = 1; k < runs.size(); ++k) {
+      const CycleResult& r = runs[k];
+      EXPECT_EQ(r.increments, one.increments);
+      EXPECT_EQ(r.newton_iterations, one.newton_iterations);
+      EXPECT_EQ(r.cuts, one.cuts);
+      EXPECT_EQ(r.final_state.state, one.final_state.state);  // exact: operator== on the doubles
+      ASSERT_EQ(r.final_state.u_mm.size(), one.final_state.u_mm.size());
+      for (std::size_t n = 0; n < one.final_state.u_mm.size(); ++n)
+        ASSERT_EQ(r.final_state.u_mm[n], one.final_state.u_mm[n]) << "node " << n;
+      ASSERT_EQ(r.points.size(), one.points.size());
+      for (std::size_t p = 0; p < one.points.size(); ++p) {
+        ASSERT_EQ(r.points[p].samples.size(), one.points[p].samples.size());
+        for (std::size_t q = 0; q < one.points[p].samples.size(); ++q) {
+          const CycleSample &a = r.points[p].samples[q], &b = one.points[p].samples[q];
+          ASSERT_TRUE(a.s11_MPa == b.s11_MPa && a.s22_MPa == b.s22_MPa && a.s12_MPa == b.s12_MPa &&
+                      a.s33_MPa == b.s33_MPa && a.e22 == b.e22)
+              << one.points[p].point.name << " sample " << q << " with " << k + 1 << " threads";
+        }
+      }
+    }
+    std::printf("%s: %d increments, %d iterations on 1, 2 and 3 threads, bit-identical\n",
+                history ? "prony (LU)" : "hencky (LDLT)", one.increments, one.newton_iterations);
+  }
+}
+
+// An unsymmetric tangent (a Prony point) solved by GMRES on its symmetric part's LDLᵀ (the default)
+// takes Newton through the same increments and iterations as UMFPACK's LU every time
+// (krylov_iterations = 0), to stresses equal within 10⁻⁸ of their scale; a GMRES allowed one
+// iteration at an unreachable tolerance falls back to the LU on every tangent, with the LU's result;
+// modified Newton (reuse_tangent) factorises with the LU as before.
+TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterations) {
+  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
+  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  auto run = [&](int iterations, double tolerance) {
+    Fixture f;
+    f.knobs.cycles = 1;
+    f.solver.krylov_iterations = iterations, f.solver.krylov_tolerance = tolerance;
+    return f.run(visco, visco);
+  };
+  const CycleResult lu = run(0, 1e-8), gmres = run(SolverKnobs{}.krylov_iterations, SolverKnobs{}.krylov_tolerance),
+                    fallback = run(1, 1e-300);
+  EXPECT_FALSE(gmres.final_state.symmetric_solver);
+  EXPECT_EQ(lu.final_state.krylov_iterations, 0);
+  EXPECT_GT(gmres.final_state.krylov_iterations, gmres.factorizations);  // it iterated, on every tangent
+  EXPECT_EQ(gmres.final_state.krylov_fallbacks, 0);
+  EXPECT_EQ(fallback.final_state.krylov_fallbacks, fallback.factorizations);
+  for (const CycleResult* r : {&gmres, &fallback}) {
+    EXPECT_EQ(r->increments, lu.increments);
+    EXPECT_EQ(r->newton_iterations, lu.newton_iterations);
+    EXPECT_EQ(r->cuts, lu.cuts);
+    for (std::size_t p = 0; p < lu.points.size(); ++p)
+      for (std::size_t q = 0; q < lu.points[p].samples.size(); ++q) {
+        const CycleSample &a = r->points[p].samples[q], &b = lu.points[p].samples[q];
+        const double scale = 1e-8 * (1.0 + std::abs(b.s22_MPa) + std::abs(b.s11_MPa));
+        ASSERT_NEAR(a.s11_MPa, b.s11_MPa, scale) << lu.points[p].point.name << " " << q;
+        ASSERT_NEAR(a.s22_MPa, b.s22_MPa, scale) << lu.points[p].point.name << " " << q;
+        ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << lu.points[p].point.name << " " << q;
+      }
+  }
+  // Modified Newton keeps the LU for its later steps: no GMRES there, and the same solution.
+  Fixture modified;
+  modified.knobs.cycles = 1;
+  modified.solver.reuse_tangent = true;
+  const CycleResult reused = modified.run(visco, visco);
+  EXPECT_EQ(reused.final_state.krylov_iterations, 0);
+  const CycleSample &a = point(reused, "gap_bottom").samples.back(), &b = point(lu, "gap_bottom").samples.back();
+  EXPECT_NEAR(a.s22_MPa, b.s22_MPa, 1e-6 * (1.0 + std::abs(b.s22_MPa)));
+  std::printf("prony cycle: %d tangents, %d GMRES iterations (%.2f per tangent), %d Newton iterations either way\n",
+              gmres.factorizations, gmres.final_state.krylov_iterations,
+              double(gmres.final_state.krylov_iterations) / gmres.factorizations, gmres.newton_iterations);
+}
+
 TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
   Fixture f(synthetic_cycle());
   f.knobs.cycles = 1;

@@ -32,6 +32,7 @@ constexpr double kMaxTensionNodes = 1e4, kMaxTensionSteps = 1e5;
 constexpr double kMaxTensionWork = 2e6;              // nodes × steps
 constexpr double kMaxSegmentSteps = 1000;            // [segment] steps (load increments)
 constexpr double kMaxSegmentWork = 2e4;              // [segment] elements × steps (~10 s)
+constexpr double kMaxSegmentThreads = 64;            // [segment] threads (the element loop's)
 
 // Strain accumulation request ([accumulation], Zupancic–Emri).
 struct AccumulationSpec {

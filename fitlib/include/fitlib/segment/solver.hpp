@@ -72,7 +72,20 @@ struct SolverKnobs {
   // StaticProblem::time_s; tangent K + M/Δt². Lets the load path pass a limit point by a dynamic
   // snap (docs/segment.md "Inertia"; segment/inertia.hpp).
   bool inertia = false;
+  // Threads of the element loop (0: min(2, the hardware's)). Each element's response is computed
+  // into its own buffer and the buffers are added in element order, so the result is bit-identical
+  // whatever the count (docs/segment.md §Solver, "Threads").
+  int threads = 0;
+  // Unsymmetric tangents (the complete level, F-bar, follower pressure): GMRES preconditioned with
+  // the LDLᵀ of the tangent's symmetric part, up to this many iterations to a preconditioned
+  // residual below krylov_tolerance of its start; UMFPACK's LU only when that fails (0: the LU
+  // every time; not with reuse_tangent, which keeps the LU for its later steps). Newton's iterations
+  // stay those of the exact solve (docs/segment.md §Solver).
+  int krylov_iterations = 10;
+  double krylov_tolerance = 1e-8;
 };
+// The thread count a run with these knobs uses (resolves threads = 0).
+int solver_threads(const SolverKnobs& knobs);
 
 struct StaticSolution;
 
@@ -126,11 +139,15 @@ struct StaticSolution {
   int increments = 0, newton_iterations = 0, cuts = 0, factorizations = 0;
   double final_residual = 0.0;
   int equations = 0;
-  int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run)
+  int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run; 2 when GMRES fell back to the LU)
   bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
   // SolverKnobs::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
   // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
   std::vector<Eigen::Vector2d> inertia_N_mm;
+  int threads = 1;                // of the element loop
+  // Unsymmetric tangents (SolverKnobs::krylov_iterations): GMRES iterations, and the solves that
+  // did not converge and went to the LU (`factorizations` counts either factorisation once per tangent).
+  int krylov_iterations = 0, krylov_fallbacks = 0;
 };
 
 StaticSolution solve_static(const StaticProblem& problem, const SolverKnobs& knobs);

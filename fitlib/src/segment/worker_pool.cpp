@@ -1,0 +1,74 @@
+#include "worker_pool.hpp"
+
+#include <algorithm>
+
+namespace fitlib::segment::detail {
+
+namespace {
+constexpr int kChunk = 4;  // indices per take: the elements cost alike, a few per take balance well
+}
+
+WorkerPool::WorkerPool(int threads) {
+  for (int t = 1; t < threads; ++t) helpers_.emplace_back([this] { helper_loop(); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : helpers_) t.join();
+}
+
+void WorkerPool::take_chunks(Loop& loop) {
+  for (int begin = loop.next.fetch_add(kChunk); begin < loop.count; begin = loop.next.fetch_add(kChunk)) {
+    const int end = std::min(loop.count, begin + kChunk);
+    try {
+      for (int i = begin; i < end; ++i) (*loop.body)(i);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!loop.error) loop.error = std::current_exception();
+    }
+    if (loop.done.fetch_add(end - begin) + (end - begin) == loop.count) {
+      std::lock_guard<std::mutex> lock(mutex_);  // the caller checks `done` under the lock: no lost wake-up
+      finished_.notify_all();
+    }
+  }
+}
+
+void WorkerPool::helper_loop() {
+  int seen = 0;
+  for (;;) {
+    std::shared_ptr<Loop> loop;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+      loop = loop_;
+    }
+    if (loop) take_chunks(*loop);  // a loop that has ended meanwhile has no chunk left
+  }
+}
+
+void WorkerPool::for_each(int count, const std::function<void(int)>& body) {
+  if (helpers_.empty() || count <= kChunk) {  // no synchronisation where there is nothing to share
+    for (int i = 0; i < count; ++i) body(i);
+    return;
+  }
+  auto loop = std::make_shared<Loop>();
+  loop->body = &body, loop->count = count;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    loop_ = loop;
+    ++generation_;
+  }
+  wake_.notify_all();
+  take_chunks(*loop);
+  std::unique_lock<std::mutex> lock(mutex_);
+  finished_.wait(lock, [&] { return loop->done.load() == count; });
+  if (loop->error) std::rethrow_exception(loop->error);
+}
+
+}  // namespace fitlib::segment::detail
