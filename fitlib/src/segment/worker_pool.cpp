@@ -1,6 +1,7 @@
 #include "worker_pool.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace fitlib::segment::detail {
 
@@ -40,6 +41,7 @@ void WorkerPool::take_chunks(Loop& loop) {
 void WorkerPool::helper_loop() {
   int seen = 0;
   for (;;) {
+    spin_for_next(seen);
     std::shared_ptr<Loop> loop;
     {
       std::unique_lock<std::mutex> lock(mutex_);
@@ -50,6 +52,15 @@ void WorkerPool::helper_loop() {
     }
     if (loop) take_chunks(*loop);  // a loop that has ended meanwhile has no chunk left
   }
+}
+
+// A short spin before sleeping: the next loop usually follows within a factorisation's time, and
+// a sleeping helper wakes too late for an assembly of ~0.35 ms (docs/segment.md §Cost). Bounded,
+// so an idle team stops burning CPU soon.
+void WorkerPool::spin_for_next(int seen) const {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(kSpinMicroseconds);
+  while (published_.load(std::memory_order_acquire) == seen && std::chrono::steady_clock::now() < until)
+    std::this_thread::yield();
 }
 
 void WorkerPool::for_each(int count, const std::function<void(int)>& body) {
@@ -63,6 +74,7 @@ void WorkerPool::for_each(int count, const std::function<void(int)>& body) {
     std::lock_guard<std::mutex> lock(mutex_);
     loop_ = loop;
     ++generation_;
+    published_.store(generation_, std::memory_order_release);
   }
   wake_.notify_all();
   take_chunks(*loop);

@@ -1,7 +1,7 @@
 #pragma once
 // A fixed team of threads for the segment solver's element loop (docs/decisions.md "Segment: the
 // element loop on a team of std::threads"). The caller is the team's first member; the helpers
-// sleep on a condition variable between loops (no spinning: the machine is shared) and take
+// spin (yielding) for at most 1 ms, then sleep on a condition variable between loops, and take
 // chunks of the index range from the loop's atomic counter; the caller waits for the indices, not
 // for the helpers, so a helper that wakes late (a loaded machine) delays nobody. The loop's body
 // must write only to its own index's outputs; the order the indices run in is free.
@@ -36,6 +36,7 @@ class WorkerPool {
     std::exception_ptr error;
   };
   void helper_loop();
+  void spin_for_next(int seen) const;
   void take_chunks(Loop& loop);  // runs chunks of the loop until none is left
 
   std::vector<std::thread> helpers_;
@@ -43,6 +44,8 @@ class WorkerPool {
   std::condition_variable wake_, finished_;
   std::shared_ptr<Loop> loop_;
   int generation_ = 0;
+  std::atomic<int> published_{0};  // generation_, readable without the lock (the helpers' spin)
+  static constexpr int kSpinMicroseconds = 1000;
   bool stop_ = false;
 };
 
