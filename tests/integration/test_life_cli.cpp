@@ -187,7 +187,7 @@ TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereWhyAndWhatRuns) {
                        << "\"\ncushion = \"" << source_path("datasets/cards/material-2-true.json")
                        << "\"\n[life]\nfidelity = \"complete\"\ncycles = 1\ndiagnose_failure = true\n"
                        << "[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\nend_pitches = 1\n"
-                          "cushion_rows = 1\n";
+                          "cushion_rows = 1\ngap_size_mm = 0\nrow_growth = 1\n";  // ungraded: the graded mesh passes one cycle
   const std::string out = unique_dir("life_complete_medium_out");
   const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
   EXPECT_EQ(r.exit_code, 4) << r.err;

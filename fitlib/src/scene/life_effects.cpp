@@ -55,9 +55,10 @@ void check_segment_work(const Scene& s, const fatigue::SegmentLifeSetup& setup) 
   if (work <= kMaxSegmentLifeWork) return;
   const auto& c = setup.cycle;
   const double elements = work / (c.bend_steps + static_cast<double>(c.cycles) * c.steps_per_cycle);
-  const std::string mesh = s.segment ? "the [segment] mesh (fine_size_mm, coarse_size_mm, central_pitches, "
-                                       "end_pitches, cushion_rows)"
-                                     : "the life's default mesh";
+  const std::string mesh = s.segment && s.segment->life_mesh_changed
+                               ? "the life's mesh with the [segment] mesh keys (fine_size_mm, coarse_size_mm, "
+                                 "central_pitches, end_pitches, cushion_rows, gap_size_mm, column_growth, row_growth)"
+                               : "the life's default mesh";
   throw core::InputError("cycles " + std::to_string(c.cycles) + " x " + std::to_string(c.steps_per_cycle) +
                              " steps per cycle (+ " + std::to_string(c.bend_steps) + " bending steps) x " +
                              core::short_number(elements) + " elements of " + mesh + " = " +
@@ -140,7 +141,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
   in_scene(s, [&] {
     fatigue::SegmentLifeSetup setup;
     setup.section = cog_section(s);
-    if (s.segment) setup.mesh = s.segment->setup.mesh, setup.solver = s.segment->setup.solver;
+    if (s.segment) setup.mesh = s.segment->life_mesh, setup.solver = s.segment->setup.solver;
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);

@@ -98,10 +98,10 @@ class Reader {
   }
   // Unknown keys are errors, checked before any value so that a misspelt key is reported as such
   // (not as the missing key it was meant to be).
-  Reader& allow(std::initializer_list<const char*> keys) {
+  Reader& allow(const std::vector<std::string>& keys) {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
-      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return key == a; }))
+      if (std::find(keys.begin(), keys.end(), key) == keys.end())
         fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see docs/formats.md §5)",
              k.source());
     }
@@ -182,7 +182,13 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
     if (*t != std::floor(*t)) r.fail("threads", "threads must be a whole number");
     g.setup.solver.threads = static_cast<int>(*t);
   }
-  auto& mk = g.setup.mesh;
+}
+
+const std::vector<std::string> kSegmentMeshKeys = {"fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches",
+                                                   "cushion_rows", "gap_size_mm", "column_growth", "row_growth"};
+
+// [segment] mesh knobs over `mk`'s values (the static case's defaults, or the life's mesh).
+void parse_segment_mesh(Reader& r, segment::MeshKnobs& mk) {
   mk.fine_size_mm = r.number_or("fine_size_mm", mk.fine_size_mm, 0.05, 100.0);
   mk.coarse_size_mm = r.number_or("coarse_size_mm", mk.coarse_size_mm, 0.05, 100.0);
   mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 20.0, true);
@@ -234,10 +240,10 @@ void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
 // [segment]: load case, law, elastic constants per role, mesh and solver knobs, user points.
 SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
   Reader r(t, "segment", source);
-  r.allow({"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps", "integration",
-           "fine_size_mm", "coarse_size_mm", "central_pitches", "end_pitches", "cushion_rows", "gap_size_mm",
-           "column_growth", "row_growth", "points", "threads",
-           "materials"});
+  std::vector<std::string> keys = {"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends",
+                                   "steps", "integration", "points", "threads", "materials"};
+  keys.insert(keys.end(), kSegmentMeshKeys.begin(), kSegmentMeshKeys.end());
+  r.allow(keys);
   SegmentSpec g;
   auto& sec = g.setup.section;
   sec = cog_section(scene);
@@ -248,6 +254,9 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   }
   parse_segment_load(r, g);
   parse_segment_solver(r, g);
+  parse_segment_mesh(r, g.setup.mesh);
+  parse_segment_mesh(r, g.life_mesh);  // `fitcli life`: the keys given change the life's mesh, the rest stay
+  g.life_mesh_changed = std::any_of(kSegmentMeshKeys.begin(), kSegmentMeshKeys.end(), [&](const std::string& k) { return r.has(k); });
   if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, g, source);
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
   r.finish();

@@ -207,7 +207,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       o << "WARNING: the cord line carries more of the belt force in the spans than its bound: the segment's "
            "ends or its length disturb the middle (docs/segment.md \"Cord-line reactions\")\n";
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
-    if (!s.segment)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
+    if (!s.segment || !s.segment->life_mesh_changed)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, sheared end "
            "faces) gives, against an 81 mm segment on the light, medium and heavy reference drives, the same "
            "governing mode and, with the thesis cards, N2 within 13 % (elastic level). Its 1 mm elements over the "
@@ -215,9 +215,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "shorter at the elastic level (the 27 and 81 mm segments then agree within 17 %; the 81 mm segment "
            "with 1 mm elements is no reference, its N1 up to 2.6 x its own with 0.5 mm), and at the complete "
            "level (light drive) N1 is 17 to 20 % and N2 33 to 48 % shorter, so the default's lives are long "
-           "there; [segment] central_pitches = 1, end_pitches = 1, fine_size_mm = 0.5, coarse_size_mm = 2.5, "
-           "cushion_rows = 1, gap_size_mm = 0.3, column_growth = 0.25, row_growth = 1.1 selects the 0.5 mm "
-           "segment at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
+           "there; [segment] fine_size_mm = 0.5 selects the 0.5 mm segment at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
   }
   // Only where the points carry history: the glassy transients that the load fronts resolve
   // (without history the planned steps read N2 within 8 % of 0.1 mm sampling: docs/segment.md).

@@ -253,12 +253,15 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
     ADD_FAILURE() << "ran " << tables;
     return std::string();
   };
-  auto m = refusal("cycles = 10000\n[segment]\nsteps = 4\n");  // the [segment] mesh: 1 260 elements
-  EXPECT_NE(m.find("cycles 10000 x 60 steps per cycle (+ 4 bending steps) x 1260 elements of the [segment] mesh "
-                   "(fine_size_mm, coarse_size_mm, central_pitches, end_pitches, cushion_rows) = 7.56005e+08 "
-                   "element-increments exceeds the work cap 100000"),
+  auto m = refusal("cycles = 10000\n[segment]\nfine_size_mm = 0.5\n");  // the life's mesh at 0.5 mm
+  EXPECT_NE(m.find("cycles 10000 x 60 steps per cycle (+ 4 bending steps) x 420 elements of the life's mesh with "
+                   "the [segment] mesh keys (fine_size_mm, coarse_size_mm, central_pitches, end_pitches, "
+                   "cushion_rows, gap_size_mm, column_growth, row_growth) = 2.52002e+08 element-increments exceeds "
+                   "the work cap 100000"),
             std::string::npos)
       << m;
+  m = refusal("cycles = 10000\n[segment]\nthreads = 1\n");  // no mesh key: the life's default mesh
+  EXPECT_NE(m.find("x 192 elements of the life's default mesh = 1.15201e+08"), std::string::npos) << m;
   m = refusal("cycles = 12\n");
   EXPECT_NE(m.find("x 192 elements of the life's default mesh = 139008 element-increments"), std::string::npos) << m;
   const auto r = scene::run_scene(scene_with("cycles = 3\n"));
@@ -270,6 +273,26 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
 // tolerance (10⁻³ of the reactions instead of 10⁻⁹) is out of equilibrium beyond the 10⁻⁶ bound;
 // its check, put into a life result, makes the table warn and life.json say within_bounds false.
 // The same run at the default tolerance stays within the bounds and the table does not warn.
+// A [segment] table in a life scene changes the life's mesh only by the mesh keys it gives (before,
+// it replaced the whole life mesh by the static case's defaults: `threads = 1` alone moved the life).
+TEST(SceneLife, SegmentMeshKeysChangeOnlyThemselvesInTheLifesMesh) {
+  const std::string base = core::read_file(kDrives + "ref-0500-medium.toml");
+  const segment::MeshKnobs life = fatigue::life_mesh();
+  auto s = scene::parse_scene(base + "\n[segment]\nthreads = 1\n", "x.toml");
+  ASSERT_TRUE(s.segment);
+  EXPECT_FALSE(s.segment->life_mesh_changed);
+  EXPECT_EQ(segment::build_mesh(scene::cog_section(s), s.segment->life_mesh).element_count(),
+            segment::build_mesh(scene::cog_section(s), life).element_count());
+  EXPECT_EQ(s.segment->life_mesh.gap_size_mm, life.gap_size_mm);
+  s = scene::parse_scene(base + "\n[segment]\nfine_size_mm = 0.5\n", "x.toml");
+  EXPECT_TRUE(s.segment->life_mesh_changed);
+  EXPECT_EQ(s.segment->life_mesh.fine_size_mm, 0.5);
+  EXPECT_EQ(s.segment->life_mesh.coarse_size_mm, life.coarse_size_mm);  // 2.5, not the static case's 1.5
+  EXPECT_EQ(s.segment->life_mesh.row_growth, life.row_growth);
+  EXPECT_EQ(s.segment->setup.mesh.fine_size_mm, 0.5);  // `fitcli segment` keeps its own defaults
+  EXPECT_EQ(s.segment->setup.mesh.coarse_size_mm, segment::MeshKnobs{}.coarse_size_mm);
+}
+
 TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
   const auto s = with_life("light");
   const auto drive = scene::make_drive(s, scene::resolve_stiffness(s));

@@ -10,6 +10,7 @@
 
 #include "fitlib/belt/drive.hpp"
 #include "fitlib/belt/load_cycle.hpp"
+#include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/segment/static_case.hpp"
 
 namespace fitlib::scene {
@@ -66,6 +67,9 @@ struct TensionTestSpec {
 struct SegmentSpec {
   segment::StaticSetup setup;
   segment::StaticLoad load;
+  // The life's mesh (fatigue::life_mesh()) with the [segment] mesh keys the scene gives.
+  segment::MeshKnobs life_mesh = fatigue::life_mesh();
+  bool life_mesh_changed = false;  // a mesh key was given
 };
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").
