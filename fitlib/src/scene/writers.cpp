@@ -211,11 +211,11 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, sheared end "
            "faces) gives, against an 81 mm segment on the light, medium and heavy reference drives, the same "
            "governing mode and, with the thesis cards, N2 within 13 % (elastic level). Its 1 mm elements over the "
-           "cogs do not settle the cards' near-incompressible rubber: with 0.5 mm elements N1 is 14 to 36 % "
-           "shorter at the elastic level (the 27 and 81 mm segments then agree within 17 %; the 81 mm segment "
-           "with 1 mm elements is no reference, its N1 up to 2.6 x its own with 0.5 mm), and at the complete "
-           "level (light drive) N1 is 17 to 20 % and N2 33 to 48 % shorter, so the default's lives are long "
-           "there; [segment] fine_size_mm = 0.5 selects the 0.5 mm segment at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
+           "cogs do not settle the cards' near-incompressible rubber. Against the same segment with 0.5 mm "
+           "elements: at the elastic level the default's N1 is 14 to 36 % shorter (on the safe side); at the "
+           "complete level (light drive) the 0.5 mm segment's N1 is 17 to 20 % and its N2 33 to 48 % shorter "
+           "than the default's (not on the safe side). [segment] fine_size_mm = 0.5 selects the 0.5 mm segment "
+           "at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
   }
   // Only where the points carry history: the glassy transients that the load fronts resolve
   // (without history the planned steps read N2 within 8 % of 0.1 mm sampling: docs/segment.md).
