@@ -8,14 +8,12 @@
 #include <thread>
 
 #include <Eigen/LU>
-#include <Eigen/SparseCholesky>
-#include <Eigen/UmfPackSupport>
-#include <unsupported/Eigen/IterativeSolvers>
 
 #include "diagnosis.hpp"
 #include "element.hpp"
 #include "grouped_ldlt.hpp"
 #include "inertia.hpp"
+#include "linear_solver.hpp"
 #include "worker_pool.hpp"
 #include "fitlib/core/error.hpp"
 
@@ -28,7 +26,8 @@ int gauss_order(const Mesh& mesh, Integration integration) {
 namespace {
 using detail::ElementMatrix;
 using detail::ElementVector;
-using SparseMatrix = Eigen::SparseMatrix<double>;
+using detail::LinearSolver;
+using detail::SparseMatrix;
 
 // Global unknowns: two local components per node; a constrained node's basis is rotated.
 struct Dofs {
@@ -54,92 +53,6 @@ Dofs number_dofs(const StaticProblem& p) {
     if (e == 0) e = d.equations++;
   return d;
 }
-
-// Sparse direct solver: LDLᵀ for the symmetric tangent (every law says symmetric_tangent, no
-// follower pressure; body forces are dead) on the node groups' AMD order (grouped_ldlt.hpp),
-// UMFPACK's LU otherwise (Eigen's SparseLU took 80 % of the run; docs/decisions.md); the sparsity
-// pattern is analysed once per run. An unsymmetric tangent is first solved by GMRES preconditioned
-// with the LDLᵀ of its symmetric part (inexact Newton, SolverKnobs::krylov_iterations), the LU only
-// when that does not converge (docs/segment.md §Solver, "Unsymmetric tangents").
-class LinearSolver {
- public:
-  explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
-    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;  // no iterative refinement: Newton corrects
-  }
-  bool factorize(const SparseMatrix& K) {
-    if (!analysed_) {  // once per run: the pattern is fixed (build_pattern)
-      if (symmetric_) ldlt_.analyzePattern(K);
-      else lu_.analyzePattern(K);
-      analysed_ = true, ++analyses_;
-    }
-    if (symmetric_) {
-      ldlt_.factorize(K);
-      return ldlt_.info() == Eigen::Success;
-    }
-    lu_.factorize(K);
-    return lu_.info() == Eigen::Success;
-  }
-  int analyses() const { return analyses_; }
-  bool symmetric() const { return symmetric_; }
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
-    if (symmetric_) return ldlt_.solve(b);
-    return lu_.solve(b);
-  }
-  // The unsymmetric K x = b by GMRES (restarted never) preconditioned with the LDLᵀ of ½(K + Kᵀ):
-  // true when the preconditioned residual fell below `tolerance` of its start within `iterations`.
-  // The symmetric part's LDLᵀ costs a fraction of the LU, and the Fritzson point's tangent is
-  // nearly symmetric, so ~3 iterations do (docs/segment.md §Cost).
-  bool krylov_solve(const SparseMatrix& K, const Eigen::VectorXd& b, int iterations, double tolerance,
-                    Eigen::VectorXd& x) {
-    if (symmetric_ || iterations <= 0 || !factorize_symmetric_part(K)) return false;
-    Eigen::Index used = iterations;
-    double error = tolerance;
-    x.setZero(b.size());
-    // Eigen's GMRES (unsupported/IterativeSolvers) called directly: its class would copy K per solve.
-    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{&ldlt_}, used, Eigen::Index(iterations), error);
-    krylov_iterations_ += static_cast<int>(used);
-    const bool converged = stopped && error <= tolerance && x.allFinite();
-    krylov_fallbacks_ += !converged;
-    return converged;
-  }
-  int krylov_iterations() const { return krylov_iterations_; }
-  int krylov_fallbacks() const { return krylov_fallbacks_; }
-
- private:
-  struct SymmetricPart {  // the preconditioner: Eigen's concept needs only solve()
-    const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>* ldlt;
-    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return ldlt->solve(b); }
-  };
-  // ½(K + Kᵀ) into sym_ (K's pattern is symmetric) and its LDLᵀ (K's numbering is the grouped AMD
-  // order, StaticRun).
-  bool factorize_symmetric_part(const SparseMatrix& K) {
-    if (transpose_.empty()) {
-      sym_ = K;
-      for (int j = 0; j < K.outerSize(); ++j)
-        for (SparseMatrix::InnerIterator it(K, j); it; ++it) {
-          const int* column = K.innerIndexPtr() + K.outerIndexPtr()[it.row()];
-          const int* end = K.innerIndexPtr() + K.outerIndexPtr()[it.row() + 1];
-          transpose_.push_back(static_cast<int>(std::lower_bound(column, end, j) - K.innerIndexPtr()));
-        }
-      ldlt_.analyzePattern(sym_);
-      ++analyses_;
-    }
-    const double* v = K.valuePtr();
-    double* w = sym_.valuePtr();
-    for (std::size_t k = 0; k < transpose_.size(); ++k) w[k] = 0.5 * (v[k] + v[transpose_[k]]);
-    ldlt_.factorize(sym_);
-    return ldlt_.info() == Eigen::Success;
-  }
-
-  bool symmetric_, analysed_ = false;
-  int analyses_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
-  // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
-  // reads K's upper triangle in place (no permuted copy per factorisation).
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
-  Eigen::UmfPackLU<SparseMatrix> lu_;
-  SparseMatrix sym_;            // the unsymmetric tangent's symmetric part (krylov_solve)
-  std::vector<int> transpose_;  // per nonzero of K, the slot of its transposed entry
-};
 
 // All integration points' states in one contiguous block: element e's points start at offset[e].
 struct StateBlock {
