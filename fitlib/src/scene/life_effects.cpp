@@ -142,6 +142,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     fatigue::SegmentLifeSetup setup;
     setup.section = cog_section(s);
     if (s.segment) setup.mesh = s.segment->life_mesh, setup.solver = s.segment->setup.solver;
+    setup.solver.threads = segment_threads(s);
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);

@@ -16,6 +16,12 @@
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::scene {
+
+int segment_threads(const Scene& scene) {
+  const int threads = segment::solver_threads(scene.segment ? scene.segment->setup.solver : segment::SolverKnobs{});
+  return scene.segment_thread_cap > 0 ? std::min(threads, scene.segment_thread_cap) : threads;
+}
+
 segment::CogSection cog_section(const Scene& scene) {
   segment::CogSection sec;
   auto geo = [&](const char* key, double fallback) {

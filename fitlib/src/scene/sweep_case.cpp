@@ -101,7 +101,9 @@ Scene case_scene(const Sweep& sweep, const SweepCase& c) {
   } catch (const std::invalid_argument& e) {
     throw core::InputError(e.what(), sweep.path, 0, 0, "axis");
   }
-  return parse_scene_table(root, source);
+  Scene scene = parse_scene_table(root, source);
+  scene.segment_thread_cap = 1;  // the sweep's threads and ranks run the cases side by side
+  return scene;
 }
 
 namespace {

@@ -284,3 +284,16 @@ TEST(SceneParse, SegmentThreadsReachTheSolverAndDefaultToTheSolversChoice) {
   EXPECT_EQ(parse_error(minimal_text() + "[segment]\nthreads = 0\n").key(), "segment.threads");
   EXPECT_EQ(parse_error(minimal_text() + "[segment]\nthreads = 2.5\n").key(), "segment.threads");
 }
+
+// A sweep runs its cases side by side and caps each case's segment at one thread; a scene's own
+// [segment] threads and the solver's default stay below the cap.
+TEST(SceneParse, SegmentThreadCapBoundsTheSceneAndTheDefaultThreads) {
+  auto s = scene::parse_scene(minimal_text(), "x.toml");
+  EXPECT_EQ(scene::segment_threads(s), segment::solver_threads(segment::SolverKnobs{}));
+  s.segment_thread_cap = 1;
+  EXPECT_EQ(scene::segment_threads(s), 1);
+  s = scene::parse_scene(minimal_text() + "[segment]\nstrain = 0.01\nthreads = 3\n", "x.toml");
+  EXPECT_EQ(scene::segment_threads(s), 3);
+  s.segment_thread_cap = 2;
+  EXPECT_EQ(scene::segment_threads(s), 2);
+}

@@ -10,6 +10,7 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/sweep.hpp"
+#include "../../../fitlib/src/scene/sweep_case.hpp"
 
 namespace {
 
@@ -156,3 +157,14 @@ TEST(SweepFile, GridAboveTheWorkCapIsRefused) {
 }
 
 }  // namespace
+
+// Every case runs its segment on one thread: the sweep's threads and MPI ranks already run the
+// cases side by side (docs/sweep.md "Running").
+TEST(Sweep, EveryCaseCapsTheSegmentAtOneThread) {
+  const auto sweep = parse_sweep(grid_text(kTwoAxes), kSource);
+  for (std::size_t i = 0; i < sweep.case_count; ++i) {
+    const auto s = fitlib::scene::case_scene(sweep, fitlib::scene::sweep_case(sweep, i));
+    EXPECT_EQ(s.segment_thread_cap, 1);
+    EXPECT_EQ(fitlib::scene::segment_threads(s), 1);
+  }
+}

@@ -113,7 +113,14 @@ struct Scene {
   // starts) or a position in mm; written as <life_field_prefix>-<k>.vtk (fitcli life --field-at).
   std::vector<std::string> life_field_at;
   std::string life_field_prefix;
+  // > 0: the segment's element loop runs on at most this many threads (a sweep sets 1: it runs
+  // its cases in parallel itself); the results do not depend on it.
+  int segment_thread_cap = 0;
 };
+
+// The segment's element-loop threads: [segment] threads or the solver's default, at most
+// Scene::segment_thread_cap when that is set.
+int segment_threads(const Scene& scene);
 
 // The cogged section of the scene's belt ([belt] cog_* keys over the section's defaults).
 segment::CogSection cog_section(const Scene& scene);
