@@ -219,13 +219,13 @@ std::vector<double> front_positions(const belt::LoadHistory& h, const CycleDrive
       for (int j = std::max(0, i - margin); j <= std::min(M - 1, i + 1 + margin); ++j) dense[j] = true;
       for (int j = std::max(0, i - reach); j <= std::min(M - 1, i + 1 + reach); ++j) band[j] = true;
     }
-  std::vector<double> out;
+  std::vector<double> out;  // grid points i < M lie in [0, L)
   for (int i = 0; i < M; i += 2)  // every other grid point: the spacing
-    if (dense[i] && i * ds < L) out.push_back(i * ds);
+    if (dense[i]) out.push_back(i * ds);
   // The band: a coarser grid of its own, where the dense one is not.
-  const int every = banded ? std::max(2, static_cast<int>(std::lround(k.front_band_spacing_mm / ds))) : M + 1;
-  for (int i = 0; i < M; i += every)
-    if (band[i] && !dense[i] && i * ds < L) out.push_back(i * ds);
+  const int every = std::max(2, static_cast<int>(std::lround(k.front_band_spacing_mm / ds)));
+  for (int i = 0; banded && i < M; i += every)
+    if (band[i] && !dense[i]) out.push_back(i * ds);
   std::sort(out.begin(), out.end());
   return out;
 }

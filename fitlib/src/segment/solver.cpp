@@ -156,7 +156,7 @@ class Assembler {
  public:
   Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool)
       : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar), pool_(pool),
-        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1) {}
+        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1), body_weights_(body_weights()) {}
 
   std::size_t points_per_element() const { return rule_.size(); }
   // The step the point states are updated over (state_n → state_next).
@@ -223,7 +223,7 @@ class Assembler {
         to_local(en.data(), static_cast<int>(en.size()), f, K ? &Ke : nullptr);
         scatter(en.data(), f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->edge_slots[k] : nullptr, coupling);
       }
-    if (p_.body_force) add_body_forces(q, lambda, r);
+    if (p_.body_force) add_body_forces(lambda, r);
     if (p_.nodal_force) {
       p_.nodal_force(lambda, nodal_);
       for (std::size_t n = 0; n < nodal_.size(); ++n) r.segment<2>(2 * n) -= d_.R[n].transpose() * nodal_[n];
@@ -268,30 +268,38 @@ class Assembler {
         }
   }
 
+  // N_a dV per element, integration point and node (reference quantities, for the body forces).
+  std::vector<double> body_weights() const {
+    if (!p_.body_force) return {};
+    const Mesh& m = *p_.mesh;
+    const int npe = m.nodes_per_element;
+    std::vector<double> w;
+    double N[8], dxi[8], deta[8];
+    for (int e = 0; e < m.element_count(); ++e)
+      for (const auto& g : rule_) {
+        detail::shape(npe, g.xi, g.eta, N, dxi, deta);
+        const double dV = reference_jacobian(m, e, g.xi, g.eta) * g.weight;
+        for (int a = 0; a < npe; ++a) w.push_back(N[a] * dV);
+      }
+    return w;
+  }
+
   // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
   // −∫ N_a b dV (the residual is internal minus external force).
-  void add_body_forces(const Eigen::VectorXd& q, double lambda, Eigen::VectorXd& r) const {
-    (void)q;
+  void add_body_forces(double lambda, Eigen::VectorXd& r) const {
     const Mesh& m = *p_.mesh;
     body_.assign(m.element_count(), Eigen::Vector2d::Zero());
     p_.body_force(lambda, body_);
     const int npe = m.nodes_per_element;
-    double N[8], dxi[8], deta[8];
+    const std::size_t per_element = rule_.size() * npe;
     for (int e = 0; e < m.element_count(); ++e) {
       if (body_[e].isZero(0.0)) continue;
-      for (const auto& g : rule_) {
-        detail::shape(npe, g.xi, g.eta, N, dxi, deta);
-        Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
-        for (int a = 0; a < npe; ++a) {
-          const Eigen::Vector2d& X = m.X[m.elements[e][a]];
-          J0.col(0) += dxi[a] * X, J0.col(1) += deta[a] * X;
-        }
-        const double dV = J0.determinant() * g.weight;
+      const double* w = body_weights_.data() + e * per_element;
+      for (std::size_t g = 0; g < rule_.size(); ++g)
         for (int a = 0; a < npe; ++a) {
           const int n = m.elements[e][a];
-          r.segment<2>(2 * n) -= d_.R[n].transpose() * (N[a] * dV * body_[e]);
+          r.segment<2>(2 * n) -= d_.R[n].transpose() * (w[g * npe + a] * body_[e]);
         }
-      }
     }
   }
 
@@ -343,6 +351,7 @@ class Assembler {
   double* state_next_ = nullptr;
   double dt_s_ = 0.0;
   mutable std::vector<Eigen::Vector2d> body_, nodal_;
+  std::vector<double> body_weights_;  // body_weights()
   const detail::BackwardEulerInertia* inertia_ = nullptr;
   const std::vector<int>* diagonal_ = nullptr;
 };
@@ -387,6 +396,8 @@ class Newton {
   // Added to the predictor's step (local components; empty: none): the second-order part of the
   // nodes' finite rotation with the loading.
   void set_rotation(Eigen::VectorXd rotation) { rotation_ = std::move(rotation); }
+  // Per equation, the slot of K_ii in K's values.
+  const std::vector<int>& diagonal() const { return diagonal_; }
 
   // The iterate with the lowest residual of the last solve (empty before one).
   const Eigen::VectorXd& best_iterate() const { return best_q_; }
@@ -570,8 +581,7 @@ class StaticRun {
     out_.equations = d_.equations;
     if (knobs.inertia && p.density_t_mm3 > 0.0 && p.time_s) {  // dynamics hook (SolverKnobs::inertia)
       inertia_ = std::make_unique<detail::BackwardEulerInertia>(detail::lumped_masses(m_, p.density_t_mm3), p.frame_motion);
-      diagonal_ = diagonal_slots(pattern_.K);
-      assembler_.set_inertia(inertia_.get(), &diagonal_);
+      assembler_.set_inertia(inertia_.get(), &newton_.diagonal());
     }
     out_.threads = pool_.threads();
   }
@@ -796,7 +806,6 @@ class StaticRun {
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
   std::vector<StaticProblem::FrameTurn> turns_;
   std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // SolverKnobs::inertia
-  std::vector<int> diagonal_;
   bool inertia_pending_ = false;
 };
 

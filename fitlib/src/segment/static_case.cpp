@@ -17,25 +17,41 @@ std::vector<NamedPoint> standard_points(const CogSection& s) {
 
 namespace {
 
+// The mesh's columns: the distinct unstrained path positions and each node's column. A column's
+// nodes share one cord frame, so the frames are computed once per column.
+struct Columns {
+  std::vector<double> x_mm;
+  std::vector<int> of_node;
+};
+
+Columns columns_of(const std::vector<double>& path_x_mm) {
+  Columns c{path_x_mm, {}};
+  std::sort(c.x_mm.begin(), c.x_mm.end());
+  c.x_mm.erase(std::unique(c.x_mm.begin(), c.x_mm.end()), c.x_mm.end());
+  for (double x : path_x_mm)
+    c.of_node.push_back(static_cast<int>(std::lower_bound(c.x_mm.begin(), c.x_mm.end(), x) - c.x_mm.begin()));
+  return c;
+}
+
+// The cord curve's point and tangent angle at each column.
+std::vector<CurvePoint> column_frames(const NeutralCurve& curve, const Columns& columns) {
+  std::vector<CurvePoint> at;
+  for (double x : columns.x_mm) at.push_back(curve.at(curve.s_from_unstrained(x)));
+  return at;
+}
+
 // Each node turns with the cord's frame at its unstrained path position, as a plane section of a
-// beam does; a column of nodes shares one path position, so frames are computed once per column.
+// beam does.
 std::function<void(double, double, std::vector<StaticProblem::FrameTurn>&)> cord_frame_turn(
     const std::vector<double>& path_x_mm, std::function<NeutralCurve(double lambda)> curve_at) {
-  std::vector<double> stations = path_x_mm;
-  std::sort(stations.begin(), stations.end());
-  stations.erase(std::unique(stations.begin(), stations.end()), stations.end());
-  std::vector<int> station_of;
-  for (double x : path_x_mm)
-    station_of.push_back(static_cast<int>(std::lower_bound(stations.begin(), stations.end(), x) - stations.begin()));
-  return [stations, station_of, curve_at](double from, double to, std::vector<StaticProblem::FrameTurn>& turns) {
-    const NeutralCurve a = curve_at(from), b = curve_at(to);
-    std::vector<StaticProblem::FrameTurn> at(stations.size());
-    for (std::size_t k = 0; k < stations.size(); ++k) {
-      const CurvePoint pa = a.at(a.s_from_unstrained(stations[k]));
-      at[k] = {pa.phi_rad - b.at(b.s_from_unstrained(stations[k])).phi_rad, {pa.x_mm, pa.y_mm}};  // φ turns clockwise
+  const Columns columns = columns_of(path_x_mm);
+  return [columns, curve_at](double from, double to, std::vector<StaticProblem::FrameTurn>& turns) {
+    const std::vector<CurvePoint> a = column_frames(curve_at(from), columns), b = column_frames(curve_at(to), columns);
+    turns.resize(columns.of_node.size());
+    for (std::size_t n = 0; n < turns.size(); ++n) {
+      const CurvePoint &pa = a[columns.of_node[n]], &pb = b[columns.of_node[n]];
+      turns[n] = {pa.phi_rad - pb.phi_rad, {pa.x_mm, pa.y_mm}};  // φ turns clockwise
     }
-    turns.resize(station_of.size());
-    for (std::size_t n = 0; n < station_of.size(); ++n) turns[n] = at[station_of[n]];
   };
 }
 
@@ -43,15 +59,14 @@ std::function<void(double, double, std::vector<StaticProblem::FrameTurn>&)> cord
 // segment's inertia is measured against (SolverKnobs::inertia; docs/segment.md "Inertia").
 std::function<void(double, std::vector<Eigen::Vector2d>&)> cord_frame_motion(
     const Mesh& m, const std::vector<double>& path_x_mm, std::function<NeutralCurve(double lambda)> curve_at) {
-  const NeutralCurve reference = curve_at(0.0);
-  std::vector<CurvePoint> at_reference;
-  for (double x : path_x_mm) at_reference.push_back(reference.at(reference.s_from_unstrained(x)));
+  const Columns columns = columns_of(path_x_mm);
+  const std::vector<CurvePoint> reference = column_frames(curve_at(0.0), columns);
   const Mesh* mesh = &m;
-  return [mesh, path_x_mm, curve_at, at_reference](double lambda, std::vector<Eigen::Vector2d>& u) {
-    const NeutralCurve curve = curve_at(lambda);
-    u.resize(path_x_mm.size());
-    for (std::size_t n = 0; n < path_x_mm.size(); ++n) {
-      const CurvePoint c = curve.at(curve.s_from_unstrained(path_x_mm[n])), &c0 = at_reference[n];
+  return [mesh, columns, curve_at, reference](double lambda, std::vector<Eigen::Vector2d>& u) {
+    const std::vector<CurvePoint> now = column_frames(curve_at(lambda), columns);
+    u.resize(columns.of_node.size());
+    for (std::size_t n = 0; n < u.size(); ++n) {
+      const CurvePoint &c = now[columns.of_node[n]], &c0 = reference[columns.of_node[n]];
       const double th = c0.phi_rad - c.phi_rad;  // φ turns clockwise
       const Eigen::Vector2d r = mesh->X[n] - Eigen::Vector2d(c0.x_mm, c0.y_mm);
       const Eigen::Vector2d x = Eigen::Vector2d(c.x_mm, c.y_mm) + Eigen::Rotation2Dd(th).toRotationMatrix() * r;
