@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <memory>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -323,8 +322,7 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> end_shear_forces(
 
 // The contact body forces per element at load level λ (global, 6.6–6.9): at each element's centre,
 // or their mean over its path extent sampled every `sampling_mm` (CycleKnobs::body_force_sampling_mm),
-// turned by the cord's tangent at the centre. The solver asks at every assembly: the last λ's
-// forces are kept.
+// turned by the cord's tangent at the centre.
 std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(
     std::vector<double> centre_x, std::vector<std::pair<double, double>> extent_x, const CycleDrive& drive,
     double sampling_mm, double T, std::function<NeutralCurve(double)> curve_at) {
@@ -338,12 +336,7 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(
       sum += contact_body_force(h.at_position(s0 + extent_x[e].first + (i + 0.5) * width / n), drive);
     return Eigen::Vector2d(sum / n);
   };
-  auto cache = std::make_shared<std::pair<double, std::vector<Eigen::Vector2d>>>(-1.0, std::vector<Eigen::Vector2d>{});
   return [=, &h](double lambda, std::vector<Eigen::Vector2d>& b) {
-    if (lambda == cache->first) {
-      b = cache->second;
-      return;
-    }
     const double tau = lambda * T;
     b.assign(centre_x.size(), Eigen::Vector2d::Zero());
     if (tau > 1.0) {
@@ -356,7 +349,6 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(
         b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
       }
     }
-    *cache = {lambda, b};
   };
 }
 

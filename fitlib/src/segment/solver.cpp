@@ -225,7 +225,7 @@ class Assembler {
       }
     if (p_.body_force) add_body_forces(lambda, r);
     if (p_.nodal_force) {
-      p_.nodal_force(lambda, nodal_);
+      if (lambda != nodal_at_) p_.nodal_force(lambda, nodal_), nodal_at_ = lambda;  // dead: a function of λ
       for (std::size_t n = 0; n < nodal_.size(); ++n) r.segment<2>(2 * n) -= d_.R[n].transpose() * nodal_[n];
     }
     if (inertia_ && inertia_->active()) add_inertia(q, r, K);  // dynamics hook (SolverKnobs::inertia)
@@ -288,8 +288,11 @@ class Assembler {
   // −∫ N_a b dV (the residual is internal minus external force).
   void add_body_forces(double lambda, Eigen::VectorXd& r) const {
     const Mesh& m = *p_.mesh;
-    body_.assign(m.element_count(), Eigen::Vector2d::Zero());
-    p_.body_force(lambda, body_);
+    if (lambda != body_at_) {  // dead: a function of λ, asked once per λ (not per Newton iteration)
+      body_.assign(m.element_count(), Eigen::Vector2d::Zero());
+      p_.body_force(lambda, body_);
+      body_at_ = lambda;
+    }
     const int npe = m.nodes_per_element;
     const std::size_t per_element = rule_.size() * npe;
     for (int e = 0; e < m.element_count(); ++e) {
@@ -350,7 +353,8 @@ class Assembler {
   const double* state_n_ = nullptr;
   double* state_next_ = nullptr;
   double dt_s_ = 0.0;
-  mutable std::vector<Eigen::Vector2d> body_, nodal_;
+  mutable std::vector<Eigen::Vector2d> body_, nodal_;  // the dead loads at body_at_, nodal_at_
+  mutable double body_at_ = std::numeric_limits<double>::quiet_NaN(), nodal_at_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> body_weights_;  // body_weights()
   const detail::BackwardEulerInertia* inertia_ = nullptr;
   const std::vector<int>* diagonal_ = nullptr;
