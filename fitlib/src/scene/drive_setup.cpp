@@ -8,6 +8,7 @@
 #include "fitlib/belt/stiffness.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/model.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -80,6 +81,20 @@ Stiffness resolve_stiffness(const Scene& s) {
   return k;
 }
 
+// [belt] length_mm is not an input of the drive (the pulleys and their centres give the cord
+// line's length): a given value must agree with it, so that a user's length is never ignored.
+static void check_given_belt_length(const Scene& s, const belt::DriveGeometry& g) {
+  const auto it = s.extra_geometry_mm.find("length_mm");
+  if (it == s.extra_geometry_mm.end()) return;
+  const double L = g.belt_length_mm, given = it->second;
+  if (std::abs(given - L) <= 0.01 * L) return;
+  throw InputError("length_mm = " + core::format_number(given) + " differs by " +
+                       core::format_number(100.0 * (given - L) / L, 3) +
+                       " % from the belt (pitch, cord-line) length the pulleys and centre distance give, " +
+                       core::format_number(L, 6) + " mm: correct the centre distance or remove length_mm",
+                   s.path, 0, 0, "belt.length_mm");
+}
+
 belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
   std::vector<belt::Pulley> pulleys;
   for (const auto& ps : s.pulleys) {
@@ -99,6 +114,7 @@ belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
     } else {
       d.geometry = belt::make_geometry(pulleys);
     }
+    check_given_belt_length(s, d.geometry);
     const std::size_t di = belt::driver_index(d.geometry);
     const PulleySpec& driver = *std::find_if(s.pulleys.begin(), s.pulleys.end(), [&](const PulleySpec& p) {
       return p.name == d.geometry.pulleys[di].name;

@@ -84,6 +84,22 @@ TEST(SceneParse, ImpossibleGeometryIsAnInputError) {
   }
 }
 
+// [belt] length_mm is checked against the drive's cord-line length (2·300 + π·100 = 914.16 mm),
+// never silently ignored: within 1 % it runs, beyond it is bad input naming the key.
+TEST(SceneParse, GivenBeltLengthMustAgreeWithTheDrivesGeometry) {
+  const std::string belt = "[belt.stiffness]";
+  EXPECT_NO_THROW(scene::run_scene(scene::parse_scene(with(belt, "[belt]\nlength_mm = 920\n" + belt), "x.toml")));
+  const auto s = scene::parse_scene(with(belt, "[belt]\nlength_mm = 1000\n" + belt), "x.toml");
+  try {
+    scene::run_scene(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "belt.length_mm");
+    EXPECT_EQ(e.file(), "x.toml");
+    EXPECT_NE(std::string(e.what()).find("914.159"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Planner, RunsOnlyWhatTheOutputsNeed) {
   auto s = scene::load_scene(kData + "minimal.toml");
   auto plan = scene::make_plan(s);
