@@ -62,6 +62,7 @@ TEST(LifeCli, RepeatedRunsWriteIdenticalBytes) {
   ASSERT_EQ(run_fitcli("life --scene " + scene + " --out-dir " + b).exit_code, 0);
   EXPECT_EQ(slurp(a + "/life.json"), slurp(b + "/life.json"));
   EXPECT_EQ(slurp(a + "/summary.json"), slurp(b + "/summary.json"));
+  EXPECT_EQ(slurp(a + "/stress_history.csv"), slurp(b + "/stress_history.csv"));
 }
 
 TEST(LifeCli, BadSceneIsBadInputNamingFileAndKey) {
@@ -86,12 +87,41 @@ TEST(LifeCli, ElasticLevelRunsTheSegmentOnTheLoadCycle) {
                           "end_pitches = 1.0\ncushion_rows = 1\n[segment.materials]\n"
                           "bottom = {E_MPa = 20, nu = 0.49}\ncushion = {E_MPa = 8, nu = 0.49}\n"
                           "[life]\nfidelity = \"elastic\"\ncycles = 2\n";
-  const auto r = run_fitcli("life --scene " + scene + " --json --out-dir " + unique_dir("life_segment_out"));
+  const std::string out = unique_dir("life_segment_out");
+  const auto r = run_fitcli("life --scene " + scene + " --json --out-dir " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["fidelity"], "elastic") << r.out;
   EXPECT_NE(r.out.find("segment_fe"), std::string::npos);
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
+  // stress_history.csv reads back: every separation peak of life.json is the effective stress
+  // (6.25-6.26 on the longitudinal plane: sigma = s11, tau = s12) of the design point's row at its time.
+  std::istringstream csv(slurp(out + "/stress_history.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa");
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(csv, line)) {
+    rows.emplace_back();
+    std::stringstream row(line);
+    for (std::string c; std::getline(row, c, ',');) rows.back().push_back(c);
+    ASSERT_EQ(rows.back().size(), 8u) << line;
+  }
+  const auto& separation = j["modes"][1];
+  ASSERT_EQ(separation["mode"], "separation");
+  const std::string design = separation["design_point"]["name"];
+  ASSERT_FALSE(separation["peaks"].empty());
+  for (const auto& peak : separation["peaks"]) {
+    int found = 0;
+    for (const auto& c : rows)
+      if (c[0] == design && std::stod(c[4]) == peak["t_s"].get<double>()) {
+        const double s11 = std::stod(c[5]), s12 = std::stod(c[7]);
+        const double effective = s11 >= 0.0 ? std::hypot(s11, s12) : std::abs(s12);
+        EXPECT_NEAR(effective, peak["effective_stress_MPa"].get<double>(), 1e-12 * effective) << c[4];
+        ++found;
+      }
+    EXPECT_EQ(found, 1) << design << " at t " << peak["t_s"];
+  }
 }
 
 
