@@ -45,10 +45,12 @@ std::string excess_text(const fitlib::card::WindowExcess& x, double highest) {
 // --allow-extrapolation each quantity's range is one warning at the end.
 class WindowCheck {
  public:
-  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), window_(card) {}
+  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), card_(card), window_(card) {}
 
-  // True when `c` lies beyond the window (and extrapolation is allowed).
+  // True when `c` lies beyond the window (and extrapolation is allowed). A temperature where the
+  // card's law describes no material is refused even with --allow-extrapolation.
   bool beyond(const fitlib::model::TestCondition& c) {
+    fitlib::card::require_material_at(card_, a_.card, c.temperature_C, a_.card, "--temperature-c");
     const auto excess = window_.outside(c);
     if (excess.empty()) return false;
     if (!a_.allow_extrapolation)
@@ -75,6 +77,7 @@ class WindowCheck {
     double highest;
   };
   const EvalArgs& a_;
+  const fitlib::card::Card& card_;
   const fitlib::card::DataWindow window_;
   std::map<std::string, Seen> seen_;
 };
@@ -200,7 +203,7 @@ void register_eval(CLI::App& app) {
                   "Times in s, comma separated: relaxation modulus M(t) and creep compliance J(t) instead")
       ->delimiter(',')->check(CLI::PositiveNumber);
   cmd->add_option("--temperature-c", args->temperature_C, "Temperatures in degC (default: reference)")
-      ->delimiter(',');
+      ->delimiter(',')->check(temperature_c_range());
   cmd->add_option("--amplitude", args->amplitude, "Strain amplitudes (default: small-amplitude limit)")
       ->delimiter(',')->check(CLI::NonNegativeNumber);
   cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,

@@ -70,6 +70,7 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
     throw core::UsageError("--cycles ≥ 1, --steps-per-cycle ≥ 4 and --frequency > 0 are needed");
   if (static_cast<double>(a.cycles) * a.steps_per_cycle > kMaxSteps)
     throw core::UsageError("--cycles × --steps-per-cycle exceeds the work cap 1e6 steps (docs/reliability.md)");
+  card::require_material_at(card, a.card, a.temperature_C, a.card, "--temperature-c");
   model::PointOptions options;
   options.fidelity = a.fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
                                              : model::PointOptions::Fidelity::viscoelastic;
@@ -106,7 +107,8 @@ void register_material_point(CLI::App& app) {
   cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft");
   cmd->add_option("--frequency-hz", args->frequency_Hz, "Hz (default 1)");
   cmd->add_option("--cycles", args->cycles, "cycles (default 5)");
-  cmd->add_option("--temperature-c", args->temperature_C, "degC (default: the card's reference)");
+  cmd->add_option("--temperature-c", args->temperature_C, "degC (default: the card's reference)")
+      ->check(temperature_c_range());
   // Deprecated spellings (one release): the same names as every other subcommand.
   for (const auto& renamed : kRenamed) {
     const std::string name = renamed.first;

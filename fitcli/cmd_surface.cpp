@@ -191,6 +191,7 @@ void run_grid(const GridArgs& a) {
   claim_output("--out", a.out, false);
   claim_output("--surface-out", a.surface_out, false);
   const auto card = card::load_card(input_path(a.card));
+  for (double T : a.temperature_C) card::require_material_at(card, a.card, T, a.card, "--temperature-c");
   surface::CardGridRequest request;
   request.mode = model::parse_test_mode(a.mode);
   request.orientation = a.orientation;
@@ -264,7 +265,7 @@ void register_surface(CLI::App& app) {
   grid->add_option("--frequency-hz", ga->frequency_Hz, "Frequencies in Hz, comma separated")
       ->required()->delimiter(',')->check(CLI::PositiveNumber);
   grid->add_option("--temperature-c", ga->temperature_C, "Temperatures in degC (default: card reference)")
-      ->delimiter(',');
+      ->delimiter(',')->check(temperature_c_range());
   grid->add_option("--amplitude", ga->amplitude, "Strain amplitudes (default: small-amplitude limit)")
       ->delimiter(',')->check(CLI::NonNegativeNumber);
   grid->add_option("--mode", ga->mode, "shear | uniaxial | bulk")->capture_default_str();

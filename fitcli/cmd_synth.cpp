@@ -34,6 +34,7 @@ void run_synth(const SynthArgs& a) {
   const std::vector<double> temperatures =
       a.temperature_C.empty() ? std::vector<double>{std::nan("")} : a.temperature_C;
   const std::vector<double> amplitudes = a.amplitude.empty() ? std::vector<double>{0.0} : a.amplitude;
+  for (double T : temperatures) card::require_material_at(card, a.card, T, a.card, "--temperature-c");
   for (double T : temperatures)
     for (double amp : amplitudes)
       for (double f : a.frequency_Hz)
@@ -71,7 +72,7 @@ void register_synth(CLI::App& app) {
   cmd->add_option("--orientation", a->orientation, "Thesis orientation label");
   cmd->add_option("--frequency-hz", a->frequency_Hz, "Frequencies, Hz")->required()->delimiter(',')
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--temperature-c", a->temperature_C, "Temperatures, degC")->delimiter(',');
+  cmd->add_option("--temperature-c", a->temperature_C, "Temperatures, degC")->delimiter(',')->check(temperature_c_range());
   cmd->add_option("--amplitude", a->amplitude, "Strain amplitudes")->delimiter(',');
   cmd->add_option("--noise", a->noise, "Relative standard deviation of the scatter (0.01 = 1 %)")
       ->capture_default_str()->check(CLI::Range(0.0, 0.5));

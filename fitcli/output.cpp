@@ -51,6 +51,8 @@ std::string exact_list(const std::vector<double>& values) {
   return text;
 }
 
+CLI::Validator temperature_c_range() { return CLI::Range(-273.15, 1000.0).description("in [-273.15, 1000] degC"); }
+
 void add_verbosity_flags(CLI::App* cmd) {
   auto* q = cmd->add_flag("--quiet,-q", verbosity().quiet, "No notes or warnings on stderr (errors only)");
   auto* v = cmd->add_flag("--verbose,-v", verbosity().verbose, "More notes on stderr");

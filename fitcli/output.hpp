@@ -24,6 +24,8 @@ std::string exact_list(const std::vector<double>& values);
 
 // --quiet / --verbose on `cmd` (the same switches on every subcommand and on fitcli itself).
 void add_verbosity_flags(CLI::App* cmd);
+// Celsius temperatures the commands accept, as scenes do: [−273.15, 1000] °C.
+CLI::Validator temperature_c_range();
 // --json on `cmd`: one JSON document of `what`, on stdout (nothing else there) unless `what` says
 // it goes to --out.
 void add_json_flag(CLI::App* cmd, bool& json, const std::string& what);

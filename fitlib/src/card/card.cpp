@@ -18,6 +18,12 @@ std::vector<double> Card::values() const {
   return v;
 }
 
+void require_material_at(const Card& card, const std::string& card_path, double temperature_C,
+                         const std::string& file, const std::string& key) {
+  const std::string why = card.model()->temperature_out_of_law(card.values().data(), temperature_C);
+  if (!why.empty()) throw core::InputError((file == card_path ? "" : "card " + card_path + ": ") + why, file, 0, 0, key);
+}
+
 json card_to_json(const Card& card) {
   const auto m = card.model();
   const auto& specs = m->parameters();

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "admissible.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 
 namespace fitlib::fit::detail {
 namespace {
@@ -138,6 +140,18 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
   for (const auto& [key, a] : acc) v.figures.push_back(figures_of(key, a, th, v.warnings));
   // "all" first, then the groups in their sorted order.
   std::stable_partition(v.figures.begin(), v.figures.end(), [](const ErrorFigures& f) { return f.group == "all"; });
+  // A data temperature where the fitted law has no material (its fitter's guard answered there):
+  // the card's users (eval, scenes) refuse that temperature.
+  std::set<double> temperatures;
+  for (const auto& row : problem.table().rows)
+    if (row.condition.has_temperature()) temperatures.insert(row.condition.temperature_C);
+  for (double T : temperatures) {
+    const std::string why = problem.model().temperature_out_of_law(p.data(), T);
+    if (why.empty()) continue;
+    v.warnings.push_back("the fitted temperature law describes no material at the data's " + core::format_number(T) +
+                         " degC, where eval and scenes refuse the card: " + why);
+    break;
+  }
   if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
     std::ostringstream s;
     s << "data not Kramers-Kronig consistent between " << kk.lo_Hz << " and " << kk.hi_Hz

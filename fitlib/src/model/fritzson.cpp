@@ -133,6 +133,17 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
     info.linear_factor = true;
     return info;
   }
+  // The factor with the lowest g names the reason (the tightest limit of those that fail).
+  std::string temperature_out_of_law(const double* p, double temperature_C) const override {
+    int lowest = -1;
+    for (int part : {kPartI, kPartA1, kPartA2}) {
+      if (part != kPartI && !anisotropic_) break;
+      for (int k : {part + kC1, part + kC2})
+        if (lowest < 0 || p[k] * (temperature_C - reference_C_) > p[lowest] * (temperature_C - reference_C_))
+          lowest = k;
+    }
+    return linear_factor_out_of_law(specs_[lowest].name, p[lowest], reference_C_, temperature_C, kTemperatureFloor);
+  }
   std::shared_ptr<const model::MaterialPoint> material_point(
       const double* p, const PointOptions& options) const override {
     return make_contract_point(std::vector<double>(p, p + size()), anisotropic_, reference_C_,

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/autodiff_model.hpp"
 #include "fitlib/model/material_point.hpp"
@@ -346,6 +347,16 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
       for (int k = 0; k < o_.polynomial_degree; ++k) info.shift_parameters.push_back(int(shift_index_) + k);
     }
     return info;
+  }
+
+  std::string temperature_out_of_law(const double* p, double temperature_C) const override {
+    const double dT = temperature_C - o_.reference_C;
+    if (o_.law == ShiftLaw::wlf && !(p[shift_index_ + 1] + dT > 0.0))
+      return "the WLF law has its pole at T_ref - C2 = " + core::format_number(o_.reference_C - p[shift_index_ + 1]) +
+             " degC: it describes a material only above it";
+    if (!o_.linear_factor) return {};
+    return linear_factor_out_of_law(specs_[factor_index_].name, p[factor_index_], o_.reference_C, temperature_C,
+                                    kMinLinearFactor);
   }
 
   TemperatureFactors temperature_factors(const double* p, double temperature_C) const override {

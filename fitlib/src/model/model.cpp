@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/model/material_point.hpp"
 
 namespace fitlib::model {
@@ -42,6 +43,18 @@ ShiftLaw parse_shift_law(const std::string& name) {
   for (ShiftLaw law : {ShiftLaw::none, ShiftLaw::wlf, ShiftLaw::arrhenius, ShiftLaw::polynomial})
     if (name == to_string(law)) return law;
   throw core::UsageError("unknown temperature_law '" + name + "' (none, wlf, arrhenius, polynomial)");
+}
+
+std::string linear_factor_out_of_law(const std::string& name, double c_per_C, double reference_C,
+                                     double temperature_C, double floor) {
+  const double g = 1.0 - c_per_C * (temperature_C - reference_C);
+  if (!std::isfinite(temperature_C) || g > floor) return {};
+  // g > floor ⇔ c (T − T_ref) < 1 − floor: below the limit for c > 0, above it for c < 0.
+  const double limit = reference_C + (1.0 - floor) / c_per_C;
+  return "the linear temperature factor g = 1 - " + name + " (T - T_ref) is " + core::format_number(g, 4) + " at " +
+         core::format_number(temperature_C) + " degC (" + name + " = " + core::format_number(c_per_C) +
+         " 1/degC, T_ref " + core::format_number(reference_C) + " degC): the law describes a material only " +
+         (c_per_C > 0.0 ? "below " : "above ") + core::format_number(limit, 5) + " degC";
 }
 
 nlohmann::json Model::temperature_law(const double*) const {

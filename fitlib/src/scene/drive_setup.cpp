@@ -44,7 +44,9 @@ Stiffness resolve_stiffness(const Scene& s) {
   auto card_for = [&](const char* role) -> std::optional<card::Card> {
     auto it = s.materials.find(role);
     if (it == s.materials.end()) return std::nullopt;
-    return card::load_card(it->second);
+    card::Card c = card::load_card(it->second);
+    card::require_material_at(c, it->second, T, s.path, "conditions.temperature_C");
+    return c;
   };
   const auto cord = s.c_N ? std::nullopt : card_for("cord");
   const auto bottom = (s.k1_MPa && s.EI_Nmm2) ? std::nullopt : card_for("bottom");

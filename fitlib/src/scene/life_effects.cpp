@@ -88,6 +88,7 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
       const card::Card c = card::load_card(s.materials.at(roles[k]));
+      card::require_material_at(c, s.materials.at(roles[k]), s.temperature_C, s.path, "conditions.temperature_C");
       points[k] = segment::role_point(*c.model(), c.values(), options);
     } else {
       const segment::IsotropicElastic e = s.segment ? s.segment->setup.materials[k] : segment::IsotropicElastic{};

@@ -267,3 +267,31 @@ TEST(EnumNames, FitEnumsReadBack) {
   EXPECT_EQ(parse_term_method("sweep"), TermMethod::sweep);
   EXPECT_THROW(parse_backend("gauss"), fitlib::core::UsageError);
 }
+
+// Rows where the true linear temperature factor has reached its floor (g = 1 − 0.01 (T − 20) ≤ 10⁻³
+// from 119.9 °C): the floor has no gradient, the fit ends with a law that has no material at some
+// data temperatures, and its verdict says that eval and scenes will refuse the card there (besides
+// the misses). Rows inside the law: c_T recovered, no such warning.
+TEST(TemperatureLawVerdict, FittedLawWithoutMaterialAtADataTemperatureWarns) {
+  using namespace fitlib::fit::testing;
+  const auto model = fitlib::model::make_model("prony", {{"terms", 1}, {"reference_C", 20.0}, {"linear_factor", true}});
+  const std::vector<double> truth = {1.0, 2.0, 0.1, 0.01};  // E∞, E1, τ1 (s), c_T (1/°C)
+  const auto law_warning = [](const fitlib::fit::FitResult& r) {
+    return std::any_of(r.quality.warnings.begin(), r.quality.warnings.end(), [](const std::string& w) {
+      return w.find("temperature law describes no material at the data's") != std::string::npos;
+    });
+  };
+  fitlib::data::DynamicTestTable table;
+  for (double T : {20.0, 60.0, 100.0, 130.0}) {
+    const auto isotherm = synthetic_table(*model, truth, log_frequencies(0.1, 100, 5), 0.0, 1,
+                                          fitlib::model::TestMode::shear, T);
+    table.rows.insert(table.rows.end(), isotherm.rows.begin(), isotherm.rows.end());
+  }
+  const auto beyond = fitlib::fit::fit(model, table, {});
+  EXPECT_TRUE(law_warning(beyond)) << testing::PrintToString(beyond.quality.warnings);
+  EXPECT_FALSE(beyond.quality.acceptable());
+  table.rows.resize(15);  // 20, 60 and 100 °C only
+  const auto inside = fitlib::fit::fit(model, table, {});
+  EXPECT_FALSE(law_warning(inside)) << testing::PrintToString(inside.quality.warnings);
+  EXPECT_NEAR(inside.values[3], 0.01, 1e-6);
+}

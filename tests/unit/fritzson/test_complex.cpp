@@ -410,3 +410,25 @@ TEST(FritzsonHardCases, FiniteEverywhereInsideTheBounds) {
 }
 
 }  // namespace
+
+// Where a part's linear factor g = 1 − c (T − T_ref) reaches its floor the law describes no
+// material: material 1's tightest constant is c2 = 0.008 /°C (c2_I, c2_A1, c2_A2), so its law ends
+// at 23 + 0.999/0.008 = 147.875 °C, and the reason names that constant and limit. A negative
+// constant bounds the law from below instead.
+TEST(FritzsonTemperature, LawEndsWhereTheTightestLinearFactorReachesItsFloor) {
+  const auto m = model1();
+  std::vector<double> p = material1_parameters();
+  for (double T : {std::nan(""), -273.15, 23.0, 147.87}) EXPECT_EQ(m->temperature_out_of_law(p.data(), T), "") << T;
+  for (double T : {147.88, 200.0}) {
+    const std::string why = m->temperature_out_of_law(p.data(), T);
+    EXPECT_NE(why.find("c2_I"), std::string::npos) << why;
+    EXPECT_NE(why.find("below 147.88 degC"), std::string::npos) << why;
+  }
+  p[kPartA2 + kC1] = -0.02;  // g rises with T: the law ends below 23 − 0.999/0.02 = −26.95 °C
+  EXPECT_EQ(m->temperature_out_of_law(p.data(), -26.9), "");
+  const std::string cold = m->temperature_out_of_law(p.data(), -27.0);
+  EXPECT_NE(cold.find("c1_A2"), std::string::npos) << cold;
+  EXPECT_NE(cold.find("above -26.95 degC"), std::string::npos) << cold;
+  const auto iso = model2();  // only part I counts
+  EXPECT_EQ(iso->temperature_out_of_law(material2_parameters().data(), 100.0), "");
+}

@@ -232,3 +232,18 @@ TEST(LinearModel, OptionsAreValidated) {
   EXPECT_EQ(m->parameters()[0].name, "E_inf");
   EXPECT_EQ(model::make_model(m->kind(), m->options())->options(), m->options());
 }
+
+// The temperature law has no material at or beyond the WLF pole (T_ref − C2) and where the linear
+// factor g = 1 − c_T (T − T_ref) reaches its floor 10⁻³: T_ref + 0.999/c_T.
+TEST(LinearModel, TemperatureLawEndsAtTheWlfPoleAndWhereTheLinearFactorVanishes) {
+  nlohmann::json opt = {{"terms", 1}, {"temperature_law", "wlf"}, {"reference_C", 20.0}, {"linear_factor", true}};
+  const auto m = model::make_model("prony", opt);
+  std::vector<double> p = {1.0, 2.0, 0.1, 8.0, 120.0, 0.004};  // E∞, E1, τ1, C1, C2, c_T
+  ASSERT_EQ(p.size(), m->size());
+  for (double T : {-99.9, 20.0, 269.7}) EXPECT_EQ(m->temperature_out_of_law(p.data(), T), "") << T;
+  EXPECT_NE(m->temperature_out_of_law(p.data(), -100.0).find("pole at T_ref - C2 = -100 degC"), std::string::npos);
+  const std::string hot = m->temperature_out_of_law(p.data(), 269.8);  // 20 + 0.999/0.004 = 269.75
+  EXPECT_NE(hot.find("c_T"), std::string::npos) << hot;
+  EXPECT_NE(hot.find("below 269.75 degC"), std::string::npos) << hot;
+  EXPECT_EQ(model::make_model("prony", {{"terms", 1}})->temperature_out_of_law(p.data(), 1e3), "");
+}

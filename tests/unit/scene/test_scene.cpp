@@ -169,7 +169,7 @@ TEST(Outputs, WritesCsvAndJsonAtomically) {
   const auto dir = std::filesystem::temp_directory_path() / ("fitlib_test_scene_out-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   const auto files = scene::write_outputs(s, r, dir.string());
-  EXPECT_EQ(files.size(), 4u);  // load history, accumulation, life, summary
+  EXPECT_EQ(files.size(), 5u);  // load history, accumulation, stress history, life, summary
   const std::string csv = core::read_file((dir / "load_history.csv").string());
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "s_mm,t_s,pulley,zone,F_N,K_1_per_mm,p_MPa,gamma_deg,sliding_velocity_mm_s,friction_used");

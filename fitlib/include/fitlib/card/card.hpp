@@ -36,6 +36,12 @@ struct Card {
   std::vector<double> values() const;
 };
 
+// Throws core::InputError when the card's temperature law describes no material at T (°C)
+// (model::Model::temperature_out_of_law): the message names the card (`card_path`), the error the
+// `file` and `key` that asked for T.
+void require_material_at(const Card& card, const std::string& card_path, double temperature_C,
+                         const std::string& file, const std::string& key);
+
 // Reads and validates a card; InputError names the file and the offending key.
 Card load_card(const std::string& path);
 Card card_from_json(const nlohmann::json& j, const std::string& source = "card");

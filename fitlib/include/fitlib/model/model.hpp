@@ -54,6 +54,10 @@ enum class ShiftLaw { none, wlf, arrhenius, polynomial, other };
 // The option value of a law ("none", "wlf", "arrhenius", "polynomial"; "other" has none) and
 // back (core::UsageError for an unknown name; for user input and the options JSON).
 std::string to_string(ShiftLaw law);
+// Model::temperature_out_of_law's text for a linear factor g = 1 − c (T − T_ref) (parameter
+// `name`) at or below `floor`, "" above it.
+std::string linear_factor_out_of_law(const std::string& name, double c_per_C, double reference_C,
+                                     double temperature_C, double floor);
 ShiftLaw parse_shift_law(const std::string& name);
 struct TemperatureLawInfo {
   ShiftLaw law = ShiftLaw::none;
@@ -124,6 +128,10 @@ class Model {
   virtual TemperatureFactors temperature_factors(const double* p, double temperature_C) const {
     return {};
   }
+  // why the temperature law describes no material at T (°C), "" where it does (and at NaN):
+  // at or beyond a WLF pole, or where a linear factor g = 1 − c (T − T_ref) has reached the floor
+  // that keeps a fitter's iterates finite. A card is not evaluated there (card::require_material_at);
+  virtual std::string temperature_out_of_law(const double* p, double temperature_C) const { return {}; }
 
   // The material point of this model with parameters p (material_point.hpp): the one call from
   // a card to what an FE code drives. Every model of make_model implements it (the default
