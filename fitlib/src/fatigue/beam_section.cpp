@@ -74,8 +74,8 @@ std::vector<Monitor> monitors(const BeamSection& s) {
 
 double running_speed_mm_s(const belt::DriveCase& drive) {
   if (!(drive.belt_speed_mm_s > 0.0))
-    throw core::InputError("the beam level needs a running belt (belt speed > 0): a standing "
-                           "belt has no load cycle", "", 0, 0, "drive.speed_rpm");
+    throw core::InputError("a life needs a running belt (belt speed > 0): a standing belt has no load cycle",
+                           "", 0, 0, "drive.speed_rpm");
   return drive.belt_speed_mm_s;
 }
 

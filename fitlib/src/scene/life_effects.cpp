@@ -68,6 +68,17 @@ void check_segment_work(const Scene& s, const fatigue::SegmentLifeSetup& setup) 
                          s.path, 0, 0, "life.cycles");
 }
 
+// Both levels' first check: a standing belt has no load cycle (nor load frequency, nor hours).
+void require_running_belt(const Scene& s, const belt::DriveCase& drive) {
+  if (drive.belt_speed_mm_s > 0.0) return;
+  std::size_t driver = 0;
+  while (driver + 1 < s.pulleys.size() && s.pulleys[driver].role != belt::PulleyRole::driver) ++driver;
+  throw core::InputError("a life needs a running belt: the driver's speed_rpm is " +
+                             std::string(s.pulleys[driver].speed_rpm ? "0" : "not given") +
+                             ", and a standing belt has no load cycle, load frequency or hours",
+                         s.path, 0, 0, "drive.pulleys[" + std::to_string(driver) + "].speed_rpm");
+}
+
 InputFile file_input(const std::string& role, const std::string& path, const std::string& use) {
   return {role, path, core::sha256_hex(core::read_file(path)), use};
 }
@@ -139,6 +150,7 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
 }  // namespace
 
 void segment_stresses(const Scene& s, SceneResult& r) {
+  require_running_belt(s, *r.drive);
   in_scene(s, [&] {
     fatigue::SegmentLifeSetup setup;
     setup.section = cog_section(s);
@@ -165,6 +177,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
 }
 
 void beam_stresses(const Scene& s, SceneResult& r) {
+  require_running_belt(s, *r.drive);
   in_scene(s, [&] {
     const fatigue::BeamSection section = fatigue::default_beam_section(*r.drive, s.temperature_C);
     r.stresses = fatigue::beam_stress_histories(*r.cycle, *r.drive, section);
