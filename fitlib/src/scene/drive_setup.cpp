@@ -99,6 +99,12 @@ static void check_given_belt_length(const Scene& s, const belt::DriveGeometry& g
 
 belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
   std::vector<belt::Pulley> pulleys;
+  for (std::size_t i = 0; i < s.pulleys.size(); ++i)  // the belt wraps every pulley with its bottom inside
+    if (!(s.pulleys[i].pitch_diameter_mm / 2.0 > s.belt.height_mm))
+      throw InputError("pitch diameter " + core::format_number(s.pulleys[i].pitch_diameter_mm) +
+                           " mm: a pitch radius at or below the belt's height (" + core::format_number(s.belt.height_mm) +
+                           " mm) puts the belt's bottom at or beyond the pulley's centre",
+                       s.path, 0, 0, "drive.pulleys[" + std::to_string(i) + "].pitch_diameter_mm");
   for (const auto& ps : s.pulleys) {
     belt::Pulley p;
     p.name = ps.name;

@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
 
@@ -259,6 +260,12 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
     throw InputError(e.detail().empty() ? e.what() : e.detail(), source, 0, 0, e.key());
   }
   parse_segment_load(r, g);
+  // Bent with the bottom inside, the section reaches the centre of curvature at K·H = 1.
+  if (g.load.curvature_1_mm * sec.height_mm >= 1.0)
+    r.fail(r.has("radius_mm") ? "radius_mm" : "curvature_1_mm",
+           "a bend to radius " + core::format_number(1.0 / g.load.curvature_1_mm, 6) +
+               " mm puts the section's bottom (height " + core::format_number(sec.height_mm) +
+               " mm below the cord line) at or beyond the centre of curvature: the radius must exceed the height");
   parse_segment_solver(r, g);
   parse_segment_mesh(r, g.setup.mesh);
   parse_segment_mesh(r, g.life_mesh);  // `fitcli life`: the keys given change the life's mesh, the rest stay
