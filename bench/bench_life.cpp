@@ -30,7 +30,8 @@
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
 // fronts' increment spacing (0 = off); `bodyds=MM`: the body forces' sampling over each element
 // (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
-// (implicit dynamics, docs/segment.md "Inertia"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
+// (implicit dynamics, docs/segment.md "Inertia"); `flank=K`: the flank foundation's stiffness
+// (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
 // stress field (VTK) when the middle first reaches each path position of the last cycle,
 // PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
 // default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
@@ -117,6 +118,7 @@ struct Probe {
   double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
   bool inertia = false;                         // SolverKnobs::inertia
   int cycles = 2;                               // cycles=N
+  double flank = -1.0;                          // flank=K: CycleKnobs::flank_stiffness_N_mm4 (< 0: the setup's)
   std::string field_prefix{};                   // field=PREFIX:MM[:MM…]
   std::vector<double> field_at_mm{};
 };
@@ -244,6 +246,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.krylov >= 0) setup.solver.krylov_iterations = pr.krylov;
   if (pr.krylov_tolerance > 0.0) setup.solver.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.steps_per_cycle = pr.steps;
+  if (pr.flank >= 0.0) setup.cycle.flank_stiffness_N_mm4 = pr.flank;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -447,6 +450,7 @@ int main(int argc, char** argv) {
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
       if (a == "inertia") p.inertia = true;
+      if (a.rfind("flank=", 0) == 0) p.flank = std::atof(a.c_str() + 6);
       if (a.rfind("cycles=", 0) == 0) p.cycles = std::atoi(a.c_str() + 7);
       if (a.rfind("field=", 0) == 0) {
         const std::string spec = a.substr(6);
@@ -476,6 +480,9 @@ int main(int argc, char** argv) {
                 o.life.run.final_state.krylov_iterations, o.life.run.final_state.krylov_fallbacks);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",
                 o.life.run.equilibrium_error, o.life.run.span_cord_share, o.life.run.span_section_mismatch);
+    std::printf("flank foundation k %.4g N/mm^4: radial force against Report I's dead load (increments with >= half "
+                "its largest) largest %+.3g, mean %+.3g\n",
+                o.life.run.flank_stiffness_N_mm4, o.life.run.flank_radial_share, o.life.run.flank_radial_mean_share);
     const segment::MeshKnobs m = o.mesh;
     const segment::MeshQuality q = segment::mesh_quality(segment::build_mesh(scene::cog_section(probe_scene(p)), m));
     std::printf("mesh: fine %.3g mm, coarse %.3g mm, %d cushion rows, gap %.3g mm, column growth %.3g, row growth "

@@ -1,5 +1,6 @@
 #include "fitlib/segment/curve.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -107,42 +108,70 @@ double NeutralCurve::s_from_unstrained(double s_org_mm) const {
 CurveCoordinates NeutralCurve::coordinates(double x_mm, double y_mm) const {
   CurveCoordinates best;
   double best_h = std::numeric_limits<double>::infinity();
-  for (bool positive : {true, false}) {
-    const auto& K = positive ? k_pos_ : k_neg_;
-    const double px = positive ? x_mm : -x_mm;  // mirror the negative side onto a positive walk
-    for (std::size_t i = 0; i < K.size(); ++i) {
-      CurvePoint si = walk(ds_ * static_cast<double>(i), positive);
-      if (!positive) {  // undo the mirror: work on the positive-side image
-        si.x_mm = -si.x_mm;
-        si.phi_rad = -si.phi_rad;
-      }
-      double ds, h, phi;
-      if (std::abs(K[i]) < kStraight) {
-        const double dx = px - si.x_mm, dy = y_mm - si.y_mm;
-        ds = dx * std::cos(si.phi_rad) - dy * std::sin(si.phi_rad);
-        h = -dx * std::sin(si.phi_rad) - dy * std::cos(si.phi_rad);
-        phi = si.phi_rad;
-      } else {
-        const double xr = si.x_mm - std::sin(si.phi_rad) / K[i];  // 5.11
-        const double yr = si.y_mm - std::cos(si.phi_rad) / K[i];  // 5.12
-        const double dx = px - xr, dy = y_mm - yr;
-        const double sgn = K[i] > 0.0 ? 1.0 : -1.0;
-        phi = std::atan2(sgn * dx, sgn * dy);                      // 5.10
-        ds = (phi - si.phi_rad) / K[i];
-        h = sgn * (1.0 / std::abs(K[i]) - std::hypot(dx, dy));    // 5.13
-      }
-      const bool last = i + 1 == K.size();
-      const double tol = 1e-9 * ds_;
-      if (ds < -tol) continue;
-      if (ds > ds_ + tol && !last) continue;
-      if (std::abs(h) < best_h) {
-        best_h = std::abs(h);
-        const double s = ds_ * static_cast<double>(i) + ds;
-        best = {positive ? phi : -phi, positive ? s : -s, h};
-      }
-    }
-  }
+  for (bool positive : {true, false})
+    for (std::size_t i = 0; i < k_pos_.size(); ++i) foot(i, positive, walk(ds_ * static_cast<double>(i), positive), x_mm, y_mm, best, best_h);
   return best;
+}
+
+CurveStarts NeutralCurve::starts() const {
+  CurveStarts out;
+  for (std::size_t i = 0; i < k_pos_.size(); ++i) {
+    out.positive.push_back(walk(ds_ * static_cast<double>(i), true));
+    out.negative.push_back(walk(ds_ * static_cast<double>(i), false));
+  }
+  return out;
+}
+
+CurveCoordinates NeutralCurve::coordinates(double x_mm, double y_mm, const CurveStarts& starts, double s_hint_mm) const {
+  CurveCoordinates best;
+  double best_h = std::numeric_limits<double>::infinity();
+  const std::size_t n = k_pos_.size();
+  const bool positive = s_hint_mm >= 0.0;
+  const std::size_t at = std::min(n - 1, static_cast<std::size_t>(std::abs(s_hint_mm) / ds_));
+  const auto& side = positive ? starts.positive : starts.negative;
+  foot(at, positive, side[at], x_mm, y_mm, best, best_h);
+  const double none = std::numeric_limits<double>::infinity();
+  for (std::size_t i : {at - 1, at + 1})  // the neighbours (at − 1 wraps beyond n when at = 0)
+    if (best_h == none && i < n) foot(i, positive, side[i], x_mm, y_mm, best, best_h);
+  if (best_h == none && at <= 1) foot(0, !positive, (positive ? starts.negative : starts.positive)[0], x_mm, y_mm, best, best_h);
+  for (bool p : {true, false})  // none of those: all intervals, as coordinates(x, y)
+    for (std::size_t i = 0; best_h == none && i < n; ++i)
+      foot(i, p, (p ? starts.positive : starts.negative)[i], x_mm, y_mm, best, best_h);
+  return best;
+}
+
+void NeutralCurve::foot(std::size_t i, bool positive, CurvePoint si, double x_mm, double y_mm, CurveCoordinates& best,
+                        double& best_h) const {
+  const auto& K = positive ? k_pos_ : k_neg_;
+  const double px = positive ? x_mm : -x_mm;  // mirror the negative side onto a positive walk
+  if (!positive) {  // undo the mirror: work on the positive-side image
+    si.x_mm = -si.x_mm;
+    si.phi_rad = -si.phi_rad;
+  }
+  double ds, h, phi;
+  if (std::abs(K[i]) < kStraight) {
+    const double dx = px - si.x_mm, dy = y_mm - si.y_mm;
+    ds = dx * std::cos(si.phi_rad) - dy * std::sin(si.phi_rad);
+    h = -dx * std::sin(si.phi_rad) - dy * std::cos(si.phi_rad);
+    phi = si.phi_rad;
+  } else {
+    const double xr = si.x_mm - std::sin(si.phi_rad) / K[i];  // 5.11
+    const double yr = si.y_mm - std::cos(si.phi_rad) / K[i];  // 5.12
+    const double dx = px - xr, dy = y_mm - yr;
+    const double sgn = K[i] > 0.0 ? 1.0 : -1.0;
+    phi = std::atan2(sgn * dx, sgn * dy);                      // 5.10
+    ds = (phi - si.phi_rad) / K[i];
+    h = sgn * (1.0 / std::abs(K[i]) - std::hypot(dx, dy));    // 5.13
+  }
+  const bool last = i + 1 == K.size();
+  const double tol = 1e-9 * ds_;
+  if (ds < -tol) return;
+  if (ds > ds_ + tol && !last) return;
+  if (std::abs(h) < best_h) {
+    best_h = std::abs(h);
+    const double s = ds_ * static_cast<double>(i) + ds;
+    best = {positive ? phi : -phi, positive ? s : -s, h, K[i]};
+  }
 }
 
 }  // namespace fitlib::segment

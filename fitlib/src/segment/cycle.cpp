@@ -14,6 +14,7 @@
 #include "fitlib/core/format.hpp"
 #include "fitlib/segment/curve.hpp"
 #include "fitlib/segment/end_faces.hpp"
+#include "fitlib/segment/flank.hpp"
 
 namespace fitlib::segment {
 namespace {
@@ -138,6 +139,20 @@ void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const N
 }
 
 }  // namespace
+
+void flank_shares(CycleResult& run) {
+  double largest = 0.0, sum = 0.0;
+  int count = 0;
+  for (const IncrementLoads& q : run.loads) largest = std::max(largest, q.contact_radial_N_mm);
+  run.flank_radial_share = run.flank_radial_mean_share = 0.0;
+  for (const IncrementLoads& q : run.loads)
+    if (largest > 0.0 && q.contact_radial_N_mm >= 0.5 * largest) {
+      const double share = q.flank_radial_N_mm / q.contact_radial_N_mm;
+      if (std::abs(share) > std::abs(run.flank_radial_share)) run.flank_radial_share = share;
+      sum += share, ++count;
+    }
+  if (count) run.flank_radial_mean_share = sum / count;
+}
 
 double span_cord_share_bound(const CycleResult& run) {
   using B = EquilibriumBounds;
@@ -320,35 +335,60 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> end_shear_forces(
   };
 }
 
-// The contact body forces per element at load level λ (global, 6.6–6.9): at each element's centre,
-// or their mean over its path extent sampled every `sampling_mm` (CycleKnobs::body_force_sampling_mm),
-// turned by the cord's tangent at the centre.
-std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(
-    std::vector<double> centre_x, std::vector<std::pair<double, double>> extent_x, const CycleDrive& drive,
-    double sampling_mm, double T, std::function<NeutralCurve(double)> curve_at) {
-  const belt::LoadHistory& h = *drive.history;
-  auto element_force = [=, &h](int e, double s0) {
+// The mean of load(state) over element e's path extent with the segment's middle at s0: sampled
+// every `sampling_mm` (CycleKnobs::body_force_sampling_mm, the midpoint rule), or at the element's
+// centre (0).
+struct ElementSampling {
+  std::vector<double> centre_x;
+  std::vector<std::pair<double, double>> extent_x;
+  double sampling_mm = 0.0;
+
+  template <typename T, typename Load>
+  T mean(const belt::LoadHistory& h, int e, double s0, const T& zero, Load load) const {
     const double width = extent_x[e].second - extent_x[e].first;
     const int n = sampling_mm > 0.0 ? std::max(1, static_cast<int>(std::ceil(width / sampling_mm))) : 1;
-    if (n == 1) return contact_body_force(h.at_position(s0 + centre_x[e]), drive);
-    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-    for (int i = 0; i < n; ++i)  // midpoint rule
-      sum += contact_body_force(h.at_position(s0 + extent_x[e].first + (i + 0.5) * width / n), drive);
-    return Eigen::Vector2d(sum / n);
-  };
+    if (n == 1) return load(h.at_position(s0 + centre_x[e]));
+    T sum = zero;
+    for (int i = 0; i < n; ++i) sum += load(h.at_position(s0 + extent_x[e].first + (i + 0.5) * width / n));
+    return T(sum / n);
+  }
+};
+
+// The contact body forces per element at load level λ (global, 6.6–6.9): their mean over the
+// element's path extent (ElementSampling), turned by the cord's tangent at its centre.
+std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(ElementSampling sampling,
+                                                                               const CycleDrive& drive, double T,
+                                                                               std::function<NeutralCurve(double)> curve_at) {
+  const belt::LoadHistory& h = *drive.history;
   return [=, &h](double lambda, std::vector<Eigen::Vector2d>& b) {
     const double tau = lambda * T;
-    b.assign(centre_x.size(), Eigen::Vector2d::Zero());
+    b.assign(sampling.centre_x.size(), Eigen::Vector2d::Zero());
     if (tau > 1.0) {
       const NeutralCurve curve = curve_at(lambda);
       const double s0 = (tau - 1.0) * h.length_mm();
-      for (std::size_t e = 0; e < centre_x.size(); ++e) {
-        const Eigen::Vector2d lr = element_force(static_cast<int>(e), s0);
+      for (std::size_t e = 0; e < sampling.centre_x.size(); ++e) {
+        const Eigen::Vector2d lr = sampling.mean(h, static_cast<int>(e), s0, Eigen::Vector2d(Eigen::Vector2d::Zero()),
+                                                 [&](const belt::LoadState& q) { return contact_body_force(q, drive); });
         if (lr.isZero(0.0)) continue;
-        const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
+        const double phi = curve.at(curve.s_from_unstrained(sampling.centre_x[e])).phi_rad;
         b[e] = {std::cos(phi) * lr.x() + std::sin(phi) * lr.y(), -std::sin(phi) * lr.x() + std::cos(phi) * lr.y()};  // 6.8–6.9
       }
     }
+  };
+}
+
+// The flank foundation's stiffness per element at λ (segment/flank.hpp): k times the share of the
+// element's path extent in a sheave (p > 0), so it engages continuously as a pulley's entrance passes.
+std::function<void(double, std::vector<double>&)> flank_stiffness(ElementSampling sampling, const belt::LoadHistory& h,
+                                                                  double k_N_mm4, double T) {
+  return [=, &h](double lambda, std::vector<double>& k) {
+    const double tau = lambda * T;
+    k.assign(sampling.centre_x.size(), 0.0);
+    if (tau <= 1.0) return;
+    const double s0 = (tau - 1.0) * h.length_mm();
+    for (std::size_t e = 0; e < k.size(); ++e)
+      k[e] = k_N_mm4 * sampling.mean(h, static_cast<int>(e), s0, 0.0,
+                                     [](const belt::LoadState& q) { return q.p_MPa > 0.0 ? 1.0 : 0.0; });
   };
 }
 
@@ -389,19 +429,25 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
 
   const int order = gauss_order(m, solver.integration);
   const auto rule = detail::gauss_rule(order);
-  std::vector<double> area(m.element_count()), centre_x(m.element_count());
-  std::vector<std::pair<double, double>> extent_x(m.element_count());  // the element's path extent
+  std::vector<double> area(m.element_count());
+  ElementSampling sampling{std::vector<double>(m.element_count()), std::vector<std::pair<double, double>>(m.element_count()),
+                           knobs.body_force_sampling_mm};
+  std::vector<double>& centre_x = sampling.centre_x;
   for (int e = 0; e < m.element_count(); ++e) {
     area[e] = reference_area(m, e, rule);
-    extent_x[e] = {path_x[m.elements[e][0]], path_x[m.elements[e][0]]};
+    auto& extent = sampling.extent_x[e];  // the element's path extent
+    extent = {path_x[m.elements[e][0]], path_x[m.elements[e][0]]};
     for (int a = 0; a < 4; ++a) {
       const double x = path_x[m.elements[e][a]];
       centre_x[e] += 0.25 * x;
-      extent_x[e] = {std::min(extent_x[e].first, x), std::max(extent_x[e].second, x)};
+      extent = {std::min(extent.first, x), std::max(extent.second, x)};
     }
   }
-  const auto body = contact_body_forces(centre_x, extent_x, drive, knobs.body_force_sampling_mm, T, curve_at);
+  const auto body = contact_body_forces(sampling, drive, T, curve_at);
   p.body_force = body;
+  if (knobs.flank_stiffness_N_mm4 > 0.0)  // the deformation-limited flank (segment/flank.hpp)
+    p.following_force = flank_foundation(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), curve_at,
+                                         flank_stiffness(sampling, h, knobs.flank_stiffness_N_mm4, T));
   if (shear) p.nodal_force = end_shear_forces(m.node_count(), straight, path_x, h, T, curve_at, shear);
 
   CycleResult out;
@@ -470,11 +516,20 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       for (const Eigen::Vector2d& f : nodal) applied += f, scale += f.norm();
     }
     for (const Eigen::Vector2d& f : s.inertia_N_mm) applied -= f, scale += f.norm();  // d'Alembert (SolverKnobs::inertia)
+    for (const Eigen::Vector2d& f : s.following_N_mm) applied += f, scale += f.norm();  // the flank foundation
     for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
     for (int node : m.top_nodes) cord += s.reaction_N_mm[node];
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
     out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
     IncrementLoads q{tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied};
+    for (int e = 0; e < m.element_count(); ++e) {  // radial: along the outward normal at the element's centre
+      const Eigen::Vector2d flank = s.following_N_mm.empty() ? Eigen::Vector2d::Zero() : s.following_N_mm[e];
+      if (forces[e].isZero(0.0) && flank.isZero(0.0)) continue;
+      const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
+      const Eigen::Vector2d n(std::sin(phi), std::cos(phi));
+      q.contact_radial_N_mm += forces[e].dot(n) * area[e];
+      q.flank_radial_N_mm += flank.dot(n);
+    }
     longitudinal_loads(p, s, curve, m, path_x, solver.integration, q);
     q.belt_force_N_mm = tau > 1.0 ? h.at_position(q.s_mm).F_N / drive.width_mm : 0.0;
     const double K_mid = h.at_position(q.s_mm).K_1_mm;
@@ -526,6 +581,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.history = history;
   out.sheared_ends = static_cast<bool>(warping) || static_cast<bool>(shear);
   out.equations = out.final_state.equations;
+  out.flank_stiffness_N_mm4 = knobs.flank_stiffness_N_mm4;
+  flank_shares(out);
   return out;
 }
 

@@ -56,7 +56,14 @@ class Diagnosis {
     eig.eigenvectors().col(0).cwiseAbs().maxCoeff(&top);
     out_ << "; lowest eigenvalues of K's symmetric part " << l(0) << ", " << l(1) << ", " << l(2) << " N/mm² (largest "
          << l(l.size() - 1) << "), " << (l.array() < 0.0).count() << " negative, lowest mode largest at ";
-    at_node(node_of(top));
+    const int n = node_of(top);
+    at_node(n);
+    // Its direction there (the node's components: global, or a constrained node's local basis).
+    Eigen::Vector2d d = Eigen::Vector2d::Zero();
+    for (int k = 0; k < 2; ++k)
+      if (eq_[2 * n + k] >= 0) d(k) = eig.eigenvectors()(eq_[2 * n + k], 0);
+    d.normalize();
+    out_ << " along (" << d.x() << ", " << d.y() << ")";
   }
 
   // Each column of K against central differences of the free residual (h = 10⁻⁶ mm).

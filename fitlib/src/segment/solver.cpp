@@ -156,7 +156,9 @@ class Assembler {
  public:
   Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool)
       : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar), pool_(pool),
-        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1), body_weights_(body_weights()) {}
+        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1) {
+    if (p.body_force || p.following_force.at) point_weights();
+  }
 
   std::size_t points_per_element() const { return rule_.size(); }
   // The step the point states are updated over (state_n → state_next).
@@ -177,7 +179,9 @@ class Assembler {
     const Mesh& m = *p_.mesh;
     std::vector<Eigen::Vector2d> X, u;
     for (int a = 0; a < m.nodes_per_element; ++a) X.push_back(m.X[m.elements[e][a]]), u.push_back(u_of(q, m.elements[e][a]));
-    return detail::element_response(X, u, law_of(e), rule_, step_of(e), f, Ke, states, f_bar_);
+    const bool ok = detail::element_response(X, u, law_of(e), rule_, step_of(e), f, Ke, states, f_bar_);
+    if (ok) add_following(e, X, u, f, Ke);
+    return ok;
   }
   const PlaneStrainLaw& law_of(int e) const { return *p_.laws[static_cast<int>(p_.mesh->roles[e])]; }
   detail::ElementStep step_of(int e) const {
@@ -197,6 +201,7 @@ class Assembler {
     if (K) std::fill(K->K.valuePtr(), K->K.valuePtr() + K->K.nonZeros(), 0.0);
     if (coupling) coupling->setZero(d_.equations);
     if (states) states->assign(m.element_count(), {});
+    if (p_.following_force.prepare && lambda != following_at_) p_.following_force.prepare(lambda), following_at_ = lambda;
     // One thread: each element computed into one buffer and added at once (the same operations in
     // the same order as with the team, without a pass over all buffers: cache).
     const bool team = pool_.threads() > 1;
@@ -232,6 +237,26 @@ class Assembler {
     return -1;
   }
 
+  // Per element, the following force's ∫ b dV at q (global; empty without one), at the λ of the
+  // last assembly.
+  std::vector<Eigen::Vector2d> following_forces(const Eigen::VectorXd& q) const {
+    const Mesh& m = *p_.mesh;
+    std::vector<Eigen::Vector2d> out;
+    if (!p_.following_force.at) return out;
+    const int npe = m.nodes_per_element;
+    std::vector<Eigen::Vector2d> X(npe), u(npe);
+    ElementVector f;
+    for (int e = 0; e < m.element_count(); ++e) {
+      for (int a = 0; a < npe; ++a) X[a] = m.X[m.elements[e][a]], u[a] = u_of(q, m.elements[e][a]);
+      f.setZero(2 * npe);
+      add_following(e, X, u, f, nullptr);
+      Eigen::Vector2d total = Eigen::Vector2d::Zero();
+      for (int a = 0; a < npe; ++a) total -= f.segment<2>(2 * a);
+      out.push_back(total);
+    }
+    return out;
+  }
+
   // Per node, the inertia force m·a at q (global; empty without inertia).
   std::vector<Eigen::Vector2d> inertia_forces(const Eigen::VectorXd& q) const {
     std::vector<Eigen::Vector2d> f;
@@ -251,6 +276,7 @@ class Assembler {
     for (int a = 0; a < npe; ++a) b.X[a] = m.X[nodes[a]], b.u[a] = u_of(q, nodes[a]);
     b.ok = detail::element_response(b.X, b.u, law_of(e), rule_, step_of(e), b.f, tangent ? &b.K : nullptr,
                                     states ? &b.states : nullptr, f_bar_);
+    if (b.ok) add_following(e, b.X, b.u, b.f, tangent ? &b.K : nullptr);
     if (b.ok) to_local(nodes, npe, b.f, tangent ? &b.K : nullptr);
   }
 
@@ -268,20 +294,39 @@ class Assembler {
         }
   }
 
-  // N_a dV per element, integration point and node (reference quantities, for the body forces).
-  std::vector<double> body_weights() const {
-    if (!p_.body_force) return {};
+  // The shape functions at the rule's points and each point's reference volume dV (the body
+  // forces' and the following force's weights; the shape functions are the same in every element).
+  void point_weights() {
     const Mesh& m = *p_.mesh;
     const int npe = m.nodes_per_element;
-    std::vector<double> w;
     double N[8], dxi[8], deta[8];
+    for (const auto& g : rule_) {
+      detail::shape(npe, g.xi, g.eta, N, dxi, deta);
+      shape_.insert(shape_.end(), N, N + npe);
+    }
     for (int e = 0; e < m.element_count(); ++e)
-      for (const auto& g : rule_) {
-        detail::shape(npe, g.xi, g.eta, N, dxi, deta);
-        const double dV = reference_jacobian(m, e, g.xi, g.eta) * g.weight;
-        for (int a = 0; a < npe; ++a) w.push_back(N[a] * dV);
+      for (const auto& g : rule_) volume_.push_back(reference_jacobian(m, e, g.xi, g.eta) * g.weight);
+  }
+
+  // StaticProblem::following_force at element e's points (global components): −∫ N_a b dV into the
+  // force, −∫ N_a N_b ∂b/∂x dV into the tangent.
+  void add_following(int e, const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
+                     ElementVector& f, ElementMatrix* K) const {
+    if (!p_.following_force.at) return;
+    const int npe = p_.mesh->nodes_per_element;
+    Eigen::Vector2d b;
+    Eigen::Matrix2d db;
+    for (std::size_t g = 0; g < rule_.size(); ++g) {
+      const double* N = shape_.data() + g * npe;
+      Eigen::Vector2d x = Eigen::Vector2d::Zero();
+      for (int a = 0; a < npe; ++a) x += N[a] * (X[a] + u[a]);
+      if (!p_.following_force.at(e, static_cast<int>(g), x, b, db)) continue;
+      const double dV = volume_[e * rule_.size() + g];
+      for (int a = 0; a < npe; ++a) {
+        f.segment<2>(2 * a) -= N[a] * dV * b;
+        for (int c = 0; K && c < npe; ++c) K->block<2, 2>(2 * a, 2 * c) -= N[a] * N[c] * dV * db;
       }
-    return w;
+    }
   }
 
   // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
@@ -294,14 +339,12 @@ class Assembler {
       body_at_ = lambda;
     }
     const int npe = m.nodes_per_element;
-    const std::size_t per_element = rule_.size() * npe;
     for (int e = 0; e < m.element_count(); ++e) {
       if (body_[e].isZero(0.0)) continue;
-      const double* w = body_weights_.data() + e * per_element;
       for (std::size_t g = 0; g < rule_.size(); ++g)
         for (int a = 0; a < npe; ++a) {
           const int n = m.elements[e][a];
-          r.segment<2>(2 * n) -= d_.R[n].transpose() * (w[g * npe + a] * body_[e]);
+          r.segment<2>(2 * n) -= d_.R[n].transpose() * ((shape_[g * npe + a] * volume_[e * rule_.size() + g]) * body_[e]);
         }
     }
   }
@@ -355,7 +398,8 @@ class Assembler {
   double dt_s_ = 0.0;
   mutable std::vector<Eigen::Vector2d> body_, nodal_;  // the dead loads at body_at_, nodal_at_
   mutable double body_at_ = std::numeric_limits<double>::quiet_NaN(), nodal_at_ = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> body_weights_;  // body_weights()
+  std::vector<double> shape_, volume_;  // point_weights(): N_a per point of the rule, dV per element and point
+  mutable double following_at_ = std::numeric_limits<double>::quiet_NaN();  // the λ following_force was prepared at
   const detail::BackwardEulerInertia* inertia_ = nullptr;
   const std::vector<int>* diagonal_ = nullptr;
 };
@@ -689,6 +733,7 @@ class StaticRun {
       s.reaction_N_mm[a] = d_.R[a] * rl;
     }
     s.inertia_N_mm = assembler_.inertia_forces(q_);
+    s.following_N_mm = assembler_.following_forces(q_);
   }
 
   // Turn the constrained bases to λ = target, keeping the displacements.

@@ -11,25 +11,17 @@
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/solver.hpp"
 #include "fitlib/segment/static_case.hpp"
+#include "strip.hpp"
 #include <Eigen/Geometry>
 
 using namespace fitlib::segment;
 
 namespace {
 
-constexpr double kHeight_mm = 4.0, kE_MPa = 10.0, kNu = 0.3, kRho_t_mm3 = 1.2e-9;
+constexpr double kHeight_mm = test::kStripHeight_mm, kE_MPa = 10.0, kNu = 0.3, kRho_t_mm3 = 1.2e-9;
 constexpr double kG_MPa = kE_MPa / (2.0 * (1.0 + kNu));
 
-// A rectangular strip 4 mm deep (no cogs): cord line y = 0 on top, bottom at y = −4 mm.
-Mesh strip(int nodes_per_element) {
-  CogSection s;
-  s.height_mm = kHeight_mm, s.cushion_mm = 0.5, s.cog_depth_mm = 0.0, s.root_fillet_mm = s.tip_radius_mm = 0.0;
-  s.cog_pitch_mm = 4.0;
-  MeshKnobs k;
-  k.central_pitches = 1.0, k.end_pitches = 0.5, k.fine_size_mm = 0.5, k.coarse_size_mm = 1.0, k.cushion_rows = 1;
-  k.nodes_per_element = nodes_per_element;
-  return build_mesh(s, k);
-}
+using test::strip;
 
 // The strip's top held, its end faces free along x and held in y, a uniform body force b_x from
 // λ > 0 on (a sudden load) or growing with λ (`ramp`); time t = λ t_end. Pure shear u_x(y) is then
@@ -41,16 +33,7 @@ struct ShearRun {
 
 ShearRun shear_run(const Mesh& m, double b_N_mm3, double t_end_s, int steps, bool ramp, bool inertia) {
   const auto law = make_elastic(ElasticLaw::hencky, kE_MPa, kNu);
-  StaticProblem p;
-  p.mesh = &m;
-  p.laws = {law.get(), law.get()};
-  for (int n : m.top_nodes) p.constraints.push_back({n, 0.0, {true, true}});
-  for (const auto* side : {&m.left_nodes, &m.right_nodes})
-    for (int n : *side)
-      if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, {false, true}});
-  p.prescribe = [](double, std::vector<std::array<double, 2>>& v) {
-    for (auto& x : v) x = {0.0, 0.0};
-  };
+  StaticProblem p = test::held_strip(m, *law, {false, true});
   p.body_force = [&](double lambda, std::vector<Eigen::Vector2d>& b) {
     b.assign(m.element_count(), Eigen::Vector2d(ramp ? lambda * b_N_mm3 : b_N_mm3, 0.0));
   };

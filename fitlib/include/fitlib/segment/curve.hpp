@@ -20,6 +20,13 @@ struct CurvePoint {
 // the distance h below the curve (positive on the rubber side).
 struct CurveCoordinates {
   double phi_rad = 0.0, s_mm = 0.0, h_mm = 0.0;
+  double K_1_mm = 0.0;  // curvature of the interval the foot lies in
+};
+
+// The start points of a curve's intervals (NeutralCurve::starts), walked once: the inverse map of
+// many points on one curve (the flank foundation's, segment/flank.hpp) needs no walk per point.
+struct CurveStarts {
+  std::vector<CurvePoint> positive, negative;
 };
 
 class NeutralCurve {
@@ -36,10 +43,19 @@ class NeutralCurve {
   double s_from_unstrained(double s_org_mm) const;      // corrected 5.19, signed
   double unstrained_from_s(double s_mm) const;          // 5.17–5.20, signed
   CurveCoordinates coordinates(double x_mm, double y_mm) const;  // inverse map 5.10–5.15
+  // The same map for many points on one curve: the interval starts walked once (starts()), and the
+  // interval of the foot's expected path position s_hint_mm taken when it holds the foot, else its
+  // neighbours', else the nearest of all (at an interval's end, where two hold it, the first found).
+  CurveStarts starts() const;
+  CurveCoordinates coordinates(double x_mm, double y_mm, const CurveStarts& starts, double s_hint_mm) const;
   double reach_mm() const { return ds_ * static_cast<double>(k_pos_.size()); }
 
  private:
   CurvePoint walk(double s_abs, bool positive) const;
+  // The foot of (x, y) on interval i of one side, whose start is `start` (as walk gives it): taken
+  // into `best` when it lies within the interval and nearer than |best|'s depth `best_h`.
+  void foot(std::size_t i, bool positive, CurvePoint start, double x_mm, double y_mm, CurveCoordinates& best,
+            double& best_h) const;
   double ds_;
   std::vector<double> k_pos_, eps_pos_, k_neg_, eps_neg_;
 };

@@ -51,6 +51,11 @@ struct CycleKnobs {
   // when a pulley's exit passes, instead of switching an element at a time (docs/segment.md
   // "The gap bottom's exit peak").
   double body_force_sampling_mm = 0.1;
+  // The deformation-limited flank (segment/flank.hpp, docs/segment.md "Flank foundation"): where
+  // the section is in a sheave (p > 0, by the share of each element's path extent) the radial
+  // contact force also follows each point's depth below the cord curve, B_r = B_r,dead + k (h − h_ref),
+  // with this k (N/mm⁴; 0: off, Report I's dead loads alone).
+  double flank_stiffness_N_mm4 = 0.0;
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
   // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
   EndCondition ends = EndCondition::radial;
@@ -97,6 +102,9 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   double belt_force_N_mm = 0.0, cord_longitudinal_N_mm = 0.0, left_cord_longitudinal_N_mm = 0.0;
   double left_end_longitudinal_N_mm = 0.0, rubber_section_N_mm = 0.0;
   double left_inertia_longitudinal_N_mm = 0.0;  // Σ m·a of the left half's nodes (SolverKnobs::inertia)
+  // Radial totals (along the cord curve's outward normal at each element's centre) of Report I's
+  // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CycleKnobs::flank_stiffness_N_mm4).
+  double contact_radial_N_mm = 0.0, flank_radial_N_mm = 0.0;
   bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
 
@@ -130,12 +138,20 @@ struct CycleResult {
   // over the span increments: the left half's longitudinal balance at the mid-section.
   double span_section_mismatch = 0.0;
   std::vector<IncrementLoads> loads;    // per converged increment
+  // The flank foundation's radial total against Report I's dead one, over the increments whose dead
+  // radial load is at least half its largest: the ratio of largest magnitude (signed) and the mean
+  // ratio (flank_shares; 0 without the foundation).
+  double flank_radial_share = 0.0, flank_radial_mean_share = 0.0;
+  double flank_stiffness_N_mm4 = 0.0;  // the run's CycleKnobs::flank_stiffness_N_mm4
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
   int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
   bool history = false;  // a role's law carries state (viscoelastic, damage): EquilibriumBounds' looser span share
   bool sheared_ends = false;  // end faces warped and sheared (EndCondition::sheared or given profiles)
   StaticSolution final_state;
 };
+
+// CycleResult::flank_radial_share and flank_radial_mean_share from its loads.
+void flank_shares(CycleResult& run);
 
 // The span share's bound of a run: EquilibriumBounds' tight one, or the looser one when its points
 // carry history or its end faces are sheared.

@@ -104,6 +104,20 @@ struct StaticProblem {
   std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
   // Optional: dead nodal forces per node (global, N per mm of width; zero where none) at λ.
   std::function<void(double lambda, std::vector<Eigen::Vector2d>& f_N_mm)> nodal_force;
+  // Optional: a body force that follows the deformation, an elastic foundation (the load cycle's
+  // deformation-limited flank, segment/flank.hpp). `at`: at element e's integration point g (the
+  // solver's rule) and its current position x (global, mm), b (global, N/mm³ of reference volume)
+  // and ∂b/∂x (N/mm⁴), false where none acts; b must be the negative gradient of an energy, so
+  // ∂b/∂x is symmetric and a symmetric law keeps LDLᵀ. `prepare(λ)` runs once per load level
+  // before its assemblies, on the calling thread; `at` on any of the element loop's threads, so
+  // it must only read. The residual gets −∫ N_a b dV, the tangent −∫ N_a N_b ∂b/∂x dV.
+  struct FollowingForce {
+    std::function<void(double lambda)> prepare;
+    std::function<bool(int element, int point, const Eigen::Vector2d& x_mm, Eigen::Vector2d& b_N_mm3,
+                       Eigen::Matrix2d& db_dx_N_mm4)>
+        at;
+  };
+  FollowingForce following_force;
   // Optional: per node, the turn of the loading's frame from λ_from to λ_to: its angle (rad,
   // counter-clockwise) and the centre it turns about (global, mm, at λ_from; for the cord curve the
   // cord point of the node's column). Used by SolverKnobs::rotated_predictor.
@@ -144,6 +158,8 @@ struct StaticSolution {
   // SolverKnobs::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
   // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
   std::vector<Eigen::Vector2d> inertia_N_mm;
+  // StaticProblem::following_force: per element, its ∫ b dV (global, N/mm); empty without one.
+  std::vector<Eigen::Vector2d> following_N_mm;
   int threads = 1;                // of the element loop
   // Unsymmetric tangents (SolverKnobs::krylov_iterations): GMRES iterations, and the solves that
   // did not converge and went to the LU (`factorizations` counts either factorisation once per tangent).
