@@ -5,13 +5,19 @@
 //    route, 2 load cycles) and its ratio to the beam row.
 // 2. The segment's convergence on the medium drive: life versus mesh (the default 144 elements and
 //    a 0.6/2.0 mm mesh), versus the segment's length (27 mm sheared and radial ends, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
-//    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' levels, relative to the finer.
+//    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' elastic level, relative to the
+//    finer (the complete level stops on the medium drive: its table is 5).
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
+// 5. The complete level's convergence on the light drive (the only reference drive it passes):
+//    cushion rows, element size, grading and steps against 0.25 mm elements with 3 cushion rows
+//    (docs/segment.md "Which segment N1 should be read from"); `bench_life meshconv` prints it alone
+//    (~5 min, the reference ~3 of them).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [tol=X] [full|fbar|reduced]
-// [lagged] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse | medium | fine;
+// [lagged] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse
+// (the elastic level's life mesh, 1 cushion row) | life (the life's default at FIDELITY) | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
@@ -79,9 +85,11 @@ scene::Scene life_scene(const std::string& load, const std::string& fidelity) {
   return s;
 }
 
-// The segment meshes of the convergence table (docs/segment.md §Cost).
-segment::MeshKnobs mesh_named(const std::string& name) {
-  segment::MeshKnobs m = fatigue::life_mesh();  // "coarse", the life's default
+// The segment meshes of the convergence table (docs/segment.md §Cost). "life": the life's default
+// at the probe's fidelity (fatigue::life_mesh(fidelity): the complete level's has 3 cushion rows).
+segment::MeshKnobs mesh_named(const std::string& name, const std::string& fidelity) {
+  if (name == "life") return fatigue::life_mesh(fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic);
+  segment::MeshKnobs m = fatigue::life_mesh();  // "coarse", the life's default (the elastic level's)
   if (name == "medium") m.fine_size_mm = 0.6, m.coarse_size_mm = 2.0, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
   if (name == "fine") m.fine_size_mm = 0.4, m.coarse_size_mm = 1.5, m.central_pitches = 2, m.end_pitches = 2, m.cushion_rows = 2;
   if (name == "long") m.central_pitches = 2, m.end_pitches = 2;    // the life mesh's sizes, 54 mm long
@@ -212,7 +220,7 @@ Outcome run_probe(const Probe& pr) {
   setup.section = scene::cog_section(s);
   if (pr.fillet_mm >= 0.0) setup.section.root_fillet_mm = pr.fillet_mm;
   if (pr.tip_mm >= 0.0) setup.section.tip_radius_mm = pr.tip_mm;
-  setup.mesh = mesh_named(pr.mesh);
+  setup.mesh = mesh_named(pr.mesh, pr.fidelity);
   if (pr.rows > 0) setup.mesh.cushion_rows = pr.rows;
   if (pr.fine_mm > 0.0) setup.mesh.fine_size_mm = pr.fine_mm;
   if (pr.central > 0.0) setup.mesh.central_pitches = pr.central;
@@ -403,6 +411,53 @@ void convergence(const std::string& fidelity) {
   std::fflush(stdout);
 }
 
+// The complete level's lives on the light drive against mesh and steps (docs/segment.md "Which
+// segment N1 should be read from"). Mid-cushion N2 needs >= 3 cushion rows (one row carries a spurious
+// pressure gradient at the driver's exit); N1 scatters with the element size over the cogs.
+void complete_convergence() {
+  std::printf("\n## 5. Complete level, light drive: convergence in mesh and steps (2 cycles)\n\n%s", kProbeHeader);
+  struct Row {
+    const char* label;
+    const char* mesh;
+    int steps;
+    int rows;
+    double fine, coarse;
+  };
+  const Row rows[] = {
+      {"elastic level's life mesh (1 cushion row, graded)", "coarse", 60, 0, 0.0, 0.0},
+      {"the same, 120 steps", "coarse", 120, 0, 0.0, 0.0},
+      {"1 mm graded, 3 cushion rows", "coarse", 60, 3, 0.0, 0.0},
+      {"complete level's life mesh (3 rows, ungraded)", "life", 60, 0, 0.0, 0.0},
+      {"the same, 120 steps", "life", 120, 0, 0.0, 0.0},
+      {"0.5 mm graded, 1 cushion row", "coarse", 60, 0, 0.5, 0.0},
+      {"0.6 mm graded, 3 rows", "coarse", 60, 3, 0.6, 0.0},
+      {"0.35 mm graded, 3 rows", "coarse", 60, 3, 0.35, 0.0},
+      {"reference: 0.25 mm, 1.25 mm ends, graded, 3 rows", "coarse", 60, 3, 0.25, 1.25},
+  };
+  std::vector<std::pair<const Row*, Outcome>> out;
+  for (const Row& row : rows) {
+    Probe p{"light", "complete", row.mesh, row.steps};
+    p.rows = row.rows, p.fine_mm = row.fine, p.coarse_mm = row.coarse;
+    try {
+      out.emplace_back(&row, run_probe(p));
+      print_probe(p, out.back().second);
+    } catch (const std::exception& e) {
+      std::printf("| light | complete | %s | failed: %.120s |\n", row.label, e.what());
+    }
+    std::fflush(stdout);
+  }
+  if (out.empty() || std::string(out.back().first->label).rfind("reference", 0) != 0) return;
+  const Outcome& ref = out.back().second;
+  std::printf("\n| mesh | steps | N1 / reference | N2 / reference | governing | time / the first row's |\n"
+              "|---|---|---|---|---|---|\n");
+  for (const auto& [row, o] : out)
+    std::printf("| %s | %d | %.3g | %.3g | %s | %.2f |\n", row->label, row->steps,
+                o.life.report.modes[0].life_cycles / ref.life.report.modes[0].life_cycles,
+                o.life.report.modes[1].life_cycles / ref.life.report.modes[1].life_cycles,
+                o.life.report.governing.c_str(), o.wall_s / out.front().second.wall_s);
+  std::fflush(stdout);
+}
+
 void beam_sweep() {
   std::printf("\n## 4. Beam level: sweep of 1000 drives through the planner\n\n");
   scene::Scene s = life_scene("medium", "beam");
@@ -497,6 +552,10 @@ int main(int argc, char** argv) {
     if (!p.csv.empty()) segment::write_cycle_csv(o.life.run, p.csv);
     return 0;
   }
+  if (argc > 1 && std::string(argv[1]) == "meshconv") {  // table 5 only
+    complete_convergence();
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows
     level_table({"beam", "elastic", "complete"});
     return 0;
@@ -505,7 +564,7 @@ int main(int argc, char** argv) {
   level_table(quick ? std::vector<const char*>{"beam", "elastic"} : std::vector<const char*>{"beam", "elastic", "complete"});
   convergence("iso");
   convergence("elastic");
-  if (!quick) convergence("complete");
+  if (!quick) complete_convergence();  // the medium drive's complete level stops at its fold
   beam_sweep();
   return 0;
 }

@@ -19,6 +19,22 @@ segment::MeshKnobs life_mesh() {
   return m;
 }
 
+segment::MeshKnobs complete_life_mesh() {
+  segment::MeshKnobs m = life_mesh();
+  // Three cushion rows put mid-cushion (N2's point) at the middle row's centre; one row carries a
+  // spurious pressure gradient at the complete level (docs/decisions.md "Segment life: the complete
+  // level's mesh has three cushion rows"). Columns ungraded (rows still thinning by row_growth
+  // towards the land): the graded columns cost 1.6x with three rows and do not settle the complete
+  // level's N1 either.
+  m.cushion_rows = 3;
+  m.gap_size_mm = 0.0;
+  return m;
+}
+
+segment::MeshKnobs life_mesh(segment::Fidelity fidelity) {
+  return fidelity == segment::Fidelity::complete ? complete_life_mesh() : life_mesh();
+}
+
 segment::CycleKnobs life_cycle() {
   segment::CycleKnobs c;
   c.ends = segment::EndCondition::sheared;

@@ -46,7 +46,8 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
 // Work cap of the segment levels (docs/reliability.md §4): element-increments of one run. The
 // dearest rate measured, 0.94 ms CPU each (complete level, 450 elements), gives 94 s at the cap;
 // it admits the segments that N2 needs (54 mm, 272 elements, 3 cycles: 50 048; 81 mm: 73 600;
-// docs/segment.md §Cost), and the default (192 elements, 3 cycles: 35 328).
+// docs/segment.md §Cost), and the defaults (192 elements, 3 cycles: 35 328; the complete level's 180:
+// 33 120).
 constexpr double kMaxSegmentLifeWork = 1e5;
 
 // Refuses a run beyond the cap before the FE starts, naming the scene and the keys that set it.
@@ -154,7 +155,9 @@ void segment_stresses(const Scene& s, SceneResult& r) {
   in_scene(s, [&] {
     fatigue::SegmentLifeSetup setup;
     setup.section = cog_section(s);
-    if (s.segment) setup.mesh = s.segment->life_mesh, setup.solver = s.segment->setup.solver;
+    const segment::Fidelity fidelity = segment::fidelity_from_string(r.plan.life->fidelity);
+    setup.mesh = s.segment ? s.segment->life_mesh_at(fidelity) : fatigue::life_mesh(fidelity);
+    if (s.segment) setup.solver = s.segment->setup.solver;
     setup.solver.threads = segment_threads(s);
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;

@@ -221,15 +221,21 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       o << "WARNING: the cord line carries more of the belt force in the spans than its bound: the segment's "
            "ends or its length disturb the middle (docs/segment.md \"Cord-line reactions\")\n";
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
-    if (!s.segment || !s.segment->life_mesh_changed)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
-      o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, sheared end "
-           "faces) gives, against an 81 mm segment on the light, medium and heavy reference drives, the same "
-           "governing mode and, with the thesis cards, N2 within 13 % (elastic level). Its 1 mm elements over the "
-           "cogs do not settle the cards' near-incompressible rubber. Against the same segment with 0.5 mm "
-           "elements: at the elastic level the default's N1 is 14 to 36 % shorter (on the safe side); at the "
-           "complete level (light drive) the 0.5 mm segment's N1 is 17 to 20 % and its N2 33 to 48 % shorter "
-           "than the default's (not on the safe side). [segment] fine_size_mm = 0.5 selects the 0.5 mm segment "
-           "at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
+    if ((!s.segment || !s.segment->life_mesh_changed) && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
+      o << "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over the central "
+           "pitch, three cushion rows, sheared end faces) gives on the light drive N2 within 12 % of meshes with "
+           "0.25 to 0.6 mm elements and 3 to 5 cushion rows, and N1 61 % shorter than 0.25 mm elements' (on the "
+           "safe side of it; the N1 of 0.25 to 0.6 mm elements scatter from 0.32 to 1.32 x the 0.25 mm value: "
+           "the complete level's N1 is not settled by the element size). One cushion row ([segment] "
+           "cushion_rows = 1) makes the mid-cushion N2 about 800 x too short (a spurious pressure through the "
+           "row at the driver's exit) (docs/segment.md \"Which segment N1 should be read from\")\n";
+    else if (!s.segment || !s.segment->life_mesh_changed)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
+      o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, one cushion "
+           "row, sheared end faces) gives, against an 81 mm segment on the light, medium and heavy reference "
+           "drives, the same governing mode and, with the thesis cards, N2 within 13 % (elastic level). Against "
+           "the same segment with 0.35 mm elements and three cushion rows its N1 is 9 to 32 % shorter (on the "
+           "safe side) and its N2 within 9 %. [segment] fine_size_mm = 0.5 selects 0.5 mm elements (N1 within "
+           "7 % of 0.35 mm's) at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
   }
   // Only where the points carry history: the glassy transients that the load fronts resolve
   // (without history the planned steps read N2 within 8 % of 0.1 mm sampling: docs/segment.md).

@@ -10,6 +10,7 @@
 #include "fitlib/fatigue/life.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/segment/cycle.hpp"
+#include "fitlib/segment/point_law.hpp"
 
 namespace fitlib::fatigue {
 
@@ -23,13 +24,27 @@ std::vector<PointHistory> segment_point_histories(const segment::CycleResult& ru
 // towards the gap bottom").
 segment::MeshKnobs life_mesh();
 
+// The complete level's default mesh: the life mesh with three equal cushion rows and no column
+// grading (gap_size_mm 0; rows still thin by row_growth 1.1 towards the land), 180 elements. One
+// cushion row lets the complete level's glassy, near-incompressible cushion carry a spurious
+// pressure gradient through the row at the driver's exit (mid-cushion σ11 +0.5 MPa where three or
+// more rows give −0.35 MPa), which made N2 ~800× short and separation govern on the light drive;
+// with three rows N2 is within 12 % of every finer mesh tried, N1 as short as the graded 1 mm
+// mesh's (the complete level's N1 is not settled by the element size), at 1.13–1.17× the one-row
+// mesh's time (docs/decisions.md "Segment life: the complete level's mesh has three cushion rows";
+// docs/segment.md "Which segment N1 should be read from").
+segment::MeshKnobs complete_life_mesh();
+
+// The life's default mesh at a fidelity: life_mesh() (elastic) or complete_life_mesh() (complete).
+segment::MeshKnobs life_mesh(segment::Fidelity fidelity);
+
 // The life's load-cycle knobs: CycleKnobs' defaults with the sheared end faces, which bring the
 // short life mesh's lives near a long segment's (docs/decisions.md "Segment life: sheared end faces").
 segment::CycleKnobs life_cycle();
 
 struct SegmentLifeSetup {
   segment::CogSection section;
-  segment::MeshKnobs mesh = life_mesh();
+  segment::MeshKnobs mesh = life_mesh();  // the elastic level's; the scene takes life_mesh(fidelity)
   segment::SolverKnobs solver;
   segment::CycleKnobs cycle = life_cycle();
   std::array<model::MaterialPointPtr, 2> materials;  // by segment::Role: bottom, cushion

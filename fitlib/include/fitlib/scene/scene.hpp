@@ -67,9 +67,15 @@ struct TensionTestSpec {
 struct SegmentSpec {
   segment::StaticSetup setup;
   segment::StaticLoad load;
-  // The life's mesh (fatigue::life_mesh()) with the [segment] mesh keys the scene gives.
+  // The life's meshes per fidelity (fatigue::life_mesh(), fatigue::complete_life_mesh()), each
+  // with the [segment] mesh keys the scene gives: a key given changes that knob in both, the others
+  // keep each level's default.
   segment::MeshKnobs life_mesh = fatigue::life_mesh();
+  segment::MeshKnobs complete_life_mesh = fatigue::complete_life_mesh();
   bool life_mesh_changed = false;  // a mesh key was given
+  const segment::MeshKnobs& life_mesh_at(segment::Fidelity fidelity) const {
+    return fidelity == segment::Fidelity::complete ? complete_life_mesh : life_mesh;
+  }
 };
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").
