@@ -45,12 +45,14 @@ std::string excess_text(const fitlib::card::WindowExcess& x, double highest) {
 // --allow-extrapolation each quantity's range is one warning at the end.
 class WindowCheck {
  public:
-  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), card_(card), window_(card) {}
+  // A temperature where the card's law describes no material is refused first, even with
+  // --allow-extrapolation.
+  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), window_(card) {
+    for (double T : a.temperature_C) fitlib::card::require_material_at(card, a.card, T, a.card, "--temperature-c");
+  }
 
-  // True when `c` lies beyond the window (and extrapolation is allowed). A temperature where the
-  // card's law describes no material is refused even with --allow-extrapolation.
+  // True when `c` lies beyond the window (and extrapolation is allowed).
   bool beyond(const fitlib::model::TestCondition& c) {
-    fitlib::card::require_material_at(card_, a_.card, c.temperature_C, a_.card, "--temperature-c");
     const auto excess = window_.outside(c);
     if (excess.empty()) return false;
     if (!a_.allow_extrapolation)
@@ -77,7 +79,6 @@ class WindowCheck {
     double highest;
   };
   const EvalArgs& a_;
-  const fitlib::card::Card& card_;
   const fitlib::card::DataWindow window_;
   std::map<std::string, Seen> seen_;
 };

@@ -12,6 +12,7 @@
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/model.hpp"
 #include "fitlib/scene/planner.hpp"
+#include "effects.hpp"
 
 namespace fitlib::scene {
 namespace {
@@ -38,15 +39,19 @@ double storage_modulus_MPa(const card::Card& c, const std::string& role, const c
 
 }  // namespace
 
+card::Card detail::material_card(const Scene& s, const std::string& role) {
+  const std::string& path = s.materials.at(role);
+  card::Card c = card::load_card(path);
+  card::require_material_at(c, path, s.temperature_C, s.path, "conditions.temperature_C");
+  return c;
+}
+
 Stiffness resolve_stiffness(const Scene& s) {
   Stiffness k;
   const double T = s.temperature_C;
   auto card_for = [&](const char* role) -> std::optional<card::Card> {
-    auto it = s.materials.find(role);
-    if (it == s.materials.end()) return std::nullopt;
-    card::Card c = card::load_card(it->second);
-    card::require_material_at(c, it->second, T, s.path, "conditions.temperature_C");
-    return c;
+    if (!s.materials.count(role)) return std::nullopt;
+    return detail::material_card(s, role);
   };
   const auto cord = s.c_N ? std::nullopt : card_for("cord");
   const auto bottom = (s.k1_MPa && s.EI_Nmm2) ? std::nullopt : card_for("bottom");
@@ -99,13 +104,12 @@ static void check_given_belt_length(const Scene& s, const belt::DriveGeometry& g
 
 belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
   std::vector<belt::Pulley> pulleys;
-  for (std::size_t i = 0; i < s.pulleys.size(); ++i)  // the belt wraps every pulley with its bottom inside
-    if (!(s.pulleys[i].pitch_diameter_mm / 2.0 > s.belt.height_mm))
-      throw InputError("pitch diameter " + core::format_number(s.pulleys[i].pitch_diameter_mm) +
+  for (const auto& ps : s.pulleys) {
+    if (!(ps.pitch_diameter_mm / 2.0 > s.belt.height_mm))  // the belt wraps every pulley with its bottom inside
+      throw InputError("pitch diameter " + core::format_number(ps.pitch_diameter_mm) +
                            " mm: a pitch radius at or below the belt's height (" + core::format_number(s.belt.height_mm) +
                            " mm) puts the belt's bottom at or beyond the pulley's centre",
-                       s.path, 0, 0, "drive.pulleys[" + std::to_string(i) + "].pitch_diameter_mm");
-  for (const auto& ps : s.pulleys) {
+                       s.path, 0, 0, "drive.pulleys[" + std::to_string(pulleys.size()) + "].pitch_diameter_mm");
     belt::Pulley p;
     p.name = ps.name;
     p.pitch_radius_mm = ps.pitch_diameter_mm / 2.0;

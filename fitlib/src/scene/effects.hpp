@@ -4,10 +4,15 @@
 #include <optional>
 #include <string>
 
+#include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/scene/planner.hpp"
 
 namespace fitlib::scene::detail {
+
+// The card of a [belt.materials] role, refused where its temperature law has no material at the
+// scene's temperature (card::require_material_at, key conditions.temperature_C) (drive_setup.cpp).
+card::Card material_card(const Scene& scene, const std::string& role);
 
 // Belt mechanics (belt_effects.cpp).
 ViscoelasticTension viscoelastic_tension(const belt::DriveCase& drive, bool inertia);

@@ -99,8 +99,7 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   options.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
-      const card::Card c = card::load_card(s.materials.at(roles[k]));
-      card::require_material_at(c, s.materials.at(roles[k]), s.temperature_C, s.path, "conditions.temperature_C");
+      const card::Card c = material_card(s, roles[k]);
       points[k] = segment::role_point(*c.model(), c.values(), options);
     } else {
       const segment::IsotropicElastic e = s.segment ? s.segment->setup.materials[k] : segment::IsotropicElastic{};

@@ -522,8 +522,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     out.equilibrium_error = std::max(out.equilibrium_error, (reactions + applied).norm() / scale);
     out.max_cord_reaction_N_mm = std::max(out.max_cord_reaction_N_mm, cord.norm());
     IncrementLoads q{tau * period, std::max(0.0, tau - 1.0) * h.length_mm(), cord, applied};
-    for (int e = 0; e < m.element_count(); ++e) {  // radial: along the outward normal at the element's centre
-      const Eigen::Vector2d flank = s.following_N_mm.empty() ? Eigen::Vector2d::Zero() : s.following_N_mm[e];
+    for (int e = 0; !s.following_N_mm.empty() && e < m.element_count(); ++e) {  // radial: along the outward normal at the element's centre
+      const Eigen::Vector2d& flank = s.following_N_mm[e];
       if (forces[e].isZero(0.0) && flank.isZero(0.0)) continue;
       const double phi = curve.at(curve.s_from_unstrained(centre_x[e])).phi_rad;
       const Eigen::Vector2d n(std::sin(phi), std::cos(phi));

@@ -103,7 +103,8 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   double left_end_longitudinal_N_mm = 0.0, rubber_section_N_mm = 0.0;
   double left_inertia_longitudinal_N_mm = 0.0;  // Σ m·a of the left half's nodes (SolverKnobs::inertia)
   // Radial totals (along the cord curve's outward normal at each element's centre) of Report I's
-  // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CycleKnobs::flank_stiffness_N_mm4).
+  // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CycleKnobs::flank_stiffness_N_mm4;
+  // both 0 when the foundation is off: they feed flank_shares only).
   double contact_radial_N_mm = 0.0, flank_radial_N_mm = 0.0;
   bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
