@@ -45,6 +45,7 @@ void register_belt(CLI::App& app) {
                   << " deg of " << p.wrap_rad * 57.29577951308232 << " deg (" << p.arc_method << ")\n";
     for (const auto& o : result.plan.unavailable_outputs)
       warning("output '" + o + "' is not available in this version (not run)");
+    for (const auto& w : result.warnings) warning(w);
     for (const auto& f : files) std::cout << "wrote " << f << "\n";
   });
 }

@@ -233,3 +233,41 @@ TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereWhyAndWhatRuns) {
   EXPECT_EQ(r.err.find("nan"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
 }
+
+// A shear Prony card without a bulk modulus (the README tour's card, one isotherm at 23 °C) in a
+// drive at 80 °C: the scene converts it as eval and export do (K from G0 and [belt.materials]
+// poisson_ratio, which the segment's K follows), and warns that it reads the card beyond its data
+// window, in the table and in life.json (docs/decisions.md "Scenes: a card without a bulk modulus").
+TEST(LifeCli, ShearCardWithoutBulkModulusRunsByThePoissonRatioAndWarnsBeyondItsDataWindow) {
+  const std::string table = unique_dir("life_shear_table") + ".csv";
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,storage_MPa,loss_MPa\n"
+                          "shear,0.1,23,2.0,0.15\nshear,0.3,23,2.1,0.25\nshear,1,23,2.3,0.38\nshear,3,23,2.6,0.50\n"
+                          "shear,10,23,3.0,0.52\nshear,30,23,3.3,0.45\nshear,100,23,3.5,0.35\n";
+  const std::string card = unique_dir("life_shear_card") + ".json";
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms 3 --out " + card).exit_code, 0);
+  auto run = [&](const std::string& poisson) {
+    const std::string scene = unique_dir("life_shear" + std::to_string(poisson.size())) + ".toml";
+    std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-light.toml")) << "\n[belt.materials]\nbottom = \""
+                         << card << "\"\ncushion = \"" << card << "\"\n" << poisson
+                         << "\n[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\nend_pitches = 1\n"
+                            "cushion_rows = 1\n[life]\nfidelity = \"elastic\"\ncycles = 2\n";
+    return run_fitcli("life --scene " + scene + " --out-dir " + unique_dir("life_shear_out") + " --json");
+  };
+  const auto r = run("");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["warnings"].size(), 2u) << r.out;  // bottom and cushion
+  for (const auto& w : j["warnings"])
+    for (const char* part : {"temperature_C 80 is outside its data window [23, 23]", "fit.data_window.temperature_C"})
+      EXPECT_NE(w.get<std::string>().find(part), std::string::npos) << w;
+  const double N1 = j["modes"][0]["life_cycles"], N2 = j["modes"][1]["life_cycles"];
+  EXPECT_TRUE(std::isfinite(N1) && std::isfinite(N2) && N1 > 0.0 && N2 > 0.0) << r.out;
+  // The segment's bulk modulus follows the ratio: a compressible 0.45 moves the lives.
+  const auto compressible = run("poisson_ratio = 0.45");
+  ASSERT_EQ(compressible.exit_code, 0) << compressible.err;
+  const auto jc = nlohmann::json::parse(compressible.out);
+  EXPECT_GT(std::abs(jc["modes"][0]["life_cycles"].get<double>() / N1 - 1.0), 0.01) << compressible.out;
+  const auto bad = run("poisson_ratio = 0.5");
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_NE(bad.err.find("belt.materials.poisson_ratio"), std::string::npos) << bad.err;
+}

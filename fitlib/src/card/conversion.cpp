@@ -40,6 +40,22 @@ std::complex<double> convert(std::complex<double> M, model::TestMode native, mod
 
 }  // namespace
 
+namespace {
+
+// The native instantaneous modulus the conversion starts from: a series' glassy modulus, else the
+// storage modulus `storage` at the condition (a uniaxial card's ν does not depend on it).
+double instantaneous_MPa(const model::Model& model, const std::vector<double>& p, double storage,
+                         model::TestMode asked) {
+  model::MaxwellSeries s;
+  if (model.maxwell_series(p.data(), &s)) return s.glassy();
+  if (model.native_mode() == model::TestMode::shear)
+    throw core::UsageError("a shear card that is not a Prony-type series cannot answer a " +
+                           std::string(model::to_string(asked)) + " test without a bulk modulus (fit with --bulk-modulus)");
+  return storage;
+}
+
+}  // namespace
+
 model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vector<double>& p,
                                      const model::TestCondition& c, double poisson_ratio) {
   const auto native = model.native_mode();
@@ -47,16 +63,20 @@ model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vecto
   model::TestCondition n = c;
   n.mode = native;
   const auto m = model.moduli(p.data(), n);
-  model::MaxwellSeries s;
-  double m0 = m.storage;  // a uniaxial card's ν does not depend on it
-  if (model.maxwell_series(p.data(), &s)) m0 = s.glassy();
-  else if (native == model::TestMode::shear)
-    throw core::UsageError("a shear card that is not a Prony-type series cannot answer a " +
-                           std::string(model::to_string(c.mode)) + " test without a bulk modulus (fit with --bulk-modulus)");
+  const double m0 = instantaneous_MPa(model, p, m.storage, c.mode);
   const auto e = elastic_constants(native, m0, std::nan(""), poisson_ratio);
   const auto M = convert({m.storage, m.loss}, native, c.mode, e);
   const auto mean = convert({m.mean, 0.0}, native, c.mode, e);
   return {M.real(), M.imag(), mean.real()};
+}
+
+double point_bulk_modulus_MPa(const model::Model& model, const std::vector<double>& p,
+                              const model::TestCondition& c, double poisson_ratio) {
+  if (!std::isnan(model.bulk_modulus(p.data()))) return std::nan("");
+  model::TestCondition n = c;
+  n.mode = model.native_mode();
+  const double m0 = instantaneous_MPa(model, p, model.moduli(p.data(), n).storage, model::TestMode::bulk);
+  return elastic_constants(n.mode, m0, std::nan(""), poisson_ratio).bulk_MPa;
 }
 
 }  // namespace fitlib::card

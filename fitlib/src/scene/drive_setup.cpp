@@ -7,6 +7,8 @@
 
 #include "fitlib/belt/stiffness.hpp"
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
+#include "fitlib/card/data_window.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
@@ -19,25 +21,38 @@ namespace {
 using core::InputError;
 using core::kPi;
 
-double storage_modulus_MPa(const card::Card& c, const std::string& role, const char* orientation,
-                           double f_Hz, double amplitude, double T_C) {
+// A shear card without a bulk modulus answers by the conversion eval and export use (K from its
+// instantaneous modulus and [belt.materials] poisson_ratio).
+double storage_modulus_MPa(const Scene& s, const card::Card& c, const std::string& role, const char* orientation,
+                           double f_Hz, double amplitude, std::vector<std::string>& warnings) {
   try {
     const auto model = c.model();
-    const auto values = c.values();
     model::TestCondition tc;
     tc.mode = model::TestMode::uniaxial;
     tc.orientation = orientation;
     tc.frequency_Hz = f_Hz;
-    tc.temperature_C = T_C;
+    tc.temperature_C = s.temperature_C;
     tc.strain_amplitude = amplitude;
-    return model->moduli(values.data(), tc).storage;
-  } catch (const std::exception& e) {  // e.g. a shear card asked for a uniaxial modulus
+    detail::card_window_warnings(s, role, c, tc, warnings);
+    return card::moduli_in_mode(*model, c.values(), tc, s.material_poisson_ratio).storage;
+  } catch (const std::exception& e) {  // e.g. a shear card that is not a Prony-type series
     throw InputError(std::string("card cannot give the uniaxial storage modulus the belt needs: ") + e.what(),
                      {}, 0, 0, "belt.materials." + role);
   }
 }
 
 }  // namespace
+
+void detail::card_window_warnings(const Scene& s, const std::string& role, const card::Card& c,
+                                  const model::TestCondition& at, std::vector<std::string>& warnings) {
+  for (const card::WindowExcess& e : card::outside_data_window(c, at)) {
+    const std::string w = "card " + s.materials.at(role) + " (" + role + "): " + e.quantity + " " +
+                          core::format_number(e.value) + " is outside its data window [" + core::format_number(e.low) +
+                          ", " + core::format_number(e.high) + "] (fit." + "data_window." + e.key +
+                          "): the scene extrapolates the card there";
+    if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
+  }
+}
 
 card::Card detail::material_card(const Scene& s, const std::string& role) {
   const std::string& path = s.materials.at(role);
@@ -58,7 +73,7 @@ Stiffness resolve_stiffness(const Scene& s) {
   // Cord data at ε_a = 0.0025, 5 Hz (Report I §6.1): c = A_c E′.
   std::tie(k.c_N, k.c_source) =
       s.c_N ? std::make_pair(*s.c_N, std::string("belt.stiffness.c_N"))
-      : cord ? std::make_pair(s.cord_area_mm2 * storage_modulus_MPa(*cord, "cord", "", 5.0, 0.0025, T),
+      : cord ? std::make_pair(s.cord_area_mm2 * storage_modulus_MPa(s, *cord, "cord", "", 5.0, 0.0025, k.warnings),
                               "card " + s.materials.at("cord") + " (A_c E', 5 Hz, 0.0025)")
              : std::make_pair(belt::cord_stiffness_N(T, s.cord_area_mm2), std::string("Fritzson (6.1), E1 = 100 MPa"));
   double E33 = 0.0;
@@ -66,7 +81,7 @@ Stiffness resolve_stiffness(const Scene& s) {
     k.k1_MPa = *s.k1_MPa, k.k1_source = "belt.stiffness.k1_MPa";
   } else {
     if (bottom) {
-      E33 = storage_modulus_MPa(*bottom, "bottom", "33", 34.0, 0.005, T);
+      E33 = storage_modulus_MPa(s, *bottom, "bottom", "33", 34.0, 0.005, k.warnings);
       k.k1_source = "card " + s.materials.at("bottom") + " (E33', 34 Hz, 0.005) and (A.37)";
     } else {
       E33 = belt::axial_modulus_MPa(T);
@@ -76,7 +91,7 @@ Stiffness resolve_stiffness(const Scene& s) {
   }
   std::tie(k.EI_Nmm2, k.EI_source) =
       s.EI_Nmm2 ? std::make_pair(*s.EI_Nmm2, std::string("belt.stiffness.EI_Nmm2"))
-      : bottom  ? std::make_pair(s.bending_inertia_mm4 * storage_modulus_MPa(*bottom, "bottom", "22", 34.0, 0.045, T),
+      : bottom  ? std::make_pair(s.bending_inertia_mm4 * storage_modulus_MPa(s, *bottom, "bottom", "22", 34.0, 0.045, k.warnings),
                                  "card " + s.materials.at("bottom") + " (I E22', 34 Hz, 0.045)")
                 : std::make_pair(belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 /
                                      belt::FritzsonConstants::bending_inertia_mm4,
@@ -181,7 +196,7 @@ belt::RetardationSpectrum scene_spectrum(const Scene& s, const std::string& spec
 
 double drive_kappa(const Scene& scene) {
   // Geometry only: the stiffness does not enter.
-  const belt::DriveCase d = make_drive(scene, Stiffness{1.0, 1.0, 0.0, "", "", ""});
+  const belt::DriveCase d = make_drive(scene, Stiffness{1.0, 1.0, 0.0, "", "", "", {}});
   const std::size_t i = belt::driver_index(d.geometry);
   return d.geometry.spans[i].center_distance_mm / d.geometry.pulleys[i].pitch_radius_mm;
 }

@@ -13,6 +13,11 @@ namespace fitlib::scene::detail {
 // The card of a [belt.materials] role, refused where its temperature law has no material at the
 // scene's temperature (card::require_material_at, key conditions.temperature_C) (drive_setup.cpp).
 card::Card material_card(const Scene& scene, const std::string& role);
+// Adds (once each) a warning per quantity of `at` beyond the role's card's data window, as eval
+// would refuse it without --allow-extrapolation (docs/decisions.md "Scenes: cards beyond their
+// data window warn").
+void card_window_warnings(const Scene& scene, const std::string& role, const card::Card& card,
+                          const model::TestCondition& at, std::vector<std::string>& warnings);
 
 // Belt mechanics (belt_effects.cpp).
 ViscoelasticTension viscoelastic_tension(const belt::DriveCase& drive, bool inertia);

@@ -9,6 +9,7 @@
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
 #include "fitlib/segment/point_law.hpp"
 
 #include <algorithm>
@@ -88,9 +89,10 @@ InputFile file_input(const std::string& role, const std::string& path, const std
 
 // The segment levels (docs/segment.md "Loading"): materials per role from the scene's cards at
 // the level's fidelity (elastic: storage stiffness at the scene's temperature and the belt's load
-// frequency), or the [segment] table's E and nu when the scene gives no cards.
+// frequency; a card without a bulk modulus gets the K of [belt.materials] poisson_ratio, as the
+// belt's stiffness does), or the [segment] table's E and nu when the scene gives no cards.
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
-                                                         const std::string& fidelity) {
+                                                         const std::string& fidelity, std::vector<std::string>& warnings) {
   std::array<model::MaterialPointPtr, 2> points;
   const char* roles[2] = {"bottom", "cushion"};
   segment::RoleMaterialOptions options;
@@ -100,7 +102,18 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
       const card::Card c = material_card(s, roles[k]);
-      points[k] = segment::role_point(*c.model(), c.values(), options);
+      model::TestCondition at;
+      at.temperature_C = options.temperature_C, at.frequency_Hz = options.frequency_Hz;
+      model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
+      if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
+      card_window_warnings(s, roles[k], c, seen, warnings);
+      try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
+        options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*c.model(), c.values(), at, s.material_poisson_ratio);
+        points[k] = segment::role_point(*c.model(), c.values(), options);
+      } catch (const core::UsageError& e) {
+        throw core::InputError(std::string("card ") + s.materials.at(roles[k]) + ": " + e.what(), s.path, 0, 0,
+                               std::string("belt.materials.") + roles[k]);
+      }
     } else {
       const segment::IsotropicElastic e = s.segment ? s.segment->setup.materials[k] : segment::IsotropicElastic{};
       points[k] = model::make_material_point(*model::make_model("elastic-iso", nlohmann::json::object()),
@@ -162,7 +175,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
-    setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity);
+    setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings);
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;

@@ -55,7 +55,10 @@ Effect refinement(const std::string& name, bool belt::LoadCycleEffects::*on) {
 std::vector<Effect> make_registry() {
   std::vector<Effect> reg;
   reg.push_back({"stiffness", "stiffness", kOneRun, {}, "", always({}), "", nullptr, {},
-                 timed([](const Scene& s, SceneResult& r) { r.stiffness = resolve_stiffness(s); })});
+                 timed([](const Scene& s, SceneResult& r) {
+                   r.stiffness = resolve_stiffness(s);
+                   r.warnings = r.stiffness->warnings;
+                 })});
   reg.push_back({"drive", "drive", kOneRun, {}, "", always({"stiffness"}), "", nullptr, {},
                  timed([](const Scene& s, SceneResult& r) { r.drive = make_drive(s, *r.stiffness); })});
   reg.push_back({"contact_arcs", "cycle", "best of three load cycles, its refinements included",

@@ -382,9 +382,13 @@ void parse_belt(Scene& s, Reader& top, const std::filesystem::path& base, const 
   apply_section(s, br);
   if (const toml::table* mt = br.table("materials")) {
     Reader mr(*mt, "belt.materials", source);
-    mr.allow({"bottom", "cushion", "cord"});
+    mr.allow({"bottom", "cushion", "cord", "poisson_ratio"});
     for (const char* role : {"bottom", "cushion", "cord"})
       if (auto p = mr.string(role)) s.materials[role] = scene_relative(base, *p);
+    s.material_poisson_ratio = mr.number_or("poisson_ratio", s.material_poisson_ratio, 0.0, 0.5);
+    if (!(s.material_poisson_ratio < 0.5))  // K = 2G0(1 + ν)/(3(1 − 2ν)) is then infinite
+      mr.fail("poisson_ratio", "must be below 0.5 (a card without a bulk modulus gets K from it; an incompressible "
+                               "card needs its own bulk modulus: fit with --bulk-modulus)");
     mr.finish();
   }
   if (const toml::table* st = br.table("stiffness")) {

@@ -246,6 +246,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
         << " % one peak carried by " << m.dominant_peak_samples << " sample(s): the increments may miss its top, and the life "
         << "moves with the peak to the life exponent's power (docs/segment.md \"The driver exit's "
            "peel transient\")\n";
+  for (const std::string& w : r.warnings) o << "WARNING: " << w << "\n";
   for (const FieldFile& f : l.fields)
     o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";
   o << "inputs:\n";
@@ -282,6 +283,7 @@ json summary_json(const Scene& s, const SceneResult& r, bool wall_times) {
   if (r.cvt) j["cvt_thrust"] = cvt_json(*r.cvt);
   if (r.tension_test) j["tension_test"] = tension_test_json(*r.tension_test);
   if (r.life) j["life"] = life_summary_json(*r.life);
+  if (!r.warnings.empty()) j["warnings"] = r.warnings;
   return j;
 }
 
@@ -293,6 +295,7 @@ json life_json(const Scene& s, const SceneResult& r, bool wall_times) {
   j["temperature_C"] = s.temperature_C;
   j["effects"] = effects_json(r.plan, wall_times);
   if (wall_times) j["total_wall_s"] = r.total_wall_s;
+  if (!r.warnings.empty()) j["warnings"] = r.warnings;
   return j;
 }
 

@@ -1,4 +1,5 @@
 // Scene parsing and validation, the planner (only the effects the outputs need run), the outputs.
+#include <complex>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -234,8 +235,28 @@ TEST(Stiffness, FromMaterialCards) {
   s.materials.clear();
   const auto f = scene::resolve_stiffness(s);
   EXPECT_NEAR(f.EI_Nmm2, belt::bending_stiffness_Nmm2(80.0), 1e-9);
-  // A shear-only card cannot give E33: an InputError naming the material.
-  s.materials = {{"bottom", write_card("fitlib_shear.json", "zener3", nlohmann::json::object(), zener)}};
+  // A shear card without a bulk modulus gives E33 as eval and export convert it: K from its glassy
+  // G0 and [belt.materials] poisson_ratio, E* = 9KG*/(3K + G*) (closed form, G0 read at 1e12 Hz).
+  const std::string shear = write_card("fitlib_shear.json", "zener3", nlohmann::json::object(), zener);
+  s.materials = {{"bottom", shear}};
+  for (const double nu : {0.4995, 0.45}) {
+    s.material_poisson_ratio = nu;
+    auto shear_modulus = [&](double f_Hz) {
+      const auto c = card::load_card(shear);
+      model::TestCondition tc;
+      tc.frequency_Hz = f_Hz;
+      tc.temperature_C = s.temperature_C;
+      const auto m = c.model()->moduli(c.values().data(), tc);
+      return std::complex<double>(m.storage, m.loss);
+    };
+    const double K = 2.0 * shear_modulus(1e12).real() * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu));
+    const std::complex<double> G = shear_modulus(34.0), E = 9.0 * K * G / (3.0 * K + G);
+    const auto k_shear = scene::resolve_stiffness(s);
+    EXPECT_NEAR(k_shear.EI_Nmm2, 834.0 * E.real(), 1e-6 * k_shear.EI_Nmm2) << "nu " << nu;
+  }
+  // A shear card that is not a Prony-type series has no G0: an InputError naming the material.
+  s.materials = {{"bottom", write_card("fitlib_fz.json", "fractional-zener", nlohmann::json::object(),
+                                       {1.0, 10.0, 0.01, 0.5})}};
   try {
     scene::resolve_stiffness(s);
     FAIL();

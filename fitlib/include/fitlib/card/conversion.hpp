@@ -10,6 +10,10 @@
 
 namespace fitlib::card {
 
+// The Poisson ratio of a card's instantaneous response where it has no bulk modulus: K ≈ 10³ G
+// (docs/decisions.md, "exports: what each FE format receives"); eval, export and scenes share it.
+inline constexpr double kDefaultPoissonRatio = 0.4995;
+
 // Instantaneous elastic constants of a linear card.
 struct ElasticConstants {
   double young0_MPa = 0.0, shear0_MPa = 0.0, bulk_MPa = 0.0, poisson = 0.0;
@@ -26,5 +30,11 @@ ElasticConstants elastic_constants(model::TestMode native, double instantaneous_
 // shear card that is not a Prony-type series, whose G₀ is then unknown).
 model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vector<double>& values,
                                      const model::TestCondition& c, double poisson_ratio);
+
+// The bulk modulus K (MPa) a material point of the card needs by the same rule: NaN when the card
+// holds its own K (the point takes it), else elastic_constants' K from the instantaneous modulus
+// (a series' glassy one; otherwise the storage at `c`, uniaxial cards only, UsageError for shear).
+double point_bulk_modulus_MPa(const model::Model& model, const std::vector<double>& values,
+                              const model::TestCondition& c, double poisson_ratio);
 
 }  // namespace fitlib::card

@@ -7,13 +7,14 @@
 #include <vector>
 
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
 
 namespace fitlib::card {
 
 struct ExportOptions {
   // Poisson ratio of the instantaneous elastic response where the card has no bulk modulus.
   // Default 0.4995 ⇔ K ≈ 10³ G (docs/decisions.md, "exports: what each FE format receives").
-  double poisson_ratio = 0.4995;
+  double poisson_ratio = kDefaultPoissonRatio;
   int material_id = 1;
   // Mass density in t/mm³ (consistent with MPa, mm, s; rubber ≈ 1.2e-9), LS-DYNA's RO. The card
   // holds none and RO = 0 stops an explicit LS-DYNA run, so the LS-DYNA export refuses without it.

@@ -49,6 +49,7 @@ struct Plan {
 struct Stiffness {
   double c_N = 0.0, k1_MPa = 0.0, EI_Nmm2 = 0.0;
   std::string c_source, k1_source, EI_source;
+  std::vector<std::string> warnings;  // cards read beyond their data windows (scene::card_window_warnings)
 };
 
 // Strain-accumulation map (Zupancic–Emri) over angular velocity × cycles.
@@ -135,6 +136,9 @@ struct SceneResult {
   std::vector<FieldFile> segment_fields;
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
+  // Inputs used beyond what they vouch for: a card evaluated outside its data window (the
+  // stiffness's and the segment materials' conditions). Printed and in the JSON when any.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace fitlib::scene

@@ -10,6 +10,7 @@
 
 #include "fitlib/belt/drive.hpp"
 #include "fitlib/belt/load_cycle.hpp"
+#include "fitlib/card/conversion.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
 #include "fitlib/segment/static_case.hpp"
 
@@ -103,6 +104,9 @@ struct Scene {
   std::map<std::string, double> extra_geometry_mm;  // cog_pitch_mm, cog_depth_mm, ... (kept)
   std::optional<double> c_N, k1_MPa, EI_Nmm2;        // [belt.stiffness] overrides
   std::map<std::string, std::string> materials;      // role → card path (resolved)
+  // [belt.materials] poisson_ratio: a card without a bulk modulus gets K from its instantaneous
+  // modulus and this ν, as in eval and export (card/conversion.hpp).
+  double material_poisson_ratio = card::kDefaultPoissonRatio;
   // [conditions]
   double temperature_C = 20.0;
   double friction = 0.8;
