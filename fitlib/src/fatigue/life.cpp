@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/fatigue/crack_plane.hpp"
 
@@ -111,7 +112,8 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
     add_damage(m.shares, pk.pulley, term / m.temperature_factor);
   }
   if (m.sum_terms > 0.0) {
-    m.dominant_peak_share = std::pow(m.peaks[dominant].stress_MPa / law.sigma0_MPa, law.n) / m.sum_terms;
+    m.largest_peak_over_sigma0 = m.peaks[dominant].stress_MPa / law.sigma0_MPa;
+    m.dominant_peak_share = std::pow(m.largest_peak_over_sigma0, law.n) / m.sum_terms;
     m.life_cycles = m.temperature_factor / m.sum_terms;
     if (c.cycles_per_hour > 0.0) m.life_h = m.life_cycles / c.cycles_per_hour;
   }
@@ -122,6 +124,18 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
 
 bool peak_under_resolved(const ModeLife& m) {
   return m.dominant_peak_share > 0.9 && m.dominant_peak_samples < 3;
+}
+
+std::vector<std::string> life_warnings(const LifeReport& r) {
+  std::vector<std::string> out;
+  for (const ModeLife& m : r.modes)
+    if (m.life_cycles < kShortestReadableLife_cycles)
+      out.push_back(std::string("the ") + to_string(m.mode) + " life, " + core::format_number(m.life_cycles, 4) +
+                    " load cycles, is below " + core::format_number(kShortestReadableLife_cycles) +
+                    ": its largest peak is " + core::format_number(m.largest_peak_over_sigma0, 3) +
+                    " x sigma0, and the life law (6.31) was fitted to belts that ran for hours; read it as "
+                    "failure at once, not as a number (are the cards a belt rubber's at this temperature?)");
+  return out;
 }
 
 std::vector<double> cycle_peaks_MPa(const PointHistory& p, double crack_sweep_deg,

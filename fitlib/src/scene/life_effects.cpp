@@ -218,6 +218,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
+  for (std::string& w : fatigue::life_warnings(life.report)) r.warnings.push_back(std::move(w));
   life.equilibrium = r.segment_equilibrium;
   life.fields = r.segment_fields;
   r.life = std::move(life);

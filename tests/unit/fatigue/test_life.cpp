@@ -42,6 +42,27 @@ TEST(Life, OnePeakAtTheReferenceTemperatureIsTheInversePowerLaw) {
   EXPECT_EQ(r.governing, "radial_crack");
 }
 
+// A life below 1000 cycles is a warning naming the mode, the life and the peak over σ0: one peak
+// of σ0·1000^(−1/n)·(1 ± 1 %) sits just above and just below the threshold (N = (σ0/σ)ⁿ).
+TEST(Life, ALifeBelowAThousandCyclesIsAWarningAndOneAboveIsNot) {
+  const FatigueCard card = default_card();
+  const double at_threshold = 104.218 * std::pow(kShortestReadableLife_cycles, -1.0 / 4.423);
+  for (const double f : {1.01, 0.99}) {
+    const LifeReport r = evaluate_life({point("a", Role::bottom, {0, f * at_threshold, 0})}, card,
+                                       at(card.reference_temperature_C));
+    const auto warnings = life_warnings(r);
+    EXPECT_NEAR(r.modes[0].largest_peak_over_sigma0, f * at_threshold / 104.218, 1e-13);
+    if (f > 1.0) {
+      ASSERT_EQ(warnings.size(), 1u);
+      EXPECT_LT(r.life_cycles, kShortestReadableLife_cycles);
+      for (const char* part : {"radial_crack life", "below 1000", "x sigma0", "failure at once"})
+        EXPECT_NE(warnings[0].find(part), std::string::npos) << part << " in " << warnings[0];
+    } else {
+      EXPECT_TRUE(warnings.empty()) << r.life_cycles;
+    }
+  }
+}
+
 TEST(Life, TemperatureFactorIsExactlyTwoToTheMinusBDeltaT) {
   const FatigueCard card = default_card();
   for (Role role : {Role::bottom, Role::cushion}) {
