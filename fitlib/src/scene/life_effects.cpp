@@ -276,7 +276,8 @@ LifePlan choose_life_plan(const Scene& s) {
   // drives (docs/segment.md "Cost").
   return {"elastic", "default: " + why + " (about 1 s); "
                      "[life] fidelity = \"complete\" runs the full card models (about 5 s on the light drive; "
-                     "the load path folds on the medium and heavy reference drives: docs/segment.md), \"beam\" the layered "
+                     "with the damage model's cards the load path folds on the medium and heavy reference drives: "
+                     "docs/segment.md), \"beam\" the layered "
                      "section (milliseconds)"};
 }
 
