@@ -152,6 +152,13 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
                          " degC, where eval and scenes refuse the card: " + why);
     break;
   }
+  // As many free parameters as residuals: the card passes through the points whatever it is, so
+  // its small errors vouch for nothing (docs/decisions.md "Quality: no residual degrees of freedom").
+  if (problem.num_free() >= problem.num_residuals())
+    v.warnings.push_back("the data do not determine the card: " + std::to_string(problem.num_residuals()) +
+                         " residuals for " + std::to_string(problem.num_free()) +
+                         " free parameters, so it reproduces the points whatever it is between and beyond them; "
+                         "measure more frequencies or temperatures, or fit fewer terms");
   if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
     std::ostringstream s;
     s << "data not Kramers-Kronig consistent between " << kk.lo_Hz << " and " << kk.hi_Hz

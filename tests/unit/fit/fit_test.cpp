@@ -232,6 +232,26 @@ TEST(ShiftLawVerdict, LawThatMissesTheShiftsWarns) {
   EXPECT_FALSE(missed.quality.acceptable());
 }
 
+// A card with as many free parameters as residuals reproduces the points whatever it is: the verdict
+// warns (not acceptable) although its errors are round-off; one more frequency than parameters needs
+// clears it (docs/decisions.md "Quality: no residual degrees of freedom").
+TEST(QualityVerdict, NoResidualDegreesOfFreedomIsAWarning) {
+  const auto model = fitlib::fit::testing::prony(1);  // G_inf, G_1, tau_1
+  const auto p = fitlib::fit::testing::prony_parameters(1.0, {2.0}, {0.1});
+  const auto warned = [](const fitlib::fit::FitResult& r) {
+    return std::any_of(r.quality.warnings.begin(), r.quality.warnings.end(), [](const std::string& w) {
+      return w.find("the data do not determine the card") != std::string::npos;
+    });
+  };
+  const auto one = fitlib::fit::testing::synthetic_table(*model, p, {1.0}, 0.0, 1);  // 2 residuals, 3 free
+  const fitlib::fit::FitResult under = fitlib::fit::fit(fitlib::fit::testing::prony(1), one, {});
+  EXPECT_TRUE(warned(under));
+  EXPECT_FALSE(under.quality.acceptable());
+  const auto two = fitlib::fit::testing::synthetic_table(*model, p, {0.3, 3.0}, 0.0, 1);  // 4 residuals
+  const fitlib::fit::FitResult enough = fitlib::fit::fit(fitlib::fit::testing::prony(1), two, {});
+  EXPECT_FALSE(warned(enough));
+}
+
 // A fractional Zener fitted to a power law seen over three decades (no plateau in the window):
 // its central time and modulus stay inside the admissible window (docs/fitting.md "Admissible
 // terms") instead of running to τ = 1e-10 s with E_delta 40× the largest measured storage.
