@@ -54,6 +54,23 @@ void detail::card_window_warnings(const Scene& s, const std::string& role, const
   }
 }
 
+// c and k1 must be positive: the key named is where the value came from (a card's role, an
+// override, or the scene's temperature for the Fritzson laws).
+static void require_positive_stiffness(const Scene& s, const Stiffness& k) {
+  const std::tuple<const char*, double, const std::string&, const char*, const char*> checks[] = {
+      {"c", k.c_N, k.c_source, "cord", "belt.stiffness.c_N"},
+      {"k1", k.k1_MPa, k.k1_source, "bottom", "belt.stiffness.k1_MPa"}};
+  for (const auto& [name, value, source, role, override_key] : checks) {
+    if (value > 0.0 && std::isfinite(value)) continue;
+    const std::string key = source.rfind("card ", 0) == 0        ? std::string("belt.materials.") + role
+                            : source.rfind("belt.stiffness", 0) == 0 ? std::string(override_key)
+                                                                      : std::string("conditions.temperature_C");
+    throw InputError(std::string("belt stiffness ") + name + " = " + core::format_number(value) + " is not positive at " +
+                         core::format_number(s.temperature_C) + " degC (from " + source + ")",
+                     s.path, 0, 0, key);
+  }
+}
+
 card::Card detail::material_card(const Scene& s, const std::string& role) {
   const std::string& path = s.materials.at(role);
   card::Card c = card::load_card(path);
@@ -96,10 +113,15 @@ Stiffness resolve_stiffness(const Scene& s) {
                 : std::make_pair(belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 /
                                      belt::FritzsonConstants::bending_inertia_mm4,
                                  std::string("Fritzson (6.5), E0 = 10 MPa"));
-  for (double v : {k.c_N, k.k1_MPa})
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError("belt stiffness from the material cards is not positive at " +
-                           std::to_string(T) + " degC", s.path, 0, 0, "belt.materials");
+  require_positive_stiffness(s, k);
+  using F = belt::FritzsonConstants;
+  const bool laws = k.c_source.rfind("Fritzson", 0) == 0 || k.k1_source.rfind("Fritzson", 0) == 0 ||
+                    k.EI_source.rfind("Fritzson", 0) == 0;
+  if (laws && (T < F::tested_low_C || T > F::tested_high_C))
+    k.warnings.push_back("the Fritzson stiffness laws (6.1, 6.4, 6.5) are straight lines through tests from " +
+                         core::format_number(F::tested_low_C) + " to about " + core::format_number(F::tested_high_C) +
+                         " degC; at " + core::format_number(T) + " degC they are extrapolated (E33 of (6.4) is zero at "
+                         "115.8 degC): name bottom and cord cards under [belt.materials] or give [belt.stiffness]");
   return k;
 }
 

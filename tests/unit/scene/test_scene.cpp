@@ -265,6 +265,33 @@ TEST(Stiffness, FromMaterialCards) {
   }
 }
 
+// The Fritzson laws are straight lines through tests up to about 100 °C: beyond, a warning; where
+// (6.4) has passed zero (115.8 °C), exit 3 naming the scene's temperature, the value and its source.
+TEST(Stiffness, FritzsonLawsWarnBeyondTheirTestsAndStopWhereTheyPassZero) {
+  auto s = scene::load_scene(kData + "minimal.toml");
+  s.c_N.reset(), s.k1_MPa.reset(), s.EI_Nmm2.reset(), s.materials.clear();
+  for (const double T : {20.0, 80.0, 100.0}) {
+    s.temperature_C = T;
+    EXPECT_TRUE(scene::resolve_stiffness(s).warnings.empty()) << T;
+  }
+  s.temperature_C = 110.0;
+  const auto k = scene::resolve_stiffness(s);
+  ASSERT_EQ(k.warnings.size(), 1u);
+  EXPECT_NE(k.warnings[0].find("at 110 degC they are extrapolated"), std::string::npos) << k.warnings[0];
+  s.k1_MPa = 50.0;  // an override of the one law that fails keeps the others' warning, not the error
+  s.temperature_C = 120.0;
+  EXPECT_EQ(scene::resolve_stiffness(s).warnings.size(), 1u);
+  s.k1_MPa.reset();
+  try {
+    scene::resolve_stiffness(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "conditions.temperature_C");
+    for (const char* part : {"k1 = -54.1", "not positive at 120 degC", "Fritzson (6.4)"})
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << part << " in " << e.what();
+  }
+}
+
 TEST(Accumulation, SpectrumFromARetardationCard) {
   const std::string path = write_card("fitlib_ret.json", "retardation", {{"terms", 2}}, {1e-3, 2e-3, 5e-3, 0.01, 1.0});
   auto s = scene::load_scene(kData + "minimal.toml");

@@ -12,6 +12,9 @@ struct FritzsonConstants {
   static constexpr double E1_MPa = 100.0;
   static constexpr double cord_area_mm2 = 5.0;
   static constexpr double bending_inertia_mm4 = 834.0;  // EI = E0·834 at 20 °C (6.5)
+  // The laws below are straight lines through material tests from room temperature to about
+  // 100 °C (Report I L812–832, from Report V's tests); beyond, (6.4) falls to zero at 115.8 °C.
+  static constexpr double tested_low_C = 20.0, tested_high_C = 100.0;
 };
 
 // c = A_c E1 (76.6 + (102 − T)·0.52877)  (6.1), N.
