@@ -54,21 +54,14 @@ void detail::card_window_warnings(const Scene& s, const std::string& role, const
   }
 }
 
-// c and k1 must be positive: the key named is where the value came from (a card's role, an
-// override, or the scene's temperature for the Fritzson laws).
-static void require_positive_stiffness(const Scene& s, const Stiffness& k) {
-  const std::tuple<const char*, double, const std::string&, const char*, const char*> checks[] = {
-      {"c", k.c_N, k.c_source, "cord", "belt.stiffness.c_N"},
-      {"k1", k.k1_MPa, k.k1_source, "bottom", "belt.stiffness.k1_MPa"}};
-  for (const auto& [name, value, source, role, override_key] : checks) {
-    if (value > 0.0 && std::isfinite(value)) continue;
-    const std::string key = source.rfind("card ", 0) == 0        ? std::string("belt.materials.") + role
-                            : source.rfind("belt.stiffness", 0) == 0 ? std::string(override_key)
-                                                                      : std::string("conditions.temperature_C");
-    throw InputError(std::string("belt stiffness ") + name + " = " + core::format_number(value) + " is not positive at " +
-                         core::format_number(s.temperature_C) + " degC (from " + source + ")",
-                     s.path, 0, 0, key);
-  }
+// A stiffness must be positive; `key` is where its value came from (an override, a card's role, or
+// the scene's temperature for a Fritzson law).
+static void require_positive(const Scene& s, const char* name, double value, const std::string& source,
+                             const std::string& key) {
+  if (value > 0.0 && std::isfinite(value)) return;
+  throw InputError(std::string("belt stiffness ") + name + " = " + core::format_number(value) + " is not positive at " +
+                       core::format_number(s.temperature_C) + " degC (from " + source + ")",
+                   s.path, 0, 0, key);
 }
 
 card::Card detail::material_card(const Scene& s, const std::string& role) {
@@ -113,10 +106,14 @@ Stiffness resolve_stiffness(const Scene& s) {
                 : std::make_pair(belt::bending_stiffness_Nmm2(T) * s.bending_inertia_mm4 /
                                      belt::FritzsonConstants::bending_inertia_mm4,
                                  std::string("Fritzson (6.5), E0 = 10 MPa"));
-  require_positive_stiffness(s, k);
+  const auto key = [&](bool given, const char* given_key, bool card, const char* role) {
+    return given ? std::string(given_key) : card ? std::string("belt.materials.") + role : std::string("conditions.temperature_C");
+  };
+  require_positive(s, "c", k.c_N, k.c_source, key(s.c_N.has_value(), "belt.stiffness.c_N", cord.has_value(), "cord"));
+  require_positive(s, "k1", k.k1_MPa, k.k1_source,
+                   key(s.k1_MPa.has_value(), "belt.stiffness.k1_MPa", bottom.has_value(), "bottom"));
   using F = belt::FritzsonConstants;
-  const bool laws = k.c_source.rfind("Fritzson", 0) == 0 || k.k1_source.rfind("Fritzson", 0) == 0 ||
-                    k.EI_source.rfind("Fritzson", 0) == 0;
+  const bool laws = (!s.c_N && !cord) || (!s.k1_MPa && !bottom) || (!s.EI_Nmm2 && !bottom);
   if (laws && (T < F::tested_low_C || T > F::tested_high_C))
     k.warnings.push_back("the Fritzson stiffness laws (6.1, 6.4, 6.5) are straight lines through tests from " +
                          core::format_number(F::tested_low_C) + " to about " + core::format_number(F::tested_high_C) +

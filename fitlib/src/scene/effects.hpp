@@ -14,8 +14,8 @@ namespace fitlib::scene::detail {
 // scene's temperature (card::require_material_at, key conditions.temperature_C) (drive_setup.cpp).
 card::Card material_card(const Scene& scene, const std::string& role);
 // Adds (once each) a warning per quantity of `at` beyond the role's card's data window, as eval
-// would refuse it without --allow-extrapolation (docs/decisions.md "Scenes: cards beyond their
-// data window warn").
+// would refuse it without --allow-extrapolation (docs/decisions.md "Scenes: a card without a bulk
+// modulus converts as eval and export do; a card beyond its data window warns").
 void card_window_warnings(const Scene& scene, const std::string& role, const card::Card& card,
                           const model::TestCondition& at, std::vector<std::string>& warnings);
 
