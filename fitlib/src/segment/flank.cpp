@@ -59,10 +59,11 @@ namespace {
 
 // What the flank keeps: per element and integration point (rule order) the path position, the
 // reference depth and the committed slip; at the prepared λ the cord curve, its interval starts,
-// the levels per element, each point's expected foot and (stick) its column's cord point and tangent.
+// the levels per element, each point's expected foot and (stick, turn) its column's cord point and
+// tangent.
 struct FlankState {
   int points = 0;  // per element
-  bool history = false;  // stick or sliding direction: frames at every λ, offsets committed
+  bool stick = false, slide = false, history = false;  // history: either; frames at every λ, offsets committed
   std::vector<double> path_x, reference_depth, slip;
   std::vector<double> committed_offset, next_offset;  // along the cord from the column's cord point
   std::vector<double> next_slip;
@@ -94,7 +95,7 @@ StaticProblem::FollowingForce flank_contact(const Mesh& m, const std::vector<dou
   const auto rule = detail::gauss_rule(gauss_order(m, integration));
   const int npe = m.nodes_per_element;
   st->points = static_cast<int>(rule.size());
-  st->history = history;
+  st->stick = stick, st->slide = slide, st->history = history;
   double N[8], dxi[8], deta[8];
   std::vector<Eigen::Vector2d> reference;  // each point's reference position
   for (int e = 0; e < m.element_count(); ++e)
@@ -152,7 +153,7 @@ StaticProblem::FollowingForce flank_contact(const Mesh& m, const std::vector<dou
       }
   };
   f.at = [st](int e, int g, const Eigen::Vector2d& x, Eigen::Vector2d& b, Eigen::Matrix2d& db) {
-    const bool radial = st->radial(e), sticks = st->history && st->sticks(e), slides = st->history && st->slides(e);
+    const bool radial = st->radial(e), sticks = st->stick && st->sticks(e), slides = st->slide && st->slides(e);
     if (!radial && !sticks && !slides) return false;
     const std::size_t i = static_cast<std::size_t>(e) * st->points + g;
     if (radial) {
@@ -184,7 +185,7 @@ StaticProblem::FollowingForce flank_contact(const Mesh& m, const std::vector<dou
       const std::size_t i = static_cast<std::size_t>(e) * st->points + g;
       st->next_offset[i] = st->offset(i, x);
       st->next_time_s = st->levels.time_s;
-      st->next_slip[i] = flank_stick_point(st->offset(i, x), st->slip[i], st->sticks(e) ? st->levels.stick_N_mm4[e] : 0.0,
+      st->next_slip[i] = flank_stick_point(st->offset(i, x), st->slip[i], st->stick && st->sticks(e) ? st->levels.stick_N_mm4[e] : 0.0,
                                            st->levels.stick_limit_N_mm3[e])
                              .slip_after_mm;
       st->pending = true;

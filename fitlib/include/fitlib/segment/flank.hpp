@@ -17,7 +17,9 @@
 //     B_t = −k_t (w − w_s),   |B_t| ≤ (μ − μ_used) p 2/(B cos β)   (N/mm³, added to 6.6),
 // k_t = 12 G / B² (the width-mean of a layer sheared between flanks held in stick, G its shear
 // modulus); beyond the limit the point slips (return mapping, w_s committed per point). w = w_s
-// (no motion relative to the foot) leaves Report I's friction exactly.
+// (no motion relative to the foot) leaves Report I's friction exactly. Where the friction is fully
+// used (the sliding arcs) only its direction can change: the friction turns with the point's
+// velocity along the belt relative to its cord point (flank_slide_point below).
 #include <functional>
 #include <vector>
 
