@@ -37,7 +37,11 @@
 // fronts' increment spacing (0 = off); `bodyds=MM`: the body forces' sampling over each element
 // (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
 // (implicit dynamics, docs/segment.md "Inertia"); `flank=K`: the flank foundation's stiffness
-// (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `cycles=N`: load cycles (default 2); `field=PREFIX:MM[:MM…]`: the
+// (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
+// the tangential flank's stick stiffness (CycleKnobs::flank_stick_N_mm4, N/mm⁴; 0 = off;
+// docs/segment.md "Tangential flank"); `vflank=V0`: the sliding friction's direction with this floor of
+// the sliding speed (CycleKnobs::flank_slide_floor_mm_s, mm/s; 0 = off); `cycles=N`: load cycles (default 2); `loads=A:B`: print the load
+// cycle's samples over [A, B] mm of path (zone, p, γ, sliding speed, friction used); `field=PREFIX:MM[:MM…]`: the
 // stress field (VTK) when the middle first reaches each path position of the last cycle,
 // PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
 // default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
@@ -119,6 +123,7 @@ struct Probe {
   std::string csv{};                            // csv=PATH: the monitored histories
   std::string oracle{};                         // oracle=PATH: end shear from a long run's section= CSV
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
+  std::array<double, 2> loads{0.0, 0.0};        // loads=A:B: print the load cycle's samples over [A, B] mm first
   int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
   int krylov = -1;                              // krylov=N: SolverKnobs::krylov_iterations (< 0: the default)
   double krylov_tolerance = -1.0;               // ktol=X: SolverKnobs::krylov_tolerance (< 0: the default)
@@ -127,6 +132,8 @@ struct Probe {
   bool inertia = false;                         // SolverKnobs::inertia
   int cycles = 2;                               // cycles=N
   double flank = -1.0;                          // flank=K: CycleKnobs::flank_stiffness_N_mm4 (< 0: the setup's)
+  double tflank = -1.0;                         // tflank=K: CycleKnobs::flank_stick_N_mm4 (< 0: the setup's)
+  double vflank = -1.0;                         // vflank=V0: CycleKnobs::flank_slide_floor_mm_s (< 0: the setup's)
   std::string field_prefix{};                   // field=PREFIX:MM[:MM…]
   std::vector<double> field_at_mm{};
 };
@@ -216,6 +223,10 @@ Outcome run_probe(const Probe& pr) {
   const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
+  for (const belt::LoadSample& q : cycle.samples)  // loads=A:B: where the friction is used (the stick's limit)
+    if (pr.loads[1] > pr.loads[0] && q.s_mm >= pr.loads[0] && q.s_mm <= pr.loads[1])
+      std::printf("load s %.2f mm zone %s p %.4g MPa gamma %.1f deg slide %.4g mm/s friction used %.4g of %.4g\n", q.s_mm,
+                  belt::to_string(q.zone), q.p_MPa, q.gamma_rad * 180.0 / M_PI, q.slide_mm_s, q.friction_used, drive.friction);
   fatigue::SegmentLifeSetup setup;
   setup.section = scene::cog_section(s);
   if (pr.fillet_mm >= 0.0) setup.section.root_fillet_mm = pr.fillet_mm;
@@ -255,6 +266,8 @@ Outcome run_probe(const Probe& pr) {
   if (pr.krylov_tolerance > 0.0) setup.solver.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.flank >= 0.0) setup.cycle.flank_stiffness_N_mm4 = pr.flank;
+  if (pr.tflank >= 0.0) setup.cycle.flank_stick_N_mm4 = pr.tflank;
+  if (pr.vflank >= 0.0) setup.cycle.flank_slide_floor_mm_s = pr.vflank;
   if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -506,6 +519,8 @@ int main(int argc, char** argv) {
       if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
       if (a == "inertia") p.inertia = true;
       if (a.rfind("flank=", 0) == 0) p.flank = std::atof(a.c_str() + 6);
+      if (a.rfind("tflank=", 0) == 0) p.tflank = std::atof(a.c_str() + 7);
+      if (a.rfind("vflank=", 0) == 0) p.vflank = std::atof(a.c_str() + 7);
       if (a.rfind("cycles=", 0) == 0) p.cycles = std::atoi(a.c_str() + 7);
       if (a.rfind("field=", 0) == 0) {
         const std::string spec = a.substr(6);
@@ -520,6 +535,7 @@ int main(int argc, char** argv) {
       if (a.rfind("krylov=", 0) == 0) p.krylov = std::atoi(a.c_str() + 7);
       if (a.rfind("ktol=", 0) == 0) p.krylov_tolerance = std::atof(a.c_str() + 5);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
+      if (a.rfind("loads=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf", &p.loads[0], &p.loads[1]);
     }
     std::printf("%s", kProbeHeader);
     Outcome o;
@@ -538,6 +554,10 @@ int main(int argc, char** argv) {
     std::printf("flank foundation k %.4g N/mm^4: radial force against Report I's dead load (increments with >= half "
                 "its largest) largest %+.3g, mean %+.3g\n",
                 o.life.run.flank_stiffness_N_mm4, o.life.run.flank_radial_share, o.life.run.flank_radial_mean_share);
+    if (o.life.run.flank_stick_N_mm4 > 0.0 || p.vflank > 0.0)
+      std::printf("flank along the belt (stick k_t %.4g N/mm^4, sliding floor %.4g mm/s): largest longitudinal force %.3g "
+                  "of Report I's largest dead friction\n",
+                  o.life.run.flank_stick_N_mm4, p.vflank, o.life.run.flank_stick_share);
     const segment::MeshKnobs m = o.mesh;
     const segment::MeshQuality q = segment::mesh_quality(segment::build_mesh(scene::cog_section(probe_scene(p)), m));
     std::printf("mesh: fine %.3g mm, coarse %.3g mm, %d cushion rows, gap %.3g mm, column growth %.3g, row growth "

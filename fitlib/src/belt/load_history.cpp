@@ -14,7 +14,7 @@ LoadState mix(const LoadState& a, const LoadState& b, double w) {
   return {lerp(a.s_mm, b.s_mm),        lerp(a.t_s, b.t_s),         lerp(a.F_N, b.F_N),
           lerp(a.strain, b.strain),    lerp(a.K_1_mm, b.K_1_mm),   lerp(a.p_MPa, b.p_MPa),
           lerp(a.gamma_rad, b.gamma_rad), lerp(a.temperature_C, b.temperature_C),
-          lerp(a.friction_used, b.friction_used)};
+          lerp(a.friction_used, b.friction_used), lerp(a.slide_mm_s, b.slide_mm_s)};
 }
 
 }  // namespace
@@ -26,7 +26,7 @@ LoadHistory::LoadHistory(const LoadCycle& cycle, const BeltSection& belt, double
   if (!(belt.c_N > 0.0)) throw core::InputError("load history: the belt stiffness c must be > 0");
   for (const LoadSample& q : cycle.samples)
     samples_.push_back({q.s_mm, q.t_s, q.F_N, q.F_N / belt.c_N, q.K_1_mm, q.p_MPa, q.gamma_rad,
-                        temperature_C, q.friction_used});
+                        temperature_C, q.friction_used, q.slide_mm_s});
 }
 
 LoadState LoadHistory::at_position(double s_mm) const {

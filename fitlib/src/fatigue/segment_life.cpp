@@ -72,6 +72,7 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
   d.density_kg_m3 = drive.belt.density_kg_m3;
   d.speed_mm_s = drive.belt_speed_mm_s;
   d.temperature_C = setup.temperature_C;
+  d.friction = drive.friction;
   const segment::ContractLaw bottom(setup.materials[0]), cushion(setup.materials[1]);
   return segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, setup.cycle,
                             setup.extra_points);

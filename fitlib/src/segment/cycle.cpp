@@ -152,6 +152,10 @@ void flank_shares(CycleResult& run) {
       sum += share, ++count;
     }
   if (count) run.flank_radial_mean_share = sum / count;
+  double dead = 0.0, stick = 0.0;  // the stick's longitudinal total against the dead friction's
+  for (const IncrementLoads& q : run.loads)
+    dead = std::max(dead, std::abs(q.contact_longitudinal_N_mm)), stick = std::max(stick, std::abs(q.flank_longitudinal_N_mm));
+  run.flank_stick_share = dead > 0.0 ? stick / dead : 0.0;  // 0 without a law along the belt
 }
 
 double span_cord_share_bound(const CycleResult& run) {
@@ -377,18 +381,43 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(E
   };
 }
 
-// The flank foundation's stiffness per element at λ (segment/flank.hpp): k times the share of the
-// element's path extent in a sheave (p > 0), so it engages continuously as a pulley's entrance passes.
-std::function<void(double, std::vector<double>&)> flank_stiffness(ElementSampling sampling, const belt::LoadHistory& h,
-                                                                  double k_N_mm4, double T) {
-  return [=, &h](double lambda, std::vector<double>& k) {
+// The flank's levels per element at λ (segment/flank.hpp): the radial k and the stick's k_t times
+// the share of the element's path extent in a sheave (p > 0), so they engage continuously as a
+// pulley's entrance passes, and the stick's limit, the unused friction (μ − μ_used) p 2/(B cos β)
+// averaged over the extent (the area factor of 6.6).
+// The sliding friction's direction: Report I's friction (l, r) averaged over the extent and the
+// sliding speed, at least the floor V_0.
+std::function<void(double, FlankLevels&)> flank_levels(ElementSampling sampling, const CycleDrive& drive,
+                                                       const CycleKnobs& knobs, double T, std::function<double(double)> time_s) {
+  const belt::LoadHistory& h = *drive.history;
+  const double k = knobs.flank_stiffness_N_mm4, k_t = knobs.flank_stick_N_mm4, mu = drive.friction;
+  const double V0 = knobs.flank_slide_floor_mm_s;
+  const double area_factor = 2.0 / drive.width_mm / std::cos(drive.wedge_half_angle_rad);
+  return [=, &h](double lambda, FlankLevels& levels) {
     const double tau = lambda * T;
-    k.assign(sampling.centre_x.size(), 0.0);
+    const std::size_t n = sampling.centre_x.size();
+    for (auto* v : {&levels.radial_N_mm4, &levels.stick_N_mm4, &levels.stick_limit_N_mm3, &levels.slide_mm_s}) v->assign(n, 0.0);
+    levels.friction_lr_N_mm3.assign(n, Eigen::Vector2d::Zero());
+    levels.time_s = time_s(lambda), levels.slide_floor_mm_s = V0;
     if (tau <= 1.0) return;
     const double s0 = (tau - 1.0) * h.length_mm();
-    for (std::size_t e = 0; e < k.size(); ++e)
-      k[e] = k_N_mm4 * sampling.mean(h, static_cast<int>(e), s0, 0.0,
-                                     [](const belt::LoadState& q) { return q.p_MPa > 0.0 ? 1.0 : 0.0; });
+    for (std::size_t e = 0; e < n; ++e) {
+      const int el = static_cast<int>(e);
+      const double share = sampling.mean(h, el, s0, 0.0, [](const belt::LoadState& q) { return q.p_MPa > 0.0 ? 1.0 : 0.0; });
+      if (k > 0.0) levels.radial_N_mm4[e] = k * share;
+      if (V0 > 0.0 && share > 0.0) {
+        levels.friction_lr_N_mm3[e] = sampling.mean(h, el, s0, Eigen::Vector2d(Eigen::Vector2d::Zero()), [&](const belt::LoadState& q) {
+          const double F = q.p_MPa > 0.0 ? q.friction_used * q.p_MPa * area_factor : 0.0;  // 6.6–6.7's friction
+          return Eigen::Vector2d(-F * std::sin(q.gamma_rad), -F * std::cos(q.gamma_rad));
+        });
+        levels.slide_mm_s[e] = sampling.mean(h, el, s0, 0.0, [&](const belt::LoadState& q) { return std::max(q.slide_mm_s, V0); });
+      }
+      if (!(k_t > 0.0) || !(share > 0.0)) continue;
+      levels.stick_N_mm4[e] = k_t * share;
+      levels.stick_limit_N_mm3[e] = sampling.mean(h, el, s0, 0.0, [&](const belt::LoadState& q) {
+        return q.p_MPa > 0.0 ? std::max(0.0, mu - q.friction_used) * q.p_MPa * area_factor : 0.0;
+      });
+    }
   };
 }
 
@@ -445,9 +474,11 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   }
   const auto body = contact_body_forces(sampling, drive, T, curve_at);
   p.body_force = body;
-  if (knobs.flank_stiffness_N_mm4 > 0.0)  // the deformation-limited flank (segment/flank.hpp)
-    p.following_force = flank_foundation(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), curve_at,
-                                         flank_stiffness(sampling, h, knobs.flank_stiffness_N_mm4, T));
+  const bool stick = knobs.flank_stick_N_mm4 > 0.0 || knobs.flank_slide_floor_mm_s > 0.0;  // along the belt
+  if (knobs.flank_stiffness_N_mm4 > 0.0 || stick)  // the deformation-limited flank (segment/flank.hpp)
+    p.following_force = flank_contact(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), curve_at,
+                                      knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
+                                      flank_levels(sampling, drive, knobs, T, p.time_s));
   if (shear) p.nodal_force = end_shear_forces(m.node_count(), straight, path_x, h, T, curve_at, shear);
 
   CycleResult out;
@@ -529,6 +560,10 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       const Eigen::Vector2d n(std::sin(phi), std::cos(phi));
       q.contact_radial_N_mm += forces[e].dot(n) * area[e];
       q.flank_radial_N_mm += flank.dot(n);
+      if (!stick) continue;
+      const Eigen::Vector2d t(std::cos(phi), -std::sin(phi));
+      q.contact_longitudinal_N_mm += forces[e].dot(t) * area[e];
+      q.flank_longitudinal_N_mm += flank.dot(t);
     }
     longitudinal_loads(p, s, curve, m, path_x, solver.integration, q);
     q.belt_force_N_mm = tau > 1.0 ? h.at_position(q.s_mm).F_N / drive.width_mm : 0.0;
@@ -582,6 +617,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.sheared_ends = static_cast<bool>(warping) || static_cast<bool>(shear);
   out.equations = out.final_state.equations;
   out.flank_stiffness_N_mm4 = knobs.flank_stiffness_N_mm4;
+  out.flank_stick_N_mm4 = knobs.flank_stick_N_mm4;
   flank_shares(out);
   return out;
 }

@@ -257,6 +257,20 @@ class Assembler {
     return out;
   }
 
+  // StaticProblem::following_force's commit at every integration point's position at q (serial).
+  void commit_following(const Eigen::VectorXd& q) const {
+    if (!p_.following_force.commit) return;
+    const Mesh& m = *p_.mesh;
+    const int npe = m.nodes_per_element;
+    for (int e = 0; e < m.element_count(); ++e)
+      for (std::size_t g = 0; g < rule_.size(); ++g) {
+        const double* N = shape_.data() + g * npe;
+        Eigen::Vector2d x = Eigen::Vector2d::Zero();
+        for (int a = 0; a < npe; ++a) x += N[a] * (m.X[m.elements[e][a]] + u_of(q, m.elements[e][a]));
+        p_.following_force.commit(e, static_cast<int>(g), x);
+      }
+  }
+
   // Per node, the inertia force m·a at q (global; empty without inertia).
   std::vector<Eigen::Vector2d> inertia_forces(const Eigen::VectorXd& q) const {
     std::vector<Eigen::Vector2d> f;
@@ -622,7 +636,7 @@ class StaticRun {
         assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar, pool_),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
         linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
-                symmetric_tangent(knobs.integration)),
+                symmetric_tangent(knobs.integration) && (!p.following_force.at || p.following_force.symmetric)),
         pattern_(linear_.symmetric() || knobs.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
@@ -807,6 +821,7 @@ class StaticRun {
       p_.on_increment(target, view);
     }
     states_.committed.swap(states_.trial);  // the last assembly was at the converged q
+    assembler_.commit_following(q_);        // prepared at target by that assembly
     velocity_ = q_ - q_saved;
     last_dt_ = dt;
     last_dlambda_ = target - lambda_;

@@ -18,6 +18,7 @@ struct LoadState {
   double gamma_rad = 0.0;
   double temperature_C = 0.0;
   double friction_used = 0.0;  // μ × the friction utilisation (the driver exit's ramp; 0 off the pulleys)
+  double slide_mm_s = 0.0;     // the flank's sliding speed on the pulley (LoadSample::slide_mm_s)
 };
 
 class LoadHistory {

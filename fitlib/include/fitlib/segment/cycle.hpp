@@ -27,6 +27,7 @@ struct CycleDrive {                     // what the body forces need beyond the 
   double density_kg_m3 = 1200.0;        // ρ
   double speed_mm_s = 0.0;              // V (> 0)
   double temperature_C = 20.0;
+  double friction = 0.0;                // the drive's μ: the stick's available friction (CycleKnobs::flank_stick_N_mm4)
 };
 
 struct CycleKnobs {
@@ -56,6 +57,18 @@ struct CycleKnobs {
   // contact force also follows each point's depth below the cord curve, B_r = B_r,dead + k (h − h_ref),
   // with this k (N/mm⁴; 0: off, Report I's dead loads alone).
   double flank_stiffness_N_mm4 = 0.0;
+  // The tangential flank (segment/flank.hpp, docs/segment.md "Tangential flank"): where the load
+  // cycle uses less friction than the drive's μ (CycleDrive::friction), each point's motion along
+  // the cord relative to its column's cord point is held by an elastic stick of this k_t (N/mm⁴),
+  // up to the unused friction (μ − μ_used) p 2/(B cos β), then slips; added to 6.6 (0: off,
+  // Report I's dead friction alone).
+  double flank_stick_N_mm4 = 0.0;
+  // The sliding friction's direction (segment/flank.hpp, docs/segment.md "Tangential flank"): Report
+  // I's friction 6.6–6.7 turned to oppose the sliding velocity V ê + u̇, V the load cycle's sliding
+  // speed (at least this floor, mm/s, where it is smaller: the non-sliding arc) and u̇ each point's
+  // velocity relative to its column's cord point, backward Euler over the increment (0: off,
+  // Report I's dead friction).
+  double flank_slide_floor_mm_s = 0.0;
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
   // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
   EndCondition ends = EndCondition::radial;
@@ -106,6 +119,8 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CycleKnobs::flank_stiffness_N_mm4;
   // both 0 when the foundation is off: they feed flank_shares only).
   double contact_radial_N_mm = 0.0, flank_radial_N_mm = 0.0;
+  // The same along the cord tangent: Report I's dead 6.6–6.9 and the flank's (its stick; 0 without one).
+  double contact_longitudinal_N_mm = 0.0, flank_longitudinal_N_mm = 0.0;
   bool span = false;  // in a span: no contact load (p = 0) and one curvature (to 10⁻⁶/mm) on every element
 };
 
@@ -144,6 +159,10 @@ struct CycleResult {
   // ratio (flank_shares; 0 without the foundation).
   double flank_radial_share = 0.0, flank_radial_mean_share = 0.0;
   double flank_stiffness_N_mm4 = 0.0;  // the run's CycleKnobs::flank_stiffness_N_mm4
+  // The stick (CycleKnobs::flank_stick_N_mm4): its k_t, and its largest |Σ ∫ b·t dV| over the
+  // increments (along the cord tangent at each element's centre, N/mm) against the largest
+  // |Σ B_l dV| of Report I's dead friction over the run (0 without the stick).
+  double flank_stick_N_mm4 = 0.0, flank_stick_share = 0.0;
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
   int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
   bool history = false;  // a role's law carries state (viscoelastic, damage): EquilibriumBounds' looser span share

@@ -107,15 +107,23 @@ struct StaticProblem {
   // Optional: a body force that follows the deformation, an elastic foundation (the load cycle's
   // deformation-limited flank, segment/flank.hpp). `at`: at element e's integration point g (the
   // solver's rule) and its current position x (global, mm), b (global, N/mm³ of reference volume)
-  // and ∂b/∂x (N/mm⁴), false where none acts; b must be the negative gradient of an energy, so
-  // ∂b/∂x is symmetric and a symmetric law keeps LDLᵀ. `prepare(λ)` runs once per load level
-  // before its assemblies, on the calling thread; `at` on any of the element loop's threads, so
-  // it must only read. The residual gets −∫ N_a b dV, the tangent −∫ N_a N_b ∂b/∂x dV.
+  // and ∂b/∂x (N/mm⁴), false where none acts; when b is the negative gradient of an energy (at the
+  // committed history) ∂b/∂x is symmetric and a symmetric law keeps LDLᵀ. `prepare(λ)` runs
+  // once per load level before its assemblies, on the calling thread; `at` on any of the element
+  // loop's threads, so it must only read. The residual gets −∫ N_a b dV, the tangent
+  // −∫ N_a N_b ∂b/∂x dV. Optional `commit`: after each converged increment, serially, every
+  // integration point's converged position, at the λ `at` was prepared for (a history, e.g. the
+  // flank's stick–slip, segment/flank.hpp); it takes effect at the next `prepare`, so `at` at the
+  // converged λ (the final snapshot) still gives the increment's force. `symmetric` = false: ∂b/∂x
+  // is not symmetric (not a gradient field, e.g. a friction that turns with the motion), so the
+  // solver takes the unsymmetric path (GMRES on the symmetric part's LDLᵀ, or the LU).
   struct FollowingForce {
     std::function<void(double lambda)> prepare;
     std::function<bool(int element, int point, const Eigen::Vector2d& x_mm, Eigen::Vector2d& b_N_mm3,
                        Eigen::Matrix2d& db_dx_N_mm4)>
         at;
+    std::function<void(int element, int point, const Eigen::Vector2d& x_mm)> commit;
+    bool symmetric = true;
   };
   FollowingForce following_force;
   // Optional: per node, the turn of the loading's frame from λ_from to λ_to: its angle (rad,
