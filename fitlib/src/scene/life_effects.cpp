@@ -153,9 +153,9 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
                                        "eigenvalues, a tangent check)";
     throw core::NumericalError(std::string(e.what()) +
                                ". The complete level stops like this on the medium and heavy reference drives with "
-                               "the thesis cards: the load path folds where the damaged rubber of a cog (its tip corner on the "
-                               "life mesh) cannot carry Report I's dead contact loads further (docs/segment.md "
-                               "\"Diagnosis at the failing state\", \"Flank foundation\")" + evidence +
+                               "the thesis cards: the load path folds where the damaged rubber of a gap's land (a cog's tip "
+                               "corner on one-row meshes) cannot carry Report I's dead contact loads further (docs/segment.md "
+                               "\"Diagnosis at the failing state\", \"Flank foundation\", \"Tangential flank\")" + evidence +
                                "; [life] fidelity = \"elastic\" runs the segment with the cards' elastic equivalents");
   }
 }
