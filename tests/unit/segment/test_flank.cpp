@@ -216,7 +216,7 @@ TEST(SegmentFlank, SlidingFrictionTurnsWithTheRelativeVelocityAndMatchesCentralD
     const double g = gamma_deg * M_PI / 180.0;
     const Eigen::Vector2d friction(-F * std::sin(g), -F * std::cos(g));
     EXPECT_EQ(flank_slide_point(Eigen::Vector2d::Zero(), friction, V, V0).b_lr_N_mm3.norm(), 0.0);
-    for (const Eigen::Vector2d u_dot : {Eigen::Vector2d(12.0, 0.0), Eigen::Vector2d(-40.0, 3.0), Eigen::Vector2d(0.5, -7.0)}) {
+    for (const Eigen::Vector2d& u_dot : {Eigen::Vector2d(12.0, 0.0), Eigen::Vector2d(-40.0, 3.0), Eigen::Vector2d(0.5, -7.0)}) {
       const FlankSlidePoint p = flank_slide_point(u_dot, friction, V, V0);
       EXPECT_NEAR((p.b_lr_N_mm3 + friction).norm(), F, 1e-5 * F) << gamma_deg;  // the whole friction: F, turned
       EXPECT_NEAR((p.db_dv_lr - p.db_dv_lr.transpose()).norm(), 0.0, 1e-18);
