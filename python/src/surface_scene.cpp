@@ -317,6 +317,8 @@ void bind_scene(py::module_& m) {
   py::class_<SceneResult>(m, "SceneResult")
       .def_property_readonly("effects", [](const SceneResult& r) { return r.plan.effects; })
       .def_property_readonly("unavailable_outputs", [](const SceneResult& r) { return r.plan.unavailable_outputs; })
+      .def_readonly("warnings", &SceneResult::warnings,
+                    "Inputs used beyond what they vouch for (a card outside its data window, a life below 1000 cycles)")
       .def_property_readonly("load_cycle",
                              [](const SceneResult& r) { return r.cycle ? py::object(load_cycle_columns(r)) : py::none(); },
                              "Samples along the path as NumPy columns (None when not run)")

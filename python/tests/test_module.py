@@ -342,6 +342,19 @@ def test_life_per_mode_and_governing_mode_equal_the_cli():
     assert fitlib.load_scene(path).run().life is None  # not asked for: not computed
 
 
+
+def test_scene_warnings_equal_the_cli():
+    # At 110 degC the Fritzson stiffness laws are extrapolated: the same warning in Python and life.json.
+    text = open(source("datasets", "drives", "ref-0500-medium.toml")).read().replace("temperature_C = 80", "temperature_C = 110")
+    path = work("hot.toml")
+    with open(path, "w") as f:
+        f.write(text)
+    cli = json.loads(fitcli("life", "--scene", path, "--out-dir", work("hot-life"), "--json"))
+    result = fitlib.run_life(fitlib.load_scene(path))
+    assert result.warnings == cli["warnings"] and len(result.warnings) == 1
+    assert "at 110 degC they are extrapolated" in result.warnings[0]
+    assert fitlib.load_scene(source("datasets", "drives", "ref-0500-medium.toml")).run().warnings == []
+
 def main():
     tests = [(name, f) for name, f in globals().items() if name.startswith("test_") and callable(f)]
     failed = 0
