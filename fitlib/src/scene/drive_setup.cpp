@@ -113,12 +113,16 @@ Stiffness resolve_stiffness(const Scene& s) {
   require_positive(s, "k1", k.k1_MPa, k.k1_source,
                    key(s.k1_MPa.has_value(), "belt.stiffness.k1_MPa", bottom.has_value(), "bottom"));
   using F = belt::FritzsonConstants;
-  const bool laws = (!s.c_N && !cord) || (!s.k1_MPa && !bottom) || (!s.EI_Nmm2 && !bottom);
-  if (laws && (T < F::tested_low_C || T > F::tested_high_C))
-    k.warnings.push_back("the Fritzson stiffness laws (6.1, 6.4, 6.5) are straight lines through tests from " +
+  std::string laws;  // the Fritzson laws this scene uses
+  for (const auto& [used, law] : {std::pair{!s.c_N && !cord, "(6.1) c"}, std::pair{!s.k1_MPa && !bottom, "(6.4) E33"},
+                                  std::pair{!s.EI_Nmm2 && !bottom, "(6.5) EI"}})
+    if (used) laws += (laws.empty() ? "" : ", ") + std::string(law);
+  if (!laws.empty() && (T < F::tested_low_C || T > F::tested_high_C))
+    k.warnings.push_back("the Fritzson stiffness laws " + laws + " are straight lines through tests from " +
                          core::format_number(F::tested_low_C) + " to about " + core::format_number(F::tested_high_C) +
-                         " degC; at " + core::format_number(T) + " degC they are extrapolated (E33 of (6.4) is zero at "
-                         "115.8 degC): name bottom and cord cards under [belt.materials] or give [belt.stiffness]");
+                         " degC; at " + core::format_number(T) + " degC they are extrapolated" +
+                         (laws.find("(6.4)") != std::string::npos ? " (E33 of (6.4) is zero at 115.8 degC)" : "") +
+                         ": name bottom and cord cards under [belt.materials] or give [belt.stiffness]");
   return k;
 }
 

@@ -84,7 +84,8 @@ const std::map<std::string, ColumnSpec>& columns() {
 }
 
 // The case's result columns; InputError / NumericalError propagate to the row's status.
-std::vector<std::string> result_fields(const Sweep& sweep, Scene scene) {
+// The asked columns of one case; `warnings` gets the scene's warnings ("; "-joined).
+std::vector<std::string> result_fields(const Sweep& sweep, Scene scene, std::string& warnings) {
   scene.outputs.clear();  // only what the columns need runs
   for (const auto& c : sweep.columns) scene.outputs[columns().at(c).output] = true;
   const SceneResult r = run_scene(scene);
@@ -96,6 +97,7 @@ std::vector<std::string> result_fields(const Sweep& sweep, Scene scene) {
   if (scene.outputs.count("load_history") && !r.cycle) throw core::InputError("no load cycle", scene.path);
   std::vector<std::string> fields;
   for (const auto& c : sweep.columns) fields.push_back(columns().at(c).column(r));
+  for (const std::string& w : r.warnings) warnings += (warnings.empty() ? "warning: " : "; warning: ") + w;
   return fields;
 }
 
@@ -132,7 +134,7 @@ std::string sweep_row(const Sweep& sweep, std::size_t index) {
   std::string status = "ok", message;
   std::vector<std::string> results;
   try {
-    results = result_fields(sweep, case_scene(sweep, c));
+    results = result_fields(sweep, case_scene(sweep, c), message);  // an ok row's message: its warnings
   } catch (const core::InputError& e) {
     status = "input_error", message = e.what();
   } catch (const core::NumericalError& e) {

@@ -107,6 +107,20 @@ values = [10, 5000]
   EXPECT_NE(fields[5].find("ref-0500-medium.toml"), std::string::npos) << fields[5];
 }
 
+// An ok row's message carries the scene's warnings: at 110 degC the Fritzson stiffness laws are
+// extrapolated (docs/sweep.md).
+TEST(Sweep, OkRowsMessageCarriesTheScenesWarnings) {
+  const auto s = parse_sweep(grid_text("[[axis]]\nkey = \"conditions.temperature_C\"\nvalues = [80, 110]\n"), kSource);
+  const auto at80 = fitlib::scene::split_csv_row(fitlib::scene::sweep_row(s, 0));
+  const auto at110 = fitlib::scene::split_csv_row(fitlib::scene::sweep_row(s, 1));
+  ASSERT_EQ(at110.size(), 6u);
+  EXPECT_EQ(at80[4], "ok");
+  EXPECT_EQ(at80[5], "");
+  EXPECT_EQ(at110[4], "ok");
+  EXPECT_NE(at110[3], "");
+  EXPECT_EQ(at110[5].rfind("warning: the Fritzson stiffness laws", 0), 0u) << at110[5];
+}
+
 TEST(Sweep, CsvFieldsRoundTrip) {
   const std::vector<std::string> fields{"a", "b,c", "say \"hi\"", "", "1e+06"};
   std::string row;
