@@ -3,11 +3,14 @@
 // [life] table, the fatigue card and its sha256.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <unistd.h>
 
+#include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
@@ -398,3 +401,69 @@ TEST(SceneLife, UnderSampledPeakWarningOnlyForPointsWithHistory) {
   EXPECT_NE(scene::life_text(s, result).find(warning), std::string::npos) << scene::life_text(s, result);
 }
 
+
+namespace {
+// A shear Prony card without a bulk modulus (as a DMA table gives): G_inf and `terms` Maxwell
+// terms drawn log-uniformly, 0.3–30 MPa, 0.01–20 MPa, 1e-5–1e2 s.
+std::string random_prony_card(std::mt19937& rng, int index) {
+  auto log_uniform = [&](double lo, double hi) {
+    return std::exp(std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(rng));
+  };
+  const int terms = std::uniform_int_distribution<int>(1, 4)(rng);
+  card::Card c;
+  c.name = "random-" + std::to_string(index);
+  c.model_kind = "prony";
+  c.model_options = {{"terms", terms}};
+  std::vector<double> values{log_uniform(0.3, 30.0)};
+  for (int i = 0; i < terms; ++i) values.push_back(log_uniform(0.01, 20.0));
+  for (int i = 0; i < terms; ++i) values.push_back(log_uniform(1e-5, 1e2));
+  for (double v : values) {
+    card::ParameterEstimate e;
+    e.value = v;
+    c.parameters.push_back(e);
+  }
+  const std::string path = (temp_dir() / (c.name + ".json")).string();
+  card::save_card(path, c);
+  return path;
+}
+
+// Every case either runs to lives that are finite and positive (or unbounded) with a JSON that
+// parses back, or is refused as bad input naming a key; nothing else (no NaN, no crash).
+void expect_life_or_refusal(const std::string& text, const std::string& label, int& computed) {
+  try {
+    scene::Scene s = scene::parse_scene(text, label);
+    s.outputs["life"] = true;
+    const scene::SceneResult r = scene::run_scene(s);
+    ASSERT_TRUE(r.life) << label;
+    for (const auto& m : r.life->report.modes)
+      EXPECT_TRUE(m.life_cycles > 0.0 && !std::isnan(m.life_cycles)) << label << " " << fatigue::to_string(m.mode);
+    const std::string json = scene::life_json(s, r, false).dump();
+    EXPECT_EQ(nlohmann::json::parse(json), scene::life_json(s, r, false)) << label;
+    ++computed;
+  } catch (const core::InputError& e) {
+    EXPECT_FALSE(e.key().empty()) << label << ": " << e.what();
+  }
+}
+}  // namespace
+
+// Property: random shear Prony cards (no bulk modulus: K from the default Poisson ratio) as bottom
+// and cushion of the medium drive, 80 reference-drive cases at the beam level and 3 at the elastic
+// level (a one-pitch segment): a life or a refusal naming a key, never a NaN or another error.
+TEST(SceneLife, RandomShearPronyCardsGiveALifeOrARefusalNamingAKey) {
+  std::mt19937 rng(20261125);
+  const std::string drive = core::read_file(kDrives + "ref-0500-medium.toml");
+  int computed = 0, elastic = 0;
+  for (int i = 0; i < 83; ++i) {
+    const bool segment = i >= 80;
+    const std::string bottom = random_prony_card(rng, 2 * i), cushion = random_prony_card(rng, 2 * i + 1);
+    std::string text = drive + "\n[belt.materials]\nbottom = \"" + bottom + "\"\ncushion = \"" + cushion +
+                       "\"\n[life]\nfidelity = \"" + (segment ? "elastic" : "beam") + "\"\n";
+    if (segment)
+      text += "[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\nend_pitches = 1\n"
+              "cushion_rows = 1\ngap_size_mm = 0\nrow_growth = 1\n";
+    int& count = segment ? elastic : computed;
+    expect_life_or_refusal(text, "random-" + std::to_string(i), count);
+  }
+  EXPECT_GE(computed, 40);  // most drives carry their torque with rubber of these moduli
+  EXPECT_GE(elastic, 1);
+}
