@@ -1,13 +1,14 @@
 // Scene parsing and validation, the planner (only the effects the outputs need run), the outputs.
-#include <complex>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <fstream>
 
 #include <unistd.h>
 
+#include "common/temp_path.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -198,7 +199,7 @@ std::string write_card(const std::string& file, const std::string& kind, const n
     e.value = v;
     c.parameters.push_back(e);
   }
-  const auto path = (std::filesystem::temp_directory_path() / file).string();
+  const auto path = fitlib_test::temp_path(file);  // per process: ctest -j runs test processes at once
   card::save_card(path, c);
   return path;
 }
