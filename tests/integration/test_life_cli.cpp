@@ -271,3 +271,23 @@ TEST(LifeCli, ShearCardWithoutBulkModulusRunsByThePoissonRatioAndWarnsBeyondItsD
   EXPECT_EQ(bad.exit_code, 3);
   EXPECT_NE(bad.err.find("belt.materials.poisson_ratio"), std::string::npos) << bad.err;
 }
+
+// A static section case needs no drive: bend-40mm without its [drive] table gives `fitcli segment`
+// the same points; `belt` and `life` on it exit 3 naming the missing table.
+TEST(SegmentCli, StaticCaseNeedsNoDriveAndTheDriveCommandsSaySo) {
+  const std::string text = slurp(source_path("datasets/segment/bend-40mm.toml"));
+  const std::size_t drive = text.find("[drive]"), belt = text.find("[belt]");
+  ASSERT_NE(drive, std::string::npos);
+  const std::string scene = unique_dir("segment_no_drive") + ".toml";
+  std::ofstream(scene) << text.substr(0, drive) + text.substr(belt);
+  const auto with = run_fitcli("segment --scene " + source_path("datasets/segment/bend-40mm.toml") + " --json");
+  const auto without = run_fitcli("segment --scene " + scene + " --json");
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_EQ(nlohmann::json::parse(without.out)["points"], nlohmann::json::parse(with.out)["points"]);
+  for (const char* command : {"belt", "life"}) {
+    const auto r = run_fitcli(std::string(command) + " --scene " + scene + " --out-dir " + unique_dir("no_drive_out"));
+    EXPECT_EQ(r.exit_code, 3) << command;
+    EXPECT_NE(r.err.find("key 'drive': missing [drive] table"), std::string::npos) << command << ": " << r.err;
+  }
+}

@@ -141,6 +141,10 @@ static void check_given_belt_length(const Scene& s, const belt::DriveGeometry& g
 }
 
 belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
+  if (s.pulleys.empty())
+    throw InputError("missing [drive] table: the scene has only a [segment] static case (fitcli segment); the belt "
+                     "drive, its load cycle and its life need the drive",
+                     s.path, 0, 0, "drive");
   std::vector<belt::Pulley> pulleys;
   for (const auto& ps : s.pulleys) {
     if (!(ps.pitch_diameter_mm / 2.0 > s.belt.height_mm))  // the belt wraps every pulley with its bottom inside

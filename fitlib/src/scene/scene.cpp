@@ -334,6 +334,7 @@ void parse_pulleys(Scene& s, Reader& drive, const std::string& source) {
 
 void parse_drive(Scene& s, Reader& top, const toml::table& root, const std::string& source) {
   const toml::table* drive_t = top.table("drive");
+  if (!drive_t && root.get("segment")) return;  // a static section case needs no drive (make_drive refuses later)
   if (!drive_t) top.fail("drive", "missing [drive] table", root.source());
   Reader drive(*drive_t, "drive", source);
   drive.allow({"pulleys", "center_distance_mm", "torque_Nm", "power_kW", "slack_tension_N",

@@ -92,7 +92,7 @@ struct Scene {
   std::string name;
   std::string path;  // file it came from (errors, relative card paths)
   // [drive]
-  std::vector<PulleySpec> pulleys;
+  std::vector<PulleySpec> pulleys;  // empty: no [drive] (a [segment]-only scene, for `fitcli segment`)
   std::optional<double> center_distance_mm;
   std::optional<double> torque_Nm, power_kW;
   belt::TensionRule tension_rule = belt::TensionRule::slack;
