@@ -350,6 +350,7 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
   }
 
   std::string temperature_out_of_law(const double* p, double temperature_C) const override {
+    if (!std::isfinite(temperature_C)) return {};  // NaN: the reference temperature (Model's contract)
     const double dT = temperature_C - o_.reference_C;
     if (o_.law == ShiftLaw::wlf && !(p[shift_index_ + 1] + dT > 0.0))
       return "the WLF law has its pole at T_ref - C2 = " + core::format_number(o_.reference_C - p[shift_index_ + 1]) +

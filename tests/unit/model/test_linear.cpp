@@ -241,6 +241,7 @@ TEST(LinearModel, TemperatureLawEndsAtTheWlfPoleAndWhereTheLinearFactorVanishes)
   std::vector<double> p = {1.0, 2.0, 0.1, 8.0, 120.0, 0.004};  // E∞, E1, τ1, C1, C2, c_T
   ASSERT_EQ(p.size(), m->size());
   for (double T : {-99.9, 20.0, 269.7}) EXPECT_EQ(m->temperature_out_of_law(p.data(), T), "") << T;
+  EXPECT_EQ(m->temperature_out_of_law(p.data(), std::nan("")), "");  // NaN: the reference, as Model says
   EXPECT_NE(m->temperature_out_of_law(p.data(), -100.0).find("pole at T_ref - C2 = -100 degC"), std::string::npos);
   const std::string hot = m->temperature_out_of_law(p.data(), 269.8);  // 20 + 0.999/0.004 = 269.75
   EXPECT_NE(hot.find("c_T"), std::string::npos) << hot;
