@@ -48,7 +48,7 @@ void detail::card_window_warnings(const Scene& s, const std::string& role, const
   for (const card::WindowExcess& e : card::outside_data_window(c, at)) {
     const std::string w = "card " + s.materials.at(role) + " (" + role + "): " + e.quantity + " " +
                           core::format_number(e.value) + " is outside its data window [" + core::format_number(e.low) +
-                          ", " + core::format_number(e.high) + "] (fit." + "data_window." + e.key +
+                          ", " + core::format_number(e.high) + "] (fit.data_window." + e.key +
                           "): the scene extrapolates the card there";
     if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
   }

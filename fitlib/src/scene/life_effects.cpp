@@ -102,14 +102,16 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
       const card::Card c = material_card(s, roles[k]);
+      const model::ModelPtr model = c.model();
+      const std::vector<double> values = c.values();
       model::TestCondition at;
       at.temperature_C = options.temperature_C, at.frequency_Hz = options.frequency_Hz;
       model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
       if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
       card_window_warnings(s, roles[k], c, seen, warnings);
       try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
-        options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*c.model(), c.values(), at, s.material_poisson_ratio);
-        points[k] = segment::role_point(*c.model(), c.values(), options);
+        options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
+        points[k] = segment::role_point(*model, values, options);
       } catch (const core::UsageError& e) {
         throw core::InputError(std::string("card ") + s.materials.at(roles[k]) + ": " + e.what(), s.path, 0, 0,
                                std::string("belt.materials.") + roles[k]);

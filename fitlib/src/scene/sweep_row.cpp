@@ -83,8 +83,8 @@ const std::map<std::string, ColumnSpec>& columns() {
   return table;
 }
 
-// The case's result columns; InputError / NumericalError propagate to the row's status.
-// The asked columns of one case; `warnings` gets the scene's warnings ("; "-joined).
+// The case's result columns, and its scene's warnings into `warnings` ("; "-joined); InputError /
+// NumericalError propagate to the row's status.
 std::vector<std::string> result_fields(const Sweep& sweep, Scene scene, std::string& warnings) {
   scene.outputs.clear();  // only what the columns need runs
   for (const auto& c : sweep.columns) scene.outputs[columns().at(c).output] = true;

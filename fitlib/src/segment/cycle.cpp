@@ -474,8 +474,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   }
   const auto body = contact_body_forces(sampling, drive, T, curve_at);
   p.body_force = body;
-  const bool stick = knobs.flank_stick_N_mm4 > 0.0 || knobs.flank_slide_floor_mm_s > 0.0;  // along the belt
-  if (knobs.flank_stiffness_N_mm4 > 0.0 || stick)  // the deformation-limited flank (segment/flank.hpp)
+  const bool along_belt = knobs.flank_stick_N_mm4 > 0.0 || knobs.flank_slide_floor_mm_s > 0.0;  // a tangential flank law
+  if (knobs.flank_stiffness_N_mm4 > 0.0 || along_belt)  // the deformation-limited flank (segment/flank.hpp)
     p.following_force = flank_contact(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), curve_at,
                                       knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
                                       flank_levels(sampling, drive, knobs, T, p.time_s));
@@ -560,7 +560,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
       const Eigen::Vector2d n(std::sin(phi), std::cos(phi));
       q.contact_radial_N_mm += forces[e].dot(n) * area[e];
       q.flank_radial_N_mm += flank.dot(n);
-      if (!stick) continue;
+      if (!along_belt) continue;
       const Eigen::Vector2d t(std::cos(phi), -std::sin(phi));
       q.contact_longitudinal_N_mm += forces[e].dot(t) * area[e];
       q.flank_longitudinal_N_mm += flank.dot(t);
