@@ -90,7 +90,8 @@ InputFile file_input(const std::string& role, const std::string& path, const std
 // The segment levels (docs/segment.md "Loading"): materials per role from the scene's cards at
 // the level's fidelity (elastic: storage stiffness at the scene's temperature and the belt's load
 // frequency; a card without a bulk modulus gets the K of [belt.materials] poisson_ratio, as the
-// belt's stiffness does), or the [segment] table's E and nu when the scene gives no cards.
+// belt's stiffness does), or, below the complete level, the [segment] table's E and nu when the
+// scene gives no card for the role.
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
                                                          const std::string& fidelity, std::vector<std::string>& warnings) {
   std::array<model::MaterialPointPtr, 2> points;
@@ -117,6 +118,11 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
                                std::string("belt.materials.") + roles[k]);
       }
     } else {
+      if (options.fidelity == segment::Fidelity::complete)  // it would run isotropic elasticity under its name
+        throw core::InputError(std::string("[life] fidelity = \"complete\" runs the full card models, and the scene "
+                                           "names no ") + roles[k] + " card: give one in [belt.materials], or ask "
+                                           "for \"elastic\" (the [segment] table's isotropic E and nu)",
+                               s.path, 0, 0, std::string("belt.materials.") + roles[k]);
       const segment::IsotropicElastic e = s.segment ? s.segment->setup.materials[k] : segment::IsotropicElastic{};
       points[k] = model::make_material_point(*model::make_model("elastic-iso", nlohmann::json::object()),
                                              {e.E_MPa, e.nu});

@@ -241,6 +241,33 @@ TEST(SceneLife, CompleteLevelRunsItsOwnMeshAndItsNoteSaysHowAccurateItIs) {
   EXPECT_EQ(t.find("note: the life's default segment (192 elements"), std::string::npos) << t;
 }
 
+// The complete level runs the cards' models: a role without a card is refused naming its key (it
+// ran the [segment] table's isotropic elasticity under the complete level's name); the elastic
+// level takes that table, as before.
+TEST(SceneLife, CompleteLevelWithoutACardForARoleIsRefusedNamingTheRole) {
+  for (const char* missing : {"bottom", "cushion"}) {
+    auto s = with_cards_elastic("light");
+    s.materials.erase(missing);
+    s.life->fidelity = "complete";
+    s.life->cycles = 1;
+    try {
+      scene::run_scene(s);
+      ADD_FAILURE() << missing << ": expected an InputError";
+    } catch (const core::InputError& e) {
+      EXPECT_EQ(e.key(), std::string("belt.materials.") + missing);
+      EXPECT_NE(std::string(e.what()).find("names no " + std::string(missing) + " card"), std::string::npos) << e.what();
+    }
+  }
+  auto s = with_life("light");
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = "elastic";
+  s.life->cycles = 1;
+  s.segment = scene::SegmentSpec{};
+  const auto r = scene::run_scene(s);
+  ASSERT_TRUE(r.life.has_value());
+  EXPECT_EQ(r.life->plan.fidelity, "elastic");
+}
+
 // The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
 // cycle); the life's mesh has 192 elements (docs/segment.md "Cost").
 TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
