@@ -36,6 +36,13 @@ bool is_blank_or_comment(const std::string& text) {
   return first == std::string::npos || text[first] == '#';
 }
 
+std::string separator_hint(const std::string& column_name) {
+  const bool semicolon = column_name.find(';') != std::string::npos;
+  if (!semicolon && column_name.find('\t') == std::string::npos) return "";
+  return std::string("; the name holds ") + (semicolon ? "';'" : "a tab") +
+         ": fitlib reads comma-separated tables with '.' as the decimal point (save the export as CSV with commas)";
+}
+
 std::vector<std::string> split_csv_fields(const std::string& text, const std::string& file_name,
                                           int line) {
   std::vector<std::string> fields;

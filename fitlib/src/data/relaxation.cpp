@@ -59,7 +59,8 @@ Columns layout(const std::vector<std::string>& names, int name_line, const std::
     } else if (name == "Set") {
       claim(c.set);
     } else {
-      throw core::InputError("unknown pyvisco time-domain column '" + name + "' (expected t, E_relax or G_relax, T, Set)",
+      throw core::InputError("unknown pyvisco time-domain column '" + name + "' (expected t, E_relax or G_relax, T, Set)" +
+                                 separator_hint(name),
                              file, name_line, column);
     }
   }

@@ -274,7 +274,8 @@ class TableParser {
           }
         }
       if (known) continue;
-      const std::string message = "unknown column '" + name + "' (known: " + kKnownColumns + ")";
+      const std::string message =
+          "unknown column '" + name + "' (known: " + kKnownColumns + ")" + separator_hint(name);
       if (!options_.allow_unknown_columns) throw core::InputError(message, file_, line, column);
       table_.warnings.push_back(core::InputError(message + "; ignored", file_, line, column).what());
     }

@@ -85,7 +85,8 @@ SignalColumns signal_columns(const std::vector<std::string>& names, const std::s
                                     [&](const char* c) { return names[i] == c; });
     if (known == std::end(kColumns))
       throw InputError("unknown column '" + names[i] +
-                           "' (expected time_s and force_N, displacement_mm or stress_MPa, strain)",
+                           "' (expected time_s and force_N, displacement_mm or stress_MPa, strain)" +
+                           separator_hint(names[i]),
                        path, header_line, column);
     int& slot = column_of[known - std::begin(kColumns)];
     if (slot >= 0) throw InputError("duplicate column '" + names[i] + "'", path, header_line, column);

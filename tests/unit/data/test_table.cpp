@@ -83,7 +83,10 @@ INSTANTIATE_TEST_SUITE_P(
         MalformedCase{"header_only.csv", 1, 0, "no data rows"},
         MalformedCase{"wrong_field_count.csv", 3, 4, "row has 3 fields, header has 4"},
         MalformedCase{"unknown_mode.csv", 2, 1, "unknown test mode 'torsion'"},
-        MalformedCase{"pyvisco_bad_unit.csv", 2, 2, "unknown unit 'psi'", TableFormat::pyvisco}));
+        MalformedCase{"pyvisco_bad_unit.csv", 2, 2, "unknown unit 'psi'", TableFormat::pyvisco},
+        // A European spreadsheet's export: the whole header is one name; the message says why.
+        MalformedCase{"semicolon_separated.csv", 1, 1, "the name holds ';': fitlib reads comma-separated tables"},
+        MalformedCase{"tab_separated.csv", 1, 1, "the name holds a tab: fitlib reads comma-separated tables"}));
 
 TEST(Table, SkipBadRowsWarnsForEachSkippedRow) {
   const std::string path = kMalformed + "mixed_bad_rows.csv";

@@ -27,6 +27,11 @@ bool is_blank_or_comment(const std::string& text);
 std::vector<std::string> split_csv_fields(const std::string& text, const std::string& file_name,
                                           int line);
 
+// "" for an ordinary column name; for one holding ';' or a tab (a whole header that was not
+// split: a semicolon- or tab-separated export), a clause saying how fitlib reads tables, to append
+// to an "unknown column" message.
+std::string separator_hint(const std::string& column_name);
+
 // A finite number filling the whole field (C locale; a leading '+' is allowed). Throws
 // InputError(file, line, column) naming `what` for empty text, a non-number, NaN or Inf.
 double parse_csv_number(const std::string& text, const std::string& what,
