@@ -17,6 +17,7 @@ void register_material_point(CLI::App& app);
 void register_plot(CLI::App& app);
 void register_segment(CLI::App& app);
 void register_life(CLI::App& app);
+void register_life_fit(CLI::App& app);
 void register_sweep(CLI::App& app);
 
 // The export formats with their Prony term limits, for help texts (cmd_export.cpp).

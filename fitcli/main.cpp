@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   fitcli::register_plot(app);
   fitcli::register_segment(app);
   fitcli::register_life(app);
+  fitcli::register_life_fit(app);
   fitcli::register_sweep(app);
   fitcli::set_command_line(argc, argv);
   try {

@@ -227,6 +227,8 @@ TEST(CliGrammar, JsonParsesForEverySubcommand) {
       {"segment", "segment --scene " + scene},
       {"life", "life --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + dir + "/life"},
       {"sweep", "sweep --sweep " + source_path("tests/data/sweep/small.toml") + " --threads 1 -q"},
+      {"life-fit", "life-fit --observed " + source_path("datasets/life-tests/synthetic-beam.csv") + " --out " + dir +
+                       "/life-card.json"},
   };
   std::set<std::string> covered;
   for (const auto& [name, args] : runs) {

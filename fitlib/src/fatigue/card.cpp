@@ -15,6 +15,12 @@ const char* to_string(Mode mode) {
   return mode == Mode::radial_crack ? "radial_crack" : "separation";
 }
 
+std::optional<Mode> mode_from_string(const std::string& text) {
+  if (text == "radial_crack") return Mode::radial_crack;
+  if (text == "separation") return Mode::separation;
+  return std::nullopt;
+}
+
 FatigueCard default_card() {
   FatigueCard c;
   c.name = "Fritzson 1988, 0.500 in raw-edge cogged V-belt, 1 % damage level";

@@ -17,8 +17,7 @@ const std::vector<std::string> kColumns = {"case", "failure_mode", "temperature_
                                            "point", "peaks_MPa"};
 
 Mode parse_mode(const std::string& text, const std::string& file, int line, int column) {
-  if (text == "radial_crack") return Mode::radial_crack;
-  if (text == "separation") return Mode::separation;
+  if (const std::optional<Mode> m = mode_from_string(text)) return *m;
   throw core::InputError("failure_mode '" + text + "' is not radial_crack or separation", file,
                          line, column, "failure_mode");
 }

@@ -185,3 +185,33 @@ TEST(ObservedLives, CsvRoundTripAndFitFromHistories) {
 
 }  // namespace
 }  // namespace fitlib::fatigue
+
+namespace fitlib::fatigue {
+namespace {
+
+// The card: fitted modes replace the start's law, a mode without cases keeps it and says so;
+// lives scattering by more than a factor 3.2 and an undetermined σ0 are warnings.
+TEST(LifeCardFit, ReplacesFittedModesKeepsOthersAndWarnsAboutPoorFits) {
+  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  FatigueCard start = default_card();
+  start.separation = LifeLaw{6.0, 8.0, 0.1};
+  const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, truth, 12, 0.0, 5), start, false);
+  ASSERT_EQ(exact.fits.size(), 1u);
+  EXPECT_NEAR(exact.card.separation.n / truth.n, 1.0, 1e-7);
+  EXPECT_EQ(exact.card.radial_crack.sigma0_MPa, start.radial_crack.sigma0_MPa);
+  ASSERT_EQ(exact.warnings.size(), 1u);
+  EXPECT_NE(exact.warnings[0].find("radial_crack: no case failed in this mode"), std::string::npos);
+  EXPECT_EQ(exact.card.provenance["life_fit"]["separation"]["cases"], 12);
+  EXPECT_TRUE(exact.card.provenance["life_fit"]["separation"]["constants"]["n"].contains("ci95"));
+  EXPECT_NO_THROW(card_from_json(card_to_json(exact.card), "fitted"));  // the card reads back
+
+  const LifeCardFit scattered = fit_life_card(synthetic(Mode::separation, truth, 12, 1.0, 5), start, false);
+  bool scatter = false;
+  for (const std::string& w : scattered.warnings) scatter = scatter || w.find("scatter around the fit") != std::string::npos;
+  EXPECT_TRUE(scatter);
+  const LifeCardFit quiet = fit_life_card(synthetic(Mode::separation, truth, 12, 0.1, 5), start, false);
+  EXPECT_EQ(quiet.warnings.size(), 1u);  // only the mode without cases
+}
+
+}  // namespace
+}  // namespace fitlib::fatigue

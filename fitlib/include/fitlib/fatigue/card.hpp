@@ -12,6 +12,7 @@ namespace fitlib::fatigue {
 
 enum class Mode { radial_crack = 1, separation = 2 };
 const char* to_string(Mode mode);  // "radial_crack", "separation"
+std::optional<Mode> mode_from_string(const std::string& text);  // the inverse; nullopt for other text
 
 // N = [Σ (σ_e,i/σ0)ⁿ]⁻¹ · 2^(−b(T − T_ref)) (6.31), N in load cycles (belt revolutions).
 struct LifeLaw {

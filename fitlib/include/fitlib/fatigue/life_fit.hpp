@@ -68,6 +68,23 @@ struct LifeFitResult {
 LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
                            const LifeFitOptions& options);
 
+// A fatigue card fitted to observed cases: `start` with the law of every mode that has cases
+// replaced by its fit (T_ref and the crack sweep are the start's), the fits, and warnings for
+// what a user should not read as a result: a mode no case failed in (its start constants kept),
+// lives scattering around the fit by more than kScatterWarning_log10, n at its bound, σ0's 95 %
+// interval spanning more than a factor kSpreadWarning. provenance.life_fit records each fit.
+struct LifeCardFit {
+  FatigueCard card;
+  std::vector<LifeFitResult> fits;  // one per mode with cases, in mode order
+  std::vector<std::string> warnings;
+};
+constexpr double kScatterWarning_log10 = 0.5;  // a factor 3.2: beyond a fatigue test's usual 2–3
+constexpr double kSpreadWarning = 10.0;
+LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start, bool fix_b);
+
+// One fit as JSON: cases, rms_log10_error, note, constants (value, fixed, std_error, ci95).
+nlohmann::json life_fit_json(const LifeFitResult& fit);
+
 // log10 N_pred of one case under `law` (the design point chosen for law.n).
 double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double reference_C);
 

@@ -1,0 +1,67 @@
+// A fatigue card from observed lives: fit_life_law per mode on top of a start card (life_fit.hpp).
+#include <cmath>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/life_fit.hpp"
+
+namespace fitlib::fatigue {
+
+nlohmann::json life_fit_json(const LifeFitResult& fit) {
+  nlohmann::json constants = nlohmann::json::object();
+  for (const ConstantEstimate& c : fit.constants) {
+    nlohmann::json e = {{"value", c.value}, {"unit", c.unit}, {"fixed", c.fixed}};
+    if (c.has_interval) e["std_error"] = c.std_error, e["ci95"] = {c.ci95_low, c.ci95_high};
+    constants[c.name] = e;
+  }
+  return {{"cases", fit.cases}, {"rms_log10_error", fit.rms_log10_error}, {"note", fit.note},
+          {"constants", constants}};
+}
+
+namespace {
+
+void warn_about(const LifeFitResult& f, std::vector<std::string>& warnings) {
+  const std::string mode = to_string(f.mode);
+  if (f.rms_log10_error > kScatterWarning_log10)
+    warnings.push_back(mode + ": the observed lives scatter around the fit by a factor " +
+                       core::short_number(std::pow(10.0, f.rms_log10_error)) + " (rms log10 error " +
+                       core::short_number(f.rms_log10_error) + "): (6.31) with one design point does not describe "
+                       "these cases");
+  if (f.law.n <= 0.1 * (1 + 1e-9) || f.law.n >= 100.0 * (1 - 1e-9))
+    warnings.push_back(mode + ": n " + core::short_number(f.law.n) +
+                       " stopped at its bound [0.1, 100]: the cases do not determine it");
+  const ConstantEstimate& s0 = f.constants.front();
+  if (s0.has_interval && s0.ci95_high > kSpreadWarning * s0.ci95_low)
+    warnings.push_back(mode + ": sigma0's 95 % interval [" + core::short_number(s0.ci95_low) + ", " +
+                       core::short_number(s0.ci95_high) + "] MPa spans more than a factor " +
+                       core::short_number(kSpreadWarning) +
+                       ": the cases' stresses span too narrow a range to tell sigma0 from n");
+}
+
+}  // namespace
+
+LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start, bool fix_b) {
+  LifeCardFit out;
+  out.card = start;
+  nlohmann::json record = nlohmann::json::object();
+  for (Mode mode : {Mode::radial_crack, Mode::separation}) {
+    bool any = false;
+    for (const ObservedLife& c : cases) any = any || c.mode == mode;
+    if (!any) {
+      out.warnings.push_back(std::string(to_string(mode)) +
+                             ": no case failed in this mode; the start card's constants are kept");
+      continue;
+    }
+    LifeFitOptions o;
+    o.reference_temperature_C = start.reference_temperature_C;
+    o.start = start.law(mode);
+    o.fix_b = fix_b;
+    out.fits.push_back(fit_life_law(cases, mode, o));
+    out.card.law(mode) = out.fits.back().law;
+    warn_about(out.fits.back(), out.warnings);
+    record[to_string(mode)] = life_fit_json(out.fits.back());
+  }
+  out.card.provenance = {{"start_card", start.name}, {"life_fit", record}};
+  return out;
+}
+
+}  // namespace fitlib::fatigue
