@@ -1,6 +1,9 @@
 // fitcli life-fit: the life constants σ0, n, b of (6.31) per failure mode fitted to observed belt
 // lives — a list of drive scenes with observed hours and failure modes (each scene run to its
 // stresses) or stored peaks — written as a fatigue card with 95 % intervals (docs/fatigue.md §6).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -15,13 +18,14 @@
 #include "fitlib/fatigue/life_fit.hpp"
 #include "fitlib/scene/life_tests.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 
 namespace fitcli {
 namespace {
 
 struct LifeFitArgs {
-  std::string observed, start, out = "life-card.json", peaks_out;
-  bool fix_b = false, json = false;
+  std::string observed, start, out = "life-card.json", peaks_out, plot;
+  bool fix_n = false, fix_b = false, json = false;
 };
 
 // Four significant digits: the table is for reading; the card holds the exact values.
@@ -51,18 +55,70 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
   return t.str();
 }
 
+// The figure (--plot): left, the S–N diagram of each fitted mode — every case at its design
+// point's equivalent stress σ_eq = σ0 (Σ(σ_i/σ0)ⁿ)^(1/n) against its observed life brought to
+// T_ref by 2^(b(T − T_ref)), with the fitted line N = (σ/σ0)^(−n); right, predicted against
+// observed lives with the factor kScatterWarning band.
+std::string life_fit_script(const std::vector<fitlib::fatigue::ObservedLife>& cases,
+                            const fitlib::fatigue::LifeCardFit& fit, const std::string& title, const std::string& png) {
+  using namespace fitlib::fatigue;
+  using fitlib::core::short_number;
+  const double T_ref = fit.card.reference_temperature_C;
+  const char* colour[2] = {"#d7191c", "#2c7bb6"};
+  std::ostringstream s, sn, scatter;
+  double low = HUGE_VAL, high = 0.0;  // both axes of the right panel
+  s << "set terminal pngcairo size 1400,620 enhanced font 'DejaVu Sans,11' linewidth 1.3\nset output '" << png
+    << "'\nset grid lc rgb '#dddddd'\nset logscale xy\nset format x '10^{%L}'\nset key top right box opaque\n";
+  for (const LifeFitResult& f : fit.fits) {
+    const int m = f.mode == Mode::radial_crack ? 0 : 1;
+    s << "$m" << m << " << EOD\n";
+    for (const ObservedLife& c : cases) {
+      if (c.mode != f.mode) continue;
+      const double lg_pred = predicted_log10_life(c, f.law, T_ref);
+      const double lg_shift = f.law.b_per_C * (c.temperature_C - T_ref) * std::log10(2.0);  // N_ref = N·2^(bΔT)
+      const double sigma_eq = f.law.sigma0_MPa * std::pow(10.0, -(lg_pred + lg_shift) / f.law.n);
+      const double predicted = std::pow(10.0, lg_pred);
+      s << exact(std::pow(10.0, std::log10(c.observed_cycles) + lg_shift)) << " " << exact(sigma_eq) << " "
+        << exact(c.observed_cycles) << " " << exact(predicted) << "\n";
+      low = std::min({low, c.observed_cycles, predicted}), high = std::max({high, c.observed_cycles, predicted});
+    }
+    s << "EOD\n";
+    const std::string name = to_string(f.mode), rgb = std::string("lc rgb '") + colour[m] + "'";
+    sn << "$m" << m << " using 1:2 with points pt 7 ps 0.8 " << rgb << " title '" << name << "' noenhanced, "
+       << exact(f.law.sigma0_MPa) << "*x**(-1.0/" << exact(f.law.n) << ") with lines " << rgb << " title 'fit: n "
+       << sig4(f.law.n) << ", {/Symbol s}_0 " << sig4(f.law.sigma0_MPa) << " MPa', ";
+    scatter << "$m" << m << " using 3:4 with points pt 7 ps 0.8 " << rgb << " title '" << name << "' noenhanced, ";
+  }
+  const double band = std::pow(10.0, kScatterWarning_log10);
+  s << "set multiplot layout 1,2 title " << gnuplot_quoted(title) << " noenhanced font ',13'\n"
+    << "set xlabel 'observed life at T_{ref} = " << short_number(T_ref) << " °C [cycles]'\nset format y '%g'\n"
+    << "set ylabel 'equivalent stress at the design point [MPa]'\nplot " << sn.str().substr(0, sn.str().size() - 2)
+    << "\n"
+    << "set xlabel 'observed life [cycles]'\nset ylabel 'predicted life [cycles]'\nset format y '10^{%L}'\n"
+    << "set size square\nset xrange [" << exact(low / 10.0) << ":" << exact(high * 10.0) << "]\nset yrange ["
+    << exact(low / 10.0) << ":" << exact(high * 10.0) << "]\nset key bottom right\nplot " << scatter.str() << "x with lines lc rgb 'black' title 'predicted = observed', "
+    << exact(band) << "*x with lines lc rgb 'gray50' dt 2 title 'factor " << sig4(band) << "', x/"
+    << exact(band) << " with lines lc rgb 'gray50' dt 2 notitle\nunset multiplot\n";
+  return s.str();
+}
+
 void run(const LifeFitArgs& a) {
   claim_output("--out", a.out, a.json);
   if (!a.peaks_out.empty()) claim_output("--peaks-out", a.peaks_out, a.json);
+  if (!a.plot.empty()) fitlib::core::check_output_path(a.plot);
   const fitlib::fatigue::FatigueCard start =
       a.start.empty() ? fitlib::fatigue::default_card() : fitlib::fatigue::load_card(a.start);
   const std::string text = fitlib::core::read_file(input_path(a.observed));
   const std::string source = a.observed == "-" ? "stdin" : a.observed;  // stdin: scenes from the current folder
+  // Progress: every test with --verbose; otherwise once the runs have taken 2 s (segment levels).
+  const auto begin = std::chrono::steady_clock::now();
   const auto cases = fitlib::scene::observed_cases(
-      text, source, start, [](const fitlib::scene::LifeTest& t, std::size_t k, std::size_t n) {
-        detail("life test " + std::to_string(k) + "/" + std::to_string(n) + ": " + t.name + " (" + t.scene_path + ")");
+      text, source, start, [begin](const fitlib::scene::LifeTest& t, std::size_t k, std::size_t n) {
+        const std::string line = "life test " + std::to_string(k) + "/" + std::to_string(n) + ": " + t.name;
+        if (std::chrono::steady_clock::now() - begin > std::chrono::seconds(2)) note(line);
+        else detail(line + " (" + t.scene_path + ")");
       });
-  fitlib::fatigue::LifeCardFit fit = fitlib::fatigue::fit_life_card(cases, start, a.fix_b);
+  fitlib::fatigue::LifeCardFit fit = fitlib::fatigue::fit_life_card(cases, start, {a.fix_n, a.fix_b});
   fit.card.name = "life constants fitted to " + source;
   fit.card.provenance["observed"] = {
       {"file", source}, {"sha256", fitlib::core::sha256_hex(text)}, {"cases", cases.size()}};
@@ -70,6 +126,8 @@ void run(const LifeFitArgs& a) {
   fit.card.provenance["command"] = with_stdin_named(command_line());
   if (!a.peaks_out.empty()) emit(a.peaks_out, fitlib::fatigue::observed_lives_csv(cases));
   emit_with(a.out, [&](const std::string& path) { fitlib::fatigue::save_card(path, fit.card); });
+  if (!a.plot.empty() && !fit.fits.empty())
+    write_png(a.plot, [&](const std::string& tmp) { return life_fit_script(cases, fit, fit.card.name, tmp); });
   if (a.json) {
     nlohmann::json j = fitlib::fatigue::card_to_json(fit.card);
     j["warnings"] = fit.warnings;
@@ -95,6 +153,9 @@ void register_life_fit(CLI::App& app) {
   cmd->add_option("--out", a->out, "Fatigue card file to write (JSON; - = stdout)")->capture_default_str();
   cmd->add_option("--peaks-out", a->peaks_out,
                   "Also write the cases' peaks as an observed-lives CSV (fits again without running the scenes)");
+  cmd->add_option("--plot", a->plot, "Also write the figure: S-N diagram per mode and predicted against observed "
+                                     "lives (PNG)");
+  cmd->add_flag("--fix-n", a->fix_n, "Hold n at the start card's value (fit sigma0 and b only)");
   cmd->add_flag("--fix-b", a->fix_b, "Hold b (1/degC) at the start card's value");
   add_json_flag(cmd, a->json, "the fitted card with its warnings, on stdout");
   add_verbosity_flags(cmd);  // --verbose: one line per life test as it runs

@@ -120,7 +120,8 @@ std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitl
     }
     s << "\n";
   };
-  s << "set multiplot layout 2,2 title '" << title << " (points: data, lines: card)' font ',13'\n";
+  s << "set multiplot layout 2,2 title " << gnuplot_quoted(title + " (points: data, lines: card)")
+    << " noenhanced font ',13'\n";
   panel("storage modulus " + M + "' [MPa]", 2, true, 2);
   panel("loss modulus " + M + "'' [MPa]", 3, true, 3);
   panel("loss factor tan {/Symbol d} [-]", 4, true, 4);
@@ -156,7 +157,8 @@ std::string relaxation_script(const fitlib::data::RelaxationTable& t, const fitl
     const double time = tmin * std::pow(tmax / tmin, double(k) / (points - 1));
     s << exact(time) << " " << exact(model.relaxation_modulus(p.data(), c, time)) << "\n";
   }
-  s << "EOD\nset multiplot layout 2,1 title '" << title << "' font ',13'\nset xlabel 'time t [s]'\n"
+  s << "EOD\nset multiplot layout 2,1 title " << gnuplot_quoted(title) << " noenhanced font ',13'\n"
+    << "set xlabel 'time t [s]'\n"
     << "set logscale y\nset format y '10^{%L}'\nset ylabel 'relaxation modulus " << M << "(t) [MPa]'\n"
     << "plot $d using 1:2 with points pt 7 ps 0.6 lc rgb '#2c7bb6' title 'data', $c using 1:2 with lines lc rgb "
        "'#d7191c' title 'card'\n"
@@ -166,11 +168,25 @@ std::string relaxation_script(const fitlib::data::RelaxationTable& t, const fitl
   return s.str();
 }
 
-// Runs gnuplot on `script`; the PNG appears at `tmp`, then is renamed to `out`.
-void run_gnuplot(const std::string& script, const std::string& tmp, const std::string& out) {
-  FILE* pipe = popen("gnuplot 2>&1", "w");
-  if (!pipe) throw fitlib::core::NumericalError("plot: cannot start gnuplot");
-  // A shell that finds no gnuplot exits at once: writing must not kill us with SIGPIPE.
+}  // namespace
+
+std::string gnuplot_quoted(const std::string& text) {
+  std::string q = "'";
+  for (char c : text) q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script) {
+  using fitlib::core::NumericalError;
+  if (out == "-") throw fitlib::core::UsageError("plot: the PNG needs a file (--out -: stdout is not supported)");
+  if (out.find('\'') != std::string::npos)
+    throw fitlib::core::UsageError("plot: the PNG file name must not contain a quote");
+  const std::string tmp = out + ".tmp-" + std::to_string(getpid()) + ".png";
+  const std::string script = make_script(tmp);
+  FILE* pipe = popen("gnuplot 1>&2", "w");
+  if (!pipe) throw NumericalError("plot: cannot start gnuplot");
+  // gnuplot speaks on stderr (stdout may be --json's). A shell that finds no gnuplot exits at
+  // once: writing must not kill us with SIGPIPE.
   const auto previous = std::signal(SIGPIPE, SIG_IGN);
   std::fwrite(script.data(), 1, script.size(), pipe);
   const int status = pclose(pipe);
@@ -178,8 +194,8 @@ void run_gnuplot(const std::string& script, const std::string& tmp, const std::s
   if (status != 0) {
     std::remove(tmp.c_str());
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-      throw fitlib::core::NumericalError("plot: gnuplot not found (install the Debian package gnuplot-nox)");
-    throw fitlib::core::NumericalError("plot: gnuplot failed (exit status " + std::to_string(status) + ")");
+      throw NumericalError("plot: gnuplot not found (install the Debian package gnuplot-nox)");
+    throw NumericalError("plot: gnuplot failed (exit status " + std::to_string(status) + ")");
   }
   if (std::rename(tmp.c_str(), out.c_str()) != 0) {
     std::remove(tmp.c_str());
@@ -187,26 +203,18 @@ void run_gnuplot(const std::string& script, const std::string& tmp, const std::s
   }
 }
 
-}  // namespace
-
 void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& data, const std::string& format,
                const std::string& title, const std::string& out) {
   using namespace fitlib;
   const auto model = card.model();
   const auto p = card.values();
-  if (out == "-") throw core::UsageError("plot: the PNG needs a file (--out -: stdout is not supported)");
-  if (out.find('\'') != std::string::npos) throw core::UsageError("plot: the PNG file name must not contain a quote");
-  const std::string tmp = out + ".tmp-" + std::to_string(getpid()) + ".png";
   const std::string shown = title.empty() ? card.name : title;
-  std::string script;
-  if (is_relaxation_data(data, format)) {
-    script = relaxation_script(read_relaxation_tables(data), *model, p, shown, tmp);
-  } else {
+  write_png(out, [&](const std::string& tmp) {
+    if (is_relaxation_data(data, format)) return relaxation_script(read_relaxation_tables(data), *model, p, shown, tmp);
     data::ReadOptions read;
     read.format = format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
-    script = frequency_script(read_tables(data, format, read), *model, p, shown, tmp);
-  }
-  run_gnuplot(script, tmp, out);
+    return frequency_script(read_tables(data, format, read), *model, p, shown, tmp);
+  });
 }
 
 namespace {

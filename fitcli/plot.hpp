@@ -1,6 +1,7 @@
 #pragma once
 // The figure of fitcli plot (data against a card, PNG via gnuplot), also written by fit --plot
-// and eval --plot.
+// and eval --plot; write_png, the gnuplot runner every figure goes through.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,5 +13,14 @@ namespace fitcli {
 // `title`: empty = the card's name. The PNG is written to a temporary beside `out` and renamed.
 void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& data, const std::string& format,
                const std::string& title, const std::string& out);
+
+// `text` as a gnuplot single-quoted string (a quote doubled); print it with `noenhanced` so that a
+// user's name keeps its _ ^ { }.
+std::string gnuplot_quoted(const std::string& text);
+
+// The PNG at `out` from the gnuplot script `make_script(tmp)` returns, which must write the PNG to
+// `tmp` (pngcairo): gnuplot runs on it, then tmp is renamed to out. UsageError for `-` or a quote
+// in the name; NumericalError when gnuplot is missing or fails (nothing written).
+void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script);
 
 }  // namespace fitcli

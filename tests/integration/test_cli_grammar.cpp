@@ -375,4 +375,9 @@ TEST(CliGrammar, FitPlotIsThePlotFigure) {
   const auto eval = run_fitcli("eval --card " + card + " --frequency-hz 1 --plot " + c + " --data " + source_path(kShearCsv));
   ASSERT_EQ(eval.exit_code, 0) << eval.err;
   EXPECT_EQ(slurp(c), png);
+  // A user's name with a quote and gnuplot's markup characters is drawn, not parsed.
+  const auto quoted = run_fitcli("fit --data " + source_path(kShearCsv) + " --model prony --terms 3 -q --out " + card +
+                                 " --name \"Bob's rubber_{2}^x\" --plot " + a);
+  ASSERT_EQ(quoted.exit_code, 0) << quoted.err;
+  EXPECT_EQ(slurp(a).substr(0, 4), "\x89PNG");
 }

@@ -50,9 +50,13 @@ TEST(LifeFitCli, BundledLifeTestsGiveACardWhoseIntervalsHoldTheTruth) {
   EXPECT_EQ(slurp(card), first);
 }
 
+// --json keeps stdout one document, with the figure beside it (gnuplot speaks on stderr).
 TEST(LifeFitCli, JsonCarriesTheCardAndItsWarnings) {
-  const auto r = run_fitcli("life-fit --observed " + kTests + " --out " + temp_file("life-fit-json.json") + " --json");
+  const std::string png = temp_file("life-fit.png");
+  const auto r = run_fitcli("life-fit --observed " + kTests + " --out " + temp_file("life-fit-json.json") +
+                            " --json --plot " + png);
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["schema"], "fitlib.fatigue-card/1");
   ASSERT_EQ(j["warnings"].size(), 1u);

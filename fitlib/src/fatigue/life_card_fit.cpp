@@ -21,6 +21,18 @@ namespace {
 
 void warn_about(const LifeFitResult& f, std::vector<std::string>& warnings) {
   const std::string mode = to_string(f.mode);
+  // As many free constants as cases: an exact fit, whatever the law's worth (held ones: the start's).
+  std::string free, held;
+  int free_count = 0;
+  for (const ConstantEstimate& c : f.constants) {
+    std::string& list = c.fixed ? held : free;
+    list += (list.empty() ? "" : ", ") + c.name;
+    free_count += c.fixed ? 0 : 1;
+  }
+  if (free_count >= f.cases)
+    warnings.push_back(mode + ": " + std::to_string(f.cases) + " case(s) for the free constant(s) " + free +
+                       ": the fit passes through every case, so nothing shows how well (6.31) describes them" +
+                       (held.empty() ? "" : "; " + held + " held at the start card's value(s)"));
   if (f.rms_log10_error > kScatterWarning_log10)
     warnings.push_back(mode + ": the observed lives scatter around the fit by a factor " +
                        core::short_number(std::pow(10.0, f.rms_log10_error)) + " (rms log10 error " +
@@ -39,7 +51,7 @@ void warn_about(const LifeFitResult& f, std::vector<std::string>& warnings) {
 
 }  // namespace
 
-LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start, bool fix_b) {
+LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start, const HeldConstants& held) {
   LifeCardFit out;
   out.card = start;
   nlohmann::json record = nlohmann::json::object();
@@ -54,7 +66,7 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
     LifeFitOptions o;
     o.reference_temperature_C = start.reference_temperature_C;
     o.start = start.law(mode);
-    o.fix_b = fix_b;
+    o.fix_n = held.n, o.fix_b = held.b;
     out.fits.push_back(fit_life_law(cases, mode, o));
     out.card.law(mode) = out.fits.back().law;
     warn_about(out.fits.back(), out.warnings);

@@ -56,7 +56,7 @@ std::vector<const ObservedLife*> cases_of(const std::vector<ObservedLife>& all, 
 // The free coordinates (ln σ0, n, b) and the problem on them; Ceres solves in place.
 struct LifeProblem {
   double ln_sigma0 = 0.0, n = 0.0, b = 0.0;
-  bool fix_b = false;
+  bool fix_n = false, fix_b = false;
   ceres::Problem problem;
 };
 
@@ -70,6 +70,7 @@ void solve_life_problem(const std::vector<const ObservedLife*>& cases, const Lif
         nullptr, &lp.ln_sigma0, &lp.n, &lp.b);
   lp.problem.SetParameterLowerBound(&lp.n, 0, 0.1);
   lp.problem.SetParameterUpperBound(&lp.n, 0, 100.0);
+  if (lp.fix_n) lp.problem.SetParameterBlockConstant(&lp.n);
   if (lp.fix_b) lp.problem.SetParameterBlockConstant(&lp.b);
   ceres::Solver::Options options;
   options.max_num_iterations = 200;
@@ -85,7 +86,8 @@ void solve_life_problem(const std::vector<const ObservedLife*>& cases, const Lif
 
 // Jacobian of the residuals in the free coordinates (ln σ0, n[, b]) at the solution.
 Eigen::MatrixXd jacobian_at_solution(LifeProblem& lp, std::vector<double>& residuals) {
-  std::vector<double*> blocks = {&lp.ln_sigma0, &lp.n};
+  std::vector<double*> blocks = {&lp.ln_sigma0};
+  if (!lp.fix_n) blocks.push_back(&lp.n);
   if (!lp.fix_b) blocks.push_back(&lp.b);
   ceres::Problem::EvaluateOptions eo;
   eo.parameter_blocks = blocks;
@@ -98,26 +100,32 @@ Eigen::MatrixXd jacobian_at_solution(LifeProblem& lp, std::vector<double>& resid
   return J;
 }
 
+void add_note(std::string& note, const std::string& text) { note += (note.empty() ? "" : "; ") + text; }
+
 // 95 % intervals from the covariance s²(JᵀJ)⁻¹ (Student t with m − p degrees of freedom); σ0's
 // from ln σ0's, exponentiated (stays positive), with a delta-method standard error. A note
-// instead when there are too few cases or the constants are not identifiable.
+// instead when there are too few cases or the constants are not identifiable. J's columns are
+// the free constants in est's order.
 void add_intervals(const Eigen::MatrixXd& J, double ss, double ln_sigma0,
                    std::vector<ConstantEstimate>& est, std::string& note) {
   const int m = static_cast<int>(J.rows()), p = static_cast<int>(J.cols());
   const Eigen::MatrixXd JtJ = J.transpose() * J;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
   if (m <= p) {
-    note += "no intervals: " + std::to_string(m) + " cases for " + std::to_string(p) + " constants.";
+    add_note(note, "no intervals: " + std::to_string(m) + " case(s) for " + std::to_string(p) + " free constant(s)");
     return;
   }
   if (!lu.isInvertible()) {
-    note += "no intervals: the constants are not identifiable from these cases.";
+    add_note(note, "no intervals: the constants are not identifiable from these cases");
     return;
   }
   const Eigen::MatrixXd cov = lu.inverse() * (ss / (m - p));
   const double t = boost::math::quantile(boost::math::students_t(m - p), 0.975);
+  std::vector<ConstantEstimate*> free;
+  for (ConstantEstimate& e : est)
+    if (!e.fixed) free.push_back(&e);
   for (int k = 0; k < p; ++k) {
-    ConstantEstimate& e = est[k];
+    ConstantEstimate& e = *free[k];
     const double se = std::sqrt(std::max(cov(k, k), 0.0));
     e.has_interval = true;
     if (k == 0) {
@@ -146,9 +154,15 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, cons
   bool one_temperature = true;
   for (const ObservedLife* c : cases)
     one_temperature = one_temperature && c->temperature_C == cases[0]->temperature_C;
+  // No more free constants than cases: b needs two temperatures and a third case, n a second case.
+  const std::size_t m = cases.size();
   LifeProblem lp;
-  lp.fix_b = o.fix_b || one_temperature;
-  if (lp.fix_b && !o.fix_b) result.note = "b held at its start value: all cases at one temperature. ";
+  lp.fix_n = o.fix_n || m < 2;
+  lp.fix_b = o.fix_b || one_temperature || m < 3;
+  if (lp.fix_n && !o.fix_n) add_note(result.note, "n held at its start value: one case fixes sigma0 alone");
+  if (lp.fix_b && !o.fix_b)
+    add_note(result.note, one_temperature ? "b held at its start value: all cases at one temperature"
+                                          : "b held at its start value: two cases cannot fix three constants");
   solve_life_problem(cases, o, mode, lp);
   result.law = {std::exp(lp.ln_sigma0), lp.n, lp.b};
 
@@ -158,7 +172,7 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, cons
   for (double r : residuals) ss += r * r;
   result.rms_log10_error = std::sqrt(ss / static_cast<double>(J.rows()));
   result.constants = {{"sigma0_MPa", "MPa", result.law.sigma0_MPa},
-                      {"n", "1", lp.n},
+                      {"n", "1", lp.n, lp.fix_n},
                       {"b_per_C", "1/°C", lp.b, lp.fix_b}};
   add_intervals(J, ss, lp.ln_sigma0, result.constants, result.note);
   return result;

@@ -126,9 +126,14 @@ std::vector<LifeTest> parse_life_tests(const std::string& text, const std::strin
   const std::vector<std::string> names = header_fields(text, source, header_line);
   const Layout h = read_layout(names, source, header_line);
   std::vector<LifeTest> out;
+  std::map<std::string, int> line_of_name;  // one name, one test: --peaks-out groups rows by name
   for (const data::CsvLine& l : data::split_csv_lines(text, source)) {
     if (l.number <= header_line || data::is_blank_or_comment(l.text)) continue;
     out.push_back(read_row(data::split_csv_fields(l.text, source, l.number), h, source, l.number));
+    if (const auto [at, fresh] = line_of_name.emplace(out.back().name, l.number); !fresh)
+      throw core::InputError("case '" + out.back().name + "' repeats the name of line " + std::to_string(at->second) +
+                                 ": give each test its own name (replicates of one drive are separate cases)",
+                             source, l.number, h.column.at("case") + 1, "case");
   }
   if (out.empty()) throw core::InputError("no life tests (the file has a header only)", source, header_line, 0);
   return out;

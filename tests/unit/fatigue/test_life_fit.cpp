@@ -195,7 +195,7 @@ TEST(LifeCardFit, ReplacesFittedModesKeepsOthersAndWarnsAboutPoorFits) {
   const LifeLaw truth{4.21028, 11.69, 0.1466};
   FatigueCard start = default_card();
   start.separation = LifeLaw{6.0, 8.0, 0.1};
-  const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, truth, 12, 0.0, 5), start, false);
+  const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, truth, 12, 0.0, 5), start);
   ASSERT_EQ(exact.fits.size(), 1u);
   EXPECT_NEAR(exact.card.separation.n / truth.n, 1.0, 1e-7);
   EXPECT_EQ(exact.card.radial_crack.sigma0_MPa, start.radial_crack.sigma0_MPa);
@@ -205,12 +205,49 @@ TEST(LifeCardFit, ReplacesFittedModesKeepsOthersAndWarnsAboutPoorFits) {
   EXPECT_TRUE(exact.card.provenance["life_fit"]["separation"]["constants"]["n"].contains("ci95"));
   EXPECT_NO_THROW(card_from_json(card_to_json(exact.card), "fitted"));  // the card reads back
 
-  const LifeCardFit scattered = fit_life_card(synthetic(Mode::separation, truth, 12, 1.0, 5), start, false);
+  const LifeCardFit scattered = fit_life_card(synthetic(Mode::separation, truth, 12, 1.0, 5), start);
   bool scatter = false;
   for (const std::string& w : scattered.warnings) scatter = scatter || w.find("scatter around the fit") != std::string::npos;
   EXPECT_TRUE(scatter);
-  const LifeCardFit quiet = fit_life_card(synthetic(Mode::separation, truth, 12, 0.1, 5), start, false);
+  const LifeCardFit quiet = fit_life_card(synthetic(Mode::separation, truth, 12, 0.1, 5), start);
   EXPECT_EQ(quiet.warnings.size(), 1u);  // only the mode without cases
+}
+
+// No more free constants than cases: one case fits σ0 alone (n, b held), two fit σ0 and n; either
+// passes through its cases exactly, which is a warning, not a result to trust. --fix-n holds n.
+TEST(LifeCardFit, FewCasesHoldConstantsAndAnExactFitIsAWarning) {
+  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  FatigueCard start = default_card();
+  start.separation = LifeLaw{6.0, 8.0, 0.1};
+  const auto cases = synthetic(Mode::separation, truth, 4, 0.0, 5);
+  auto warned_exact = [](const LifeCardFit& f) {
+    for (const std::string& w : f.warnings)
+      if (w.find("passes through every case") != std::string::npos) return true;
+    return false;
+  };
+  const LifeCardFit one = fit_life_card({cases[0]}, start);
+  EXPECT_EQ(one.card.separation.n, start.separation.n);
+  EXPECT_EQ(one.card.separation.b_per_C, start.separation.b_per_C);
+  EXPECT_NEAR(predicted_log10_life(cases[0], one.card.separation, 80.0), std::log10(cases[0].observed_cycles), 1e-9);
+  EXPECT_TRUE(one.fits[0].constants[1].fixed);
+  EXPECT_NE(one.fits[0].note.find("one case fixes sigma0 alone"), std::string::npos);
+  EXPECT_TRUE(warned_exact(one));
+
+  const LifeCardFit two = fit_life_card({cases[0], cases[1]}, start);  // two temperatures, b still held
+  EXPECT_NE(two.card.separation.n, start.separation.n);
+  EXPECT_EQ(two.card.separation.b_per_C, start.separation.b_per_C);
+  EXPECT_NE(two.fits[0].note.find("two cases cannot fix three constants"), std::string::npos);
+  EXPECT_TRUE(warned_exact(two));
+
+  const std::vector<ObservedLife> three(cases.begin(), cases.begin() + 3);
+  EXPECT_TRUE(warned_exact(fit_life_card(three, start)));  // three free constants through three cases
+  EXPECT_FALSE(warned_exact(fit_life_card(cases, start)));
+  const LifeCardFit held = fit_life_card(three, start, {true, false});
+  EXPECT_EQ(held.card.separation.n, start.separation.n);
+  EXPECT_FALSE(warned_exact(held));  // σ0 and b from three cases leave one residual
+  EXPECT_TRUE(held.fits[0].constants[1].fixed);
+  EXPECT_FALSE(held.fits[0].constants[1].has_interval);
+  EXPECT_TRUE(held.fits[0].constants[2].has_interval);  // b's interval, in b's place
 }
 
 }  // namespace

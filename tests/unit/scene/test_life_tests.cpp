@@ -83,12 +83,16 @@ TEST(LifeTests, MalformedRowsNameFileLineColumnAndKey) {
            {kHeader + "A,s.toml,separation,lots,90,20,100,100\n", "", "not a number", 2, 4},
            {kHeader + "A,,separation,1e6,90,20,100,100\n", "scene", "empty scene", 2, 2},
            {kHeader + "A,s.toml,separation,1e6\n", "", "row has 4 fields, header has 8", 2, 0},
-           {kHeader, "", "no life tests", 1, 0}}) {
+           {kHeader, "", "no life tests", 1, 0},
+           // --peaks-out groups rows by name: two belts under one name would merge
+           {kHeader + row + "B" + row.substr(1) + row, "case", "'A' repeats the name of line 2", 4, 1}}) {
     const core::InputError e = parse_error(b.text);
     EXPECT_EQ(e.file(), kDrives + "tests.csv") << b.message;
     EXPECT_EQ(e.line(), b.line) << e.what();
     EXPECT_EQ(e.column(), b.column) << e.what();
-    if (!b.key.empty()) EXPECT_EQ(e.key(), b.key) << e.what();
+    if (!b.key.empty()) {
+      EXPECT_EQ(e.key(), b.key) << e.what();
+    }
     EXPECT_NE(std::string(e.what()).find(b.message), std::string::npos) << e.what();
   }
 }
@@ -138,7 +142,7 @@ TEST(LifeTests, FitRecoversTheConstantsTheObservedLivesWereComputedFrom) {
   // The source only places the scenes (nothing is read from it).
   const auto cases = scene::observed_cases(csv, kDrives + "tests.csv", fatigue::default_card());
   ASSERT_EQ(cases.size(), 12u);
-  const fatigue::LifeCardFit fit = fatigue::fit_life_card(cases, fatigue::default_card(), false);
+  const fatigue::LifeCardFit fit = fatigue::fit_life_card(cases, fatigue::default_card());
   const fatigue::FatigueCard truth = fatigue::load_card(kTruth);
   ASSERT_EQ(fit.fits.size(), 2u);
   for (const auto& f : fit.fits) {

@@ -52,7 +52,8 @@ struct ConstantEstimate {
 struct LifeFitOptions {
   double reference_temperature_C = 80.0;  // the card's T_ref
   LifeLaw start;              // start values
-  bool fix_b = false;         // hold b at start.b_per_C (also automatic with one temperature)
+  bool fix_n = false;         // hold n at start.n (also automatic with one case)
+  bool fix_b = false;         // hold b at start.b_per_C (also automatic with one temperature or < 3 cases)
 };
 
 struct LifeFitResult {
@@ -72,7 +73,8 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
 // replaced by its fit (T_ref and the crack sweep are the start's), the fits, and warnings for
 // what a user should not read as a result: a mode no case failed in (its start constants kept),
 // lives scattering around the fit by more than kScatterWarning_log10, n at its bound, σ0's 95 %
-// interval spanning more than a factor kSpreadWarning. provenance.life_fit records each fit.
+// interval spanning more than a factor kSpreadWarning, as many free constants as cases (the fit
+// passes through them all). provenance.life_fit records each fit.
 struct LifeCardFit {
   FatigueCard card;
   std::vector<LifeFitResult> fits;  // one per mode with cases, in mode order
@@ -80,7 +82,11 @@ struct LifeCardFit {
 };
 constexpr double kScatterWarning_log10 = 0.5;  // a factor 3.2: beyond a fatigue test's usual 2–3
 constexpr double kSpreadWarning = 10.0;
-LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start, bool fix_b);
+struct HeldConstants {
+  bool n = false, b = false;  // hold at the start card's values (each also automatic, LifeFitOptions)
+};
+LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start,
+                          const HeldConstants& held = {});
 
 // One fit as JSON: cases, rms_log10_error, note, constants (value, fixed, std_error, ci95).
 nlohmann::json life_fit_json(const LifeFitResult& fit);
