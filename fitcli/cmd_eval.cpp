@@ -196,17 +196,17 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--mode", args->mode, "shear | uniaxial | bulk (default: the card's own mode)");
   cmd->add_option("--poisson-ratio", args->poisson_ratio,
                   "Another --mode of a card without a bulk modulus: instantaneous Poisson ratio (as export)")
-      ->capture_default_str()->check(CLI::Range(0.0, 0.49999999));
+      ->capture_default_str()->check(poisson_ratio_range());
   cmd->add_option("--orientation", args->orientation, "Thesis orientation label (11, 22, 33, 12, 13, 23)");
   cmd->add_option("--frequency-hz", args->frequency_Hz, "Frequencies in Hz, comma separated")
-      ->delimiter(',')->check(CLI::PositiveNumber);
+      ->delimiter(',')->check(positive_number());
   cmd->add_option("--time-s", args->time_s,
                   "Times in s, comma separated: relaxation modulus M(t) and creep compliance J(t) instead")
-      ->delimiter(',')->check(CLI::PositiveNumber);
+      ->delimiter(',')->check(positive_number());
   cmd->add_option("--temperature-c", args->temperature_C, "Temperatures in degC (default: reference)")
       ->delimiter(',')->check(temperature_c_range());
   cmd->add_option("--amplitude", args->amplitude, "Strain amplitudes (default: small-amplitude limit)")
-      ->delimiter(',')->check(CLI::NonNegativeNumber);
+      ->delimiter(',')->check(non_negative_number());
   cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,
                 "Evaluate beyond the card's data window (a warning, and extrapolated: true in --json)");
   cmd->add_option("--out", args->out, "Output file (CSV, or JSON with --json; default or - = stdout)");

@@ -34,7 +34,7 @@ void register_export(CLI::App& app) {
   cmd->add_option("--out", args->out, "Keyword file to write (atomically; default or - = stdout)");
   cmd->add_option("--poisson-ratio", args->options.poisson_ratio,
                   "Instantaneous Poisson ratio when the card has no bulk modulus")
-      ->capture_default_str()->check(CLI::Range(0.0, 0.49999999));
+      ->capture_default_str()->check(poisson_ratio_range());
   cmd->add_option("--material-id", args->options.material_id, "Material number (ANSYS, LS-DYNA)")
       ->capture_default_str();
   cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)");

@@ -249,7 +249,7 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--smoothness", a->smoothness,
                   "Spectrum: second-difference penalty weight lambda (default: chosen by GCV)");
   cmd->add_option("--terms-per-decade", a->terms_per_decade, "Spectrum: time constants per decade")
-      ->capture_default_str()->check(CLI::Range(0.25, 20.0));
+      ->capture_default_str()->check(number_in(0.25, 20.0));
   cmd->add_option("--backend", a->backend, "auto | nnls | ceres | nlopt | staged")->capture_default_str();
   cmd->add_option("--format", a->format,
                   "native | pyvisco (t, E_relax files are relaxation data) | eplexor (.xls, also recognised by content)")

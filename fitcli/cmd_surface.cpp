@@ -263,11 +263,11 @@ void register_surface(CLI::App& app) {
   auto* grid = surface_cmd->add_subcommand("grid", "Modulus grid of a card (CSV for FE codes) and its surface");
   grid->add_option("--card", ga->card, "Material card file (JSON; - = stdin)")->required();
   grid->add_option("--frequency-hz", ga->frequency_Hz, "Frequencies in Hz, comma separated")
-      ->required()->delimiter(',')->check(CLI::PositiveNumber);
+      ->required()->delimiter(',')->check(positive_number());
   grid->add_option("--temperature-c", ga->temperature_C, "Temperatures in degC (default: card reference)")
       ->delimiter(',')->check(temperature_c_range());
   grid->add_option("--amplitude", ga->amplitude, "Strain amplitudes (default: small-amplitude limit)")
-      ->delimiter(',')->check(CLI::NonNegativeNumber);
+      ->delimiter(',')->check(non_negative_number());
   grid->add_option("--mode", ga->mode, "shear | uniaxial | bulk")->capture_default_str();
   grid->add_option("--orientation", ga->orientation, "Thesis orientation label");
   grid->add_option("--quantity", ga->quantity, "Surface quantity: storage | loss | tan_delta | mean")

@@ -71,11 +71,11 @@ void register_synth(CLI::App& app) {
   cmd->add_option("--mode", a->mode, "shear | uniaxial | bulk")->capture_default_str();
   cmd->add_option("--orientation", a->orientation, "Thesis orientation label");
   cmd->add_option("--frequency-hz", a->frequency_Hz, "Frequencies, Hz")->required()->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--temperature-c", a->temperature_C, "Temperatures, degC")->delimiter(',')->check(temperature_c_range());
   cmd->add_option("--amplitude", a->amplitude, "Strain amplitudes")->delimiter(',');
   cmd->add_option("--noise", a->noise, "Relative standard deviation of the scatter (0.01 = 1 %)")
-      ->capture_default_str()->check(CLI::Range(0.0, 0.5));
+      ->capture_default_str()->check(number_in(0.0, 0.5));
   cmd->add_option("--specimens", a->specimens, "Specimens per test point")->capture_default_str()
       ->check(CLI::Range(1, 100));
   cmd->add_option("--seed", a->seed, "Random seed")->capture_default_str();

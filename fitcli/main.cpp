@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   fitcli::register_life(app);
   fitcli::register_life_fit(app);
   fitcli::register_sweep(app);
+  fitcli::require_finite_numbers(app);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "fitcli: error: " + std::string(e.what()) + " (--help lists the options)\n";
+  });
   fitcli::set_command_line(argc, argv);
   try {
     app.parse(argc, argv);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -51,7 +53,49 @@ std::string exact_list(const std::vector<double>& values) {
   return text;
 }
 
-CLI::Validator temperature_c_range() { return CLI::Range(-273.15, 1000.0).description("in [-273.15, 1000] degC"); }
+namespace {
+
+// A validator of numbers: `accept(x)` for finite x, else "must be <what>, got <text>".
+CLI::Validator number_where(std::function<bool(double)> accept, const std::string& what) {
+  return CLI::Validator(
+      [accept, what](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0') return "'" + text + "' is not a number";
+        if (!std::isfinite(x) || !accept(x)) return "must be " + what + ", got " + text;
+        return "";
+      },
+      what);
+}
+
+}  // namespace
+
+CLI::Validator temperature_c_range() {
+  return number_where([](double x) { return x >= -273.15 && x <= 1000.0; }, "in [-273.15, 1000] degC");
+}
+CLI::Validator positive_number() { return number_where([](double x) { return x > 0.0; }, "> 0"); }
+CLI::Validator non_negative_number() { return number_where([](double x) { return x >= 0.0; }, ">= 0"); }
+CLI::Validator poisson_ratio_range() {
+  return number_where([](double x) { return x >= 0.0 && x < 0.5; }, "in [0, 0.5)");
+}
+CLI::Validator number_in(double low, double high) {
+  return number_where([low, high](double x) { return x >= low && x <= high; },
+                      "in [" + fitlib::core::short_number(low) + ", " + fitlib::core::short_number(high) + "]");
+}
+
+void require_finite_numbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (*end == '\0' && !text.empty() && !std::isfinite(x)) return "must be a finite number, got " + text;
+        return "";  // not a number at all: CLI11's own conversion says so
+      },
+      "");
+  for (CLI::Option* o : app.get_options())
+    if (o->get_type_name().rfind("FLOAT", 0) == 0) o->check(finite);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_finite_numbers(*sub);
+}
 
 void add_verbosity_flags(CLI::App* cmd) {
   auto* q = cmd->add_flag("--quiet,-q", verbosity().quiet, "No notes or warnings on stderr (errors only)");

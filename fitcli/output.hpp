@@ -26,6 +26,15 @@ std::string exact_list(const std::vector<double>& values);
 void add_verbosity_flags(CLI::App* cmd);
 // Celsius temperatures the commands accept, as scenes do: [−273.15, 1000] °C.
 CLI::Validator temperature_c_range();
+// Finite numbers > 0, ≥ 0 or in a range; the message names the value ("'abc' is not a number",
+// "must be > 0, got 0"; NaN and inf are refused).
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+CLI::Validator number_in(double low, double high);  // finite, low ≤ x ≤ high
+CLI::Validator poisson_ratio_range();               // [0, 0.5)
+// Every number option (type FLOAT) of `app` and its subcommands refuses NaN and inf: CLI11's
+// ranges let NaN through, and a NaN option reached results (exit 4) or was read as "unset".
+void require_finite_numbers(CLI::App& app);
 // --json on `cmd`: one JSON document of `what`, on stdout (nothing else there) unless `what` says
 // it goes to --out.
 void add_json_flag(CLI::App* cmd, bool& json, const std::string& what);

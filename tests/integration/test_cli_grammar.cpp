@@ -115,6 +115,29 @@ TEST(CliGrammar, EveryLeafHasJsonQuietVerboseAndFilesOrFolders) {
   }
 }
 
+// Every number option of every subcommand refuses NaN and inf at the command line (exit 2, the
+// option and the value named): CLI11's ranges let NaN through, and `eval --temperature-c nan`
+// printed the reference temperature's moduli, `synth --noise nan` ended in exit 4.
+TEST(CliGrammar, EveryNumberOptionRefusesNanAndInf) {
+  int checked = 0;
+  for (const auto& [name, help] : leaf_helps())
+    for (const auto& [option, text] : options_of(help)) {
+      if (text.find("FLOAT") == std::string::npos) continue;
+      for (const char* value : {"nan", "inf", "-inf"}) {
+        const auto r = run_fitcli(name + " " + option + " " + value);
+        EXPECT_EQ(r.exit_code, 2) << name << " " << option << " " << value << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("fitcli: error: " + option + ": ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(std::string("got ") + value), std::string::npos) << r.err;
+      }
+      ++checked;
+    }
+  EXPECT_GE(checked, 30);
+  const auto word = run_fitcli("eval --frequency-hz abc");
+  EXPECT_NE(word.err.find("--frequency-hz: 'abc' is not a number"), std::string::npos) << word.err;
+  const auto zero = run_fitcli("eval --frequency-hz 0");
+  EXPECT_NE(zero.err.find("--frequency-hz: must be > 0, got 0"), std::string::npos) << zero.err;
+}
+
 TEST(CliGrammar, DocsCliNamesEverySubcommandAndOption) {
   const std::string doc = slurp(source_path("docs/cli.md"));
   ASSERT_FALSE(doc.empty());
