@@ -1,10 +1,13 @@
 // fitcli material-point: drives the material point of any card through a cyclic strain
 // program (model::drive, docs/model.md §"drive") and writes time, strains and stresses (CSV);
 // for Fritzson cards --case runs a Report II §7.2 test case instead.
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/finite_output.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
@@ -77,6 +80,18 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
   options.frequency_Hz = a.frequency_Hz;
   options.temperature_C = a.temperature_C;
   options.bulk_modulus_MPa = a.bulk_modulus_MPa;
+  if (std::isnan(options.bulk_modulus_MPa)) {  // a card without K: ν = 0.4995, as eval, export and scenes
+    model::TestCondition native;
+    native.mode = card.model()->native_mode();
+    native.frequency_Hz = a.frequency_Hz;
+    native.temperature_C = a.temperature_C;
+    options.bulk_modulus_MPa =
+        card::point_bulk_modulus_MPa(*card.model(), card.values(), native, card::kDefaultPoissonRatio);
+    if (!std::isnan(options.bulk_modulus_MPa))
+      note("the card has no bulk modulus: K = " + fitlib::core::short_number(options.bulk_modulus_MPa) +
+           " MPa from its instantaneous modulus and Poisson ratio " +
+           fitlib::core::short_number(card::kDefaultPoissonRatio) + " (as eval and export; --bulk-modulus to choose)");
+  }
   const auto point = model::make_material_point(*card.model(), card.values(), options);
   model::TestCondition c;
   c.mode = model::parse_test_mode(a.test);
@@ -118,7 +133,7 @@ void register_material_point(CLI::App& app) {
     old->group("");  // hidden from --help
   }
   cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency-hz)");
-  cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear shear card without K");
+  cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear card without K (default: from its instantaneous modulus and Poisson ratio 0.4995)");
   cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)");
   cmd->add_option("--out", args->out, "CSV file to write (JSON with --json; default or - = stdout)");
   add_json_flag(cmd, args->json, "the rows instead of CSV, on stdout or in --out");

@@ -71,3 +71,36 @@ TEST(FitCli, MasterCurveFromRawIsothermsWritesShifts) {
   const auto card = nlohmann::json::parse(slurp(out));
   EXPECT_EQ(card["temperature"]["law"], "wlf");
 }
+
+// Every linear model fitted to a hand-typed shear table gives a card that every command answers
+// for: eval in its own mode and converted to uniaxial (K from its glassy modulus and ν 0.4995),
+// synth, material-point (the same K, said in a note) and export — a retardation spectrum through
+// its exact Prony series; only the fractional Zener card, which has none, is refused (exit 2).
+TEST(LinearCards, EveryFittedShearCardAnswersEveryCommand) {
+  const std::string table = temp_file("hand-typed.csv");
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,storage_MPa,loss_MPa\n"
+                          "shear,0.1,23,2.0,0.15\nshear,0.3,23,2.1,0.25\nshear,1,23,2.3,0.38\nshear,3,23,2.6,0.50\n"
+                          "shear,10,23,3.0,0.52\nshear,30,23,3.3,0.45\nshear,100,23,3.5,0.35\n";
+  for (const std::string model : {"prony", "zener3", "retardation", "fractional-zener"}) {
+    const std::string card = temp_file("hand-" + model + ".json");
+    const auto fit = run_fitcli("fit --data " + table + " --model " + model + " --terms 3 -q --out " + card);
+    ASSERT_EQ(fit.exit_code, 0) << model << fit.err;
+    double storage[2] = {0.0, 0.0};  // shear, uniaxial at 1 Hz: E′ ≈ 3G′ at ν 0.4995
+    for (int k = 0; k < 2; ++k) {
+      const auto e = run_fitcli("eval --card " + card + " --frequency-hz 1 --json --mode " + (k ? "uniaxial" : "shear"));
+      ASSERT_EQ(e.exit_code, 0) << model << e.err;
+      storage[k] = nlohmann::json::parse(e.out)["rows"][0]["storage_MPa"].get<double>();
+    }
+    EXPECT_NEAR(storage[1] / storage[0], 3.0, 0.01) << model;
+    EXPECT_EQ(run_fitcli("synth --card " + card + " --frequency-hz 1,10 --out " + temp_file("s-" + model + ".csv")).exit_code,
+              0) << model;
+    const auto point = run_fitcli("material-point --card " + card + " --cycles 1 --steps-per-cycle 8");
+    EXPECT_EQ(point.exit_code, 0) << model << point.err;
+    EXPECT_NE(point.err.find("K = "), std::string::npos) << model << point.err;
+    const auto deck = run_fitcli("export --card " + card + " --format abaqus");
+    EXPECT_EQ(deck.exit_code, model == "fractional-zener" ? 2 : 0) << model << deck.err;
+    if (model == "retardation") {
+      EXPECT_NE(deck.out.find("converted exactly from its retardation spectrum"), std::string::npos) << deck.out;
+    }
+  }
+}

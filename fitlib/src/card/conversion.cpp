@@ -42,16 +42,21 @@ std::complex<double> convert(std::complex<double> M, model::TestMode native, mod
 
 namespace {
 
-// The native instantaneous modulus the conversion starts from: a series' glassy modulus, else the
-// storage modulus `storage` at the condition (a uniaxial card's ν does not depend on it).
-double instantaneous_MPa(const model::Model& model, const std::vector<double>& p, double storage,
-                         model::TestMode asked) {
+// The native instantaneous modulus the conversion starts from: a series' glassy modulus; a shear
+// card's relaxation modulus at t = 0 (its glassy limit: 1/J_g of a retardation spectrum, G_0 + ΔG
+// of a fractional Zener card); a uniaxial card's storage modulus `storage` at the condition (its ν
+// does not depend on it).
+double instantaneous_MPa(const model::Model& model, const std::vector<double>& p, const model::TestCondition& c,
+                         double storage, model::TestMode asked) {
   model::MaxwellSeries s;
   if (model.maxwell_series(p.data(), &s)) return s.glassy();
-  if (model.native_mode() == model::TestMode::shear)
-    throw core::UsageError("a shear card that is not a Prony-type series cannot answer a " +
-                           std::string(model::to_string(asked)) + " test without a bulk modulus (fit with --bulk-modulus)");
-  return storage;
+  if (model.native_mode() != model::TestMode::shear) return storage;
+  model::TestCondition reference = c;  // K does not follow the temperature (as a series' glassy one)
+  reference.temperature_C = std::nan("");
+  const double glassy = model.relaxation_modulus(p.data(), reference, 0.0);
+  if (std::isfinite(glassy) && glassy > 0.0) return glassy;
+  throw core::UsageError("a shear card without a finite instantaneous modulus cannot answer a " +
+                         std::string(model::to_string(asked)) + " test without a bulk modulus (fit with --bulk-modulus)");
 }
 
 }  // namespace
@@ -63,7 +68,7 @@ model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vecto
   model::TestCondition n = c;
   n.mode = native;
   const auto m = model.moduli(p.data(), n);
-  const double m0 = instantaneous_MPa(model, p, m.storage, c.mode);
+  const double m0 = instantaneous_MPa(model, p, n, m.storage, c.mode);
   const auto e = elastic_constants(native, m0, std::nan(""), poisson_ratio);
   const auto M = convert({m.storage, m.loss}, native, c.mode, e);
   const auto mean = convert({m.mean, 0.0}, native, c.mode, e);
@@ -75,7 +80,7 @@ double point_bulk_modulus_MPa(const model::Model& model, const std::vector<doubl
   if (!std::isnan(model.bulk_modulus(p.data()))) return std::nan("");
   model::TestCondition n = c;
   n.mode = model.native_mode();
-  const double m0 = instantaneous_MPa(model, p, model.moduli(p.data(), n).storage, model::TestMode::bulk);
+  const double m0 = instantaneous_MPa(model, p, n, model.moduli(p.data(), n).storage, model::TestMode::bulk);
   return elastic_constants(n.mode, m0, std::nan(""), poisson_ratio).bulk_MPa;
 }
 

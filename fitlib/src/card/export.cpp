@@ -22,6 +22,7 @@ struct PronyExport {
   std::vector<double> alpha, tau_s;
   double young0_MPa = 0.0, shear0_MPa = 0.0, bulk_MPa = 0.0, poisson = 0.0;
   bool bulk_relaxes = false;  // uniaxial card: same α for bulk (constant Poisson ratio)
+  bool from_retardation = false;  // the series is the card's retardation spectrum converted exactly
   // WLF shift log a_T = −C1 (T − T_ref)/(C2 + T − T_ref), when the card has one.
   bool wlf = false;
   double reference_C = 0.0, C1 = 0.0, C2_K = 0.0;
@@ -68,9 +69,12 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
     throw core::UsageError(format + " Prony input cannot hold amplitude dependence (damage) of model '" +
                            card.model_kind + "'");
   model::MaxwellSeries s;
-  if (!m->maxwell_series(values.data(), &s))
-    throw core::UsageError("model '" + card.model_kind + "' is not an exact Prony series; " + format +
-                           " export needs one (fit a prony card)");
+  model::KelvinSeries k;
+  const bool series = m->maxwell_series(values.data(), &s);
+  if (!series && !m->kelvin_series(values.data(), &k))
+    throw core::UsageError("model '" + card.model_kind + "' is neither a Prony series nor a retardation spectrum; " +
+                           format + " export needs one (fit a prony card)");
+  if (!series) s = k.to_maxwell();  // exact: the relaxation times are the zeros of J*(1/τ)
   const int cap = max_prony_terms(format);
   if (cap > 0 && static_cast<int>(s.moduli.size()) > cap)
     throw core::UsageError(format + " accepts at most " + std::to_string(cap) + " Prony terms, the card has " +
@@ -83,6 +87,7 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
   }
   const double m0 = s.glassy();
   PronyExport e;
+  e.from_retardation = !series;
   for (size_t i = 0; i < s.moduli.size(); ++i) {
     if (s.moduli[i] < 0.0)
       throw core::UsageError(format + " needs non-negative Prony weights; term " + std::to_string(i + 1) +
@@ -113,7 +118,8 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
 std::string header(const Card& card, const char* comment, const PronyExport& e) {
   std::ostringstream out;
   out << comment << " fitlib export of card '" << card.name << "' (model " << card.model_kind << ", "
-      << e.alpha.size() << " Prony terms); units MPa, s, degC\n";
+      << e.alpha.size() << " Prony terms" << (e.from_retardation ? " converted exactly from its retardation spectrum" : "")
+      << "); units MPa, s, degC\n";
   out << comment << (e.bulk_relaxes ? " uniaxial card: the same relative weights relax shear and bulk (constant Poisson ratio)\n"
                                     : " shear card: bulk response elastic\n");
   return out.str();

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include "common/temp_path.hpp"
 
+#include <cmath>
+#include <complex>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -119,6 +121,43 @@ TEST(Export, AbaqusPronyWeightsSumWithLongTermToOne) {
   // G_inf = 1, G_1 = 2, G_2 = 3, tau = 0.1, 1 s → g = 2/6, 3/6.
   EXPECT_NE(text.find("*VISCOELASTIC, TIME=PRONY\n0.3333333333, 0, 0.1\n0.5, 0, 1\n"), std::string::npos) << text;
   EXPECT_NE(text.find("*TRS, DEFINITION=WLF\n-5, 8.86, 101.6\n"), std::string::npos) << text;
+}
+
+// A retardation spectrum is exported through its exact Maxwell series: the Abaqus deck's numbers,
+// read back as G*(ω) = G_0 (1 − Σ g_i + Σ g_i iωτ_i/(1 + iωτ_i)) with G_0 = E_0/(2(1 + ν)), are
+// the card's 1/J*(ω) (closed form from J_g, L_i, λ_i) to 1e-8 over six decades.
+TEST(Export, RetardationCardGoesOutAsItsExactPronySeries) {
+  card::Card c;
+  c.name = "ret";
+  c.model_kind = "retardation";
+  c.model_options = {{"terms", 2}, {"mode", "shear"}};
+  const double Jg = 0.25, L[2] = {0.1, 0.3}, lambda[2] = {0.01, 1.0};
+  for (double v : {Jg, L[0], L[1], lambda[0], lambda[1]}) c.parameters.push_back(card::ParameterEstimate{v, false, {}, {}, {}, {}});
+  const std::string deck = card::export_card(c, "abaqus");
+  EXPECT_NE(deck.find("2 Prony terms converted exactly from its retardation spectrum"), std::string::npos) << deck;
+  std::stringstream in(deck.substr(deck.find("*ELASTIC")));
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  const double E0 = std::stod(line), nu = std::stod(line.substr(line.find(',') + 1));
+  std::getline(in, line);  // *VISCOELASTIC
+  std::vector<std::pair<double, double>> terms;  // g_i, tau_i
+  while (std::getline(in, line) && line[0] != '*') {
+    const double g = std::stod(line), tau = std::stod(line.substr(line.rfind(',') + 1));
+    terms.emplace_back(g, tau);
+  }
+  ASSERT_EQ(terms.size(), 2u);
+  const double G0 = E0 / (2.0 * (1.0 + nu));
+  EXPECT_NEAR(G0, 1.0 / Jg, 1e-8);
+  const std::complex<double> i(0.0, 1.0);
+  for (double f = 1e-3; f <= 1e3; f *= 10.0) {
+    const double w = 2.0 * M_PI * f;
+    std::complex<double> J = Jg, G = 1.0;
+    for (int k = 0; k < 2; ++k) J += L[k] / (1.0 + i * w * lambda[k]);
+    for (const auto& [g, tau] : terms) G += g * (i * w * tau / (1.0 + i * w * tau) - 1.0);
+    G *= G0;
+    EXPECT_NEAR(std::abs(G - 1.0 / J) / std::abs(1.0 / J), 0.0, 1e-8) << f << " Hz";
+  }
 }
 
 TEST(Export, AnsysAndLsDynaCarryTheSameSeries) {

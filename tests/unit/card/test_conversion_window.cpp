@@ -68,6 +68,28 @@ TEST(ModeConversion, ShearCardGetsTheExportsElasticBulkModulus) {
   EXPECT_EQ(b.loss, 0.0);
 }
 
+// A shear card that is not a Maxwell series converts from its glassy modulus too: a retardation
+// spectrum's 1/J_g and a fractional Zener card's G_0 + ΔG (its relaxation modulus at t = 0).
+TEST(ModeConversion, ShearCardsWithoutASeriesConvertFromTheirGlassyModulus) {
+  const double nu = 0.4995;
+  auto check = [&](const char* kind, std::vector<double> values, double glassy, int terms) {
+    card::Card c;
+    c.model_kind = kind;
+    if (terms > 0) c.model_options = {{"terms", terms}, {"mode", "shear"}};
+    for (double v : values) c.parameters.push_back(card::ParameterEstimate{v, false, {}, {}, {}, {}});
+    const double K = 2.0 * glassy * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu));
+    const auto G = c.model()->moduli(c.values().data(), at(model::TestMode::shear, 3.0));
+    const std::complex<double> Gs(G.storage, G.loss), E = 9.0 * K * Gs / (3.0 * K + Gs);
+    const auto m = card::moduli_in_mode(*c.model(), c.values(), at(model::TestMode::uniaxial, 3.0), nu);
+    EXPECT_NEAR(m.storage / E.real(), 1.0, 1e-6) << kind;
+    EXPECT_NEAR(m.loss / E.imag(), 1.0, 1e-6) << kind;
+    EXPECT_NEAR(card::point_bulk_modulus_MPa(*c.model(), c.values(), at(model::TestMode::bulk, 3.0), nu) / K, 1.0,
+                1e-6) << kind;
+  };
+  check("retardation", {0.25, 0.1, 0.3, 0.01, 1.0}, 4.0, 2);
+  check("fractional-zener", {1.0, 10.0, 0.1, 0.5}, 11.0, 0);
+}
+
 TEST(ModeConversion, NativeModeIsTheModelsOwn) {
   const auto card = two_term_card("shear");
   const auto m = card::moduli_in_mode(*card.model(), card.values(), at(model::TestMode::shear, 1.0), 0.1);

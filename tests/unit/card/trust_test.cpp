@@ -231,8 +231,9 @@ TEST(Trust, WlfFitsOfTheSyntheticTableStayInTheWindowAndSayWhenTheyMiss) {
     const std::string what = "--terms " + std::to_string(terms) + " --temperature-law wlf";
     expect_admissible(r, o, table, what);
     // A fit that misses says so: past the thresholds there is a warning.
-    if (r.metrics.mean_rel_error > 0.05 || r.metrics.max_rel_error > 0.40)
+    if (r.metrics.mean_rel_error > 0.05 || r.metrics.max_rel_error > 0.40) {
       EXPECT_FALSE(r.quality.warnings.empty()) << what;
+    }
     std::printf("%s: mean relative error %.2f %%, max %.2f %%, %zu warnings\n", what.c_str(),
                 100 * r.metrics.mean_rel_error, 100 * r.metrics.max_rel_error, r.quality.warnings.size());
   }

@@ -26,14 +26,14 @@ ElasticConstants elastic_constants(model::TestMode native, double instantaneous_
                                    double poisson_ratio);
 
 // The card's moduli at `c` in any mode: the model's own when c.mode is its native mode or it has
-// a bulk modulus; otherwise converted by elastic_constants (UsageError for a bulk card, or a
-// shear card that is not a Prony-type series, whose G₀ is then unknown).
+// a bulk modulus; otherwise converted by elastic_constants from the card's instantaneous modulus
+// (a series' glassy one, a shear card's relaxation modulus at t = 0; UsageError for a bulk card).
 model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vector<double>& values,
                                      const model::TestCondition& c, double poisson_ratio);
 
 // The bulk modulus K (MPa) a material point of the card needs by the same rule: NaN when the card
 // holds its own K (the point takes it), else elastic_constants' K from the instantaneous modulus
-// (a series' glassy one; otherwise the storage at `c`, uniaxial cards only, UsageError for shear).
+// (as moduli_in_mode; a uniaxial card that is no series: the storage at `c`).
 double point_bulk_modulus_MPa(const model::Model& model, const std::vector<double>& values,
                               const model::TestCondition& c, double poisson_ratio);
 
