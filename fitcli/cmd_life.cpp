@@ -11,6 +11,7 @@
 #include "fitlib/scene/scene.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 
 namespace fitcli {
 namespace {
@@ -39,6 +40,7 @@ void register_life(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   auto record_timing = std::make_shared<bool>(false);
   auto field_at = std::make_shared<std::vector<std::string>>();
+  auto plot = std::make_shared<std::string>();
   cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; [life] optional; - = stdin)")
       ->required();
   cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)")->capture_default_str();
@@ -47,11 +49,15 @@ void register_life(CLI::App& app) {
   cmd->add_option("--field-at", *field_at,
                   "Write the segment's full-field stress (VTK, DIR/field-<k>.vtk) when its middle reaches this path "
                   "position of the last cycle: 'entrance' (the first pulley's) or mm; repeatable; segment levels only");
+  cmd->add_option("--plot", *plot,
+                  "Also write the figure (PNG): the load cycle and each mode's effective stress at its design point "
+                  "with the peaks of its sum");
   cmd->add_flag("--record-timing", *record_timing,
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
     auto scene = load_scene_input(*scene_path);
     scene.outputs["life"] = true;  // the command asks for the life
+    if (!plot->empty()) fitlib::core::check_output_path(*plot);
     if (!field_at->empty()) {
       scene.life_field_at = *field_at;
       scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();
@@ -64,6 +70,8 @@ void register_life(CLI::App& app) {
           throw fitlib::core::InputError("the life cannot be computed: " + e.reason, scene.path, 0, 0, "life.fidelity");
     }
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
+    if (!plot->empty() && result.cycle)
+      write_png(*plot, [&](const std::string& tmp) { return life_plot_script(scene, result, tmp); });
     if (*json) {
       std::cout << fitlib::scene::life_json(scene, result, *record_timing).dump(2) << "\n";
       return;

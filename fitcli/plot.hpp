@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "fitlib/card/card.hpp"
+#include "fitlib/scene/results.hpp"
+#include "fitlib/scene/scene.hpp"
 
 namespace fitcli {
 
@@ -13,6 +15,11 @@ namespace fitcli {
 // `title`: empty = the card's name. The PNG is written to a temporary beside `out` and renamed.
 void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& data, const std::string& format,
                const std::string& title, const std::string& out);
+
+// The gnuplot script of `fitcli life --plot` (life_plot.cpp): the load cycle and each mode's σ_e
+// at its design point with its peaks; `r` must hold the life and the load cycle.
+std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::scene::SceneResult& r,
+                             const std::string& png);
 
 // `text` as a gnuplot single-quoted string (a quote doubled); print it with `noenhanced` so that a
 // user's name keeps its _ ^ { }.

@@ -184,6 +184,22 @@ TEST(LifeCli, ElasticLevelReportsTheSegmentEquilibriumCheckAndTheEntranceField) 
 // neither "entrance" nor a number is refused before the folder is made, a position beyond the load
 // cycle (known only once the cycle is computed) removes the folder the command made; a folder that
 // existed before stays with its content.
+// --plot draws the run's figure beside life.json, whose --json document stays alone on stdout; a
+// run that fails writes no figure and leaves an existing one as it was.
+TEST(LifeCli, PlotDrawsTheFigureAndAFailedRunLeavesNone) {
+  const std::string dir = unique_dir("life_plot"), png = dir + ".png";
+  const auto r = run_fitcli("life --scene " + source_path("datasets/drives/ref-0500-medium.toml") + " --out-dir " + dir +
+                            " --json --plot " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["governing_mode"], "separation");
+  EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
+  std::ofstream(png, std::ios::trunc) << "mine\n";
+  const auto bad = run_fitcli("life --scene " + source_path("tests/data/bad/scene/life_segment_ok.toml") +
+                              " --field-at 1e9 --out-dir " + unique_dir("life_plot_bad") + " --plot " + png);
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_EQ(slurp(png), "mine\n");
+}
+
 TEST(LifeCli, BadFieldAtExitsTwoAndLeavesNoOutputFolder) {
   const std::string scene = source_path("tests/data/bad/scene/life_segment_ok.toml");
   for (const char* at : {"banana", "-3", "1e9"}) {

@@ -1,0 +1,88 @@
+// fitcli life --plot: the figure of a life run (docs/fatigue.md §8 "Figure"). Top, the load cycle
+// the segment was driven by (belt force and neutral-layer curvature against time, the pulleys'
+// contact arcs shaded); below, one panel per mode: the effective stress σ_e on the crack plane at
+// the design point over the last cycle, with the significant peaks that enter Σ(σ_e/σ0)ⁿ.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/card.hpp"
+#include "output.hpp"
+#include "plot.hpp"
+
+namespace fitcli {
+namespace {
+
+std::string cycles_text(double n) {
+  if (!std::isfinite(n)) return "unbounded";
+  char b[48];
+  std::snprintf(b, sizeof b, "%.3g cycles", n);
+  return b;
+}
+
+// One mode's panel: σ_e(t) in ms within the cycle, the peaks as points. The last cycle starts
+// mid-span (Report I's loading), so times are taken modulo the cycle and sorted: the cycle is
+// periodic, its end joins its start.
+void mode_panel(std::ostringstream& s, const fitlib::fatigue::ModeLife& m, double cycle_s, int k) {
+  auto in_cycle_ms = [cycle_s](double t) { return 1e3 * (t - cycle_s * std::floor(t / cycle_s)); };
+  std::vector<std::pair<double, double>> history;
+  for (std::size_t i = 0; i < m.t_s.size(); ++i) history.emplace_back(in_cycle_ms(m.t_s[i]), m.effective_stress_MPa[i]);
+  std::sort(history.begin(), history.end());
+  if (!history.empty()) history.emplace_back(history.front().first + 1e3 * cycle_s, history.front().second);
+  s << "$e" << k << " << EOD\n";
+  for (const auto& [t, stress] : history) s << exact(t) << " " << exact(stress) << "\n";
+  s << "EOD\n$p" << k << " << EOD\n";
+  for (const auto& p : m.peaks) s << exact(in_cycle_ms(p.t_s)) << " " << exact(p.stress_MPa) << "\n";
+  s << "EOD\n";
+}
+
+}  // namespace
+
+std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::scene::SceneResult& r,
+                             const std::string& png) {
+  using fitlib::core::short_number;
+  const auto& report = r.life->report;
+  const fitlib::belt::LoadCycle& cycle = *r.cycle;
+  const int panels = 1 + static_cast<int>(report.modes.size());
+  std::ostringstream s;
+  s << "set terminal pngcairo size 1200," << 260 + 280 * panels
+    << " enhanced font 'DejaVu Sans,11' linewidth 1.3\nset output '" << png << "'\n"
+    << "set grid lc rgb '#dddddd'\nset key inside top left box opaque font ',9'\nset lmargin 10\nset rmargin 11\n"
+    << "set offsets 0, 0, graph 0.08, graph 0.04\nset xrange [0:"
+    << exact(1e3 * cycle.cycle_time_s) << "]\n$load << EOD\n";
+  double K_low = 0.0, K_high = 0.0;
+  for (const auto& x : cycle.samples) {
+    s << exact(1e3 * x.t_s) << " " << exact(x.F_N) << " " << exact(x.K_1_mm) << "\n";
+    K_low = std::min(K_low, x.K_1_mm), K_high = std::max(K_high, x.K_1_mm);
+  }
+  s << "EOD\n";
+  for (std::size_t k = 0; k < report.modes.size(); ++k) mode_panel(s, report.modes[k], cycle.cycle_time_s, static_cast<int>(k));
+  const double ms_per_mm = 1e3 * cycle.cycle_time_s / cycle.cycle_length_mm;
+  int object = 1;
+  for (const auto& p : cycle.pulleys)  // contact arcs, shaded in every panel
+    s << "set object " << object++ << " rect from " << exact(ms_per_mm * p.s_Cin_mm) << ", graph 0 to "
+      << exact(ms_per_mm * p.s_Cout_mm) << ", graph 1 fc rgb '#eeeeee' fs solid noborder behind\n";
+  const std::string governing = report.governing == "none" ? "no significant peak"
+                                                            : report.governing + ", " + cycles_text(report.life_cycles);
+  s << "set multiplot layout " << panels << ",1 title "
+    << gnuplot_quoted(scene.name + " (" + short_number(scene.temperature_C) + " °C): governing " + governing +
+                      "; grey: pulley contact")
+    << " noenhanced font ',12'\nset ylabel 'belt force F [N]'\nset y2label 'curvature K [1/mm]'\nset ytics nomirror\n"
+    << "set y2tics\nset y2range [" << exact(K_low - 0.05 * (K_high - K_low)) << ":"
+    << exact(K_high + 0.1 * (K_high - K_low) + 1e-12) << "]\nplot $load using 1:2 with lines lc rgb '#2c7bb6' title 'F', $load using 1:3 axes x1y2 with lines "
+       "lc rgb '#d7191c' title 'K'\nunset y2tics\nunset y2label\nset ytics mirror\nunset key\nset yrange [0:*]\n";
+  for (std::size_t k = 0; k < report.modes.size(); ++k) {
+    const auto& m = report.modes[k];
+    if (k + 1 == report.modes.size()) s << "set xlabel 'time in the load cycle [ms]'\n";
+    s << "set title " << gnuplot_quoted(std::string(fitlib::fatigue::to_string(m.mode)) + " at " + m.design_point +
+                                         ": " + cycles_text(m.life_cycles) + " (red: the peaks in the sum)")
+      << " noenhanced\nset ylabel 'σ_e [MPa]'\nplot $e" << k << " using 1:2 with lines lc rgb 'black', $p" << k
+      << " using 1:2 with points pt 7 ps 1.1 lc rgb '#d7191c'\n";
+  }
+  return s.str() + "unset multiplot\n";
+}
+
+}  // namespace fitcli
