@@ -63,6 +63,6 @@ cushion = "material-2.json"
 [life]
 card = "$root/datasets/cards/fatigue-fritzson-1988.json"
 EOF
-"$fitcli" life --scene "$scene" --out-dir "$out/life"
+"$fitcli" life --scene "$scene" --out-dir "$out/life" --plot "$out/life.png"
 
-echo "== done: cards, curves, plots, surface, load history and life in $out"
+echo "== done: cards, curves, plots, surface, load history and life (figure: $out/life.png) in $out"
