@@ -47,6 +47,10 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
     << std::setw(28) << "n [95 %]" << std::setw(28) << "b_per_C [95 %]" << "rms log10\n";
   for (const auto& f : r.fits) {
     t << std::setw(14) << fitlib::fatigue::to_string(f.mode) << std::setw(7) << f.cases;
+    if (!f.rejected.empty()) {
+      t << "not fitted: the start card's constants are kept (WARNING below)\n";
+      continue;
+    }
     for (const auto& c : f.constants) t << std::setw(28) << with_interval(c);
     t << sig4(f.rms_log10_error) << "\n";
     if (!f.note.empty()) t << "  note: " << f.note << "\n";
@@ -70,6 +74,7 @@ std::string life_fit_script(const std::vector<fitlib::fatigue::ObservedLife>& ca
   s << "set terminal pngcairo size 1400,620 enhanced font 'DejaVu Sans,11' linewidth 1.3\nset output '" << png
     << "'\nset grid lc rgb '#dddddd'\nset logscale xy\nset format x '10^{%L}'\nset key top right box opaque\n";
   for (const LifeFitResult& f : fit.fits) {
+    if (!f.rejected.empty()) continue;
     const int m = f.mode == Mode::radial_crack ? 0 : 1;
     s << "$m" << m << " << EOD\n";
     for (const ObservedLife& c : cases) {

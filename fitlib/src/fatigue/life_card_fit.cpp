@@ -1,5 +1,6 @@
 // A fatigue card from observed lives: fit_life_law per mode on top of a start card (life_fit.hpp).
 #include <cmath>
+#include <utility>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/fatigue/life_fit.hpp"
@@ -13,8 +14,10 @@ nlohmann::json life_fit_json(const LifeFitResult& fit) {
     if (c.has_interval) e["std_error"] = c.std_error, e["ci95"] = {c.ci95_low, c.ci95_high};
     constants[c.name] = e;
   }
-  return {{"cases", fit.cases}, {"rms_log10_error", fit.rms_log10_error}, {"note", fit.note},
-          {"constants", constants}};
+  nlohmann::json j = {{"cases", fit.cases}, {"rms_log10_error", fit.rms_log10_error}, {"note", fit.note},
+                      {"constants", constants}};
+  if (!fit.rejected.empty()) j["rejected"] = fit.rejected;
+  return j;
 }
 
 namespace {
@@ -38,9 +41,11 @@ void warn_about(const LifeFitResult& f, std::vector<std::string>& warnings) {
                        core::short_number(std::pow(10.0, f.rms_log10_error)) + " (rms log10 error " +
                        core::short_number(f.rms_log10_error) + "): (6.31) with one design point does not describe "
                        "these cases");
-  if (f.law.n <= 0.1 * (1 + 1e-9) || f.law.n >= 100.0 * (1 - 1e-9))
-    warnings.push_back(mode + ": n " + core::short_number(f.law.n) +
-                       " stopped at its bound [0.1, 100]: the cases do not determine it");
+  const ConstantEstimate& b = f.constants.back();
+  if (b.has_interval && b.ci95_low <= 0.0)
+    warnings.push_back(mode + ": b's 95 % interval [" + core::short_number(b.ci95_low) + ", " +
+                       core::short_number(b.ci95_high) + "] 1/degC reaches zero: these cases do not show that heat "
+                       "shortens the life (hold b with --fix-b)");
   const ConstantEstimate& s0 = f.constants.front();
   if (s0.has_interval && s0.ci95_high > kSpreadWarning * s0.ci95_low)
     warnings.push_back(mode + ": sigma0's 95 % interval [" + core::short_number(s0.ci95_low) + ", " +
@@ -55,6 +60,7 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
   LifeCardFit out;
   out.card = start;
   nlohmann::json record = nlohmann::json::object();
+  bool fitted = false;  // a mode's fit went into the card
   for (Mode mode : {Mode::radial_crack, Mode::separation}) {
     bool any = false;
     for (const ObservedLife& c : cases) any = any || c.mode == mode;
@@ -67,10 +73,25 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
     o.reference_temperature_C = start.reference_temperature_C;
     o.start = start.law(mode);
     o.fix_n = held.n, o.fix_b = held.b;
-    out.fits.push_back(fit_life_law(cases, mode, o));
-    out.card.law(mode) = out.fits.back().law;
-    warn_about(out.fits.back(), out.warnings);
-    record[to_string(mode)] = life_fit_json(out.fits.back());
+    LifeFitResult fit = fit_life_law(cases, mode, o);
+    if (fit.law.n <= 0.1 * (1 + 1e-9) || fit.law.n >= 100.0 * (1 - 1e-9)) {
+      fit.rejected = "n went to its bound " + core::short_number(fit.law.n) + " (sigma0 " +
+                     core::short_number(fit.law.sigma0_MPa) + " MPa): across these cases the lives do not fall with "
+                     "the stress as (6.31) needs";
+      out.warnings.push_back(std::string(to_string(mode)) + ": not fitted: " + fit.rejected +
+                             "; the start card's constants are kept");
+    } else {
+      out.card.law(mode) = fit.law;
+      warn_about(fit, out.warnings);
+      fitted = true;
+    }
+    record[to_string(mode)] = life_fit_json(fit);
+    out.fits.push_back(std::move(fit));
+  }
+  if (!fitted) {
+    std::string why;
+    for (const LifeFitResult& f : out.fits) why += std::string(why.empty() ? "" : "; ") + to_string(f.mode) + ": " + f.rejected;
+    throw core::NumericalError("fatigue: no failure mode could be fitted (" + why + ")");
   }
   out.card.provenance = {{"start_card", start.name}, {"life_fit", record}};
   return out;

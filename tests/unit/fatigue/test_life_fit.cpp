@@ -213,6 +213,41 @@ TEST(LifeCardFit, ReplacesFittedModesKeepsOthersAndWarnsAboutPoorFits) {
   EXPECT_EQ(quiet.warnings.size(), 1u);  // only the mode without cases
 }
 
+// Lives that do not fall with the stress put n at its bound and σ0 at 10¹⁰⁰ MPa: that mode keeps the
+// start card's law and says why; when no mode with cases was fitted, nothing is a result (exit 4).
+TEST(LifeCardFit, AFitWithNAtItsBoundKeepsTheStartLawAndNoFitAtAllIsAnError) {
+  auto make = [](const std::string& name, Mode mode, double peak_MPa, double cycles) {
+    ObservedLife c;
+    c.name = name, c.mode = mode, c.temperature_C = 80.0, c.observed_cycles = cycles;
+    c.point_peaks_MPa = {{peak_MPa}};
+    return c;
+  };
+  const FatigueCard start = default_card();
+  const std::vector<ObservedLife> rising = {make("a", Mode::radial_crack, 1.0, 1e6), make("b", Mode::radial_crack, 2.0, 1e7),
+                                            make("c", Mode::radial_crack, 3.0, 3e7)};
+  std::vector<ObservedLife> cases = rising;
+  for (double p : {1.0, 1.5, 2.0}) cases.push_back(make("s" + std::to_string(p), Mode::separation, p, 1e8 * std::pow(p, -10.0)));
+  const LifeCardFit fit = fit_life_card(cases, start);
+  ASSERT_EQ(fit.fits.size(), 2u);
+  EXPECT_NE(fit.fits[0].rejected.find("n went to its bound 0.1"), std::string::npos) << fit.fits[0].rejected;
+  EXPECT_EQ(fit.card.radial_crack.sigma0_MPa, start.radial_crack.sigma0_MPa);
+  EXPECT_EQ(fit.card.radial_crack.n, start.radial_crack.n);
+  EXPECT_TRUE(fit.fits[1].rejected.empty());
+  EXPECT_NEAR(fit.card.separation.n, 10.0, 1e-6);
+  EXPECT_TRUE(fit.card.provenance["life_fit"]["radial_crack"].contains("rejected"));
+  bool said = false;
+  for (const std::string& w : fit.warnings) said = said || w.find("radial_crack: not fitted") != std::string::npos;
+  EXPECT_TRUE(said);
+  EXPECT_THROW(fit_life_card(rising, start), core::NumericalError);
+  // Lives scattered by a factor 10 over 60–120 °C hide the temperature's effect: b's interval reaches zero.
+  const LifeCardFit noisy = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466}, 5, 1.0, 3), start);
+  ASSERT_TRUE(noisy.fits[0].constants[2].has_interval);
+  EXPECT_LE(noisy.fits[0].constants[2].ci95_low, 0.0);
+  said = false;
+  for (const std::string& w : noisy.warnings) said = said || w.find("separation: b's 95 % interval") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 // No more free constants than cases: one case fits σ0 alone (n, b held), two fit σ0 and n; either
 // passes through its cases exactly, which is a warning, not a result to trust. --fix-n holds n.
 TEST(LifeCardFit, FewCasesHoldConstantsAndAnExactFitIsAWarning) {

@@ -63,6 +63,10 @@ struct LifeFitResult {
   int cases = 0;
   double rms_log10_error = 0.0;
   std::string note;  // why an interval or a constant is missing
+  // Why the card keeps the start's law for this mode instead ("" = the fit is the card's): n at
+  // a bound of [0.1, 100] means the lives do not fall with the stress as (6.31) needs (σ0 then
+  // runs to 10¹⁰⁰ MPa or onto the stresses themselves), a result not to be written as a constant.
+  std::string rejected;
 };
 
 // NumericalError when Ceres fails; InputError when there are no cases of `mode`.
@@ -71,8 +75,10 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
 
 // A fatigue card fitted to observed cases: `start` with the law of every mode that has cases
 // replaced by its fit (T_ref and the crack sweep are the start's), the fits, and warnings for
-// what a user should not read as a result: a mode no case failed in (its start constants kept),
-// lives scattering around the fit by more than kScatterWarning_log10, n at its bound, σ0's 95 %
+// what a user should not read as a result: a mode no case failed in or whose fit put n at a bound
+// (its start constants kept, LifeFitResult::rejected; NumericalError when no mode with cases was
+// fitted), lives scattering around the fit by more than kScatterWarning_log10, b's 95 % interval
+// reaching zero, σ0's 95 %
 // interval spanning more than a factor kSpreadWarning, as many free constants as cases (the fit
 // passes through them all). provenance.life_fit records each fit.
 struct LifeCardFit {
