@@ -1,4 +1,6 @@
 // fitcli segment: a static load case of the belt segment FE (prescribed ε, K, bottom pressure).
+#include <algorithm>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 
@@ -31,11 +33,19 @@ void register_segment(CLI::App& app) {
     std::cout << "segment: " << r.elements << " elements, " << r.equations << " equations, " << r.increments
               << " increments, " << r.newton_iterations << " Newton iterations, " << std::setprecision(3)
               << r.wall_s << " s\n";
-    std::cout << std::setprecision(6) << "point               x_mm      y_mm   s11_radial  s22_long     s12   s_princ_max  (MPa)\n";
-    for (const auto& p : r.stresses)
-      std::cout << std::left << std::setw(16) << p.point.name << std::right << std::setw(8) << p.point.x_mm
-                << std::setw(10) << p.point.y_mm << std::setw(12) << p.sigma11_MPa << std::setw(11) << p.sigma22_MPa
-                << std::setw(12) << p.sigma12_MPa << std::setw(13) << p.principal_max_MPa << "\n";
+    // Four significant digits and a space before every column: a value never runs into the next.
+    std::size_t name_width = 5;
+    for (const auto& p : r.stresses) name_width = std::max(name_width, p.point.name.size());
+    char line[128];
+    std::snprintf(line, sizeof line, " %8s %8s %12s %12s %12s %12s  (MPa)\n", "x_mm", "y_mm", "s11_radial", "s22_long",
+                  "s12", "s_princ_max");
+    std::cout << std::left << std::setw(static_cast<int>(name_width)) << "point" << line;
+    for (const auto& p : r.stresses) {
+      std::snprintf(line, sizeof line, " %8.4g %8.4g %12.4g %12.4g %12.4g %12.4g\n", p.point.x_mm, p.point.y_mm,
+                    p.sigma11_MPa, p.sigma22_MPa, p.sigma12_MPa, p.principal_max_MPa);
+      std::cout << std::setw(static_cast<int>(name_width)) << p.point.name << line;
+    }
+    std::cout << std::right << std::setprecision(6);
     std::cout << "cord-line reaction: Fx " << r.cord_reaction_N_mm.x() << " Fy " << r.cord_reaction_N_mm.y()
               << " N/mm, moment " << r.cord_moment_N << " N mm/mm\n";
     std::cout << "mid-length section: N " << r.mid_section.force_N_mm.x() << " N/mm, M " << r.mid_section.moment_N
