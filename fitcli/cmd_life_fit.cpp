@@ -117,17 +117,15 @@ void run(const LifeFitArgs& a) {
   const std::string source = a.observed == "-" ? "stdin" : a.observed;  // stdin: scenes from the current folder
   // Progress: every test with --verbose; otherwise once the runs have taken 2 s (segment levels).
   const auto begin = std::chrono::steady_clock::now();
-  const auto cases = fitlib::scene::observed_cases(
-      text, source, start, [begin](const fitlib::scene::LifeTest& t, std::size_t k, std::size_t n) {
+  fitlib::scene::LifeTestsFit tests = fitlib::scene::fit_life_tests(
+      text, source, start, a.start.empty() ? "built-in: fatigue::default_card()" : a.start, {a.fix_n, a.fix_b},
+      [begin](const fitlib::scene::LifeTest& t, std::size_t k, std::size_t n) {
         const std::string line = "life test " + std::to_string(k) + "/" + std::to_string(n) + ": " + t.name;
         if (std::chrono::steady_clock::now() - begin > std::chrono::seconds(2)) note(line);
         else detail(line + " (" + t.scene_path + ")");
       });
-  fitlib::fatigue::LifeCardFit fit = fitlib::fatigue::fit_life_card(cases, start, {a.fix_n, a.fix_b});
-  fit.card.name = "life constants fitted to " + source;
-  fit.card.provenance["observed"] = {
-      {"file", source}, {"sha256", fitlib::core::sha256_hex(text)}, {"cases", cases.size()}};
-  fit.card.provenance["start_file"] = a.start.empty() ? "built-in: fatigue::default_card()" : a.start;
+  const auto& cases = tests.cases;
+  fitlib::fatigue::LifeCardFit& fit = tests.fit;
   fit.card.provenance["command"] = with_stdin_named(command_line());
   if (!a.peaks_out.empty()) emit(a.peaks_out, fitlib::fatigue::observed_lives_csv(cases));
   emit_with(a.out, [&](const std::string& path) { fitlib::fatigue::save_card(path, fit.card); });

@@ -2,8 +2,14 @@
 // arrays, and a scene's fatigue life (fitcli life): lives per mode, governing mode, design
 // points. A thin layer over scene/segment_case.hpp, scene/planner.hpp and scene/writers.hpp
 // (docs/python.md).
+#include <cmath>
+
 #include "bindings.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+#include "fitlib/fatigue/card.hpp"
+#include "fitlib/fatigue/life_fit.hpp"
+#include "fitlib/scene/life_tests.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/segment_case.hpp"
@@ -108,9 +114,42 @@ scene::SceneResult run_life(scene::Scene s) {
   return result;
 }
 
+// fitcli life-fit: the card, its warnings, each mode's fit, and the cases with their observed and
+// predicted lives (arrays) under the fitted card.
+py::dict fit_life_constants(const std::string& observed, const std::string& start, bool fix_n, bool fix_b) {
+  const fatigue::FatigueCard start_card = start.empty() ? fatigue::default_card() : fatigue::load_card(start);
+  const auto r = scene::fit_life_tests(core::read_file(observed), observed, start_card,
+                                       start.empty() ? "built-in: fatigue::default_card()" : start, {fix_n, fix_b});
+  py::dict d;
+  d["card"] = to_python(fatigue::card_to_json(r.fit.card));
+  d["warnings"] = r.fit.warnings;
+  py::list fits;
+  for (const auto& f : r.fit.fits) {
+    nlohmann::json j = fatigue::life_fit_json(f);
+    j["mode"] = fatigue::to_string(f.mode);
+    fits.append(to_python(j));
+  }
+  d["fits"] = fits;
+  std::vector<std::string> names, modes;
+  std::vector<double> temperature, observed_cycles, predicted_cycles;
+  for (const auto& c : r.cases) {
+    names.push_back(c.name), modes.push_back(fatigue::to_string(c.mode));
+    temperature.push_back(c.temperature_C), observed_cycles.push_back(c.observed_cycles);
+    predicted_cycles.push_back(std::pow(
+        10.0, fatigue::predicted_log10_life(c, r.fit.card.law(c.mode), r.fit.card.reference_temperature_C)));
+  }
+  d["cases"] = names, d["failure_mode"] = modes, d["temperature_C"] = to_array(temperature);
+  d["observed_cycles"] = to_array(observed_cycles), d["predicted_cycles"] = to_array(predicted_cycles);
+  return d;
+}
+
 }  // namespace
 
 void bind_segment_life(py::module_& m) {
+  m.def("fit_life_constants", &fit_life_constants, py::arg("observed"), py::arg("start") = "",
+        py::arg("fix_n") = false, py::arg("fix_b") = false,
+        "fitcli life-fit: the life constants per failure mode fitted to observed lives (a life-test list of scenes, "
+        "or stored peaks); dict: card (the fatigue card), warnings, fits, cases with observed and predicted cycles");
   m.def("segment_case", &run_segment, py::arg("scene"), py::arg("strain") = py::none(),
         py::arg("curvature_1_mm") = py::none(), py::arg("pressure_MPa") = py::none(), py::arg("vtk_path") = "",
         "fitcli segment: the scene's static [segment] case (load overridable); stresses at the points as arrays, "

@@ -342,6 +342,20 @@ def test_life_per_mode_and_governing_mode_equal_the_cli():
     assert fitlib.load_scene(path).run().life is None  # not asked for: not computed
 
 
+def test_fit_life_constants_equals_the_cli():
+    path = source("datasets", "life-tests", "synthetic-beam.csv")
+    cli = json.loads(fitcli("life-fit", "--observed", path, "--out", work("life-card.json"), "--json"))
+    mine = fitlib.fit_life_constants(path)
+    assert mine["card"]["modes"] == cli["modes"] and mine["warnings"] == cli["warnings"]
+    assert mine["card"]["provenance"]["observed"] == cli["provenance"]["observed"]
+    assert [f["mode"] for f in mine["fits"]] == ["radial_crack", "separation"]
+    assert len(mine["cases"]) == 30 and isinstance(mine["predicted_cycles"], np.ndarray)
+    # the synthetic lives scatter by 10^(0.1 z) around the truth: the fit predicts them within a factor 3
+    assert np.all(np.abs(np.log10(mine["predicted_cycles"] / mine["observed_cycles"])) < 0.5)
+    e = expect(fitlib.InputError, lambda: fitlib.fit_life_constants(source("datasets", "drives", "ref-0500-medium.toml")))
+    assert e.exit_code == 3
+
+
 
 def test_scene_warnings_equal_the_cli():
     # At 110 degC the Fritzson stiffness laws are extrapolated: the same warning in Python and life.json.

@@ -49,4 +49,15 @@ std::vector<fatigue::ObservedLife> observed_cases(const std::string& csv_text, c
                                                   const fatigue::FatigueCard& card,
                                                   const LifeTestProgress& progress = {});
 
+// A fatigue card fitted to the observed cases of a CSV's text (observed_cases, then
+// fatigue::fit_life_card): the card named after `source`, its provenance naming the observed file
+// with its sha256 and case count and `start_label` (the start card's file, or how it was chosen).
+struct LifeTestsFit {
+  std::vector<fatigue::ObservedLife> cases;
+  fatigue::LifeCardFit fit;
+};
+LifeTestsFit fit_life_tests(const std::string& csv_text, const std::string& source, const fatigue::FatigueCard& start,
+                            const std::string& start_label, const fatigue::HeldConstants& held = {},
+                            const LifeTestProgress& progress = {});
+
 }  // namespace fitlib::scene
