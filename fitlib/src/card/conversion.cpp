@@ -49,7 +49,7 @@ namespace {
 double instantaneous_MPa(const model::Model& model, const std::vector<double>& p, const model::TestCondition& c,
                          double storage, model::TestMode asked) {
   model::MaxwellSeries s;
-  if (model.maxwell_series(p.data(), &s)) return s.glassy();
+  if (exact_maxwell_series(model, p, &s)) return s.glassy();
   if (model.native_mode() != model::TestMode::shear) return storage;
   model::TestCondition reference = c;  // K does not follow the temperature (as a series' glassy one)
   reference.temperature_C = std::nan("");
@@ -60,6 +60,14 @@ double instantaneous_MPa(const model::Model& model, const std::vector<double>& p
 }
 
 }  // namespace
+
+bool exact_maxwell_series(const model::Model& model, const std::vector<double>& values, model::MaxwellSeries* out) {
+  if (model.maxwell_series(values.data(), out)) return true;
+  model::KelvinSeries k;
+  if (!model.kelvin_series(values.data(), &k)) return false;
+  *out = k.to_maxwell();  // exact: the relaxation times are the zeros of J*(1/τ)
+  return true;
+}
 
 model::Moduli<double> moduli_in_mode(const model::Model& model, const std::vector<double>& p,
                                      const model::TestCondition& c, double poisson_ratio) {

@@ -36,7 +36,7 @@ constexpr double kBoundSlack = 1e-9;
 std::string admissibility_problems(const Card& card) {
   const auto values = card.values();
   model::MaxwellSeries s;
-  if (!card.model()->maxwell_series(values.data(), &s)) return {};
+  if (!exact_maxwell_series(*card.model(), values, &s)) return {};
   std::ostringstream out;
   const double m0 = s.glassy();
   if (!(s.relaxed >= kMinRelaxedRatio * m0))
@@ -46,6 +46,9 @@ std::string admissibility_problems(const Card& card) {
   if (!w.is_object() || w.empty()) return out.str();
   const double tau_lo = w.value("tau_min_s", 0.0), tau_hi = w.value("tau_max_s", INFINITY);
   const double ceiling = w.value("modulus_max_MPa", 0.0), floor = w.value("relaxed_min_MPa", 0.0);
+  const double glassy_ceiling = w.value("glassy_modulus_max_MPa", 0.0);
+  if (glassy_ceiling > 0.0 && m0 > glassy_ceiling * (1.0 + kBoundSlack))
+    out << "instantaneous modulus " << num(m0) << " MPa above " << num(glassy_ceiling) << " MPa; ";
   for (std::size_t i = 0; i < s.moduli.size(); ++i) {
     if (s.moduli[i] == 0.0) continue;  // a removed term
     const double tau = s.times_s[i];
@@ -69,12 +72,9 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
     throw core::UsageError(format + " Prony input cannot hold amplitude dependence (damage) of model '" +
                            card.model_kind + "'");
   model::MaxwellSeries s;
-  model::KelvinSeries k;
-  const bool series = m->maxwell_series(values.data(), &s);
-  if (!series && !m->kelvin_series(values.data(), &k))
+  if (!exact_maxwell_series(*m, values, &s))
     throw core::UsageError("model '" + card.model_kind + "' is neither a Prony series nor a retardation spectrum; " +
                            format + " export needs one (fit a prony card)");
-  if (!series) s = k.to_maxwell();  // exact: the relaxation times are the zeros of J*(1/τ)
   const int cap = max_prony_terms(format);
   if (cap > 0 && static_cast<int>(s.moduli.size()) > cap)
     throw core::UsageError(format + " accepts at most " + std::to_string(cap) + " Prony terms, the card has " +
@@ -87,7 +87,8 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
   }
   const double m0 = s.glassy();
   PronyExport e;
-  e.from_retardation = !series;
+  model::MaxwellSeries own;
+  e.from_retardation = !m->maxwell_series(values.data(), &own);
   for (size_t i = 0; i < s.moduli.size(); ++i) {
     if (s.moduli[i] < 0.0)
       throw core::UsageError(format + " needs non-negative Prony weights; term " + std::to_string(i + 1) +

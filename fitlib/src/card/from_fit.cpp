@@ -35,8 +35,10 @@ nlohmann::json quality_json(const fit::QualityVerdict& q) {
 }  // namespace
 
 nlohmann::json admissible_to_json(const fit::AdmissibleWindow& w) {
-  return {{"tau_min_s", w.tau_min_s}, {"tau_max_s", w.tau_max_s},
-          {"modulus_max_MPa", w.modulus_max_MPa}, {"relaxed_min_MPa", w.relaxed_min_MPa}};
+  nlohmann::json j = {{"tau_min_s", w.tau_min_s}, {"tau_max_s", w.tau_max_s},
+                      {"modulus_max_MPa", w.modulus_max_MPa}, {"relaxed_min_MPa", w.relaxed_min_MPa}};
+  if (w.glassy_modulus_max_MPa > 0.0) j["glassy_modulus_max_MPa"] = w.glassy_modulus_max_MPa;
+  return j;
 }
 
 Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,

@@ -34,6 +34,7 @@ SeriesTerms series_terms(const std::vector<core::ParameterSpec>& specs) {
     if (specs[i].group == "elastic" && s.relaxed < 0) s.relaxed = i;
   }
   if (s.moduli.size() != s.times.size()) return {};
+  s.compliance = s.relaxed >= 0 && specs[s.relaxed].unit == "1/MPa";
   return s;
 }
 
@@ -70,6 +71,8 @@ AdmissibleWindow window_over(const SeriesTerms& series, const std::vector<core::
   if (moduli && o.modulus_ceiling > 0.0) w.modulus_max_MPa = o.modulus_ceiling * storage_max;
   if (series.relaxed >= 0 && specs[series.relaxed].linear && o.relaxed_floor > 0.0)
     w.relaxed_min_MPa = o.relaxed_floor * storage_min;
+  // A retardation spectrum left free drove J_g to 1e-50 (1/J_g 1e50 MPa) on pyvisco's master curve.
+  if (series.compliance && o.modulus_ceiling > 0.0) w.glassy_modulus_max_MPa = o.modulus_ceiling * storage_max;
   return w;
 }
 
@@ -77,6 +80,8 @@ std::optional<std::pair<double, double>> window_limits(const SeriesTerms& series
   auto has = [](const std::vector<int>& v, int k) { return std::find(v.begin(), v.end(), k) != v.end(); };
   if (has(series.times, i)) return std::make_pair(w.tau_min_s, w.tau_max_s);
   if (has(series.moduli, i) && w.modulus_max_MPa > 0.0) return std::make_pair(0.0, w.modulus_max_MPa);
+  if (i == series.relaxed && series.compliance && w.glassy_modulus_max_MPa > 0.0)
+    return std::make_pair(1.0 / w.glassy_modulus_max_MPa, kInf);
   if (i == series.relaxed && w.relaxed_min_MPa > 0.0) return std::make_pair(w.relaxed_min_MPa, kInf);
   return std::nullopt;
 }
@@ -96,6 +101,7 @@ std::string describe_window(const AdmissibleWindow& w, int moved) {
   s << "admissible terms: time constants in [" << w.tau_min_s << ", " << w.tau_max_s << "] s";
   if (w.modulus_max_MPa > 0.0) s << ", term moduli <= " << w.modulus_max_MPa << " MPa";
   if (w.relaxed_min_MPa > 0.0) s << ", relaxed modulus >= " << w.relaxed_min_MPa << " MPa";
+  if (w.glassy_modulus_max_MPa > 0.0) s << ", instantaneous modulus 1/J_g <= " << w.glassy_modulus_max_MPa << " MPa";
   if (moved > 0) s << " (" << moved << " start values moved inside)";
   return s.str();
 }

@@ -12,10 +12,13 @@
 namespace fitlib::fit::detail {
 
 // Series terms: a "viscous"-group parameter paired in order with a "time"-group constant, and
-// the "elastic" relaxed modulus (-1 when none). Empty when the model has no such pairs.
+// the "elastic" relaxed modulus (-1 when none). Empty when the model has no such pairs. A
+// compliance series (a retardation spectrum: its "elastic" parameter in 1/MPa) has the glassy
+// compliance J_g there instead.
 struct SeriesTerms {
   std::vector<int> moduli, times;
   int relaxed = -1;
+  bool compliance = false;
   bool empty() const { return times.empty(); }
 };
 SeriesTerms series_terms(const std::vector<core::ParameterSpec>& specs);
@@ -27,15 +30,16 @@ AdmissibleWindow admissible_window(const Problem& problem, const std::vector<dou
 
 // The window over measured ranges (ω in rad/s after shifting, storage or M(t) in MPa):
 // τ ∈ [1/(ω_max 10^m), 10^m/ω_min], moduli ≤ modulus_ceiling × storage_max when every modulus is
-// linear, the relaxed modulus ≥ relaxed_floor × storage_min when it is linear. Frequency and
-// relaxation fits share it.
+// linear, the relaxed modulus ≥ relaxed_floor × storage_min when it is linear, a compliance
+// series' instantaneous modulus 1/J_g ≤ modulus_ceiling × storage_max. Frequency and relaxation
+// fits share it.
 AdmissibleWindow window_over(const SeriesTerms& series, const std::vector<core::ParameterSpec>& specs,
                              const FitOptions& options, double omega_min, double omega_max,
                              double storage_min, double storage_max);
 
 // The window's own limits on parameter i: [τ_min, τ_max] for a time, [0, modulus_max] for a
-// term modulus (with a ceiling), [relaxed_min, ∞) for the relaxed modulus (with a floor);
-// nullopt for any other parameter.
+// term modulus (with a ceiling), [relaxed_min, ∞) for the relaxed modulus (with a floor),
+// [1/glassy_modulus_max, ∞) for a compliance series' J_g; nullopt for any other parameter.
 std::optional<std::pair<double, double>> window_limits(const SeriesTerms& series, const AdmissibleWindow& window,
                                                        int i);
 

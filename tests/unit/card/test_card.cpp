@@ -158,6 +158,13 @@ TEST(Export, RetardationCardGoesOutAsItsExactPronySeries) {
     G *= G0;
     EXPECT_NEAR(std::abs(G - 1.0 / J) / std::abs(1.0 / J), 0.0, 1e-8) << f << " Hz";
   }
+  // Its fit's ceiling on 1/J_g holds at the export: 4 MPa passes 10 MPa, not 1 MPa.
+  c.fit["admissible"] = {{"tau_min_s", 1e-3}, {"tau_max_s", 1e3}, {"glassy_modulus_max_MPa", 10.0}};
+  EXPECT_EQ(card::admissibility_problems(c), "");
+  c.fit["admissible"]["glassy_modulus_max_MPa"] = 1.0;
+  EXPECT_NE(card::admissibility_problems(c).find("instantaneous modulus 4 MPa above 1 MPa"), std::string::npos)
+      << card::admissibility_problems(c);
+  EXPECT_THROW(card::export_card(c, "abaqus"), core::UsageError);
 }
 
 TEST(Export, AnsysAndLsDynaCarryTheSameSeries) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include "common/temp_path.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "fit_testing.hpp"
@@ -65,6 +66,22 @@ TEST(Pyvisco, TermsAutoDominatesTheAnsysTermsWithStorageWeight) {
   EXPECT_LE(m.rms_log10_storage, ansys.storage);
   EXPECT_LE(m.rms_log10_loss, ansys.loss);
   for (double v : sel.result.values) EXPECT_GE(v, 0.0);
+}
+
+// A retardation spectrum is the same function family as a Prony series: with 5 terms it fits the
+// master curve as a 5-term Prony card does, and its instantaneous modulus 1/J_g stays under the
+// modulus ceiling (unbounded, J_g went to 1e-50: a 9e49 MPa instantaneous modulus in the card).
+TEST(Pyvisco, RetardationSpectrumKeepsItsInstantaneousModulusUnderTheCeiling) {
+  const auto table = read_pyvisco("datasets/materials/pyvisco-freq-master.csv");
+  double storage_max = 0.0;
+  for (const auto& row : table.rows) storage_max = std::max(storage_max, row.storage_MPa);
+  const fit::FitOptions o;
+  const auto ret = fit::fit(model::make_model("retardation", {{"mode", "uniaxial"}, {"terms", 5}}), table, o);
+  const auto prony = fit::fit(model::make_model("prony", {{"mode", "uniaxial"}, {"terms", 5}}), table, o);
+  EXPECT_DOUBLE_EQ(ret.admissible.glassy_modulus_max_MPa, o.modulus_ceiling * storage_max);
+  EXPECT_GE(ret.values[0], (1.0 - 1e-12) / ret.admissible.glassy_modulus_max_MPa);  // J_g
+  EXPECT_NEAR(ret.metrics.rms_log10_storage / prony.metrics.rms_log10_storage, 1.0, 0.1);
+  EXPECT_NEAR(ret.metrics.rms_log10_loss / prony.metrics.rms_log10_loss, 1.0, 0.1);
 }
 
 // Raw isotherms (21 temperatures, T_ref = −5 °C as in pyvisco's shift table): WLF shifts and

@@ -25,6 +25,10 @@ struct ElasticConstants {
 ElasticConstants elastic_constants(model::TestMode native, double instantaneous_MPa, double bulk_MPa,
                                    double poisson_ratio);
 
+// The model's relaxation series in its native mode, exactly: its own Maxwell series, or a
+// retardation spectrum's (KelvinSeries::to_maxwell). False for a model that has neither.
+bool exact_maxwell_series(const model::Model& model, const std::vector<double>& values, model::MaxwellSeries* out);
+
 // The card's moduli at `c` in any mode: the model's own when c.mode is its native mode or it has
 // a bulk modulus; otherwise converted by elastic_constants from the card's instantaneous modulus
 // (a series' glassy one, a shear card's relaxation modulus at t = 0; UsageError for a bulk card).

@@ -57,6 +57,7 @@ struct AdmissibleWindow {
   double tau_min_s = 0.0, tau_max_s = 0.0;
   double modulus_max_MPa = 0.0;  // ceiling of each term's modulus (0: none, e.g. compliances)
   double relaxed_min_MPa = 0.0;  // floor of the relaxed modulus (0: none)
+  double glassy_modulus_max_MPa = 0.0;  // ceiling of a compliance series' 1/J_g (0: none)
 };
 
 // Relative errors |model − data| / data of one modulus over one group of rows.
