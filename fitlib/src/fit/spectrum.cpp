@@ -174,10 +174,12 @@ std::pair<model::ModelPtr, std::vector<double>> positive_terms(const std::functi
 void annotate(SpectrumFit& out, const model::Model& reduced, const Grid& grid,
               const SpectrumOptions& so, const std::string& law_note) {
   const detail::SeriesTerms rs = detail::series_terms(reduced.parameters());
+  const auto& v = out.result.values;
+  const auto kept = std::count_if(rs.moduli.begin(), rs.moduli.end(), [&](int i) { return v[i] > 0.0; });
   std::ostringstream s;
   s << "smooth spectrum: " << grid.n << " time constants (" << so.per_decade << " per decade over ["
     << grid.tau_lo << ", " << grid.tau_hi << "] s), second-difference penalty lambda " << out.lambda
-    << (so.lambda >= 0.0 ? " (given)" : " (GCV)") << ", " << rs.times.size() << " positive terms kept";
+    << (so.lambda >= 0.0 ? " (given)" : " (GCV)") << ", " << kept << " positive terms kept";
   if (out.polish_steps > 0)
     s << ", polished on the exact log10 objective with the penalty (" << out.polish_steps << " Gauss-Newton steps)";
   std::vector<std::string> notes{s.str()};
@@ -243,7 +245,15 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make, const 
   polish.backend = Backend::nnls;
   polish.linear_start = false;
   polish.polish = false;  // polished above, with the penalty
+  const detail::SeriesTerms rs = detail::series_terms(reduced->parameters());
+  const bool elastic = values[rs.moduli.front()] == 0.0;  // an all-zero spectrum: its one term is removed
+  if (elastic) polish.fixed.push_back(reduced->parameters()[rs.moduli.front()].name);  // held at 0, not moved to 1
   out.result = fit(reduced, table, polish, &values);
+  if (elastic) {
+    out.result.messages.push_back("the smooth spectrum has no positive term: the data show no relaxation the "
+                                  "series could hold; the card keeps one removed term (modulus 0)");
+    out.result.parameters[rs.moduli.front()].reason = "removed term: the smooth spectrum has no positive term";
+  }
   annotate(out, *reduced, grid, so, law.note);
   out.result.backend_used = "spectrum+" + out.result.backend_used;
   out.wall_time_s = clock.seconds();

@@ -141,6 +141,35 @@ TEST(Spectrum, OneIsothermHoldsTheLawAndSaysSo) {
   EXPECT_LT(sel.result.metrics.rms_log10_storage, 0.005);  // noise-free; the smoothing's bias
 }
 
+// A hand-typed table whose storage falls with frequency shows no relaxation a series can hold: the
+// smooth spectrum keeps no positive term. The card's one term is a removed one (modulus 0, said
+// so), not a modulus of 1 MPa that nothing fitted (the log transform moved the 0 start to 1 and
+// the report said "1 positive terms kept").
+TEST(Spectrum, NoPositiveTermLeavesARemovedTermAtZeroAndSaysSo) {
+  data::DynamicTestTable table;
+  const double rows[4][3] = {{1, 2.3, 0.38}, {10, 3.0, 0.5}, {100, 3.5, 0.3}, {1000, 1.0, 2.0}};
+  for (const auto& r : rows) {
+    data::DynamicTestRow row;
+    row.condition.mode = model::TestMode::shear;
+    row.condition.frequency_Hz = r[0];
+    row.storage_MPa = r[1], row.loss_MPa = r[2];
+    table.rows.push_back(row);
+  }
+  fit::FitOptions o;
+  o.residual = fit::kSpectrumResidual;
+  o.storage_weight = fit::kSpectrumStorageWeight;
+  const auto sel = fit::select_terms("prony", {{"mode", "shear"}}, table, o, fit::TermOptions{});
+  ASSERT_EQ(sel.method, fit::TermMethod::spectrum);
+  const auto& r = sel.result;
+  ASSERT_EQ(r.values.size(), 3u);  // G_inf, G_1, tau_1
+  EXPECT_EQ(r.values[1], 0.0);
+  EXPECT_NE(r.parameters[1].reason.find("removed term"), std::string::npos) << r.parameters[1].reason;
+  EXPECT_GT(r.values[0], 1.0);
+  bool said = false;
+  for (const auto& m : r.messages) said = said || m.find("0 positive terms kept") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 // The λ path's warm-started active set on the normal equations against the independent
 // QR-checked nnls() on the stacked system [R; √λ D] y ≈ [c; 0], at every λ of the default path,
 // on pyvisco's master (53 time constants over 26 decades: an ill-conditioned design).
