@@ -25,7 +25,7 @@ struct Accumulator {
   void add(double e, double f) {
     ++count;
     sum += e;
-    if (e > max) {
+    if (e > max || count == 1) {  // the first row's frequency when every error is 0
       max = e;
       max_f = f;
     }

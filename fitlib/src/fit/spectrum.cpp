@@ -148,14 +148,17 @@ PathPoint choose_lambda(const SpectrumSystem& s, const SpectrumOptions& so, std:
   return best;
 }
 
-// The model with the positive terms of the solved system only; an all-zero spectrum keeps one
-// removed term (modulus 0) so the card stays a series.
+// The model with the positive terms of the solved system only (above 1e-12 of the total modulus);
+// an all-zero spectrum keeps one removed term (modulus 0) so the card stays a series.
 std::pair<model::ModelPtr, std::vector<double>> positive_terms(const std::function<model::ModelPtr(int)>& make,
                                                                 const SpectrumSystem& s) {
   const std::vector<double>& p = s.problem.natural();
+  // Round-off is no term: elastic data (loss 0) left moduli of 3e-16 MPa beside G_inf 2.3 MPa.
+  double total = s.series.relaxed >= 0 ? p[s.series.relaxed] : 0.0;
+  for (int t = 0; t < s.terms; ++t) total += p[s.series.moduli[t]];
   std::vector<int> kept;
   for (int t = 0; t < s.terms; ++t)
-    if (p[s.series.moduli[t]] > 0.0) kept.push_back(t);
+    if (p[s.series.moduli[t]] > 1e-12 * total) kept.push_back(t);
   const bool none = kept.empty();
   if (none) kept.push_back(s.terms / 2);
   const model::ModelPtr reduced = make(static_cast<int>(kept.size()));

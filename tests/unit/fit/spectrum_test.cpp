@@ -168,6 +168,13 @@ TEST(Spectrum, NoPositiveTermLeavesARemovedTermAtZeroAndSaysSo) {
   bool said = false;
   for (const auto& m : r.messages) said = said || m.find("0 positive terms kept") != std::string::npos;
   EXPECT_TRUE(said);
+  // Elastic data (loss 0): round-off moduli of 1e-16 MPa are no terms either.
+  for (auto& row : table.rows) row.storage_MPa = 2.3, row.loss_MPa = 0.0;
+  const auto elastic = fit::select_terms("prony", {{"mode", "shear"}}, table, o, fit::TermOptions{}).result;
+  ASSERT_EQ(elastic.values.size(), 3u);
+  EXPECT_EQ(elastic.values[1], 0.0);
+  EXPECT_NEAR(elastic.values[0], 2.3, 1e-12);
+  EXPECT_EQ(elastic.quality.figures.front().max_at_frequency_Hz, 1.0);  // not "at 0 Hz"
 }
 
 // The λ path's warm-started active set on the normal equations against the independent
