@@ -287,15 +287,16 @@ void remedy_missing_cells(Surface& s, const Grid& grid, const std::vector<LevelA
     }
   const auto open = undetermined_cells(s, grid, empty);
   if (open.empty()) return;
+  if (options.missing == MissingCellRemedy::lower_degree) {  // lowering needs no data in the cells
+    lower_degree_for_missing_cells(s, grid, open);
+    return;
+  }
   if (open.size() > cells - empty.size())  // more undetermined than occupied cells
     throw core::UsageError(std::to_string(empty.size()) + " of " + std::to_string(cells) +
                            " cells of the level grid are empty, more than hold data; local constraints cannot "
-                           "stand in for that much missing data (Report V §5.3); lower degrees (--degree) or "
-                           "supply constraints");
-  if (options.missing == MissingCellRemedy::constrain)
-    constrain_missing_cells(s, grid, levels, open);
-  else if (options.missing == MissingCellRemedy::lower_degree)
-    lower_degree_for_missing_cells(s, grid, open);
+                           "stand in for that much missing data (Report V §5.3); lower degrees (--degree or "
+                           "--missing lower-degree) or supply constraints");
+  if (options.missing == MissingCellRemedy::constrain) constrain_missing_cells(s, grid, levels, open);
 }
 
 }  // namespace fitlib::surface::detail

@@ -103,6 +103,26 @@ TEST(ReportV, LoweringTheAmplitudeDegreeInstead) {
   EXPECT_EQ(s.constraints[0].cells.size(), 3u);
 }
 
+// More empty cells than occupied ones: local constraints cannot stand in, but lowering a degree
+// can: five frequencies, the lowest two at every amplitude and temperature, the other three at one
+// corner only (21 cells held, 24 empty); every frequency line through an empty cell holds two
+// points, so the frequency's degree goes from 4 to 1. --missing lower-degree was refused with the
+// constraints' message before it was tried.
+TEST(ReportV, LoweringTheDegreeIsTriedWhenMostCellsAreEmpty) {
+  auto lv = levels(3, 3, 3);
+  lv[1] = {1.0, 3.0, 10.0, 34.0, 60.0};
+  const auto data = make_design(lv, [](const std::vector<int>& i) { return i[1] <= 1 || (i[0] == 0 && i[2] == 0); },
+                                [](std::size_t) { return 2; });
+  FitOptions o = rubber_options();
+  EXPECT_THROW(fit_surface(data, o), fitlib::core::UsageError);  // constrain: more empty than held
+  o.missing = MissingCellRemedy::lower_degree;
+  const Surface s = fit_surface(data, o);
+  EXPECT_EQ(s.axes[1].degree, 1);
+  ASSERT_EQ(s.constraints.size(), 1u);
+  EXPECT_EQ(s.constraints[0].origin, "lowered-degree");
+  EXPECT_EQ(s.constraints[0].cells.size(), 24u);
+}
+
 TEST(ReportV, WithoutRemedyMoreUnknownsThanCellsIsAnError) {
   const auto data = make_design(levels(3, 3, 3), shear_has_data, shear_replicates);
   FitOptions o = rubber_options();
