@@ -178,7 +178,7 @@ void run_eval(const EvalArgs& a) {
     throw core::UsageError("eval: give --frequency-hz (complex moduli) or --time-s (relaxation, creep), one of them");
   if (!a.plot.empty() && a.data.empty()) throw core::UsageError("eval --plot needs --data (the table to plot against)");
   claim_output("--out", a.out, false);  // with --json the rows are JSON wherever they go
-  if (!a.plot.empty()) claim_output("--plot", a.plot, false);
+  if (!a.plot.empty()) claim_png("--plot", a.plot);
   const auto card = card::load_card(input_path(a.card));
   const auto data = input_paths(a.data);
   const auto mode = a.mode.empty() ? card.model()->native_mode() : model::parse_test_mode(a.mode);

@@ -189,7 +189,7 @@ void run_fit(FitArgs a) {
   // Every output is checked before the work and written after it: no partial results.
   claim_output("--out", a.out, a.json);
   claim_output("--shifts-out", a.master.shifts_out, a.json);
-  if (!a.plot.empty()) claim_output("--plot", a.plot, false);
+  if (!a.plot.empty()) claim_png("--plot", a.plot);
   if (quiet()) a.fit.progress = false;
   const auto data = input_paths(a.data);
   if (!a.fit.schedule_path.empty()) a.fit.schedule_path = input_path(a.fit.schedule_path);

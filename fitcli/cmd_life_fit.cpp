@@ -110,7 +110,7 @@ std::string life_fit_script(const std::vector<fitlib::fatigue::ObservedLife>& ca
 void run(const LifeFitArgs& a) {
   claim_output("--out", a.out, a.json);
   if (!a.peaks_out.empty()) claim_output("--peaks-out", a.peaks_out, a.json);
-  if (!a.plot.empty()) fitlib::core::check_output_path(a.plot);
+  if (!a.plot.empty()) claim_png("--plot", a.plot);
   const fitlib::fatigue::FatigueCard start =
       a.start.empty() ? fitlib::fatigue::default_card() : fitlib::fatigue::load_card(a.start);
   const std::string text = fitlib::core::read_file(input_path(a.observed));

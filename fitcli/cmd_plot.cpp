@@ -176,6 +176,13 @@ std::string gnuplot_quoted(const std::string& text) {
   return q + "'";
 }
 
+void claim_png(const std::string& option, const std::string& path) {
+  if (path == "-") throw fitlib::core::UsageError(option + ": a PNG needs a file (- would be stdout)");
+  if (path.find('\'') != std::string::npos)
+    throw fitlib::core::UsageError(option + ": the PNG file name must not contain a quote");
+  fitlib::core::check_output_path(path);
+}
+
 void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script) {
   using fitlib::core::NumericalError;
   if (out == "-") throw fitlib::core::UsageError("plot: the PNG needs a file (--out -: stdout is not supported)");
@@ -220,7 +227,7 @@ void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& d
 namespace {
 
 void run_plot(const PlotArgs& a) {
-  fitlib::core::check_output_path(a.out);
+  claim_png("--out", a.out);
   const auto card = fitlib::card::load_card(input_path(a.card));
   plot_card(card, input_paths(a.data), a.format, a.title, a.out);
   if (a.json)

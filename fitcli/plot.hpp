@@ -25,6 +25,10 @@ std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::sc
 // user's name keeps its _ ^ { }.
 std::string gnuplot_quoted(const std::string& text);
 
+// Declares the PNG output of `option` before the work: UsageError for `-` (a figure cannot go to
+// stdout) or a quote in the name, InputError for a path that cannot be written.
+void claim_png(const std::string& option, const std::string& path);
+
 // The PNG at `out` from the gnuplot script `make_script(tmp)` returns, which must write the PNG to
 // `tmp` (pngcairo): gnuplot runs on it, then tmp is renamed to out. UsageError for `-` or a quote
 // in the name; NumericalError when gnuplot is missing or fails (nothing written).

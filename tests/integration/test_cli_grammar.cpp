@@ -138,6 +138,24 @@ TEST(CliGrammar, EveryNumberOptionRefusesNanAndInf) {
   EXPECT_NE(zero.err.find("--frequency-hz: must be > 0, got 0"), std::string::npos) << zero.err;
 }
 
+// A figure cannot go to stdout: every --plot (and plot's --out) refuses `-` before the work, so the
+// card or folder the run would have written is not written (life-fit wrote its card, then exit 2).
+TEST(CliGrammar, FiguresRefuseStdoutBeforeTheWork) {
+  const std::string card = temp_file("png_dash_card.json"), dir = temp_file("png_dash_life");
+  for (const std::string& args :
+       {"fit --data " + source_path(kShearCsv) + " --model prony --terms 2 --out " + card + " --plot -",
+        "life-fit --observed " + source_path("datasets/life-tests/synthetic-beam.csv") + " --out " + card + " --plot -",
+        "life --scene " + source_path("datasets/drives/ref-0500-light.toml") + " --out-dir " + dir + " --plot -",
+        "eval --card " + source_path(kShearCard) + " --frequency-hz 1 --data " + source_path(kShearCsv) + " --plot -",
+        "plot --card " + source_path(kShearCard) + " --data " + source_path(kShearCsv) + " --out -"}) {
+    const auto r = run_fitcli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("a PNG needs a file"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(card)) << args;
+    EXPECT_FALSE(std::filesystem::exists(dir)) << args;
+  }
+}
+
 TEST(CliGrammar, DocsCliNamesEverySubcommandAndOption) {
   const std::string doc = slurp(source_path("docs/cli.md"));
   ASSERT_FALSE(doc.empty());
