@@ -250,6 +250,26 @@ TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereWhyAndWhatRuns) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// The elastic level folds too where the side pressure is high: the medium drive with a 40 mm
+// driver (R 20 mm, 4.3 MPa) stops in cycle 1, and the message says why it may and what runs
+// (it ended at the node's residual: a user was left with exit 4 and no next step).
+TEST(LifeCli, ElasticLevelFailureOnASmallPulleySaysWhyAndWhatRuns) {
+  const std::string scene = unique_dir("life_elastic_40mm") + ".toml";
+  std::string drive = slurp(source_path("datasets/drives/ref-0500-medium.toml"));
+  const std::string driver = "pitch_diameter_mm = 100, role = \"driver\"";
+  ASSERT_NE(drive.find(driver), std::string::npos);
+  drive.replace(drive.find(driver), driver.size(), "pitch_diameter_mm = 40, role = \"driver\"");
+  std::ofstream(scene) << drive << "\n[belt.materials]\nbottom = \"" << source_path("datasets/cards/material-1-true.json")
+                       << "\"\ncushion = \"" << source_path("datasets/cards/material-2-true.json") << "\"\n[life]\ncycles = 1\n";
+  const std::string out = unique_dir("life_elastic_40mm_out");
+  const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  for (const char* part : {"segment load cycle: failed in cycle 1", "curvature 0.05 1/mm", "can fold under Report I's",
+                           "diagnose_failure = true adds", "[life] fidelity = \"beam\" gives"})
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // A shear Prony card without a bulk modulus (the README tour's card, one isotherm at 23 °C) in a
 // drive at 80 °C: the scene converts it as eval and export do (K from G0 and [belt.materials]
 // poisson_ratio, which the segment's K follows), and warns that it reads the card beyond its data
