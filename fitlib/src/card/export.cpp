@@ -49,13 +49,18 @@ std::string admissibility_problems(const Card& card) {
   const double glassy_ceiling = w.value("glassy_modulus_max_MPa", 0.0);
   if (glassy_ceiling > 0.0 && m0 > glassy_ceiling * (1.0 + kBoundSlack))
     out << "instantaneous modulus " << num(m0) << " MPa above " << num(glassy_ceiling) << " MPa; ";
-  for (std::size_t i = 0; i < s.moduli.size(); ++i) {
-    if (s.moduli[i] == 0.0) continue;  // a removed term
-    const double tau = s.times_s[i];
-    if (tau < tau_lo * (1.0 - kBoundSlack) || tau > tau_hi * (1.0 + kBoundSlack))
-      out << "term " << i + 1 << ": tau " << num(tau) << " s outside [" << num(tau_lo) << ", "
-          << num(tau_hi) << "] s; ";
-    if (ceiling > 0.0 && s.moduli[i] > ceiling * (1.0 + kBoundSlack))
+  // The window holds the model's own terms: a Prony card's τ_i and M_i, a retardation card's λ_i
+  // (its converted relaxation times lie below them by nature).
+  model::KelvinSeries k;
+  const bool retardation = card.model()->kelvin_series(values.data(), &k);
+  const std::vector<double>& times = retardation ? k.times_s : s.times_s;
+  const std::vector<double>& weights = retardation ? k.compliances : s.moduli;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (weights[i] == 0.0) continue;  // a removed term
+    if (times[i] < tau_lo * (1.0 - kBoundSlack) || times[i] > tau_hi * (1.0 + kBoundSlack))
+      out << "term " << i + 1 << ": " << (retardation ? "lambda " : "tau ") << num(times[i]) << " s outside ["
+          << num(tau_lo) << ", " << num(tau_hi) << "] s; ";
+    if (!retardation && ceiling > 0.0 && s.moduli[i] > ceiling * (1.0 + kBoundSlack))
       out << "term " << i + 1 << ": modulus " << num(s.moduli[i]) << " MPa above " << num(ceiling) << " MPa; ";
   }
   if (floor > 0.0 && s.relaxed < floor * (1.0 - kBoundSlack))

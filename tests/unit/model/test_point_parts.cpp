@@ -54,6 +54,17 @@ TEST(PointParts, KelvinChainAsMaxwellSeriesHasTheSameRelaxationAndCreep) {
   }
 }
 
+// A fitted term of 2e-308 1/MPa (the retardation fit's lower bound reached) put a Maxwell term of
+// 4e6 MPa into a 1 MPa material; negligible terms are left out and the glassy modulus stays 1/J_g.
+TEST(PointParts, KelvinChainWithANegligibleTermConvertsToTheSameMaterial) {
+  const KelvinSeries k{0.997238, {2.22507e-308, 1.18567, 1.57915}, {2.24492e-08, 0.11301, 2.18033}};
+  const MaxwellSeries m = k.to_maxwell();
+  EXPECT_EQ(m.moduli.size(), 2u);
+  EXPECT_NEAR(m.glassy(), 1.0 / 0.997238, 1e-12);
+  for (double M : m.moduli) EXPECT_TRUE(M > 0.0 && M < 1.0 / 0.997238) << M;
+  for (double t : {1e-6, 0.01, 0.1, 1.0, 10.0}) EXPECT_NEAR(m.relaxation(t), k.relaxation(t, 2000), 1e-6) << t;
+}
+
 TEST(PointParts, PlaneStrainKeepsOutOfPlaneStrainZero) {
   const auto point = make_material_point(*make_model("elastic-iso", {}), {10.0, 0.3});
   std::vector<double> none;

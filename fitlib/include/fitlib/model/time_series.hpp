@@ -41,7 +41,8 @@ struct KelvinSeries {
   // Relaxation modulus after a unit strain step (a ramp of `rise_s` then hold).
   double relaxation(double t_s, int steps_per_decade = 400) const;
   // The same material as an exact Maxwell series (docs/model.md §"Kelvin to Maxwell"): the
-  // relaxation times are the zeros of J_g + Σ L_i/(1 − λ_i/τ), one per Kelvin element.
+  // relaxation times are the zeros of J_g + Σ L_i/(1 − λ_i/τ), one per Kelvin element; a term
+  // below 1e-12 of the total compliance is left out (its zero is within round-off of its rate).
   // Throws core::UsageError unless J_g > 0, L_i > 0 and λ_i > 0.
   MaxwellSeries to_maxwell() const;
 };
