@@ -111,14 +111,12 @@ void run(const LifeFitArgs& a) {
   claim_output("--out", a.out, a.json);
   if (!a.peaks_out.empty()) claim_output("--peaks-out", a.peaks_out, a.json);
   if (!a.plot.empty()) claim_png("--plot", a.plot);
-  const fitlib::fatigue::FatigueCard start =
-      a.start.empty() ? fitlib::fatigue::default_card() : fitlib::fatigue::load_card(a.start);
   const std::string text = fitlib::core::read_file(input_path(a.observed));
   const std::string source = a.observed == "-" ? "stdin" : a.observed;  // stdin: scenes from the current folder
   // Progress: every test with --verbose; otherwise once the runs have taken 2 s (segment levels).
   const auto begin = std::chrono::steady_clock::now();
   fitlib::scene::LifeTestsFit tests = fitlib::scene::fit_life_tests(
-      text, source, start, a.start.empty() ? "built-in: fatigue::default_card()" : a.start, {a.fix_n, a.fix_b},
+      text, source, a.start, {a.fix_n, a.fix_b},
       [begin](const fitlib::scene::LifeTest& t, std::size_t k, std::size_t n) {
         const std::string line = "life test " + std::to_string(k) + "/" + std::to_string(n) + ": " + t.name;
         if (std::chrono::steady_clock::now() - begin > std::chrono::seconds(2)) note(line);

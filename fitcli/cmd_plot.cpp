@@ -185,9 +185,7 @@ void claim_png(const std::string& option, const std::string& path) {
 
 void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script) {
   using fitlib::core::NumericalError;
-  if (out == "-") throw fitlib::core::UsageError("plot: the PNG needs a file (--out -: stdout is not supported)");
-  if (out.find('\'') != std::string::npos)
-    throw fitlib::core::UsageError("plot: the PNG file name must not contain a quote");
+  claim_png("plot", out);  // callers claim it before the work; a library caller is checked here
   const std::string tmp = out + ".tmp-" + std::to_string(getpid()) + ".png";
   const std::string script = make_script(tmp);
   FILE* pipe = popen("gnuplot 1>&2", "w");

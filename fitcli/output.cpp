@@ -55,13 +55,19 @@ std::string exact_list(const std::vector<double>& values) {
 
 namespace {
 
+// True when the whole of `text` is a number (inf and nan included), its value in x.
+bool parse_number(const std::string& text, double& x) {
+  char* end = nullptr;
+  x = std::strtod(text.c_str(), &end);
+  return !text.empty() && *end == '\0';
+}
+
 // A validator of numbers: `accept(x)` for finite x, else "must be <what>, got <text>".
 CLI::Validator number_where(std::function<bool(double)> accept, const std::string& what) {
   return CLI::Validator(
       [accept, what](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double x = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0') return "'" + text + "' is not a number";
+        double x = 0.0;
+        if (!parse_number(text, x)) return "'" + text + "' is not a number";
         if (!std::isfinite(x) || !accept(x)) return "must be " + what + ", got " + text;
         return "";
       },
@@ -86,9 +92,8 @@ CLI::Validator number_in(double low, double high) {
 void require_finite_numbers(CLI::App& app) {
   const CLI::Validator finite(
       [](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double x = std::strtod(text.c_str(), &end);
-        if (*end == '\0' && !text.empty() && !std::isfinite(x)) return "must be a finite number, got " + text;
+        double x = 0.0;
+        if (parse_number(text, x) && !std::isfinite(x)) return "must be a finite number, got " + text;
         return "";  // not a number at all: CLI11's own conversion says so
       },
       "");

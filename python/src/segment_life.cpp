@@ -117,9 +117,7 @@ scene::SceneResult run_life(scene::Scene s) {
 // fitcli life-fit: the card, its warnings, each mode's fit, and the cases with their observed and
 // predicted lives (arrays) under the fitted card.
 py::dict fit_life_constants(const std::string& observed, const std::string& start, bool fix_n, bool fix_b) {
-  const fatigue::FatigueCard start_card = start.empty() ? fatigue::default_card() : fatigue::load_card(start);
-  const auto r = scene::fit_life_tests(core::read_file(observed), observed, start_card,
-                                       start.empty() ? "built-in: fatigue::default_card()" : start, {fix_n, fix_b});
+  const auto r = scene::fit_life_tests(core::read_file(observed), observed, start, {fix_n, fix_b});
   py::dict d;
   d["card"] = to_python(fatigue::card_to_json(r.fit.card));
   d["warnings"] = r.fit.warnings;

@@ -74,7 +74,7 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
     o.start = start.law(mode);
     o.fix_n = held.n, o.fix_b = held.b;
     LifeFitResult fit = fit_life_law(cases, mode, o);
-    if (fit.law.n <= 0.1 * (1 + 1e-9) || fit.law.n >= 100.0 * (1 - 1e-9)) {
+    if (fit.law.n <= kExponentMin * (1 + 1e-9) || fit.law.n >= kExponentMax * (1 - 1e-9)) {
       fit.rejected = "n went to its bound " + core::short_number(fit.law.n) + " (sigma0 " +
                      core::short_number(fit.law.sigma0_MPa) + " MPa): across these cases the lives do not fall with "
                      "the stress as (6.31) needs";

@@ -68,8 +68,8 @@ void solve_life_problem(const std::vector<const ObservedLife*>& cases, const Lif
         new ceres::AutoDiffCostFunction<LogLifeResidual, 1, 1, 1, 1>(
             new LogLifeResidual{c, c->temperature_C - o.reference_temperature_C}),
         nullptr, &lp.ln_sigma0, &lp.n, &lp.b);
-  lp.problem.SetParameterLowerBound(&lp.n, 0, 0.1);
-  lp.problem.SetParameterUpperBound(&lp.n, 0, 100.0);
+  lp.problem.SetParameterLowerBound(&lp.n, 0, kExponentMin);
+  lp.problem.SetParameterUpperBound(&lp.n, 0, kExponentMax);
   if (lp.fix_n) lp.problem.SetParameterBlockConstant(&lp.n);
   if (lp.fix_b) lp.problem.SetParameterBlockConstant(&lp.b);
   ceres::Solver::Options options;

@@ -172,16 +172,16 @@ std::vector<fatigue::ObservedLife> observed_cases(const std::string& text, const
   return observe_life_tests(parse_life_tests(text, source), source, card, progress);
 }
 
-LifeTestsFit fit_life_tests(const std::string& text, const std::string& source, const fatigue::FatigueCard& start,
-                            const std::string& start_label, const fatigue::HeldConstants& held,
-                            const LifeTestProgress& progress) {
+LifeTestsFit fit_life_tests(const std::string& text, const std::string& source, const std::string& start_path,
+                            const fatigue::HeldConstants& held, const LifeTestProgress& progress) {
+  const fatigue::FatigueCard start = start_path.empty() ? fatigue::default_card() : fatigue::load_card(start_path);
   LifeTestsFit out;
   out.cases = observed_cases(text, source, start, progress);
   out.fit = fatigue::fit_life_card(out.cases, start, held);
   fatigue::FatigueCard& card = out.fit.card;
   card.name = "life constants fitted to " + source;
   card.provenance["observed"] = {{"file", source}, {"sha256", core::sha256_hex(text)}, {"cases", out.cases.size()}};
-  card.provenance["start_file"] = start_label;
+  card.provenance["start_file"] = start_path.empty() ? "built-in: fatigue::default_card()" : start_path;
   return out;
 }
 

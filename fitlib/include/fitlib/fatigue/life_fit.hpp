@@ -49,6 +49,9 @@ struct ConstantEstimate {
   double std_error = 0.0, ci95_low = 0.0, ci95_high = 0.0;
 };
 
+// The bounds of n in the fit; a fit that ends on one is not a result (LifeFitResult::rejected).
+constexpr double kExponentMin = 0.1, kExponentMax = 100.0;
+
 struct LifeFitOptions {
   double reference_temperature_C = 80.0;  // the card's T_ref
   LifeLaw start;              // start values

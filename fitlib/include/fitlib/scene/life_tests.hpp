@@ -50,14 +50,15 @@ std::vector<fatigue::ObservedLife> observed_cases(const std::string& csv_text, c
                                                   const LifeTestProgress& progress = {});
 
 // A fatigue card fitted to the observed cases of a CSV's text (observed_cases, then
-// fatigue::fit_life_card): the card named after `source`, its provenance naming the observed file
-// with its sha256 and case count and `start_label` (the start card's file, or how it was chosen).
+// fatigue::fit_life_card) from the fatigue card at `start_path` ("" = fatigue::default_card()):
+// the card named after `source`, its provenance naming the observed file with its sha256 and case
+// count and the start card.
 struct LifeTestsFit {
   std::vector<fatigue::ObservedLife> cases;
   fatigue::LifeCardFit fit;
 };
-LifeTestsFit fit_life_tests(const std::string& csv_text, const std::string& source, const fatigue::FatigueCard& start,
-                            const std::string& start_label, const fatigue::HeldConstants& held = {},
+LifeTestsFit fit_life_tests(const std::string& csv_text, const std::string& source, const std::string& start_path,
+                            const fatigue::HeldConstants& held = {},
                             const LifeTestProgress& progress = {});
 
 }  // namespace fitlib::scene
