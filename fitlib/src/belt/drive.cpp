@@ -4,6 +4,7 @@
 #include <string>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
@@ -125,9 +126,9 @@ std::vector<double> span_tensions(const DriveGeometry& g, const TensionInput& t)
     case TensionRule::tight: slack = t.tension_N - total_dF; key = "drive.tight_tension_N"; break;
     case TensionRule::initial: slack = t.tension_N - 0.5 * total_dF; key = "drive.initial_tension_N"; break;
   }
-  if (!(slack >= 0.0) || !std::isfinite(slack))
-    throw InputError("slack-side tension would be negative (" + std::to_string(slack) +
-                         " N): raise the tension or lower the torque",
+  if (!(slack > 0.0) || !std::isfinite(slack))  // a slack span without tension does not press on its pulleys
+    throw InputError("slack-side tension would be " + core::format_number(slack, 4) +
+                         " N, not positive: raise the tension or lower the torque",
                      {}, 0, 0, key);
   std::vector<double> F(n);
   double f = slack;

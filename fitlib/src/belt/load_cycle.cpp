@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
@@ -88,8 +89,8 @@ void check_span_tensions(const DriveCase& drive, double F_c) {
     const double F = drive.span_tension_N[i];
     if (F - F_c > 0.0) continue;
     const bool lifts = F_c > 0.0 && F > 0.0;
-    throw InputError(lifts ? "centrifugal tension " + std::to_string(F_c) + " N exceeds the tension " +
-                                 std::to_string(F) + " N of the span leaving '" + g.pulleys[i].name +
+    throw InputError(lifts ? "centrifugal tension " + core::format_number(F_c, 4) + " N exceeds the tension " +
+                                 core::format_number(F, 4) + " N of the span leaving '" + g.pulleys[i].name +
                                  "': the belt lifts off"
                            : "span leaving '" + g.pulleys[i].name +
                                  "' has no tension: the belt does not press on the pulleys",
@@ -160,10 +161,12 @@ SlidingArc solve_sliding_arc(PulleyCycle& pc, const ArcParameters& ap, double ka
   }
   if (!(pc.sliding_rad >= 0.0) || pc.sliding_rad > contact_free)
     throw InputError("belt slips on pulley '" + pc.name + "': the tension ratio " +
-                         std::to_string(std::max(kappa_end, 1.0 / kappa_end)) + " needs a longer sliding arc than the " +
-                         std::to_string(contact_free * 180 / kPi) +
+                         core::format_number(std::max(kappa_end, 1.0 / kappa_end), 4) +
+                         " needs a longer sliding arc than the " + core::format_number(contact_free * 180 / kPi, 4) +
                          " deg of contact available (capstan limit exp(mu alpha/sin beta) = " +
-                         std::to_string(pc.capstan_limit) + "); lower the torque or raise the tension",
+                         core::format_number(pc.capstan_limit, 4) + "); " +
+                         (ap.friction > 0.0 ? "lower the torque or raise the tension"
+                                            : "without friction (conditions.friction = 0) no torque is carried"),
                      {}, 0, 0, "drive.torque_Nm");
   return arc;
 }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include <boost/algorithm/string/join.hpp>
 #include <toml++/toml.h>
 
 #include "fitlib/core/error.hpp"
@@ -126,7 +127,10 @@ void parse_axes(const toml::table& root, Sweep& s, const std::string& source) {
 
 void parse_columns(const toml::table& root, Sweep& s, const std::string& source) {
   const toml::table* out = root.get_as<toml::table>("outputs");
-  if (!out) fail(source, &root, "outputs", "missing [outputs] columns = [...]");
+  if (!out) {  // the load cycle's headline figures and the life per mode (docs/sweep.md "Columns")
+    s.columns = kDefaultSweepColumns;
+    return;
+  }
   check_keys(*out, {"columns"}, source, "outputs.");
   std::size_t j = 0;
   for (const toml::node& c : nonempty_array(*out, "columns", source, "outputs.columns")) {
@@ -134,7 +138,7 @@ void parse_columns(const toml::table& root, Sweep& s, const std::string& source)
     const auto* name = c.as_string();
     const auto& known = sweep_column_names();
     if (!name || std::find(known.begin(), known.end(), name->get()) == known.end())
-      fail(source, &c, key, "unknown column (known: see docs/sweep.md \"Columns\")");
+      fail(source, &c, key, "unknown column; known: " + boost::algorithm::join(known, ", "));
     if (std::find(s.columns.begin(), s.columns.end(), name->get()) != s.columns.end())
       fail(source, &c, key, "column listed twice");
     s.columns.push_back(name->get());

@@ -102,6 +102,9 @@ TEST(DriveTensions, RulesAndMultiPulleyShares) {
   EXPECT_DOUBLE_EQ(F[0], 100.0);
   EXPECT_EQ(error_key([&] { span_tensions(g, {20.0, TensionRule::initial, 100.0}); }),
             "drive.initial_tension_N");
+  // A slack span of exactly 0 N presses on nothing: the key the user wrote, not a derived one.
+  EXPECT_EQ(error_key([&] { span_tensions(g, {20.0, TensionRule::initial, 200.0}); }),
+            "drive.initial_tension_N");
 }
 
 TEST(LoadCycle, ReferenceDriveZonesAndContinuity) {
@@ -194,6 +197,11 @@ TEST(LoadCycle, HardCasesGiveResultsOrClearErrors) {
   auto c = reference_drive(10.0);
   c.friction = 0.0;
   EXPECT_EQ(error_key([&] { compute_load_cycle(c); }), "drive.torque_Nm");
+  try {  // and says why: raising the tension would not help
+    compute_load_cycle(c);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("without friction (conditions.friction = 0)"), std::string::npos) << e.what();
+  }
   auto idle = reference_drive(0.0);
   idle.friction = 0.0;
   EXPECT_NO_THROW(compute_load_cycle(idle));

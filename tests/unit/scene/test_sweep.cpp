@@ -141,6 +141,9 @@ TEST(SweepFile, ErrorsNameFileLineAndKey) {
   auto e = input_error_of(grid_text(kTwoAxes, R"(["max_tension_N", "max_tenson_N"])"));
   EXPECT_EQ(e.key(), "outputs.columns[1]");
   EXPECT_EQ(e.file(), kSource);
+  EXPECT_NE(std::string(e.what()).find("known: "), std::string::npos) << e.what();
+  for (const std::string& name : fitlib::scene::sweep_column_names())  // the message lists them all
+    EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << name;
   e = input_error_of(grid_text("[[axis]]\nkey = \"conditions.temperature_C\"\nvalues = [20, -500]\n"));
   EXPECT_EQ(e.key(), "axis[0].values[1]");
   EXPECT_EQ(e.line(), 4);
@@ -157,6 +160,20 @@ TEST(SweepFile, ErrorsNameFileLineAndKey) {
   EXPECT_NE(std::string(e.what()).find("none.toml"), std::string::npos) << e.what();
   e = input_error_of(grid_text(kTwoAxes) + "threads = 4\n");
   EXPECT_EQ(e.key(), "outputs.threads");  // after [outputs]: a key of that table
+}
+
+// A sweep file without [outputs] asks for the load cycle's headline figures and the life per mode;
+// an [outputs] table without columns is still an error naming the key.
+TEST(SweepFile, WithoutOutputsTheDefaultColumnsAreTheLifePerMode) {
+  const std::string text = "scenes = [\"../drives/ref-0500-medium.toml\"]\n" + kTwoAxes;
+  const auto s = parse_sweep(text, kSource);
+  EXPECT_EQ(s.columns, (std::vector<std::string>{"max_tension_N", "max_sliding_arc_deg", "fidelity",
+                                                 "governing_mode", "life_h", "radial_crack_life_h",
+                                                 "separation_life_h"}));
+  for (const std::string& c : s.columns)  // each a known column
+    EXPECT_NE(std::find(fitlib::scene::sweep_column_names().begin(), fitlib::scene::sweep_column_names().end(), c),
+              fitlib::scene::sweep_column_names().end()) << c;
+  EXPECT_EQ(input_error_of(text + "[outputs]\n").key(), "outputs.columns");
 }
 
 TEST(SweepFile, GridAboveTheWorkCapIsRefused) {

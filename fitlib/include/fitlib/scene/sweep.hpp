@@ -16,6 +16,12 @@ namespace fitlib::scene {
 // 0.2 core-hours (docs/sweep.md "Scaling", bench_sweep), segment-level ones far more.
 constexpr double kMaxSweepCases = 1e6;
 
+// The columns of a sweep file without [outputs]: the load cycle's headline figures and the life
+// per mode at the planner's fidelity (docs/sweep.md "Columns").
+inline const std::vector<std::string> kDefaultSweepColumns{
+    "max_tension_N",  "max_sliding_arc_deg", "fidelity", "governing_mode", "life_h",
+    "radial_crack_life_h", "separation_life_h"};
+
 using SweepValue = std::variant<bool, std::int64_t, double, std::string>;
 
 // One axis: the dotted key path it sets ("drive.torque_Nm", "drive.pulleys[0].speed_rpm",
