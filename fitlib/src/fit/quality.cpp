@@ -161,8 +161,12 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
                          "measure more frequencies or temperatures, or fit fewer terms");
   if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
     std::ostringstream s;
-    s << "data not Kramers-Kronig consistent between " << kk.lo_Hz << " and " << kk.hi_Hz
-      << " Hz: the storage modulus is fitted within " << percent(th.storage_mean)
+    s << "data not Kramers-Kronig consistent ";
+    if (kk.lo_Hz < kk.hi_Hz)
+      s << "between " << kk.lo_Hz << " and " << kk.hi_Hz << " Hz";
+    else
+      s << "at " << kk.hi_Hz << " Hz";
+    s << ": the storage modulus is fitted within " << percent(th.storage_mean)
       << " there, but the loss modulus it implies differs from the measured one by up to a factor "
       << kk.worst_factor << " (no relaxation spectrum fits both; the weights choose between them)";
     v.warnings.push_back(s.str());
