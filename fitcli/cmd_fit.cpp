@@ -33,6 +33,13 @@ struct MasterCurveArgs {
   std::optional<fitlib::fit::MasterCurve> curve;
 };
 
+// The isotherm shift table: on the summary, or on stderr beside --json.
+void print_shift_table(const fitlib::fit::MasterCurve& curve, bool json) {
+  const std::string table = fitlib::fit::format_shift_table(curve) + "\n";
+  if (!json) summary() << table;
+  else if (!quiet()) std::cerr << table;
+}
+
 fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double reference_C, bool json,
                                                   const std::string& temperature_law,
                                                   const fitlib::data::DynamicTestTable& raw,
@@ -49,9 +56,7 @@ fitlib::data::DynamicTestTable master_curve_table(MasterCurveArgs& m, double ref
     options.reference_C = reference_C;
     m.curve = fitlib::card::refine_master_curve(raw, fitlib::fit::build_master_curve(raw, options), card_options);
   }
-  const std::string table = fitlib::fit::format_shift_table(*m.curve) + "\n";
-  if (!json) summary() << table;
-  else if (!quiet()) std::cerr << table;
+  print_shift_table(*m.curve, json);
   return m.curve->master;
 }
 // ---- end --master-curve
@@ -195,10 +200,18 @@ void run_fit(FitArgs a) {
   if (!a.fit.schedule_path.empty()) a.fit.schedule_path = input_path(a.fit.schedule_path);
   auto options = fit_card_options(a);
   if (is_relaxation_data(data, a.format)) {
-    if (a.master.enabled) throw core::UsageError("--master-curve needs frequency data; give relaxation isotherms --shifts");
     data::RelaxationTable table = read_relaxation_tables(data);
-    if (!a.master.shifts_in.empty()) {
-      const auto given = data::read_shift_factors(input_path(a.master.shifts_in));
+    if (a.master.enabled || !a.master.shifts_in.empty()) {
+      data::ShiftFactorTable given;
+      if (a.master.enabled) {  // model-free shifts of the isotherms, then as given shifts
+        fit::MasterCurveOptions mo;
+        mo.reference_C = a.reference_C;
+        a.master.curve = fit::build_relaxation_master_curve(table, mo);
+        print_shift_table(*a.master.curve, a.json);
+        given = fit::shift_factors_of(*a.master.curve);
+      } else {
+        given = data::read_shift_factors(input_path(a.master.shifts_in));
+      }
       table = fit::shift_relaxation_table(table, given, a.reference_C);
       card::IsothermShifts s;
       s.reference_C = a.reference_C;

@@ -148,4 +148,26 @@ MasterCurve build_master_curve(const data::DynamicTestTable& raw, const MasterCu
   return curve;
 }
 
+MasterCurve build_relaxation_master_curve(const data::RelaxationTable& raw, MasterCurveOptions options) {
+  data::DynamicTestTable proxy;
+  proxy.source_files = raw.source_files;
+  proxy.source_sha256 = raw.source_sha256;
+  for (const data::RelaxationRow& r : raw.rows) {
+    data::DynamicTestRow row;
+    row.condition.mode = r.mode;
+    row.condition.frequency_Hz = 1.0 / (2.0 * core::kPi * r.time_s);
+    row.condition.temperature_C = r.temperature_C;
+    row.storage_MPa = r.modulus_MPa;
+    row.weight = r.weight;
+    row.set = r.set;
+    row.source_file = r.source_file;
+    row.source_line = r.source_line;
+    proxy.rows.push_back(row);
+  }
+  options.loss_weight = 0.0;  // a relaxation isotherm has one modulus
+  MasterCurve curve = build_master_curve(proxy, options);
+  curve.master = {};
+  return curve;
+}
+
 }  // namespace fitlib::fit

@@ -119,6 +119,35 @@ TEST(MasterCurve, RecoversWlfShiftsOfSyntheticIsotherms) {
   EXPECT_LT(max_shift_error(exact), 0.03);
 }
 
+// Relaxation isotherms (E(t), 10 times 0.01 … 10 s each) of the same truth: `--master-curve` on
+// time data matches each E(t) as a storage curve at 1/(2π t), and finds the same shifts.
+TEST(MasterCurve, RecoversWlfShiftsOfSyntheticRelaxationIsotherms) {
+  const Truth truth;
+  core::Rng rng(11);
+  data::RelaxationTable raw;
+  for (std::size_t k = 0; k < kTemperatures.size(); ++k)
+    for (int i = 0; i < 10; ++i) {
+      data::RelaxationRow row;
+      row.time_s = 0.01 * std::pow(10.0, i / 3.0);
+      row.temperature_C = kTemperatures[k] + rng.uniform(-0.1, 0.1);
+      model::TestCondition c;
+      c.mode = model::TestMode::uniaxial;
+      c.temperature_C = row.temperature_C;
+      row.modulus_MPa = truth.model->relaxation_modulus(truth.p.data(), c, row.time_s) * (1.0 + 0.005 * rng.normal());
+      row.set = "T" + std::to_string(k);
+      raw.rows.push_back(row);
+    }
+  fit::MasterCurveOptions o;
+  o.reference_C = kRefC;
+  const auto curve = fit::build_relaxation_master_curve(raw, o);
+  ASSERT_EQ(curve.isotherms.size(), kTemperatures.size());
+  std::printf("%s", fit::format_shift_table(curve).c_str());
+  EXPECT_LT(max_shift_error(curve), 0.05);
+  EXPECT_NEAR(curve.wlf.C1, kC1, 0.05 * kC1);
+  EXPECT_NEAR(curve.wlf.C2_K, kC2, 0.05 * kC2);
+  EXPECT_TRUE(curve.master.rows.empty());  // the caller shifts the relaxation rows
+}
+
 TEST(MasterCurve, JointRefinementMovesShiftsTowardsTheTruth) {
   const auto raw = isotherms(kTemperatures, 0.005, 11);
   fit::MasterCurveOptions o;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "fitlib/data/relaxation.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/fit/fit.hpp"
 #include "fitlib/model/model.hpp"
@@ -83,6 +84,12 @@ struct MasterCurve {
 // by temperature and finds their shifts (pairwise, see docs). Throws core::InputError for rows
 // without a temperature and for an isotherm with a single frequency when there are several.
 MasterCurve build_master_curve(const data::DynamicTestTable& raw, const MasterCurveOptions& options = {});
+
+// The same model-free shifts for relaxation isotherms: each E(t) is matched as a storage curve at
+// f = 1/(2π t) (E(t) rises with 1/t as E′ does with f, and t/a_T = 1/(2π f a_T)), so the shifts
+// read as those of frequency data. `master` is left empty: the caller shifts the relaxation rows
+// (shift_relaxation_table).
+MasterCurve build_relaxation_master_curve(const data::RelaxationTable& raw, MasterCurveOptions options = {});
 
 // Applies new shifts to the curve (e.g. after the joint refinement): master table and WLF /
 // Arrhenius fits are rebuilt from `raw`.
