@@ -201,6 +201,7 @@ void run_fit(FitArgs a) {
   auto options = fit_card_options(a);
   if (is_relaxation_data(data, a.format)) {
     data::RelaxationTable table = read_relaxation_tables(data);
+    const data::RelaxationTable measured = table;
     if (a.master.enabled || !a.master.shifts_in.empty()) {
       data::ShiftFactorTable given;
       if (a.master.enabled) {  // model-free shifts of the isotherms, then as given shifts
@@ -221,6 +222,7 @@ void run_fit(FitArgs a) {
       }
       s.law = a.temperature_law == "polynomial" ? model::ShiftLaw::polynomial : model::ShiftLaw::wlf;
       options.shifts = s;
+      options.measured_relaxation = &measured;
     }
     return finish(a, card::fit_relaxation_card(table, options), data);
   }

@@ -47,18 +47,20 @@ std::string temperature_label(double T) {
   return b;
 }
 
-std::vector<Group> groups_of(const fitlib::data::DynamicTestTable& t) {
+// Groups rows by (set, temperature): `temperature(i)` and `set(i)` of row i of `count`.
+template <typename Temperature, typename Set>
+std::vector<Group> groups_by(int count, Temperature temperature, Set set) {
   std::map<std::pair<double, std::string>, std::vector<int>> by;
-  for (int i = 0; i < static_cast<int>(t.rows.size()); ++i) {
-    const double T = t.rows[i].condition.temperature_C;
+  for (int i = 0; i < count; ++i) {
+    const double T = temperature(i);
     // Sets keep measured isotherms apart; rows without a set are grouped by rounded temperature.
-    const double key = std::isnan(T) ? -1e9 : (t.rows[i].set.empty() ? std::round(T) : 0.0);
-    by[{key, t.rows[i].set}].push_back(i);
+    const double key = std::isnan(T) ? -1e9 : (set(i).empty() ? std::round(T) : 0.0);
+    by[{key, set(i)}].push_back(i);
   }
   std::vector<Group> out;
   for (auto& [key, rows] : by) {
     double mean = 0.0;
-    for (int r : rows) mean += t.rows[r].condition.temperature_C;
+    for (int r : rows) mean += temperature(r);
     mean /= rows.size();
     out.push_back({temperature_label(mean), mean, rows});
   }
@@ -66,6 +68,23 @@ std::vector<Group> groups_of(const fitlib::data::DynamicTestTable& t) {
     return (std::isnan(a.temperature_C) ? -1e9 : a.temperature_C) < (std::isnan(b.temperature_C) ? -1e9 : b.temperature_C);
   });
   return out;
+}
+
+std::vector<Group> groups_of(const fitlib::data::DynamicTestTable& t) {
+  return groups_by(static_cast<int>(t.rows.size()), [&](int i) { return t.rows[i].condition.temperature_C; },
+                   [&](int i) -> const std::string& { return t.rows[i].set; });
+}
+
+std::vector<Group> groups_of(const fitlib::data::RelaxationTable& t) {
+  return groups_by(static_cast<int>(t.rows.size()), [&](int i) { return t.rows[i].temperature_C; },
+                   [&](int i) -> const std::string& { return t.rows[i].set; });
+}
+
+// "lc palette frac …": group g of n, cold blue to hot red.
+std::string palette_colour(int g, int n) {
+  std::ostringstream c;
+  c << "lc palette frac " << (n == 1 ? 0.0 : double(g) / (n - 1));
+  return c.str();
 }
 
 const char* kHeader =
@@ -104,11 +123,7 @@ std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitl
     }
     s << "EOD\n";
   }
-  const auto colour = [&](int g) {
-    std::ostringstream c;
-    c << "lc palette frac " << (n == 1 ? 0.0 : double(g) / (n - 1));
-    return c.str();
-  };
+  const auto colour = [&](int g) { return palette_colour(g, n); };
   const auto panel = [&](const std::string& ylabel, int column, bool logy, int curve_column) {
     s << (logy ? "set logscale y\nset format y '10^{%L}'\n" : "unset logscale y\nset format y '%g'\n");
     s << "set xlabel 'frequency f [Hz]'\nset ylabel \"" << ylabel << "\"\nplot ";
@@ -135,36 +150,46 @@ std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitl
   return s.str();
 }
 
+// M(t) per isotherm (data and the card at the isotherm's temperature) and the residuals.
 std::string relaxation_script(const fitlib::data::RelaxationTable& t, const fitlib::model::Model& model,
                               const std::vector<double>& p, const std::string& title, const std::string& png) {
+  const auto groups = groups_of(t);
+  const int n = static_cast<int>(groups.size());
   const std::string M = t.rows.front().mode == fitlib::model::TestMode::shear ? "G" : "E";
   std::ostringstream s;
-  s << kHeader << "set output '" << png << "'\n$d << EOD\n";
-  double tmin = HUGE_VAL, tmax = 0.0;
-  fitlib::model::TestCondition c;
-  c.mode = t.rows.front().mode;
-  for (const auto& row : t.rows) {
-    c.temperature_C = row.temperature_C;
-    const double m = model.relaxation_modulus(p.data(), c, row.time_s);
-    tmin = std::min(tmin, row.time_s);
-    tmax = std::max(tmax, row.time_s);
-    s << exact(row.time_s) << " " << exact(row.modulus_MPa) << " " << exact(100.0 * (m / row.modulus_MPa - 1.0)) << "\n";
+  s << kHeader << "set output '" << png << "'\n";
+  for (int g = 0; g < n; ++g) {
+    fitlib::model::TestCondition c;
+    c.mode = t.rows.front().mode;
+    double tmin = HUGE_VAL, tmax = 0.0;
+    s << "$d" << g << " << EOD\n";
+    for (int r : groups[g].rows) {
+      const auto& row = t.rows[r];
+      c.temperature_C = row.temperature_C;
+      const double m = model.relaxation_modulus(p.data(), c, row.time_s);
+      tmin = std::min(tmin, row.time_s);
+      tmax = std::max(tmax, row.time_s);
+      s << exact(row.time_s) << " " << exact(row.modulus_MPa) << " " << exact(100.0 * (m / row.modulus_MPa - 1.0)) << "\n";
+    }
+    s << "EOD\n$c" << g << " << EOD\n";
+    c.temperature_C = groups[g].temperature_C;
+    const int points = std::max(2, static_cast<int>(20.0 * std::log10(tmax / tmin)) + 1);  // 20 per decade
+    for (int k = 0; k < points; ++k) {
+      const double time = tmin * std::pow(tmax / tmin, double(k) / (points - 1));
+      s << exact(time) << " " << exact(model.relaxation_modulus(p.data(), c, time)) << "\n";
+    }
+    s << "EOD\n";
   }
-  s << "EOD\n$c << EOD\n";
-  c.temperature_C = t.rows.front().temperature_C;
-  const int points = std::max(2, static_cast<int>(20.0 * std::log10(tmax / tmin)) + 1);
-  for (int k = 0; k < points; ++k) {
-    const double time = tmin * std::pow(tmax / tmin, double(k) / (points - 1));
-    s << exact(time) << " " << exact(model.relaxation_modulus(p.data(), c, time)) << "\n";
-  }
-  s << "EOD\nset multiplot layout 2,1 title " << gnuplot_quoted(title) << " noenhanced font ',13'\n"
-    << "set xlabel 'time t [s]'\n"
-    << "set logscale y\nset format y '10^{%L}'\nset ylabel 'relaxation modulus " << M << "(t) [MPa]'\n"
-    << "plot $d using 1:2 with points pt 7 ps 0.6 lc rgb '#2c7bb6' title 'data', $c using 1:2 with lines lc rgb "
-       "'#d7191c' title 'card'\n"
-    << "unset logscale y\nset format y '%g'\nset ylabel 'card / data - 1 [%]'\n"
-    << "plot $d using 1:3 with points pt 7 ps 0.5 lc rgb '#2c7bb6' title 'residual', 0 with lines lc rgb 'black' dt 2 "
-       "notitle\nunset multiplot\n";
+  s << "set multiplot layout 2,1 title " << gnuplot_quoted(title + " (points: data, lines: card)")
+    << " noenhanced font ',13'\nset xlabel 'time t [s]'\n"
+    << "set logscale y\nset format y '10^{%L}'\nset ylabel 'relaxation modulus " << M << "(t) [MPa]'\nplot ";
+  for (int g = 0; g < n; ++g)
+    s << (g ? ", " : "") << "$d" << g << " using 1:2 with points pt 7 ps 0.6 " << palette_colour(g, n) << " title '"
+      << groups[g].label << "', $c" << g << " using 1:2 with lines " << palette_colour(g, n) << " notitle";
+  s << "\nunset logscale y\nset format y '%g'\nset ylabel 'card / data - 1 [%]'\nplot ";
+  for (int g = 0; g < n; ++g)
+    s << "$d" << g << " using 1:3 with points pt 7 ps 0.5 " << palette_colour(g, n) << " notitle, ";
+  s << "0 with lines lc rgb 'black' dt 2 notitle\nunset multiplot\n";
   return s.str();
 }
 

@@ -60,10 +60,23 @@ fit::FitResult with_shift_law(const FitCardOptions& o, fit::FitResult result) {
                                    o.model_options.value("polynomial_degree", 3));
 }
 
+// With a law fitted to shifts: the card's figures on the measured isotherms join the verdict.
+void add_measured_isotherm_verdict(const FitCardOptions& o, fit::FitResult& r) {
+  if (!o.shifts) return;
+  fit::QualityVerdict v;
+  if (o.provenance.measured)
+    v = fit::measured_isotherm_verdict(*r.model, r.values, *o.provenance.measured);
+  else if (o.measured_relaxation)
+    v = fit::measured_isotherm_verdict(*r.model, r.values, *o.measured_relaxation);
+  r.quality.figures.insert(r.quality.figures.end(), v.figures.begin(), v.figures.end());
+  r.quality.warnings.insert(r.quality.warnings.end(), v.warnings.begin(), v.warnings.end());
+}
+
 FitCardResult finish(const FitCardOptions& o, fit::FitResult result, const data::DynamicTestTable& table,
                      std::optional<fit::TermSelection> selection) {
   FitCardResult out;
   out.result = with_shift_law(o, std::move(result));
+  add_measured_isotherm_verdict(o, out.result);
   out.card = card_from_fit(out.result, o.fit, table, o.provenance);
   out.selection = std::move(selection);
   out.warnings = table.warnings;

@@ -194,7 +194,10 @@ FitResult with_law_from_shifts(const FitResult& result, const std::vector<double
                                    core::format_number(constants.rms_decades, 3) + " decades rms (threshold " +
                                    core::format_number(kShiftLawWarnDecades, 3) +
                                    "): away from the reference temperature the card's moduli are shifted by as "
-                                   "much; another --temperature-law (polynomial) may follow them");
+                                   "much; " +
+                                   (law == model::ShiftLaw::polynomial
+                                        ? std::string("a higher --polynomial-degree may follow them")
+                                        : std::string("another --temperature-law (polynomial) may follow them")));
   out.messages.push_back("master curve: " + constants.summary + " at T_ref = " + core::format_number(reference_C, 6) +
                          " degC, fitted to " + std::to_string(temperatures_C.size()) + " isotherm shifts");
   return out;

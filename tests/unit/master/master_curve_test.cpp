@@ -148,6 +148,28 @@ TEST(MasterCurve, RecoversWlfShiftsOfSyntheticRelaxationIsotherms) {
   EXPECT_TRUE(curve.master.rows.empty());  // the caller shifts the relaxation rows
 }
 
+// The card's law on the measured isotherms: the truth itself passes (errors at the noise), the
+// truth with C1 half as large misses every isotherm but the reference one, and the warning names
+// the count and the worst one.
+TEST(MasterCurve, MeasuredIsothermVerdictJudgesTheCardsLaw) {
+  const Truth truth;
+  const auto raw = isotherms(kTemperatures, 0.005, 7);
+  const auto good = fit::measured_isotherm_verdict(*truth.model, truth.p, raw);
+  EXPECT_TRUE(good.acceptable()) << good.warnings.front();
+  ASSERT_EQ(good.figures.size(), 2 * kTemperatures.size());  // storage and loss per isotherm
+  for (const auto& f : good.figures) {
+    EXPECT_EQ(f.count, 10);
+    EXPECT_LT(f.max_rel_error, 0.03) << f.group;
+  }
+  auto wrong = truth.p;
+  wrong[wrong.size() - 2] *= 0.5;  // C1
+  const auto bad = fit::measured_isotherm_verdict(*truth.model, wrong, raw);
+  ASSERT_EQ(bad.warnings.size(), 1u);
+  EXPECT_NE(bad.warnings[0].find("with its wlf law the card misses"), std::string::npos) << bad.warnings[0];
+  // Every isotherm but the reference one moves (its shift stays 0); the warmest is the worst.
+  EXPECT_NE(bad.warnings[0].find("7 of 8 measured isotherms; worst T=60"), std::string::npos) << bad.warnings[0];
+}
+
 TEST(MasterCurve, JointRefinementMovesShiftsTowardsTheTruth) {
   const auto raw = isotherms(kTemperatures, 0.005, 11);
   fit::MasterCurveOptions o;

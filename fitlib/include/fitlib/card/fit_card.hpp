@@ -37,6 +37,9 @@ struct FitCardOptions {
   bool objective_given = false;
   std::optional<IsothermShifts> shifts;
   CardProvenance provenance;
+  // Relaxation isotherms before their shifts: with `shifts`, the verdict adds the card's errors on
+  // them (fit::measured_isotherm_verdict), as provenance.measured does for frequency data.
+  const data::RelaxationTable* measured_relaxation = nullptr;
 };
 
 struct FitCardResult {

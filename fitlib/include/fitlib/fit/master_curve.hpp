@@ -91,6 +91,15 @@ MasterCurve build_master_curve(const data::DynamicTestTable& raw, const MasterCu
 // (shift_relaxation_table).
 MasterCurve build_relaxation_master_curve(const data::RelaxationTable& raw, MasterCurveOptions options = {});
 
+// The card's temperature law on the measured isotherms: per isotherm (temperatures within 0.5 °C
+// are one) and modulus, the relative errors of `model` at the rows' own temperatures; one warning
+// when any isotherm passes the fit's thresholds, naming how many and the worst (docs/fitting.md
+// "Quality verdict"). The fit's own figures are on the shifted master table.
+QualityVerdict measured_isotherm_verdict(const model::Model& model, const std::vector<double>& p,
+                                         const data::DynamicTestTable& measured);
+QualityVerdict measured_isotherm_verdict(const model::Model& model, const std::vector<double>& p,
+                                         const data::RelaxationTable& measured);
+
 // Applies new shifts to the curve (e.g. after the joint refinement): master table and WLF /
 // Arrhenius fits are rebuilt from `raw`.
 void apply_shifts(MasterCurve& curve, const data::DynamicTestTable& raw, const std::vector<double>& log10_aT);
