@@ -90,6 +90,15 @@ std::size_t driver_index(const DriveGeometry& g) {
   return found;
 }
 
+const char* tension_key(TensionRule rule) {
+  switch (rule) {
+    case TensionRule::tight: return "drive.tight_tension_N";
+    case TensionRule::initial: return "drive.initial_tension_N";
+    case TensionRule::slack: break;
+  }
+  return "drive.slack_tension_N";
+}
+
 std::vector<double> span_tensions(const DriveGeometry& g, const TensionInput& t) {
   const std::size_t n = g.pulleys.size();
   const std::size_t d = driver_index(g);
@@ -120,16 +129,15 @@ std::vector<double> span_tensions(const DriveGeometry& g, const TensionInput& t)
       rise[i] = (total_dF - assigned) / static_cast<double>(sharing);
   rise[d] = -total_dF;
   double slack = 0.0;
-  const char* key = "drive.slack_tension_N";
   switch (t.rule) {
     case TensionRule::slack: slack = t.tension_N; break;
-    case TensionRule::tight: slack = t.tension_N - total_dF; key = "drive.tight_tension_N"; break;
-    case TensionRule::initial: slack = t.tension_N - 0.5 * total_dF; key = "drive.initial_tension_N"; break;
+    case TensionRule::tight: slack = t.tension_N - total_dF; break;
+    case TensionRule::initial: slack = t.tension_N - 0.5 * total_dF; break;
   }
-  if (!(slack > 0.0) || !std::isfinite(slack))  // a slack span without tension does not press on its pulleys
-    throw InputError("slack-side tension would be " + core::format_number(slack, 4) +
-                         " N, not positive: raise the tension or lower the torque",
-                     {}, 0, 0, key);
+  if (!(slack >= 0.0) || !std::isfinite(slack))
+    throw InputError("slack-side tension would be negative (" + core::format_number(slack, 4) +
+                         " N): raise the tension or lower the torque",
+                     {}, 0, 0, tension_key(t.rule));
   std::vector<double> F(n);
   double f = slack;
   for (std::size_t k = 1; k <= n; ++k) {  // walk from the driver's outgoing span

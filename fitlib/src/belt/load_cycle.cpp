@@ -94,7 +94,7 @@ void check_span_tensions(const DriveCase& drive, double F_c) {
                                  "': the belt lifts off"
                            : "span leaving '" + g.pulleys[i].name +
                                  "' has no tension: the belt does not press on the pulleys",
-                     {}, 0, 0, lifts ? "drive.pulleys" : "drive.slack_tension_N");
+                     {}, 0, 0, lifts ? "drive.pulleys" : drive.tension_key);
   }
 }
 

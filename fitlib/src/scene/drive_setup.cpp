@@ -186,6 +186,7 @@ belt::DriveCase make_drive(const Scene& s, const Stiffness& k) {
     t.rule = s.tension_rule;
     t.tension_N = s.tension_N;
     d.span_tension_N = belt::span_tensions(d.geometry, t);
+    d.tension_key = belt::tension_key(t.rule);
   } catch (const InputError& e) {  // add the scene file to library errors
     throw InputError(e.detail(), s.path, 0, 0, e.key());
   }

@@ -102,9 +102,10 @@ TEST(DriveTensions, RulesAndMultiPulleyShares) {
   EXPECT_DOUBLE_EQ(F[0], 100.0);
   EXPECT_EQ(error_key([&] { span_tensions(g, {20.0, TensionRule::initial, 100.0}); }),
             "drive.initial_tension_N");
-  // A slack span of exactly 0 N presses on nothing: the key the user wrote, not a derived one.
-  EXPECT_EQ(error_key([&] { span_tensions(g, {20.0, TensionRule::initial, 200.0}); }),
-            "drive.initial_tension_N");
+  // A slack span of exactly 0 N is a tension (the tension test needs no pressing span); the load
+  // cycle refuses it under the key the scene gave (LoadCycle.HardCasesGiveResultsOrClearErrors).
+  EXPECT_EQ(span_tensions(g, {20.0, TensionRule::initial, 200.0})[0], 0.0);
+  EXPECT_STREQ(tension_key(TensionRule::initial), "drive.initial_tension_N");
 }
 
 TEST(LoadCycle, ReferenceDriveZonesAndContinuity) {
@@ -193,6 +194,9 @@ TEST(LoadCycle, HardCasesGiveResultsOrClearErrors) {
   // Zero slack tension.
   EXPECT_EQ(error_key([] { compute_load_cycle(reference_drive(10.0, 0.0, 0.0)); }),
             "drive.slack_tension_N");
+  auto from_initial = reference_drive(10.0, 0.0, 0.0);  // the key the scene's rule came from
+  from_initial.tension_key = tension_key(TensionRule::initial);
+  EXPECT_EQ(error_key([&] { compute_load_cycle(from_initial); }), "drive.initial_tension_N");
   // μ → 0 cannot transmit torque; with no torque it runs.
   auto c = reference_drive(10.0);
   c.friction = 0.0;

@@ -47,6 +47,9 @@ struct TensionInput {
   double tension_N = 0.0;  // value of the rule's tension
 };
 
+// The scene key that gives the rule's tension ("drive.slack_tension_N", …), for messages.
+const char* tension_key(TensionRule rule);
+
 // Span tensions F_i (N) of the spans leaving each pulley, static (without centrifugal tension).
 // Driven pulleys with torque_Nm > 0 take F difference torque/R; the others share the rest of the
 // driver's force difference equally; idlers take none. InputError for a negative span tension

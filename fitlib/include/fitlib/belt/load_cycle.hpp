@@ -43,6 +43,7 @@ struct LoadCycleOptions {
 struct DriveCase {
   DriveGeometry geometry;
   std::vector<double> span_tension_N;  // static tensions of spans leaving each pulley
+  std::string tension_key = "drive.slack_tension_N";  // the scene key they come from (messages)
   BeltSection belt;
   double friction = 0.8;
   double belt_speed_mm_s = 0.0;  // V of the unloaded belt
