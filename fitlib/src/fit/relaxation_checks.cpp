@@ -39,8 +39,15 @@ AdmissibleWindow relaxation_window(const model::Model& model, const data::Relaxa
   const SeriesTerms series = series_terms(model.parameters());
   if (series.empty() || table.rows.empty() || model.temperature_law_info().law != model::ShiftLaw::none) return {};
   const model::DataSummary s = summarize_relaxation(table);
-  return window_over(series, model.parameters(), options, s.omega_min_rad_s, s.omega_max_rad_s, s.storage_min_MPa,
-                     s.storage_max_MPa);
+  AdmissibleWindow w = window_over(series, model.parameters(), options, s.omega_min_rad_s, s.omega_max_rad_s,
+                                   s.storage_min_MPa, s.storage_max_MPa);
+  // A term is seen in M(t) as exp(−t/τ): at τ = t_min/ln 100 it still shows 1 % of its modulus at
+  // the first time, as a Maxwell term at τ = 1/(10 ω_max) shows 1 % of its in E′(ω_max). The
+  // frequency rule's t_min/10 hid a term at exp(−10) = 4.5e-5, free to take the ceiling's modulus
+  // (docs/decisions.md "Relaxation window: the same visibility at its short edge").
+  const double t_min_s = 1.0 / s.omega_max_rad_s;
+  w.tau_min_s = std::max(w.tau_min_s, t_min_s / (std::log(100.0) * std::pow(10.0, options.tau_margin_decades - 1.0)));
+  return w;
 }
 
 std::pair<double, double> window_bounds(const model::Model& model, const AdmissibleWindow& w, int i) {

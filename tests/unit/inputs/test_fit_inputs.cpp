@@ -59,6 +59,12 @@ TEST(RelaxationFit, RecoversAKnownPronySeriesExactly) {
   const auto r = fit::fit_relaxation(truth, table, {});
   EXPECT_LT(r.metrics.rms_log10_storage, 1e-9);
   for (int i = 0; i < 7; ++i) EXPECT_NEAR(r.values[i], p[i], 1e-6 * p[i]) << r.parameters[i].name;
+  // The window's short edge: a term there still shows 1 % of its modulus at the first time
+  // (t_min / ln 100; the frequency rule's t_min / 10 hid it at exp(−10)). The long edge is 10 t_max.
+  ASSERT_TRUE(r.admissible.applies);
+  EXPECT_NEAR(r.admissible.tau_min_s, 1e-4 / std::log(100.0), 1e-16);
+  EXPECT_NEAR(std::exp(-1e-4 / r.admissible.tau_min_s), 0.01, 1e-12);
+  EXPECT_NEAR(r.admissible.tau_max_s, 1e2 * 10.0, 1e-9);
 }
 
 TEST(RelaxationFit, PyviscoTimeMasterBeatsTheAnsysReferenceWithFewerTerms) {
