@@ -94,6 +94,7 @@ void run_fit(const FitArgs& a) {
                   {"data_sha256", core::sha256_hex(core::read_file(data_path))},
                   {"fitlib_version", FITLIB_VERSION},
                   {"command", command_line()}};
+  for (const std::string& w : surface::statistics_warnings(s.statistics)) warning(w);
   const std::string document = surface::surface_to_json(s).dump(2) + "\n";
   if (a.out.empty() || a.out == "-") {
     emit("", document);

@@ -266,8 +266,17 @@ nlohmann::json surface_to_json(const Surface& s) {
             {"max_relative_error_row", st.max_relative_error_row},
             {"ss_residual", st.ss_residual},
             {"ss_total", st.ss_total},
-            {"occupied_cells", st.n_occupied_cells}}},
+            {"occupied_cells", st.n_occupied_cells},
+            {"warnings", statistics_warnings(st)}}},
           {"provenance", s.provenance}};
+}
+
+std::vector<std::string> statistics_warnings(const Statistics& st) {
+  if (st.residual_dof > 0 || st.n_points == 0) return {};
+  return {"no residual degrees of freedom (N = " + std::to_string(st.n_points) + ", p = " +
+          std::to_string(st.n_parameters) +
+          "): the surface passes through every point whatever it is between them, so R and s say nothing "
+          "about it; lower a degree (--degree) or measure more levels"};
 }
 
 namespace {

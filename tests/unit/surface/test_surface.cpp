@@ -125,6 +125,21 @@ TEST(SurfaceFit, SingleLevelAxisHasDegreeZero) {
   EXPECT_TRUE(flagged);
 }
 
+// One point per cell of a full 3×3 grid with degrees 2×2: N = p, the surface interpolates, R = 1
+// by construction; the statistics warn (and say so in the JSON). Two points per cell: no warning.
+TEST(SurfaceFit, NoResidualDegreesOfFreedomIsAWarning) {
+  const auto exact = fit_surface(make_design(levels(3, 3, 1), all_cells, [](std::size_t) { return 1; }, 0.02, 3),
+                                 rubber_options());
+  ASSERT_EQ(exact.statistics.residual_dof, 0u);
+  const auto w = statistics_warnings(exact.statistics);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("no residual degrees of freedom (N = 9, p = 9)"), std::string::npos) << w[0];
+  EXPECT_EQ(surface_to_json(exact)["statistics"]["warnings"].size(), 1u);
+  const auto spare = fit_surface(make_design(levels(3, 3, 1), all_cells, twice, 0.02, 3), rubber_options());
+  EXPECT_GT(spare.statistics.residual_dof, 0u);
+  EXPECT_TRUE(statistics_warnings(spare.statistics).empty());
+}
+
 TEST(SurfaceFit, CollinearLevelsAreAnError) {
   SampleSet data;
   data.x.resize(9, 2);

@@ -80,6 +80,10 @@ struct Statistics {
   std::size_t n_occupied_cells = 0;  // distinct level combinations holding data
 };
 
+// Warnings on the statistics (docs/surfaces.md "Statistics"): no residual degrees of freedom —
+// the surface passes through every point whatever it is between them, R and s say nothing.
+std::vector<std::string> statistics_warnings(const Statistics& st);
+
 struct Evaluation {
   double value = 0.0;
   Eigen::VectorXd gradient;   // dy/dx_k in the variables' own units
