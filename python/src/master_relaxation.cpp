@@ -141,6 +141,10 @@ void bind_master_curve(py::module_& m) {
       .def("shift_factors", &fit::shift_factors_of, "As a ShiftFactorTable (fitcli --shifts-out)");
   m.def("build_master_curve", &fit::build_master_curve, py::arg("table"),
         py::arg("options") = fit::MasterCurveOptions{}, "Free per-isotherm shifts of raw isotherms");
+  m.def("build_relaxation_master_curve", &fit::build_relaxation_master_curve, py::arg("table"),
+        py::arg("options") = fit::MasterCurveOptions{},
+        "Free per-isotherm shifts of raw relaxation isotherms (fitcli fit --master-curve on time data); "
+        "its master is empty: shift_relaxation_table(table, curve.shift_factors(), reference_C)");
   m.def("master_curve_from_shift_factors", &fit::master_curve_from_shift_factors, py::arg("table"),
         py::arg("shifts"), py::arg("reference_C"), "Raw isotherms shifted by given factors (fitcli --shifts)");
   m.def("apply_shifts",

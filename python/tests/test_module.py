@@ -273,6 +273,18 @@ def test_master_curve_shifts_and_laws_equal_the_cli():
     assert np.allclose(poly["coefficients"], [-0.1, 1e-3], rtol=1e-9), poly
 
 
+def test_relaxation_master_curve_equals_the_cli():
+    time_raw = source("datasets", "materials", "pyvisco-time-raw.csv")
+    out = fitcli("fit", "--data", time_raw, "--format", "pyvisco", "--master-curve", "--reference-c", 20,
+                 "--model", "prony", "--terms", 4, "--shifts-out", work("time-shifts.csv"), "--out", work("tm.json"))
+    curve = fitlib.build_relaxation_master_curve(fitlib.read_relaxation_table(time_raw),
+                                                 fitlib.MasterCurveOptions(reference_C=20.0))
+    assert curve.shift_table() in out, curve.shift_table()
+    with open(work("time-shifts.csv")) as f:
+        assert curve.shift_factors().to_csv() == f.read()
+    assert len(curve.isotherms) == 21 and len(curve.master) == 0
+
+
 def test_shift_file_read_write_and_given_shifts_equal_the_cli():
     given = source("datasets", "materials", "pyvisco-freq-master-shift-factors.csv")
     shifts = fitlib.read_shift_factors(given)
