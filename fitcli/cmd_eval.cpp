@@ -17,6 +17,7 @@
 #include "inputs.hpp"
 #include "output.hpp"
 #include "plot.hpp"
+#include "window_check.hpp"
 
 namespace fitcli {
 namespace {
@@ -27,60 +28,6 @@ struct EvalArgs {
   std::vector<double> frequency_Hz, temperature_C, amplitude, time_s;
   double poisson_ratio = fitlib::card::ExportOptions{}.poisson_ratio;
   bool json = false, allow_extrapolation = false;
-};
-
-// "--temperature-c 300 is outside the card's data window [23, 60] degC", or for a range of values
-// "--frequency-hz 1e-12 … 1e+14 reaches beyond the card's data window [0.1, 100] Hz".
-std::string excess_text(const fitlib::card::WindowExcess& x, double highest) {
-  const bool f = x.quantity == "frequency_Hz", T = x.quantity == "temperature_C";
-  const std::string option = f ? "--frequency-hz" : T ? "--temperature-c" : "--amplitude";
-  const std::string values = highest != x.value ? exact(x.value) + " … " + exact(highest) + " reaches beyond"
-                                                : exact(x.value) + " is outside";
-  return option + " " + values + " the card's data window [" + exact(x.low) + ", " + exact(x.high) + "]" +
-         (f ? " Hz" : T ? " degC" : "") +
-         (x.key != x.quantity ? " (its measured frequencies shifted to this temperature by the card's law)" : "");
-}
-
-// Conditions beyond the card's data window: the first is an error, or with
-// --allow-extrapolation each quantity's range is one warning at the end.
-class WindowCheck {
- public:
-  // A temperature where the card's law describes no material is refused first, even with
-  // --allow-extrapolation.
-  WindowCheck(const EvalArgs& a, const fitlib::card::Card& card) : a_(a), window_(card) {
-    for (double T : a.temperature_C) fitlib::card::require_material_at(card, a.card, T, a.card, "--temperature-c");
-  }
-
-  // True when `c` lies beyond the window (and extrapolation is allowed).
-  bool beyond(const fitlib::model::TestCondition& c) {
-    const auto excess = window_.outside(c);
-    if (excess.empty()) return false;
-    if (!a_.allow_extrapolation)
-      throw fitlib::core::InputError("eval: " + excess_text(excess.front(), excess.front().value) +
-                                         "; pass --allow-extrapolation to evaluate there anyway",
-                                     a_.card, 0, 0, "fit.data_window." + excess.front().key);
-    for (const auto& x : excess) {
-      const auto [it, added] = seen_.emplace(x.quantity, Seen{x, x.value});
-      if (added) continue;
-      it->second.first.value = std::min(it->second.first.value, x.value);
-      it->second.highest = std::max(it->second.highest, x.value);
-    }
-    return true;
-  }
-
-  ~WindowCheck() {
-    for (const auto& [quantity, s] : seen_)
-      warning("extrapolating: " + excess_text(s.first, s.highest) + " (" + a_.card + ")");
-  }
-
- private:
-  struct Seen {
-    fitlib::card::WindowExcess first;  // its value the lowest seen
-    double highest;
-  };
-  const EvalArgs& a_;
-  const fitlib::card::DataWindow window_;
-  std::map<std::string, Seen> seen_;
 };
 
 // --time-s: relaxation modulus M(t) after a unit strain step and creep compliance J(t) after a
@@ -95,7 +42,7 @@ void run_eval_time(const EvalArgs& a, const fitlib::card::Card& card, fitlib::mo
   nlohmann::json rows = nlohmann::json::array();
   csv << "mode,temperature_C,time_s,relaxation_modulus_MPa,creep_compliance_per_MPa\n";
   std::string refused;
-  WindowCheck window(a, card);
+  WindowCheck window("eval", a.card, card, a.temperature_C, a.allow_extrapolation);
   for (double T : temperatures)
     for (double t : a.time_s) {
       model::TestCondition c;
@@ -136,7 +83,7 @@ void run_eval_frequency(const EvalArgs& a, const fitlib::card::Card& card, fitli
   nlohmann::json rows = nlohmann::json::array();
   csv << "mode,orientation,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa,tan_delta,"
          "mean_modulus_MPa\n";
-  WindowCheck window(a, card);
+  WindowCheck window("eval", a.card, card, a.temperature_C, a.allow_extrapolation);
   for (double T : temperatures)
     for (double amp : amplitudes)
       for (double f : a.frequency_Hz) {

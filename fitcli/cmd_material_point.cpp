@@ -14,6 +14,7 @@
 #include "fitlib/model/material_point.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "window_check.hpp"
 
 namespace fitcli {
 namespace {
@@ -26,6 +27,7 @@ struct Args {
   std::string card, case_id, out, test = "shear", orientation, fidelity = "viscoelastic";
   int steps_per_cycle = 200, cycles = 5;
   double amplitude = 0.01, mean_strain = 0.0, frequency_Hz = 1.0;
+  bool allow_extrapolation = false;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();
   bool json = false;
@@ -73,7 +75,13 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
     throw core::UsageError("--cycles ≥ 1, --steps-per-cycle ≥ 4 and --frequency > 0 are needed");
   if (static_cast<double>(a.cycles) * a.steps_per_cycle > kMaxSteps)
     throw core::UsageError("--cycles × --steps-per-cycle exceeds the work cap 1e6 steps (docs/reliability.md)");
-  card::require_material_at(card, a.card, a.temperature_C, a.card, "--temperature-c");
+  model::TestCondition c;
+  c.mode = model::parse_test_mode(a.test);
+  c.orientation = a.orientation;
+  c.temperature_C = a.temperature_C;
+  c.frequency_Hz = a.frequency_Hz;
+  c.strain_amplitude = a.amplitude;
+  WindowCheck("material-point", a.card, card, {a.temperature_C}, a.allow_extrapolation).beyond(c);
   model::PointOptions options;
   options.fidelity = a.fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
                                              : model::PointOptions::Fidelity::viscoelastic;
@@ -93,10 +101,6 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
            fitlib::core::short_number(card::kDefaultPoissonRatio) + " (as eval and export; --bulk-modulus to choose)");
   }
   const auto point = model::make_material_point(*card.model(), card.values(), options);
-  model::TestCondition c;
-  c.mode = model::parse_test_mode(a.test);
-  c.orientation = a.orientation;
-  c.temperature_C = a.temperature_C;
   const auto history = model::fritzson::cyclic_history(a.amplitude, a.mean_strain, a.frequency_Hz,
                                                        a.cycles, a.steps_per_cycle);
   write_table(a, drive_csv(model::drive(*point, model::test_program(c, history))));
@@ -118,7 +122,10 @@ void register_material_point(CLI::App& app) {
   cmd->add_option("--case", args->case_id, "fritzson cards: 7.1, 7.2, 7.3, 7.4 (cyclic) or 7.5 (ramp)");
   cmd->add_option("--mode", args->test, "shear (default), uniaxial or bulk");
   cmd->add_option("--orientation", args->orientation, "11, 22, 33, 12, 13 or 23 (default 12 / 22)");
-  cmd->add_option("--amplitude", args->amplitude, "strain amplitude (shear: γ; default 0.01)");
+  cmd->add_option("--amplitude", args->amplitude, "strain amplitude (shear: γ; default 0.01)")
+      ->check(non_negative_number());
+  cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,
+                "Drive beyond the card's data window (a warning; without it such a test is refused)");
   cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft");
   cmd->add_option("--frequency-hz", args->frequency_Hz, "Hz (default 1)");
   cmd->add_option("--cycles", args->cycles, "cycles (default 5)");

@@ -10,6 +10,7 @@
 #include "fitlib/data/table.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "window_check.hpp"
 
 namespace fitcli {
 namespace {
@@ -17,6 +18,7 @@ namespace {
 struct SynthArgs {
   std::string card, mode = "shear", orientation, out, name;
   std::vector<double> frequency_Hz, temperature_C, amplitude;
+  bool allow_extrapolation = false;
   double noise = 0.0;
   int specimens = 1;
   std::uint64_t seed = 1;
@@ -34,7 +36,7 @@ void run_synth(const SynthArgs& a) {
   const std::vector<double> temperatures =
       a.temperature_C.empty() ? std::vector<double>{std::nan("")} : a.temperature_C;
   const std::vector<double> amplitudes = a.amplitude.empty() ? std::vector<double>{0.0} : a.amplitude;
-  for (double T : temperatures) card::require_material_at(card, a.card, T, a.card, "--temperature-c");
+  WindowCheck window("synth", a.card, card, temperatures, a.allow_extrapolation);
   for (double T : temperatures)
     for (double amp : amplitudes)
       for (double f : a.frequency_Hz)
@@ -45,6 +47,7 @@ void run_synth(const SynthArgs& a) {
           row.condition.frequency_Hz = f;
           row.condition.temperature_C = T;
           row.condition.strain_amplitude = amp;
+          window.beyond(row.condition);
           const auto m = model->moduli(p.data(), row.condition);
           // Multiplicative Gaussian scatter, independent for storage and loss.
           row.storage_MPa = m.storage * (1.0 + a.noise * rng.normal());
@@ -74,6 +77,8 @@ void register_synth(CLI::App& app) {
       ->check(positive_number());
   cmd->add_option("--temperature-c", a->temperature_C, "Temperatures, degC")->delimiter(',')->check(temperature_c_range());
   cmd->add_option("--amplitude", a->amplitude, "Strain amplitudes")->delimiter(',');
+  cmd->add_flag("--allow-extrapolation", a->allow_extrapolation,
+                "Evaluate beyond the card's data window (a warning; without it such a design is refused)");
   cmd->add_option("--noise", a->noise, "Relative standard deviation of the scatter (0.01 = 1 %)")
       ->capture_default_str()->check(number_in(0.0, 0.5));
   cmd->add_option("--specimens", a->specimens, "Specimens per test point")->capture_default_str()

@@ -1,5 +1,6 @@
 // End to end for the other subcommands: belt scenes, surfaces, staged Fritzson fits, master
 // curves — run as a user runs them.
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <filesystem>
@@ -135,4 +136,30 @@ TEST(LinearCards, EveryFittedShearCardAnswersEveryCommand) {
       EXPECT_NE(deck.out.find("converted exactly from its retardation spectrum"), std::string::npos) << deck.out;
     }
   }
+}
+
+// eval, synth and material-point answer the same way beyond a card's data window: refused (exit 3,
+// the window's key named) unless --allow-extrapolation, which runs with one warning. A card fitted
+// at a 1 % amplitude was driven at 200 % by material-point and synth without a word.
+TEST(DataWindow, EvalSynthAndMaterialPointRefuseBeyondItAlike) {
+  const std::string table = temp_file("one-amplitude.csv");
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa\n"
+                          "shear,0.1,23,0.01,2.0,0.15\nshear,1,23,0.01,2.3,0.38\nshear,10,23,0.01,3.0,0.52\n"
+                          "shear,100,23,0.01,3.5,0.35\n";
+  const std::string card = temp_file("one-amplitude.json");
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms 2 -q --out " + card).exit_code, 0);
+  const std::string commands[] = {
+      "eval --card " + card + " --frequency-hz 1 --amplitude 2",
+      "synth --card " + card + " --frequency-hz 1 --amplitude 2 --out " + temp_file("synth-beyond.csv"),
+      "material-point --card " + card + " --amplitude 2 --cycles 1 --out " + temp_file("mp-beyond.csv")};
+  for (const std::string& command : commands) {
+    const auto refused = run_fitcli(command);
+    EXPECT_EQ(refused.exit_code, 3) << command;
+    EXPECT_NE(refused.err.find("fit.data_window.strain_amplitude"), std::string::npos) << refused.err;
+    const auto allowed = run_fitcli(command + " --allow-extrapolation");
+    EXPECT_EQ(allowed.exit_code, 0) << command << allowed.err;
+    EXPECT_NE(allowed.err.find("extrapolating: --amplitude 2 is outside"), std::string::npos) << allowed.err;
+  }
+  EXPECT_EQ(run_fitcli("material-point --card " + card + " --amplitude 0.01 --cycles 1 --out " +
+                       temp_file("mp-inside.csv")).exit_code, 0);
 }
