@@ -327,3 +327,40 @@ TEST(SegmentCli, StaticCaseNeedsNoDriveAndTheDriveCommandsSaySo) {
     EXPECT_NE(r.err.find("key 'drive': missing [drive] table"), std::string::npos) << command << ": " << r.err;
   }
 }
+
+// The segment levels compare the strain amplitude they drove each card at (half the range of the
+// log strains over the last cycle at the role's monitored points) with the card's data window: a
+// card fitted at 1 % strain is read at several per cent in the gap and the cushion, and the table
+// and life.json say so for both roles (material 1 and 2's fitted cards: 8 % and 88 % at the light
+// drive's complete level, windows ending at 4.5 %).
+TEST(LifeCli, SegmentLevelsWarnWhenTheyDriveACardBeyondItsStrainWindow) {
+  const std::string table = unique_dir("life_amplitude_table") + ".csv";
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa\n"
+                          "shear,0.1,80,0.01,2.0,0.15\nshear,1,80,0.01,2.3,0.38\nshear,10,80,0.01,3.0,0.52\n"
+                          "shear,100,80,0.01,3.5,0.35\n";
+  const std::string card = unique_dir("life_amplitude_card") + ".json";
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms 2 --reference-c 80 -q --out " + card).exit_code, 0);
+  const std::string scene = unique_dir("life_amplitude") + ".toml";
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-light.toml")) << "\n[belt.materials]\nbottom = \""
+                       << card << "\"\ncushion = \"" << card << "\"\n"
+                       << "\n[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\nend_pitches = 1\n"
+                          "cushion_rows = 1\n[life]\nfidelity = \"elastic\"\ncycles = 2\n";
+  const auto r = run_fitcli("life --scene " + scene + " --out-dir " + unique_dir("life_amplitude_out") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  int beyond = 0;
+  for (const auto& w : j["warnings"]) {
+    const std::string text = w.get<std::string>();
+    if (text.find("strain_amplitude") == std::string::npos) continue;
+    ++beyond;
+    EXPECT_NE(text.find(" its data window [0.01, 0.01] (fit.data_window.strain_amplitude)"), std::string::npos)
+        << text;
+    // One warning per role: the amplitudes read (the belt's stiffness at 0.5 and 4.5 %, the segment's
+    // own) as one range; the highest is the segment's.
+    const auto dots = text.find(" … ");
+    const double a = std::stod(text.substr(dots == std::string::npos ? text.find("strain_amplitude ") + 17 : dots + 5));
+    EXPECT_GT(a, 0.045) << text;  // bending alone strains the gap by several per cent
+    EXPECT_LT(a, 2.0) << text;
+  }
+  EXPECT_EQ(beyond, 2) << r.out;  // bottom and cushion, one each
+}

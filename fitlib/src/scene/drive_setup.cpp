@@ -46,11 +46,25 @@ double storage_modulus_MPa(const Scene& s, const card::Card& c, const std::strin
 void detail::card_window_warnings(const Scene& s, const std::string& role, const card::Card& c,
                                   const model::TestCondition& at, std::vector<std::string>& warnings) {
   for (const card::WindowExcess& e : card::outside_data_window(c, at)) {
-    const std::string w = "card " + s.materials.at(role) + " (" + role + "): " + e.quantity + " " +
-                          core::format_number(e.value) + " is outside its data window [" + core::format_number(e.low) +
-                          ", " + core::format_number(e.high) + "] (fit.data_window." + e.key +
-                          "): the scene extrapolates the card there";
-    if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
+    // One warning per card, role and quantity: the values the scene read it at, as a range.
+    const std::string head = "card " + s.materials.at(role) + " (" + role + "): " + e.quantity + " ";
+    const std::string tail = " its data window [" + core::format_number(e.low, 4) + ", " +
+                             core::format_number(e.high, 4) + "] (fit.data_window." + e.key +
+                             "): the scene extrapolates the card there";
+    double lo = e.value, hi = e.value;
+    const auto same = std::find_if(warnings.begin(), warnings.end(), [&](const std::string& w) {
+      return w.rfind(head, 0) == 0 && w.size() > tail.size() && w.compare(w.size() - tail.size(), tail.size(), tail) == 0;
+    });
+    if (same != warnings.end()) {  // "<lo> is outside" or "<lo> … <hi> reach beyond"
+      const std::string values = same->substr(head.size());
+      lo = std::min(lo, std::stod(values));
+      const auto dots = values.find(" … ");
+      hi = std::max(hi, dots == std::string::npos ? std::stod(values) : std::stod(values.substr(dots + 5)));
+    }
+    const std::string w = head + core::format_number(lo, 4) +
+                          (lo == hi ? " is outside" : " … " + core::format_number(hi, 4) + " reach beyond") + tail;
+    if (same != warnings.end()) *same = w;
+    else warnings.push_back(w);
   }
 }
 

@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace fitlib::scene {
 namespace detail {
@@ -174,6 +175,34 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
   }
 }
 
+// The strain amplitude the segment drove each role's card at — half the range of e11, e22 and the
+// engineering shear 2 e12 (logarithmic, belt frame) over the last cycle, the largest at the role's
+// monitored points — against the card's data window: fitted at 1–4.5 %, a damage law read at
+// 10 % is extrapolated, and the table says so (docs/fatigue.md §8).
+void strain_window_warnings(const Scene& s, const segment::CycleResult& run, std::vector<std::string>& warnings) {
+  std::map<std::string, double> amplitude;  // by role
+  for (const segment::MonitoredHistory& m : run.points) {
+    if (m.samples.empty()) continue;
+    const double from_s = m.samples.back().t_s - run.cycle_time_s;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (const segment::CycleSample& c : m.samples) {
+      if (c.t_s < from_s) continue;
+      const double e[3] = {c.e11, c.e22, 2.0 * c.e12};
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], e[k]), hi[k] = std::max(hi[k], e[k]);
+    }
+    double& a = amplitude[m.role == segment::Role::bottom ? "bottom" : "cushion"];
+    for (int k = 0; k < 3; ++k) a = std::max(a, 0.5 * (hi[k] - lo[k]));
+  }
+  for (const auto& [role, a] : amplitude) {
+    if (!s.materials.count(role)) continue;
+    model::TestCondition seen;
+    seen.temperature_C = s.temperature_C;
+    seen.frequency_Hz = NAN;  // the frequency was checked where the card was made a point
+    seen.strain_amplitude = a;
+    card_window_warnings(s, role, material_card(s, role), seen, warnings);
+  }
+}
+
 }  // namespace
 
 void segment_stresses(const Scene& s, SceneResult& r) {
@@ -195,6 +224,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
     const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity);
     r.stresses = fatigue::segment_point_histories(run);
+    strain_window_warnings(s, run, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
       const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
