@@ -99,13 +99,14 @@ TEST(LifeCli, ElasticLevelRunsTheSegmentOnTheLoadCycle) {
   std::istringstream csv(slurp(out + "/stress_history.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa");
+  EXPECT_EQ(line, "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa,e11,e22,e12");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(csv, line)) {
     rows.emplace_back();
     std::stringstream row(line);
     for (std::string c; std::getline(row, c, ',');) rows.back().push_back(c);
-    ASSERT_EQ(rows.back().size(), 8u) << line;
+    ASSERT_EQ(rows.back().size(), 11u) << line;
+    for (int k = 8; k < 11; ++k) EXPECT_TRUE(std::isfinite(std::stod(rows.back()[k]))) << line;  // the strains
   }
   const auto& separation = j["modes"][1];
   ASSERT_EQ(separation["mode"], "separation");

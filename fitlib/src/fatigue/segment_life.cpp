@@ -48,7 +48,8 @@ std::vector<PointHistory> segment_point_histories(const segment::CycleResult& ru
     p.name = m.point.name;
     p.role = m.role == segment::Role::bottom ? Role::bottom : Role::cushion;
     p.x_mm = m.point.x_mm, p.y_mm = m.point.y_mm;
-    for (const segment::CycleSample& c : m.samples) p.samples.push_back({c.t_s, c.s11_MPa, c.s22_MPa, c.s12_MPa});
+    for (const segment::CycleSample& c : m.samples)
+      p.samples.push_back({c.t_s, c.s11_MPa, c.s22_MPa, c.s12_MPa, c.e11, c.e22, c.e12});
     out.push_back(std::move(p));
   }
   return out;

@@ -1,5 +1,6 @@
 #include "fitlib/fatigue/stress_csv.hpp"
 
+#include <cmath>
 #include <map>
 
 #include "fitlib/core/error.hpp"
@@ -10,8 +11,9 @@ namespace fitlib::fatigue {
 
 namespace {
 
-const std::vector<std::string> kColumns = {"point", "role", "x_mm", "y_mm", "t_s",
-                                           "s11_MPa", "s22_MPa", "s12_MPa"};
+const std::vector<std::string> kColumns = {"point", "role", "x_mm", "y_mm", "t_s",   "s11_MPa",
+                                           "s22_MPa", "s12_MPa", "e11", "e22", "e12"};
+constexpr std::size_t kStressColumns = 8;  // the strains are optional
 
 Role parse_role(const std::string& text, const std::string& file, int line, int column) {
   if (text == "bottom") return Role::bottom;
@@ -24,28 +26,30 @@ Role parse_role(const std::string& text, const std::string& file, int line, int 
 std::vector<PointHistory> parse_stress_histories(const std::string& text, const std::string& file) {
   std::vector<PointHistory> out;
   std::map<std::string, std::size_t> index;
-  bool header = true;
+  std::size_t columns = 0;  // 8, or 11 with the strains
   for (const data::CsvLine& l : data::split_csv_lines(text, file)) {
     if (data::is_blank_or_comment(l.text)) continue;
     const std::vector<std::string> f = data::split_csv_fields(l.text, file, l.number);
-    if (header) {
-      for (std::size_t k = 0; k < kColumns.size() || k < f.size(); ++k)
-        if (k >= f.size() || k >= kColumns.size() || f[k] != kColumns[k])
+    if (columns == 0) {
+      const std::size_t n = f.size() == kColumns.size() ? kColumns.size() : kStressColumns;
+      for (std::size_t k = 0; k < n || k < f.size(); ++k)
+        if (k >= f.size() || k >= n || f[k] != kColumns[k])
           throw core::InputError("expected the columns point, role, x_mm, y_mm, t_s, s11_MPa, "
-                                 "s22_MPa, s12_MPa", file, l.number, int(k) + 1,
-                                 k < kColumns.size() ? kColumns[k] : f[k]);
-      header = false;
+                                 "s22_MPa, s12_MPa (and optionally e11, e22, e12)", file, l.number, int(k) + 1,
+                                 k < n ? kColumns[k] : f[k]);
+      columns = n;
       continue;
     }
-    if (f.size() != kColumns.size())
-      throw core::InputError("expected 8 fields, found " + std::to_string(f.size()), file,
-                             l.number, int(f.size()) + 1);
+    if (f.size() != columns)
+      throw core::InputError("expected " + std::to_string(columns) + " fields, found " + std::to_string(f.size()),
+                             file, l.number, int(f.size()) + 1);
     auto number = [&](int k) {
       return data::parse_csv_number(f[k], kColumns[k], file, l.number, k + 1);
     };
+    auto strain = [&](int k) { return k < int(columns) && !f[k].empty() ? number(k) : NAN; };
     const Role role = parse_role(f[1], file, l.number, 2);
     const double x = number(2), y = number(3);
-    const StressSample s{number(4), number(5), number(6), number(7)};
+    const StressSample s{number(4), number(5), number(6), number(7), strain(8), strain(9), strain(10)};
     auto [it, added] = index.emplace(f[0], out.size());
     if (added) out.push_back({f[0], role, x, y, {}});
     PointHistory& p = out[it->second];
@@ -65,12 +69,13 @@ std::vector<PointHistory> read_stress_histories(const std::string& path) {
 }
 
 std::string stress_histories_csv(const std::vector<PointHistory>& points) {
-  std::string out = "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa\n";
+  std::string out = "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa,e11,e22,e12\n";
   for (const PointHistory& p : points)
     for (const StressSample& s : p.samples) {
       out += data::quote_csv_field(p.name) + "," + to_string(p.role);
       for (double v : {p.x_mm, p.y_mm, s.t_s, s.s11_MPa, s.s22_MPa, s.s12_MPa})
         out += "," + data::format_exact(v);
+      for (double e : {s.e11, s.e22, s.e12}) out += "," + (std::isnan(e) ? std::string() : data::format_exact(e));
       out += "\n";
     }
   return out;

@@ -1,4 +1,5 @@
 // Writers of a scene run: CSV tables, the JSON summary, life.json and the output folder.
+#include "fitlib/fatigue/stress_csv.hpp"
 #include "fitlib/scene/writers.hpp"
 
 #include <algorithm>
@@ -157,20 +158,6 @@ std::string load_history_csv(const SceneResult& r) {
   return o.str();
 }
 
-// The stresses the fatigue evaluation read at each monitored point, every simulated cycle (segment
-// levels: the bending step too), in the belt's local frame: 1 radial, 2 along the belt.
-std::string stress_history_csv(const std::vector<fatigue::PointHistory>& points) {
-  std::ostringstream o;
-  o << "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa\n";
-  for (const auto& p : points)
-    for (const auto& q : p.samples)
-      o << p.name << ',' << fatigue::to_string(p.role) << ',' << core::format_number(p.x_mm) << ','
-        << core::format_number(p.y_mm) << ',' << core::format_number(q.t_s) << ','
-        << core::format_number(q.s11_MPa) << ',' << core::format_number(q.s22_MPa) << ','
-        << core::format_number(q.s12_MPa) << '\n';
-  return o.str();
-}
-
 std::string accumulation_csv(const AccumulationMap& m) {
   std::ostringstream o;
   o << std::setprecision(12);
@@ -317,7 +304,7 @@ std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, con
     csv("load_history.csv", load_history_csv(r), {"pulley", "zone"});
   if (r.accumulation) csv("accumulation.csv", accumulation_csv(*r.accumulation), {});
   if (r.tension_test) csv("tension_test.csv", tension_test_csv(r.tension_test->result), {"phase"});
-  if (r.life && r.stresses) csv("stress_history.csv", stress_history_csv(*r.stresses), {"point", "role"});
+  if (r.life && r.stresses) csv("stress_history.csv", fatigue::stress_histories_csv(*r.stresses), {"point", "role"});
   if (r.life) json_file("life.json", life_json(s, r, wall_times));
   json_file("summary.json", summary_json(s, r, wall_times));
   core::prepare_output_dir(dir);

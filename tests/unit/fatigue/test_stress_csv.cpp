@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "fitlib/core/error.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/stress_csv.hpp"
@@ -50,6 +52,14 @@ TEST(StressCsv, InterleavedPointsAndErrorsWithLineAndColumn) {
   expect_error("point,role,x_mm,y_mm,t,s11_MPa,s22_MPa,s12_MPa\n", 1, 5);
   expect_error(head + "a,bottom,0,0,0,0,0\n", 2, 8);
   expect_error(head, 1, 0);
+  // The strains are optional columns, each field may be empty (the beam level has none).
+  const std::string with = "point,role,x_mm,y_mm,t_s,s11_MPa,s22_MPa,s12_MPa,e11,e22,e12\n";
+  const auto q = parse_stress_histories(with + "a,bottom,0,-4.1,0,0,1,0,0.01,-0.02,0.005\nb,cushion,0,0,0,0,0,0,,,\n", "s.csv");
+  EXPECT_EQ(q[0].samples[0].e22, -0.02);
+  EXPECT_TRUE(std::isnan(q[1].samples[0].e11));
+  EXPECT_EQ(stress_histories_csv(q), with + "a,bottom,0,-4.1,0,0,1,0,0.01,-0.02,0.005\nb,cushion,0,0,0,0,0,0,,,\n");
+  expect_error(with + "a,bottom,0,0,0,0,0,0,0,0\n", 2, 11);
+  expect_error(with + "a,bottom,0,0,0,0,0,0,x,0,0\n", 2, 9);
 }
 
 }  // namespace

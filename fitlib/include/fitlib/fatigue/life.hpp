@@ -8,6 +8,7 @@
 // (beam_section.hpp) or a user's own FE results.
 #include <limits>
 #include <optional>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct StressSample {
   double s11_MPa = 0.0;  // radial
   double s22_MPa = 0.0;  // longitudinal
   double s12_MPa = 0.0;
+  // Logarithmic strain in the same frame (e12 the tensor shear), for the output only: the segment
+  // levels give it, the beam level and stress-only files leave NaN.
+  double e11 = NAN, e22 = NAN, e12 = NAN;
 };
 
 struct PointHistory {

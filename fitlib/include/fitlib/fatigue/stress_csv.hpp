@@ -1,9 +1,10 @@
 #pragma once
 // Stress histories at monitored points as CSV, so that any FE code's results can feed the life
 // evaluation (docs/fatigue.md §3). One row per point and instant:
-//   point, role (bottom | cushion), x_mm, y_mm, t_s, s11_MPa, s22_MPa, s12_MPa
-// (1 radial, 2 longitudinal). Rows of a point may be interleaved with other points'; its times
-// must increase and its role and position must not change.
+//   point, role (bottom | cushion), x_mm, y_mm, t_s, s11_MPa, s22_MPa, s12_MPa[, e11, e22, e12]
+// (1 radial, 2 longitudinal; the logarithmic strains optional, each field empty where unknown).
+// Rows of a point may be interleaved with other points'; its times must increase and its role
+// and position must not change.
 #include <string>
 #include <vector>
 
