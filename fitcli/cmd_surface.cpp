@@ -13,6 +13,7 @@
 #include "fitlib/surface/fit.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "window_check.hpp"
 
 namespace fitcli {
 namespace {
@@ -184,15 +185,31 @@ struct GridArgs {
   std::string card, mode = "shear", orientation, out, surface_out, quantity = "storage";
   std::vector<double> frequency_Hz, temperature_C, amplitude;
   std::vector<int> degrees;
-  bool json = false;
+  bool json = false, allow_extrapolation = false;
 };
+
+// Every grid point within the card's data window, or --allow-extrapolation (as eval).
+void check_grid_window(const GridArgs& a, const fitlib::card::Card& card) {
+  const std::vector<double> temperatures = a.temperature_C.empty() ? std::vector<double>{NAN} : a.temperature_C;
+  const std::vector<double> amplitudes = a.amplitude.empty() ? std::vector<double>{0.0} : a.amplitude;
+  WindowCheck window("surface grid", a.card, card, temperatures, a.allow_extrapolation);
+  fitlib::model::TestCondition c;
+  c.mode = fitlib::model::parse_test_mode(a.mode);
+  c.orientation = a.orientation;
+  for (double T : temperatures)
+    for (double amp : amplitudes)
+      for (double f : a.frequency_Hz) {
+        c.temperature_C = T, c.strain_amplitude = amp, c.frequency_Hz = f;
+        window.beyond(c);
+      }
+}
 
 void run_grid(const GridArgs& a) {
   // Every output is checked before the work and written after it: no partial results.
   claim_output("--out", a.out, false);
   claim_output("--surface-out", a.surface_out, false);
   const auto card = card::load_card(input_path(a.card));
-  for (double T : a.temperature_C) card::require_material_at(card, a.card, T, a.card, "--temperature-c");
+  check_grid_window(a, card);
   surface::CardGridRequest request;
   request.mode = model::parse_test_mode(a.mode);
   request.orientation = a.orientation;
@@ -269,6 +286,8 @@ void register_surface(CLI::App& app) {
       ->delimiter(',')->check(temperature_c_range());
   grid->add_option("--amplitude", ga->amplitude, "Strain amplitudes (default: small-amplitude limit)")
       ->delimiter(',')->check(non_negative_number());
+  grid->add_flag("--allow-extrapolation", ga->allow_extrapolation,
+                 "Evaluate beyond the card's data window (a warning; without it such a grid is refused)");
   grid->add_option("--mode", ga->mode, "shear | uniaxial | bulk")->capture_default_str();
   grid->add_option("--orientation", ga->orientation, "Thesis orientation label");
   grid->add_option("--quantity", ga->quantity, "Surface quantity: storage | loss | tan_delta | mean")

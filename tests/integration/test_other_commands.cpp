@@ -138,10 +138,10 @@ TEST(LinearCards, EveryFittedShearCardAnswersEveryCommand) {
   }
 }
 
-// eval, synth and material-point answer the same way beyond a card's data window: refused (exit 3,
+// eval, synth, material-point and surface grid answer the same way beyond a card's data window: refused (exit 3,
 // the window's key named) unless --allow-extrapolation, which runs with one warning. A card fitted
 // at a 1 % amplitude was driven at 200 % by material-point and synth without a word.
-TEST(DataWindow, EvalSynthAndMaterialPointRefuseBeyondItAlike) {
+TEST(DataWindow, EveryCardCommandRefusesBeyondItAlike) {
   const std::string table = temp_file("one-amplitude.csv");
   std::ofstream(table) << "mode,frequency_Hz,temperature_C,strain_amplitude,storage_MPa,loss_MPa\n"
                           "shear,0.1,23,0.01,2.0,0.15\nshear,1,23,0.01,2.3,0.38\nshear,10,23,0.01,3.0,0.52\n"
@@ -151,7 +151,8 @@ TEST(DataWindow, EvalSynthAndMaterialPointRefuseBeyondItAlike) {
   const std::string commands[] = {
       "eval --card " + card + " --frequency-hz 1 --amplitude 2",
       "synth --card " + card + " --frequency-hz 1 --amplitude 2 --out " + temp_file("synth-beyond.csv"),
-      "material-point --card " + card + " --amplitude 2 --cycles 1 --out " + temp_file("mp-beyond.csv")};
+      "material-point --card " + card + " --amplitude 2 --cycles 1 --out " + temp_file("mp-beyond.csv"),
+      "surface grid --card " + card + " --frequency-hz 1,10 --amplitude 2 --out " + temp_file("grid-beyond.csv")};
   for (const std::string& command : commands) {
     const auto refused = run_fitcli(command);
     EXPECT_EQ(refused.exit_code, 3) << command;
