@@ -206,7 +206,7 @@ StageOutcome ceres_with_fallback(Problem& problem, FitResult& result, std::strin
   return out;
 }
 
-// The multistart check of a small non-series model (wants_global_check): an NLopt multistart and
+// The multistart check of a small model (wants_global_check): an NLopt multistart and
 // a Ceres finish from the same start as the local descent; the lower cost is kept, and said.
 StageOutcome keep_global_if_lower(Problem& problem, FitResult& result, const std::vector<double>& start,
                                   StageOutcome local, std::string& used) {
