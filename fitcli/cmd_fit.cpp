@@ -201,8 +201,9 @@ void run_fit(FitArgs a) {
   auto options = fit_card_options(a);
   if (is_relaxation_data(data, a.format)) {
     data::RelaxationTable table = read_relaxation_tables(data);
-    const data::RelaxationTable measured = table;
+    std::optional<data::RelaxationTable> measured;  // the isotherms before their shifts
     if (a.master.enabled || !a.master.shifts_in.empty()) {
+      measured = table;
       data::ShiftFactorTable given;
       if (a.master.enabled) {  // model-free shifts of the isotherms, then as given shifts
         fit::MasterCurveOptions mo;
@@ -222,7 +223,7 @@ void run_fit(FitArgs a) {
       }
       s.law = a.temperature_law == "polynomial" ? model::ShiftLaw::polynomial : model::ShiftLaw::wlf;
       options.shifts = s;
-      options.measured_relaxation = &measured;
+      options.measured_relaxation = &*measured;
     }
     return finish(a, card::fit_relaxation_card(table, options), data);
   }

@@ -14,7 +14,6 @@
 namespace fitlib::fit {
 namespace {
 
-constexpr double kSameTemperature_C = 0.5;  // as MasterCurveOptions::same_temperature_C
 const char* const kModulusNames[] = {"storage", "loss", "relaxation"};
 
 struct Errors {
@@ -22,7 +21,7 @@ struct Errors {
   double sum = 0.0, max = 0.0, max_at_Hz = 0.0;
 };
 
-// (isotherm temperature, modulus) → errors; isotherms within kSameTemperature_C are one.
+// (isotherm temperature, modulus) → errors; isotherms within detail::kSameTemperature_C are one.
 class IsothermErrors {
  public:
   void add(double temperature_C, int modulus, double model, double data, double at_Hz) {
@@ -74,7 +73,7 @@ class IsothermErrors {
  private:
   double isotherm(double T) {
     for (double t : seen_)
-      if (std::abs(t - T) < kSameTemperature_C) return t;
+      if (std::abs(t - T) < detail::kSameTemperature_C) return t;
     seen_.push_back(T);
     return T;
   }

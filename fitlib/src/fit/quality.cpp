@@ -14,8 +14,6 @@
 namespace fitlib::fit::detail {
 namespace {
 
-// Temperatures closer than this are one isotherm (MasterCurveOptions::same_temperature_C).
-constexpr double kSameTemperature_C = 0.5;
 // Kramers–Kronig check: loss off by more than this factor where storage is within its threshold.
 constexpr double kKramersKronigLossFactor = 1.5;
 

@@ -6,6 +6,9 @@
 
 namespace fitlib::fit::detail {
 
+// Temperatures closer than this are one isotherm (MasterCurveOptions::same_temperature_C).
+constexpr double kSameTemperature_C = 0.5;
+
 // Thresholds past which a fit warns: mean and max relative error per modulus.
 struct QualityThresholds {
   double storage_mean = 0.05, storage_max = 0.15;  // also used for the mean modulus
