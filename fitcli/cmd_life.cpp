@@ -57,7 +57,7 @@ void register_life(CLI::App& app) {
   cmd->callback([=] {
     auto scene = load_scene_input(*scene_path);
     scene.outputs["life"] = true;  // the command asks for the life
-    if (!plot->empty()) claim_png("--plot", *plot);
+    if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     if (!field_at->empty()) {
       scene.life_field_at = *field_at;
       scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -201,11 +202,15 @@ std::string gnuplot_quoted(const std::string& text) {
   return q + "'";
 }
 
-void claim_png(const std::string& option, const std::string& path) {
+void claim_png(const std::string& option, const std::string& path, const std::string& folder_made_later) {
+  namespace fs = std::filesystem;
   if (path == "-") throw fitlib::core::UsageError(option + ": a PNG needs a file (- would be stdout)");
   if (path.find('\'') != std::string::npos)
     throw fitlib::core::UsageError(option + ": the PNG file name must not contain a quote");
-  fitlib::core::check_output_path(path);
+  const auto normal = [](fs::path p) { return (fs::absolute(p.empty() ? "." : p) / "").lexically_normal(); };
+  const bool in_made_folder = !folder_made_later.empty() && !fs::exists(folder_made_later) &&
+                              normal(fs::path(path).parent_path()) == normal(folder_made_later);
+  if (!in_made_folder) fitlib::core::check_output_path(path);
 }
 
 void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script) {

@@ -26,8 +26,9 @@ std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::sc
 std::string gnuplot_quoted(const std::string& text);
 
 // Declares the PNG output of `option` before the work: UsageError for `-` (a figure cannot go to
-// stdout) or a quote in the name, InputError for a path that cannot be written.
-void claim_png(const std::string& option, const std::string& path);
+// stdout) or a quote in the name, InputError for a path that cannot be written. A PNG whose folder
+// is `folder_made_later` (the command's --out-dir, made by the run) is not checked for its folder.
+void claim_png(const std::string& option, const std::string& path, const std::string& folder_made_later = "");
 
 // The PNG at `out` from the gnuplot script `make_script(tmp)` returns, which must write the PNG to
 // `tmp` (pngcairo): gnuplot runs on it, then tmp is renamed to out. UsageError for `-` or a quote

@@ -365,3 +365,32 @@ TEST(LifeCli, SegmentLevelsWarnWhenTheyDriveACardBeyondItsStrainWindow) {
   }
   EXPECT_EQ(beyond, 2) << r.out;  // bottom and cushion, one each
 }
+
+// A hand-typed three-pulley drive with the bundled cards, as a new user writes it: --plot may go into
+// the --out-dir the run makes, and every WARNING of the table is in life.json and summary.json (the
+// segment's span check warned in the table only).
+TEST(LifeCli, EveryWarningOfTheTableIsInTheJsonAndThePlotMayGoIntoTheOutputFolder) {
+  const std::string scene = unique_dir("life_three") + ".toml", out = unique_dir("life_three_out");
+  std::ofstream(scene) << "name = \"hand-typed three-pulley drive\"\n[drive]\npulleys = [\n"
+                          "  {name = \"motor\", pitch_diameter_mm = 112, role = \"driver\", speed_rpm = 1450, center_mm = [0, 0]},\n"
+                          "  {name = \"fan\", pitch_diameter_mm = 180, role = \"driven\", center_mm = [300, 0]},\n"
+                          "  {name = \"idler\", pitch_diameter_mm = 70, role = \"idler\", center_mm = [150, 90]} ]\n"
+                          "torque_Nm = 12\ninitial_tension_N = 500\n[belt]\nsection = \"cogged-0.500\"\n"
+                          "wedge_half_angle_deg = 19\ndensity_kg_m3 = 1200\n[belt.materials]\nbottom = \""
+                       << source_path("datasets/cards/material-1-true.json") << "\"\ncushion = \""
+                       << source_path("datasets/cards/material-2-true.json")
+                       << "\"\n[conditions]\ntemperature_C = 60\nfriction = 0.45\n[life]\nfidelity = \"elastic\"\n";
+  const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out + " --plot " + out + "/life.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(out + "/life.png").substr(0, 4), "\x89PNG");
+  std::vector<std::string> table;
+  std::istringstream text(r.out);
+  for (std::string line; std::getline(text, line);)
+    if (line.rfind("WARNING: ", 0) == 0) table.push_back(line.substr(9));
+  ASSERT_FALSE(table.empty()) << r.out;  // the span check's cord-line share (about 0.017 against 0.01)
+  for (const char* file : {"/life.json", "/summary.json"}) {
+    const auto j = nlohmann::json::parse(slurp(out + file));
+    ASSERT_TRUE(j.contains("warnings")) << file;
+    EXPECT_EQ(j["warnings"].get<std::vector<std::string>>(), table) << file;
+  }
+}

@@ -58,7 +58,9 @@ DriveGeometry make_geometry(std::vector<Pulley> pulleys, double belt_height_mm) 
   }
   if (std::abs(total - 2.0 * kPi) > 1e-6)
     throw InputError("pulleys do not form a convex open drive (wrap angles sum to " +
-                         std::to_string(total * 180.0 / kPi) + " deg, not 360)",
+                         std::to_string(total * 180.0 / kPi) + " deg, not 360): list them in " +
+                         (std::abs(total - 4.0 * kPi) < 1e-6 ? "counter-clockwise travel order (they are clockwise)"
+                                                             : "counter-clockwise travel order around a convex path"),
                      {}, 0, 0, "drive.pulleys");
   g.belt_length_mm = 0.0;
   for (std::size_t i = 0; i < n; ++i)

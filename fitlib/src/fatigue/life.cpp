@@ -126,8 +126,15 @@ bool peak_under_resolved(const ModeLife& m) {
   return m.dominant_peak_share > 0.9 && m.dominant_peak_samples < 3;
 }
 
-std::vector<std::string> life_warnings(const LifeReport& r) {
+std::vector<std::string> life_warnings(const LifeReport& r, bool points_have_history) {
   std::vector<std::string> out;
+  for (const ModeLife& m : r.modes)
+    if (points_have_history && peak_under_resolved(m))
+      out.push_back(std::string("the ") + to_string(m.mode) + " life is " +
+                    core::format_number(100.0 * m.dominant_peak_share, 3) + " % one peak carried by " +
+                    std::to_string(m.dominant_peak_samples) +
+                    " sample(s): the increments may miss its top, and the life moves with the peak to the life "
+                    "exponent's power (docs/segment.md \"The driver exit's peel transient\")");
   for (const ModeLife& m : r.modes)
     if (m.life_cycles < kShortestReadableLife_cycles)
       out.push_back(std::string("the ") + to_string(m.mode) + " life, " + core::format_number(m.life_cycles, 4) +

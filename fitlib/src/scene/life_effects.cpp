@@ -226,6 +226,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     r.stresses = fatigue::segment_point_histories(run);
     strain_window_warnings(s, run, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
+    for (std::string& w : r.segment_equilibrium->warnings()) r.warnings.push_back(std::move(w));
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
       const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
@@ -262,7 +263,8 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
-  for (std::string& w : fatigue::life_warnings(life.report)) r.warnings.push_back(std::move(w));
+  const bool history = r.segment_equilibrium && r.segment_equilibrium->history;
+  for (std::string& w : fatigue::life_warnings(life.report, history)) r.warnings.push_back(std::move(w));
   life.equilibrium = r.segment_equilibrium;
   life.fields = r.segment_fields;
   r.life = std::move(life);
@@ -306,6 +308,16 @@ bool SegmentEquilibrium::in_equilibrium() const {
 }
 
 bool SegmentEquilibrium::within_bounds() const { return in_equilibrium() && span_cord_share <= span_cord_share_bound; }
+
+std::vector<std::string> SegmentEquilibrium::warnings() const {
+  if (!in_equilibrium())
+    return {"the segment's equilibrium check exceeds its bounds: the stresses are not in equilibrium to the stated "
+            "tolerance (docs/segment.md \"Cord-line reactions\")"};
+  if (!within_bounds())
+    return {"the cord line carries more of the belt force in the spans than its bound: the segment's ends or its "
+            "length disturb the middle (docs/segment.md \"Cord-line reactions\")"};
+  return {};
+}
 
 LifePlan choose_life_plan(const Scene& s) {
   if (s.life && s.life->fidelity) return {*s.life->fidelity, "[life] fidelity = " + *s.life->fidelity};

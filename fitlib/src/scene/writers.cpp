@@ -201,12 +201,6 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       << e.span_cord_share_bound << "), span section mismatch " << e.span_section_mismatch << " (bound "
       << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
       << std::defaultfloat << std::setprecision(static_cast<int>(precision));
-    if (!e.in_equilibrium())
-      o << "WARNING: the segment's equilibrium check exceeds its bounds: the stresses are not in equilibrium "
-           "to the stated tolerance (docs/segment.md \"Cord-line reactions\")\n";
-    else if (!e.within_bounds())
-      o << "WARNING: the cord line carries more of the belt force in the spans than its bound: the segment's "
-           "ends or its length disturb the middle (docs/segment.md \"Cord-line reactions\")\n";
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
     if ((!s.segment || !s.segment->life_mesh_changed) && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
       o << "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over the central "
@@ -224,15 +218,6 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "safe side) and its N2 within 9 %. [segment] fine_size_mm = 0.5 selects 0.5 mm elements (N1 within "
            "7 % of 0.35 mm's) at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
   }
-  // Only where the points carry history: the glassy transients that the load fronts resolve
-  // (without history the planned steps read N2 within 8 % of 0.1 mm sampling: docs/segment.md).
-  const bool history = l.equilibrium && l.equilibrium->history;
-  for (const fatigue::ModeLife& m : l.report.modes)
-    if (history && fatigue::peak_under_resolved(m))
-      o << "WARNING: the " << fatigue::to_string(m.mode) << " life is " << core::format_number(100.0 * m.dominant_peak_share, 3)
-        << " % one peak carried by " << m.dominant_peak_samples << " sample(s): the increments may miss its top, and the life "
-        << "moves with the peak to the life exponent's power (docs/segment.md \"The driver exit's "
-           "peel transient\")\n";
   for (const std::string& w : r.warnings) o << "WARNING: " << w << "\n";
   for (const FieldFile& f : l.fields)
     o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";

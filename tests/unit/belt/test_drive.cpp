@@ -78,6 +78,16 @@ TEST(DriveGeometry, ThreePulleyTriangle) {
                              pulley("b", 80, PulleyRole::driven, 300, 0)});
             }),
             "<no error>");
+  // Unequal pulleys listed clockwise wrap 720° in all: the message says to list them the other way.
+  try {
+    make_geometry({pulley("motor", 112, PulleyRole::driver, 0, 0), pulley("fan", 180, PulleyRole::driven, 300, 0),
+                   pulley("idler", 70, PulleyRole::idler, 150, -90)});
+    ADD_FAILURE() << "a clockwise drive was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "drive.pulleys");
+    EXPECT_NE(std::string(e.what()).find("counter-clockwise travel order (they are clockwise)"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(DriveGeometry, OverlappingPulleysNameTheKey) {

@@ -138,7 +138,10 @@ std::string life_table(const LifeReport& report);
 // JSON of the report; unbounded lives are written as null with "unbounded": true.
 nlohmann::json life_to_json(const LifeReport& report);
 
-// One warning per mode whose finite life is below kShortestReadableLife_cycles.
-std::vector<std::string> life_warnings(const LifeReport& report);
+// One warning per mode whose finite life is below kShortestReadableLife_cycles, and, where the
+// points carry history (the complete level's glassy transients), per mode whose peak is under-
+// resolved (peak_under_resolved: the elastic level's peaks at the planned steps move N2 by ≤ 8 %
+// with 0.1 mm sampling, docs/segment.md "The driver exit's peel transient").
+std::vector<std::string> life_warnings(const LifeReport& report, bool points_have_history = false);
 
 }  // namespace fitlib::fatigue

@@ -103,6 +103,7 @@ struct SegmentEquilibrium {
   bool history = false;                 // the points carry history (the complete level)
   bool within_bounds() const;
   bool in_equilibrium() const;  // the equilibrium error and the section balance within their bounds
+  std::vector<std::string> warnings() const;  // one when a check exceeds its bound, else none
 };
 
 struct FieldFile {         // a full-field stress written by the segment run
