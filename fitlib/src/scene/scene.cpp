@@ -372,6 +372,20 @@ std::string scene_relative(const std::filesystem::path& base, const std::string&
   return (f.is_absolute() ? f : base / f).lexically_normal().string();
 }
 
+// A card file the scene names, resolved against the scene's folder; a missing file fails at its key
+// with the path that was tried (the card reader would name only the file, far from the scene).
+std::optional<std::string> card_file(Reader& r, const char* key, const std::filesystem::path& base) {
+  const auto p = r.string(key);
+  if (!p) return std::nullopt;
+  const std::string path = scene_relative(base, *p);
+  if (!std::filesystem::is_regular_file(path))
+    r.fail(key, "no card file " + std::filesystem::absolute(path).lexically_normal().string() +
+                    (std::filesystem::path(*p).is_absolute()
+                         ? std::string()
+                         : " (a path is read from the scene's folder; a scene on stdin: the current folder)"));
+  return path;
+}
+
 void parse_belt(Scene& s, Reader& top, const std::filesystem::path& base, const std::string& source) {
   const toml::table* belt_t = top.table("belt");
   toml::table empty;
@@ -385,7 +399,7 @@ void parse_belt(Scene& s, Reader& top, const std::filesystem::path& base, const 
     Reader mr(*mt, "belt.materials", source);
     mr.allow({"bottom", "cushion", "cord", "poisson_ratio"});
     for (const char* role : {"bottom", "cushion", "cord"})
-      if (auto p = mr.string(role)) s.materials[role] = scene_relative(base, *p);
+      if (auto p = card_file(mr, role, base)) s.materials[role] = *p;
     s.material_poisson_ratio = mr.number_or("poisson_ratio", s.material_poisson_ratio, 0.0, 0.5);
     if (!(s.material_poisson_ratio < 0.5))  // K = 2G0(1 + ν)/(3(1 − 2ν)) is then infinite
       mr.fail("poisson_ratio", "must be below 0.5 (a card without a bulk modulus gets K from it; an incompressible "
@@ -465,7 +479,7 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
       lr.fail("fidelity", "fidelity must be \"beam\", \"elastic\" or \"complete\", not \"" + *f + "\"");
     l.fidelity = *f;
   }
-  if (auto c = lr.string("card")) l.card = scene_relative(base, *c);
+  if (auto c = card_file(lr, "card", base)) l.card = *c;
   l.cycles = static_cast<int>(lr.number_or("cycles", l.cycles, 1, 1e4));
   l.crack_sweep_deg = lr.number("crack_sweep_deg", 0.0, 90.0);
   l.diagnose_failure = lr.boolean("diagnose_failure").value_or(false);

@@ -125,11 +125,15 @@ TEST(SceneLife, LifeTableIsValidatedAndNamesTheKey) {
   EXPECT_EQ(e.key(), "life.notch_factor");
   e = parse_error(base + "\n[life]\ncrack_sweep_deg = 120\n");
   EXPECT_EQ(e.key(), "life.crack_sweep_deg");
+  const auto folder = temp_dir() / "life-table";
+  std::filesystem::create_directories(folder / "drives");
+  std::filesystem::create_directories(folder / "cards");
+  fatigue::save_card((folder / "cards" / "x.json").string(), fatigue::default_card());
   const auto s = scene::parse_scene(base + "\n[life]\nfidelity = \"beam\"\ncard = \"../cards/x.json\"\ncycles = 5\n",
-                                    "/some/drives/scene.toml");
+                                    (folder / "drives" / "scene.toml").string());
   ASSERT_TRUE(s.life.has_value());
   EXPECT_EQ(*s.life->fidelity, "beam");
-  EXPECT_EQ(s.life->card, "/some/cards/x.json");  // relative to the scene's folder
+  EXPECT_EQ(s.life->card, (folder / "cards" / "x.json").string());  // relative to the scene's folder
   EXPECT_EQ(s.life->cycles, 5);
 }
 

@@ -75,6 +75,26 @@ TEST(SceneParse, UnknownKeysAndWrongUnitsNameTheKeyAndLine) {
   EXPECT_EQ(e.line(), 1);
 }
 
+// A card or fatigue card the scene names but that is not there fails at its key and line, with the
+// path that was tried (the scene's folder), not later in the card reader with the bare file name.
+TEST(SceneParse, MissingCardFilesNameTheKeyLineAndThePathTried) {
+  const std::string scene = kData + "minimal.toml";
+  for (const auto& [table, key] : {std::pair<std::string, std::string>{"belt.materials", "cushion"}, {"life", "card"}}) {
+    try {
+      scene::parse_scene(minimal_text() + "[" + table + "]\n" + key + " = \"no-such-card.json\"\n", scene);
+      ADD_FAILURE() << table << "." << key << ": no error";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), table + "." + key);
+      EXPECT_GT(e.line(), 1);
+      const std::string tried = std::filesystem::path(kData + "no-such-card.json").lexically_normal().string();
+      EXPECT_NE(std::string(e.what()).find("no card file " + tried), std::string::npos) << e.what();
+    }
+  }
+  // A card that is there parses (the path resolved against the scene's folder).
+  const auto s = scene::parse_scene(minimal_text() + "[belt.materials]\ncushion = \"minimal.toml\"\n", scene);
+  EXPECT_EQ(s.materials.at("cushion"), std::filesystem::path(kData + "minimal.toml").lexically_normal().string());
+}
+
 TEST(SceneParse, ImpossibleGeometryIsAnInputError) {
   const auto s = scene::parse_scene(with("center_distance_mm = 300", "center_distance_mm = 90"), "x.toml");
   try {
