@@ -19,11 +19,11 @@ namespace {
 // The segment run writes the fields into DIR, so it must exist before the run; a folder made here
 // is removed again when the run fails (e.g. a --field-at position beyond the load cycle).
 fitlib::scene::SceneResult run_with_field_folder(const fitlib::scene::Scene& scene, const std::string& out_dir) {
-  if (scene.life_field_at.empty()) return fitlib::scene::run_scene(scene);
+  if (scene.life_field_at.empty()) return fitlib::scene::run_life(scene);
   const bool existed = std::filesystem::exists(out_dir);
   fitlib::core::prepare_output_dir(out_dir);
   try {
-    return fitlib::scene::run_scene(scene);
+    return fitlib::scene::run_life(scene);
   } catch (...) {
     std::error_code ec;
     if (!existed) std::filesystem::remove_all(out_dir, ec);
@@ -56,7 +56,6 @@ void register_life(CLI::App& app) {
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
     auto scene = load_scene_input(*scene_path);
-    scene.outputs["life"] = true;  // the command asks for the life
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     if (!field_at->empty()) {
       scene.life_field_at = *field_at;
@@ -64,11 +63,6 @@ void register_life(CLI::App& app) {
       fitlib::scene::check_life_fields(scene);  // exit 2 before any folder is made
     }
     const auto result = run_with_field_folder(scene, *out_dir);
-    if (!result.life) {
-      for (const auto& e : result.plan.effects)
-        if (e.name == "fatigue")
-          throw fitlib::core::InputError("the life cannot be computed: " + e.reason, scene.path, 0, 0, "life.fidelity");
-    }
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
     if (!plot->empty() && result.cycle)
       write_png(*plot, [&](const std::string& tmp) { return life_plot_script(scene, result, tmp); });

@@ -103,17 +103,6 @@ py::dict run_segment(scene::Scene s, const py::object& strain, const py::object&
   return d;
 }
 
-// fitcli life: the scene run with the life asked for; the error fitcli gives when it cannot be.
-scene::SceneResult run_life(scene::Scene s) {
-  s.outputs["life"] = true;
-  auto result = scene::run_scene(s);
-  if (!result.life)
-    for (const auto& e : result.plan.effects)
-      if (e.name == "fatigue")
-        throw core::InputError("the life cannot be computed: " + e.reason, s.path, 0, 0, "life.fidelity");
-  return result;
-}
-
 // fitcli life-fit: the card, its warnings, each mode's fit, and the cases with their observed and
 // predicted lives (arrays) under the fitted card.
 py::dict fit_life_constants(const std::string& observed, const std::string& start, bool fix_n, bool fix_b) {
@@ -152,8 +141,10 @@ void bind_segment_life(py::module_& m) {
         py::arg("curvature_1_mm") = py::none(), py::arg("pressure_MPa") = py::none(), py::arg("vtk_path") = "",
         "fitcli segment: the scene's static [segment] case (load overridable); stresses at the points as arrays, "
         "'summary' the --json document");
-  m.def("run_life", &run_life, py::arg("scene"),
+  m.def("run_life", &scene::run_life, py::arg("scene"),
         "fitcli life: runs the scene with the life asked for; SceneResult.life holds it");
+  m.def("run_life", [](const std::string& path) { return scene::run_life(scene::load_scene(path)); },
+        py::arg("scene_path"), "fitcli life --scene PATH: the scene file read and run with the life asked for");
   m.def("life_json",
         [](const scene::Scene& s, const scene::SceneResult& r, bool wall_times) {
           return to_python(scene::life_json(s, r, wall_times));

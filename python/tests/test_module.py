@@ -351,6 +351,7 @@ def test_life_per_mode_and_governing_mode_equal_the_cli():
         assert mine["life_cycles"] == m["life_cycles"] and mine["sum_terms"] == m["sum_terms"]
         assert list(mine["peak_stress_MPa"]) == [p["effective_stress_MPa"] for p in m["peaks"]]
     assert fitlib.life_json(scene, result) == cli
+    assert fitlib.life_json(scene, fitlib.run_life(path)) == cli  # the scene file's path does as well
     assert fitlib.load_scene(path).run().life is None  # not asked for: not computed
 
 

@@ -129,6 +129,16 @@ SceneResult run_effects(const Scene& s, const belt::LoadCycleOptions& options) {
 
 }  // namespace
 
+SceneResult run_life(Scene s) {
+  s.outputs["life"] = true;
+  SceneResult r = run_scene(s);
+  if (r.life) return r;
+  std::string why = "the planner did not run the fatigue effect";
+  for (const auto& e : r.plan.effects)
+    if (e.name == "fatigue") why = e.reason;
+  throw core::InputError("the life cannot be computed: " + why, s.path, 0, 0, "life.fidelity");
+}
+
 SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options) {
   try {
     return run_effects(s, options);

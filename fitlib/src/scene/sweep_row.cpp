@@ -88,12 +88,7 @@ const std::map<std::string, ColumnSpec>& columns() {
 std::vector<std::string> result_fields(const Sweep& sweep, Scene scene, std::string& warnings) {
   scene.outputs.clear();  // only what the columns need runs
   for (const auto& c : sweep.columns) scene.outputs[columns().at(c).output] = true;
-  const SceneResult r = run_scene(scene);
-  if (scene.outputs.count("life") && !r.life) {
-    for (const auto& e : r.plan.effects)
-      if (e.name == "fatigue") throw core::InputError("the life cannot be computed: " + e.reason, scene.path);
-    throw core::InputError("the life cannot be computed", scene.path);
-  }
+  const SceneResult r = scene.outputs.count("life") ? run_life(scene) : run_scene(scene);
   if (scene.outputs.count("load_history") && !r.cycle) throw core::InputError("no load cycle", scene.path);
   std::vector<std::string> fields;
   for (const auto& c : sweep.columns) fields.push_back(columns().at(c).column(r));

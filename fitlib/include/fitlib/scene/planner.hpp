@@ -37,6 +37,10 @@ SegmentEquilibrium segment_equilibrium(const segment::CycleResult& run);
 
 SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options = {});
 
+// The scene run with the life asked for (fitcli life, a sweep's life columns, Python's run_life):
+// InputError at key life.fidelity, with the planner's reason, when no life comes out.
+SceneResult run_life(Scene scene);
+
 // Belt stiffnesses c, k1, EI at the scene's temperature: [belt.stiffness] overrides first, then
 // material cards (cord → c, bottom → E33 for k1 and E22 for EI), then the Fritzson laws of the
 // 0.500 in belt with the project's E0/E1 (belt/stiffness.hpp). `source` says which per quantity.
