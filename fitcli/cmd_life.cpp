@@ -56,6 +56,7 @@ void register_life(CLI::App& app) {
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
     auto scene = load_scene_input(*scene_path);
+    scene.segment_progress = !quiet();  // shown only when stderr is a terminal
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     if (!field_at->empty()) {
       scene.life_field_at = *field_at;

@@ -5,6 +5,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/progress.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 namespace fitlib::scene {
 namespace detail {
@@ -222,6 +224,14 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
+    std::optional<core::Progress> progress;  // in per cent of the run (the bend and the cycles)
+    if (s.segment_progress) {
+      progress.emplace("life: segment (" + r.plan.life->fidelity + ")", 100);
+      setup.cycle.progress = [&progress, shown = std::size_t{0}](double done) mutable {
+        const auto now = static_cast<std::size_t>(100.0 * std::clamp(done, 0.0, 1.0));
+        if (now > shown) progress->advance(now - shown), shown = now;
+      };
+    }
     const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity);
     r.stresses = fatigue::segment_point_histories(run);
     strain_window_warnings(s, run, r.warnings);

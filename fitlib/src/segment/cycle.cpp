@@ -511,6 +511,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   double converged_lambda = 0.0;  // the last converged increment, for a failure's message
   p.on_increment = [&](double lambda, const StaticSolution& s) {
     converged_lambda = lambda;
+    if (knobs.progress) knobs.progress(lambda);
     if (out.points.empty()) {  // each named point in the moulded reference mesh
       const Mesh one_point = wrapped([&] {
         Mesh q = straight;

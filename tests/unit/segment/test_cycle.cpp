@@ -1,6 +1,7 @@
 // The segment driven by a load cycle (Report I §5–§6, belt-mechanics.md §5): the qualitative
 // features on a synthetic one-pulley cycle of known shape, periodicity of an elastic belt,
 // equilibrium, and the failure exit.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -86,9 +87,15 @@ const CycleSample& at(const MonitoredHistory& h, int c, double s, double L = 400
 }  // namespace
 
 TEST(SegmentCycle, ElasticBeltFollowsTheCycleInEquilibriumAndRepeatsItself) {
-  const Fixture f;
+  Fixture f;
+  std::vector<double> progress;  // the share of the run done, after each converged increment
+  f.knobs.progress = [&](double done) { progress.push_back(done); };
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult r = f.run(*bottom, *cushion);
+  ASSERT_EQ(static_cast<int>(progress.size()), r.increments);
+  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+  EXPECT_GT(progress.front(), 0.0);
+  EXPECT_DOUBLE_EQ(progress.back(), 1.0);
   const MonitoredHistory& gap = point(r, "gap_bottom");
   EXPECT_LT(r.equilibrium_error, 1e-6);
   // Tension between the cogs in the spans (cord strain ≈ 0.7 %), compression on the pulley.

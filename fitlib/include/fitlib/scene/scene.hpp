@@ -126,6 +126,9 @@ struct Scene {
   // > 0: the segment's element loop runs on at most this many threads (a sweep sets 1: it runs
   // its cases in parallel itself); the results do not depend on it.
   int segment_thread_cap = 0;
+  // The segment run's progress (share of the load cycles done) on stderr when it is a terminal
+  // (fitcli life without --quiet); never in the outputs.
+  bool segment_progress = false;
 };
 
 // The segment's element-loop threads: [segment] threads or the solver's default, at most

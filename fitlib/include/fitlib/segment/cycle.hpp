@@ -31,6 +31,9 @@ struct CycleDrive {                     // what the body forces need beyond the 
 };
 
 struct CycleKnobs {
+  // Called after each converged increment with the share of the run done (0–1: the bend, then the
+  // cycles): a long run's progress.
+  std::function<void(double done)> progress;
   int cycles = 2;
   int steps_per_cycle = 60;             // increments per load cycle (placed where K and p change)
   int bend_steps = 4;                   // increments of step 1
