@@ -1,4 +1,5 @@
 // A fatigue card from observed lives: fit_life_law per mode on top of a start card (life_fit.hpp).
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -22,8 +23,28 @@ nlohmann::json life_fit_json(const LifeFitResult& fit) {
 
 namespace {
 
-void warn_about(const LifeFitResult& f, std::vector<std::string>& warnings) {
+// The largest peak of each case of the mode (over its points) spans less than this factor: n,
+// the slope of log N over log σ, then rests on a life spread over a narrow stress range. Said
+// where n has no interval to show it (too few cases); with one, σ0's spread warning says it.
+constexpr double kNarrowStressSpan = 1.25;
+
+void warn_about(const LifeFitResult& f, const std::vector<ObservedLife>& cases, std::vector<std::string>& warnings) {
   const std::string mode = to_string(f.mode);
+  double lowest = INFINITY, highest = 0.0;
+  for (const ObservedLife& c : cases) {
+    if (c.mode != f.mode) continue;
+    double largest = 0.0;
+    for (const auto& peaks : c.point_peaks_MPa)
+      for (double p : peaks) largest = std::max(largest, p);
+    lowest = std::min(lowest, largest), highest = std::max(highest, largest);
+  }
+  const ConstantEstimate& n = f.constants[1];
+  if (!n.fixed && !n.has_interval && f.cases > 1 && highest < kNarrowStressSpan * lowest)
+    warnings.push_back(mode + ": the cases' largest stress peaks span only a factor " +
+                       core::short_number(highest / lowest) + " (" + core::short_number(lowest) + " to " +
+                       core::short_number(highest) + " MPa), so n = " + core::short_number(n.value) +
+                       " rests on the lives' spread over that narrow range; tests over a wider load range "
+                       "tell n, or hold it (--fix-n)");
   // As many free constants as cases: an exact fit, whatever the law's worth (held ones: the start's).
   std::string free, held;
   int free_count = 0;
@@ -82,7 +103,7 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
                              "; the start card's constants are kept");
     } else {
       out.card.law(mode) = fit.law;
-      warn_about(fit, out.warnings);
+      warn_about(fit, cases, out.warnings);
       fitted = true;
     }
     record[to_string(mode)] = life_fit_json(fit);

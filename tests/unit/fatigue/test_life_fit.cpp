@@ -285,5 +285,34 @@ TEST(LifeCardFit, FewCasesHoldConstantsAndAnExactFitIsAWarning) {
   EXPECT_TRUE(held.fits[0].constants[2].has_interval);  // b's interval, in b's place
 }
 
+// Two cases whose stresses differ by 2 % but lives by 2.25× (a hand-typed life-test table over
+// 8 and 12 N·m of a bending-dominated drive): n comes out near 40 with no interval to show it, and a
+// warning says why; the same lives over a factor 2 of stress give n ≈ 1.2 without it.
+TEST(LifeCardFit, TwoCasesOverANarrowStressRangeWarnThatNRestsOnIt) {
+  auto two_cases = [](double low_MPa, double high_MPa) {
+    std::vector<ObservedLife> cases(2);
+    for (int k = 0; k < 2; ++k) {
+      cases[k].name = "case" + std::to_string(k);
+      cases[k].mode = Mode::radial_crack;
+      cases[k].temperature_C = 60.0;
+      cases[k].point_peaks_MPa = {{k == 0 ? low_MPa : high_MPa}};
+      cases[k].observed_cycles = k == 0 ? 2.25e9 : 1e9;
+    }
+    return cases;
+  };
+  auto narrow_warning = [](const LifeCardFit& f) {
+    for (const std::string& w : f.warnings)
+      if (w.find("largest stress peaks span only a factor") != std::string::npos) return w;
+    return std::string();
+  };
+  const LifeCardFit narrow = fit_life_card(two_cases(0.26, 0.265), default_card());
+  EXPECT_NEAR(narrow.card.radial_crack.n, std::log(2.25) / std::log(0.265 / 0.26), 1e-6);
+  EXPECT_NE(narrow_warning(narrow).find("(0.26 to 0.265 MPa)"), std::string::npos) << narrow_warning(narrow);
+  const LifeCardFit wide = fit_life_card(two_cases(0.2, 0.4), default_card());
+  EXPECT_NEAR(wide.card.radial_crack.n, std::log(2.25) / std::log(2.0), 1e-6);
+  EXPECT_EQ(narrow_warning(wide), "");
+  EXPECT_EQ(narrow_warning(fit_life_card(two_cases(0.26, 0.265), default_card(), {true, false})), "");  // n held
+}
+
 }  // namespace
 }  // namespace fitlib::fatigue

@@ -83,7 +83,8 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
 // fitted), lives scattering around the fit by more than kScatterWarning_log10, b's 95 % interval
 // reaching zero, σ0's 95 %
 // interval spanning more than a factor kSpreadWarning, as many free constants as cases (the fit
-// passes through them all). provenance.life_fit records each fit.
+// passes through them all), a free n without an interval from cases whose largest peaks span
+// less than a factor 1.25. provenance.life_fit records each fit.
 struct LifeCardFit {
   FatigueCard card;
   std::vector<LifeFitResult> fits;  // one per mode with cases, in mode order
