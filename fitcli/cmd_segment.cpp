@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/scene/segment_case.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
@@ -24,12 +25,18 @@ void register_segment(CLI::App& app) {
   cmd->callback([=] {
     if (*vtk == "-") throw fitlib::core::UsageError("segment --vtk needs a file (- is not supported)");
     const auto scene = load_scene_input(*scene_path);
-    const auto r = fitlib::scene::run_segment_case(scene, *vtk);
-    const auto j = fitlib::scene::segment_json(scene, r);
+    const auto c = fitlib::scene::run_segment_case(scene, *vtk);
+    const auto& r = c.result;
+    const auto j = fitlib::scene::segment_json(scene, c);
     if (*json) {
       std::cout << j.dump(2) << "\n";
       return;
     }
+    for (const auto& m : c.materials) std::cout << m.role << ": " << m.describe << " (" << m.source << ")\n";
+    if (c.frequency_Hz > 0.0)
+      std::cout << "cards read at " << fitlib::core::format_number(c.temperature_C) << " degC, "
+                << fitlib::core::format_number(c.frequency_Hz, 4) << " Hz (storage stiffness)\n";
+    for (const auto& w : c.warnings) std::cout << "WARNING: " << w << "\n";
     std::cout << "segment: " << r.elements << " elements, " << r.equations << " equations, " << r.increments
               << " increments, " << r.newton_iterations << " Newton iterations, " << std::setprecision(3)
               << r.wall_s << " s\n";

@@ -97,9 +97,9 @@ py::dict run_segment(scene::Scene s, const py::object& strain, const py::object&
   if (!strain.is_none()) s.segment->load.strain = strain.cast<double>();
   if (!curvature.is_none()) s.segment->load.curvature_1_mm = curvature.cast<double>();
   if (!pressure.is_none()) s.segment->load.pressure_MPa = pressure.cast<double>();
-  const auto r = scene::run_segment_case(s, vtk_path);
-  py::dict d = segment_dict(r);
-  d["summary"] = to_python(scene::segment_json(s, r));
+  const auto c = scene::run_segment_case(s, vtk_path);
+  py::dict d = segment_dict(c.result);
+  d["summary"] = to_python(scene::segment_json(s, c));
   return d;
 }
 

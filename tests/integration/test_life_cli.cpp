@@ -329,6 +329,56 @@ TEST(SegmentCli, StaticCaseNeedsNoDriveAndTheDriveCommandsSaySo) {
   }
 }
 
+// fitcli segment takes the scene's [belt.materials] cards (their elastic equivalents at the scene's
+// temperature and [segment] frequency_Hz): an elastic-iso card pair (E 30 and 5 MPa, not [segment]'s
+// default 20 and 8) gives the stresses of the same E and nu in [segment.materials] (the contract's Hencky point against the segment's own Hencky law);
+// the output names where each material came from; a card without a frequency to read it at, or a
+// role given twice, is refused at its key. (The cards were ignored before: a scene naming the bundled
+// cards gave the stresses of [segment]'s default E 20 / 8 MPa.)
+TEST(SegmentCli, StaticCaseRunsTheScenesCardsAndSaysWhereEachMaterialCameFrom) {
+  const std::string dir = unique_dir("segment_cards");
+  std::filesystem::create_directories(dir);
+  for (const auto& [name, E] : {std::pair<std::string, double>{"iso30", 30.0}, {"iso5", 5.0}})
+    std::ofstream(dir + "/" + name + ".json")
+        << R"({"schema": "fitlib.card/1", "name": ")" << name
+        << R"(", "model": "elastic-iso", "options": {}, "parameters": [{"name": "E", "value": )" << E
+        << R"(}, {"name": "nu", "value": 0.49}]})";
+  const std::string load = "[segment]\nstrain = 0.01\nradius_mm = 40\npressure_MPa = 0.3\nfine_size_mm = 1.0\n";
+  const std::string head = "name = \"cards\"\n[belt]\nsection = \"cogged-0.500\"\n";
+  const std::string cards = "[belt.materials]\nbottom = \"iso30.json\"\ncushion = \"iso5.json\"\n";
+  std::ofstream(dir + "/cards.toml") << head << cards << load << "frequency_Hz = 10\n";
+  std::ofstream(dir + "/plain.toml") << head << load
+                                     << "[segment.materials]\nbottom = {E_MPa = 30, nu = 0.49}\n"
+                                        "cushion = {E_MPa = 5, nu = 0.49}\n";
+  std::ofstream(dir + "/no-frequency.toml") << head << cards << load;
+  std::ofstream(dir + "/twice.toml") << head << cards << load << "frequency_Hz = 10\n[segment.materials]\n"
+                                     << "cushion = {E_MPa = 8, nu = 0.49}\n";
+  const auto with_cards = run_fitcli("segment --scene " + dir + "/cards.toml --json");
+  const auto plain = run_fitcli("segment --scene " + dir + "/plain.toml --json");
+  ASSERT_EQ(with_cards.exit_code, 0) << with_cards.err;
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto a = nlohmann::json::parse(with_cards.out), b = nlohmann::json::parse(plain.out);
+  ASSERT_EQ(a["points"].size(), b["points"].size());
+  for (std::size_t k = 0; k < a["points"].size(); ++k)
+    for (const char* c : {"sigma11_radial_MPa", "sigma22_longitudinal_MPa", "sigma12_MPa"}) {
+      const double x = a["points"][k][c], y = b["points"][k][c];
+      EXPECT_NEAR(x, y, 1e-9 * (1.0 + std::abs(y))) << a["points"][k]["name"] << " " << c;
+    }
+  EXPECT_EQ(a["materials"][0]["source"], dir + "/iso30.json");
+  EXPECT_EQ(a["materials"][1]["source"], dir + "/iso5.json");
+  EXPECT_EQ(a["cards_read_at"]["frequency_Hz"], 10.0);
+  EXPECT_EQ(b["materials"][0]["source"], "[segment.materials]");
+  EXPECT_FALSE(b.contains("cards_read_at"));
+  const auto text = run_fitcli("segment --scene " + dir + "/cards.toml");
+  EXPECT_NE(text.out.find("bottom: elastic-iso (" + dir + "/iso30.json)"), std::string::npos) << text.out;
+  const auto no_frequency = run_fitcli("segment --scene " + dir + "/no-frequency.toml");
+  EXPECT_EQ(no_frequency.exit_code, 3);
+  EXPECT_NE(no_frequency.err.find("key 'segment.frequency_Hz'"), std::string::npos) << no_frequency.err;
+  const auto twice = run_fitcli("segment --scene " + dir + "/twice.toml");
+  EXPECT_EQ(twice.exit_code, 3);
+  EXPECT_NE(twice.err.find("key 'segment.materials.cushion'"), std::string::npos) << twice.err;
+}
+
 // The segment levels compare the strain amplitude they drove each card at (half the range of the
 // log strains over the last cycle at the role's monitored points) with the card's data window: a
 // card fitted at 1 % strain is read at several per cent in the gap and the cushion, and the table

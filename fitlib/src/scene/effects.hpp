@@ -7,6 +7,7 @@
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/scene/planner.hpp"
+#include "fitlib/segment/point_law.hpp"
 
 namespace fitlib::scene::detail {
 
@@ -18,6 +19,13 @@ card::Card material_card(const Scene& scene, const std::string& role);
 // modulus converts as eval and export do; a card beyond its data window warns").
 void card_window_warnings(const Scene& scene, const std::string& role, const card::Card& card,
                           const model::TestCondition& at, std::vector<std::string>& warnings);
+
+// The material point of a [belt.materials] role's card at `options` (the segment's fidelity,
+// temperature, frequency; the bulk modulus from the card or [belt.materials] poisson_ratio), with
+// its data-window warnings; InputError at belt.materials.<role> for what the card cannot give
+// (life_effects.cpp; the life's segment levels and `fitcli segment`).
+model::MaterialPointPtr card_point(const Scene& scene, const std::string& role, segment::RoleMaterialOptions options,
+                                   std::vector<std::string>& warnings);
 
 // Belt mechanics (belt_effects.cpp).
 ViscoelasticTension viscoelastic_tension(const belt::DriveCase& drive, bool inertia);

@@ -90,11 +90,27 @@ InputFile file_input(const std::string& role, const std::string& path, const std
 
 }  // namespace
 
+model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segment::RoleMaterialOptions options,
+                                   std::vector<std::string>& warnings) {
+  const card::Card c = material_card(s, role);
+  const model::ModelPtr model = c.model();
+  const std::vector<double> values = c.values();
+  model::TestCondition at;
+  at.temperature_C = options.temperature_C, at.frequency_Hz = options.frequency_Hz;
+  model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
+  if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
+  card_window_warnings(s, role, c, seen, warnings);
+  try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
+    options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
+    return segment::role_point(*model, values, options);
+  } catch (const core::UsageError& e) {
+    throw core::InputError("card " + s.materials.at(role) + ": " + e.what(), s.path, 0, 0, "belt.materials." + role);
+  }
+}
+
 // The segment levels (docs/segment.md "Loading"): materials per role from the scene's cards at
-// the level's fidelity (elastic: storage stiffness at the scene's temperature and the belt's load
-// frequency; a card without a bulk modulus gets the K of [belt.materials] poisson_ratio, as the
-// belt's stiffness does), or, below the complete level, the [segment] table's E and nu when the
-// scene gives no card for the role.
+// the level's fidelity (card_point), or, below the complete level, the [segment] table's E and nu
+// when the scene gives no card for the role.
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
                                                          const std::string& fidelity, std::vector<std::string>& warnings) {
   std::array<model::MaterialPointPtr, 2> points;
@@ -105,21 +121,7 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   options.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
-      const card::Card c = material_card(s, roles[k]);
-      const model::ModelPtr model = c.model();
-      const std::vector<double> values = c.values();
-      model::TestCondition at;
-      at.temperature_C = options.temperature_C, at.frequency_Hz = options.frequency_Hz;
-      model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
-      if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
-      card_window_warnings(s, roles[k], c, seen, warnings);
-      try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
-        options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
-        points[k] = segment::role_point(*model, values, options);
-      } catch (const core::UsageError& e) {
-        throw core::InputError(std::string("card ") + s.materials.at(roles[k]) + ": " + e.what(), s.path, 0, 0,
-                               std::string("belt.materials.") + roles[k]);
-      }
+      points[k] = card_point(s, roles[k], options, warnings);
     } else {
       if (options.fidelity == segment::Fidelity::complete)  // it would run isotropic elasticity under its name
         throw core::InputError(std::string("[life] fidelity = \"complete\" runs the full card models, and the scene "

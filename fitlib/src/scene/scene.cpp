@@ -206,12 +206,16 @@ void parse_segment_mesh(Reader& r, segment::MeshKnobs& mk) {
   mk.row_growth = r.number_or("row_growth", mk.row_growth, 1.0, 3.0);
 }
 
-// [segment.materials.bottom|cushion]: E_MPa and nu per role.
-void parse_segment_materials(const toml::table& mt, SegmentSpec& g, const std::string& source) {
+// [segment.materials.bottom|cushion]: E_MPa and nu per role, for a role without a [belt.materials]
+// card (a card is what the segment runs: both given would leave one unused without a word).
+void parse_segment_materials(const toml::table& mt, const Scene& scene, SegmentSpec& g, const std::string& source) {
   Reader mr(mt, "segment.materials", source);
   mr.allow({"bottom", "cushion"});
   for (int role = 0; role < 2; ++role) {
     const char* name = role == 0 ? "bottom" : "cushion";
+    if (mr.has(name) && scene.materials.count(name))
+      mr.fail(name, std::string("the scene's [belt.materials] ") + name + " card is the segment's " + name +
+                        " material: give one of the two");
     if (const toml::table* et = mr.table(name)) {
       Reader er(*et, std::string("segment.materials.") + name, source);
       er.allow({"E_MPa", "nu"});
@@ -248,7 +252,7 @@ void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
 SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
   Reader r(t, "segment", source);
   std::vector<std::string> keys = {"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends",
-                                   "steps", "integration", "points", "threads", "materials"};
+                                   "steps", "integration", "points", "threads", "materials", "frequency_Hz"};
   keys.insert(keys.end(), kSegmentMeshKeys.begin(), kSegmentMeshKeys.end());
   r.allow(keys);
   SegmentSpec g;
@@ -271,7 +275,8 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   parse_segment_mesh(r, g.life_mesh);  // `fitcli life`: the keys given change the life's mesh, the rest stay
   parse_segment_mesh(r, g.complete_life_mesh);  // likewise the complete level's
   g.life_mesh_changed = std::any_of(kSegmentMeshKeys.begin(), kSegmentMeshKeys.end(), [&](const std::string& k) { return r.has(k); });
-  if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, g, source);
+  if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, scene, g, source);
+  g.frequency_Hz = r.number("frequency_Hz", 0.0, 1e9, true);
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
   r.finish();
   // Work cap on the mesh these knobs give (bounded by the ranges above, so cheap to build).

@@ -2,14 +2,51 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/finite_output.hpp"
+#include "fitlib/core/format.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "effects.hpp"
 
 namespace fitlib::scene {
 
-segment::StaticResult run_segment_case(const Scene& scene, const std::string& vtk_path) {
+namespace {
+
+// The load frequency at which the cards give their elastic equivalents.
+double case_frequency_Hz(const Scene& scene) {
+  if (scene.segment->frequency_Hz) return *scene.segment->frequency_Hz;
+  if (scene.pulleys.size() < 2)
+    throw core::InputError("the cards of [belt.materials] give their storage stiffness at a load frequency: set "
+                           "[segment] frequency_Hz (the scene has no drive to take it from)",
+                           scene.path, 0, 0, "segment.frequency_Hz");
+  const belt::DriveCase drive = make_drive(scene, resolve_stiffness(scene));
+  return drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+}
+
+}  // namespace
+
+SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path) {
   if (!scene.segment) throw core::InputError("the scene has no [segment] table", scene.path, 0, 0, "segment");
+  SegmentCase out;
+  segment::StaticSetup setup = scene.segment->setup;
+  out.temperature_C = scene.temperature_C;
+  const char* roles[2] = {"bottom", "cushion"};
+  for (int k = 0; k < 2; ++k) {
+    if (!scene.materials.count(roles[k])) {
+      const segment::IsotropicElastic& e = setup.materials[k];
+      out.materials.push_back({roles[k], "[segment.materials]",
+                               "E " + core::format_number(e.E_MPa) + " MPa, nu " + core::format_number(e.nu)});
+      continue;
+    }
+    if (out.frequency_Hz == 0.0) out.frequency_Hz = case_frequency_Hz(scene);
+    segment::RoleMaterialOptions options;
+    options.fidelity = segment::Fidelity::elastic;
+    options.temperature_C = scene.temperature_C, options.frequency_Hz = out.frequency_Hz;
+    setup.material_points[k] = detail::card_point(scene, roles[k], options, out.warnings);
+    out.materials.push_back({roles[k], scene.materials.at(roles[k]), setup.material_points[k]->describe()});
+  }
   segment::StaticSolution solution;
   segment::Mesh mesh;
-  const auto result = segment::run_static_case(scene.segment->setup, scene.segment->load, &solution, &mesh);
+  const auto result = segment::run_static_case(setup, scene.segment->load, &solution, &mesh);
+  out.result = result;
   if (!vtk_path.empty()) {
     segment::VtkFields f;
     f.displacement_mm = solution.u_mm;
@@ -23,13 +60,18 @@ segment::StaticResult run_segment_case(const Scene& scene, const std::string& vt
     }
     segment::write_vtk(mesh, vtk_path, f);
   }
-  return result;
+  return out;
 }
 
-nlohmann::json segment_json(const Scene& scene, const segment::StaticResult& r) {
+nlohmann::json segment_json(const Scene& scene, const SegmentCase& c) {
+  const segment::StaticResult& r = c.result;
   const auto& load = scene.segment->load;
   nlohmann::json j;
   j["scene"] = scene.name;
+  for (const SegmentMaterial& m : c.materials)
+    j["materials"].push_back({{"role", m.role}, {"source", m.source}, {"material", m.describe}});
+  if (c.frequency_Hz > 0.0) j["cards_read_at"] = {{"temperature_C", c.temperature_C}, {"frequency_Hz", c.frequency_Hz}};
+  if (!c.warnings.empty()) j["warnings"] = c.warnings;
   j["load"] = {{"strain", load.strain}, {"curvature_1_mm", load.curvature_1_mm}, {"pressure_MPa", load.pressure_MPa}};
   j["mesh"] = {{"elements", r.elements}, {"nodes", r.nodes}, {"equations", r.equations}};
   j["solver"] = {{"increments", r.increments}, {"newton_iterations", r.newton_iterations}};

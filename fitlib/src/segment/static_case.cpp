@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "fitlib/segment/curve.hpp"
+#include "fitlib/segment/point_law.hpp"
 
 namespace fitlib::segment {
 
@@ -159,9 +160,11 @@ StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, S
                              Mesh* mesh_out) {
   const auto t0 = std::chrono::steady_clock::now();
   const Mesh m = build_mesh(setup.section, setup.mesh);
-  const auto bottom = make_elastic(setup.law, setup.materials[0].E_MPa, setup.materials[0].nu);
-  const auto cushion = make_elastic(setup.law, setup.materials[1].E_MPa, setup.materials[1].nu);
-  const std::array<const PlaneStrainLaw*, 2> laws{bottom.get(), cushion.get()};
+  std::array<std::unique_ptr<PlaneStrainLaw>, 2> owned;
+  for (int k = 0; k < 2; ++k)
+    owned[k] = setup.material_points[k] ? std::make_unique<ContractLaw>(setup.material_points[k])
+                               : make_elastic(setup.law, setup.materials[k].E_MPa, setup.materials[k].nu);
+  const std::array<const PlaneStrainLaw*, 2> laws{owned[0].get(), owned[1].get()};
   const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
 
   const StaticProblem p = static_problem(m, laws, load, setup.ends);

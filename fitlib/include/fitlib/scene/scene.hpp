@@ -68,6 +68,9 @@ struct TensionTestSpec {
 struct SegmentSpec {
   segment::StaticSetup setup;
   segment::StaticLoad load;
+  // The static case's load frequency (Hz) for the cards' elastic equivalents ([belt.materials]);
+  // unset: the drive's, one load cycle per belt revolution (scene::run_segment_case).
+  std::optional<double> frequency_Hz;
   // The life's meshes per fidelity (fatigue::life_mesh(), fatigue::complete_life_mesh()), each
   // with the [segment] mesh keys the scene gives: a key given changes that knob in both, the others
   // keep each level's default.

@@ -2,6 +2,7 @@
 // The scene's static segment case ([segment]) for `fitcli segment`: runs it, optionally writes
 // the deformed mesh with cell stresses (VTK), and reports it as JSON.
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -9,7 +10,24 @@
 
 namespace fitlib::scene {
 
-segment::StaticResult run_segment_case(const Scene& scene, const std::string& vtk_path = {});
-nlohmann::json segment_json(const Scene& scene, const segment::StaticResult& result);
+// Where a role's material came from: a [belt.materials] card's elastic equivalent at the scene's
+// temperature and the case's load frequency, or the [segment.materials] E and nu under [segment] law.
+struct SegmentMaterial {
+  std::string role, source;  // source: the card's path, or "[segment.materials]"
+  std::string describe;      // the material point's own description, or "E … MPa, nu …"
+};
+
+struct SegmentCase {
+  segment::StaticResult result;
+  std::vector<SegmentMaterial> materials;  // bottom, cushion
+  double temperature_C = 0.0, frequency_Hz = 0.0;  // where the cards were read (frequency 0: no card)
+  std::vector<std::string> warnings;       // cards read beyond their data windows
+};
+
+// The roles with a [belt.materials] card take its elastic equivalent (segment::role_point at the
+// elastic fidelity), the others [segment.materials]; a card needs a load frequency: [segment]
+// frequency_Hz, else the drive's (InputError at segment.frequency_Hz when the scene has neither).
+SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path = {});
+nlohmann::json segment_json(const Scene& scene, const SegmentCase& c);
 
 }  // namespace fitlib::scene

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fitlib/model/material_point.hpp"
 #include "fitlib/segment/curve.hpp"
 #include "fitlib/segment/elastic.hpp"
 #include "fitlib/segment/mesh.hpp"
@@ -38,6 +39,9 @@ struct StaticSetup {
   SolverKnobs solver;
   ElasticLaw law = ElasticLaw::hencky;
   std::array<IsotropicElastic, 2> materials{};  // by Role: bottom, cushion
+  // By Role: when set, the role's material is this point through the material-point contract (a
+  // card's elastic equivalent, segment::role_point) instead of materials[role] under `law`.
+  std::array<model::MaterialPointPtr, 2> material_points{};
   EndCondition ends = EndCondition::radial;
   std::vector<NamedPoint> points;               // beside the two standard points
   bool stiffness = true;                        // also solve the two small cases for c and EI
