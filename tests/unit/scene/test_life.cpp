@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -483,6 +484,40 @@ void expect_life_or_refusal(const std::string& text, const std::string& label, i
   }
 }
 }  // namespace
+
+// Property: hand-typed drives of every shape at the beam level — two pulleys of 40–250 mm, or three
+// on a triangle listed counter-clockwise, 200–6000 rpm, 0–40 N·m, 50–1500 N initial tension,
+// −20–120 °C, friction 0.1–0.9, each refinement on or off: a life or a refusal naming a key (a
+// belt that slips, lifts off or has no tension), never a NaN or another error.
+TEST(SceneLife, RandomDrivesGiveALifeOrARefusalNamingAKey) {
+  std::mt19937 rng(20261128);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto pick = [&] { return uniform(0.0, 1.0) < 0.5 ? "true" : "false"; };
+  int computed = 0;
+  for (int i = 0; i < 120; ++i) {
+    std::ostringstream t;
+    const double d1 = uniform(40, 250), d2 = uniform(40, 250), speed = uniform(200, 6000);
+    t << "name = \"random drive " << i << "\"\n[drive]\npulleys = [\n";
+    if (i % 3 != 2) {
+      t << "  {name = \"a\", pitch_diameter_mm = " << d1 << ", role = \"driver\", speed_rpm = " << speed << "},\n"
+        << "  {name = \"b\", pitch_diameter_mm = " << d2 << ", role = \"driven\"} ]\n"
+        << "center_distance_mm = " << (d1 + d2) / 2 + uniform(10, 600) << "\n";
+    } else {  // a triangle, counter-clockwise: a, b on the x axis, the idler above
+      const double side = (d1 + d2) / 2 + uniform(40, 500), d3 = uniform(40, 120);
+      t << "  {name = \"a\", pitch_diameter_mm = " << d1 << ", role = \"driver\", speed_rpm = " << speed
+        << ", center_mm = [0, 0]},\n  {name = \"b\", pitch_diameter_mm = " << d2
+        << ", role = \"driven\", center_mm = [" << side << ", 0]},\n  {name = \"c\", pitch_diameter_mm = " << d3
+        << ", role = \"idler\", center_mm = [" << side / 2 << ", " << uniform(0.5, 1.5) * side << "]} ]\n";
+    }
+    t << "torque_Nm = " << uniform(0, 40) << "\ninitial_tension_N = " << uniform(50, 1500)
+      << "\n[conditions]\ntemperature_C = " << uniform(-20, 120) << "\nfriction = " << uniform(0.1, 0.9)
+      << "\n[effects]\nbending_zones = " << pick() << "\ninertia = " << pick() << "\ndriver_exit_ramp = " << pick()
+      << "\n[life]\nfidelity = \"beam\"\n";
+    expect_life_or_refusal(t.str(), "random-drive-" + std::to_string(i), computed);
+  }
+  EXPECT_GE(computed, 60);  // most of them carry their torque
+  std::printf("%d of 120 random drives gave a life\n", computed);
+}
 
 // Property: random shear Prony cards (no bulk modulus: K from the default Poisson ratio) as bottom
 // and cushion of the medium drive, 80 reference-drive cases at the beam level and 3 at the elastic
