@@ -32,7 +32,7 @@ void register_segment(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
       return;
     }
-    for (const auto& m : c.materials) std::cout << m.role << ": " << m.describe << " (" << m.source << ")\n";
+    for (const auto& m : c.materials) std::cout << m.role << ": " << m.material << " (" << m.source << ")\n";
     if (c.frequency_Hz > 0.0)
       std::cout << "cards read at " << fitlib::core::format_number(c.temperature_C) << " degC, "
                 << fitlib::core::format_number(c.frequency_Hz, 4) << " Hz (storage stiffness)\n";

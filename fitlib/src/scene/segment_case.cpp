@@ -45,8 +45,7 @@ SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path) {
   }
   segment::StaticSolution solution;
   segment::Mesh mesh;
-  const auto result = segment::run_static_case(setup, scene.segment->load, &solution, &mesh);
-  out.result = result;
+  out.result = segment::run_static_case(setup, scene.segment->load, &solution, &mesh);
   if (!vtk_path.empty()) {
     segment::VtkFields f;
     f.displacement_mm = solution.u_mm;
@@ -69,7 +68,7 @@ nlohmann::json segment_json(const Scene& scene, const SegmentCase& c) {
   nlohmann::json j;
   j["scene"] = scene.name;
   for (const SegmentMaterial& m : c.materials)
-    j["materials"].push_back({{"role", m.role}, {"source", m.source}, {"material", m.describe}});
+    j["materials"].push_back({{"role", m.role}, {"source", m.source}, {"material", m.material}});
   if (c.frequency_Hz > 0.0) j["cards_read_at"] = {{"temperature_C", c.temperature_C}, {"frequency_Hz", c.frequency_Hz}};
   if (!c.warnings.empty()) j["warnings"] = c.warnings;
   j["load"] = {{"strain", load.strain}, {"curvature_1_mm", load.curvature_1_mm}, {"pressure_MPa", load.pressure_MPa}};

@@ -162,8 +162,9 @@ StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, S
   const Mesh m = build_mesh(setup.section, setup.mesh);
   std::array<std::unique_ptr<PlaneStrainLaw>, 2> owned;
   for (int k = 0; k < 2; ++k)
-    owned[k] = setup.material_points[k] ? std::make_unique<ContractLaw>(setup.material_points[k])
-                               : make_elastic(setup.law, setup.materials[k].E_MPa, setup.materials[k].nu);
+    owned[k] = setup.material_points[k]
+                   ? std::make_unique<ContractLaw>(setup.material_points[k])
+                   : make_elastic(setup.law, setup.materials[k].E_MPa, setup.materials[k].nu);
   const std::array<const PlaneStrainLaw*, 2> laws{owned[0].get(), owned[1].get()};
   const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
 

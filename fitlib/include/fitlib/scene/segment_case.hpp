@@ -14,7 +14,7 @@ namespace fitlib::scene {
 // temperature and the case's load frequency, or the [segment.materials] E and nu under [segment] law.
 struct SegmentMaterial {
   std::string role, source;  // source: the card's path, or "[segment.materials]"
-  std::string describe;      // the material point's own description, or "E … MPa, nu …"
+  std::string material;      // the material point's own description, or "E … MPa, nu …"
 };
 
 struct SegmentCase {
