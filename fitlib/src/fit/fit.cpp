@@ -517,6 +517,21 @@ void assess_with_merges(Problem& problem, FitResult& result, const BackendRun& r
 
 }  // namespace
 
+namespace {
+
+// A free parameter that ends on its bound is not determined by the data: the optimum lies beyond the
+// range the fit admits, and the card carries the bound, not a measured value.
+void bound_warnings(FitResult& result) {
+  for (const ParameterResult& p : result.parameters)
+    if (!p.fixed && p.reason.rfind("at its bound", 0) == 0)
+      result.quality.warnings.push_back(p.name + " = " + core::short_number(p.value) +
+                                        (p.unit.empty() || p.unit == "-" ? "" : " " + p.unit) + " ended on its bound: the data do not determine it (the best fit "
+                                        "lies beyond the admitted range), so the card holds the bound; read the card "
+                                        "only within its data window");
+}
+
+}  // namespace
+
 FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
               const FitOptions& options, const std::vector<double>* start) {
   if (!model) throw core::UsageError("fit: no model");
@@ -540,6 +555,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   readmit(problem, result, run.linear_only);
   assess_with_merges(problem, result, run);
   result.quality = detail::quality_verdict(problem, problem.natural());
+  bound_warnings(result);
   result.metrics.converged = run.outcome.converged;
   result.metrics.iterations = run.outcome.iterations;
   result.metrics.wall_time_s = clock.seconds();

@@ -274,6 +274,27 @@ TEST(AdmissibleWindow, FractionalZenerStaysInsideTheWindowOnAPowerLaw) {
   EXPECT_LT(r.metrics.max_rel_error, 0.15);
 }
 
+// A fractional Zener whose central time lies two decades below the data's fastest (τ 1e-6 s, data
+// 0.1–100 Hz: the admitted window starts at 1.6e-4 s) ends with τ on its bound, and the verdict says
+// the card holds the bound, not a measured value; the same law with τ 0.05 s is fitted inside the
+// window without that warning. (A hand-typed 0.1–100 Hz table gave τ at its bound silently.)
+TEST(AdmissibleWindow, AParameterEndingOnItsBoundIsAWarning) {
+  using namespace fitlib::fit::testing;
+  const auto model = fitlib::model::make_model("fractional-zener", {{"mode", "shear"}});
+  const auto on_bound = [](const fitlib::fit::FitResult& r) {
+    return std::any_of(r.quality.warnings.begin(), r.quality.warnings.end(),
+                       [](const std::string& w) { return w.rfind("tau = ", 0) == 0 && w.find("ended on its bound") != std::string::npos; });
+  };
+  const auto frequencies = log_frequencies(0.1, 100, 7);
+  const auto fast = fitlib::fit::fit(model, synthetic_table(*model, {1.5, 10.0, 1e-6, 0.3}, frequencies, 0.0, 1), {});
+  ASSERT_TRUE(fast.admissible.applies);
+  EXPECT_NEAR(fast.values[2], fast.admissible.tau_min_s, 1e-9 * fast.admissible.tau_min_s);
+  EXPECT_TRUE(on_bound(fast));
+  const auto inside = fitlib::fit::fit(model, synthetic_table(*model, {1.5, 10.0, 0.05, 0.3}, frequencies, 0.0, 1), {});
+  EXPECT_NEAR(inside.values[2], 0.05, 1e-4);
+  EXPECT_FALSE(on_bound(inside));
+}
+
 // Every backend, residual kind, term rule and term method has a name that reads back.
 TEST(EnumNames, FitEnumsReadBack) {
   using namespace fitlib::fit;
