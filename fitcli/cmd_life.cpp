@@ -44,6 +44,8 @@ void register_life(CLI::App& app) {
   cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; [life] optional; - = stdin)")
       ->required();
   cmd->add_option("--out-dir", *out_dir, "Output folder (life.json, summary.json)")->capture_default_str();
+  auto misspelt_out = std::make_shared<std::string>();  // --out is a file everywhere (docs/cli.md)
+  cmd->add_option("--out", *misspelt_out)->group("");
   add_json_flag(cmd, *json, "life.json, on stdout");
   add_verbosity_flags(cmd);
   cmd->add_option("--field-at", *field_at,
@@ -55,6 +57,9 @@ void register_life(CLI::App& app) {
   cmd->add_flag("--record-timing", *record_timing,
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
+    if (cmd->count("--out") > 0)
+      throw fitlib::core::UsageError("life writes a folder: use --out-dir " + *misspelt_out +
+                                     " (--out names a file in every subcommand, docs/cli.md)");
     auto scene = load_scene_input(*scene_path);
     scene.segment_progress = !quiet();  // shown only when stderr is a terminal
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png

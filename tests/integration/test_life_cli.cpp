@@ -218,6 +218,12 @@ TEST(LifeCli, BadFieldAtExitsTwoAndLeavesNoOutputFolder) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(slurp(kept + "/mine.txt"), "keep\n");
   std::filesystem::remove_all(kept);
+  // --out DIR (the spelling; --out is a file everywhere else) is a usage error naming --out-dir.
+  const std::string folder = unique_dir("life_out_spelling");
+  const auto out = run_fitcli("life --scene " + scene + " --out " + folder);
+  EXPECT_EQ(out.exit_code, 2) << out.err;
+  EXPECT_NE(out.err.find("use --out-dir " + folder), std::string::npos) << out.err;
+  EXPECT_FALSE(std::filesystem::exists(folder));
 }
 
 // The complete level on the medium drive with the thesis cards stops in cycle 1 on the ungraded
