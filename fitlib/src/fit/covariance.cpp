@@ -151,7 +151,7 @@ bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const
   if (null_share[k] > kNullShare)
     return pr.reason = "not identifiable: rank-deficient Jacobian (see the null-space messages)", false;
   if (std::abs(x - problem.lower_x(k)) < tol || std::abs(x - problem.upper_x(k)) < tol)
-    return pr.reason = "at its bound: the linear interval does not apply", false;
+    return pr.at_bound = true, pr.reason = "at its bound: the linear interval does not apply", false;
   const double se_x = std::sqrt(std::max(cov_x(k, k), 0.0));
   if (!std::isfinite(se_x)) return pr.reason = "variance not finite", false;
   const double se = log ? p_i * se_x : se_x;

@@ -523,7 +523,7 @@ namespace {
 // range the fit admits, and the card carries the bound, not a measured value.
 void bound_warnings(FitResult& result) {
   for (const ParameterResult& p : result.parameters)
-    if (!p.fixed && p.reason.rfind("at its bound", 0) == 0)
+    if (p.at_bound)
       result.quality.warnings.push_back(p.name + " = " + core::short_number(p.value) +
                                         (p.unit.empty() || p.unit == "-" ? "" : " " + p.unit) + " ended on its bound: the data do not determine it (the best fit "
                                         "lies beyond the admitted range), so the card holds the bound; read the card "

@@ -20,6 +20,13 @@ card::Card material_card(const Scene& scene, const std::string& role);
 void card_window_warnings(const Scene& scene, const std::string& role, const card::Card& card,
                           const model::TestCondition& at, std::vector<std::string>& warnings);
 
+// The segment's material roles in segment::Role order.
+inline constexpr const char* kSegmentRoles[2] = {"bottom", "cushion"};
+// The load frequency of a belt element: one load cycle per belt revolution, f = v / L.
+inline double load_frequency_Hz(const belt::DriveCase& drive) {
+  return drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+}
+
 // The material point of a [belt.materials] role's card at `options` (the segment's fidelity,
 // temperature, frequency; the bulk modulus from the card or [belt.materials] poisson_ratio), with
 // its data-window warnings; InputError at belt.materials.<role> for what the card cannot give

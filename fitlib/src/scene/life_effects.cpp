@@ -114,11 +114,11 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
                                                          const std::string& fidelity, std::vector<std::string>& warnings) {
   std::array<model::MaterialPointPtr, 2> points;
-  const char* roles[2] = {"bottom", "cushion"};
+  const auto& roles = kSegmentRoles;
   segment::RoleMaterialOptions options;
   options.fidelity = segment::fidelity_from_string(fidelity);
   options.temperature_C = s.temperature_C;
-  options.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+  options.frequency_Hz = load_frequency_Hz(drive);
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
       points[k] = card_point(s, roles[k], options, warnings);

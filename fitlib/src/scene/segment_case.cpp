@@ -17,8 +17,7 @@ double case_frequency_Hz(const Scene& scene) {
     throw core::InputError("the cards of [belt.materials] give their storage stiffness at a load frequency: set "
                            "[segment] frequency_Hz (the scene has no drive to take it from)",
                            scene.path, 0, 0, "segment.frequency_Hz");
-  const belt::DriveCase drive = make_drive(scene, resolve_stiffness(scene));
-  return drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+  return detail::load_frequency_Hz(make_drive(scene, resolve_stiffness(scene)));
 }
 
 }  // namespace
@@ -28,7 +27,7 @@ SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path) {
   SegmentCase out;
   segment::StaticSetup setup = scene.segment->setup;
   out.temperature_C = scene.temperature_C;
-  const char* roles[2] = {"bottom", "cushion"};
+  const auto& roles = detail::kSegmentRoles;
   for (int k = 0; k < 2; ++k) {
     if (!scene.materials.count(roles[k])) {
       const segment::IsotropicElastic& e = setup.materials[k];

@@ -82,6 +82,7 @@ struct ParameterResult {
   bool fixed = false;
   std::optional<double> std_error;  // empty when not estimable; see reason
   std::string reason;
+  bool at_bound = false;  // free and ended on one of its bounds (no interval; the verdict warns)
   std::optional<double> ci95_low, ci95_high;
 };
 
