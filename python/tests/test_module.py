@@ -5,11 +5,13 @@ Environment: PYTHONPATH = <build>/python, FITCLI = the fitcli binary, FITLIB_ROO
 tree. Each test is a function test_*; the last line is 'N passed, M failed' and the exit code is
 0 only when none failed. Files go to a per-process folder under the system's temporary folder.
 """
+import atexit
 import csv
 import io
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -23,6 +25,8 @@ ROOT = os.environ["FITLIB_ROOT"]
 FITCLI = os.environ["FITCLI"]
 WORK = os.path.join(tempfile.gettempdir(), f"fitlib-python-{os.getpid()}")
 os.makedirs(WORK, exist_ok=True)
+if not os.environ.get("FITLIB_KEEP_TEST_FILES"):  # as the C++ tests' folder (tests/common/temp_path.hpp)
+    atexit.register(shutil.rmtree, WORK, ignore_errors=True)
 
 
 def source(*parts):

@@ -1,5 +1,6 @@
 // fitcli life end to end on every bundled reference drive: finite lives and a governing mode,
 // life.json in the output folder equal to --json, bad scenes exit 3, the elastic level runs the segment.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -123,6 +124,25 @@ TEST(LifeCli, ElasticLevelRunsTheSegmentOnTheLoadCycle) {
       }
     EXPECT_EQ(found, 1) << design << " at t " << peak["t_s"];
   }
+  // life.json holds each design point's effective stress over the last cycle, the curve its peaks
+  // were counted on: every peak is a sample of it, the largest peak its maximum.
+  for (const auto& mode : j["modes"]) {
+    const auto& t = mode["effective_stress"]["t_s"];
+    const auto& s = mode["effective_stress"]["MPa"];
+    ASSERT_EQ(t.size(), s.size());
+    ASSERT_GT(t.size(), 50u) << mode["mode"];
+    double largest_peak = 0.0;
+    for (const auto& peak : mode["peaks"]) {
+      std::size_t k = 0;
+      while (k < t.size() && t[k].get<double>() != peak["t_s"].get<double>()) ++k;
+      ASSERT_LT(k, t.size()) << mode["mode"] << " peak at " << peak["t_s"];
+      EXPECT_EQ(s[k].get<double>(), peak["effective_stress_MPa"].get<double>());
+      largest_peak = std::max(largest_peak, peak["effective_stress_MPa"].get<double>());
+    }
+    EXPECT_EQ(*std::max_element(s.begin(), s.end()), largest_peak) << mode["mode"];
+  }
+  const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+  EXPECT_FALSE(summary["life"]["modes"][0].contains("effective_stress"));  // the summary stays short
 }
 
 

@@ -243,7 +243,7 @@ std::string life_table(const LifeReport& r) {
   return out;
 }
 
-nlohmann::json life_to_json(const LifeReport& r) {
+nlohmann::json life_to_json(const LifeReport& r, bool effective_stress_history) {
   using nlohmann::json;
   json modes = json::array();
   for (const ModeLife& m : r.modes) {
@@ -261,6 +261,8 @@ nlohmann::json life_to_json(const LifeReport& r) {
                      {"unbounded", !std::isfinite(m.life_cycles)},
                      {"peaks", peaks},
                      {"miner_shares", shares}});
+    if (effective_stress_history)
+      modes.back()["effective_stress"] = {{"t_s", m.t_s}, {"MPa", m.effective_stress_MPa}};
   }
   json j = {{"modes", modes},
             {"governing_mode", r.governing},

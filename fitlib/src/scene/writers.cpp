@@ -117,8 +117,8 @@ json effect_changes_json(const std::map<std::string, EffectChange>& changes) {
   return j;
 }
 
-json life_summary_json(const LifeResult& l) {
-  json j = fatigue::life_to_json(l.report);
+json life_summary_json(const LifeResult& l, bool effective_stress_history = false) {
+  json j = fatigue::life_to_json(l.report, effective_stress_history);
   j["fidelity"] = l.plan.fidelity;
   j["fidelity_reason"] = l.plan.reason;
   json inputs = json::array();
@@ -260,7 +260,7 @@ json summary_json(const Scene& s, const SceneResult& r, bool wall_times) {
 }
 
 json life_json(const Scene& s, const SceneResult& r, bool wall_times) {
-  json j = life_summary_json(r.life.value());
+  json j = life_summary_json(r.life.value(), true);  // summary.json stays a summary
   j["scene"] = s.name;
   j["source"] = s.path;
   j["version"] = FITLIB_VERSION;

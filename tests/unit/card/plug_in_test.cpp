@@ -2,6 +2,7 @@
 // and one register_model line is fitted, written as a card, read back and evaluated, exported to
 // FE decks and driven as a material point — with no change to fit, card or scene.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <cmath>
 #include <complex>
@@ -111,11 +112,7 @@ data::DynamicTestTable exact_table() {
   return table;
 }
 
-std::string temp_dir() {
-  const auto dir = std::filesystem::path(::testing::TempDir()) / ("plug-in-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
+std::string temp_dir() { return fitlib_test::temp_dir(); }
 
 class PlugIn : public ::testing::Test {
  protected:

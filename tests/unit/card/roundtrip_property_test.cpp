@@ -2,6 +2,7 @@
 // every card written reads back, evaluates to the fit's own curve bit for bit, holds only finite
 // numbers, and keeps its series terms inside the admissible window it records.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 #include <unistd.h>
 
 #include <cmath>
@@ -25,12 +26,7 @@ namespace {
 
 constexpr int kFits = 520;
 
-std::string temp_dir() {
-  const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("fitlib-roundtrip-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
+std::string temp_dir() { return fitlib_test::temp_dir(); }
 
 // Every null in a card is a parameter's missing std_error (the documented form of "no interval").
 void expect_only_documented_nulls(const nlohmann::json& j, const std::string& path, int& bad) {
@@ -177,7 +173,6 @@ TEST(RoundTripProperty, EveryCardReadsBackAndEvaluatesToItsFit) {
       ADD_FAILURE() << "case " << i << " " << c.kind << " " << c.options.dump() << ": " << problems;
     }
   }
-  std::filesystem::remove_all(dir);
   EXPECT_GE(written, 500);
   EXPECT_LE(failed_fits, kFits / 20);
   EXPECT_EQ(mismatches, 0);

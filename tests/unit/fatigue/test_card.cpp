@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -10,12 +11,7 @@
 namespace fitlib::fatigue {
 namespace {
 
-std::string temp_dir() {
-  const auto d = std::filesystem::path(::testing::TempDir()) /
-                 ("fatigue-card-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d.string();
-}
+std::string temp_dir() { return fitlib_test::temp_dir(); }
 
 std::string write(const std::string& name, const std::string& text) {
   const std::string path = temp_dir() + "/" + name;

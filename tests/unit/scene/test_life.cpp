@@ -2,6 +2,7 @@
 // against the fatigue module's own beam_life on the same drive, the default fidelity, the
 // [life] table, the fatigue card and its sha256.
 #include <gtest/gtest.h>
+#include "common/temp_path.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,11 +29,7 @@ namespace {
 const std::string kDrives = FITLIB_SOURCE_DIR "/datasets/drives/";
 const std::string kBundledCard = FITLIB_SOURCE_DIR "/datasets/cards/fatigue-fritzson-1988.json";
 
-std::filesystem::path temp_dir() {
-  const auto d = std::filesystem::path(::testing::TempDir()) / ("fitlib-scene-life-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path temp_dir() { return fitlib_test::temp_dir(); }
 
 scene::Scene with_life(const std::string& load) {
   auto s = scene::load_scene(kDrives + "ref-0500-" + load + ".toml");

@@ -135,8 +135,10 @@ CordBreakLife cord_break_life(const std::vector<double>& force_N, const CordBrea
 // cord break when evaluated, and the governing mode; "unbounded" where there is no peak.
 std::string life_table(const LifeReport& report);
 
-// JSON of the report; unbounded lives are written as null with "unbounded": true.
-nlohmann::json life_to_json(const LifeReport& report);
+// JSON of the report; unbounded lives are written as null with "unbounded": true. With
+// `effective_stress_history` each mode also holds its design point's σ_e over the last cycle
+// ("effective_stress": {"t_s": [...], "MPa": [...]}), the curve its peaks were counted on.
+nlohmann::json life_to_json(const LifeReport& report, bool effective_stress_history = false);
 
 // One warning per mode whose finite life is below kShortestReadableLife_cycles, and, where the
 // points carry history (the complete level's glassy transients), per mode whose peak is under-
