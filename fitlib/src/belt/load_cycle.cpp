@@ -163,8 +163,11 @@ SlidingArc solve_sliding_arc(PulleyCycle& pc, const ArcParameters& ap, double ka
     throw InputError("belt slips on pulley '" + pc.name + "': the tension ratio " +
                          core::format_number(std::max(kappa_end, 1.0 / kappa_end), 4) +
                          " needs a longer sliding arc than the " + core::format_number(contact_free * 180 / kPi, 4) +
-                         " deg of contact available (capstan limit exp(mu alpha/sin beta) = " +
-                         core::format_number(pc.capstan_limit, 4) + "); " +
+                         " deg of contact available (the capstan limit exp(mu alpha/sin beta) = " +
+                         core::format_number(pc.capstan_limit, 4) +
+                         " holds for a radially rigid belt only: with c0 = " + core::format_number(ap.c0, 3) +
+                         " the belt also slides radially in the groove as its force changes, and that part of the "
+                         "friction does not change the force, Appendix A); " +
                          (ap.friction > 0.0 ? "lower the torque or raise the tension"
                                             : "without friction (conditions.friction = 0) no torque is carried"),
                      {}, 0, 0, "drive.torque_Nm");

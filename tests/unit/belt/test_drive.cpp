@@ -201,6 +201,27 @@ TEST(LoadCycle, HardCasesGiveResultsOrClearErrors) {
   auto severe = reference_drive(400.0);
   severe.friction = 0.3;
   EXPECT_EQ(error_key([&] { compute_load_cycle(severe); }), "drive.torque_Nm");
+  // The first torque that slips needs a tension ratio below the capstan limit: the message says the
+  // limit holds for a radially rigid belt only (a user read "ratio 8 needs more than 169 deg, capstan
+  // limit 125" as a contradiction).
+  for (double torque = 10.0;; torque += 10.0) {
+    ASSERT_LT(torque, 1000.0);
+    std::string message;
+    auto d = reference_drive(torque);
+    d.friction = 0.5;  // the bundled drives' (capstan limit 124)
+    try {
+      compute_load_cycle(d);
+      continue;
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    ASSERT_NE(message.find("belt slips"), std::string::npos) << message;
+    const double ratio = std::stod(message.substr(message.find("tension ratio ") + 14));
+    const double limit = std::stod(message.substr(message.find("beta) = ") + 8));
+    EXPECT_LT(ratio, limit) << message;
+    EXPECT_NE(message.find("holds for a radially rigid belt only: with c0 = "), std::string::npos) << message;
+    break;
+  }
   // Zero slack tension.
   EXPECT_EQ(error_key([] { compute_load_cycle(reference_drive(10.0, 0.0, 0.0)); }),
             "drive.slack_tension_N");
