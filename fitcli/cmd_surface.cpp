@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/json.hpp"
 #include "fitlib/surface/card_grid.hpp"
@@ -41,7 +42,8 @@ std::string stats_text(const surface::Surface& s) {
         << a.level_count << (a.scattered ? " distinct values" : " levels") << ", [" << a.start << ", "
         << a.end << "])";
   out << "\nN = " << st.n_points << ", p = " << st.n_parameters << ", residual dof = " << st.residual_dof
-      << ", R = " << st.R << ", s = " << st.s << ", max relative error = " << 100 * st.max_relative_error
+      << ", R = " << st.R << ", s = " << (std::isfinite(st.s) ? core::format_number(st.s, 6) : "undefined (no residual dof)")
+      << ", max relative error = " << 100 * st.max_relative_error
       << " % (data row " << st.max_relative_error_row + 1 << ")\n";
   if (s.level_grid) out << "empty cells of the level grid: " << s.missing_cells.size() << "\n";
   for (const auto& g : s.constraints)

@@ -46,6 +46,25 @@ TEST(SurfaceCli, ReportVShearDesignFitsWithConstraintsAndRefusesExtrapolation) {
   EXPECT_EQ(e.exit_code, 3) << e.err;
 }
 
+// A surface with as many control points as data (4 x 4 levels, degree 3 each) has no residual
+// degree of freedom: s is undefined, said in words (the summary printed "s = nan"; the JSON holds null).
+TEST(SurfaceCli, SaturatedSurfaceSaysSIsUndefinedInsteadOfPrintingNan) {
+  const auto data = temp_file("saturated.csv");
+  std::ofstream f(data);
+  f << "frequency_Hz,temperature_C,storage_MPa\n";
+  for (double t : {20.0, 40.0, 60.0, 80.0})
+    for (double hz : {0.1, 1.0, 10.0, 100.0}) f << hz << "," << t << "," << 5.0 + std::log10(hz) - 0.05 * t << "\n";
+  f.close();
+  const auto r = run_fitcli("surface fit --data " + data + " --x frequency_Hz:log --x temperature_C --y storage_MPa");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("no residual degrees of freedom"), std::string::npos) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["statistics"]["s"].is_null()) << r.out;  // the surface on stdout
+  const auto text = run_fitcli("surface fit --data " + data + " --x frequency_Hz:log --x temperature_C --y storage_MPa "
+                               "--out " + temp_file("saturated.json"));
+  EXPECT_NE(text.out.find("s = undefined (no residual dof)"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("nan"), std::string::npos) << text.out;
+}
+
 TEST(FritzsonCli, StagedFitOfMaterialTwoNamesWhatTheDataCannotDetermine) {
   const auto out = temp_file("material-2.json");
   const auto r = run_fitcli("fit --data " + source_path("datasets/materials/material-2.csv") +
