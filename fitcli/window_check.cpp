@@ -1,5 +1,7 @@
 #include "window_check.hpp"
 
+#include <algorithm>
+
 #include "fitlib/core/error.hpp"
 #include "output.hpp"
 
@@ -27,6 +29,8 @@ WindowCheck::WindowCheck(std::string command, std::string card_path, const fitli
 }
 
 bool WindowCheck::beyond(const fitlib::model::TestCondition& c) {
+  if (c.strain_amplitude > fitlib::card::kSmallAmplitudeEnd && !window_.knows_strain_amplitude())
+    unknown_amplitude_ = std::max(unknown_amplitude_, c.strain_amplitude);
   const auto excess = window_.outside(c);
   if (excess.empty()) return false;
   if (!allow_)
@@ -45,6 +49,10 @@ bool WindowCheck::beyond(const fitlib::model::TestCondition& c) {
 WindowCheck::~WindowCheck() {
   for (const auto& [quantity, s] : seen_)
     warning("extrapolating: " + excess_text(s.first, s.highest) + " (" + card_path_ + ")");
+  if (unknown_amplitude_ > 0.0)
+    warning("the card holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude test), and "
+            "--amplitude " + exact(unknown_amplitude_) + " is beyond 1 %: the card answers alike at every amplitude, "
+            "where a filled rubber softens (" + card_path_ + ")");
 }
 
 }  // namespace fitcli

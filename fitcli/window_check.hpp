@@ -19,7 +19,8 @@ class WindowCheck {
               const std::vector<double>& temperatures_C, bool allow_extrapolation);
   WindowCheck(const WindowCheck&) = delete;
   WindowCheck& operator=(const WindowCheck&) = delete;
-  // Each quantity's range beyond the window, one warning at the end.
+  // Each quantity's range beyond the window, one warning at the end; and one when a card that
+  // knows no strain amplitude was read beyond card::kSmallAmplitudeEnd.
   ~WindowCheck();
 
   // True when `c` lies beyond the window (and extrapolation is allowed); InputError naming the
@@ -35,6 +36,7 @@ class WindowCheck {
   bool allow_;
   const fitlib::card::DataWindow window_;
   std::map<std::string, Seen> seen_;
+  double unknown_amplitude_ = 0.0;  // the largest amplitude above 1 % on a card that knows none
 };
 
 }  // namespace fitcli

@@ -319,10 +319,18 @@ TEST(LifeCli, ShearCardWithoutBulkModulusRunsByThePoissonRatioAndWarnsBeyondItsD
   const auto r = run("");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  ASSERT_EQ(j["warnings"].size(), 2u) << r.out;  // bottom and cushion
-  for (const auto& w : j["warnings"])
-    for (const char* part : {"temperature_C 80 is outside its data window [23, 23]", "fit.data_window.temperature_C"})
-      EXPECT_NE(w.get<std::string>().find(part), std::string::npos) << w;
+  // Per role (bottom and cushion): the temperature beyond the card's, and the strain amplitude the
+  // card's small-amplitude table does not give.
+  ASSERT_EQ(j["warnings"].size(), 4u) << r.out;
+  int temperature = 0, amplitude = 0;
+  for (const auto& w : j["warnings"]) {
+    const std::string text = w.get<std::string>();
+    temperature += text.find("temperature_C 80 is outside its data window [23, 23] (fit.data_window.temperature_C)") !=
+                   std::string::npos;
+    amplitude += text.find("holds no strain amplitude") != std::string::npos;
+  }
+  EXPECT_EQ(temperature, 2) << r.out;
+  EXPECT_EQ(amplitude, 2) << r.out;
   const double N1 = j["modes"][0]["life_cycles"], N2 = j["modes"][1]["life_cycles"];
   EXPECT_TRUE(std::isfinite(N1) && std::isfinite(N2) && N1 > 0.0 && N2 > 0.0) << r.out;
   // The segment's bulk modulus follows the ratio: a compressible 0.45 moves the lives.
@@ -440,6 +448,27 @@ TEST(LifeCli, SegmentLevelsWarnWhenTheyDriveACardBeyondItsStrainWindow) {
     EXPECT_LT(a, 2.0) << text;
   }
   EXPECT_EQ(beyond, 2) << r.out;  // bottom and cushion, one each
+  EXPECT_EQ(r.out.find("holds no strain amplitude"), std::string::npos) << r.out;
+
+  // The same table without its amplitude column: the card's strain range is not known, and the
+  // segment drove it far beyond 1 % (docs/decisions.md "Life: a card without strain amplitudes
+  // driven beyond 1 % is a warning").
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,storage_MPa,loss_MPa\nshear,0.1,80,2.0,0.15\n"
+                          "shear,1,80,2.3,0.38\nshear,10,80,3.0,0.52\nshear,100,80,3.5,0.35\n";
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms 2 --reference-c 80 -q --out " + card).exit_code, 0);
+  const auto linear = run_fitcli("life --scene " + scene + " --out-dir " + unique_dir("life_linear_out") + " --json");
+  ASSERT_EQ(linear.exit_code, 0) << linear.err;
+  int unknown = 0;
+  const auto linear_json = nlohmann::json::parse(linear.out);
+  for (const auto& w : linear_json["warnings"]) {
+    const std::string text = w.get<std::string>();
+    if (text.find("holds no strain amplitude") == std::string::npos) continue;
+    ++unknown;
+    const double a = std::stod(text.substr(text.find("drove it at ") + 12));
+    EXPECT_GT(a, 0.045) << text;
+    EXPECT_NE(text.find("the life is that of a rubber that does not soften"), std::string::npos) << text;
+  }
+  EXPECT_EQ(unknown, 2) << linear.out;
 }
 
 // A hand-typed three-pulley drive with the bundled cards, as a new user writes it: --plot may go into

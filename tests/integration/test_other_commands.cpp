@@ -182,4 +182,21 @@ TEST(DataWindow, EveryCardCommandRefusesBeyondItAlike) {
   }
   EXPECT_EQ(run_fitcli("material-point --card " + card + " --amplitude 0.01 --cycles 1 --out " +
                        temp_file("mp-inside.csv")).exit_code, 0);
+
+  // A table without amplitudes (a small-amplitude test) gives a card whose strain range is not
+  // known: each command runs beyond 1 % with one warning saying so, and stays quiet at 1 %.
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,storage_MPa,loss_MPa\nshear,0.1,23,2.0,0.15\n"
+                          "shear,1,23,2.3,0.38\nshear,10,23,3.0,0.52\nshear,100,23,3.5,0.35\n";
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms 2 -q --out " + card).exit_code, 0);
+  for (const std::string& command : commands) {
+    const auto r = run_fitcli(command);
+    EXPECT_EQ(r.exit_code, 0) << command << r.err;
+    EXPECT_NE(r.err.find("the card holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude "
+                         "test), and --amplitude 2 is beyond 1 %"), std::string::npos) << command << r.err;
+    std::string at_one_percent = command;
+    at_one_percent.replace(at_one_percent.find("--amplitude 2"), 13, "--amplitude 0.01");
+    const auto quiet = run_fitcli(at_one_percent);
+    EXPECT_EQ(quiet.exit_code, 0) << at_one_percent << quiet.err;
+    EXPECT_EQ(quiet.err.find("no strain amplitude"), std::string::npos) << at_one_percent << quiet.err;
+  }
 }

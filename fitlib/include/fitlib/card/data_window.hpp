@@ -38,12 +38,20 @@ class DataWindow {
   // reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T)
   // when that temperature is within the measured ones, else the measured frequencies' box.
   std::vector<WindowExcess> outside(const model::TestCondition& c) const;
+  // False when the rows gave no strain amplitude (a small-amplitude test, or a card written by
+  // hand): then no amplitude is outside, and the card's strain range is not known.
+  bool knows_strain_amplitude() const { return amplitude_.has_value(); }
 
  private:
   std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;
   model::ModelPtr model_;  // the card's model, for a_T, when reduced_ is set
   std::vector<double> values_;
 };
+
+// A card that knows no strain amplitude is named when driven beyond this one (the scene's segment
+// levels, fitcli material-point): it answers alike at every amplitude, where a filled rubber
+// softens (docs/decisions.md "Life: a card without strain amplitudes driven beyond 1 % is a warning").
+constexpr double kSmallAmplitudeEnd = 0.01;
 
 // DataWindow(card).outside(c), for one condition.
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c);
