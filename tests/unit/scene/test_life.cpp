@@ -516,6 +516,37 @@ TEST(SceneLife, RandomDrivesGiveALifeOrARefusalNamingAKey) {
   std::printf("%d of 120 random drives gave a life\n", computed);
 }
 
+// Property: random drives at the elastic level with the thesis cards (bottom material 1, cushion
+// material 2) — two pulleys of 60–250 mm, 100–6000 rpm, 0–25 N·m, −10–110 °C, friction 0.2–0.9 — on
+// a one-pitch segment: a life, a refusal naming a key, or the segment's fold where the side pressure
+// is high, which says what runs instead; never a NaN or another error.
+TEST(SceneLife, RandomDrivesAtTheElasticLevelGiveALifeOrARefusal) {
+  std::mt19937 rng(20261128);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const std::string cards = FITLIB_SOURCE_DIR "/datasets/cards/";
+  int computed = 0;
+  for (int i = 0; i < 6; ++i) {
+    std::ostringstream t;
+    const double d1 = uniform(60, 250), d2 = uniform(60, 250);
+    t << "name = \"random elastic drive " << i << "\"\n[drive]\npulleys = [\n  {name = \"a\", pitch_diameter_mm = " << d1
+      << ", role = \"driver\", speed_rpm = " << uniform(100, 6000) << "},\n  {name = \"b\", pitch_diameter_mm = " << d2
+      << ", role = \"driven\"} ]\ncenter_distance_mm = " << (d1 + d2) / 2 + uniform(50, 600)
+      << "\ntorque_Nm = " << uniform(0, 25) << "\ninitial_tension_N = " << uniform(300, 900)
+      << "\n[belt.materials]\nbottom = \"" << cards << "material-1-true.json\"\ncushion = \"" << cards
+      << "material-2-true.json\"\n[conditions]\ntemperature_C = " << uniform(-10, 110) << "\nfriction = "
+      << uniform(0.2, 0.9) << "\n[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1\n"
+      << "end_pitches = 1\ncushion_rows = 1\n[life]\nfidelity = \"elastic\"\ncycles = 1\n";
+    const std::string label = "random-elastic-drive-" + std::to_string(i);
+    try {
+      expect_life_or_refusal(t.str(), label, computed);
+    } catch (const core::NumericalError& e) {
+      EXPECT_NE(std::string(e.what()).find("[life] fidelity = \"beam\""), std::string::npos) << label << ": " << e.what();
+    }
+  }
+  EXPECT_GE(computed, 3);
+  std::printf("%d of 6 random drives gave a life at the elastic level\n", computed);
+}
+
 // Property: random shear Prony cards (no bulk modulus: K from the default Poisson ratio) as bottom
 // and cushion of the medium drive, 80 reference-drive cases at the beam level and 3 at the elastic
 // level (a one-pitch segment): a life or a refusal naming a key, never a NaN or another error.
