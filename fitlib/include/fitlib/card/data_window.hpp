@@ -48,9 +48,9 @@ class DataWindow {
   std::vector<double> values_;
 };
 
-// A card that knows no strain amplitude is named when driven beyond this one (the scene's segment
-// levels, fitcli material-point): it answers alike at every amplitude, where a filled rubber
-// softens (docs/decisions.md "Life: a card without strain amplitudes driven beyond 1 % is a warning").
+// A card that knows no strain amplitude is named when read beyond this one (the scene's segment
+// levels; fitcli eval, synth, material-point, surface grid): it answers alike at every amplitude,
+// where a filled rubber softens (docs/decisions.md "Life: a card without strain amplitudes driven beyond 1 % is a warning").
 constexpr double kSmallAmplitudeEnd = 0.01;
 
 // DataWindow(card).outside(c), for one condition.
