@@ -27,14 +27,18 @@ void register_accumulate(CLI::App& app) {
   cmd->add_option("--scene", a->scene,
                   "Scene file: kappa = centre distance / driver radius and [accumulation] (- = stdin)");
   cmd->add_option("--spectrum", a->spectrum, "Spectrum shape instead of a card: box|gauss|lorentzian|ramp|wedge");
-  cmd->add_option("--shear-stress-mpa", a->tau0, "Shear stress amplitude tau0 (MPa)");
-  cmd->add_option("--kappa", a->kappa, "l/R (default from the scene, else pi)");
-  cmd->add_option("--cycles", a->cycles, "Largest cycle count N");
-  cmd->add_option("--cycle-points", a->cycle_points, "Number of N values (log-spaced)");
-  cmd->add_option("--omega-min", a->omega_min, "Smallest angular velocity (1/s)");
-  cmd->add_option("--omega-max", a->omega_max, "Largest angular velocity (1/s)");
-  cmd->add_option("--omega-points", a->omega_points, "Number of angular velocities (log-spaced)");
-  cmd->add_option("--strain-limit", a->limit, "Strain limit for the critical angular-velocity area");
+  // The ranges of the scene's [accumulation] keys (scene.cpp parse_accumulation).
+  cmd->add_option("--shear-stress-mpa", a->tau0, "Shear stress amplitude tau0 (MPa)")->check(positive_number());
+  cmd->add_option("--kappa", a->kappa, "l/R (default from the scene, else pi)")->check(non_negative_number());
+  cmd->add_option("--cycles", a->cycles, "Largest cycle count N")->check(number_in(1, 1e12));
+  cmd->add_option("--cycle-points", a->cycle_points, "Number of N values (log-spaced)")
+      ->check(number_in(1, fitlib::scene::kMaxAccumulationPoints));
+  cmd->add_option("--omega-min", a->omega_min, "Smallest angular velocity (1/s)")->check(positive_number());
+  cmd->add_option("--omega-max", a->omega_max, "Largest angular velocity (1/s)")->check(positive_number());
+  cmd->add_option("--omega-points", a->omega_points, "Number of angular velocities (log-spaced)")
+      ->check(number_in(1, fitlib::scene::kMaxAccumulationPoints));
+  cmd->add_option("--strain-limit", a->limit, "Strain limit for the critical angular-velocity area")
+      ->check(positive_number());
   cmd->add_option("--out", a->out, "CSV file to write (default or - = stdout)");
   add_json_flag(cmd, a->json, "a summary on stdout (the CSV goes to --out)");
   add_verbosity_flags(cmd);
@@ -64,6 +68,12 @@ void register_accumulate(CLI::App& app) {
     if (given("--omega-max") || a->scene.empty()) spec.omega_max_rad_s = a->omega_max;
     if (given("--omega-points") || a->scene.empty()) spec.omega_points = a->omega_points;
     if (a->limit > 0) spec.strain_limit = a->limit;
+    if (spec.omega_max_rad_s < spec.omega_min_rad_s)
+      throw core::UsageError("--omega-max " + exact(spec.omega_max_rad_s) + " is below --omega-min " +
+                             exact(spec.omega_min_rad_s) + " (with a scene: its [accumulation] omega range)");
+    if (static_cast<double>(spec.cycle_points) * spec.omega_points > scene::kMaxAccumulationWork)
+      throw core::UsageError("--cycle-points x --omega-points exceeds the work cap " +
+                             exact(scene::kMaxAccumulationWork) + " (README, work caps)");
     double kappa = a->kappa >= 0 ? a->kappa : spec.kappa.value_or(core::kPi);
     if (a->kappa < 0 && !spec.kappa && !a->scene.empty()) kappa = scene::drive_kappa(sc);
     std::string source;

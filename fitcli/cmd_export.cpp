@@ -36,7 +36,7 @@ void register_export(CLI::App& app) {
                   "Instantaneous Poisson ratio when the card has no bulk modulus")
       ->capture_default_str()->check(poisson_ratio_range());
   cmd->add_option("--material-id", args->options.material_id, "Material number (ANSYS, LS-DYNA)")
-      ->capture_default_str();
+      ->capture_default_str()->check(number_in(1, 999999));  // fits every deck's field
   cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)");
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");

@@ -255,15 +255,18 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--terms", a->terms, "Number of terms, or 'auto' (AIC, BIC and pyvisco's rule)")
       ->capture_default_str();
   cmd->add_option("--max-terms", a->max_terms,
-                  "Solver cap on terms, reporting its cost; export limits: " + export_formats_text());
-  cmd->add_option("--term-search-max", a->term_search_max, "Largest N tried by --terms auto (0: from the data)");
+                  "Solver cap on terms, reporting its cost; export limits: " + export_formats_text())
+      ->check(number_in(1, 200));  // the models' own range of 'terms
+  cmd->add_option("--term-search-max", a->term_search_max, "Largest N tried by --terms auto (0: from the data)")
+      ->check(number_in(0, 200));
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")
       ->capture_default_str();
   cmd->add_option("--term-method", a->term_method,
                   "--terms auto: spectrum (smooth spectrum, GCV; series models, any temperature law; with --master-curve the shifts are refined with it) | sweep")
       ->capture_default_str()->check(CLI::IsMember({"spectrum", "sweep"}));
   cmd->add_option("--smoothness", a->smoothness,
-                  "Spectrum: second-difference penalty weight lambda (default: chosen by GCV)");
+                  "Spectrum: second-difference penalty weight lambda (default: chosen by GCV)")
+      ->check(non_negative_number());
   cmd->add_option("--terms-per-decade", a->terms_per_decade, "Spectrum: time constants per decade")
       ->capture_default_str()->check(number_in(0.25, 20.0));
   cmd->add_option("--backend", a->backend, "auto | nnls | ceres | nlopt | staged")->capture_default_str();
@@ -273,8 +276,9 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--mode", a->mode, "Test mode for files without a mode column (shear | uniaxial | bulk)");
   cmd->add_option("--temperature-law", a->temperature_law, "none | wlf | arrhenius | polynomial")->capture_default_str();
   cmd->add_option("--polynomial-degree", a->polynomial_degree, "Degree of the polynomial shift law (1..6)")
-      ->capture_default_str();
-  cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")->capture_default_str();
+      ->capture_default_str()->check(number_in(1, 6));
+  cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")
+      ->capture_default_str()->check(temperature_c_range());
   cmd->add_flag("--bulk-modulus", a->bulk_modulus, "Add a constant bulk modulus K (mode conversion)");
   cmd->add_option("--residual", a->residual, "log10 | relative | complex (errors relative to |E*|)")
       ->capture_default_str()->check(CLI::IsMember({"log10", "relative", "complex"}));
@@ -284,9 +288,12 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--loss-weight", a->fit.loss_weight, "Weight of loss-modulus residuals")->capture_default_str();
   cmd->add_option("--mean-weight", a->fit.mean_weight, "Weight of mean-modulus residuals")->capture_default_str();
   cmd->add_option("--fixed", a->fit.fixed, "Parameters held at their start value")->delimiter(',');
-  cmd->add_option("--multistart", a->fit.multistart, "Global starts (nlopt)")->capture_default_str();
-  cmd->add_option("--tolerance", a->fit.tolerance, "Relative function tolerance")->capture_default_str();
-  cmd->add_option("--max-iterations", a->fit.max_iterations, "Iteration limit per solve")->capture_default_str();
+  cmd->add_option("--multistart", a->fit.multistart, "Global starts (nlopt)")
+      ->capture_default_str()->check(number_in(1, 1e4));
+  cmd->add_option("--tolerance", a->fit.tolerance, "Relative function tolerance")
+      ->capture_default_str()->check(number_in(0, 1));
+  cmd->add_option("--max-iterations", a->fit.max_iterations, "Iteration limit per solve")
+      ->capture_default_str()->check(number_in(1, 1e6));
   cmd->add_option("--seed", a->fit.seed, "Random seed (multistart)")->capture_default_str();
   cmd->add_option("--schedule", a->fit.schedule_path,
                   "Staged backend: schedule file of parameter groups (JSON or TOML)");

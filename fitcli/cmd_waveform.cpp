@@ -156,7 +156,8 @@ void register_waveform(CLI::App& app) {
   cmd->add_option("--harmonics", args->options.harmonics,
                   "degree of the per-period trigonometric fit (default 10)");
   cmd->add_option("--frequency-hz", args->options.known_frequency_Hz,
-                  "known drive frequency (default: from the signal)");
+                  "known drive frequency (default: from the signal)")
+      ->check(positive_number());
   cmd->callback([args] { run(*args); });
 }
 

@@ -138,6 +138,42 @@ TEST(CliGrammar, EveryNumberOptionRefusesNanAndInf) {
   EXPECT_NE(zero.err.find("--frequency-hz: must be > 0, got 0"), std::string::npos) << zero.err;
 }
 
+// Number options with a meaning only in a range refuse values outside it at the command line (exit
+// 2, the option named), before any work. Each of these ran without a word: `fit --max-iterations -5`
+// printed Ceres's "Invalid configuration" and wrote a card, `--reference-c -400` wrote a card at
+// -400 degC, `accumulate --cycles 0` a map of one cycle, `--omega-points 0` a header only,
+// `waveform --frequency-hz -5` ignored it, `export --material-id -7` wrote MAT -7.
+TEST(CliGrammar, OutOfRangeNumberOptionsAreRefusedNamingTheOption) {
+  const std::string fit = "fit --data " + source_path(kShearCsv) + " --model prony --terms 2 --out " +
+                          temp_file("range_card.json");
+  const std::string card = source_path("tests/data/surface/prony_shear_card.json");
+  const std::pair<std::string, std::string> cases[] = {
+      {fit, "--max-terms -3"},          {fit, "--term-search-max -1"},  {fit, "--smoothness -5"},
+      {fit, "--polynomial-degree 9"},   {fit, "--reference-c -400"},    {fit, "--multistart 0"},
+      {fit, "--tolerance -1"},          {fit, "--max-iterations -5"},
+      {"export --card " + card + " --format ansys --out " + temp_file("range.inp"), "--material-id -7"},
+      {"synth --card " + card + " --frequency-hz 1 --out " + temp_file("range.csv"), "--amplitude -0.1"},
+      {"accumulate --spectrum box", "--cycles 0"},         {"accumulate --spectrum box", "--omega-points 0"},
+      {"accumulate --spectrum box", "--shear-stress-mpa -1"}, {"accumulate --spectrum box", "--kappa -2"}};
+  for (const auto& [command, option] : cases) {
+    const auto r = run_fitcli(command + " " + option);
+    EXPECT_EQ(r.exit_code, 2) << command << " " << option << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("fitcli: error: " + option.substr(0, option.find(' ')) + ": must be", 0), 0u) << r.err;
+  }
+  const auto order = run_fitcli("accumulate --spectrum box --omega-min 10 --omega-max 1");
+  EXPECT_EQ(order.exit_code, 2);
+  EXPECT_NE(order.err.find("--omega-max 1 is below --omega-min 10"), std::string::npos) << order.err;
+  const auto work = run_fitcli("accumulate --spectrum box --omega-points 100000 --cycle-points 100");
+  EXPECT_EQ(work.exit_code, 2);
+  EXPECT_NE(work.err.find("exceeds the work cap"), std::string::npos) << work.err;
+  // waveform (given the signal file it needs): the option is refused before the file is read.
+  const std::string signal = temp_file("range_signal.csv");
+  std::ofstream(signal) << "time_s,stress_MPa,strain\n0,0,0\n0.1,1,0.01\n";
+  const auto wave = run_fitcli("waveform --signals " + signal + " --frequency-hz -5");
+  EXPECT_EQ(wave.exit_code, 2) << wave.err;
+  EXPECT_NE(wave.err.find("--frequency-hz: must be > 0, got -5"), std::string::npos) << wave.err;
+}
+
 // A figure cannot go to stdout: every --plot (and plot's --out) refuses `-` before the work, so the
 // card or folder the run would have written is not written (life-fit wrote its card, then exit 2).
 TEST(CliGrammar, FiguresRefuseStdoutBeforeTheWork) {
