@@ -15,6 +15,7 @@
 #include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/shift_laws.hpp"
 #include "fitlib/fit/terms.hpp"
+#include "fitlib/model/linear.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
 #include "plot.hpp"
@@ -256,9 +257,9 @@ void register_fit(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-terms", a->max_terms,
                   "Solver cap on terms, reporting its cost; export limits: " + export_formats_text())
-      ->check(number_in(1, 200));  // the models' own range of 'terms
+      ->check(number_in(1, fitlib::model::kMaxSeriesTerms));
   cmd->add_option("--term-search-max", a->term_search_max, "Largest N tried by --terms auto (0: from the data)")
-      ->check(number_in(0, 200));
+      ->check(number_in(0, fitlib::model::kMaxSeriesTerms));
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")
       ->capture_default_str();
   cmd->add_option("--term-method", a->term_method,
@@ -276,7 +277,7 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--mode", a->mode, "Test mode for files without a mode column (shear | uniaxial | bulk)");
   cmd->add_option("--temperature-law", a->temperature_law, "none | wlf | arrhenius | polynomial")->capture_default_str();
   cmd->add_option("--polynomial-degree", a->polynomial_degree, "Degree of the polynomial shift law (1..6)")
-      ->capture_default_str()->check(number_in(1, 6));
+      ->capture_default_str()->check(number_in(1, fitlib::model::kMaxShiftPolynomialDegree));
   cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")
       ->capture_default_str()->check(temperature_c_range());
   cmd->add_flag("--bulk-modulus", a->bulk_modulus, "Add a constant bulk modulus K (mode conversion)");

@@ -236,11 +236,12 @@ Options parse_options(const nlohmann::json& j, bool has_terms) {
       throw core::UsageError("model option '" + key + "': wrong type (" + e.what() + ")");
     }
   }
-  if (o.polynomial_degree < 1 || o.polynomial_degree > 6)
-    throw core::UsageError("model option 'polynomial_degree' must be between 1 and 6, got " +
-                           std::to_string(o.polynomial_degree));
-  if (o.terms < 1 || o.terms > 200)
-    throw core::UsageError("model option 'terms' must be between 1 and 200, got " + std::to_string(o.terms));
+  if (o.polynomial_degree < 1 || o.polynomial_degree > kMaxShiftPolynomialDegree)
+    throw core::UsageError("model option 'polynomial_degree' must be between 1 and " +
+                           std::to_string(kMaxShiftPolynomialDegree) + ", got " + std::to_string(o.polynomial_degree));
+  if (o.terms < 1 || o.terms > kMaxSeriesTerms)
+    throw core::UsageError("model option 'terms' must be between 1 and " + std::to_string(kMaxSeriesTerms) +
+                           ", got " + std::to_string(o.terms));
   return o;
 }
 

@@ -19,6 +19,10 @@
 
 namespace fitlib::model {
 
+// The ranges of the options "terms" and "polynomial_degree" (a polynomial shift law's degree).
+constexpr int kMaxSeriesTerms = 200;
+constexpr int kMaxShiftPolynomialDegree = 6;
+
 bool is_linear_kind(const std::string& kind);
 ModelPtr make_linear_model(const std::string& kind, const nlohmann::json& options);
 
