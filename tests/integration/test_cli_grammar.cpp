@@ -174,6 +174,25 @@ TEST(CliGrammar, OutOfRangeNumberOptionsAreRefusedNamingTheOption) {
   EXPECT_NE(wave.err.find("--frequency-hz: must be > 0, got -5"), std::string::npos) << wave.err;
 }
 
+// A file handed to the wrong option is named by what it looks like (exit 3): a table as a card said
+// "invalid JSON" at 1:1, a card as a scene "expected keys, tables, whitespace or comments, saw '{'".
+TEST(CliGrammar, AFileOfTheWrongKindIsNamedAsSuch) {
+  const std::string table = source_path(kShearCsv), card = source_path("tests/data/surface/prony_shear_card.json"),
+                    scene = source_path("datasets/drives/ref-0500-light.toml");
+  const std::pair<std::string, std::string> cases[] = {
+      {"eval --card " + table + " --frequency-hz 1", "it looks like a CSV table, not JSON"},
+      {"eval --card " + scene + " --frequency-hz 1", "it looks like a TOML file (a scene, a sweep or a schedule), not JSON"},
+      {"life --scene " + card + " --out-dir " + temp_file("kind_life"), "it looks like a JSON document"},
+      {"belt --scene " + table + " --out-dir " + temp_file("kind_belt"), "it looks like a CSV table, not a TOML scene"},
+      {"fit --data " + card + " --model prony --out " + temp_file("kind.json"), "it looks like a JSON document"},
+      {"fit --data " + scene + " --model prony --out " + temp_file("kind.json"), "it looks like a TOML file"}};
+  for (const auto& [command, hint] : cases) {
+    const auto r = run_fitcli(command);
+    EXPECT_EQ(r.exit_code, 3) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find(hint), std::string::npos) << command << "\n" << r.err;
+  }
+}
+
 // A figure cannot go to stdout: every --plot (and plot's --out) refuses `-` before the work, so the
 // card or folder the run would have written is not written (life-fit wrote its card, then exit 2).
 TEST(CliGrammar, FiguresRefuseStdoutBeforeTheWork) {

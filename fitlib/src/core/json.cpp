@@ -1,5 +1,7 @@
 #include "fitlib/core/json.hpp"
 
+#include "fitlib/core/file_kind.hpp"
+
 #include <cmath>
 #include <vector>
 
@@ -66,7 +68,7 @@ json parse_json(const std::string& text, const std::string& source) {
     return json::parse(text, track);
   } catch (const json::parse_error& e) {
     const auto [line, column] = line_column(text, e.byte);
-    throw InputError("invalid JSON", source, line, column);
+    throw InputError("invalid JSON" + wrong_kind_hint(text, FileKind::json), source, line, column);
   } catch (const json::out_of_range&) {
     throw InputError("number out of the double range", source, 0, 0, path_of(frames));
   } catch (const json::exception& e) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/file_kind.hpp"
 #include "fitlib/core/format.hpp"
 
 namespace fitlib::data {
@@ -36,7 +37,8 @@ bool is_blank_or_comment(const std::string& text) {
   return first == std::string::npos || text[first] == '#';
 }
 
-std::string separator_hint(const std::string& column_name) {
+std::string unknown_column_hint(const std::string& column_name) {
+  if (const std::string kind = core::wrong_kind_hint(column_name, core::FileKind::csv); !kind.empty()) return kind;
   const bool semicolon = column_name.find(';') != std::string::npos;
   if (!semicolon && column_name.find('\t') == std::string::npos) return "";
   return std::string("; the name holds ") + (semicolon ? "';'" : "a tab") +

@@ -60,7 +60,7 @@ Columns layout(const std::vector<std::string>& names, int name_line, const std::
       claim(c.set);
     } else {
       throw core::InputError("unknown pyvisco time-domain column '" + name + "' (expected t, E_relax or G_relax, T, Set)" +
-                                 separator_hint(name),
+                                 unknown_column_hint(name),
                              file, name_line, column);
     }
   }

@@ -275,7 +275,7 @@ class TableParser {
         }
       if (known) continue;
       const std::string message =
-          "unknown column '" + name + "' (known: " + kKnownColumns + ")" + separator_hint(name);
+          "unknown column '" + name + "' (known: " + kKnownColumns + ")" + unknown_column_hint(name);
       if (!options_.allow_unknown_columns) throw core::InputError(message, file_, line, column);
       table_.warnings.push_back(core::InputError(message + "; ignored", file_, line, column).what());
     }

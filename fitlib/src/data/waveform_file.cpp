@@ -86,7 +86,7 @@ SignalColumns signal_columns(const std::vector<std::string>& names, const std::s
     if (known == std::end(kColumns))
       throw InputError("unknown column '" + names[i] +
                            "' (expected time_s and force_N, displacement_mm or stress_MPa, strain)" +
-                           separator_hint(names[i]),
+                           unknown_column_hint(names[i]),
                        path, header_line, column);
     int& slot = column_of[known - std::begin(kColumns)];
     if (slot >= 0) throw InputError("duplicate column '" + names[i] + "'", path, header_line, column);

@@ -44,7 +44,7 @@ Columns header_columns(const std::vector<std::string>& f, const std::string& fil
   Columns col;
   for (std::size_t k = 0; k < f.size(); ++k) {
     if (std::find(kColumns.begin(), kColumns.end(), f[k]) == kColumns.end())
-      throw core::InputError("unknown column '" + f[k] + "'" + data::separator_hint(f[k]), file, line, int(k) + 1, f[k]);
+      throw core::InputError("unknown column '" + f[k] + "'" + data::unknown_column_hint(f[k]), file, line, int(k) + 1, f[k]);
     if (col.count(f[k]))
       throw core::InputError("duplicate column '" + f[k] + "'", file, line, int(k) + 1, f[k]);
     col[f[k]] = int(k);

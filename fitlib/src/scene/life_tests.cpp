@@ -45,7 +45,7 @@ Layout read_layout(const std::vector<std::string>& f, const std::string& source,
     if (!fixed && f[k].find('.') == std::string::npos)
       throw core::InputError("unknown column '" + f[k] + "' (expected case, scene, failure_mode, observed_h or "
                              "observed_cycles, and scene keys with a dot such as conditions.temperature_C)" +
-                                 data::separator_hint(f[k]),
+                                 data::unknown_column_hint(f[k]),
                              source, line, column, f[k]);
     const bool seen = h.column.count(f[k]) ||
                       std::any_of(h.keys.begin(), h.keys.end(), [&](const auto& c) { return c.first == f[k]; });

@@ -1,6 +1,7 @@
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/scene_toml.hpp"
 
+#include "fitlib/core/file_kind.hpp"
 #include "fitlib/core/toml_limits.hpp"
 
 #include <algorithm>
@@ -509,7 +510,8 @@ toml::table parse_scene_toml(const std::string& text, const std::string& source)
   try {
     return toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    throw InputError(std::string(e.description()), source, static_cast<int>(e.source().begin.line),
+    throw InputError(std::string(e.description()) + core::wrong_kind_hint(text, core::FileKind::toml), source,
+                     static_cast<int>(e.source().begin.line),
                      static_cast<int>(e.source().begin.column));
   }
 }

@@ -28,9 +28,10 @@ std::vector<std::string> split_csv_fields(const std::string& text, const std::st
                                           int line);
 
 // "" for an ordinary column name; for one holding ';' or a tab (a whole header that was not
-// split: a semicolon- or tab-separated export), a clause saying how fitlib reads tables, to append
-// to an "unknown column" message.
-std::string separator_hint(const std::string& column_name);
+// split: a semicolon- or tab-separated export), a clause saying how fitlib reads tables; for the
+// first "column" of a JSON document or a TOML file, a clause naming what the file looks like. To
+// append to an "unknown column" message.
+std::string unknown_column_hint(const std::string& column_name);
 
 // A finite number filling the whole field (C locale; a leading '+' is allowed). Throws
 // InputError(file, line, column) naming `what` for empty text, a non-number, NaN or Inf.
