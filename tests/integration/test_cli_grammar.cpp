@@ -183,7 +183,7 @@ TEST(CliGrammar, AFileOfTheWrongKindIsNamedAsSuch) {
       {"eval --card " + table + " --frequency-hz 1", "it looks like a CSV table, not JSON"},
       {"eval --card " + scene + " --frequency-hz 1", "it looks like a TOML file (a scene, a sweep or a schedule), not JSON"},
       {"life --scene " + card + " --out-dir " + temp_file("kind_life"), "it looks like a JSON document"},
-      {"belt --scene " + table + " --out-dir " + temp_file("kind_belt"), "it looks like a CSV table, not a TOML scene"},
+      {"belt --scene " + table + " --out-dir " + temp_file("kind_belt"), "it looks like a CSV table, not TOML"},
       {"fit --data " + card + " --model prony --out " + temp_file("kind.json"), "it looks like a JSON document"},
       {"fit --data " + scene + " --model prony --out " + temp_file("kind.json"), "it looks like a TOML file"}};
   for (const auto& [command, hint] : cases) {

@@ -28,7 +28,7 @@ const char* what_it_is(FileKind k) {
 const char* expected_name(FileKind k) {
   switch (k) {
     case FileKind::json: return "JSON";
-    case FileKind::toml: return "a TOML scene";
+    case FileKind::toml: return "TOML";
     case FileKind::csv: return "a table";
     default: return "";
   }
