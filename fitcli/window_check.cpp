@@ -29,7 +29,7 @@ WindowCheck::WindowCheck(std::string command, std::string card_path, const fitli
 }
 
 bool WindowCheck::beyond(const fitlib::model::TestCondition& c) {
-  if (c.strain_amplitude > fitlib::card::kSmallAmplitudeEnd && !window_.knows_strain_amplitude())
+  if (window_.reads_unknown_amplitude(c.strain_amplitude))
     unknown_amplitude_ = std::max(unknown_amplitude_, c.strain_amplitude);
   const auto excess = window_.outside(c);
   if (excess.empty()) return false;
@@ -50,8 +50,7 @@ WindowCheck::~WindowCheck() {
   for (const auto& [quantity, s] : seen_)
     warning("extrapolating: " + excess_text(s.first, s.highest) + " (" + card_path_ + ")");
   if (unknown_amplitude_ > 0.0)
-    warning("the card holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude test), and "
-            "--amplitude " + exact(unknown_amplitude_) + " is beyond 1 %: the card answers alike at every amplitude, "
+    warning(std::string("the card ") + fitlib::card::kUnknownAmplitude + ", and --amplitude " + exact(unknown_amplitude_) + " is beyond 1 %: the card answers alike at every amplitude, "
             "where a filled rubber softens (" + card_path_ + ")");
 }
 

@@ -102,6 +102,10 @@ std::vector<WindowExcess> DataWindow::outside(const model::TestCondition& c) con
   return out;
 }
 
+bool DataWindow::reads_unknown_amplitude(double strain_amplitude) const {
+  return !amplitude_ && strain_amplitude > kSmallAmplitudeEnd;
+}
+
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c) {
   return DataWindow(card).outside(c);
 }

@@ -112,8 +112,6 @@ data::DynamicTestTable exact_table() {
   return table;
 }
 
-std::string temp_dir() { return fitlib_test::temp_dir(); }
-
 class PlugIn : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -122,7 +120,7 @@ class PlugIn : public ::testing::Test {
     o.fixed = {"K"};  // shear data do not inform K
     result_ = fit::fit(model::make_model("standard-linear-solid", {}), table_, o);
     const auto written = card::card_from_fit(result_, o, table_, {"sls", "plug-in test", false});
-    const std::string path = temp_dir() + "/sls.json";
+    const std::string path = fitlib_test::temp_path("sls.json");
     card::save_card(path, written);
     card_ = card::load_card(path);
   }

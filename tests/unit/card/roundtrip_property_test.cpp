@@ -26,8 +26,6 @@ namespace {
 
 constexpr int kFits = 520;
 
-std::string temp_dir() { return fitlib_test::temp_dir(); }
-
 // Every null in a card is a parameter's missing std_error (the documented form of "no interval").
 void expect_only_documented_nulls(const nlohmann::json& j, const std::string& path, int& bad) {
   if (j.is_null()) {
@@ -118,7 +116,6 @@ fit::FitOptions random_options(core::Rng& rng) {
 }
 
 TEST(RoundTripProperty, EveryCardReadsBackAndEvaluatesToItsFit) {
-  const std::string dir = temp_dir();
   core::Rng rng(20261124);
   int written = 0, failed_fits = 0, outside_window = 0, bad_values = 0, mismatches = 0;
   std::map<std::string, int> per_kind;
@@ -145,7 +142,7 @@ TEST(RoundTripProperty, EveryCardReadsBackAndEvaluatesToItsFit) {
       continue;
     }
     const auto card = card::card_from_fit(r, o, table, {"case-" + std::to_string(i), "property test", false});
-    const std::string path = dir + "/card-" + std::to_string(i) + ".json";
+    const std::string path = fitlib_test::temp_path("card-" + std::to_string(i) + ".json");
     card::save_card(path, card);
     card::Card back;
     ASSERT_NO_THROW(back = card::load_card(path)) << "case " << i << " " << c.kind << " " << c.options.dump();

@@ -11,10 +11,8 @@
 namespace fitlib::fatigue {
 namespace {
 
-std::string temp_dir() { return fitlib_test::temp_dir(); }
-
 std::string write(const std::string& name, const std::string& text) {
-  const std::string path = temp_dir() + "/" + name;
+  const std::string path = fitlib_test::temp_path(name);
   std::ofstream(path) << text;
   return path;
 }
@@ -42,7 +40,7 @@ TEST(FatigueCard, RoundTripWithCordBreak) {
   FatigueCard c = default_card();
   c.cord_break = CordBreakLaw{9.5, 0.01, 1500.0, 4.2, 0.1};
   c.reference_temperature_C = 95.0;
-  const std::string path = temp_dir() + "/round.json";
+  const std::string path = fitlib_test::temp_path("round.json");
   save_card(path, c);
   EXPECT_EQ(card_to_json(load_card(path)), card_to_json(c));
 }
@@ -86,7 +84,7 @@ TEST(FatigueCard, ErrorsNameFileAndKey) {
   k["cord_break"] = {{"a", 9.0}, {"b_per_MPa", 0.01}, {"ultimate_MPa", 1500}};
   expect_error(k.dump(), "cord_break.cord_area_mm2");
   expect_error("{\n  \"schema\": \"fitlib.fatigue-card/1\",\n  \"name\": oops\n}\n", "", 3);
-  EXPECT_THROW(load_card(temp_dir() + "/missing.json"), core::InputError);
+  EXPECT_THROW(load_card(fitlib_test::temp_path("missing.json")), core::InputError);
 }
 
 }  // namespace

@@ -29,8 +29,6 @@ namespace {
 const std::string kDrives = FITLIB_SOURCE_DIR "/datasets/drives/";
 const std::string kBundledCard = FITLIB_SOURCE_DIR "/datasets/cards/fatigue-fritzson-1988.json";
 
-std::filesystem::path temp_dir() { return fitlib_test::temp_dir(); }
-
 scene::Scene with_life(const std::string& load) {
   auto s = scene::load_scene(kDrives + "ref-0500-" + load + ".toml");
   s.outputs["life"] = true;
@@ -123,7 +121,7 @@ TEST(SceneLife, LifeTableIsValidatedAndNamesTheKey) {
   EXPECT_EQ(e.key(), "life.notch_factor");
   e = parse_error(base + "\n[life]\ncrack_sweep_deg = 120\n");
   EXPECT_EQ(e.key(), "life.crack_sweep_deg");
-  const auto folder = temp_dir() / "life-table";
+  const std::filesystem::path folder = fitlib_test::temp_path("life-table");
   std::filesystem::create_directories(folder / "drives");
   std::filesystem::create_directories(folder / "cards");
   fatigue::save_card((folder / "cards" / "x.json").string(), fatigue::default_card());
@@ -139,7 +137,7 @@ TEST(SceneLife, CardAndSweepFromTheSceneWithTheCardsSha256) {
   // A card with another separation exponent and a zero crack sweep: the life must follow it.
   fatigue::FatigueCard card = fatigue::default_card();
   card.separation.n = 9.0;
-  const auto path = (temp_dir() / "card.json").string();
+  const auto path = fitlib_test::temp_path("card.json");
   fatigue::save_card(path, card);
   auto s = with_life("medium");
   s.life = scene::LifeSpec{};
@@ -458,7 +456,7 @@ std::string random_prony_card(std::mt19937& rng, int index) {
     e.value = v;
     c.parameters.push_back(e);
   }
-  const std::string path = (temp_dir() / (c.name + ".json")).string();
+  const std::string path = fitlib_test::temp_path(c.name + ".json");
   card::save_card(path, c);
   return path;
 }

@@ -38,9 +38,10 @@ class DataWindow {
   // reduced-frequency window the frequency bounds are those at c's temperature (f_lo/a_T, f_hi/a_T)
   // when that temperature is within the measured ones, else the measured frequencies' box.
   std::vector<WindowExcess> outside(const model::TestCondition& c) const;
-  // False when the rows gave no strain amplitude (a small-amplitude test, or a card written by
-  // hand): then no amplitude is outside, and the card's strain range is not known.
-  bool knows_strain_amplitude() const { return amplitude_.has_value(); }
+  // True when the rows gave no strain amplitude (a small-amplitude test, or a card written by
+  // hand: no amplitude is outside, the card's strain range is not known) and `strain_amplitude`
+  // lies beyond kSmallAmplitudeEnd — the caller says so (kUnknownAmplitude) and goes on.
+  bool reads_unknown_amplitude(double strain_amplitude) const;
 
  private:
   std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;
@@ -50,8 +51,11 @@ class DataWindow {
 
 // A card that knows no strain amplitude is named when read beyond this one (the scene's segment
 // levels; fitcli eval, synth, material-point, surface grid): it answers alike at every amplitude,
-// where a filled rubber softens (docs/decisions.md "Life: a card without strain amplitudes driven beyond 1 % is a warning").
+// where a filled rubber softens (docs/decisions.md "Life: a card without strain amplitudes driven
+// beyond 1 % is a warning"). kUnknownAmplitude is the warnings' common clause.
 constexpr double kSmallAmplitudeEnd = 0.01;
+inline constexpr const char* kUnknownAmplitude =
+    "holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude test)";
 
 // DataWindow(card).outside(c), for one condition.
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c);
