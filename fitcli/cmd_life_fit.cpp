@@ -44,7 +44,8 @@ std::string with_interval(const fitlib::fatigue::ConstantEstimate& c) {
 std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
   std::ostringstream t;
   t << std::left << std::setw(14) << "mode" << std::setw(7) << "cases" << std::setw(28) << "sigma0_MPa [95 %]"
-    << std::setw(28) << "n [95 %]" << std::setw(28) << "b_per_C [95 %]" << "rms log10\n";
+    << std::setw(28) << "n [95 %]" << std::setw(28) << "b_per_C [95 %]" << std::setw(11) << "rms log10"
+    << "stresses\n";
   for (const auto& f : r.fits) {
     t << std::setw(14) << fitlib::fatigue::to_string(f.mode) << std::setw(7) << f.cases;
     if (!f.rejected.empty()) {
@@ -52,7 +53,8 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
       continue;
     }
     for (const auto& c : f.constants) t << std::setw(28) << with_interval(c);
-    t << sig4(f.rms_log10_error) << "\n";
+    const std::string& level = r.card.law(f.mode).stress_fidelity;
+    t << std::setw(11) << sig4(f.rms_log10_error) << (level.empty() ? "not stated" : level + " level") << "\n";
     if (!f.note.empty()) t << "  note: " << f.note << "\n";
   }
   for (const std::string& w : r.warnings) t << "WARNING: " << w << "\n";

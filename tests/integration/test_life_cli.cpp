@@ -15,7 +15,40 @@ namespace {
 std::string unique_dir(const std::string& name) {
   return temp_file(name + "-" + std::to_string(getpid()));
 }
+
+// The bundled Report I card with both modes' constants stated to be of `level`'s stresses.
+std::string fatigue_card_of_level(const std::string& level) {
+  std::string text = slurp(source_path("datasets/cards/fatigue-fritzson-1988.json"));
+  for (std::size_t at = 0; (at = text.find("\"stress_fidelity\": \"complete\"", at)) != std::string::npos; ++at)
+    text.replace(at, 29, "\"stress_fidelity\": \"" + level + "\"");
+  const std::string path = unique_dir("fatigue_" + level) + ".json";
+  std::ofstream(path) << text;
+  return path;
+}
 }  // namespace
+
+// Constants fitted to one level's stresses read at another: the life is off their scale, so the
+// table, life.json and summary.json warn, naming both levels; a card of the run's level does not.
+TEST(LifeCli, ConstantsFittedAtAnotherLevelAreAWarning) {
+  const std::string scene = source_path("datasets/drives/ref-0500-light.toml");  // the beam level
+  const std::string warning = "the fatigue card's radial_crack and separation constants were fitted to "
+                              "complete-level stresses, and this run's stresses are the beam level's";
+  const std::string out = unique_dir("life_level_out");
+  const auto builtin = run_fitcli("life --scene " + scene + " --out-dir " + out);
+  ASSERT_EQ(builtin.exit_code, 0) << builtin.err;
+  EXPECT_NE(builtin.out.find("WARNING: " + warning), std::string::npos) << builtin.out;
+  for (const char* file : {"/life.json", "/summary.json"}) {
+    const std::string text = slurp(out + file);
+    EXPECT_NE(text.find(warning), std::string::npos) << file;
+  }
+  const std::string copy = unique_dir("life_level") + ".toml";
+  std::ofstream(copy) << slurp(scene) << "\n[life]\ncard = \"" << fatigue_card_of_level("beam") << "\"\n";
+  const auto beam = run_fitcli("life --scene " + copy + " --out-dir " + unique_dir("life_level_beam_out") + " --json");
+  ASSERT_EQ(beam.exit_code, 0) << beam.err;
+  EXPECT_EQ(beam.out.find("constants were fitted to"), std::string::npos) << beam.out;
+  const auto a = nlohmann::json::parse(slurp(out + "/life.json")), b = nlohmann::json::parse(beam.out);
+  EXPECT_EQ(a["modes"], b["modes"]);  // the stated level changes no number
+}
 
 TEST(LifeCli, EveryReferenceDriveHasFiniteLivesAndAGoverningMode) {
   for (const char* load : {"light", "medium", "heavy", "severe"}) {
@@ -156,7 +189,7 @@ TEST(LifeCli, ElasticLevelReportsTheSegmentEquilibriumCheckAndTheEntranceField) 
                        << "\n[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1.0\n"
                           "end_pitches = 1.0\ncushion_rows = 1\n[segment.materials]\n"
                           "bottom = {E_MPa = 20, nu = 0.49}\ncushion = {E_MPa = 8, nu = 0.49}\n"
-                          "[life]\nfidelity = \"elastic\"\ncycles = 1\n";
+                          "[life]\nfidelity = \"elastic\"\ncycles = 1\ncard = \"" << fatigue_card_of_level("elastic") << "\"\n";
   const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out + " --field-at entrance");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("segment equilibrium: error "), std::string::npos) << r.out;
@@ -321,16 +354,20 @@ TEST(LifeCli, ShearCardWithoutBulkModulusRunsByThePoissonRatioAndWarnsBeyondItsD
   const auto j = nlohmann::json::parse(r.out);
   // Per role (bottom and cushion): the temperature beyond the card's, and the strain amplitude the
   // card's small-amplitude table does not give.
-  ASSERT_EQ(j["warnings"].size(), 4u) << r.out;
-  int temperature = 0, amplitude = 0;
+  // And the built-in constants, of complete-level stresses, read at the elastic level.
+  ASSERT_EQ(j["warnings"].size(), 5u) << r.out;
+  int temperature = 0, amplitude = 0, level = 0;
   for (const auto& w : j["warnings"]) {
     const std::string text = w.get<std::string>();
+    level += text.find("fitted to complete-level stresses, and this run's stresses are the elastic level's") !=
+             std::string::npos;
     temperature += text.find("temperature_C 80 is outside its data window [23, 23] (fit.data_window.temperature_C)") !=
                    std::string::npos;
     amplitude += text.find("holds no strain amplitude") != std::string::npos;
   }
   EXPECT_EQ(temperature, 2) << r.out;
   EXPECT_EQ(amplitude, 2) << r.out;
+  EXPECT_EQ(level, 1) << r.out;
   const double N1 = j["modes"][0]["life_cycles"], N2 = j["modes"][1]["life_cycles"];
   EXPECT_TRUE(std::isfinite(N1) && std::isfinite(N2) && N1 > 0.0 && N2 > 0.0) << r.out;
   // The segment's bulk modulus follows the ratio: a compressible 0.45 moves the lives.

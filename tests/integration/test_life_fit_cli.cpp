@@ -18,7 +18,7 @@ TEST(LifeFitCli, BundledLifeTestsGiveACardWhoseIntervalsHoldTheTruth) {
   const std::string card = temp_file("life-fit-card.json"), peaks = temp_file("life-fit-peaks.csv");
   const auto r = run_fitcli("life-fit --observed " + kTests + " --out " + card + " --peaks-out " + peaks);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* text : {"radial_crack  11", "separation    19", "sigma0_MPa [95 %]",
+  for (const char* text : {"radial_crack  11", "separation    19", "sigma0_MPa [95 %]", "beam level\n",
                            "WARNING: radial_crack: sigma0's 95 % interval", "card written to"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
   const auto fitted = read_json(card), truth = read_json(source_path("datasets/life-tests/fatigue-truth.json"));
@@ -30,6 +30,8 @@ TEST(LifeFitCli, BundledLifeTestsGiveACardWhoseIntervalsHoldTheTruth) {
       EXPECT_GE(ci[1].get<double>(), want) << mode << " " << constant;
     }
   EXPECT_EQ(fitted["provenance"]["observed"]["cases"], 30);
+  for (const char* mode : {"radial_crack", "separation"})  // the scenes ran the beam level
+    EXPECT_EQ(fitted["modes"][mode]["stress_fidelity"], "beam") << mode;
 
   // The card drives a life; the stored peaks fit again without the scenes, to the same constants.
   const std::string scene = temp_file("life-fit-scene.toml");
@@ -38,12 +40,15 @@ TEST(LifeFitCli, BundledLifeTestsGiveACardWhoseIntervalsHoldTheTruth) {
   const auto life = run_fitcli("life --scene " + scene + " --json --out-dir " + temp_file("life-fit-life"));
   ASSERT_EQ(life.exit_code, 0) << life.err;
   EXPECT_EQ(nlohmann::json::parse(life.out)["modes"].size(), 2u);
+  EXPECT_EQ(life.out.find("constants were fitted to"), std::string::npos) << life.out;  // a beam-level life
+  EXPECT_NE(slurp(peaks).find(",stress_fidelity\n"), std::string::npos);
   const std::string again = temp_file("life-fit-again.json");
   ASSERT_EQ(run_fitcli("life-fit --observed " + peaks + " --out " + again).exit_code, 0);
   for (const char* mode : {"radial_crack", "separation"})
     for (const char* constant : {"sigma0_MPa", "n", "b_per_C"})
       EXPECT_NEAR(read_json(again)["modes"][mode][constant].get<double>() /
                       fitted["modes"][mode][constant].get<double>(), 1.0, 1e-9) << mode << " " << constant;
+  EXPECT_EQ(read_json(again)["modes"]["separation"]["stress_fidelity"], "beam");  // kept by the stored peaks
 
   const std::string first = slurp(card);  // the same command again: the same bytes
   ASSERT_EQ(run_fitcli("life-fit --observed " + kTests + " --out " + card + " --peaks-out " + peaks).exit_code, 0);

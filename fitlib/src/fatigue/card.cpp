@@ -15,6 +15,10 @@ const char* to_string(Mode mode) {
   return mode == Mode::radial_crack ? "radial_crack" : "separation";
 }
 
+bool is_stress_fidelity(const std::string& text) {
+  return text == "beam" || text == "elastic" || text == "complete";
+}
+
 std::optional<Mode> mode_from_string(const std::string& text) {
   if (text == "radial_crack") return Mode::radial_crack;
   if (text == "separation") return Mode::separation;
@@ -25,14 +29,19 @@ FatigueCard default_card() {
   FatigueCard c;
   c.name = "Fritzson 1988, 0.500 in raw-edge cogged V-belt, 1 % damage level";
   c.provenance = {{"source", "D. Fritzson 1988, Report I §6.5.2, Eqs 6.31 constants (L1133-1140)"},
-                  {"reference_temperature", "project decision (docs/decisions.md, fatigue: reference temperature)"}};
+                  {"reference_temperature", "project decision (docs/decisions.md, fatigue: reference temperature)"},
+                  {"stress_fidelity", "Report I's stresses of the complete model (viscoelastic damage, 2 load cycles; "
+                                      "docs/decisions.md, fatigue card: the level of the stresses its constants were "
+                                      "fitted to)"}};
   return c;
 }
 
 namespace {
 
 json law_json(const LifeLaw& l) {
-  return {{"sigma0_MPa", l.sigma0_MPa}, {"n", l.n}, {"b_per_C", l.b_per_C}};
+  json j = {{"sigma0_MPa", l.sigma0_MPa}, {"n", l.n}, {"b_per_C", l.b_per_C}};
+  if (!l.stress_fidelity.empty()) j["stress_fidelity"] = l.stress_fidelity;
+  return j;
 }
 
 // Reads one object with exactly the keys `allowed`; each value a finite number unless listed in
@@ -77,9 +86,16 @@ class Reader {
 constexpr double kHuge = 1e300;
 
 LifeLaw read_law(const Reader& modes, const std::string& name) {
-  Reader r(modes.at(name), modes.source(), modes.key(name), {"sigma0_MPa", "n", "b_per_C"});
-  return {r.number("sigma0_MPa", 0.0, kHuge, true), r.number("n", 0.0, 1000.0, true),
-          r.number("b_per_C", -10.0, 10.0)};
+  Reader r(modes.at(name), modes.source(), modes.key(name), {"sigma0_MPa", "n", "b_per_C", "stress_fidelity"});
+  LifeLaw law{r.number("sigma0_MPa", 0.0, kHuge, true), r.number("n", 0.0, 1000.0, true),
+              r.number("b_per_C", -10.0, 10.0), ""};
+  if (r.has("stress_fidelity")) {
+    law.stress_fidelity = r.text("stress_fidelity");
+    if (!is_stress_fidelity(law.stress_fidelity))
+      throw core::InputError("'" + law.stress_fidelity + "' is not a stress level (beam, elastic or complete)",
+                             modes.source(), 0, 0, r.key("stress_fidelity"));
+  }
+  return law;
 }
 
 }  // namespace
@@ -132,6 +148,21 @@ FatigueCard card_from_json(const json& j, const std::string& source) {
 
 FatigueCard load_card(const std::string& path) {
   return card_from_json(core::parse_json(core::read_file(path), path), path);
+}
+
+std::string stress_fidelity_warning(const FatigueCard& card, const std::string& fidelity) {
+  std::string modes, levels;
+  for (Mode m : {Mode::radial_crack, Mode::separation}) {
+    const std::string& of = card.law(m).stress_fidelity;
+    if (of.empty() || of == fidelity) continue;
+    modes += (modes.empty() ? "" : " and ") + std::string(to_string(m));
+    if (levels.find(of) == std::string::npos) levels += (levels.empty() ? "" : " and ") + of;
+  }
+  if (modes.empty()) return "";
+  return "the fatigue card's " + modes + " constants were fitted to " + levels + "-level stresses, and this run's "
+         "stresses are the " + fidelity + " level's: the levels' lives of one drive differ by up to 1000x (docs/fatigue.md §4), "
+         "so the life is off the constants' scale; fit the constants to life tests run at this level (fitcli "
+         "life-fit) or run the level they were fitted at ([life] fidelity)";
 }
 
 void save_card(const std::string& path, const FatigueCard& card) {

@@ -62,6 +62,10 @@ void warn_about(const LifeFitResult& f, const std::vector<ObservedLife>& cases, 
                        core::short_number(std::pow(10.0, f.rms_log10_error)) + " (rms log10 error " +
                        core::short_number(f.rms_log10_error) + "): (6.31) with one design point does not describe "
                        "these cases");
+  if (n.has_interval && n.ci95_low <= 0.0)
+    warnings.push_back(mode + ": n's 95 % interval [" + core::short_number(n.ci95_low) + ", " +
+                       core::short_number(n.ci95_high) + "] reaches zero: these cases do not show how fast the "
+                       "life falls with the stress (more cases over a wider load range, or hold n with --fix-n)");
   const ConstantEstimate& b = f.constants.back();
   if (b.has_interval && b.ci95_low <= 0.0)
     warnings.push_back(mode + ": b's 95 % interval [" + core::short_number(b.ci95_low) + ", " +
@@ -114,6 +118,12 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
     for (const LifeFitResult& f : out.fits) why += std::string(why.empty() ? "" : "; ") + to_string(f.mode) + ": " + f.rejected;
     throw core::NumericalError("fatigue: no failure mode could be fitted (" + why + ")");
   }
+  const std::string& crack = out.card.radial_crack.stress_fidelity;
+  const std::string& separation = out.card.separation.stress_fidelity;
+  if (!crack.empty() && !separation.empty() && crack != separation)
+    out.warnings.push_back("the card's radial_crack constants are of " + crack + "-level stresses, its separation "
+                           "constants of " + separation + "-level ones: a life at either level reads one mode off "
+                           "its constants' scale (fitcli life warns which)");
   out.card.provenance = {{"start_card", start.name}, {"life_fit", record}};
   return out;
 }

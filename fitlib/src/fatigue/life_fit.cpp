@@ -164,7 +164,7 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, cons
     add_note(result.note, one_temperature ? "b held at its start value: all cases at one temperature"
                                           : "b held at its start value: two cases cannot fix three constants");
   solve_life_problem(cases, o, mode, lp);
-  result.law = {std::exp(lp.ln_sigma0), lp.n, lp.b};
+  result.law = {std::exp(lp.ln_sigma0), lp.n, lp.b, cases[0]->stress_fidelity};  // one level per mode
 
   std::vector<double> residuals;
   const Eigen::MatrixXd J = jacobian_at_solution(lp, residuals);

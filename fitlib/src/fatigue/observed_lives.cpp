@@ -14,7 +14,7 @@ namespace {
 
 const std::vector<std::string> kColumns = {"case", "failure_mode", "temperature_C",
                                            "observed_cycles", "observed_h", "cycles_per_h",
-                                           "point", "peaks_MPa"};
+                                           "point", "peaks_MPa", "stress_fidelity"};
 
 Mode parse_mode(const std::string& text, const std::string& file, int line, int column) {
   if (const std::optional<Mode> m = mode_from_string(text)) return *m;
@@ -81,6 +81,12 @@ ObservedLife read_life_row(const std::vector<std::string>& f, const Columns& col
   row.observed_cycles = col.count("observed_cycles") ? number("observed_cycles")
                                                      : number("observed_h") * number("cycles_per_h");
   row.point_peaks_MPa.push_back(parse_peaks(field("peaks_MPa"), file, line, col.at("peaks_MPa") + 1));
+  if (col.count("stress_fidelity")) {
+    row.stress_fidelity = field("stress_fidelity");
+    if (!row.stress_fidelity.empty() && !is_stress_fidelity(row.stress_fidelity))
+      throw core::InputError("stress_fidelity '" + row.stress_fidelity + "' is not beam, elastic or complete", file,
+                             line, col.at("stress_fidelity") + 1, "stress_fidelity");
+  }
   return row;
 }
 
@@ -107,14 +113,27 @@ std::vector<ObservedLife> parse_observed_lives(const std::string& text, const st
     // A further row of a case adds a point; the case's mode, temperature and life must agree.
     ObservedLife& c = out[it->second];
     if (c.mode != row.mode || c.temperature_C != row.temperature_C ||
-        c.observed_cycles != row.observed_cycles)
+        c.observed_cycles != row.observed_cycles || c.stress_fidelity != row.stress_fidelity)
       throw core::InputError("case '" + row.name + "' disagrees with its row on line " +
-                                 std::to_string(c.line) + " (mode, temperature or life)",
+                                 std::to_string(c.line) + " (mode, temperature, life or stress_fidelity)",
                              file, l.number, col.at("case") + 1, "case");
     c.point_peaks_MPa.push_back(row.point_peaks_MPa.front());
   }
   if (out.empty()) throw core::InputError("no observed lives", file, 1, 0);
+  check_one_stress_fidelity(out, file);
   return out;
+}
+
+void check_one_stress_fidelity(const std::vector<ObservedLife>& cases, const std::string& source) {
+  auto named = [](const std::string& level) { return level.empty() ? std::string("no stated level") : level; };
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j)
+      if (cases[j].mode == cases[k].mode && cases[j].stress_fidelity != cases[k].stress_fidelity)
+        throw core::InputError("case '" + cases[k].name + "' (" + to_string(cases[k].mode) + ") has stresses of " +
+                                   named(cases[k].stress_fidelity) + ", case '" + cases[j].name + "' of line " +
+                                   std::to_string(cases[j].line) + " of " + named(cases[j].stress_fidelity) +
+                                   ": one mode's constants are fitted to stresses of one level ([life] fidelity)",
+                               source, cases[k].line, 0, "stress_fidelity");
 }
 
 ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
@@ -138,7 +157,10 @@ ObservedLife observed_life(const std::string& name, Mode mode, double observed_c
 }
 
 std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
-  std::string out = "case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa\n";
+  bool levels = false;  // the column only when a case states its level
+  for (const ObservedLife& c : cases) levels = levels || !c.stress_fidelity.empty();
+  std::string out = std::string("case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa") +
+                    (levels ? ",stress_fidelity" : "") + "\n";
   for (const ObservedLife& c : cases)
     for (std::size_t k = 0; k < c.point_peaks_MPa.size(); ++k) {
       std::string peaks;
@@ -146,7 +168,7 @@ std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
         peaks += (peaks.empty() ? "" : ";") + data::format_exact(p);
       out += data::quote_csv_field(c.name) + "," + to_string(c.mode) + "," +
              data::format_exact(c.temperature_C) + "," + data::format_exact(c.observed_cycles) +
-             ",p" + std::to_string(k + 1) + "," + peaks + "\n";
+             ",p" + std::to_string(k + 1) + "," + peaks + (levels ? "," + c.stress_fidelity : "") + "\n";
     }
   return out;
 }

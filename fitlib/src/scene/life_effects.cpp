@@ -286,6 +286,8 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
   const bool history = r.segment_equilibrium && r.segment_equilibrium->history;
   for (std::string& w : fatigue::life_warnings(life.report, history)) r.warnings.push_back(std::move(w));
+  if (std::string w = fatigue::stress_fidelity_warning(card, life.plan.fidelity); !w.empty())
+    r.warnings.push_back(std::move(w));
   life.equilibrium = r.segment_equilibrium;
   life.fields = r.segment_fields;
   r.life = std::move(life);

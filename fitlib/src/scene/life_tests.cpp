@@ -156,6 +156,7 @@ std::vector<fatigue::ObservedLife> observe_life_tests(const std::vector<LifeTest
                                                     : t.observed_h * r.life_conditions->cycles_per_hour;
       out.push_back(fatigue::observed_life(t.name, t.mode, cycles, *r.stresses, card, *r.life_conditions));
       out.back().line = t.line;
+      out.back().stress_fidelity = r.plan.life->fidelity;
     } catch (const core::InputError& e) {
       if (e.file() == source) throw;  // already names the CSV's line
       throw core::InputError(where + e.what(), source, t.line, 0, e.key());
@@ -163,6 +164,7 @@ std::vector<fatigue::ObservedLife> observe_life_tests(const std::vector<LifeTest
       throw core::NumericalError(source + ":" + std::to_string(t.line) + ": " + where + e.what());
     }
   }
+  fatigue::check_one_stress_fidelity(out, source);
   return out;
 }
 

@@ -36,6 +36,31 @@ TEST(FatigueCard, BundledCardIsTheDefault) {
   EXPECT_EQ(card_to_json(c), card_to_json(default_card()));
 }
 
+// The level of the stresses each mode's constants were fitted to: Report I's are the complete
+// model's; a card may leave it unstated; the warning names the modes and levels that differ.
+TEST(FatigueCard, EachModeStatesTheStressLevelItsConstantsWereFittedTo) {
+  FatigueCard c = default_card();
+  EXPECT_EQ(c.radial_crack.stress_fidelity, "complete");
+  EXPECT_EQ(c.separation.stress_fidelity, "complete");
+  EXPECT_EQ(stress_fidelity_warning(c, "complete"), "");
+  EXPECT_EQ(stress_fidelity_warning(c, "beam").rfind("the fatigue card's radial_crack and separation constants "
+                                                     "were fitted to complete-level stresses, and this run's "
+                                                     "stresses are the beam level's", 0), 0u);
+  c.radial_crack.stress_fidelity = "elastic";
+  c.separation.stress_fidelity = "";
+  EXPECT_EQ(stress_fidelity_warning(c, "elastic"), "");
+  EXPECT_EQ(stress_fidelity_warning(c, "beam").rfind("the fatigue card's radial_crack constants were fitted to "
+                                                     "elastic-level stresses", 0), 0u);
+  c.separation.stress_fidelity = "complete";
+  EXPECT_NE(stress_fidelity_warning(c, "beam").find("radial_crack and separation constants were fitted to "
+                                                    "elastic and complete-level stresses"), std::string::npos);
+  const std::string path = fitlib_test::temp_path("levels.json");
+  c.separation.stress_fidelity = "";
+  save_card(path, c);
+  EXPECT_EQ(card_to_json(load_card(path)), card_to_json(c));
+  EXPECT_FALSE(card_to_json(c)["modes"]["separation"].contains("stress_fidelity"));
+}
+
 TEST(FatigueCard, RoundTripWithCordBreak) {
   FatigueCard c = default_card();
   c.cord_break = CordBreakLaw{9.5, 0.01, 1500.0, 4.2, 0.1};
@@ -83,6 +108,9 @@ TEST(FatigueCard, ErrorsNameFileAndKey) {
   k = j;
   k["cord_break"] = {{"a", 9.0}, {"b_per_MPa", 0.01}, {"ultimate_MPa", 1500}};
   expect_error(k.dump(), "cord_break.cord_area_mm2");
+  k = j;
+  k["modes"]["separation"]["stress_fidelity"] = "fem";
+  expect_error(k.dump(), "modes.separation.stress_fidelity");
   expect_error("{\n  \"schema\": \"fitlib.fatigue-card/1\",\n  \"name\": oops\n}\n", "", 3);
   EXPECT_THROW(load_card(fitlib_test::temp_path("missing.json")), core::InputError);
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -38,13 +39,13 @@ std::vector<ObservedLife> synthetic(Mode mode, const LifeLaw& truth, int count, 
 }
 
 TEST(LifeFit, RecoversKnownConstantsFromExactLives) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
   auto cases = synthetic(Mode::separation, truth, 12, 0.0, 5);
   // Cases of the other mode are ignored by this mode's fit.
-  auto other = synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897}, 5, 0.0, 6);
+  auto other = synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, ""}, 5, 0.0, 6);
   cases.insert(cases.end(), other.begin(), other.end());
   LifeFitOptions o;
-  o.start = LifeLaw{8.0, 6.0, 0.05};
+  o.start = LifeLaw{8.0, 6.0, 0.05, ""};
   const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
   EXPECT_EQ(r.cases, 12);
   EXPECT_NEAR(r.law.sigma0_MPa / truth.sigma0_MPa, 1.0, 1e-7);
@@ -54,10 +55,10 @@ TEST(LifeFit, RecoversKnownConstantsFromExactLives) {
 }
 
 TEST(LifeFit, IntervalsCoverTheTruthWithScatter) {
-  const LifeLaw truth{104.218, 4.423, 0.02897};
+  const LifeLaw truth{104.218, 4.423, 0.02897, ""};
   const auto cases = synthetic(Mode::radial_crack, truth, 30, 0.15, 17);
   LifeFitOptions o;
-  o.start = LifeLaw{50.0, 3.0, 0.0};
+  o.start = LifeLaw{50.0, 3.0, 0.0, ""};
   const LifeFitResult r = fit_life_law(cases, Mode::radial_crack, o);
   ASSERT_EQ(r.constants.size(), 3u);
   const double t[3] = {truth.sigma0_MPa, truth.n, truth.b_per_C};
@@ -72,10 +73,10 @@ TEST(LifeFit, IntervalsCoverTheTruthWithScatter) {
 }
 
 TEST(LifeFit, OneTemperatureHoldsB) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
   const auto cases = synthetic(Mode::separation, truth, 8, 0.0, 9, false);
   LifeFitOptions o;
-  o.start = LifeLaw{6.0, 9.0, 0.1466};
+  o.start = LifeLaw{6.0, 9.0, 0.1466, ""};
   const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
   EXPECT_TRUE(r.constants[2].fixed);
   EXPECT_NE(r.note.find("one temperature"), std::string::npos);
@@ -115,6 +116,34 @@ TEST(ObservedLives, ErrorsNameLineAndColumn) {
   expect_error("case,failure_mode,temperature,observed_cycles,peaks_MPa\n", 1, 3, "temperature");
   expect_error("case,failure_mode,temperature_C,peaks_MPa\n", 1, 0, "observed_cycles");
   expect_error(head, 1, 0);
+  // The level of the peaks: a known word, one per case and one per mode.
+  const std::string levels = "case,failure_mode,temperature_C,observed_cycles,peaks_MPa,stress_fidelity\n";
+  expect_error(levels + "A,separation,90,1e6,1.0,fine\n", 2, 6, "stress_fidelity");
+  expect_error(levels + "A,separation,90,1e6,1.0,beam\nA,separation,90,1e6,2.0,elastic\n", 3, 1, "case");
+  expect_error(levels + "A,separation,90,1e6,1.0,beam\nB,radial_crack,90,1e6,2.0,elastic\n"
+                        "C,separation,90,1e5,2.0,elastic\n", 4, 0, "stress_fidelity");
+  expect_error(levels + "A,separation,90,1e6,1.0,\nC,separation,90,1e5,2.0,complete\n", 3, 0, "stress_fidelity");
+}
+
+// The fitted law is of its cases' level; a mode without cases keeps the start card's, and a card
+// whose modes come from two levels says so.
+TEST(ObservedLives, TheFittedLawIsOfItsCasesStressLevel) {
+  const std::string text = "case,failure_mode,temperature_C,observed_cycles,peaks_MPa,stress_fidelity\n"
+                           "A,separation,90,1e6,1.0,elastic\nB,separation,90,1e5,1.3,elastic\n";
+  const auto cases = parse_observed_lives(text, "lives.csv");
+  EXPECT_EQ(parse_observed_lives(observed_lives_csv(cases), "again.csv")[1].stress_fidelity, "elastic");
+  const LifeCardFit fit = fit_life_card(cases, default_card());
+  EXPECT_EQ(fit.card.separation.stress_fidelity, "elastic");
+  EXPECT_EQ(fit.card.radial_crack.stress_fidelity, "complete");  // the start's, kept
+  EXPECT_TRUE(std::any_of(fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
+    return w.find("radial_crack constants are of complete-level stresses, its separation constants of "
+                  "elastic-level ones") != std::string::npos;
+  }));
+  // Without the column the level is not stated, and no column is written back.
+  const auto unstated = parse_observed_lives("case,failure_mode,temperature_C,observed_cycles,peaks_MPa\n"
+                                             "A,separation,90,1e6,1.0\nB,separation,90,1e5,1.3\n", "plain.csv");
+  EXPECT_EQ(fit_life_card(unstated, default_card()).card.separation.stress_fidelity, "");
+  EXPECT_EQ(observed_lives_csv(unstated).find("stress_fidelity"), std::string::npos);
 }
 
 }  // namespace
@@ -176,7 +205,7 @@ TEST(ObservedLives, CsvRoundTripAndFitFromHistories) {
     EXPECT_EQ(back[k].observed_cycles, cases[k].observed_cycles);
   }
   LifeFitOptions o;
-  o.start = LifeLaw{60.0, 3.0, 0.01};
+  o.start = LifeLaw{60.0, 3.0, 0.01, ""};
   const LifeFitResult r = fit_life_law(back, Mode::radial_crack, o);
   EXPECT_NEAR(r.law.sigma0_MPa / 104.218, 1.0, 1e-6);
   EXPECT_NEAR(r.law.n / 4.423, 1.0, 1e-6);
@@ -192,9 +221,9 @@ namespace {
 // The card: fitted modes replace the start's law, a mode without cases keeps it and says so;
 // lives scattering by more than a factor 3.2 and an undetermined σ0 are warnings.
 TEST(LifeCardFit, ReplacesFittedModesKeepsOthersAndWarnsAboutPoorFits) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
   FatigueCard start = default_card();
-  start.separation = LifeLaw{6.0, 8.0, 0.1};
+  start.separation = LifeLaw{6.0, 8.0, 0.1, ""};
   const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, truth, 12, 0.0, 5), start);
   ASSERT_EQ(exact.fits.size(), 1u);
   EXPECT_NEAR(exact.card.separation.n / truth.n, 1.0, 1e-7);
@@ -240,20 +269,38 @@ TEST(LifeCardFit, AFitWithNAtItsBoundKeepsTheStartLawAndNoFitAtAllIsAnError) {
   EXPECT_TRUE(said);
   EXPECT_THROW(fit_life_card(rising, start), core::NumericalError);
   // Lives scattered by a factor 10 over 60–120 °C hide the temperature's effect: b's interval reaches zero.
-  const LifeCardFit noisy = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466}, 5, 1.0, 3), start);
+  const LifeCardFit noisy = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466, ""}, 5, 1.0, 3), start);
   ASSERT_TRUE(noisy.fits[0].constants[2].has_interval);
   EXPECT_LE(noisy.fits[0].constants[2].ci95_low, 0.0);
   said = false;
   for (const std::string& w : noisy.warnings) said = said || w.find("separation: b's 95 % interval") != std::string::npos;
   EXPECT_TRUE(said);
+  // Four hand-typed separation tests at 10–30 N·m (the light drive's beam-level peaks, 1 degree of
+  // freedom): n 9.59 [−4.13, 23.3], a negative exponent inside the interval, is a warning.
+  const auto hand = parse_observed_lives(
+      "case,failure_mode,temperature_C,observed_cycles,peaks_MPa\n"
+      "a,separation,80,309293303.1883142,1.3434475442517084;1.310205703525924;0.3627259323172915\n"
+      "b,separation,80,1237173212.7532568,1.029668455631264;1.1658418209933423;0.4586221959454639\n"
+      "c,separation,80,55672794.57389656,1.5789611244872044;1.4896115714078948\n"
+      "d,separation,100,185575981.9129885,1.2224305588719562;1.180017400496983;0.36272593231728417\n", "hand.csv");
+  const LifeCardFit weak = fit_life_card(hand, start);
+  const ConstantEstimate& n = weak.fits[0].constants[1];
+  ASSERT_TRUE(n.has_interval);
+  EXPECT_NEAR(n.value, 9.59, 0.01);
+  EXPECT_LT(n.ci95_low, 0.0);
+  said = false;
+  for (const std::string& w : weak.warnings) said = said || w.find("separation: n's 95 % interval") != std::string::npos;
+  EXPECT_TRUE(said);
+  const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466, ""}, 5, 0.0, 3), start);
+  for (const std::string& w : exact.warnings) EXPECT_EQ(w.find("n's 95 % interval"), std::string::npos) << w;
 }
 
 // No more free constants than cases: one case fits σ0 alone (n, b held), two fit σ0 and n; either
 // passes through its cases exactly, which is a warning, not a result to trust. --fix-n holds n.
 TEST(LifeCardFit, FewCasesHoldConstantsAndAnExactFitIsAWarning) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
   FatigueCard start = default_card();
-  start.separation = LifeLaw{6.0, 8.0, 0.1};
+  start.separation = LifeLaw{6.0, 8.0, 0.1, ""};
   const auto cases = synthetic(Mode::separation, truth, 4, 0.0, 5);
   auto warned_exact = [](const LifeCardFit& f) {
     for (const std::string& w : f.warnings)

@@ -432,7 +432,9 @@ TEST(SceneLife, UnderSampledPeakWarningOnlyForPointsWithHistory) {
   // The scene's run puts the life's warnings into the result, which the table and life.json show.
   for (const std::string& w : fatigue::life_warnings(result.life->report, true)) result.warnings.push_back(w);
   EXPECT_NE(scene::life_text(s, result).find("WARNING: " + warning), std::string::npos);
-  EXPECT_EQ(scene::life_json(s, result, false)["warnings"][0].get<std::string>().rfind(warning, 0), 0u);
+  const auto listed = scene::life_json(s, result, false)["warnings"];
+  EXPECT_TRUE(std::any_of(listed.begin(), listed.end(),
+                          [&](const auto& x) { return x.template get<std::string>().rfind(warning, 0) == 0; }));
 }
 
 

@@ -19,7 +19,12 @@ struct LifeLaw {
   double sigma0_MPa = 1.0;
   double n = 1.0;
   double b_per_C = 0.0;
+  // The level of the stresses the constants were fitted to ([life] fidelity: "beam", "elastic",
+  // "complete"; "" = not stated). The levels' stresses differ by orders of magnitude in σⁿ, so
+  // constants read at another level give a life off their scale (docs/fatigue.md §4).
+  std::string stress_fidelity;
 };
+bool is_stress_fidelity(const std::string& text);  // "beam", "elastic" or "complete"
 
 // Gerbert's cord break: σ_A = σ_a/(1 − σ_m/σ_U) (3.6), N = 10^(a − b σ_A) 2^(−b_T ΔT) (3.7),
 // with σ = F/A_cord from the belt force over the cycle.
@@ -35,8 +40,8 @@ struct FatigueCard {
   static constexpr const char* kSchema = "fitlib.fatigue-card/1";
   std::string name;
   double reference_temperature_C = 80.0;  // T_ref of ΔT in (6.31) ([UNCLEAR], docs/decisions.md)
-  LifeLaw radial_crack{104.218, 4.423, 0.02897};
-  LifeLaw separation{4.21028, 11.69, 0.1466};
+  LifeLaw radial_crack{104.218, 4.423, 0.02897, "complete"};
+  LifeLaw separation{4.21028, 11.69, 0.1466, "complete"};
   double crack_sweep_deg = 25.0;  // mode 1 crack directions ±sweep from radial
   std::optional<CordBreakLaw> cord_break;
   nlohmann::json provenance = nlohmann::json::object();
@@ -45,8 +50,13 @@ struct FatigueCard {
   LifeLaw& law(Mode m) { return m == Mode::radial_crack ? radial_crack : separation; }
 };
 
-// Report I's printed constants (docs/fatigue.md §4) at the project's reference temperature.
+// Report I's printed constants (docs/fatigue.md §4) at the project's reference temperature,
+// fitted to the complete model's stresses (stress_fidelity "complete").
 FatigueCard default_card();
+
+// The warning for a life whose stresses come from `fidelity` read against constants fitted at
+// another level ("" when every mode's constants are of that level or do not state theirs).
+std::string stress_fidelity_warning(const FatigueCard& card, const std::string& fidelity);
 
 nlohmann::json card_to_json(const FatigueCard& card);
 // InputError naming `source` and the key path (e.g. modes.separation.n) for a missing key, a

@@ -21,14 +21,16 @@ struct ObservedLife {
   double observed_cycles = 0.0;
   // Significant peaks (MPa) of each monitored point of that mode, e.g. from evaluate_life.
   std::vector<std::vector<double>> point_peaks_MPa;
+  std::string stress_fidelity;  // the level the peaks were computed at (LifeLaw::stress_fidelity; "" = not stated)
   int line = 0;  // first line in the CSV (messages)
 };
 
 // Observed-lives CSV (docs/fatigue.md §6): one row per case and monitored point, columns
 //   case, failure_mode (radial_crack | separation), temperature_C,
-//   observed_cycles  or  observed_h and cycles_per_h,  [point],  peaks_MPa ("σ1;σ2;…")
-// Rows of one case must agree on mode, temperature and life. InputError naming file, line and
-// column for anything else.
+//   observed_cycles  or  observed_h and cycles_per_h,  [point],  peaks_MPa ("σ1;σ2;…"),
+//   [stress_fidelity] (beam | elastic | complete: the level the peaks were computed at)
+// Rows of one case must agree on mode, temperature, life and level, and the cases of one mode on
+// their level (check_one_stress_fidelity). InputError naming file, line and column for anything else.
 std::vector<ObservedLife> parse_observed_lives(const std::string& text, const std::string& source);
 std::vector<ObservedLife> read_observed_lives(const std::string& path);
 
@@ -37,6 +39,11 @@ std::vector<ObservedLife> read_observed_lives(const std::string& path);
 ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
                            const std::vector<PointHistory>& points, const FatigueCard& card,
                            const LifeConditions& conditions);
+
+// InputError naming `source`, the line of the first case of a mode whose stresses come from
+// another level than an earlier case's of that mode: one law is fitted per mode, and a fit
+// across levels mixes stresses of different scales.
+void check_one_stress_fidelity(const std::vector<ObservedLife>& cases, const std::string& source);
 
 // The CSV parse_observed_lives reads (observed_cycles form, exact numbers: reads back equal).
 std::string observed_lives_csv(const std::vector<ObservedLife>& cases);
@@ -80,7 +87,7 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
 // replaced by its fit (T_ref and the crack sweep are the start's), the fits, and warnings for
 // what a user should not read as a result: a mode no case failed in or whose fit put n at a bound
 // (its start constants kept, LifeFitResult::rejected; NumericalError when no mode with cases was
-// fitted), lives scattering around the fit by more than kScatterWarning_log10, b's 95 % interval
+// fitted), lives scattering around the fit by more than kScatterWarning_log10, n's or b's 95 % interval
 // reaching zero, σ0's 95 %
 // interval spanning more than a factor kSpreadWarning, as many free constants as cases (the fit
 // passes through them all), a free n without an interval from cases whose largest peaks span
