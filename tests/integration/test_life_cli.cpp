@@ -400,6 +400,29 @@ TEST(SegmentCli, StaticCaseNeedsNoDriveAndTheDriveCommandsSaySo) {
   }
 }
 
+// A bend tighter than the section can take: the reference section in neo-Hookean rubber fails
+// near an 18 mm radius, where the gaps' land (4.1 mm below the cord line) is compressed to a
+// nominal stretch of 0.77 and creases. Exit 4 says so with the stretch of the asked bend; a
+// 30 mm bend on the same coarse mesh passes.
+TEST(SegmentCli, ABendTighterThanTheLandCanTakeSaysTheLandCreases) {
+  std::string text = slurp(source_path("datasets/segment/bend-40mm.toml"));
+  text.replace(text.find("steps = 4"), 9, "steps = 4\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5");
+  auto bend = [&](const std::string& radius) {
+    std::string t = text;
+    t.replace(t.find("radius_mm = 40"), 14, "radius_mm = " + radius);
+    const std::string scene = unique_dir("segment_bend_" + radius) + ".toml";
+    std::ofstream(scene) << t;
+    return run_fitcli("segment --scene " + scene);
+  };
+  const auto tight = bend("14");
+  EXPECT_EQ(tight.exit_code, 4) << tight.out;
+  for (const char* said : {"Newton failed", "The bend to radius 14 mm compresses the gaps' land, 4.1 mm below the "
+                           "cord line, to a nominal stretch of about 0.714", "creases"})
+    EXPECT_NE(tight.err.find(said), std::string::npos) << said << "\n" << tight.err;
+  const auto wide = bend("30");
+  EXPECT_EQ(wide.exit_code, 0) << wide.err;
+}
+
 // fitcli segment takes the scene's [belt.materials] cards (their elastic equivalents at the scene's
 // temperature and [segment] frequency_Hz): an elastic-iso card pair (E 30 and 5 MPa, not [segment]'s
 // default 20 and 8) gives the stresses of the same E and nu in [segment.materials] (the contract's Hencky point against the segment's own Hencky law);

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "fitlib/core/error.hpp"
 #include "fitlib/segment/curve.hpp"
 #include "fitlib/segment/point_law.hpp"
 
@@ -154,6 +155,28 @@ PointStress local_stress(const Mesh& m, const StaticSolution& s, const NamedPoin
   return r;
 }
 
+// A rubber surface under plane-strain compression creases below a stretch of about 0.65
+// (neo-Hookean; Biot's instability 0.544). A tight bend compresses the gaps' land first, and the
+// load path folds there (docs/segment.md "Static load cases": the reference section near 18 mm).
+constexpr double kCreaseHintStretch = 0.85;
+
+StaticSolution solve_bend(const StaticProblem& p, const StaticSetup& setup, const StaticLoad& load) {
+  try {
+    return solve_static(p, setup.solver);
+  } catch (const core::NumericalError& e) {
+    const double depth = -setup.section.land_y_mm();
+    const double stretch = (1.0 + load.strain) * (1.0 - depth * load.curvature_1_mm);
+    if (load.curvature_1_mm <= 0.0 || stretch > kCreaseHintStretch) throw;
+    throw core::NumericalError(std::string(e.what()) + ". The bend to radius " +
+                               core::short_number(1.0 / load.curvature_1_mm) + " mm compresses the gaps' land, " +
+                               core::short_number(depth) + " mm below the cord line, to a nominal stretch of about " +
+                               core::short_number(stretch) +
+                               ": a rubber surface creases below about 0.65 in plane strain (Biot's instability "
+                               "0.544), where the load path folds; a larger radius passes (docs/segment.md \"Static "
+                               "load cases\")");
+  }
+}
+
 }  // namespace
 
 StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, StaticSolution* solution_out,
@@ -169,7 +192,7 @@ StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, S
   const Eigen::Vector2d origin = Eigen::Vector2d::Zero();
 
   const StaticProblem p = static_problem(m, laws, load, setup.ends);
-  const StaticSolution s = solve_static(p, setup.solver);
+  const StaticSolution s = solve_bend(p, setup, load);
   StaticResult r;
   const NeutralCurve curve = NeutralCurve::uniform(load.curvature_1_mm, load.strain, 1.5 * m.half_length_mm);
   std::vector<NamedPoint> points = standard_points(setup.section);
