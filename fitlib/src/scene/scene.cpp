@@ -46,6 +46,9 @@ using core::InputError;
 using core::kPi;
 
 // Reads one TOML table: every key must be consumed; typed getters name the key path on error.
+constexpr const char* kUnknownKey =
+    "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; docs/belt.md \"Scene\")";
+
 class Reader {
  public:
   Reader(const toml::table& t, std::string prefix, const std::string& file)
@@ -109,18 +112,17 @@ class Reader {
   Reader& allow(const std::vector<std::string>& keys) {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
-      if (std::find(keys.begin(), keys.end(), key) == keys.end())
-        fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see docs/formats.md §5)",
-             k.source());
+      if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+      std::string known;
+      for (const std::string& a : keys) known += (known.empty() ? "" : ", ") + a;
+      fail(key, std::string(kUnknownKey) + "; this table takes " + known, k.source());
     }
     return *this;
   }
   void finish() const {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
-      if (seen_.count(key)) continue;
-      fail(key, "unknown key (check the spelling and the unit suffix, e.g. _mm, _N, _deg; see docs/formats.md §5)",
-           v.source());
+      if (!seen_.count(key)) fail(key, kUnknownKey, v.source());
     }
   }
   const toml::table& raw() const { return t_; }

@@ -47,8 +47,10 @@ void check_keys(const toml::table& t, std::initializer_list<const char*> allowed
                 const std::string& prefix) {
   for (auto&& [k, v] : t) {
     const std::string key(k.str());
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }))
-      fail(source, &v, prefix + key, "unknown key (see docs/sweep.md)");
+    if (std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) continue;
+    std::string known;
+    for (const char* a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
+    fail(source, &v, prefix + key, "unknown key; this table takes " + known + " (docs/sweep.md)");
   }
 }
 

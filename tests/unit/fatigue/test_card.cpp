@@ -109,6 +109,15 @@ TEST(FatigueCard, ErrorsNameFileAndKey) {
   k["cord_break"] = {{"a", 9.0}, {"b_per_MPa", 0.01}, {"ultimate_MPa", 1500}};
   expect_error(k.dump(), "cord_break.cord_area_mm2");
   k = j;
+  k["modes"]["radial_crack"]["sigma_0"] = 3.0;  // the message lists the keys the object takes
+  try {
+    card_from_json(k, "c.json");
+    ADD_FAILURE() << "accepted sigma_0";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("takes b_per_C, n, sigma0_MPa, stress_fidelity"), std::string::npos)
+        << e.what();
+  }
+  k = j;
   k["modes"]["separation"]["stress_fidelity"] = "fem";
   expect_error(k.dump(), "modes.separation.stress_fidelity");
   expect_error("{\n  \"schema\": \"fitlib.fatigue-card/1\",\n  \"name\": oops\n}\n", "", 3);

@@ -59,6 +59,11 @@ TEST(SceneParse, UnknownKeysAndWrongUnitsNameTheKeyAndLine) {
   EXPECT_EQ(e.key(), "drive.torque_Nm");
   e = parse_error(with("friction = 0.5", "friction = 0.5\nfrictoin = 0.3"));
   EXPECT_EQ(e.key(), "conditions.frictoin");
+  // An unknown key says what the table takes (a pulley's position is center_mm, not x_mm).
+  e = parse_error(with("role = \"driven\"", "role = \"driven\", x_mm = 350"));
+  EXPECT_EQ(e.key(), "drive.pulleys[1].x_mm");
+  EXPECT_NE(std::string(e.what()).find("this table takes name, pitch_diameter_mm, role, speed_rpm, torque_Nm, "
+                                       "center_mm"), std::string::npos) << e.what();
   e = parse_error(with("role = \"driven\"", "role = \"follower\""));
   EXPECT_EQ(e.key(), "drive.pulleys[1].role");
   e = parse_error(with("pitch_diameter_mm = 100, role = \"driver\"", "pitch_diameter_mm = -100, role = \"driver\""));

@@ -160,6 +160,7 @@ TEST(SweepFile, ErrorsNameFileLineAndKey) {
   EXPECT_NE(std::string(e.what()).find("none.toml"), std::string::npos) << e.what();
   e = input_error_of(grid_text(kTwoAxes) + "threads = 4\n");
   EXPECT_EQ(e.key(), "outputs.threads");  // after [outputs]: a key of that table
+  EXPECT_NE(std::string(e.what()).find("this table takes columns"), std::string::npos) << e.what();
 }
 
 // A sweep file without [outputs] asks for the load cycle's headline figures and the life per mode;
