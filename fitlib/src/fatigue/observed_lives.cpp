@@ -125,14 +125,15 @@ std::vector<ObservedLife> parse_observed_lives(const std::string& text, const st
 }
 
 void check_one_stress_fidelity(const std::vector<ObservedLife>& cases, const std::string& source) {
-  auto named = [](const std::string& level) { return level.empty() ? std::string("no stated level") : level; };
+  auto at = [](const std::string& level) { return level.empty() ? std::string("no stated level") : "the " + level + " level"; };
   for (std::size_t k = 0; k < cases.size(); ++k)
     for (std::size_t j = 0; j < k; ++j)
       if (cases[j].mode == cases[k].mode && cases[j].stress_fidelity != cases[k].stress_fidelity)
         throw core::InputError("case '" + cases[k].name + "' (" + to_string(cases[k].mode) + ") has stresses of " +
-                                   named(cases[k].stress_fidelity) + ", case '" + cases[j].name + "' of line " +
-                                   std::to_string(cases[j].line) + " of " + named(cases[j].stress_fidelity) +
-                                   ": one mode's constants are fitted to stresses of one level ([life] fidelity)",
+                                   at(cases[k].stress_fidelity) + ", case '" + cases[j].name + "' (line " +
+                                   std::to_string(cases[j].line) + ") of " + at(cases[j].stress_fidelity) +
+                                   ": one mode's constants are fitted to the stresses of one level (the scenes' "
+                                   "[life] fidelity, or the stress_fidelity column)",
                                source, cases[k].line, 0, "stress_fidelity");
 }
 
