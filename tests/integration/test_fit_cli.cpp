@@ -114,6 +114,23 @@ TEST(FitCli, ExportWritesSolverKeywordsOrRefusesClearly) {
   EXPECT_FALSE(std::ifstream(temp_file("mat.k")).good());  // nothing half-written
 }
 
+// A damage card has no Prony form: export refuses (exit 2) and names the route, which works: the
+// card evaluated at one temperature and amplitude, fitted by a Prony card, exports.
+TEST(FitCli, ADamageCardsExportNamesTheRouteThroughSynthAndFit) {
+  const std::string card = source_path("datasets/cards/material-2-true.json");
+  const auto refused = run_fitcli("export --card " + card + " --format abaqus");
+  EXPECT_EQ(refused.exit_code, 2);
+  for (const char* said : {"cannot hold amplitude dependence", "fitcli synth --card CARD", "--model prony"})
+    EXPECT_NE(refused.err.find(said), std::string::npos) << said << "\n" << refused.err;
+  const std::string table = temp_file("damage-route.csv"), prony = temp_file("damage-route.json");
+  ASSERT_EQ(run_fitcli("synth --card " + card + " --temperature-c 80 --amplitude 0.01 --frequency-hz 3,10,34,60 --out " +
+                       table).exit_code, 0);
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms auto --out " + prony).exit_code, 0);
+  const auto deck = run_fitcli("export --card " + prony + " --format abaqus");
+  ASSERT_EQ(deck.exit_code, 0) << deck.err;
+  EXPECT_NE(deck.out.find("*VISCOELASTIC, TIME=PRONY"), std::string::npos) << deck.out;
+}
+
 TEST(FitCli, LsDynaExportWritesTheGivenDensityOrRefuses) {
   const auto card_path = temp_file("export_dyna.json");
   ASSERT_EQ(run_fitcli("fit --data " + kSynthetic + " --model prony --terms 3 --out " + card_path).exit_code, 0);

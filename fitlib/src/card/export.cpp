@@ -70,16 +70,23 @@ std::string admissibility_problems(const Card& card) {
 
 namespace {
 
+// The route to a solver for a card Prony input cannot hold: its response where the part works,
+// as a table, fitted by a Prony card (docs/cli.md "export").
+constexpr const char* kPronyRoute =
+    ": evaluate it where the part works and fit a Prony card to that, e.g. fitcli synth --card CARD "
+    "--temperature-c T --amplitude A --frequency-hz F1,F2,... --out t.csv; fitcli fit --data t.csv --model prony "
+    "--terms auto --out prony.json; then export prony.json";
+
 PronyExport prepare(const Card& card, const std::string& format, const ExportOptions& o) {
   const auto m = card.model();
   const auto values = card.values();
   if (m->amplitude_dependent())
     throw core::UsageError(format + " Prony input cannot hold amplitude dependence (damage) of model '" +
-                           card.model_kind + "'");
+                           card.model_kind + "'" + kPronyRoute);
   model::MaxwellSeries s;
   if (!exact_maxwell_series(*m, values, &s))
     throw core::UsageError("model '" + card.model_kind + "' is neither a Prony series nor a retardation spectrum; " +
-                           format + " export needs one (fit a prony card)");
+                           format + " export needs one" + kPronyRoute);
   const int cap = max_prony_terms(format);
   if (cap > 0 && static_cast<int>(s.moduli.size()) > cap)
     throw core::UsageError(format + " accepts at most " + std::to_string(cap) + " Prony terms, the card has " +
