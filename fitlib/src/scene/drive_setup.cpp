@@ -228,8 +228,11 @@ belt::RetardationSpectrum scene_spectrum(const Scene& s, const std::string& spec
   const auto values = c.values();
   belt::RetardationSpectrum r;  // the model's Kelvin series
   if (!model->kelvin_series(values.data(), &r))
-    throw InputError("card " + it->second + " (model '" + c.model_kind +
-                         "') has no discrete retardation spectrum J_g, L_i, lambda_i: fit a 'retardation' card",
+    throw InputError("the strain accumulation reads the retardation spectrum of the '" + role + "' card (" + spec +
+                         (spec == AccumulationSpec{}.spectrum ? ", the default" : "") + "), and card " + it->second +
+                         " (model '" + c.model_kind + "') has no discrete spectrum J_g, L_i, lambda_i: fit a "
+                         "'retardation' card for that role, or set [accumulation] spectrum to a shape (gauss, box, "
+                         "lorentzian, ramp, wedge)",
                      s.path, 0, 0, "accumulation.spectrum");
   belt::validate(r, "accumulation.spectrum");
   if (source) *source = "card " + it->second + " (reference temperature)";

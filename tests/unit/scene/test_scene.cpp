@@ -339,6 +339,9 @@ TEST(Accumulation, SpectrumFromARetardationCard) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "accumulation.spectrum");
+    // It says the role was the default's, and what else to give.
+    for (const char* said : {"of the 'bottom' card (material:bottom, the default)", "set [accumulation] spectrum to a shape"})
+      EXPECT_NE(std::string(e.what()).find(said), std::string::npos) << said << " in " << e.what();
   }
 }
 
