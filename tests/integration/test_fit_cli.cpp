@@ -1,6 +1,8 @@
 // End to end: fit → card → eval → export, exit codes and determinism, as a user runs them.
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
@@ -112,6 +114,35 @@ TEST(FitCli, ExportWritesSolverKeywordsOrRefusesClearly) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("at most 5 Prony terms"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(temp_file("mat.k")).good());  // nothing half-written
+}
+
+// As many free parameters as data values (or more): the fit passes through the data, so its tiny
+// errors say nothing; the verdict warns and the card's quality is not acceptable, on a hand-typed
+// relaxation table (7 values: 3 terms are 7 parameters; the relaxation path had no such warning) and
+// a three-frequency table (6 values; 4 terms kept at 9 free parameters after a re-polish with the
+// times held, whose 5 free ones hid it).
+TEST(FitCli, AFitWithNoResidualDegreesOfFreedomIsAWarning) {
+  const std::string relax = temp_file("dof-relax.csv"), dynamic = temp_file("dof-dynamic.csv");
+  std::ofstream(relax) << "t,E_relax\ns,MPa\n0.001,12.1\n0.01,9.8\n0.1,7.4\n1,5.9\n10,5.1\n100,4.8\n1000,4.7\n";
+  std::ofstream(dynamic) << "mode,frequency_Hz,temperature_C,storage_MPa,loss_MPa\n"
+                            "shear,1,23,2.0,0.3\nshear,10,23,2.5,0.4\nshear,100,23,3.1,0.45\n";
+  auto fit = [](const std::string& data, const std::string& options) {
+    const std::string card = temp_file("dof-card.json");
+    const auto r = run_fitcli("fit --data " + data + " --model prony " + options + " --out " + card);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return std::make_pair(r, nlohmann::json::parse(slurp(card))["fit"]["quality"]);
+  };
+  for (const auto& [data, options, said] :
+       {std::tuple<std::string, std::string, std::string>{relax, "--format pyvisco --terms 3",
+                                                          "the data do not determine the card: 7 residuals for 7 free parameters"},
+        {dynamic, "--terms 4", "the data do not determine the card: 6 residuals for 9 free parameters"}}) {
+    const auto [r, quality] = fit(data, options);
+    EXPECT_NE(r.err.find("warning: " + said), std::string::npos) << r.err;
+    EXPECT_FALSE(quality["acceptable"].get<bool>()) << quality.dump();
+  }
+  const auto [two, quality] = fit(relax, "--format pyvisco --terms 2");  // 5 parameters: residual freedom
+  EXPECT_EQ(two.err.find("do not determine the card"), std::string::npos) << two.err;
+  EXPECT_TRUE(quality["acceptable"].get<bool>()) << quality.dump();
 }
 
 // A damage card has no Prony form: export refuses (exit 2) and names the route, which works: the

@@ -555,6 +555,7 @@ FitResult fit(const model::ModelPtr& model, const data::DynamicTestTable& table,
   readmit(problem, result, run.linear_only);
   assess_with_merges(problem, result, run);
   result.quality = detail::quality_verdict(problem, problem.natural());
+  detail::degrees_of_freedom_warning(result.metrics, result.quality);
   bound_warnings(result);
   result.metrics.converged = run.outcome.converged;
   result.metrics.iterations = run.outcome.iterations;

@@ -150,13 +150,6 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
                          " degC, where eval and scenes refuse the card: " + why);
     break;
   }
-  // As many free parameters as residuals: the card passes through the points whatever it is, so
-  // its small errors vouch for nothing (docs/decisions.md "Quality: no residual degrees of freedom").
-  if (problem.num_free() >= problem.num_residuals())
-    v.warnings.push_back("the data do not determine the card: " + std::to_string(problem.num_residuals()) +
-                         " residuals for " + std::to_string(problem.num_free()) +
-                         " free parameters, so it reproduces the points whatever it is between and beyond them; "
-                         "measure more frequencies or temperatures, or fit fewer terms");
   if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
     std::ostringstream s;
     s << "data not Kramers-Kronig consistent ";
@@ -193,6 +186,14 @@ void check_single_temperature(const model::Model& model, const data::DynamicTest
     << "' has no temperature law: give --temperature-law wlf|arrhenius (with --reference-c), "
        "or --master-curve for raw isotherms, or fit one temperature at a time";
   throw core::InputError(s.str(), hot->source_file, hot->source_line);
+}
+
+void degrees_of_freedom_warning(const FitMetrics& metrics, QualityVerdict& quality) {
+  if (metrics.n_free <= 0 || metrics.n_free < metrics.n_residuals) return;
+  quality.warnings.push_back("the data do not determine the card: " + std::to_string(metrics.n_residuals) +
+                             " residuals for " + std::to_string(metrics.n_free) +
+                             " free parameters, so it reproduces the points whatever it is between and beyond "
+                             "them; measure more frequencies, times or temperatures, or fit fewer terms");
 }
 
 }  // namespace fitlib::fit::detail

@@ -21,6 +21,11 @@ struct QualityThresholds {
 QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>& p,
                                const QualityThresholds& thresholds = {});
 
+// As many free parameters as residuals or more (the fit's final count, FitMetrics): the card passes
+// through the points whatever it is, so its small errors vouch for nothing; adds that warning to
+// `quality` (docs/decisions.md "Quality: no residual degrees of freedom").
+void degrees_of_freedom_warning(const FitMetrics& metrics, QualityVerdict& quality);
+
 // Throws InputError when the rows span several temperatures and the model has no temperature
 // law: one curve would be fitted to several materials' states (the merged-isotherm trap).
 void check_single_temperature(const model::Model& model, const data::DynamicTestTable& table);

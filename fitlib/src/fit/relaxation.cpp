@@ -11,6 +11,7 @@
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fit/nnls.hpp"
 #include "admissible.hpp"
+#include "quality.hpp"
 #include "relaxation_checks.hpp"
 
 namespace fitlib::fit {
@@ -332,6 +333,7 @@ FitResult fit_relaxation(const model::ModelPtr& model_ptr, const data::Relaxatio
     if (!std::isfinite(v)) throw core::NumericalError("relaxation fit: a parameter is not finite");
   measure_fit(model, table, coords, p, result.metrics);
   result.quality = detail::relaxation_verdict(model, p, table);
+  detail::degrees_of_freedom_warning(result.metrics, result.quality);
   result.values = p;
   for (int i = 0; i < static_cast<int>(specs.size()); ++i) {
     ParameterResult pr;
