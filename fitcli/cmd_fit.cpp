@@ -147,11 +147,18 @@ void print_summary(const FitArgs& a, const fitlib::card::FitCardResult& r) {
       << result.backend_used << "\n";
   out << "points " << m.n_points << ", free parameters " << m.n_free << ", converged "
       << (m.converged ? "yes" : "no") << ", wall time " << m.wall_time_s * 1e3 << " ms\n";
-  out << "rms log10 error: storage " << m.rms_log10_storage << ", loss " << m.rms_log10_loss
-      << "; relative error mean " << m.mean_rel_error << ", max " << m.max_rel_error << "\n";
-  for (const auto& f : result.quality.figures)
+  // Relaxation data: one modulus, M(t), its worst row a time (the figure's frequency is 1/(2π t)).
+  const auto& figures = result.quality.figures;
+  const bool relaxation = !figures.empty() && figures.front().modulus == "relaxation";
+  if (relaxation) out << "rms log10 error of M(t) " << m.rms_log10_storage;
+  else out << "rms log10 error: storage " << m.rms_log10_storage << ", loss " << m.rms_log10_loss;
+  out << "; relative error mean " << m.mean_rel_error << ", max " << m.max_rel_error << "\n";
+  for (const auto& f : figures) {
     out << "  " << f.modulus << " (" << f.group << "): mean relative error " << 100.0 * f.mean_rel_error
-        << " %, max " << 100.0 * f.max_rel_error << " % at " << f.max_at_frequency_Hz << " Hz\n";
+        << " %, max " << 100.0 * f.max_rel_error << " % at ";
+    if (f.modulus == "relaxation") out << "t = " << 1.0 / (2.0 * M_PI * f.max_at_frequency_Hz) << " s\n";
+    else out << f.max_at_frequency_Hz << " Hz\n";
+  }
   out << "verdict: "
       << (result.quality.acceptable() ? "within the thresholds (docs/fitting.md)"
                                       : std::to_string(result.quality.warnings.size()) + " warning(s) on stderr")

@@ -145,6 +145,21 @@ TEST(FitCli, AFitWithNoResidualDegreesOfFreedomIsAWarning) {
   EXPECT_TRUE(quality["acceptable"].get<bool>()) << quality.dump();
 }
 
+// A relaxation table's fit speaks of M(t) and of times: the term table's rms column is M(t)'s (no
+// loss column), the summary's rms is M(t)'s, and the worst row is named by its time (it said
+// "storage …, loss 0" and "max 4.63 % at 0.0159155 Hz" for a table of times).
+TEST(FitCli, ARelaxationFitSpeaksOfMOfTAndTimes) {
+  const std::string relax = temp_file("relax-words.csv");
+  std::ofstream(relax) << "t,E_relax\ns,MPa\n0.001,12.1\n0.01,9.8\n0.1,7.4\n1,5.9\n10,5.1\n100,4.8\n1000,4.7\n";
+  const auto r = run_fitcli("fit --data " + relax + " --format pyvisco --model prony --terms auto --out " +
+                            temp_file("relax-words.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* said : {"rms_M(t)", "rms log10 error of M(t) ", "relaxation (all): mean relative error",
+                           "% at t = 10 s"})
+    EXPECT_NE(r.out.find(said), std::string::npos) << said << "\n" << r.out;
+  for (const char* not_said : {"rms_E''", "loss 0", " Hz\n"}) EXPECT_EQ(r.out.find(not_said), std::string::npos) << not_said;
+}
+
 // A damage card has no Prony form: export refuses (exit 2) and names the route, which works: the
 // card evaluated at one temperature and amplitude, fitted by a Prony card, exports.
 TEST(FitCli, ADamageCardsExportNamesTheRouteThroughSynthAndFit) {

@@ -142,6 +142,7 @@ TermSelection select_relaxation_terms(const std::string& kind, const nlohmann::j
   if (max_terms < min_terms) throw core::UsageError("relaxation terms: max below min");
   TermSelection sel;
   sel.rule = terms.rule;
+  sel.relaxation = true;
   // Each N is ranked on its linear solve (τ on the model's start grid); only the chosen N and
   // the trials after it are polished (docs/fitting.md, "Relaxation data").
   FitOptions linear_only = options;

@@ -207,6 +207,9 @@ TermSelection select_terms(const std::string& kind, const nlohmann::json& model_
 std::string format_term_table(const TermSelection& sel) {
   std::ostringstream s;
   char line[256];
+  const bool relaxation = sel.relaxation;  // one modulus, M(t): its rms in the storage slot
+  const char* first = relaxation ? "rms_M(t)" : "rms_E'";
+  const char* second = relaxation ? "" : "rms_E''";
   if (sel.method == TermMethod::spectrum) {
     std::snprintf(line, sizeof line, "%12s %12s %10s %8s %14s\n", "lambda", "GCV", "eff_terms", "terms",
                   "residual_norm");
@@ -219,15 +222,17 @@ std::string format_term_table(const TermSelection& sel) {
     }
     for (std::size_t k = 0; k < sel.rows.size(); ++k) {
       const TermRow& r = sel.rows[k];
-      std::snprintf(line, sizeof line, "%s%d terms, rms log10 E' %.5f, E'' %.5f, cost %.6g, %.3f ms%s\n",
-                    k == 0 ? "" : "solver cap: ", r.terms, r.rms_log10_storage, r.rms_log10_loss, r.cost,
-                    1e3 * r.wall_time_s, r.terms == sel.chosen ? "  <- chosen" : "");
+      const std::string rms = relaxation ? "rms log10 M(t) " + core::short_number(r.rms_log10_storage)
+                                         : "rms log10 E' " + core::short_number(r.rms_log10_storage) + ", E'' " +
+                                               core::short_number(r.rms_log10_loss);
+      std::snprintf(line, sizeof line, "%s%d terms, %s, cost %.6g, %.3f ms%s\n", k == 0 ? "" : "solver cap: ",
+                    r.terms, rms.c_str(), r.cost, 1e3 * r.wall_time_s, r.terms == sel.chosen ? "  <- chosen" : "");
       s << line;
     }
     return s.str();
   }
-  std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms",
-                "rms_E'", "rms_E''", "cost", "AIC", "BIC", "chosen by");
+  std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms", first, second,
+                "cost", "AIC", "BIC", "chosen by");
   s << line;
   for (const auto& r : sel.rows) {
     std::string marks;
@@ -237,9 +242,10 @@ std::string format_term_table(const TermSelection& sel) {
     if (r.terms == sel.by_accuracy) marks += " accuracy";
     if (r.terms == sel.chosen) marks += " <- chosen";
     if (r.failed) marks += " FAILED: " + r.message;
-    std::snprintf(line, sizeof line, "%5d %10.3f %10.5f %10.5f %12.6g %12.6g %12.6g %s\n",
-                  r.terms, 1e3 * r.wall_time_s, r.rms_log10_storage, r.rms_log10_loss, r.cost,
-                  r.aic, r.bic, marks.c_str());
+    char loss[16] = "";
+    if (!relaxation) std::snprintf(loss, sizeof loss, "%10.5f", r.rms_log10_loss);
+    std::snprintf(line, sizeof line, "%5d %10.3f %10.5f %10s %12.6g %12.6g %12.6g %s\n", r.terms, 1e3 * r.wall_time_s,
+                  r.rms_log10_storage, loss, r.cost, r.aic, r.bic, marks.c_str());
     s << line;
   }
   return s.str();

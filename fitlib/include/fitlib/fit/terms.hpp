@@ -62,6 +62,7 @@ struct TermSelection {
   FitResult result;       // the fit with `chosen` terms
   std::vector<std::string> messages;
   TermMethod method = TermMethod::sweep;
+  bool relaxation = false;  // rows of relaxation data: rms_log10_storage is M(t)'s, no loss
   std::vector<SpectrumPathRow> spectrum_path;  // method spectrum: the λ path (GCV)
   double spectrum_lambda = 0.0;
 };
