@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -13,6 +14,17 @@
 
 namespace fitlib::data {
 namespace {
+
+// A time column in a dynamic-test table: the user has relaxation data, which the pyvisco layout
+// reads (docs/data.md §4), not the native table.
+std::string time_domain_hint(const std::string& column) {
+  std::string lower;
+  for (char c : column) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool time_like = lower == "t" || lower.rfind("time", 0) == 0 || lower.find("relax") != std::string::npos;
+  if (!time_like) return "";
+  return "; relaxation data (a modulus over time) are read in pyvisco's layout: a header t,E_relax (or G_relax), "
+         "a units row s,MPa, then the rows, with --format pyvisco (docs/data.md §4)";
+}
 constexpr double kMaxTableMagnitude = 1e100;   // any number in a table
 constexpr double kMinTableFrequency_Hz = 1e-100;
 
@@ -274,8 +286,8 @@ class TableParser {
           }
         }
       if (known) continue;
-      const std::string message =
-          "unknown column '" + name + "' (known: " + kKnownColumns + ")" + unknown_column_hint(name);
+      const std::string message = "unknown column '" + name + "' (known: " + kKnownColumns + ")" +
+                                  unknown_column_hint(name) + time_domain_hint(name);
       if (!options_.allow_unknown_columns) throw core::InputError(message, file_, line, column);
       table_.warnings.push_back(core::InputError(message + "; ignored", file_, line, column).what());
     }

@@ -209,6 +209,15 @@ TEST(Table, HeaderRules) {
   const auto table = parse_dynamic_table(extra, "mem.csv", lenient);
   ASSERT_EQ(table.warnings.size(), 1u);
   EXPECT_NE(table.warnings[0].find("mem.csv:1:5: unknown column 'cycles'"), std::string::npos);
+  EXPECT_EQ(table.warnings[0].find("relaxation data"), std::string::npos);  // no time column: no such hint
+  // A time column: relaxation data, which the pyvisco layout reads; the message says how.
+  try {
+    parse_dynamic_table("time_s,modulus_MPa\n0.001,12.1\n", "relax.csv");
+    ADD_FAILURE() << "a relaxation table read as a dynamic test";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("relaxation data (a modulus over time) are read in pyvisco's layout: a "
+                                         "header t,E_relax"), std::string::npos) << e.what();
+  }
   // Row checks beyond the fixtures.
   EXPECT_EQ(error_at("mode,frequency_Hz,storage_MPa,loss_MPa,temperature_K\nshear,1,2,0.2,-3\n"),
             std::make_pair(2, 5));
