@@ -183,11 +183,15 @@ std::string relaxation_script(const fitlib::data::RelaxationTable& t, const fitl
   }
   s << "set multiplot layout 2,1 title " << gnuplot_quoted(title + " (points: data, lines: card)")
     << " noenhanced font ',13'\nset xlabel 'time t [s]'\n"
-    << "set logscale y\nset format y '10^{%L}'\nset ylabel 'relaxation modulus " << M << "(t) [MPa]'\nplot ";
+    << "set logscale y\nset format y '10^{%L}'\nset ylabel 'relaxation modulus " << M << "(t) [MPa]'\n"
+    // One entry: the key inside; more: outside in a right margin both panels keep (one width).
+    << (n == 1 ? "set key inside right top box opaque\n" : "set rmargin at screen 0.86\n") << "plot ";
   for (int g = 0; g < n; ++g)
     s << (g ? ", " : "") << "$d" << g << " using 1:2 with points pt 7 ps 0.6 " << palette_colour(g, n) << " title '"
       << groups[g].label << "', $c" << g << " using 1:2 with lines " << palette_colour(g, n) << " notitle";
-  s << "\nunset logscale y\nset format y '%g'\nset ylabel 'card / data - 1 [%]'\nplot ";
+  // The residual panel names nothing (the colours are the panel above's): no empty key box.
+  s << "\nunset logscale y\nset format y '%g'\nset ylabel 'card / data - 1 [%]'\n"
+    << "unset key\nplot ";
   for (int g = 0; g < n; ++g)
     s << "$d" << g << " using 1:3 with points pt 7 ps 0.5 " << palette_colour(g, n) << " notitle, ";
   s << "0 with lines lc rgb 'black' dt 2 notitle\nunset multiplot\n";
