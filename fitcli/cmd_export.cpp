@@ -44,8 +44,10 @@ void register_export(CLI::App& app) {
   add_verbosity_flags(cmd);
   cmd->callback([args] {
     claim_output("--out", args->out, false);
-    const auto text =
-        fitlib::card::export_card(fitlib::card::load_card(input_path(args->card)), args->format, args->options);
+    const fitlib::card::Card card = fitlib::card::load_card(input_path(args->card));
+    const auto text = fitlib::card::export_card(card, args->format, args->options);
+    // The deck's header says it too (its comment lines).
+    if (const std::string q = fitlib::card::fit_quality_warning(card); !q.empty()) warning(q + " (" + args->card + ")");
     if (!args->json) return emit(args->out, text);
     nlohmann::json j = {{"card", args->card}, {"format", args->format}};
     if (args->out.empty() || args->out == "-") {

@@ -26,6 +26,7 @@ WindowCheck::WindowCheck(std::string command, std::string card_path, const fitli
                          const std::vector<double>& temperatures_C, bool allow_extrapolation)
     : command_(std::move(command)), card_path_(std::move(card_path)), allow_(allow_extrapolation), window_(card) {
   for (double T : temperatures_C) fitlib::card::require_material_at(card, card_path_, T, card_path_, "--temperature-c");
+  if (const std::string q = fitlib::card::fit_quality_warning(card); !q.empty()) warning(q + " (" + card_path_ + ")");
 }
 
 bool WindowCheck::beyond(const fitlib::model::TestCondition& c) {

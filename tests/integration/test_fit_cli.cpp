@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <tuple>
 #include <nlohmann/json.hpp>
 
@@ -143,6 +144,40 @@ TEST(FitCli, AFitWithNoResidualDegreesOfFreedomIsAWarning) {
   const auto [two, quality] = fit(relax, "--format pyvisco --terms 2");  // 5 parameters: residual freedom
   EXPECT_EQ(two.err.find("do not determine the card"), std::string::npos) << two.err;
   EXPECT_TRUE(quality["acceptable"].get<bool>()) << quality.dump();
+}
+
+// A card whose fit did not pass its quality verdict says so wherever it is read: eval, synth and
+// export on stderr, the solver deck in comment lines of at most 80 characters, a scene among its
+// warnings (once per role). Before, only `fit` said it; the card then went silently into decks.
+TEST(FitCli, ACardThatFailedItsQualityVerdictSaysSoWhereverItIsRead) {
+  const std::string table = temp_file("poor.csv"), card = temp_file("poor.json");
+  std::ofstream(table) << "mode,frequency_Hz,temperature_C,storage_MPa,loss_MPa\n"
+                          "shear,1,23,2.0,0.3\nshear,10,23,2.5,0.4\nshear,100,23,3.1,0.45\n";
+  ASSERT_EQ(run_fitcli("fit --data " + table + " --model prony --terms 4 --out " + card).exit_code, 0);
+  const std::string said = "the card's fit did not pass its quality verdict (1 warning(s) in fit.quality.warnings";
+  for (const std::string& command :
+       {"eval --card " + card + " --frequency-hz 10", "synth --card " + card + " --frequency-hz 10 --out " +
+                                                            temp_file("poor-synth.csv"),
+        "export --card " + card + " --format abaqus"}) {
+    const auto r = run_fitcli(command);
+    EXPECT_EQ(r.exit_code, 0) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("warning: " + said), std::string::npos) << command << ": " << r.err;
+  }
+  const auto deck = run_fitcli("export --card " + card + " --format lsdyna --density 1.2e-9").out;
+  EXPECT_NE(deck.find("$ WARNING: the card's fit did not pass"), std::string::npos) << deck;
+  std::istringstream lines(deck);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("$", 0) == 0) EXPECT_LE(line.size(), 80u) << line;
+  const std::string scene = temp_file("poor-scene.toml");
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-light.toml")) << "\n[belt.materials]\nbottom = \""
+                       << card << "\"\n[life]\nfidelity = \"beam\"\n";
+  const auto life = run_fitcli("life --scene " + scene + " --json --out-dir " + temp_file("poor-life"));
+  ASSERT_EQ(life.exit_code, 0) << life.err;
+  int times = 0;
+  const auto result = nlohmann::json::parse(life.out);
+  for (const auto& w : result["warnings"])
+    times += w.get<std::string>().find("(bottom): " + said) != std::string::npos;
+  EXPECT_EQ(times, 1) << life.out;
 }
 
 // A relaxation table's fit speaks of M(t) and of times: the term table's rms column is M(t)'s (no

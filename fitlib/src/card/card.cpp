@@ -18,6 +18,17 @@ std::vector<double> Card::values() const {
   return v;
 }
 
+std::string fit_quality_warning(const Card& card) {
+  const nlohmann::json* q = card.fit.contains("quality") ? &card.fit.at("quality") : nullptr;
+  if (!q || !q->is_object() || !q->contains("warnings") || !q->at("warnings").is_array() ||
+      q->at("warnings").empty())
+    return "";
+  const nlohmann::json& w = q->at("warnings");
+  const std::string first = w.front().is_string() ? w.front().get<std::string>() : w.front().dump();
+  return "the card's fit did not pass its quality verdict (" + std::to_string(w.size()) +
+         " warning(s) in fit.quality.warnings; the first: " + first + ")";
+}
+
 void require_material_at(const Card& card, const std::string& card_path, double temperature_C,
                          const std::string& file, const std::string& key) {
   const std::string why = card.model()->temperature_out_of_law(card.values().data(), temperature_C);

@@ -128,13 +128,33 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
   return e;
 }
 
+// `text` as comment lines of at most 80 characters (Abaqus reads 256 per line, LS-DYNA's cards 80).
+std::string comment_lines(const char* comment, const std::string& text) {
+  std::ostringstream out, line;
+  std::istringstream words(text);
+  std::string word;
+  const std::size_t width = 80 - std::string(comment).size() - 1;
+  while (words >> word) {
+    if (line.tellp() > 0 && static_cast<std::size_t>(line.tellp()) + 1 + word.size() > width) {
+      out << comment << " " << line.str() << "\n";
+      line.str("");
+    }
+    line << (line.tellp() > 0 ? " " : "") << word;
+  }
+  if (line.tellp() > 0) out << comment << " " << line.str() << "\n";
+  return out.str();
+}
+
 std::string header(const Card& card, const char* comment, const PronyExport& e) {
   std::ostringstream out;
-  out << comment << " fitlib export of card '" << card.name << "' (model " << card.model_kind << ", "
-      << e.alpha.size() << " Prony terms" << (e.from_retardation ? " converted exactly from its retardation spectrum" : "")
-      << "); units MPa, s, degC\n";
-  out << comment << (e.bulk_relaxes ? " uniaxial card: the same relative weights relax shear and bulk (constant Poisson ratio)\n"
-                                    : " shear card: bulk response elastic\n");
+  out << comment_lines(comment, "fitlib export of card '" + card.name + "' (model " + card.model_kind + ", " +
+                                    std::to_string(e.alpha.size()) + " Prony terms" +
+                                    (e.from_retardation ? " converted exactly from its retardation spectrum" : "") +
+                                    "); units MPa, s, degC");
+  out << comment_lines(comment, e.bulk_relaxes
+                                    ? "uniaxial card: the same relative weights relax shear and bulk (constant Poisson ratio)"
+                                    : "shear card: bulk response elastic");
+  if (const std::string q = fit_quality_warning(card); !q.empty()) out << comment_lines(comment, "WARNING: " + q);
   return out.str();
 }
 
@@ -195,7 +215,7 @@ std::string lsdyna(const Card& card, const PronyExport& e, const ExportOptions& 
                            core::short_number(o.density_t_per_mm3));
   std::ostringstream out;
   out << header(card, "$", e);
-  out << "$ K(t) = sum KI exp(-BETAKI t) (elastic BULK without KI rows); BULK = K(0); RO in t/mm3\n";
+  out << comment_lines("$", "K(t) = sum KI exp(-BETAKI t) (elastic BULK without KI rows); BULK = K(0); RO in t/mm3");
   out << "*MAT_GENERAL_VISCOELASTIC\n";
   out << "$ MID, RO, BULK, PCF, EF, TREF, A, B\n";
   out << o.material_id << "," << num(o.density_t_per_mm3) << "," << num(e.bulk_MPa) << ",0.0,0.0,"

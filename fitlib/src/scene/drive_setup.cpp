@@ -45,6 +45,10 @@ double storage_modulus_MPa(const Scene& s, const card::Card& c, const std::strin
 
 void detail::card_window_warnings(const Scene& s, const std::string& role, const card::Card& c,
                                   const model::TestCondition& at, std::vector<std::string>& warnings) {
+  if (const std::string q = card::fit_quality_warning(c); !q.empty()) {  // once per card and role
+    const std::string w = "card " + s.materials.at(role) + " (" + role + "): " + q;
+    if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
+  }
   for (const card::WindowExcess& e : card::outside_data_window(c, at)) {
     // One warning per card, role and quantity: the values the scene read it at, as a range.
     const std::string head = "card " + s.materials.at(role) + " (" + role + "): " + e.quantity + " ";

@@ -134,7 +134,9 @@ TEST(Export, RetardationCardGoesOutAsItsExactPronySeries) {
   const double Jg = 0.25, L[2] = {0.1, 0.3}, lambda[2] = {0.01, 1.0};
   for (double v : {Jg, L[0], L[1], lambda[0], lambda[1]}) c.parameters.push_back(card::ParameterEstimate{v, false, {}, {}, {}, {}});
   const std::string deck = card::export_card(c, "abaqus");
-  EXPECT_NE(deck.find("2 Prony terms converted exactly from its retardation spectrum"), std::string::npos) << deck;
+  std::string header = deck.substr(0, deck.find("*MATERIAL"));  // comment lines of <= 80 characters, joined
+  for (std::size_t at; (at = header.find("\n** ")) != std::string::npos;) header.replace(at, 4, " ");
+  EXPECT_NE(header.find("2 Prony terms converted exactly from its retardation spectrum"), std::string::npos) << deck;
   std::stringstream in(deck.substr(deck.find("*ELASTIC")));
   std::string line;
   std::getline(in, line);

@@ -42,6 +42,11 @@ struct Card {
 void require_material_at(const Card& card, const std::string& card_path, double temperature_C,
                          const std::string& file, const std::string& key);
 
+// "" when the card's fit passed its quality verdict (or the card records none); otherwise one line
+// for a user of the card: how many warnings fit.quality.warnings holds and the first of them
+// (docs/fitting.md "Quality verdict"). Said by every command that reads a card.
+std::string fit_quality_warning(const Card& card);
+
 // Reads and validates a card; InputError names the file and the offending key.
 Card load_card(const std::string& path);
 Card card_from_json(const nlohmann::json& j, const std::string& source = "card");
