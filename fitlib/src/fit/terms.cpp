@@ -207,9 +207,6 @@ TermSelection select_terms(const std::string& kind, const nlohmann::json& model_
 std::string format_term_table(const TermSelection& sel) {
   std::ostringstream s;
   char line[256];
-  const bool relaxation = sel.relaxation;  // one modulus, M(t): its rms in the storage slot
-  const char* first = relaxation ? "rms_M(t)" : "rms_E'";
-  const char* second = relaxation ? "" : "rms_E''";
   if (sel.method == TermMethod::spectrum) {
     std::snprintf(line, sizeof line, "%12s %12s %10s %8s %14s\n", "lambda", "GCV", "eff_terms", "terms",
                   "residual_norm");
@@ -222,16 +219,16 @@ std::string format_term_table(const TermSelection& sel) {
     }
     for (std::size_t k = 0; k < sel.rows.size(); ++k) {
       const TermRow& r = sel.rows[k];
-      const std::string rms = relaxation ? "rms log10 M(t) " + core::short_number(r.rms_log10_storage)
-                                         : "rms log10 E' " + core::short_number(r.rms_log10_storage) + ", E'' " +
-                                               core::short_number(r.rms_log10_loss);
-      std::snprintf(line, sizeof line, "%s%d terms, %s, cost %.6g, %.3f ms%s\n", k == 0 ? "" : "solver cap: ",
-                    r.terms, rms.c_str(), r.cost, 1e3 * r.wall_time_s, r.terms == sel.chosen ? "  <- chosen" : "");
+      std::snprintf(line, sizeof line, "%s%d terms, rms log10 E' %.5f, E'' %.5f, cost %.6g, %.3f ms%s\n",
+                    k == 0 ? "" : "solver cap: ", r.terms, r.rms_log10_storage, r.rms_log10_loss, r.cost,
+                    1e3 * r.wall_time_s, r.terms == sel.chosen ? "  <- chosen" : "");
       s << line;
     }
     return s.str();
   }
-  std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms", first, second,
+  const bool relaxation = sel.relaxation;  // one modulus, M(t): its rms in the storage slot
+  std::snprintf(line, sizeof line, "%5s %10s %10s %10s %12s %12s %12s  %s\n", "terms", "time_ms",
+                relaxation ? "rms_M(t)" : "rms_E'", relaxation ? "" : "rms_E''",
                 "cost", "AIC", "BIC", "chosen by");
   s << line;
   for (const auto& r : sel.rows) {
