@@ -211,13 +211,17 @@ std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, dou
   std::vector<double> cumulative(M + 1, 0.0);
   for (int i = 0; i < M; ++i)
     cumulative[i + 1] = cumulative[i] + 1.0 / M + weight * 0.5 * ((tvK > 0 ? dK[i] / tvK : 0.0) + (tvp > 0 ? dp[i] / tvp : 0.0));
+  // The cycle's end is not searched: back() · steps / steps can round above back(), where lower_bound
+  // returns end() (a read past the table, found by the sanitizer build); the clamp guards the rest.
   std::vector<double> tau;
-  for (int k = 1; k <= steps; ++k) {
+  for (int k = 1; k < steps; ++k) {
     const double target = cumulative.back() * k / steps;
-    const int i = static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+    const int i = std::min(M, static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), target) -
+                                               cumulative.begin()));
     const double s = i == 0 ? 0.0 : (i - 1 + (target - cumulative[i - 1]) / (cumulative[i] - cumulative[i - 1])) / M;
-    if (tau.empty() || s > tau.back() + 1e-9) tau.push_back(k == steps ? 1.0 : s);
+    if (tau.empty() || s > tau.back() + 1e-9) tau.push_back(s);
   }
+  if (tau.empty() || 1.0 > tau.back() + 1e-9) tau.push_back(1.0);  // the cycle's end
   return tau;
 }
 

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/rng.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/segment/cycle.hpp"
 #include "fitlib/segment/point_law.hpp"
@@ -438,6 +439,27 @@ TEST(SegmentCycle, TenthOfACycleStepsAgreeWithFineStepsOnTheArc) {
 // than the local slope says (continuity; also for a viscoelastic law updated over dt = 10⁻⁶ of the
 // cycle); increments of 10⁻¹ of the cycle across the whole entrance converge and agree with steps
 // of 10⁻² on the wrap within 1 %.
+// The step breakpoints over random load cycles, step counts, weights and reaches: strictly rising
+// in (0, 1], the last exactly 1 (the cycle's end). The sum's share k/steps of the total once
+// rounded above the total for k = steps and read one past the table's end (found by the sanitizer
+// build on a random drive of SceneLife.RandomDrivesAtTheElasticLevelGiveALifeOrARefusal); 10 of
+// these 200 trials round so, and the address sanitizer stops the old code on them.
+TEST(SegmentCycle, BreakpointsRiseToTheCyclesEndForAnyStepCount) {
+  core::Rng rng(2811);
+  for (int trial = 0; trial < 200; ++trial) {
+    const belt::LoadCycle cycle = synthetic_cycle(rng.uniform(0.05, 2.0), rng.uniform(25.0, 200.0), rng.uniform(0.1, 0.9));
+    const belt::LoadHistory h(cycle, [] { belt::BeltSection b; b.c_N = 44000.0; return b; }(), 20.0);
+    const int steps = 1 + static_cast<int>(rng.uniform(0.0, 400.0));
+    const double weight = rng.uniform(0.0, 20.0), reach = rng.uniform(0.0, 40.0);
+    const std::vector<double> tau = cycle_breakpoints(h, steps, weight, reach);
+    ASSERT_FALSE(tau.empty());
+    ASSERT_LE(tau.size(), static_cast<std::size_t>(steps)) << trial;
+    EXPECT_EQ(tau.back(), 1.0) << trial << ": steps " << steps << ", weight " << weight;
+    EXPECT_GT(tau.front(), 0.0) << trial;
+    for (std::size_t k = 1; k < tau.size(); ++k) ASSERT_GT(tau[k], tau[k - 1]) << trial << " at " << k;
+  }
+}
+
 TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
