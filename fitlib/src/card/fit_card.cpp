@@ -1,5 +1,7 @@
 #include "fitlib/card/fit_card.hpp"
 
+#include <boost/algorithm/string/join.hpp>
+
 #include "fitlib/core/error.hpp"
 #include "fitlib/fit/relaxation.hpp"
 #include "fitlib/fit/shift_laws.hpp"
@@ -8,12 +10,6 @@
 
 namespace fitlib::card {
 namespace {
-
-std::string joined(const std::vector<std::string>& files) {
-  std::string s;
-  for (const auto& f : files) s += (s.empty() ? "" : " ") + f;
-  return s;
-}
 
 // --terms N (not auto), checked against the cap.
 int fixed_terms(const FitCardOptions& o) {
@@ -116,7 +112,7 @@ fit::MasterCurve refine_master_curve(const data::DynamicTestTable& raw, fit::Mas
 }
 
 FitCardResult fit_card(const data::DynamicTestTable& table, const FitCardOptions& o) {
-  if (table.rows.empty()) throw core::InputError("no usable rows", joined(table.source_files));
+  if (table.rows.empty()) throw core::InputError("no usable rows", boost::algorithm::join(table.source_files, " "));
   // The model describes the mode of the data unless the data mix modes.
   nlohmann::json options = model_options(o, table.rows.front().condition.mode);
   const fit::FitOptions fit = auto_fit_options(o);
@@ -133,7 +129,7 @@ FitCardResult fit_card(const data::DynamicTestTable& table, const FitCardOptions
 }
 
 FitCardResult fit_relaxation_card(const data::RelaxationTable& table, const FitCardOptions& o) {
-  if (table.rows.empty()) throw core::InputError("no usable rows", joined(table.source_files));
+  if (table.rows.empty()) throw core::InputError("no usable rows", boost::algorithm::join(table.source_files, " "));
   nlohmann::json options = model_options(o, table.rows.front().mode);
   if (!model::make_model(o.model, options)->options().contains("terms"))
     throw core::UsageError("relaxation data: --model must be a series model (prony)");

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <set>
 
+#include <boost/algorithm/string/join.hpp>
+
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/json.hpp"
@@ -51,12 +53,10 @@ class Reader {
   Reader(const json& j, std::string source, std::string path, std::set<std::string> allowed)
       : j_(j), source_(std::move(source)), path_(std::move(path)) {
     if (!j_.is_object()) throw core::InputError("expected an object", source_, 0, 0, path_);
-    for (const auto& item : j_.items()) {
-      if (allowed.count(item.key())) continue;
-      std::string known;
-      for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      throw core::InputError("unknown key; this object takes " + known, source_, 0, 0, key(item.key()));
-    }
+    for (const auto& item : j_.items())
+      if (!allowed.count(item.key()))
+        throw core::InputError("unknown key; this object takes " + boost::algorithm::join(allowed, ", "), source_, 0, 0,
+                               key(item.key()));
   }
   std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
   bool has(const std::string& k) const { return j_.contains(k); }

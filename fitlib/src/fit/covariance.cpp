@@ -2,6 +2,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <boost/algorithm/string/join.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <sstream>
@@ -90,11 +91,6 @@ ScaledSpectrum scaled_spectrum(const RowMatrix& jac, int m, int nf) {
   return out;
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& name : names) s += (s.empty() ? "" : ", ") + name;
-  return s;
-}
 
 // Names the parameters of every null-space direction and those without effect or with a share
 // in the null space; returns each free parameter's null-space share.
@@ -114,13 +110,13 @@ Eigen::VectorXd report_null_space(const Problem& problem, const ScaledSpectrum& 
     for (const auto& mbr : members) names.push_back(mbr.second);
     ident.null_space.push_back(names);
     result.messages.push_back("not identifiable from these data (null-space direction " +
-                              std::to_string(d - sp.rank + 1) + "): " + joined(names));
+                              std::to_string(d - sp.rank + 1) + "): " + boost::algorithm::join(names, ", "));
   }
   for (int k = 0; k < nf; ++k)
     if (sp.norms[k] == 0.0 || null_share[k] > kNullShare) ident.not_identifiable.push_back(specs[problem.free()[k]].name);
   if (!ident.not_identifiable.empty())
     result.messages.push_back("not identifiable from these data (no effect, or a component in a "
-                              "null-space direction): " + joined(ident.not_identifiable));
+                              "null-space direction): " + boost::algorithm::join(ident.not_identifiable, ", "));
   return null_share;
 }
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <map>
 
+#include <boost/algorithm/string/join.hpp>
+
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/scene/registry.hpp"
@@ -14,12 +16,6 @@ namespace {
 bool flag(const std::map<std::string, bool>& m, const std::string& k) {
   auto it = m.find(k);
   return it != m.end() && it->second;
-}
-
-std::string join(const std::vector<std::string>& parts, const char* separator) {
-  std::string out;
-  for (const auto& p : parts) out += (out.empty() ? "" : separator) + p;
-  return out;
 }
 
 // Why each effect cannot run in this build: its own reason, or the first need that cannot run.
@@ -85,7 +81,7 @@ Plan make_plan(const Scene& s) {
     const Effect& f = reg[i];
     EffectReport e{f.name, EffectStatus::not_requested, false, 0.0, "not requested", f.cost};
     std::vector<std::string> why;
-    if (!by[i].empty()) why.push_back("needed by " + join(by[i], ", "));
+    if (!by[i].empty()) why.push_back("needed by " + boost::algorithm::join(by[i], ", "));
     if (!f.effects_key.empty() && flag(s.effects, f.effects_key)) why.push_back("[effects] " + f.effects_key + " = true");
     if (why.empty()) {
     } else if (blocked[i]) {
@@ -93,7 +89,7 @@ Plan make_plan(const Scene& s) {
     } else if (!f.refines.empty() && !p.will_run(f.refines)) {
       e.status = EffectStatus::not_needed, e.reason = "not run: no requested output uses " + f.refines;
     } else {
-      e.status = EffectStatus::run, e.reason = join(why, "; ");
+      e.status = EffectStatus::run, e.reason = boost::algorithm::join(why, "; ");
     }
     if (f.load_cycle_switch) p.load_cycle.*f.load_cycle_switch = e.status == EffectStatus::run;
     p.effects.push_back(e);

@@ -10,12 +10,14 @@
 #include <set>
 #include <sstream>
 
+#include <boost/algorithm/string/join.hpp>
 #include <toml++/toml.h>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
+#include "fitlib/fatigue/card.hpp"
 
 namespace fitlib::scene {
 
@@ -113,9 +115,7 @@ class Reader {
     for (auto&& [k, v] : t_) {
       const std::string key(k.str());
       if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
-      std::string known;
-      for (const std::string& a : keys) known += (known.empty() ? "" : ", ") + a;
-      fail(key, std::string(kUnknownKey) + "; this table takes " + known, k.source());
+      fail(key, std::string(kUnknownKey) + "; this table takes " + boost::algorithm::join(keys, ", "), k.source());
     }
     return *this;
   }
@@ -483,7 +483,7 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
   lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure"});
   LifeSpec l;
   if (auto f = lr.string("fidelity")) {
-    if (*f != "beam" && *f != "elastic" && *f != "complete")
+    if (!fatigue::is_stress_fidelity(*f))
       lr.fail("fidelity", "fidelity must be \"beam\", \"elastic\" or \"complete\", not \"" + *f + "\"");
     l.fidelity = *f;
   }

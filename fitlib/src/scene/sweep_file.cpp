@@ -48,9 +48,8 @@ void check_keys(const toml::table& t, std::initializer_list<const char*> allowed
   for (auto&& [k, v] : t) {
     const std::string key(k.str());
     if (std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) continue;
-    std::string known;
-    for (const char* a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
-    fail(source, &v, prefix + key, "unknown key; this table takes " + known + " (docs/sweep.md)");
+    const std::vector<std::string> known(allowed.begin(), allowed.end());
+    fail(source, &v, prefix + key, "unknown key; this table takes " + boost::algorithm::join(known, ", ") + " (docs/sweep.md)");
   }
 }
 
