@@ -36,7 +36,7 @@ std::string stats_text(const surface::Surface& s) {
   std::ostringstream out;
   out.precision(6);
   const auto& st = s.statistics;
-  out << "surface of " << s.dependent_name << " over";
+  out << "surface of " << s.dependent_name << (s.dependent_transform == surface::Transform::log10 ? " (fitted as log10)" : "") << " over";
   for (const auto& a : s.axes)
     out << " " << a.name << " (" << surface::to_string(a.transform) << ", degree " << a.degree << ", "
         << a.level_count << (a.scattered ? " distinct values" : " levels") << ", [" << a.start << ", "
@@ -78,8 +78,10 @@ void run_fit(const FitArgs& a) {
       throw core::UsageError("--degree needs one value per --x (" + std::to_string(options.axes.size()) + ")");
     for (std::size_t k = 0; k < a.degrees.size(); ++k) options.axes[k].degree = a.degrees[k];
   }
-  options.dependent_name = a.y;
-  options.dependent_unit = unit_from_name(a.y);
+  const auto colon = a.y.find(':');
+  options.dependent_name = a.y.substr(0, colon);
+  if (colon != std::string::npos) options.dependent_transform = surface::parse_transform(a.y.substr(colon + 1));
+  options.dependent_unit = unit_from_name(options.dependent_name);
   options.name = a.name;
   options.level_tolerance = a.level_tolerance;
   // With user constraints the user takes charge of missing cells unless --missing says otherwise.
@@ -91,13 +93,13 @@ void run_fit(const FitArgs& a) {
   }
   claim_output("--out", a.out, false);
   const std::string data_path = input_path(a.data);
-  const auto data = surface::read_sample_columns(data_path, columns, a.y);
+  const auto data = surface::read_sample_columns(data_path, columns, options.dependent_name);
   surface::Surface s = surface::fit_surface(data, options);
   s.provenance = {{"data_files", {with_stdin_named(data_path)}},
                   {"data_sha256", core::sha256_hex(core::read_file(data_path))},
                   {"fitlib_version", FITLIB_VERSION},
                   {"command", command_line()}};
-  for (const std::string& w : surface::statistics_warnings(s.statistics)) warning(w);
+  for (const std::string& w : surface::statistics_warnings(s)) warning(w);
   const std::string document = surface::surface_to_json(s).dump(2) + "\n";
   if (a.out.empty() || a.out == "-") {
     emit("", document);
@@ -251,7 +253,7 @@ void register_surface(CLI::App& app) {
   fit->add_option("--data", fa->data, "Data file: CSV with a header row (- = stdin)")->required();
   fit->add_option("--x", fa->x, "Independent column, COL or COL:log / COL:lin (repeat; order = axis order)")
       ->required();
-  fit->add_option("--y", fa->y, "Dependent column")->required();
+  fit->add_option("--y", fa->y, "Dependent column, COL or COL:log (fit log10 of positive values, e.g. moduli over decades)")->required();
   fit->add_option("--degree", fa->degrees, "Degree per axis, comma separated (default: levels - 1, at most 6)")
       ->delimiter(',');
   fit->add_option("--constraints", fa->constraints, "Constraints file: JSON of linear constraints on control points");

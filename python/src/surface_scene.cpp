@@ -82,6 +82,7 @@ void bind_surface(py::module_& m) {
   py::class_<Surface>(m, "Surface", "A Bezier tensor-product surface (formats.md §4)")
       .def_readonly("name", &Surface::name)
       .def_readonly("dependent_name", &Surface::dependent_name)
+      .def_property_readonly("dependent_transform", [](const Surface& s) { return std::string(surface::to_string(s.dependent_transform)); })
       .def_readonly("axes", &Surface::axes)
       .def_readonly("control_points", &Surface::control_points)
       .def_property_readonly("statistics", [](const Surface& s) { return to_python(surface::surface_to_json(s)["statistics"]); })
@@ -109,10 +110,12 @@ void bind_surface(py::module_& m) {
         py::arg("document"), py::arg("source") = "surface");
   m.def("fit_surface",
         [](const py::object& x, const py::object& y, const py::list& axes, const std::string& dependent_name,
-           const std::string& name, const std::string& missing, double level_tolerance, const py::object& constraints) {
+           const std::string& name, const std::string& missing, double level_tolerance, const py::object& constraints,
+           const std::string& dependent_transform) {
           surface::FitOptions o;
           for (const auto& a : axes) o.axes.push_back(axis_spec(a));
           o.dependent_name = dependent_name, o.name = name, o.level_tolerance = level_tolerance;
+          o.dependent_transform = surface::parse_transform(dependent_transform);
           // As fitcli: with user constraints the user takes charge of missing cells unless told.
           const char* remedy = constraints.is_none() ? "constrain" : "none";
           o.missing = surface::parse_missing_cell_remedy(!missing.empty() ? missing : remedy);
@@ -121,8 +124,10 @@ void bind_surface(py::module_& m) {
         },
         py::arg("x"), py::arg("y"), py::arg("axes"), py::arg("dependent_name") = "y", py::arg("name") = "",
         py::arg("missing") = "", py::arg("level_tolerance") = 0.05, py::arg("constraints") = py::none(),
+        py::arg("dependent_transform") = "linear",
         "Least-squares Bezier surface: x (N, n) and y (N) arrays, or x a CSV path and y its column name "
-        "(errors then name file, line and column); axes: names or dicts {name, unit, transform, degree}");
+        "(errors then name file, line and column); axes: names or dicts {name, unit, transform, degree}; "
+        "dependent_transform 'log10' fits log10 y (positive y; the surface still returns y)");
   m.def("read_samples",
         [](const std::string& path, const std::vector<std::string>& x_columns, const std::string& y_column) {
           const auto s = surface::read_sample_columns(path, x_columns, y_column);

@@ -200,6 +200,11 @@ def test_surface_reproduces_a_polynomial_of_its_degree():
     assert np.allclose(s(q), law(q), atol=1e-12)
     s.save(work("s.json"))
     assert np.array_equal(fitlib.load_surface(work("s.json"))(q), s(q))
+    # log10 of y: the same polynomial as the exponent of 10, reproduced as y; a zero y is refused
+    g = fitlib.fit_surface(x, 10.0 ** law(x), ["a", "b"], dependent_transform="log10")
+    assert g.dependent_transform == "log10"
+    assert np.allclose(g(q), 10.0 ** law(q), rtol=1e-10)
+    expect(fitlib.InputError, lambda: fitlib.fit_surface(x, law(x) * 0.0, ["a", "b"], dependent_transform="log10"))
 
 
 def test_elastic_point_stiffness_is_the_storage_modulus():

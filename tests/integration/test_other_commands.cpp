@@ -65,6 +65,35 @@ TEST(SurfaceCli, SaturatedSurfaceSaysSIsUndefinedInsteadOfPrintingNan) {
   EXPECT_EQ(text.out.find("nan"), std::string::npos) << text.out;
 }
 
+// Moduli through a glass transition (hand-typed, 7.4–1410 MPa): the linear fit warns that the
+// surface turns negative between the levels; `--y storage_MPa:log` fits log10 and `surface eval`
+// returns moduli (positive, the measured value at a data point) with no range warning.
+TEST(SurfaceCli, ALinearFitThatTurnsNegativeWarnsAndTheLogFitReturnsModuli) {
+  const auto data = temp_file("glass.csv");
+  std::ofstream(data) << "temperature_C,frequency_Hz,storage_MPa\n-20,1,820\n-20,10,1105\n-20,100,1410\n0,1,210\n"
+                         "0,10,330\n0,100,505\n23,1,31.2\n23,10,44.8\n23,100,71.5\n60,1,9.8\n60,10,11.1\n60,100,13.9\n"
+                         "100,1,7.4\n100,10,7.9\n100,100,8.6\n";
+  const auto fit = [&](const std::string& y, const std::string& out) {
+    return run_fitcli("surface fit --data " + data + " --x temperature_C --x frequency_Hz --y " + y + " --out " + out);
+  };
+  const auto linear = fit("storage_MPa", temp_file("glass_linear.json"));
+  ASSERT_EQ(linear.exit_code, 0) << linear.err;
+  EXPECT_NE(linear.err.find("never change sign"), std::string::npos) << linear.err;
+  EXPECT_NE(linear.err.find("--y storage_MPa:log"), std::string::npos) << linear.err;
+  const auto logfile = temp_file("glass_log.json");
+  const auto logfit = fit("storage_MPa:log", logfile);
+  ASSERT_EQ(logfit.exit_code, 0) << logfit.err;
+  EXPECT_EQ(logfit.err.find("the surface reaches"), std::string::npos) << logfit.err;
+  EXPECT_NE(logfit.out.find("storage_MPa (fitted as log10)"), std::string::npos) << logfit.out;
+  const auto e = run_fitcli("surface eval --surface " + logfile + " --at 85,1 --at 23,10");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  std::istringstream rows(e.out);
+  std::string header, at85, at23;
+  std::getline(rows, header), std::getline(rows, at85), std::getline(rows, at23);
+  EXPECT_GT(std::stod(at85.substr(at85.rfind(',', at85.rfind(',') - 1) + 1)), 7.4) << e.out;
+  EXPECT_NEAR(std::stod(at23.substr(at23.rfind(',', at23.rfind(',') - 1) + 1)), 44.8, 1e-6) << e.out;
+}
+
 TEST(FritzsonCli, StagedFitOfMaterialTwoNamesWhatTheDataCannotDetermine) {
   const auto out = temp_file("material-2.json");
   const auto r = run_fitcli("fit --data " + source_path("datasets/materials/material-2.csv") +

@@ -64,6 +64,22 @@ void validate(const SampleSet& d, const std::vector<Axis>& axes) {
   }
 }
 
+// The values the control points describe: y, or log10 y (each y > 0, else InputError at its cell).
+SampleSet fitted_values(const SampleSet& d, Transform transform) {
+  if (transform == Transform::linear) return d;
+  SampleSet out = d;
+  for (Eigen::Index r = 0; r < d.y.size(); ++r) {
+    if (!(d.y[r] > 0.0)) {
+      std::ostringstream msg;
+      msg << where_row(d, r) << "the dependent value " << d.y[r]
+          << " is not positive, but it is fitted as log10 (drop :log from --y for a linear fit)";
+      throw core::InputError(msg.str(), d.source, line_of(d, r), d.column_of_y);
+    }
+    out.y[r] = std::log10(d.y[r]);
+  }
+  return out;
+}
+
 // Basis row φ_j(x) = Π_k B_{i_k}(u_k) for all flat j, built axis by axis in place.
 void basis_row(const Surface& s, const double* u, double* phi, double* b) {
   std::size_t length = 1;
@@ -100,6 +116,7 @@ Surface described_surface(const FitOptions& options) {
   s.name = options.name;
   s.dependent_name = options.dependent_name;
   s.dependent_unit = options.dependent_unit;
+  s.dependent_transform = options.dependent_transform;
   for (const auto& spec : options.axes) {
     Axis a;
     a.name = spec.name;
@@ -251,7 +268,41 @@ Eigen::VectorXd control_points(const Surface& s, const SampleSet& data, const Co
   return basis.constrained ? Eigen::VectorXd(basis.c0 + basis.Z * z) : z;
 }
 
-// Statistics (Report V §5.2): N, p, dof, R, s, maximum relative error.
+// The surface's extremes over its interval, sampled on m_k + 1 equidistant parameters per axis,
+// m_k = f·d_k with f the largest of 8, 4, 2, 1 that keeps the grid within kRangeSamples points (the check costs at most ~15 ms)
+// (a degree-d polynomial swings at most d − 1 times; 8 samples per degree find the swings of
+// interest). Too many axes for even f = 1: not sampled (NaN).
+constexpr double kRangeSamples = 5e4;
+void sample_range(Surface& s) {
+  const std::size_t n = s.axes.size();
+  std::vector<int> m(n);
+  for (const int factor : {8, 4, 2, 1}) {
+    double points = 1.0;
+    for (std::size_t k = 0; k < n; ++k) m[k] = factor * s.axes[k].degree, points *= m[k] + 1;
+    if (points <= kRangeSamples) break;
+    if (factor == 1) return;
+  }
+  Statistics& st = s.statistics;
+  std::vector<int> i(n, 0);
+  std::vector<double> u(n);
+  st.surface_min = std::numeric_limits<double>::infinity(), st.surface_max = -st.surface_min;
+  std::vector<double> u_min(n), u_max(n);
+  for (;;) {
+    for (std::size_t k = 0; k < n; ++k) u[k] = m[k] ? double(i[k]) / m[k] : 0.0;
+    const double y = dependent_value(s, evaluate_at_parameters(s, u.data(), nullptr));
+    if (y < st.surface_min) st.surface_min = y, u_min = u;
+    if (y > st.surface_max) st.surface_max = y, u_max = u;
+    std::size_t k = n;  // odometer, last axis fastest
+    while (k-- > 0 && ++i[k] > m[k]) i[k] = 0;
+    if (k == std::size_t(-1)) break;
+  }
+  st.surface_min_at.resize(n), st.surface_max_at.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+    st.surface_min_at[k] = s.axes[k].value_at(u_min[k]), st.surface_max_at[k] = s.axes[k].value_at(u_max[k]);
+}
+
+// Statistics (Report V §5.2): N, p, dof, R, s, maximum relative error — of y itself, also for a
+// log10 dependent —, and the range check (sample_range).
 void fill_statistics(Surface& s, const SampleSet& data, Eigen::Index q, std::size_t occupied) {
   const Eigen::Index N = data.x.rows();
   const std::size_t n = s.axes.size();
@@ -264,7 +315,7 @@ void fill_statistics(Surface& s, const SampleSet& data, Eigen::Index q, std::siz
   std::vector<double> u(n);
   for (Eigen::Index r = 0; r < N; ++r) {
     for (std::size_t k = 0; k < n; ++k) u[k] = s.axes[k].parameter(data.x(r, static_cast<Eigen::Index>(k)));
-    const double residual = data.y[r] - evaluate_at_parameters(s, u.data(), nullptr);
+    const double residual = data.y[r] - dependent_value(s, evaluate_at_parameters(s, u.data(), nullptr));
     st.ss_residual += residual * residual;
     st.ss_total += (data.y[r] - mean) * (data.y[r] - mean);
     if (data.y[r] != 0.0) {
@@ -279,6 +330,8 @@ void fill_statistics(Surface& s, const SampleSet& data, Eigen::Index q, std::siz
                            : std::numeric_limits<double>::quiet_NaN();
   st.s = st.residual_dof > 0 ? std::sqrt(st.ss_residual / double(st.residual_dof))
                              : std::numeric_limits<double>::quiet_NaN();
+  st.data_min = data.y.minCoeff(), st.data_max = data.y.maxCoeff();
+  sample_range(s);
 }
 
 }  // namespace
@@ -321,7 +374,7 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
         << " distinct level combinations (cells); lower a degree (--degree) or add constraints";
     throw core::UsageError(msg.str());
   }
-  s.control_points = control_points(s, data, basis);
+  s.control_points = control_points(s, fitted_values(data, options.dependent_transform), basis);
   fill_statistics(s, data, basis.q, occupied);
   return s;
 }

@@ -57,6 +57,11 @@ bool Axis::contains(double x) const {
   return c >= c0 - tolerance && c <= c1 + tolerance;
 }
 
+double Axis::value_at(double u) const {
+  const double c = coordinate(start) + u * (coordinate(end) - coordinate(start));
+  return transform == Transform::linear ? c : std::pow(10.0, c);
+}
+
 std::size_t Surface::size() const {
   std::size_t p = 1;
   for (const auto& a : axes) p *= static_cast<std::size_t>(a.degree + 1);
@@ -150,6 +155,10 @@ double evaluate_at_parameters(const Surface& s, const double* u, double* gradien
   return value;
 }
 
+double dependent_value(const Surface& s, double v) {
+  return s.dependent_transform == Transform::log10 ? std::pow(10.0, v) : v;
+}
+
 bool Surface::contains(const double* x) const {
   for (std::size_t k = 0; k < axes.size(); ++k)
     if (!axes[k].contains(x[k])) return false;
@@ -181,7 +190,7 @@ double Surface::value(const double* x, bool allow_extrapolation, bool* extrapola
   thread_local std::vector<double> u;
   u.resize(axes.size());
   for (std::size_t k = 0; k < axes.size(); ++k) u[k] = axes[k].parameter(x[k]);
-  return evaluate_at_parameters(*this, u.data(), nullptr);
+  return dependent_value(*this, evaluate_at_parameters(*this, u.data(), nullptr));
 }
 
 Evaluation Surface::evaluate(const double* x, bool allow_extrapolation) const {
@@ -190,10 +199,12 @@ Evaluation Surface::evaluate(const double* x, bool allow_extrapolation) const {
   const std::size_t n = axes.size();
   std::vector<double> u(n), du(n);
   for (std::size_t k = 0; k < n; ++k) u[k] = axes[k].parameter(x[k]);
-  e.value = evaluate_at_parameters(*this, u.data(), du.data());
+  e.value = dependent_value(*this, evaluate_at_parameters(*this, u.data(), du.data()));
+  // d(10^v)/dx = ln 10 · y · dv/dx for a log10 dependent.
+  const double chain = dependent_transform == Transform::log10 ? std::log(10.0) * e.value : 1.0;
   e.gradient.resize(static_cast<Eigen::Index>(n));
   for (std::size_t k = 0; k < n; ++k)
-    e.gradient[static_cast<Eigen::Index>(k)] = du[k] * axes[k].parameter_derivative(x[k]);
+    e.gradient[static_cast<Eigen::Index>(k)] = chain * du[k] * axes[k].parameter_derivative(x[k]);
   return e;
 }
 
@@ -247,7 +258,8 @@ nlohmann::json surface_to_json(const Surface& s) {
   const Statistics& st = s.statistics;
   return {{"schema", Surface::kSchema},
           {"name", s.name},
-          {"dependent", {{"name", s.dependent_name}, {"unit", s.dependent_unit}}},
+          {"dependent", {{"name", s.dependent_name}, {"unit", s.dependent_unit},
+                         {"transform", to_string(s.dependent_transform)}}},
           {"axes", axes},
           {"control_points",
            {{"order", "row-major over (i_1, ..., i_n), last axis fastest"},
@@ -267,16 +279,97 @@ nlohmann::json surface_to_json(const Surface& s) {
             {"ss_residual", st.ss_residual},
             {"ss_total", st.ss_total},
             {"occupied_cells", st.n_occupied_cells},
-            {"warnings", statistics_warnings(st)}}},
+            {"range",
+             {{"data_min", number_or_null(st.data_min)},
+              {"data_max", number_or_null(st.data_max)},
+              {"surface_min", number_or_null(st.surface_min)},
+              {"surface_min_at", st.surface_min_at},
+              {"surface_max", number_or_null(st.surface_max)},
+              {"surface_max_at", st.surface_max_at}}},
+            {"warnings", statistics_warnings(s)}}},
           {"provenance", s.provenance}};
 }
 
-std::vector<std::string> statistics_warnings(const Statistics& st) {
-  if (st.residual_dof > 0 || st.n_points == 0) return {};
-  return {"no residual degrees of freedom (N = " + std::to_string(st.n_points) + ", p = " +
-          std::to_string(st.n_parameters) +
-          "): the surface passes through every point whatever it is between them, so R and s say nothing "
-          "about it; lower a degree (--degree) or measure more levels"};
+namespace {
+// "name = value (temperature_C 80, frequency_Hz 100)".
+std::string extreme_text(const Surface& s, double value, const std::vector<double>& at) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value << " at (";
+  for (std::size_t k = 0; k < s.axes.size() && k < at.size(); ++k) out << (k ? ", " : "") << s.axes[k].name << " " << at[k];
+  out << ")";
+  return out.str();
+}
+
+// The empty cell of the level grid nearest to x (each axis's nearest level), if x lies in one.
+const std::vector<int>* empty_cell_at(const Surface& s, const std::vector<double>& x) {
+  if (!s.level_grid || x.size() != s.axes.size()) return nullptr;
+  std::vector<int> cell;
+  for (std::size_t k = 0; k < s.axes.size(); ++k) {
+    const Axis& a = s.axes[k];
+    if (a.scattered || a.levels.empty()) {
+      cell.push_back(-1);
+      continue;
+    }
+    int nearest = 0;
+    for (std::size_t l = 1; l < a.levels.size(); ++l)
+      if (std::abs(a.coordinate(a.levels[l]) - a.coordinate(x[k])) <
+          std::abs(a.coordinate(a.levels[static_cast<std::size_t>(nearest)]) - a.coordinate(x[k])))
+        nearest = static_cast<int>(l);
+    cell.push_back(nearest);
+  }
+  const auto found = std::find(s.missing_cells.begin(), s.missing_cells.end(), cell);
+  return found == s.missing_cells.end() ? nullptr : &*found;
+}
+
+// The range check: a sign the data never take, or a swing beyond kRangeOvershoot of their range.
+std::string range_warning(const Surface& s) {
+  const Statistics& st = s.statistics;
+  if (!std::isfinite(st.surface_min) || !std::isfinite(st.surface_max) || !std::isfinite(st.data_min)) return "";
+  const double margin = kRangeOvershoot * (st.data_max - st.data_min);
+  const bool negative = st.data_min > 0.0 && st.surface_min <= 0.0;
+  const bool positive = st.data_max < 0.0 && st.surface_max >= 0.0;
+  const bool below = st.surface_min < st.data_min - margin, above = st.surface_max > st.data_max + margin;
+  if (!(negative || positive || below || above)) return "";
+  std::ostringstream out;
+  out.precision(4);
+  out << "the surface reaches ";
+  const bool low = negative || below, high = positive || above;
+  if (low) out << extreme_text(s, st.surface_min, st.surface_min_at);
+  if (low && high) out << " and ";
+  if (high) out << extreme_text(s, st.surface_max, st.surface_max_at);
+  out << ", where the data's " << s.dependent_name << " lie in [" << st.data_min << ", " << st.data_max << "]";
+  if (negative || positive) out << " and never change sign";
+  const std::vector<int>* empty = empty_cell_at(s, low ? st.surface_min_at : st.surface_max_at);
+  std::vector<std::string> remedies;
+  if (empty) {
+    out << ": it lies in an empty cell of the level grid (levels";
+    for (const int l : *empty) out << " " << l;
+    out << ", 0-based), where the surface shows the missing-cell constraint, not a measurement; ";
+    remedies = {"measure that cell", "constrain it (--constraints)"};
+  } else {
+    out << ": the surface swings between the data, so R and the errors at the points do not describe it; ";
+    remedies = {"measure more levels"};
+  }
+  if (s.dependent_transform == Transform::linear && st.data_min > 0.0)
+    remedies.push_back("fit log10 of the values (--y " + s.dependent_name + ":log)");
+  remedies.push_back("lower a degree (--degree)");
+  for (std::size_t i = 0; i < remedies.size(); ++i)
+    out << (i == 0 ? "" : i + 1 == remedies.size() ? " or " : ", ") << remedies[i];
+  return out.str();
+}
+}  // namespace
+
+std::vector<std::string> statistics_warnings(const Surface& s) {
+  const Statistics& st = s.statistics;
+  std::vector<std::string> out;
+  if (st.residual_dof == 0 && st.n_points > 0)
+    out.push_back("no residual degrees of freedom (N = " + std::to_string(st.n_points) + ", p = " +
+                  std::to_string(st.n_parameters) +
+                  "): the surface passes through every point whatever it is between them, so R and s say nothing "
+                  "about it; lower a degree (--degree) or measure more levels");
+  if (std::string range = range_warning(s); !range.empty()) out.push_back(std::move(range));
+  return out;
 }
 
 namespace {
@@ -345,10 +438,13 @@ std::vector<ConstraintGroup> constraints_from_json(const nlohmann::json& groups,
   return out;
 }
 
+// A number of an object, NaN when absent or null.
+double number_or_nan(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
 Statistics statistics_from_json(const nlohmann::json& st) {
-  auto number = [&](const char* key) {
-    return st.contains(key) && st[key].is_number() ? st[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
-  };
+  auto number = [&](const char* key) { return number_or_nan(st, key); };
   Statistics out;
   out.n_points = st.value("N", std::size_t{0});
   out.n_parameters = st.value("p", std::size_t{0});
@@ -360,6 +456,13 @@ Statistics statistics_from_json(const nlohmann::json& st) {
   out.ss_residual = number("ss_residual");
   out.ss_total = number("ss_total");
   out.n_occupied_cells = st.value("occupied_cells", std::size_t{0});
+  if (st.contains("range") && st["range"].is_object()) {
+    const nlohmann::json& r = st["range"];
+    out.data_min = number_or_nan(r, "data_min"), out.data_max = number_or_nan(r, "data_max");
+    out.surface_min = number_or_nan(r, "surface_min"), out.surface_max = number_or_nan(r, "surface_max");
+    out.surface_min_at = r.value("surface_min_at", std::vector<double>{});
+    out.surface_max_at = r.value("surface_max_at", std::vector<double>{});
+  }
   return out;
 }
 
@@ -376,6 +479,10 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
     if (j.contains("dependent")) {
       s.dependent_name = j["dependent"].value("name", "");
       s.dependent_unit = j["dependent"].value("unit", "");
+      const std::string transform = j["dependent"].value("transform", "linear");
+      if (transform != "linear" && transform != "log10")
+        throw core::InputError("transform must be linear or log10", source, 0, 0, "dependent.transform");
+      s.dependent_transform = parse_transform(transform);
     }
     const auto axes = required<nlohmann::json>(j, "axes", source, "");
     if (!axes.is_array() || axes.empty() || axes.size() > kMaxAxes)

@@ -131,13 +131,13 @@ TEST(SurfaceFit, NoResidualDegreesOfFreedomIsAWarning) {
   const auto exact = fit_surface(make_design(levels(3, 3, 1), all_cells, [](std::size_t) { return 1; }, 0.02, 3),
                                  rubber_options());
   ASSERT_EQ(exact.statistics.residual_dof, 0u);
-  const auto w = statistics_warnings(exact.statistics);
+  const auto w = statistics_warnings(exact);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("no residual degrees of freedom (N = 9, p = 9)"), std::string::npos) << w[0];
   EXPECT_EQ(surface_to_json(exact)["statistics"]["warnings"].size(), 1u);
   const auto spare = fit_surface(make_design(levels(3, 3, 1), all_cells, twice, 0.02, 3), rubber_options());
   EXPECT_GT(spare.statistics.residual_dof, 0u);
-  EXPECT_TRUE(statistics_warnings(spare.statistics).empty());
+  EXPECT_TRUE(statistics_warnings(spare).empty());
 }
 
 TEST(SurfaceFit, CollinearLevelsAreAnError) {
@@ -322,4 +322,114 @@ TEST(SampleColumns, ReadsTheTableConventionsAndNamesBadCells) {
   EXPECT_THROW(read_sample_columns(dup, {"x"}, "y"), InputError);
   const std::string nan = write_temp("surface_nan.csv", "x,y\n1,nan\n");
   EXPECT_THROW(read_sample_columns(nan, {"x"}, "y"), InputError);
+}
+
+namespace {
+// A hand-typed storage-modulus table of a filled rubber through its glass transition (moduli over
+// three decades): 5 temperatures × 3 frequencies, the (100 °C, 100 Hz) cell optional.
+std::string glass_transition_table(bool corner) {
+  std::string t = "temperature_C,frequency_Hz,storage_MPa\n"
+                  "-20,1,820\n-20,10,1105\n-20,100,1410\n0,1,210\n0,10,330\n0,100,505\n"
+                  "23,1,31.2\n23,10,44.8\n23,100,71.5\n60,1,9.8\n60,10,11.1\n60,100,13.9\n"
+                  "100,1,7.4\n100,10,7.9\n";
+  return corner ? t + "100,100,8.6\n" : t;
+}
+
+FitOptions glass_transition_options(Transform dependent) {
+  FitOptions o;
+  o.axes = {{"temperature_C", "C", Transform::linear, std::nullopt}, {"frequency_Hz", "Hz", Transform::log10, std::nullopt}};
+  o.dependent_name = "storage_MPa", o.dependent_unit = "MPa", o.dependent_transform = dependent;
+  return o;
+}
+
+Surface fit_glass_transition(bool corner, Transform dependent) {
+  const std::string path = write_temp(corner ? "glass_full.csv" : "glass_corner.csv", glass_transition_table(corner));
+  return fit_surface(read_sample_columns(path, {"temperature_C", "frequency_Hz"}, "storage_MPa"),
+                     glass_transition_options(dependent));
+}
+
+bool any_contains(const std::vector<std::string>& warnings, const std::string& text) {
+  for (const auto& w : warnings)
+    if (w.find(text) != std::string::npos) return true;
+  return false;
+}
+}  // namespace
+
+// Found with a hand-typed table: a degree-4 polynomial in temperature through a glass transition
+// passes every point (R = 1) and reaches −33 MPa at 85 °C, 1 Hz, where every measured modulus is
+// positive; nothing said so. The range check samples the surface between the levels and warns,
+// naming where; fitting log10 of the moduli keeps the surface positive and passes the points too.
+TEST(SurfaceFit, ASurfaceThatSwingsOutOfTheDatasRangeIsAWarning) {
+  const Surface linear = fit_glass_transition(true, Transform::linear);
+  const double at[2] = {85.0, 1.0};
+  ASSERT_LT(linear.value(at), 0.0) << "the swing the check must find";
+  EXPECT_LE(linear.statistics.surface_min, linear.value(at));
+  EXPECT_DOUBLE_EQ(linear.statistics.data_min, 7.4);
+  EXPECT_DOUBLE_EQ(linear.statistics.data_max, 1410.0);
+  const auto w = statistics_warnings(linear);
+  EXPECT_TRUE(any_contains(w, "never change sign")) << w.back();
+  EXPECT_TRUE(any_contains(w, "swings between the data")) << w.back();
+  EXPECT_TRUE(any_contains(w, "--y storage_MPa:log")) << w.back();
+  // The location is the sampled minimum's, in the axes' units: 85 °C and 1 Hz lie on the grid.
+  EXPECT_NEAR(linear.statistics.surface_min_at[0], 85.0, 1e-9);
+  EXPECT_NEAR(linear.statistics.surface_min_at[1], 1.0, 1e-9);
+
+  const Surface logarithmic = fit_glass_transition(true, Transform::log10);
+  EXPECT_GT(logarithmic.value(at), 7.4 * 0.99);
+  EXPECT_LT(logarithmic.statistics.max_relative_error, 1e-9) << "still passes every point (N = p)";
+  EXPECT_FALSE(any_contains(statistics_warnings(logarithmic), "the surface reaches"));
+  EXPECT_GT(logarithmic.statistics.surface_min, 0.0);
+  // A surface without swings (Report V's full design, degree 2): no range warning.
+  const auto quiet = fit_surface(make_design(levels(3, 3, 3), all_cells, twice, 0.02, 9), rubber_options());
+  EXPECT_FALSE(any_contains(statistics_warnings(quiet), "the surface reaches"));
+  EXPECT_TRUE(std::isfinite(quiet.statistics.surface_min));
+}
+
+// Without the (100 °C, 100 Hz) measurement the missing-cell constraint fills that corner with a
+// value far outside the data (−415 MPa linear, 5317 MPa as log10): the warning names the empty cell.
+TEST(SurfaceFit, AnEmptyCellFilledFarOutsideTheDataIsNamedInTheWarning) {
+  for (const Transform t : {Transform::linear, Transform::log10}) {
+    const Surface s = fit_glass_transition(false, t);
+    ASSERT_EQ(s.missing_cells.size(), 1u);
+    const auto w = statistics_warnings(s);
+    EXPECT_TRUE(any_contains(w, "empty cell of the level grid (levels 4 2, 0-based)")) << to_string(t);
+    const double corner[2] = {100.0, 100.0};
+    EXPECT_TRUE(s.value(corner) < 7.4 - 0.25 * (1410 - 7.4) || s.value(corner) > 1410 + 0.25 * (1410 - 7.4));
+  }
+}
+
+// A log10 dependent: y = 10^(Bezier sum), its gradient ln 10 · y · d(log y)/dx against central
+// differences, the JSON keeps the transform (an older file without it reads as linear), and a
+// non-positive value is refused at its file line and column.
+TEST(SurfaceFit, LogDependentEvaluatesGradientsRoundTripsAndRefusesNonPositiveValues) {
+  const Surface s = fit_glass_transition(true, Transform::log10);
+  const double x[2] = {40.0, 7.0};
+  const Evaluation e = s.evaluate(x);
+  EXPECT_DOUBLE_EQ(e.value, s.value(x));
+  for (int k = 0; k < 2; ++k) {
+    double up[2] = {x[0], x[1]}, down[2] = {x[0], x[1]};
+    const double h = 1e-5 * x[k];
+    up[k] += h, down[k] -= h;
+    EXPECT_NEAR(e.gradient[k], (s.value(up) - s.value(down)) / (2 * h), 1e-6 * std::abs(e.gradient[k])) << k;
+  }
+  nlohmann::json j = surface_to_json(s);
+  EXPECT_EQ(j["dependent"]["transform"], "log10");
+  EXPECT_DOUBLE_EQ(surface_from_json(j).value(x), e.value);
+  j["dependent"].erase("transform");
+  j["statistics"].erase("range");
+  const Surface older = surface_from_json(j);
+  EXPECT_EQ(older.dependent_transform, Transform::linear);
+  EXPECT_FALSE(std::isfinite(older.statistics.surface_min));
+  EXPECT_NEAR(std::pow(10.0, older.value(x)), e.value, 1e-9 * e.value);
+
+  const std::string path = write_temp("glass_zero.csv", glass_transition_table(true) + "40,10,0\n");
+  try {
+    fit_surface(read_sample_columns(path, {"temperature_C", "frequency_Hz"}, "storage_MPa"),
+                glass_transition_options(Transform::log10));
+    FAIL() << "a zero modulus fitted as log10 must be refused";
+  } catch (const InputError& err) {
+    EXPECT_EQ(err.line(), 17);
+    EXPECT_EQ(err.column(), 3);
+    EXPECT_NE(std::string(err.what()).find("not positive, but it is fitted as log10"), std::string::npos) << err.what();
+  }
 }

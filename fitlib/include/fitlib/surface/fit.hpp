@@ -43,6 +43,8 @@ MissingCellRemedy parse_missing_cell_remedy(const std::string& text);
 struct FitOptions {
   std::vector<AxisSpec> axes;
   std::string dependent_name = "y", dependent_unit;
+  // log10: fit log10 y (every y must be positive); the surface still evaluates to y.
+  Transform dependent_transform = Transform::linear;
   std::string name;
   MissingCellRemedy missing = MissingCellRemedy::constrain;
   // Values of an axis closer than this fraction of its (transformed) range belong to one level.

@@ -52,6 +52,8 @@ struct Axis {
   double parameter_derivative(double x) const;
   // x lies in [start, end] (with a relative tolerance of 1e-9 of the interval).
   bool contains(double x) const;
+  // The variable's value at Bezier parameter u (the inverse of parameter()).
+  double value_at(double u) const;
 };
 
 // One linear equation Σ coefficient · c[index] = rhs on the control points (flat indices).
@@ -78,11 +80,20 @@ struct Statistics {
   std::size_t max_relative_error_row = 0;               // 0-based data row where it occurs
   double ss_residual = 0.0, ss_total = 0.0;
   std::size_t n_occupied_cells = 0;  // distinct level combinations holding data
+  // The data's values and the surface's extremes over its whole interval, sampled on a grid finer
+  // than the levels (NaN when not sampled): a fit can pass every point and swing between them.
+  double data_min = std::numeric_limits<double>::quiet_NaN(), data_max = data_min;
+  double surface_min = data_min, surface_max = data_min;
+  std::vector<double> surface_min_at, surface_max_at;  // where, in the axes' own units
 };
 
-// Warnings on the statistics (docs/surfaces.md "Statistics"): no residual degrees of freedom —
-// the surface passes through every point whatever it is between them, R and s say nothing.
-std::vector<std::string> statistics_warnings(const Statistics& st);
+class Surface;
+// Warnings on the statistics (docs/surface.md "Statistics"): no residual degrees of freedom — the
+// surface passes through every point whatever it is between them, R and s say nothing —, and a
+// surface that changes sign where the data do not or leaves the data's range by more than
+// kRangeOvershoot of it between the data.
+constexpr double kRangeOvershoot = 0.25;
+std::vector<std::string> statistics_warnings(const Surface& s);
 
 struct Evaluation {
   double value = 0.0;
@@ -96,6 +107,8 @@ class Surface {
 
   std::string name;
   std::string dependent_name, dependent_unit;
+  // log10: the control points describe log10 y (moduli spanning decades); value() returns y.
+  Transform dependent_transform = Transform::linear;
   std::vector<Axis> axes;
   Eigen::VectorXd control_points;
   std::vector<ConstraintGroup> constraints;
@@ -118,8 +131,10 @@ class Surface {
 };
 
 // Value and gradient at Bezier parameters u[0..n-1] (no interval check); `gradient` may be null
-// and then receives dy/du_k.
+// and then receives dy/du_k. Both of the control points' quantity: log10 y for a log10 dependent.
 double evaluate_at_parameters(const Surface& s, const double* u, double* gradient_du);
+// y from the control points' quantity (10^v for a log10 dependent).
+double dependent_value(const Surface& s, double v);
 
 nlohmann::json surface_to_json(const Surface& s);
 // Validates as it reads; InputError names the source and key.
