@@ -1,4 +1,5 @@
 // fitcli fit: dynamic-test tables → fitted model → material card (docs/formats.md §3, §6).
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -163,12 +164,15 @@ void print_summary(const FitArgs& a, const fitlib::card::FitCardResult& r) {
       << (result.quality.acceptable() ? "within the thresholds (docs/fitting.md)"
                                       : std::to_string(result.quality.warnings.size()) + " warning(s) on stderr")
       << "\n";
+  // A reason repeated down the list (a relaxation fit's, on each of 28 terms) is said once per run.
+  const std::string* previous = nullptr;
   for (const auto& p : result.parameters) {
     out << "  " << p.name << " = " << exact(p.value) << " " << p.unit;
     if (p.std_error)
       out << "  ± " << *p.std_error << "  [95 %: " << *p.ci95_low << ", " << *p.ci95_high << "]";
     else if (!p.reason.empty())
-      out << "  (" << p.reason << ")";
+      out << "  (" << (previous && *previous == p.reason ? "as above" : p.reason) << ")";
+    previous = p.std_error ? nullptr : &p.reason;
     out << "\n";
   }
   for (const auto& msg : result.messages) note(msg);

@@ -193,6 +193,12 @@ TEST(FitCli, ARelaxationFitSpeaksOfMOfTAndTimes) {
                            "% at t = 10 s"})
     EXPECT_NE(r.out.find(said), std::string::npos) << said << "\n" << r.out;
   for (const char* not_said : {"rms_E''", "loss 0", " Hz\n"}) EXPECT_EQ(r.out.find(not_said), std::string::npos) << not_said;
+  // The parameters' shared reason is said once, then "as above" (it filled every one of 28 lines).
+  const auto reason = std::string("(standard errors are not estimated for relaxation fits)");
+  const auto first = r.out.find(reason);
+  ASSERT_NE(first, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(reason, first + 1), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(as above)"), std::string::npos) << r.out;
 }
 
 // A damage card has no Prony form: export refuses (exit 2) and names the route, which works: the

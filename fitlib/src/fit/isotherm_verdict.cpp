@@ -63,9 +63,11 @@ class IsothermErrors {
     s.precision(3);
     s << "with its " << law << " law the card misses " << missed.size() << " of " << isotherms.size()
       << " measured isotherms; worst " << w.group.substr(0, w.group.find(" measured")) << ": " << w.modulus
-      << " mean relative error " << 100.0 * w.mean_rel_error << " %, max " << 100.0 * w.max_rel_error << " % at "
-      << w.max_at_frequency_Hz << " Hz (the figures above are on the shifted table; at other temperatures the "
-      << "card answers through its law)";
+      << " mean relative error " << 100.0 * w.mean_rel_error << " %, max " << 100.0 * w.max_rel_error << " % at ";
+    // A relaxation row's place is its time (stored as 1/(2π t), relaxation_checks.cpp's convention).
+    if (w.modulus == kModulusNames[2]) s << "t = " << 1.0 / (2.0 * core::kPi * w.max_at_frequency_Hz) << " s";
+    else s << w.max_at_frequency_Hz << " Hz";
+    s << " (the figures above are on the shifted table; at other temperatures the card answers through its law)";
     v.warnings.push_back(s.str());
     return v;
   }

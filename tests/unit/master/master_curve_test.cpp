@@ -119,11 +119,10 @@ TEST(MasterCurve, RecoversWlfShiftsOfSyntheticIsotherms) {
   EXPECT_LT(max_shift_error(exact), 0.03);
 }
 
-// Relaxation isotherms (E(t), 10 times 0.01 … 10 s each) of the same truth: `--master-curve` on
-// time data matches each E(t) as a storage curve at 1/(2π t), and finds the same shifts.
-TEST(MasterCurve, RecoversWlfShiftsOfSyntheticRelaxationIsotherms) {
+// Relaxation isotherms (E(t), 10 times 0.01 … 10 s each) of the truth, 0.5 % noise.
+data::RelaxationTable relaxation_isotherms(std::uint64_t seed) {
   const Truth truth;
-  core::Rng rng(11);
+  core::Rng rng(seed);
   data::RelaxationTable raw;
   for (std::size_t k = 0; k < kTemperatures.size(); ++k)
     for (int i = 0; i < 10; ++i) {
@@ -137,6 +136,13 @@ TEST(MasterCurve, RecoversWlfShiftsOfSyntheticRelaxationIsotherms) {
       row.set = "T" + std::to_string(k);
       raw.rows.push_back(row);
     }
+  return raw;
+}
+
+// `--master-curve` on time data matches each E(t) as a storage curve at 1/(2π t), and finds the
+// same shifts.
+TEST(MasterCurve, RecoversWlfShiftsOfSyntheticRelaxationIsotherms) {
+  const auto raw = relaxation_isotherms(11);
   fit::MasterCurveOptions o;
   o.reference_C = kRefC;
   const auto curve = fit::build_relaxation_master_curve(raw, o);
@@ -168,6 +174,24 @@ TEST(MasterCurve, MeasuredIsothermVerdictJudgesTheCardsLaw) {
   EXPECT_NE(bad.warnings[0].find("with its wlf law the card misses"), std::string::npos) << bad.warnings[0];
   // Every isotherm but the reference one moves (its shift stays 0); the warmest is the worst.
   EXPECT_NE(bad.warnings[0].find("7 of 8 measured isotherms; worst T=60"), std::string::npos) << bad.warnings[0];
+}
+
+// On relaxation isotherms the warning places the worst error at a time, one of the data's (it said
+// "at 15.9 Hz" for pyvisco's raw relaxation isotherms, whose fit summary speaks of t = 0.01 s).
+TEST(MasterCurve, MeasuredRelaxationIsothermVerdictNamesATime) {
+  const Truth truth;
+  auto wrong = truth.p;
+  wrong[wrong.size() - 2] *= 0.5;  // C1
+  const auto bad = fit::measured_isotherm_verdict(*truth.model, wrong, relaxation_isotherms(11));
+  ASSERT_EQ(bad.warnings.size(), 1u);
+  const std::string& w = bad.warnings[0];
+  EXPECT_EQ(w.find(" Hz"), std::string::npos) << w;
+  const auto at = w.find("% at t = ");
+  ASSERT_NE(at, std::string::npos) << w;
+  const double t = std::stod(w.substr(at + 9));
+  bool a_data_time = false;
+  for (int i = 0; i < 10; ++i) a_data_time |= std::abs(t / (0.01 * std::pow(10.0, i / 3.0)) - 1.0) < 1e-2;
+  EXPECT_TRUE(a_data_time) << w;
 }
 
 TEST(MasterCurve, JointRefinementMovesShiftsTowardsTheTruth) {
