@@ -38,6 +38,10 @@ void register_export(CLI::App& app) {
   cmd->add_option("--material-id", args->options.material_id, "Material number (ANSYS, LS-DYNA)")
       ->capture_default_str()->check(number_in(1, 999999));  // fits every deck's field
   cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)");
+  cmd->add_option("--temperature-c", args->options.temperature_C,
+                  "Export at this temperature (degC): times scaled by the card's shift factor, no temperature shift "
+                  "in the deck (for laws the solver lacks)")
+      ->check(CLI::Range(-273.15, 1000.0));
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");
   add_json_flag(cmd, args->json, "the keywords (or, with --out, the file written), on stdout");

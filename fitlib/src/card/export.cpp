@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "fitlib/core/error.hpp"
@@ -23,6 +24,8 @@ struct PronyExport {
   double young0_MPa = 0.0, shear0_MPa = 0.0, bulk_MPa = 0.0, poisson = 0.0;
   bool bulk_relaxes = false;  // uniaxial card: same α for bulk (constant Poisson ratio)
   bool from_retardation = false;  // the series is the card's retardation spectrum converted exactly
+  double at_temperature_C = std::numeric_limits<double>::quiet_NaN();  // ExportOptions::temperature_C
+  model::TemperatureFactors factors;                                     // the law's factors there
   // WLF shift log a_T = −C1 (T − T_ref)/(C2 + T − T_ref), when the card has one.
   bool wlf = false;
   double reference_C = 0.0, C1 = 0.0, C2_K = 0.0;
@@ -97,8 +100,16 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
       throw core::UsageError("card '" + card.name + "' is not admissible for " + format + ": " + problems +
                              "refit, or pass --allow-inadmissible to export it anyway");
   }
-  const double m0 = s.glassy();
   PronyExport e;
+  if (std::isfinite(o.temperature_C)) {  // M(t, T) = b_T · M_ref(t / a_T): τ_i → a_T τ_i, M_i → b_T M_i
+    require_material_at(card, card.name, o.temperature_C, "--temperature-c", "temperature_C");
+    e.at_temperature_C = o.temperature_C;
+    e.factors = m->temperature_factors(values.data(), o.temperature_C);
+    for (double& t : s.times_s) t *= e.factors.shift_factor;
+    for (double& g : s.moduli) g *= e.factors.scale;
+    s.relaxed *= e.factors.scale;
+  }
+  const double m0 = s.glassy();
   model::MaxwellSeries own;
   e.from_retardation = !m->maxwell_series(values.data(), &own);
   for (size_t i = 0; i < s.moduli.size(); ++i) {
@@ -109,12 +120,16 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
     e.tau_s.push_back(s.times_s[i]);
   }
   const model::TemperatureLawInfo law = m->temperature_law_info();
-  if (law.law != model::ShiftLaw::none && law.law != model::ShiftLaw::wlf)
+  const bool at_one_temperature = std::isfinite(e.at_temperature_C);
+  // The route for a law the deck cannot hold: the card at the part's working temperature.
+  const std::string route = ": export it at the part's working temperature (--temperature-c T: the terms' times "
+                            "scaled by the card's shift factor there, valid at T only) or refit with --temperature-law wlf";
+  if (!at_one_temperature && law.law != model::ShiftLaw::none && law.law != model::ShiftLaw::wlf)
     throw core::UsageError(format + " export supports only the WLF shift; the card uses '" +
-                           m->temperature_law(values.data()).value("law", "?") + "'");
-  if (law.vertical_shift || law.linear_factor)
-    throw core::UsageError(format + " Prony input cannot hold a vertical shift or a linear temperature factor");
-  if (law.law == model::ShiftLaw::wlf) {
+                           m->temperature_law(values.data()).value("law", "?") + "'" + route);
+  if (!at_one_temperature && (law.vertical_shift || law.linear_factor))
+    throw core::UsageError(format + " Prony input cannot hold a vertical shift or a linear temperature factor" + route);
+  if (!at_one_temperature && law.law == model::ShiftLaw::wlf) {
     e.wlf = true;
     e.reference_C = law.reference_C;
     e.C1 = values[law.shift_parameters.at(0)];
@@ -154,6 +169,10 @@ std::string header(const Card& card, const char* comment, const PronyExport& e) 
   out << comment_lines(comment, e.bulk_relaxes
                                     ? "uniaxial card: the same relative weights relax shear and bulk (constant Poisson ratio)"
                                     : "shear card: bulk response elastic");
+  if (std::isfinite(e.at_temperature_C))
+    out << comment_lines(comment, "at " + num(e.at_temperature_C) + " degC only: times x " + num(e.factors.shift_factor) +
+                                      " (shift factor a_T), moduli x " + num(e.factors.scale) +
+                                      "; no temperature shift in this deck");
   if (const std::string q = fit_quality_warning(card); !q.empty()) out << comment_lines(comment, "WARNING: " + q);
   return out.str();
 }

@@ -256,6 +256,66 @@ TEST(Export, LsDynaRefusesWithoutADensity) {
   }
 }
 
+// A deck at one temperature (--temperature-c) for laws the solvers lack: the Abaqus numbers read back
+// as G(t) = G_0 (1 − Σ g_i (1 − e^(−t/τ_i))), G_0 = E_0/(2(1 + ν)), are the card's own G(t, T)
+// (Model::relaxation_modulus at T) to 1e-9 over eight decades — Arrhenius, a quadratic polynomial
+// and WLF with the entropic factor T/T_ref —, with no *TRS; the refusal without it names the route.
+TEST(Export, AtOneTemperatureTheDeckHoldsTheCardsRelaxationThereForAnyLaw) {
+  const std::vector<std::pair<nlohmann::json, std::vector<double>>> laws = {
+      {{{"temperature_law", "arrhenius"}}, {80.0}},
+      {{{"temperature_law", "polynomial"}, {"polynomial_degree", 2}}, {-0.12, 4e-4}},
+      {{{"temperature_law", "wlf"}, {"vertical_shift", true}}, {8.86, 101.6}}};
+  const double T = 61.5;
+  for (const auto& [options, law] : laws) {
+    auto c = prony_card(3, options);
+    c.model_options["reference_C"] = 23.0;
+    const auto m = c.model();
+    const std::size_t first = m->size() - law.size();
+    for (std::size_t k = 0; k < law.size(); ++k) c.parameters[first + k].value = law[k];
+    if (options["temperature_law"] != "wlf")  // Abaqus holds WLF without a vertical shift only
+      EXPECT_THROW(
+          try { card::export_card(c, "abaqus"); } catch (const core::UsageError& e) {
+            EXPECT_NE(std::string(e.what()).find("--temperature-c T"), std::string::npos) << e.what();
+            throw;
+          },
+          core::UsageError);
+    card::ExportOptions o;
+    o.temperature_C = T;
+    const std::string deck = card::export_card(c, "abaqus", o);
+    EXPECT_EQ(deck.find("*TRS"), std::string::npos) << deck;
+    EXPECT_NE(deck.find("at 61.5 degC only"), std::string::npos) << deck;
+    std::istringstream in(deck.substr(deck.find("*ELASTIC, MODULI=INSTANTANEOUS\n") + 31));
+    double E0 = 0.0, nu = 0.0;
+    char comma = 0;
+    in >> E0 >> comma >> nu;
+    std::vector<double> g, tau;
+    std::string line;
+    std::getline(in, line), std::getline(in, line);  // the rest of the *ELASTIC line, *VISCOELASTIC
+    while (std::getline(in, line) && !line.empty() && line[0] != '*') {
+      std::istringstream row(line);
+      double gi = 0.0, ki = 0.0, ti = 0.0;
+      row >> gi >> comma >> ki >> comma >> ti;
+      g.push_back(gi), tau.push_back(ti);
+    }
+    ASSERT_EQ(g.size(), 3u) << deck;
+    const double G0 = E0 / (2.0 * (1.0 + nu));
+    model::TestCondition at;
+    at.mode = model::TestMode::shear;
+    at.temperature_C = T;
+    for (double t = 1e-10; t < 1e-1; t *= 10.0) {
+      double G = G0;
+      for (std::size_t i = 0; i < g.size(); ++i) G -= G0 * g[i] * (1.0 - std::exp(-t / tau[i]));
+      const double card_G = m->relaxation_modulus(c.values().data(), at, t);
+      EXPECT_NEAR(G, card_G, 1e-9 * card_G) << options.dump() << " t = " << t;
+    }
+  }
+  // A temperature where the law describes no material (at the WLF pole) is refused.
+  card::ExportOptions pole;
+  pole.temperature_C = 23.0 - 101.6;
+  EXPECT_THROW(card::export_card(prony_card(2, {{"temperature_law", "wlf"}, {"reference_C", 23.0}}), "abaqus", pole),
+               core::InputError);
+}
+
 TEST(Export, RefusesWhatAFormatCannotHold) {
   EXPECT_THROW(card::export_card(prony_card(6), "lsdyna"), core::UsageError);  // > 5 terms
   EXPECT_THROW(card::export_card(prony_card(2), "calculix"), core::UsageError);

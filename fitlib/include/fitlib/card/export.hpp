@@ -3,6 +3,7 @@
 // message saying why) what its format cannot hold: amplitude dependence, a model that is not an
 // exact Prony series, negative relaxation weights, more terms than the solver accepts, a
 // temperature law the solver lacks.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct ExportOptions {
   // Write a card whose terms break the admissible window it records (fit.admissible) or whose
   // relaxed/instantaneous ratio is below kMinRelaxedRatio (docs/fitting.md "Admissible terms").
   bool allow_inadmissible = false;
+  // Export the card at one temperature (°C; NaN: keep its law): the terms' times scaled by the
+  // law's shift factor there and the moduli by its vertical factor, no temperature shift in the
+  // deck. The route for laws the solver lacks (polynomial, Arrhenius, vertical shifts).
+  double temperature_C = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Smallest relaxed / instantaneous modulus an exported card may have (FE stability).
