@@ -142,6 +142,14 @@ std::vector<std::string> life_warnings(const LifeReport& r, bool points_have_his
                     ": its largest peak is " + core::format_number(m.largest_peak_over_sigma0, 3) +
                     " x sigma0, and the life law (6.31) was fitted to belts that ran for hours; read it as "
                     "failure at once, not as a number (are the cards a belt rubber's at this temperature?)");
+  for (const ModeLife& m : r.modes)
+    if (std::isfinite(m.life_cycles) && m.life_cycles > kLongestReadableLife_cycles)
+      out.push_back(std::string("the ") + to_string(m.mode) + " life, " + core::format_number(m.life_cycles, 4) +
+                    " load cycles, is beyond " + core::format_number(kLongestReadableLife_cycles) +
+                    ": its largest peak is " + core::format_number(m.largest_peak_over_sigma0, 3) +
+                    " x sigma0, and the life law (6.31) was fitted to belts that lived 1-2000 h (Report III; real "
+                    "drives live 10-100 times longer); read it as no fatigue failure in this mode at this load (a "
+                    "runout), not as a number");
   return out;
 }
 

@@ -63,6 +63,31 @@ TEST(Life, ALifeBelowAThousandCyclesIsAWarningAndOneAboveIsNot) {
   }
 }
 
+// A life beyond 1e12 cycles is a runout warning naming the mode, the life and the peak over σ0
+// (the light drive at zero torque gave separation 2.2e193 cycles with no word): one peak of
+// σ0·1e12^(−1/n)·(1 ± 1 %) sits just below and just above the threshold; a mode with no peak at
+// all (unbounded) is not one.
+TEST(Life, ALifeBeyondATrillionCyclesIsARunoutWarningAndOneBelowIsNot) {
+  const FatigueCard card = default_card();
+  const double at_threshold = 104.218 * std::pow(kLongestReadableLife_cycles, -1.0 / 4.423);
+  for (const double f : {0.99, 1.01}) {
+    const LifeReport r = evaluate_life({point("a", Role::bottom, {0, f * at_threshold, 0})}, card,
+                                       at(card.reference_temperature_C));
+    const auto warnings = life_warnings(r);
+    if (f < 1.0) {
+      ASSERT_EQ(warnings.size(), 1u);
+      EXPECT_GT(r.life_cycles, kLongestReadableLife_cycles);
+      for (const char* part : {"radial_crack life", "beyond 1e+12", "x sigma0", "runout"})
+        EXPECT_NE(warnings[0].find(part), std::string::npos) << part << " in " << warnings[0];
+    } else {
+      EXPECT_TRUE(warnings.empty()) << r.life_cycles;
+    }
+  }
+  const LifeReport quiet = evaluate_life({point("a", Role::bottom, {0, 0, 0})}, card, at(card.reference_temperature_C));
+  EXPECT_FALSE(std::isfinite(quiet.life_cycles));
+  EXPECT_TRUE(life_warnings(quiet).empty());
+}
+
 TEST(Life, TemperatureFactorIsExactlyTwoToTheMinusBDeltaT) {
   const FatigueCard card = default_card();
   for (Role role : {Role::bottom, Role::cushion}) {

@@ -96,6 +96,11 @@ bool peak_under_resolved(const ModeLife& m);
 // power law (6.31) was fitted to belts that ran for hours (docs/decisions.md "Life: a life below
 // 1000 cycles is a warning, not a number to read").
 constexpr double kShortestReadableLife_cycles = 1e3;
+// Above this many load cycles a life says "no fatigue failure in this mode" (a runout): (6.31) was
+// fitted to belts that lived 1–2000 h (about 1e4–1e8 cycles; Report III: real drives live 10–100×
+// longer), and a power law with n up to 11.7 reaches 1e193 cycles at no load (docs/decisions.md
+// "Life: a life beyond 1e12 cycles is a runout, not a number to read").
+constexpr double kLongestReadableLife_cycles = 1e12;
 
 struct CordBreakLife {
   double mean_MPa = 0.0, amplitude_MPa = 0.0, equivalent_amplitude_MPa = 0.0;
@@ -140,7 +145,8 @@ std::string life_table(const LifeReport& report);
 // ("effective_stress": {"t_s": [...], "MPa": [...]}), the curve its peaks were counted on.
 nlohmann::json life_to_json(const LifeReport& report, bool effective_stress_history = false);
 
-// One warning per mode whose finite life is below kShortestReadableLife_cycles, and, where the
+// One warning per mode whose finite life is below kShortestReadableLife_cycles or above
+// kLongestReadableLife_cycles, and, where the
 // points carry history (the complete level's glassy transients), per mode whose peak is under-
 // resolved (peak_under_resolved: the elastic level's peaks at the planned steps move N2 by ≤ 8 %
 // with 0.1 mm sampling, docs/segment.md "The driver exit's peel transient").
