@@ -153,7 +153,7 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--temperature-c", args->temperature_C, "Temperatures in degC (default: reference)")
       ->delimiter(',')->check(temperature_c_range());
   cmd->add_option("--amplitude", args->amplitude, "Strain amplitudes (default: small-amplitude limit)")
-      ->delimiter(',')->check(non_negative_number());
+      ->delimiter(',')->check(strain_amplitude_range());
   cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,
                 "Evaluate beyond the card's data window (a warning, and extrapolated: true in --json)");
   cmd->add_option("--out", args->out, "Output file (CSV, or JSON with --json; default or - = stdout)");

@@ -41,7 +41,7 @@ void register_export(CLI::App& app) {
   cmd->add_option("--temperature-c", args->options.temperature_C,
                   "Export at this temperature (degC): times scaled by the card's shift factor, no temperature shift "
                   "in the deck (for laws the solver lacks)")
-      ->check(CLI::Range(-273.15, 1000.0));
+      ->check(temperature_c_range());
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");
   add_json_flag(cmd, args->json, "the keywords (or, with --out, the file written), on stdout");

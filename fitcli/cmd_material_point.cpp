@@ -71,8 +71,8 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
   if (a.fidelity != "viscoelastic" && a.fidelity != "elastic")
     throw core::UsageError("--fidelity must be viscoelastic or elastic, not '" + a.fidelity + "'");
-  if (a.cycles < 1 || a.steps_per_cycle < 4 || !(a.frequency_Hz > 0.0))
-    throw core::UsageError("--cycles ≥ 1, --steps-per-cycle ≥ 4 and --frequency > 0 are needed");
+  if (!(a.frequency_Hz > 0.0))  // (the deprecated --frequency has no validator)
+    throw core::UsageError("--frequency-hz: must be > 0, got " + core::short_number(a.frequency_Hz));
   if (static_cast<double>(a.cycles) * a.steps_per_cycle > kMaxSteps)
     throw core::UsageError("--cycles × --steps-per-cycle exceeds the work cap 1e6 steps (docs/reliability.md)");
   model::TestCondition c;
@@ -123,12 +123,13 @@ void register_material_point(CLI::App& app) {
   cmd->add_option("--mode", args->test, "shear (default), uniaxial or bulk");
   cmd->add_option("--orientation", args->orientation, "11, 22, 33, 12, 13 or 23 (default 12 / 22)");
   cmd->add_option("--amplitude", args->amplitude, "strain amplitude (shear: γ; default 0.01)")
-      ->check(non_negative_number());
+      ->check(strain_amplitude_range());
   cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,
                 "Drive beyond the card's data window (a warning; without it such a test is refused)");
-  cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft");
-  cmd->add_option("--frequency-hz", args->frequency_Hz, "Hz (default 1)");
-  cmd->add_option("--cycles", args->cycles, "cycles (default 5)");
+  cmd->add_option("--mean-strain", args->mean_strain, "mean strain (default 0); ε(t) = mean − a cos 2πft")
+      ->check(mean_strain_range());
+  cmd->add_option("--frequency-hz", args->frequency_Hz, "Hz (default 1)")->check(positive_number());
+  cmd->add_option("--cycles", args->cycles, "cycles (default 5)")->check(number_in(1, 1e6));
   cmd->add_option("--temperature-c", args->temperature_C, "degC (default: the card's reference)")
       ->check(temperature_c_range());
   // Deprecated spellings (one release): the same names as every other subcommand.
@@ -140,8 +141,10 @@ void register_material_point(CLI::App& app) {
     old->group("");  // hidden from --help
   }
   cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency-hz)");
-  cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear card without K (default: from its instantaneous modulus and Poisson ratio 0.4995)");
-  cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)");
+  cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear card without K (default: from its instantaneous modulus and Poisson ratio 0.4995)")
+      ->check(positive_number());
+  cmd->add_option("--steps-per-cycle", args->steps_per_cycle, "time steps per cycle (default 200)")
+      ->check(number_in(4, 1e6));
   cmd->add_option("--out", args->out, "CSV file to write (JSON with --json; default or - = stdout)");
   add_json_flag(cmd, args->json, "the rows instead of CSV, on stdout or in --out");
   add_verbosity_flags(cmd);

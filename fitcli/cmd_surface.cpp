@@ -289,7 +289,7 @@ void register_surface(CLI::App& app) {
   grid->add_option("--temperature-c", ga->temperature_C, "Temperatures in degC (default: card reference)")
       ->delimiter(',')->check(temperature_c_range());
   grid->add_option("--amplitude", ga->amplitude, "Strain amplitudes (default: small-amplitude limit)")
-      ->delimiter(',')->check(non_negative_number());
+      ->delimiter(',')->check(strain_amplitude_range());
   grid->add_flag("--allow-extrapolation", ga->allow_extrapolation,
                  "Evaluate beyond the card's data window (a warning; without it such a grid is refused)");
   grid->add_option("--mode", ga->mode, "shear | uniaxial | bulk")->capture_default_str();

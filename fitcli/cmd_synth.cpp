@@ -76,7 +76,7 @@ void register_synth(CLI::App& app) {
   cmd->add_option("--frequency-hz", a->frequency_Hz, "Frequencies, Hz")->required()->delimiter(',')
       ->check(positive_number());
   cmd->add_option("--temperature-c", a->temperature_C, "Temperatures, degC")->delimiter(',')->check(temperature_c_range());
-  cmd->add_option("--amplitude", a->amplitude, "Strain amplitudes")->delimiter(',')->check(non_negative_number());
+  cmd->add_option("--amplitude", a->amplitude, "Strain amplitudes")->delimiter(',')->check(strain_amplitude_range());
   cmd->add_flag("--allow-extrapolation", a->allow_extrapolation,
                 "Evaluate beyond the card's data window (a warning; without it such a design is refused)");
   cmd->add_option("--noise", a->noise, "Relative standard deviation of the scatter (0.01 = 1 %)")

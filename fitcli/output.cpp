@@ -84,6 +84,14 @@ CLI::Validator non_negative_number() { return number_where([](double x) { return
 CLI::Validator poisson_ratio_range() {
   return number_where([](double x) { return x >= 0.0 && x < 0.5; }, "in [0, 0.5)");
 }
+CLI::Validator strain_amplitude_range() {
+  return number_where([](double x) { return x >= 0.0 && x <= 10.0; },
+                      "in [0, 10] (a strain of 1000 %, beyond any rubber's elongation at break)");
+}
+CLI::Validator mean_strain_range() {
+  return number_where([](double x) { return x >= -10.0 && x <= 10.0; },
+                      "in [-10, 10] (a strain of 1000 %, beyond any rubber's elongation at break)");
+}
 CLI::Validator number_in(double low, double high) {
   return number_where([low, high](double x) { return x >= low && x <= high; },
                       "in [" + fitlib::core::short_number(low) + ", " + fitlib::core::short_number(high) + "]");

@@ -32,6 +32,10 @@ CLI::Validator positive_number();
 CLI::Validator non_negative_number();
 CLI::Validator number_in(double low, double high);  // finite, low ≤ x ≤ high
 CLI::Validator poisson_ratio_range();               // [0, 0.5)
+// Strains (amplitudes ≥ 0 or mean strains) up to 10 in magnitude: 1000 %, beyond any rubber's
+// elongation at break (an amplitude of 1e9 ran and printed stresses of 1e9 MPa).
+CLI::Validator strain_amplitude_range();
+CLI::Validator mean_strain_range();
 // Every number option (type FLOAT) of `app` and its subcommands refuses NaN and inf: CLI11's
 // ranges let NaN through, and a NaN option reached results (exit 4) or was read as "unset".
 void require_finite_numbers(CLI::App& app);

@@ -154,7 +154,15 @@ TEST(CliGrammar, OutOfRangeNumberOptionsAreRefusedNamingTheOption) {
       {"export --card " + card + " --format ansys --out " + temp_file("range.inp"), "--material-id -7"},
       {"synth --card " + card + " --frequency-hz 1 --out " + temp_file("range.csv"), "--amplitude -0.1"},
       {"accumulate --spectrum box", "--cycles 0"},         {"accumulate --spectrum box", "--omega-points 0"},
-      {"accumulate --spectrum box", "--shear-stress-mpa -1"}, {"accumulate --spectrum box", "--kappa -2"}};
+      {"accumulate --spectrum box", "--shear-stress-mpa -1"}, {"accumulate --spectrum box", "--kappa -2"},
+      // 2026-11-29: a strain of 1e9 ran (stresses of 1e9 MPa); material-point's counts said "--cycles ≥ 1,
+      // --steps-per-cycle ≥ 4 and --frequency > 0 are needed" whichever was wrong; --bulk-modulus -5 ran.
+      {"eval --card " + card + " --frequency-hz 1", "--amplitude 1e9"},
+      {"synth --card " + card + " --frequency-hz 1 --out " + temp_file("range2.csv"), "--amplitude 11"},
+      {"surface grid --card " + card + " --frequency-hz 1", "--amplitude 20"},
+      {"material-point --card " + card, "--amplitude 1e9"},   {"material-point --card " + card, "--mean-strain -20"},
+      {"material-point --card " + card, "--frequency-hz 0"},  {"material-point --card " + card, "--cycles 0"},
+      {"material-point --card " + card, "--steps-per-cycle 1"}, {"material-point --card " + card, "--bulk-modulus -5"}};
   for (const auto& [command, option] : cases) {
     const auto r = run_fitcli(command + " " + option);
     EXPECT_EQ(r.exit_code, 2) << command << " " << option << "\n" << r.err;
