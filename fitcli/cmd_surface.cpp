@@ -228,6 +228,8 @@ void run_grid(const GridArgs& a) {
     s.provenance["fitlib_version"] = FITLIB_VERSION;
     s.provenance["command"] = command_line();
     emit_with(a.surface_out, [&](const std::string& path) { surface::save_surface(path, s); });
+    // (The grid surface interpolates its points by design: no residual-dof warning, only the range.)
+    if (const std::string range = surface::range_warning(s); !range.empty()) warning(range);
     std::ostringstream text;
     text.precision(4);
     text << "surface of " << s.dependent_name << ": N = " << s.statistics.n_points << ", p = "

@@ -322,6 +322,8 @@ const std::vector<int>* empty_cell_at(const Surface& s, const std::vector<double
   return found == s.missing_cells.end() ? nullptr : &*found;
 }
 
+}  // namespace
+
 // The range check: a sign the data never take, or a swing beyond kRangeOvershoot of their range.
 std::string range_warning(const Surface& s) {
   const Statistics& st = s.statistics;
@@ -349,7 +351,7 @@ std::string range_warning(const Surface& s) {
     remedies = {"measure that cell", "constrain it (--constraints)"};
   } else {
     out << ": the surface swings between the data, so R and the errors at the points do not describe it; ";
-    remedies = {"measure more levels"};
+    remedies = {"add levels"};
   }
   if (s.dependent_transform == Transform::linear && st.data_min > 0.0)
     remedies.push_back("fit log10 of the values (--y " + s.dependent_name + ":log)");
@@ -358,7 +360,6 @@ std::string range_warning(const Surface& s) {
     out << (i == 0 ? "" : i + 1 == remedies.size() ? " or " : ", ") << remedies[i];
   return out.str();
 }
-}  // namespace
 
 std::vector<std::string> statistics_warnings(const Surface& s) {
   const Statistics& st = s.statistics;

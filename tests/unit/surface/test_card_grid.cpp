@@ -85,17 +85,17 @@ TEST(CardGrid, SurfaceReproducesTheCardInsideTheInterval) {
   const auto grid = surface::evaluate_card_grid(c, rq);
   const auto model = c.model();
   const auto p = c.values();
-  // Stated tolerance: storage within 1 % relative; loss, which falls towards zero at low reduced
-  // frequency (where a polynomial in log f cannot follow ωτ), within 3 % of its largest grid value.
+  // Stated tolerance: storage within 1 % and loss within 4 % relative (the surface describes log10
+  // of the moduli; linear in the loss itself it was within 3 % of its largest grid value but 16 %
+  // relative where the loss falls towards zero at low reduced frequency).
   for (const std::string quantity : {"storage", "loss"}) {
     const auto s = surface::surface_from_grid(grid, quantity);
     EXPECT_EQ(s.axes[1].degree, 6);
     EXPECT_EQ(s.axes[2].degree, 6);
     EXPECT_EQ(s.axes[1].transform, surface::Transform::log10);
-    double largest = 0.0;
-    for (const auto& r : grid.rows) largest = std::max(largest, quantity == "storage" ? r.storage_MPa : r.loss_MPa);
+    EXPECT_EQ(s.dependent_transform, surface::Transform::log10);
     core::Rng rng(5);
-    double worst = 0.0;
+    double worst_rel = 0.0;
     for (int t = 0; t < 400; ++t) {  // random points between the grid points
       const double x[3] = {rng.uniform(0.005, 0.045), std::pow(10.0, rng.uniform(0.0, 2.0)),
                            rng.uniform(23.0, 80.0)};
@@ -105,10 +105,9 @@ TEST(CardGrid, SurfaceReproducesTheCardInsideTheInterval) {
       tc.temperature_C = x[2];
       const auto m = model->moduli(p.data(), tc);
       const double truth = quantity == "storage" ? m.storage : m.loss;
-      const double scale = quantity == "storage" ? std::abs(truth) : largest;
-      worst = std::max(worst, std::abs(s.value(x) - truth) / scale);
+      worst_rel = std::max(worst_rel, std::abs(s.value(x) / truth - 1.0));
     }
-    EXPECT_LT(worst, quantity == "storage" ? 0.01 : 0.03) << quantity;
+    EXPECT_LT(worst_rel, quantity == "storage" ? 0.01 : 0.04) << quantity;
     const double outside[3] = {0.005, 200.0, 30.0};
     EXPECT_THROW(s.value(outside), core::InputError);
   }
@@ -127,4 +126,38 @@ TEST(CardGrid, ReferenceTemperatureAndNoAmplitudeGiveOneAxis) {
   EXPECT_THROW(surface::surface_from_grid(grid, "stiffness"), core::UsageError);
   rq.frequency_Hz = {-1.0};
   EXPECT_THROW(surface::evaluate_card_grid(c, rq), core::UsageError);
+}
+
+// Found with a fitted WLF Prony card: its loss over 0.1–100 Hz (7 levels) and −20–80 °C (6 levels),
+// fitted in the loss itself, reached −0.87 MPa between the levels, and `surface grid` said only
+// "max relative error at the grid points = 1e-8 %". The grid surface now describes log10 of the
+// loss, so it stays positive (checked on a 61 × 61 mesh and by the fit's own range check), while
+// the same grid fitted linearly trips the range check.
+TEST(CardGrid, AGridSurfaceOfTheLossStaysPositiveWhereALinearFitSwingsBelowZero) {
+  const auto c = prony_card();
+  surface::CardGridRequest rq;
+  rq.frequency_Hz = log_spaced(0.1, 100.0, 7);
+  rq.temperature_C = {-20.0, 0.0, 20.0, 40.0, 60.0, 80.0};
+  const auto grid = surface::evaluate_card_grid(c, rq);
+  const auto s = surface::surface_from_grid(grid, "loss");
+  EXPECT_EQ(surface::range_warning(s), "");
+  EXPECT_GT(s.statistics.surface_min, 0.0);
+  for (int i = 0; i <= 60; ++i)
+    for (int j = 0; j <= 60; ++j) {
+      const double x[2] = {0.1 * std::pow(1000.0, i / 60.0), -20.0 + 100.0 * j / 60.0};
+      EXPECT_GT(s.value(x), 0.0) << x[0] << " Hz, " << x[1] << " degC";
+    }
+  surface::SampleSet data;
+  data.x.resize(static_cast<Eigen::Index>(grid.rows.size()), 2);
+  data.y.resize(static_cast<Eigen::Index>(grid.rows.size()));
+  for (std::size_t r = 0; r < grid.rows.size(); ++r) {
+    const auto k = static_cast<Eigen::Index>(r);
+    data.x(k, 0) = grid.rows[r].frequency_Hz, data.x(k, 1) = grid.rows[r].temperature_C, data.y[k] = grid.rows[r].loss_MPa;
+  }
+  surface::FitOptions linear;
+  linear.axes = {{"frequency_Hz", "Hz", std::nullopt, std::nullopt}, {"temperature_C", "C", std::nullopt, std::nullopt}};
+  linear.dependent_name = "loss_MPa", linear.level_tolerance = 0.0;
+  const auto swinging = surface::fit_surface(data, linear);
+  EXPECT_LT(swinging.statistics.surface_min, 0.0);
+  EXPECT_NE(surface::range_warning(swinging).find("never change sign"), std::string::npos) << surface::range_warning(swinging);
 }

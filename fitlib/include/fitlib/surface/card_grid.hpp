@@ -38,6 +38,7 @@ std::string modulus_grid_csv(const ModulusGrid& grid);
 // Fits a surface of one quantity ("storage", "loss", "tan_delta" or "mean") over the grid's axes
 // in Report V's order (strain_amplitude, frequency_Hz, temperature_C; only axes with values given).
 // `degrees` (optional, one per axis present) overrides the default levels - 1 (at most kMaxDegree).
+// The surface describes log10 of the quantity when every grid value is positive (linear otherwise).
 Surface surface_from_grid(const ModulusGrid& grid, const std::string& quantity,
                           const std::vector<int>& degrees = {});
 

@@ -94,6 +94,8 @@ class Surface;
 // kRangeOvershoot of it between the data.
 constexpr double kRangeOvershoot = 0.25;
 std::vector<std::string> statistics_warnings(const Surface& s);
+// The range check's warning alone ("" when the surface keeps to the data's sign and range).
+std::string range_warning(const Surface& s);
 
 struct Evaluation {
   double value = 0.0;
