@@ -8,6 +8,7 @@
 #include "fitlib/scene/scene.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 
 namespace fitcli {
 
@@ -17,6 +18,7 @@ void register_belt(CLI::App& app) {
   auto out_dir = std::make_shared<std::string>("belt-out");
   auto json = std::make_shared<bool>(false);
   auto record_timing = std::make_shared<bool>(false);
+  auto plot = std::make_shared<std::string>();
   cmd->add_option("--scene", *scene_path, "Scene file (TOML, docs/formats.md §5; - = stdin)")->required();
   cmd->add_option("--out-dir", *out_dir, "Output folder (load_history.csv, summary.json)")->capture_default_str();
   // Deprecated spelling (one release): --out names a file in every other subcommand.
@@ -24,14 +26,22 @@ void register_belt(CLI::App& app) {
   add_json_flag(cmd, *json, "the summary, on stdout");
   add_verbosity_flags(cmd);
   cmd->add_flag("--record-timing", *record_timing, "Store wall times in summary.json (breaks byte-identity)");
+  cmd->add_option("--plot", *plot,
+                  "Also write the figure (PNG): belt force and curvature, side pressure and friction used, sliding "
+                  "angle and speed over the load cycle, the pulleys' contact shaded");
   cmd->callback([=] {
     if (cmd->count("--out") > 0 && cmd->count("--out-dir") > 0)
       throw fitlib::core::UsageError("belt: give --out-dir only (--out DIR is its deprecated spelling)");
     if (cmd->count("--out") > 0) note("belt --out DIR is deprecated: use --out-dir DIR (docs/cli.md)");
     const auto scene = load_scene_input(*scene_path);
+    if (!plot->empty()) claim_png("--plot", *plot, *out_dir);
     fitlib::core::prepare_output_dir(*out_dir);
     const auto result = fitlib::scene::run_scene(scene);
-    const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
+    auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
+    if (!plot->empty() && result.cycle) {
+      write_png(*plot, [&](const std::string& tmp) { return belt_plot_script(scene, *result.cycle, tmp); });
+      files.push_back(*plot);
+    }
     if (*json) {
       std::cout << fitlib::scene::summary_json(scene, result, *record_timing).dump(2) << "\n";
       return;

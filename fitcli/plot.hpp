@@ -16,6 +16,10 @@ namespace fitcli {
 void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& data, const std::string& format,
                const std::string& title, const std::string& out);
 
+// The gnuplot script of `fitcli belt --plot` (life_plot.cpp): the load cycle's F and K, side
+// pressure and friction used, sliding angle and sliding speed against time.
+std::string belt_plot_script(const fitlib::scene::Scene& scene, const fitlib::belt::LoadCycle& cycle,
+                             const std::string& png);
 // The gnuplot script of `fitcli life --plot` (life_plot.cpp): the load cycle and each mode's σ_e
 // at its design point with its peaks; `r` must hold the life and the load cycle.
 std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::scene::SceneResult& r,

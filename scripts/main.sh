@@ -45,7 +45,7 @@ echo "== 4. Modulus surface over (amplitude, frequency, temperature) from that c
   --out "$out/material-2-grid.csv" --surface-out "$out/material-2-surface.json"
 
 echo "== 5. Belt load cycle of the reference drive (only the effects the scene asks for)"
-"$fitcli" belt --scene "$root/datasets/drives/ref-0500-medium.toml" --out-dir "$out/belt"
+"$fitcli" belt --scene "$root/datasets/drives/ref-0500-medium.toml" --out-dir "$out/belt" --plot "$out/belt.png"
 
 echo "== 6. Fatigue life: lab table -> fitted card -> life (material 1 bottom, material 2 cushion)"
 "$fitcli" fit --data "$data/material-1.csv" --model fritzson --backend staged \

@@ -24,6 +24,21 @@ TEST(BeltCli, ReferenceDriveWritesLoadHistoryAndSaysWhatRan) {
   EXPECT_EQ(history.find("nan"), std::string::npos);
 }
 
+// `belt --plot`: the load cycle as a figure (an engineer looks at a cycle rather than reads its CSV);
+// `-` is refused before the run (exit 2) and leaves no output folder.
+TEST(BeltCli, PlotDrawsTheLoadCycleAndStdoutIsRefused) {
+  const auto dir = temp_file("belt_plot"), png = temp_file("belt_plot.png");
+  const auto r = run_fitcli("belt --scene " + source_path("datasets/drives/ref-0500-medium.toml") + " --out-dir " + dir +
+                            " --plot " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
+  EXPECT_NE(r.out.find("wrote " + png), std::string::npos) << r.out;
+  const auto refused = run_fitcli("belt --scene " + source_path("datasets/drives/ref-0500-medium.toml") + " --out-dir " +
+                                  dir + "_stdout --plot -");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_FALSE(fs::exists(dir + "_stdout"));
+}
+
 TEST(BeltCli, UnknownSceneKeyIsBadInputNamingTheKey) {
   const auto scene = temp_file("bad_scene.toml");
   std::ofstream(scene) << slurp(source_path("tests/data/scenes/minimal.toml")) << "\n[effects]\nwarp_drive = true\n";
