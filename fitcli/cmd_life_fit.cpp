@@ -43,11 +43,12 @@ std::string with_interval(const fitlib::fatigue::ConstantEstimate& c) {
 
 std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
   std::ostringstream t;
-  t << std::left << std::setw(14) << "mode" << std::setw(7) << "cases" << std::setw(28) << "sigma0_MPa [95 %]"
+  t << std::left << std::setw(14) << "mode" << std::setw(7) << "cases" << std::setw(9) << "runouts"
+    << std::setw(28) << "sigma0_MPa [95 %]"
     << std::setw(28) << "n [95 %]" << std::setw(28) << "b_per_C [95 %]" << std::setw(11) << "rms log10"
     << "stresses\n";
   for (const auto& f : r.fits) {
-    t << std::setw(14) << fitlib::fatigue::to_string(f.mode) << std::setw(7) << f.cases;
+    t << std::setw(14) << fitlib::fatigue::to_string(f.mode) << std::setw(7) << f.cases << std::setw(9) << f.runouts;
     if (!f.rejected.empty()) {
       t << "not fitted: the start card's constants are kept (WARNING below)\n";
       continue;
@@ -78,23 +79,34 @@ std::string life_fit_script(const std::vector<fitlib::fatigue::ObservedLife>& ca
   for (const LifeFitResult& f : fit.fits) {
     if (!f.rejected.empty()) continue;
     const int m = f.mode == Mode::radial_crack ? 0 : 1;
-    s << "$m" << m << " << EOD\n";
-    for (const ObservedLife& c : cases) {
-      if (c.mode != f.mode) continue;
-      const double lg_pred = predicted_log10_life(c, f.law, T_ref);
-      const double lg_shift = f.law.b_per_C * (c.temperature_C - T_ref) * std::log10(2.0);  // N_ref = N·2^(bΔT)
-      const double sigma_eq = f.law.sigma0_MPa * std::pow(10.0, -(lg_pred + lg_shift) / f.law.n);
-      const double predicted = std::pow(10.0, lg_pred);
-      s << exact(std::pow(10.0, std::log10(c.observed_cycles) + lg_shift)) << " " << exact(sigma_eq) << " "
-        << exact(c.observed_cycles) << " " << exact(predicted) << "\n";
-      low = std::min({low, c.observed_cycles, predicted}), high = std::max({high, c.observed_cycles, predicted});
+    for (const bool runout : {false, true}) {  // $m0/$m1 the failures, $r0/$r1 the runouts
+      s << (runout ? "$r" : "$m") << m << " << EOD\n";
+      for (const ObservedLife& c : cases) {
+        if (c.mode != f.mode || c.runout != runout) continue;
+        const double lg_pred = predicted_log10_life(c, f.law, T_ref);
+        const double lg_shift = f.law.b_per_C * (c.temperature_C - T_ref) * std::log10(2.0);  // N_ref = N·2^(bΔT)
+        const double sigma_eq = f.law.sigma0_MPa * std::pow(10.0, -(lg_pred + lg_shift) / f.law.n);
+        const double predicted = std::pow(10.0, lg_pred);
+        s << exact(std::pow(10.0, std::log10(c.observed_cycles) + lg_shift)) << " " << exact(sigma_eq) << " "
+          << exact(c.observed_cycles) << " " << exact(predicted) << "\n";
+        low = std::min({low, c.observed_cycles, predicted}), high = std::max({high, c.observed_cycles, predicted});
+      }
+      s << "EOD\n";
     }
-    s << "EOD\n";
     const std::string name = to_string(f.mode), rgb = std::string("lc rgb '") + colour[m] + "'";
+    // Runouts as open triangles pointing right (the life lies beyond them), titled only when there are some.
+    const std::string runouts = f.runouts == 0 ? "" : "$r" + std::to_string(m) + " using %s with points pt 8 ps 1.2 " +
+                                                          rgb + " title '" + name + " runouts' noenhanced, ";
+    auto with_columns = [&](const char* columns) {
+      std::string out = runouts;
+      if (const auto at = out.find("%s"); at != std::string::npos) out.replace(at, 2, columns);
+      return out;
+    };
     sn << "$m" << m << " using 1:2 with points pt 7 ps 0.8 " << rgb << " title '" << name << "' noenhanced, "
-       << exact(f.law.sigma0_MPa) << "*x**(-1.0/" << exact(f.law.n) << ") with lines " << rgb << " title 'fit: n "
-       << sig4(f.law.n) << ", {/Symbol s}_0 " << sig4(f.law.sigma0_MPa) << " MPa', ";
-    scatter << "$m" << m << " using 3:4 with points pt 7 ps 0.8 " << rgb << " title '" << name << "' noenhanced, ";
+       << with_columns("1:2") << exact(f.law.sigma0_MPa) << "*x**(-1.0/" << exact(f.law.n) << ") with lines " << rgb
+       << " title 'fit: n " << sig4(f.law.n) << ", {/Symbol s}_0 " << sig4(f.law.sigma0_MPa) << " MPa', ";
+    scatter << "$m" << m << " using 3:4 with points pt 7 ps 0.8 " << rgb << " title '" << name << "' noenhanced, "
+            << with_columns("3:4");
   }
   const double band = std::pow(10.0, kScatterWarning_log10);
   s << "set multiplot layout 1,2 title " << gnuplot_quoted(title) << " noenhanced font ',13'\n"

@@ -15,8 +15,9 @@ nlohmann::json life_fit_json(const LifeFitResult& fit) {
     if (c.has_interval) e["std_error"] = c.std_error, e["ci95"] = {c.ci95_low, c.ci95_high};
     constants[c.name] = e;
   }
-  nlohmann::json j = {{"cases", fit.cases}, {"rms_log10_error", fit.rms_log10_error}, {"note", fit.note},
-                      {"constants", constants}};
+  nlohmann::json j = {{"cases", fit.cases}, {"runouts", fit.runouts}, {"rms_log10_error", fit.rms_log10_error},
+                      {"note", fit.note}, {"constants", constants}};
+  if (!fit.violated_runouts.empty()) j["violated_runouts"] = fit.violated_runouts;
   if (!fit.rejected.empty()) j["rejected"] = fit.rejected;
   return j;
 }
@@ -28,11 +29,18 @@ namespace {
 // where n has no interval to show it (too few cases); with one, σ0's spread warning says it.
 constexpr double kNarrowStressSpan = 1.25;
 
+// "runout A (…) fails" / "runouts A (…), B (…) fail".
+std::string runouts_fail(const std::vector<std::string>& runouts) {
+  std::string out = runouts.size() == 1 ? "runout " : "runouts ";
+  for (std::size_t k = 0; k < runouts.size(); ++k) out += (k ? ", " : "") + runouts[k];
+  return out + (runouts.size() == 1 ? " fails" : " fail");
+}
+
 void warn_about(const LifeFitResult& f, const std::vector<ObservedLife>& cases, std::vector<std::string>& warnings) {
   const std::string mode = to_string(f.mode);
   double lowest = INFINITY, highest = 0.0;
   for (const ObservedLife& c : cases) {
-    if (c.mode != f.mode) continue;
+    if (c.mode != f.mode || c.runout) continue;
     double largest = 0.0;
     for (const auto& peaks : c.point_peaks_MPa)
       for (double p : peaks) largest = std::max(largest, p);
@@ -71,6 +79,11 @@ void warn_about(const LifeFitResult& f, const std::vector<ObservedLife>& cases, 
     warnings.push_back(mode + ": b's 95 % interval [" + core::short_number(b.ci95_low) + ", " +
                        core::short_number(b.ci95_high) + "] 1/degC reaches zero: these cases do not show that heat "
                        "shortens the life (hold b with --fix-b)");
+  if (!f.violated_runouts.empty())
+    warnings.push_back(mode + ": the fitted law says " + runouts_fail(f.violated_runouts) +
+                       " before the test stopped (by more than a factor " +
+                       core::short_number(std::pow(10.0, kScatterWarning_log10)) +
+                       "): the failures and the runouts disagree about this mode's law");
   const ConstantEstimate& s0 = f.constants.front();
   if (s0.has_interval && s0.ci95_high > kSpreadWarning * s0.ci95_low)
     warnings.push_back(mode + ": sigma0's 95 % interval [" + core::short_number(s0.ci95_low) + ", " +
@@ -88,10 +101,15 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
   bool fitted = false;  // a mode's fit went into the card
   for (Mode mode : {Mode::radial_crack, Mode::separation}) {
     bool any = false;
-    for (const ObservedLife& c : cases) any = any || c.mode == mode;
+    for (const ObservedLife& c : cases) any = any || (c.mode == mode && !c.runout);
     if (!any) {
       out.warnings.push_back(std::string(to_string(mode)) +
                              ": no case failed in this mode; the start card's constants are kept");
+      // Runouts alone bound the life from below but fix no law; they can still refute the start's.
+      const auto violated = violated_runouts(cases, mode, start.law(mode), start.reference_temperature_C, 0.0);
+      if (!violated.empty())
+        out.warnings.push_back(std::string(to_string(mode)) + ": the start card's constants say " +
+                               runouts_fail(violated) + " before the test stopped");
       continue;
     }
     LifeFitOptions o;

@@ -39,15 +39,18 @@ struct LogLifeResidual {
   template <typename T>
   bool operator()(const T* ln_sigma0, const T* n, const T* b, T* r) const {
     r[0] = log10_life(*c, ln_sigma0[0], n[0], b[0], dT) - T(std::log10(c->observed_cycles));
+    if (c->runout && r[0] > T(0.0)) r[0] = T(0.0);  // a runout bounds the life from below only
     return true;
   }
 };
 
+// The failures of `mode` first, then its runouts (InputError when none failed in it).
 std::vector<const ObservedLife*> cases_of(const std::vector<ObservedLife>& all, Mode mode) {
   std::vector<const ObservedLife*> cases;
-  for (const ObservedLife& c : all)
-    if (c.mode == mode) cases.push_back(&c);
-  if (cases.empty())
+  for (const bool runout : {false, true})
+    for (const ObservedLife& c : all)
+      if (c.mode == mode && c.runout == runout) cases.push_back(&c);
+  if (cases.empty() || cases.front()->runout)
     throw core::InputError(std::string("no observed lives with failure mode ") + to_string(mode),
                            "", 0, 0, "failure_mode");
   return cases;
@@ -146,16 +149,29 @@ double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double re
   return log10_life(c, std::log(law.sigma0_MPa), law.n, law.b_per_C, c.temperature_C - reference_C);
 }
 
+std::vector<std::string> violated_runouts(const std::vector<ObservedLife>& cases, Mode mode, const LifeLaw& law,
+                                          double reference_C, double slack_log10) {
+  std::vector<std::string> out;
+  for (const ObservedLife& c : cases) {
+    if (!c.runout || c.mode != mode) continue;
+    const double predicted = predicted_log10_life(c, law, reference_C);
+    if (predicted < std::log10(c.observed_cycles) - slack_log10)
+      out.push_back(c.name + " (predicted " + core::short_number(std::pow(10.0, predicted)) + " cycles, stopped at " +
+                    core::short_number(c.observed_cycles) + ")");
+  }
+  return out;
+}
+
 LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, const LifeFitOptions& o) {
   const std::vector<const ObservedLife*> cases = cases_of(all, mode);
   LifeFitResult result;
   result.mode = mode;
-  result.cases = static_cast<int>(cases.size());
+  for (const ObservedLife* c : cases) ++(c->runout ? result.runouts : result.cases);
   bool one_temperature = true;
   for (const ObservedLife* c : cases)
-    one_temperature = one_temperature && c->temperature_C == cases[0]->temperature_C;
-  // No more free constants than cases: b needs two temperatures and a third case, n a second case.
-  const std::size_t m = cases.size();
+    one_temperature = one_temperature && (c->runout || c->temperature_C == cases[0]->temperature_C);
+  // No more free constants than failures: b needs two temperatures and a third case, n a second case.
+  const std::size_t m = static_cast<std::size_t>(result.cases);
   LifeProblem lp;
   lp.fix_n = o.fix_n || m < 2;
   lp.fix_b = o.fix_b || one_temperature || m < 3;
@@ -167,14 +183,19 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, cons
   result.law = {std::exp(lp.ln_sigma0), lp.n, lp.b, cases[0]->stress_fidelity};  // one level per mode
 
   std::vector<double> residuals;
-  const Eigen::MatrixXd J = jacobian_at_solution(lp, residuals);
+  const Eigen::MatrixXd all_rows = jacobian_at_solution(lp, residuals);
+  // The failures and the runouts the law violates (a satisfied runout's row is zero: no information).
+  std::vector<Eigen::Index> active;
   double ss = 0.0;
-  for (double r : residuals) ss += r * r;
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    if (!cases[k]->runout || residuals[k] < 0.0) active.push_back(static_cast<Eigen::Index>(k)), ss += residuals[k] * residuals[k];
+  const Eigen::MatrixXd J = all_rows(active, Eigen::all);
   result.rms_log10_error = std::sqrt(ss / static_cast<double>(J.rows()));
   result.constants = {{"sigma0_MPa", "MPa", result.law.sigma0_MPa},
                       {"n", "1", lp.n, lp.fix_n},
                       {"b_per_C", "1/°C", lp.b, lp.fix_b}};
   add_intervals(J, ss, lp.ln_sigma0, result.constants, result.note);
+  result.violated_runouts = violated_runouts(all, mode, result.law, o.reference_temperature_C, kScatterWarning_log10);
   return result;
 }
 

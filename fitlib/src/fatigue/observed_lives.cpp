@@ -14,7 +14,7 @@ namespace {
 
 const std::vector<std::string> kColumns = {"case", "failure_mode", "temperature_C",
                                            "observed_cycles", "observed_h", "cycles_per_h",
-                                           "point", "peaks_MPa", "stress_fidelity"};
+                                           "point", "peaks_MPa", "stress_fidelity", "runout"};
 
 Mode parse_mode(const std::string& text, const std::string& file, int line, int column) {
   if (const std::optional<Mode> m = mode_from_string(text)) return *m;
@@ -87,6 +87,13 @@ ObservedLife read_life_row(const std::vector<std::string>& f, const Columns& col
       throw core::InputError("stress_fidelity '" + row.stress_fidelity + "' is not beam, elastic or complete", file,
                              line, col.at("stress_fidelity") + 1, "stress_fidelity");
   }
+  if (col.count("runout")) {
+    const std::string& r = field("runout");
+    if (r != "" && r != "0" && r != "1")
+      throw core::InputError("runout '" + r + "' is not 0 or 1 (1: the test stopped without failing)", file, line,
+                             col.at("runout") + 1, "runout");
+    row.runout = r == "1";
+  }
   return row;
 }
 
@@ -96,6 +103,7 @@ std::vector<ObservedLife> parse_observed_lives(const std::string& text, const st
   Columns col;
   std::vector<ObservedLife> out;
   std::map<std::string, std::size_t> by_case;
+  std::map<std::string, std::pair<bool, int>> runout_of;  // case name → (runout, first line)
   for (const data::CsvLine& l : data::split_csv_lines(text, file)) {
     if (data::is_blank_or_comment(l.text)) continue;
     const std::vector<std::string> f = data::split_csv_fields(l.text, file, l.number);
@@ -104,18 +112,25 @@ std::vector<ObservedLife> parse_observed_lives(const std::string& text, const st
       continue;
     }
     ObservedLife row = read_life_row(f, col, file, l.number);
-    auto it = by_case.find(row.name);
+    // A runout lists each mode's points: one case per mode under its name.
+    const std::string key = row.runout ? row.name + '\n' + to_string(row.mode) : row.name;
+    if (const auto [seen, fresh] = runout_of.emplace(row.name, std::make_pair(row.runout, l.number));
+        !fresh && seen->second.first != row.runout)
+      throw core::InputError("case '" + row.name + "' is a " + (row.runout ? "runout" : "failure") + " here and a " +
+                                 (row.runout ? "failure" : "runout") + " on line " + std::to_string(seen->second.second),
+                             file, l.number, col.at("runout") + 1, "runout");
+    auto it = by_case.find(key);
     if (it == by_case.end()) {
-      by_case[row.name] = out.size();
+      by_case[key] = out.size();
       out.push_back(std::move(row));
       continue;
     }
-    // A further row of a case adds a point; the case's mode, temperature and life must agree.
+    // A further row of a case adds a point; the case's mode, temperature, life and runout must agree.
     ObservedLife& c = out[it->second];
-    if (c.mode != row.mode || c.temperature_C != row.temperature_C ||
+    if (c.mode != row.mode || c.temperature_C != row.temperature_C || c.runout != row.runout ||
         c.observed_cycles != row.observed_cycles || c.stress_fidelity != row.stress_fidelity)
       throw core::InputError("case '" + row.name + "' disagrees with its row on line " +
-                                 std::to_string(c.line) + " (mode, temperature, life or stress_fidelity)",
+                                 std::to_string(c.line) + " (mode, temperature, life, stress_fidelity or runout)",
                              file, l.number, col.at("case") + 1, "case");
     c.point_peaks_MPa.push_back(row.point_peaks_MPa.front());
   }
@@ -135,6 +150,14 @@ void check_one_stress_fidelity(const std::vector<ObservedLife>& cases, const std
                                    ": one mode's constants are fitted to the stresses of one level (the scenes' "
                                    "[life] fidelity, or the stress_fidelity column)",
                                source, cases[k].line, 0, "stress_fidelity");
+}
+
+bool has_peaks(Mode mode, const std::vector<PointHistory>& points, const FatigueCard& card,
+               const LifeConditions& conditions) {
+  const Role role = mode == Mode::radial_crack ? Role::bottom : Role::cushion;
+  for (const PointHistory& p : points)
+    if (p.role == role && !cycle_peaks_MPa(p, card.crack_sweep_deg, conditions).empty()) return true;
+  return false;
 }
 
 ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
@@ -158,10 +181,10 @@ ObservedLife observed_life(const std::string& name, Mode mode, double observed_c
 }
 
 std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
-  bool levels = false;  // the column only when a case states its level
-  for (const ObservedLife& c : cases) levels = levels || !c.stress_fidelity.empty();
+  bool levels = false, runouts = false;  // the columns only when a case states its level / is a runout
+  for (const ObservedLife& c : cases) levels = levels || !c.stress_fidelity.empty(), runouts = runouts || c.runout;
   std::string out = std::string("case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa") +
-                    (levels ? ",stress_fidelity" : "") + "\n";
+                    (levels ? ",stress_fidelity" : "") + (runouts ? ",runout" : "") + "\n";
   for (const ObservedLife& c : cases)
     for (std::size_t k = 0; k < c.point_peaks_MPa.size(); ++k) {
       std::string peaks;
@@ -169,7 +192,8 @@ std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
         peaks += (peaks.empty() ? "" : ";") + data::format_exact(p);
       out += data::quote_csv_field(c.name) + "," + to_string(c.mode) + "," +
              data::format_exact(c.temperature_C) + "," + data::format_exact(c.observed_cycles) +
-             ",p" + std::to_string(k + 1) + "," + peaks + (levels ? "," + c.stress_fidelity : "") + "\n";
+             ",p" + std::to_string(k + 1) + "," + peaks + (levels ? "," + c.stress_fidelity : "") +
+             (runouts ? (c.runout ? ",1" : ",0") : "") + "\n";
     }
   return out;
 }

@@ -85,10 +85,11 @@ LifeTest read_row(const std::vector<std::string>& f, const Layout& h, const std:
   t.scene_path =
       (scene.is_absolute() ? scene : std::filesystem::path(source).parent_path() / scene).lexically_normal().string();
   const auto mode = fatigue::mode_from_string(at("failure_mode"));
-  if (!mode)
-    throw core::InputError("failure_mode '" + at("failure_mode") + "' is not radial_crack or separation", source,
-                           line, col("failure_mode"), "failure_mode");
-  t.mode = *mode;
+  t.runout = at("failure_mode") == "none";
+  if (!mode && !t.runout)
+    throw core::InputError("failure_mode '" + at("failure_mode") + "' is not radial_crack, separation or none (a "
+                           "runout: the test stopped without failing)", source, line, col("failure_mode"), "failure_mode");
+  if (mode) t.mode = *mode;
   const std::string life = h.column.count("observed_h") ? "observed_h" : "observed_cycles";
   const double value = data::parse_csv_number(at(life), life, source, line, col(life));
   if (!(value > 0.0)) throw core::InputError(life + " must be positive", source, line, col(life), life);
@@ -154,9 +155,16 @@ std::vector<fatigue::ObservedLife> observe_life_tests(const std::vector<LifeTest
         throw core::InputError("the scene computes no stresses for a life", t.scene_path, 0, 0, "life");
       const double cycles = t.observed_cycles > 0.0 ? t.observed_cycles
                                                     : t.observed_h * r.life_conditions->cycles_per_hour;
-      out.push_back(fatigue::observed_life(t.name, t.mode, cycles, *r.stresses, card, *r.life_conditions));
-      out.back().line = t.line;
-      out.back().stress_fidelity = r.plan.life->fidelity;
+      const std::size_t first = out.size();
+      if (t.runout) {  // a bound on each mode with a peak at its points
+        for (const fatigue::Mode mode : {fatigue::Mode::radial_crack, fatigue::Mode::separation})
+          if (fatigue::has_peaks(mode, *r.stresses, card, *r.life_conditions))
+            out.push_back(fatigue::observed_life(t.name, mode, cycles, *r.stresses, card, *r.life_conditions));
+      } else {
+        out.push_back(fatigue::observed_life(t.name, t.mode, cycles, *r.stresses, card, *r.life_conditions));
+      }
+      for (std::size_t k = first; k < out.size(); ++k)
+        out[k].line = t.line, out[k].stress_fidelity = r.plan.life->fidelity, out[k].runout = t.runout;
     } catch (const core::InputError& e) {
       if (e.file() == source) throw;  // already names the CSV's line
       throw core::InputError(where + e.what(), source, t.line, 0, e.key());

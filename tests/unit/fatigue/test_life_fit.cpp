@@ -54,6 +54,51 @@ TEST(LifeFit, RecoversKnownConstantsFromExactLives) {
   EXPECT_LT(r.rms_log10_error, 1e-8);
 }
 
+// A runout (a test stopped without failing) bounds the life from below. Runouts the truth lets live
+// past their stop leave the fit of exact failures exact; a runout stopped later than the truth's
+// life pulls the law towards it (its prediction rises) and is named as violated; a mode with
+// runouts only keeps the start law, and the runouts that refute it are a warning.
+TEST(LifeFit, RunoutsBoundTheLifeFromBelowOnly) {
+  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  std::vector<ObservedLife> cases = synthetic(Mode::separation, truth, 12, 0.0, 5);
+  auto runouts = synthetic(Mode::separation, truth, 6, 0.0, 8);
+  for (ObservedLife& r : runouts) r.runout = true, r.name = "runout-" + r.name, r.observed_cycles /= 3.0;
+  cases.insert(cases.end(), runouts.begin(), runouts.end());
+  LifeFitOptions o;
+  o.start = LifeLaw{8.0, 6.0, 0.05, ""};
+  const LifeFitResult kept = fit_life_law(cases, Mode::separation, o);
+  EXPECT_EQ(kept.cases, 12);
+  EXPECT_EQ(kept.runouts, 6);
+  EXPECT_NEAR(kept.law.n / truth.n, 1.0, 1e-7);
+  EXPECT_NEAR(kept.law.sigma0_MPa / truth.sigma0_MPa, 1.0, 1e-7);
+  EXPECT_LT(kept.rms_log10_error, 1e-8);
+  EXPECT_TRUE(kept.violated_runouts.empty());
+  // One runout stopped 30× beyond the truth's life: the fit moves towards it, and names it.
+  cases.back().observed_cycles *= 3.0 * 30.0;
+  const LifeFitResult pulled = fit_life_law(cases, Mode::separation, o);
+  const double truth_at = predicted_log10_life(cases.back(), truth, 80.0);
+  EXPECT_GT(predicted_log10_life(cases.back(), pulled.law, 80.0), truth_at + 0.05);
+  EXPECT_LT(predicted_log10_life(cases.back(), pulled.law, 80.0), std::log10(cases.back().observed_cycles));
+  ASSERT_EQ(pulled.violated_runouts.size(), 1u);
+  EXPECT_EQ(pulled.violated_runouts[0].rfind(cases.back().name + " (predicted ", 0), 0u) << pulled.violated_runouts[0];
+  EXPECT_GT(pulled.rms_log10_error, 0.0);
+  const LifeCardFit card = fit_life_card(cases, default_card());
+  bool said = false;
+  for (const auto& w : card.warnings) said |= w.find("runout " + cases.back().name) != std::string::npos;
+  EXPECT_TRUE(said);
+  // Runouts only: no law to fit (an error for the law, the start kept by the card, a refutation said).
+  std::vector<ObservedLife> only(runouts);
+  EXPECT_THROW(fit_life_law(only, Mode::separation, o), core::InputError);
+  only.push_back(synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, ""}, 3, 0.0, 6)[0]);
+  only.front().observed_cycles = 1e30;
+  const LifeCardFit start_kept = fit_life_card(only, default_card(), HeldConstants{true, true});
+  EXPECT_EQ(start_kept.card.separation.n, default_card().separation.n);
+  bool refuted = false;
+  for (const auto& w : start_kept.warnings)
+    refuted |= w.find("the start card's constants say runout " + only.front().name) != std::string::npos;
+  EXPECT_TRUE(refuted);
+}
+
 TEST(LifeFit, IntervalsCoverTheTruthWithScatter) {
   const LifeLaw truth{104.218, 4.423, 0.02897, ""};
   const auto cases = synthetic(Mode::radial_crack, truth, 30, 0.15, 17);
@@ -123,6 +168,33 @@ TEST(ObservedLives, ErrorsNameLineAndColumn) {
   expect_error(levels + "A,separation,90,1e6,1.0,beam\nB,radial_crack,90,1e6,2.0,elastic\n"
                         "C,separation,90,1e5,2.0,elastic\n", 4, 0, "stress_fidelity");
   expect_error(levels + "A,separation,90,1e6,1.0,\nC,separation,90,1e5,2.0,complete\n", 3, 0, "stress_fidelity");
+}
+
+// The runout column: a runout's rows may list both modes' points (one case per mode); a name used
+// by a failure and a runout, or a runout that is not 0/1, names its line; the CSV reads back equal.
+TEST(ObservedLives, RunoutRowsGiveOneCasePerModeAndReadBack) {
+  const std::string text =
+      "case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa,runout\n"
+      "A,separation,90,1e8,c1,1.2,0\n"
+      "R,separation,90,5e9,c1,0.7;0.5,1\n"
+      "R,radial_crack,90,5e9,g1,5,1\n"
+      "R,radial_crack,90,5e9,g2,4,1\n";
+  const auto cases = parse_observed_lives(text, "lives.csv");
+  ASSERT_EQ(cases.size(), 3u);
+  EXPECT_FALSE(cases[0].runout);
+  EXPECT_TRUE(cases[1].runout);
+  EXPECT_EQ(cases[1].mode, Mode::separation);
+  EXPECT_EQ(cases[2].mode, Mode::radial_crack);
+  EXPECT_EQ(cases[2].point_peaks_MPa.size(), 2u);
+  const auto back = parse_observed_lives(observed_lives_csv(cases), "back.csv");
+  ASSERT_EQ(back.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(back[k].runout, cases[k].runout);
+    EXPECT_EQ(back[k].point_peaks_MPa, cases[k].point_peaks_MPa);
+  }
+  const std::string head = "case,failure_mode,temperature_C,observed_cycles,peaks_MPa,runout\n";
+  expect_error(head + "A,separation,90,1e6,1.0,yes\n", 2, 6, "runout");
+  expect_error(head + "A,separation,90,1e6,1.0,0\nA,radial_crack,90,1e6,2.0,1\n", 3, 6, "runout");
 }
 
 // The fitted law is of its cases' level; a mode without cases keeps the start card's, and a card

@@ -154,4 +154,24 @@ TEST(LifeTests, FitRecoversTheConstantsTheObservedLivesWereComputedFrom) {
   }
   EXPECT_EQ(fit.card.radial_crack.n, fit.fits[0].law.n);
   EXPECT_EQ(fit.card.reference_temperature_C, fatigue::default_card().reference_temperature_C);
+  // Two runouts (failure_mode none), stopped at a third of the truth's shorter life: one case per
+  // mode each, and the fit stays exact (as failures they would pull it off).
+  for (const Case& c : std::vector<Case>{{80, 10, 80}, {100, 5, 100}}) {
+    const double cycles = true_life(c, kTruth).second / 3.0;
+    char row[256];
+    std::snprintf(row, sizeof row, "R%g-M%g,ref-0500-medium.toml,none,%.17g,%g,%g,%g,%g\n", c.temperature_C,
+                  c.torque_Nm, cycles, c.temperature_C, c.torque_Nm, c.diameter_mm, c.diameter_mm);
+    csv += row;
+  }
+  const auto with_runouts = scene::observed_cases(csv, kDrives + "tests.csv", fatigue::default_card());
+  ASSERT_EQ(with_runouts.size(), 16u);
+  for (std::size_t k = 12; k < 16; ++k) EXPECT_TRUE(with_runouts[k].runout) << with_runouts[k].name;
+  EXPECT_NE(with_runouts[12].mode, with_runouts[13].mode);
+  const fatigue::LifeCardFit bounded = fatigue::fit_life_card(with_runouts, fatigue::default_card());
+  for (const auto& f : bounded.fits) {
+    EXPECT_EQ(f.runouts, 2) << fatigue::to_string(f.mode);
+    EXPECT_NEAR(f.law.n / truth.law(f.mode).n, 1.0, 1e-5) << fatigue::to_string(f.mode);
+    EXPECT_LT(f.rms_log10_error, 1e-6);
+    EXPECT_TRUE(f.violated_runouts.empty());
+  }
 }

@@ -4,7 +4,9 @@
 //   r = log10 N_pred − log10 N_obs,  N_pred = [max_points Σ_i (σ_i/σ0)ⁿ]⁻¹ 2^(−b(T − T_ref)),
 // the design point of each case re-chosen for the current n, with 95 % intervals from the
 // Jacobian at the solution. Each mode is fitted to the cases that failed in that mode (as the
-// thesis did: two separable problems).
+// thesis did: two separable problems). A runout (a test stopped without failure) bounds each mode's
+// life from below: its residual is min(0, log10 N_pred − log10 N_obs), so it pulls only a law that
+// predicts failure before the test stopped (docs/fatigue.md §6 "Runouts").
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,15 +24,20 @@ struct ObservedLife {
   // Significant peaks (MPa) of each monitored point of that mode, e.g. from evaluate_life.
   std::vector<std::vector<double>> point_peaks_MPa;
   std::string stress_fidelity;  // the level the peaks were computed at (LifeLaw::stress_fidelity; "" = not stated)
+  // A runout: the test stopped at observed_cycles without failing; `mode` names the mode whose
+  // points the peaks are of (a runout test gives one case per mode).
+  bool runout = false;
   int line = 0;  // first line in the CSV (messages)
 };
 
 // Observed-lives CSV (docs/fatigue.md §6): one row per case and monitored point, columns
 //   case, failure_mode (radial_crack | separation), temperature_C,
 //   observed_cycles  or  observed_h and cycles_per_h,  [point],  peaks_MPa ("σ1;σ2;…"),
-//   [stress_fidelity] (beam | elastic | complete: the level the peaks were computed at)
-// Rows of one case must agree on mode, temperature, life and level, and the cases of one mode on
-// their level (check_one_stress_fidelity). InputError naming file, line and column for anything else.
+//   [stress_fidelity] (beam | elastic | complete: the level the peaks were computed at),
+//   [runout] (0 | 1: the test stopped without failing; its rows may list both modes' points)
+// Rows of one case must agree on mode, temperature, life, level and runout (a runout's rows per
+// mode), and the cases of one mode on their level (check_one_stress_fidelity). InputError naming
+// file, line and column for anything else.
 std::vector<ObservedLife> parse_observed_lives(const std::string& text, const std::string& source);
 std::vector<ObservedLife> read_observed_lives(const std::string& path);
 
@@ -39,6 +46,10 @@ std::vector<ObservedLife> read_observed_lives(const std::string& path);
 ObservedLife observed_life(const std::string& name, Mode mode, double observed_cycles,
                            const std::vector<PointHistory>& points, const FatigueCard& card,
                            const LifeConditions& conditions);
+
+// Whether any monitored point of `mode` has a significant peak (observed_life would find one).
+bool has_peaks(Mode mode, const std::vector<PointHistory>& points, const FatigueCard& card,
+               const LifeConditions& conditions);
 
 // InputError naming `source`, the line of the first case of a mode whose stresses come from
 // another level than an earlier case's of that mode: one law is fitted per mode, and a fit
@@ -70,8 +81,12 @@ struct LifeFitResult {
   Mode mode = Mode::radial_crack;
   LifeLaw law;
   std::vector<ConstantEstimate> constants;  // sigma0_MPa, n, b_per_C
-  int cases = 0;
-  double rms_log10_error = 0.0;
+  int cases = 0;    // failures in this mode
+  int runouts = 0;  // runouts with points of this mode
+  // Runouts the fitted law says fail before the test stopped, by more than the scatter warning's
+  // factor: "name (predicted N, stopped at M)".
+  std::vector<std::string> violated_runouts;
+  double rms_log10_error = 0.0;  // over the failures and the runouts the law violates
   std::string note;  // why an interval or a constant is missing
   // Why the card keeps the start's law for this mode instead ("" = the fit is the card's): n at
   // a bound of [0.1, 100] means the lives do not fall with the stress as (6.31) needs (σ0 then
@@ -79,7 +94,7 @@ struct LifeFitResult {
   std::string rejected;
 };
 
-// NumericalError when Ceres fails; InputError when there are no cases of `mode`.
+// NumericalError when Ceres fails; InputError when no case failed in `mode`.
 LifeFitResult fit_life_law(const std::vector<ObservedLife>& cases, Mode mode,
                            const LifeFitOptions& options);
 
@@ -105,10 +120,15 @@ struct HeldConstants {
 LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start,
                           const HeldConstants& held = {});
 
-// One fit as JSON: cases, rms_log10_error, note, constants (value, fixed, std_error, ci95).
+// One fit as JSON: cases, runouts, rms_log10_error, note, constants (value, fixed, std_error, ci95).
 nlohmann::json life_fit_json(const LifeFitResult& fit);
 
 // log10 N_pred of one case under `law` (the design point chosen for law.n).
 double predicted_log10_life(const ObservedLife& c, const LifeLaw& law, double reference_C);
+
+// The runouts of `mode` that `law` says fail before their test stopped by more than a factor
+// 10^slack_log10: "name (predicted N cycles, stopped at M)".
+std::vector<std::string> violated_runouts(const std::vector<ObservedLife>& cases, Mode mode, const LifeLaw& law,
+                                          double reference_C, double slack_log10);
 
 }  // namespace fitlib::fatigue

@@ -21,6 +21,7 @@ struct LifeTest {
   std::string name;        // `case`, or "line N"
   std::string scene_path;  // resolved against the CSV's folder
   fatigue::Mode mode = fatigue::Mode::radial_crack;
+  bool runout = false;           // failure_mode "none": the test stopped without failing (mode unused)
   double observed_h = 0.0;       // > 0 when the row gives hours (cycles from the scene's belt speed)
   double observed_cycles = 0.0;  // > 0 when it gives cycles
   std::vector<std::pair<std::string, SweepValue>> scene_keys;  // key path, value
