@@ -291,7 +291,7 @@ nlohmann::json surface_to_json(const Surface& s) {
 }
 
 namespace {
-// "name = value (temperature_C 80, frequency_Hz 100)".
+// "-415.2 at (temperature_C 100, frequency_Hz 100)".
 std::string extreme_text(const Surface& s, double value, const std::vector<double>& at) {
   std::ostringstream out;
   out.precision(4);
