@@ -232,14 +232,17 @@ void bind_card(py::module_& m) {
            py::arg("mode") = "", py::arg("orientation") = "", "fitcli eval over broadcast arrays")
       .def("export",
            [](const Card& c, const std::string& format, double poisson_ratio, int material_id, bool allow_inadmissible,
-              double density_t_per_mm3) {
+              double density_t_per_mm3, const py::object& temperature_C) {
              card::ExportOptions o;
              o.poisson_ratio = poisson_ratio, o.material_id = material_id, o.allow_inadmissible = allow_inadmissible;
              o.density_t_per_mm3 = density_t_per_mm3;
+             if (!temperature_C.is_none()) o.temperature_C = temperature_C.cast<double>();
              return card::export_card(c, format, o);
            },
            py::arg("format"), py::arg("poisson_ratio") = 0.4995, py::arg("material_id") = 1,
-           py::arg("allow_inadmissible") = false, py::arg("density_t_per_mm3") = 0.0, "FE keywords: abaqus | ansys | lsdyna (fitlib.export_formats())")
+           py::arg("allow_inadmissible") = false, py::arg("density_t_per_mm3") = 0.0, py::arg("temperature_C") = py::none(),
+           "FE keywords: abaqus | ansys | lsdyna (fitlib.export_formats()); temperature_C: the card at one temperature "
+           "(fitcli export --temperature-c)")
       .def("admissibility_problems", &card::admissibility_problems);
 
   m.def("load_card", &card::load_card, py::arg("path"));

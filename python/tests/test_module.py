@@ -150,6 +150,10 @@ def test_card_export_equals_the_cli():
     card = fitlib.load_card(source("datasets", "cards", "synthetic-prony-shear-true.json"))
     path = source("datasets", "cards", "synthetic-prony-shear-true.json")
     assert card.export("abaqus") == fitcli("export", "--card", path, "--format", "abaqus")
+    wlf = source("datasets", "cards", "synthetic-prony-wlf-true.json")
+    at60 = fitlib.load_card(wlf).export("ansys", temperature_C=60.0)
+    assert at60 == fitcli("export", "--card", wlf, "--format", "ansys", "--temperature-c", "60")
+    assert "TB,SHIFT" not in at60 and "at 60 degC only" in at60
 
 
 # ---- errors -------------------------------------------------------------------------------------
