@@ -119,13 +119,14 @@ py::dict fit_life_constants(const std::string& observed, const std::string& star
   d["fits"] = fits;
   std::vector<std::string> names, modes;
   std::vector<double> temperature, observed_cycles, predicted_cycles;
+  std::vector<bool> runout;
   for (const auto& c : r.cases) {
-    names.push_back(c.name), modes.push_back(fatigue::to_string(c.mode));
+    names.push_back(c.name), modes.push_back(fatigue::to_string(c.mode)), runout.push_back(c.runout);
     temperature.push_back(c.temperature_C), observed_cycles.push_back(c.observed_cycles);
     predicted_cycles.push_back(std::pow(
         10.0, fatigue::predicted_log10_life(c, r.fit.card.law(c.mode), r.fit.card.reference_temperature_C)));
   }
-  d["cases"] = names, d["failure_mode"] = modes, d["temperature_C"] = to_array(temperature);
+  d["cases"] = names, d["failure_mode"] = modes, d["runout"] = runout, d["temperature_C"] = to_array(temperature);
   d["observed_cycles"] = to_array(observed_cycles), d["predicted_cycles"] = to_array(predicted_cycles);
   return d;
 }
@@ -136,7 +137,8 @@ void bind_segment_life(py::module_& m) {
   m.def("fit_life_constants", &fit_life_constants, py::arg("observed"), py::arg("start") = "",
         py::arg("fix_n") = false, py::arg("fix_b") = false,
         "fitcli life-fit: the life constants per failure mode fitted to observed lives (a life-test list of scenes, "
-        "or stored peaks); dict: card (the fatigue card), warnings, fits, cases with observed and predicted cycles");
+        "or stored peaks); dict: card (the fatigue card), warnings, fits, cases with observed and predicted cycles "
+        "(runout: the test stopped without failing; failure_mode then names the mode whose points it bounds)");
   m.def("segment_case", &run_segment, py::arg("scene"), py::arg("strain") = py::none(),
         py::arg("curvature_1_mm") = py::none(), py::arg("pressure_MPa") = py::none(), py::arg("vtk_path") = "",
         "fitcli segment: the scene's static [segment] case (load overridable); stresses at the points as arrays, "

@@ -376,6 +376,7 @@ def test_fit_life_constants_equals_the_cli():
     assert mine["card"]["provenance"]["observed"] == cli["provenance"]["observed"]
     assert [f["mode"] for f in mine["fits"]] == ["radial_crack", "separation"]
     assert len(mine["cases"]) == 30 and isinstance(mine["predicted_cycles"], np.ndarray)
+    assert mine["runout"] == [False] * 30 and all(f["runouts"] == 0 for f in mine["fits"])
     # the synthetic lives scatter by 10^(0.1 z) around the truth: the fit predicts them within a factor 3
     assert np.all(np.abs(np.log10(mine["predicted_cycles"] / mine["observed_cycles"])) < 0.5)
     e = expect(fitlib.InputError, lambda: fitlib.fit_life_constants(source("datasets", "drives", "ref-0500-medium.toml")))
