@@ -1,4 +1,6 @@
 // fitcli export: FE-solver material keywords from a card (docs/cli.md "export", docs/formats.md §3).
+#include <cmath>
+#include <limits>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -7,6 +9,7 @@
 #include "fitlib/card/export.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "window_check.hpp"
 
 namespace fitcli {
 
@@ -23,7 +26,7 @@ std::string export_formats_text() {
 void register_export(CLI::App& app) {
   struct Args {
     std::string card, format, out;
-    bool json = false;
+    bool json = false, allow_extrapolation = false;
     fitlib::card::ExportOptions options;
   };
   auto args = std::make_shared<Args>();
@@ -42,6 +45,8 @@ void register_export(CLI::App& app) {
                   "Export at this temperature (degC): times scaled by the card's shift factor, no temperature shift "
                   "in the deck (for laws the solver lacks)")
       ->check(temperature_c_range());
+  cmd->add_flag("--allow-extrapolation", args->allow_extrapolation,
+                "With --temperature-c: export beyond the card's data window (a warning; without it refused)");
   cmd->add_flag("--allow-inadmissible", args->options.allow_inadmissible,
                 "Export a card whose terms break its admissible window or E_inf/E_0 >= 1e-3");
   add_json_flag(cmd, args->json, "the keywords (or, with --out, the file written), on stdout");
@@ -49,9 +54,16 @@ void register_export(CLI::App& app) {
   cmd->callback([args] {
     claim_output("--out", args->out, false);
     const fitlib::card::Card card = fitlib::card::load_card(input_path(args->card));
-    const auto text = fitlib::card::export_card(card, args->format, args->options);
-    // The deck's header says it too (its comment lines).
-    if (const std::string q = fitlib::card::fit_quality_warning(card); !q.empty()) warning(q + " (" + args->card + ")");
+    std::string text;
+    {  // the quality verdict (the deck's header says it too) and, at one temperature, the data window
+      const double T = args->options.temperature_C;
+      WindowCheck window("export", args->card, card, std::isfinite(T) ? std::vector<double>{T} : std::vector<double>{},
+                         args->allow_extrapolation);
+      fitlib::model::TestCondition at;
+      at.frequency_Hz = std::numeric_limits<double>::quiet_NaN(), at.temperature_C = T;  // the temperature alone
+      if (std::isfinite(T)) window.beyond(at);
+      text = fitlib::card::export_card(card, args->format, args->options);
+    }
     if (!args->json) return emit(args->out, text);
     nlohmann::json j = {{"card", args->card}, {"format", args->format}};
     if (args->out.empty() || args->out == "-") {

@@ -218,6 +218,26 @@ TEST(FitCli, ADamageCardsExportNamesTheRouteThroughSynthAndFit) {
   EXPECT_NE(deck.out.find("*VISCOELASTIC, TIME=PRONY"), std::string::npos) << deck.out;
 }
 
+// export --temperature-c reads the card where every other command would: beyond its data window
+// it is refused naming the window's key (exit 3), with --allow-extrapolation it is a warning; inside,
+// the deck has no shift law and says at which temperature it holds.
+TEST(FitCli, ExportAtOneTemperatureKeepsToTheCardsDataWindow) {
+  const std::string card = temp_file("export_window.json");
+  ASSERT_EQ(run_fitcli("fit --data " + source_path("datasets/materials/synthetic-prony-wlf.csv") +
+                       " --model prony --terms 6 --temperature-law wlf --reference-c 23 --out " + card).exit_code, 0);
+  const auto refused = run_fitcli("export --card " + card + " --format abaqus --temperature-c 120");
+  EXPECT_EQ(refused.exit_code, 3) << refused.err;
+  EXPECT_NE(refused.err.find("fit.data_window.temperature_C"), std::string::npos) << refused.err;
+  const auto allowed = run_fitcli("export --card " + card + " --format abaqus --temperature-c 120 --allow-extrapolation");
+  ASSERT_EQ(allowed.exit_code, 0) << allowed.err;
+  EXPECT_NE(allowed.err.find("extrapolating: --temperature-c 120"), std::string::npos) << allowed.err;
+  const auto inside = run_fitcli("export --card " + card + " --format ansys --temperature-c 60");
+  ASSERT_EQ(inside.exit_code, 0) << inside.err;
+  EXPECT_EQ(inside.out.find("TB,SHIFT"), std::string::npos) << inside.out;
+  EXPECT_NE(inside.out.find("! at 60 degC only"), std::string::npos) << inside.out;
+  EXPECT_NE(run_fitcli("export --card " + card + " --format ansys").out.find("TB,SHIFT"), std::string::npos);
+}
+
 TEST(FitCli, LsDynaExportWritesTheGivenDensityOrRefuses) {
   const auto card_path = temp_file("export_dyna.json");
   ASSERT_EQ(run_fitcli("fit --data " + kSynthetic + " --model prony --terms 3 --out " + card_path).exit_code, 0);

@@ -171,8 +171,10 @@ std::string header(const Card& card, const char* comment, const PronyExport& e) 
                                     : "shear card: bulk response elastic");
   if (std::isfinite(e.at_temperature_C))
     out << comment_lines(comment, "at " + num(e.at_temperature_C) + " degC only: times x " + num(e.factors.shift_factor) +
-                                      " (shift factor a_T), moduli x " + num(e.factors.scale) +
-                                      "; no temperature shift in this deck");
+                                      " (shift factor a_T), moduli x " + num(e.factors.scale) + "; no temperature shift in this deck" +
+                                      (card.model()->temperature_law_info().law == model::ShiftLaw::none
+                                           ? " (the card has no temperature law: its terms as fitted)"
+                                           : ""));
   if (const std::string q = fit_quality_warning(card); !q.empty()) out << comment_lines(comment, "WARNING: " + q);
   return out.str();
 }
