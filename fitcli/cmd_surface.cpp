@@ -14,6 +14,7 @@
 #include "fitlib/surface/fit.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "window_check.hpp"
 
 namespace fitcli {
@@ -54,7 +55,7 @@ std::string stats_text(const surface::Surface& s) {
 
 // ---- surface fit ----
 struct FitArgs {
-  std::string data, y, constraints, missing, out, name;
+  std::string data, y, constraints, missing, out, name, plot;
   std::vector<std::string> x;
   std::vector<int> degrees;
   double level_tolerance = 0.05;
@@ -92,6 +93,7 @@ void run_fit(const FitArgs& a) {
     options.user_constraints_source = a.constraints;
   }
   claim_output("--out", a.out, false);
+  if (!a.plot.empty()) claim_png("--plot", a.plot);
   const std::string data_path = input_path(a.data);
   const auto data = surface::read_sample_columns(data_path, columns, options.dependent_name);
   surface::Surface s = surface::fit_surface(data, options);
@@ -100,6 +102,7 @@ void run_fit(const FitArgs& a) {
                   {"fitlib_version", FITLIB_VERSION},
                   {"command", command_line()}};
   for (const std::string& w : surface::statistics_warnings(s)) warning(w);
+  if (!a.plot.empty()) write_png(a.plot, [&](const std::string& tmp) { return surface_plot_script(s, data, tmp); });
   const std::string document = surface::surface_to_json(s).dump(2) + "\n";
   if (a.out.empty() || a.out == "-") {
     emit("", document);
@@ -265,6 +268,9 @@ void register_surface(CLI::App& app) {
                   "Values closer than this fraction of an axis range form one level (0: every value)")
       ->capture_default_str();
   fit->add_option("--name", fa->name, "Name stored in the surface");
+  fit->add_option("--plot", fa->plot,
+                  "Also write the figure (PNG): the surface along each axis through the data's level combinations, "
+                  "with the data");
   fit->add_option("--out", fa->out, "Surface file to write (JSON; default or - = stdout)");
   add_json_flag(fit, fa->json, "the statistics on stdout (with --out; without it the surface is the document)");
   add_verbosity_flags(fit);

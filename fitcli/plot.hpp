@@ -8,6 +8,7 @@
 #include "fitlib/card/card.hpp"
 #include "fitlib/scene/results.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "fitlib/surface/fit.hpp"
 
 namespace fitcli {
 
@@ -24,6 +25,12 @@ std::string belt_plot_script(const fitlib::scene::Scene& scene, const fitlib::be
 // at its design point with its peaks; `r` must hold the life and the load cycle.
 std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::scene::SceneResult& r,
                              const std::string& png);
+
+// The gnuplot script of `fitcli surface fit --plot` (surface_plot.cpp): per axis, the surface along
+// it through each occupied combination of the other axes' levels, with the data. UsageError when an
+// axis has no levels (scattered).
+std::string surface_plot_script(const fitlib::surface::Surface& surface, const fitlib::surface::SampleSet& data,
+                                const std::string& png);
 
 // `text` as a gnuplot single-quoted string (a quote doubled); print it with `noenhanced` so that a
 // user's name keeps its _ ^ { }.

@@ -210,6 +210,7 @@ TEST(CliGrammar, FiguresRefuseStdoutBeforeTheWork) {
         "life-fit --observed " + source_path("datasets/life-tests/synthetic-beam.csv") + " --out " + card + " --plot -",
         "life --scene " + source_path("datasets/drives/ref-0500-light.toml") + " --out-dir " + dir + " --plot -",
         "belt --scene " + source_path("datasets/drives/ref-0500-light.toml") + " --out-dir " + dir + " --plot -",
+        "surface fit --data " + source_path(kShearCsv) + " --x frequency_Hz --y storage_MPa --out " + card + " --plot -",
         "eval --card " + source_path(kShearCard) + " --frequency-hz 1 --data " + source_path(kShearCsv) + " --plot -",
         "plot --card " + source_path(kShearCard) + " --data " + source_path(kShearCsv) + " --out -"}) {
     const auto r = run_fitcli(args);

@@ -109,6 +109,28 @@ TEST(SurfaceCli, ALinearFitThatTurnsNegativeWarnsAndTheLogFitReturnsModuli) {
   EXPECT_NEAR(std::stod(at23.substr(at23.rfind(',', at23.rfind(',') - 1) + 1)), 44.8, 1e-6) << e.out;
 }
 
+// surface fit --plot: the surface along each axis through the data's levels (an engineer looks at
+// the swing the range check names); an axis without levels is refused before anything is written.
+TEST(SurfaceCli, PlotDrawsTheSurfaceThroughTheDataAndRefusesScatteredAxes) {
+  const auto png = temp_file("report_v_surface.png"), out = temp_file("report_v_plot.json");
+  const auto r = run_fitcli("surface fit --data " + source_path("tests/data/surface/shear_3x3x3_missing.csv") +
+                            " --x strain_amplitude --x frequency_Hz --x temperature_C --y storage_MPa --out " + out +
+                            " --plot " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
+  const auto scattered = temp_file("scattered.csv"), kept = temp_file("scattered.png");
+  std::ofstream f(scattered);
+  f << "x,y,z\n";
+  for (int i = 0; i < 40; ++i) f << 0.013 * i * i << "," << (i % 3) << "," << 1.0 + 0.01 * i * i << "\n";
+  f.close();
+  std::ofstream(kept) << "mine\n";
+  const auto refused = run_fitcli("surface fit --data " + scattered + " --x x --x y --y z --degree 2,2 --out " +
+                                  temp_file("scattered.json") + " --plot " + kept);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("axis 'x' has no levels"), std::string::npos) << refused.err;
+  EXPECT_EQ(slurp(kept), "mine\n");
+}
+
 TEST(FritzsonCli, StagedFitOfMaterialTwoNamesWhatTheDataCannotDetermine) {
   const auto out = temp_file("material-2.json");
   const auto r = run_fitcli("fit --data " + source_path("datasets/materials/material-2.csv") +
