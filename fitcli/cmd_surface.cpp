@@ -189,7 +189,7 @@ void run_eval(const EvalArgs& a) {
 
 // ---- surface grid ----
 struct GridArgs {
-  std::string card, mode = "shear", orientation, out, surface_out, quantity = "storage";
+  std::string card, mode = "shear", orientation, out, surface_out, quantity = "storage", plot;
   std::vector<double> frequency_Hz, temperature_C, amplitude;
   std::vector<int> degrees;
   bool json = false, allow_extrapolation = false;
@@ -215,6 +215,9 @@ void run_grid(const GridArgs& a) {
   // Every output is checked before the work and written after it: no partial results.
   claim_output("--out", a.out, false);
   claim_output("--surface-out", a.surface_out, false);
+  if (!a.plot.empty() && a.surface_out.empty())
+    throw core::UsageError("--plot draws the grid's surface: give --surface-out too");
+  if (!a.plot.empty()) claim_png("--plot", a.plot);
   const auto card = card::load_card(input_path(a.card));
   check_grid_window(a, card);
   surface::CardGridRequest request;
@@ -233,6 +236,10 @@ void run_grid(const GridArgs& a) {
     emit_with(a.surface_out, [&](const std::string& path) { surface::save_surface(path, s); });
     // (The grid surface interpolates its points by design: no residual-dof warning, only the range.)
     if (const std::string range = surface::range_warning(s); !range.empty()) warning(range);
+    if (!a.plot.empty())
+      write_png(a.plot, [&](const std::string& tmp) {
+        return surface_plot_script(s, surface::grid_samples(grid, a.quantity), tmp);
+      });
     std::ostringstream text;
     text.precision(4);
     text << "surface of " << s.dependent_name << ": N = " << s.statistics.n_points << ", p = "
@@ -308,6 +315,7 @@ void register_surface(CLI::App& app) {
       ->delimiter(',');
   grid->add_option("--out", ga->out, "Grid file to write (CSV, or JSON with --json; default or - = stdout)");
   grid->add_option("--surface-out", ga->surface_out, "Also fit a surface of --quantity and write it to this file (JSON)");
+  grid->add_option("--plot", ga->plot, "With --surface-out: also draw that surface through the grid (PNG)");
   add_json_flag(grid, ga->json, "the grid rows instead of CSV, on stdout or in --out");
   add_verbosity_flags(grid);
   grid->callback([ga] { run_grid(*ga); });

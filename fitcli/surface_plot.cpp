@@ -68,9 +68,9 @@ void axis_panel(std::ostringstream& s, const fitlib::surface::Surface& surface, 
     ++c;
   }
   s << "set title " << gnuplot_quoted("along " + a.name + (rows_of.size() > kMaxCurves ? " (the first 12 level combinations)" : ""))
-    << " noenhanced\nset xlabel " << gnuplot_quoted(a.name) << " noenhanced\nset xrange [" << exact(a.start) << ":"
-    << exact(a.end) << "]\n"
+    << " noenhanced\nset xlabel " << gnuplot_quoted(a.name) << " noenhanced\n"
     << (a.transform == fitlib::surface::Transform::log10 ? "set logscale x\n" : "unset logscale x\n")
+    << "set xrange [" << exact(a.start) << ":" << exact(a.end) << "]\n"
     << "plot " << plot.str().substr(0, plot.str().size() - 2) << "\n";
 }
 
@@ -86,7 +86,7 @@ std::string surface_plot_script(const fitlib::surface::Surface& surface, const f
   std::ostringstream s;
   s << "set terminal pngcairo size " << 560 * std::min<std::size_t>(n, 3) << "," << 600 * ((n + 2) / 3)
     << " enhanced font 'DejaVu Sans,10' linewidth 1.3\nset output '" << png << "'\n"
-    << "set grid lc rgb '#dddddd'\nset key outside bottom center horizontal font ',8'\nset ylabel "
+    << "set grid lc rgb '#dddddd'\nset format y '%g'\nset key outside bottom center horizontal font ',8'\nset ylabel "
     << gnuplot_quoted(surface.dependent_name) << " noenhanced\n"
     << (surface.dependent_transform == fitlib::surface::Transform::log10 ? "set logscale y\n" : "")
     << "set multiplot layout " << (n + 2) / 3 << "," << std::min<std::size_t>(n, 3) << " title "

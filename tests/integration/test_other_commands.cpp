@@ -123,6 +123,14 @@ TEST(SurfaceCli, PlotDrawsTheSurfaceThroughTheDataAndRefusesScatteredAxes) {
   f << "x,y,z\n";
   for (int i = 0; i < 40; ++i) f << 0.013 * i * i << "," << (i % 3) << "," << 1.0 + 0.01 * i * i << "\n";
   f.close();
+  // surface grid --plot draws the grid's surface (and needs --surface-out).
+  const auto card = source_path("tests/data/surface/prony_shear_card.json"), grid_png = temp_file("grid.png");
+  const auto grid = run_fitcli("surface grid --card " + card + " --frequency-hz 1,3,10,30,100 --temperature-c 23,50,80 "
+                               "--quantity loss --surface-out " + temp_file("grid.json") + " --plot " + grid_png +
+                               " --out " + temp_file("grid.csv"));
+  ASSERT_EQ(grid.exit_code, 0) << grid.err;
+  EXPECT_EQ(slurp(grid_png).substr(0, 4), "\x89PNG");
+  EXPECT_EQ(run_fitcli("surface grid --card " + card + " --frequency-hz 1,10 --plot " + temp_file("lone.png")).exit_code, 2);
   std::ofstream(kept) << "mine\n";
   const auto refused = run_fitcli("surface fit --data " + scattered + " --x x --x y --y z --degree 2,2 --out " +
                                   temp_file("scattered.json") + " --plot " + kept);

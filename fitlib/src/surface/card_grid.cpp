@@ -78,21 +78,25 @@ std::string modulus_grid_csv(const ModulusGrid& grid) {
   return csv.str();
 }
 
-Surface surface_from_grid(const ModulusGrid& grid, const std::string& quantity,
-                          const std::vector<int>& degrees) {
-  const auto& rq = grid.request;
-  struct Column {
-    const char* name;
-    const char* unit;
-    double ModulusGridRow::*member;
-  };
-  std::vector<Column> columns;
+namespace {
+struct GridColumn {
+  const char* name;
+  const char* unit;
+  double ModulusGridRow::*member;
+};
+
+// The grid's axes in Report V's order, those with values given.
+std::vector<GridColumn> grid_columns(const CardGridRequest& rq) {
+  std::vector<GridColumn> columns;
   if (!rq.strain_amplitude.empty()) columns.push_back({"strain_amplitude", "", &ModulusGridRow::strain_amplitude});
   columns.push_back({"frequency_Hz", "Hz", &ModulusGridRow::frequency_Hz});
   if (!rq.temperature_C.empty()) columns.push_back({"temperature_C", "C", &ModulusGridRow::temperature_C});
-  if (!degrees.empty() && degrees.size() != columns.size())
-    throw core::UsageError("give one degree per grid axis (" + std::to_string(columns.size()) + ")");
+  return columns;
+}
+}  // namespace
 
+SampleSet grid_samples(const ModulusGrid& grid, const std::string& quantity) {
+  const std::vector<GridColumn> columns = grid_columns(grid.request);
   SampleSet data;
   data.source = "grid of card '" + grid.card_name + "'";
   data.x.resize(static_cast<Eigen::Index>(grid.rows.size()), static_cast<Eigen::Index>(columns.size()));
@@ -102,6 +106,16 @@ Surface surface_from_grid(const ModulusGrid& grid, const std::string& quantity,
       data.x(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) = grid.rows[r].*(columns[k].member);
     data.y[static_cast<Eigen::Index>(r)] = quantity_of(grid.rows[r], quantity);
   }
+  return data;
+}
+
+Surface surface_from_grid(const ModulusGrid& grid, const std::string& quantity,
+                          const std::vector<int>& degrees) {
+  const auto& rq = grid.request;
+  const std::vector<GridColumn> columns = grid_columns(rq);
+  if (!degrees.empty() && degrees.size() != columns.size())
+    throw core::UsageError("give one degree per grid axis (" + std::to_string(columns.size()) + ")");
+  const SampleSet data = grid_samples(grid, quantity);
   FitOptions options;
   for (std::size_t k = 0; k < columns.size(); ++k) {
     AxisSpec axis{columns[k].name, columns[k].unit, {}, {}};

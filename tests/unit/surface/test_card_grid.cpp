@@ -147,13 +147,11 @@ TEST(CardGrid, AGridSurfaceOfTheLossStaysPositiveWhereALinearFitSwingsBelowZero)
       const double x[2] = {0.1 * std::pow(1000.0, i / 60.0), -20.0 + 100.0 * j / 60.0};
       EXPECT_GT(s.value(x), 0.0) << x[0] << " Hz, " << x[1] << " degC";
     }
-  surface::SampleSet data;
-  data.x.resize(static_cast<Eigen::Index>(grid.rows.size()), 2);
-  data.y.resize(static_cast<Eigen::Index>(grid.rows.size()));
-  for (std::size_t r = 0; r < grid.rows.size(); ++r) {
-    const auto k = static_cast<Eigen::Index>(r);
-    data.x(k, 0) = grid.rows[r].frequency_Hz, data.x(k, 1) = grid.rows[r].temperature_C, data.y[k] = grid.rows[r].loss_MPa;
-  }
+  const surface::SampleSet data = surface::grid_samples(grid, "loss");
+  ASSERT_EQ(data.x.cols(), 2);
+  EXPECT_EQ(data.y[3], grid.rows[3].loss_MPa);
+  EXPECT_EQ(data.x(3, 0), grid.rows[3].frequency_Hz);
+  EXPECT_EQ(data.x(3, 1), grid.rows[3].temperature_C);
   surface::FitOptions linear;
   linear.axes = {{"frequency_Hz", "Hz", std::nullopt, std::nullopt}, {"temperature_C", "C", std::nullopt, std::nullopt}};
   linear.dependent_name = "loss_MPa", linear.level_tolerance = 0.0;

@@ -35,6 +35,10 @@ ModulusGrid evaluate_card_grid(const card::Card& card, const CardGridRequest& re
 // temperature was used), storage_MPa, loss_MPa, tan_delta, mean_modulus_MPa.
 std::string modulus_grid_csv(const ModulusGrid& grid);
 
+// The grid as measured points of one quantity ("storage", "loss", "tan_delta" or "mean") over
+// its axes (Report V's order, those with values given): what surface_from_grid fits.
+SampleSet grid_samples(const ModulusGrid& grid, const std::string& quantity);
+
 // Fits a surface of one quantity ("storage", "loss", "tan_delta" or "mean") over the grid's axes
 // in Report V's order (strain_amplitude, frequency_Hz, temperature_C; only axes with values given).
 // `degrees` (optional, one per axis present) overrides the default levels - 1 (at most kMaxDegree).
