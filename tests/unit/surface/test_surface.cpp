@@ -433,3 +433,47 @@ TEST(SurfaceFit, LogDependentEvaluatesGradientsRoundTripsAndRefusesNonPositiveVa
     EXPECT_NE(std::string(err.what()).find("not positive, but it is fitted as log10"), std::string::npos) << err.what();
   }
 }
+
+// Property over random tables (2 axes, 3–6 levels each, random degrees and values over two decades,
+// linear or log10): the range check's extremes are the surface's own values at the places it
+// names, inside the interval, no further from the true extremes than a 4× finer sampling finds
+// (to 2 % of the range), and a log10 surface never reports a value ≤ 0.
+TEST(SurfaceFit, RangeCheckExtremesAreTheSurfacesOwnValuesOnRandomTables) {
+  fitlib::core::Rng rng(29);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int L0 = 3 + static_cast<int>(rng.uniform(0.0, 4.0)), L1 = 3 + static_cast<int>(rng.uniform(0.0, 4.0));
+    SampleSet data;
+    data.x.resize(L0 * L1, 2);
+    data.y.resize(L0 * L1);
+    for (int i = 0; i < L0; ++i)
+      for (int j = 0; j < L1; ++j) {
+        data.x(i * L1 + j, 0) = -20.0 + 100.0 * i / (L0 - 1);
+        data.x(i * L1 + j, 1) = std::pow(10.0, 2.0 * j / (L1 - 1));
+        data.y[i * L1 + j] = std::pow(10.0, rng.uniform(0.0, 2.0));
+      }
+    FitOptions o;
+    o.axes = {{"temperature_C", "C", Transform::linear, static_cast<int>(rng.uniform(1.0, L0 - 0.01))},
+              {"frequency_Hz", "Hz", Transform::log10, static_cast<int>(rng.uniform(1.0, L1 - 0.01))}};
+    o.dependent_name = "storage_MPa";
+    o.dependent_transform = trial % 2 ? Transform::log10 : Transform::linear;
+    const Surface s = fit_surface(data, o);
+    const Statistics& st = s.statistics;
+    ASSERT_EQ(st.surface_min_at.size(), 2u);
+    EXPECT_TRUE(s.contains(st.surface_min_at.data()) && s.contains(st.surface_max_at.data())) << trial;
+    EXPECT_NEAR(s.value(st.surface_min_at.data()), st.surface_min, 1e-9 * std::abs(st.surface_max)) << trial;
+    EXPECT_NEAR(s.value(st.surface_max_at.data()), st.surface_max, 1e-9 * std::abs(st.surface_max)) << trial;
+    double fine_min = INFINITY, fine_max = -INFINITY;
+    for (int i = 0; i <= 32 * s.axes[0].degree; ++i)
+      for (int j = 0; j <= 32 * s.axes[1].degree; ++j) {
+        const double x[2] = {s.axes[0].value_at(double(i) / (32 * s.axes[0].degree)),
+                             s.axes[1].value_at(double(j) / (32 * s.axes[1].degree))};
+        fine_min = std::min(fine_min, s.value(x, true)), fine_max = std::max(fine_max, s.value(x, true));
+      }
+    const double range = fine_max - fine_min;
+    EXPECT_LE(fine_min, st.surface_min + 1e-12 * range) << trial;
+    EXPECT_GE(fine_max, st.surface_max - 1e-12 * range) << trial;
+    EXPECT_LT(st.surface_min - fine_min, 0.02 * range) << trial;
+    EXPECT_LT(fine_max - st.surface_max, 0.02 * range) << trial;
+    if (o.dependent_transform == Transform::log10) EXPECT_GT(st.surface_min, 0.0) << trial;
+  }
+}
