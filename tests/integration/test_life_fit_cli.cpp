@@ -55,6 +55,19 @@ TEST(LifeFitCli, BundledLifeTestsGiveACardWhoseIntervalsHoldTheTruth) {
   EXPECT_EQ(slurp(card), first);
 }
 
+// A file of runouts only (tests stopped without failing) fixes no constant: exit 3 naming the file and
+// failure_mode, no card written (it was exit 4 "no failure mode could be fitted ()").
+TEST(LifeFitCli, RunoutsAloneAreRefusedNamingTheFile) {
+  const std::string observed = temp_file("runouts-only.csv"), card = temp_file("runouts-only.json");
+  std::ofstream(observed) << "case,failure_mode,temperature_C,observed_cycles,peaks_MPa,runout\n"
+                             "R1,separation,80,1e9,0.5,1\nR2,radial_crack,80,1e9,0.3,1\n";
+  const auto r = run_fitcli("life-fit --observed " + observed + " --out " + card);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(observed + ": key 'failure_mode': no life test failed (2 runout case(s))"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(card));
+}
+
 // --json keeps stdout one document, with the figure beside it (gnuplot speaks on stderr).
 TEST(LifeFitCli, JsonCarriesTheCardAndItsWarnings) {
   const std::string png = temp_file("life-fit.png");

@@ -131,6 +131,11 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
     record[to_string(mode)] = life_fit_json(fit);
     out.fits.push_back(std::move(fit));
   }
+  if (out.fits.empty())  // every case a runout (a case always has a mode, so only runouts leave none)
+    throw core::InputError("no life test failed (" + std::to_string(cases.size()) +
+                               " runout case(s)): runouts bound the lives from below but fix no constant; the fit "
+                               "needs tests that failed",
+                           "", 0, 0, "failure_mode");
   if (!fitted) {
     std::string why;
     for (const LifeFitResult& f : out.fits) why += std::string(why.empty() ? "" : "; ") + to_string(f.mode) + ": " + f.rejected;

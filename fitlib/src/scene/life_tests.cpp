@@ -187,7 +187,12 @@ LifeTestsFit fit_life_tests(const std::string& text, const std::string& source, 
   const fatigue::FatigueCard start = start_path.empty() ? fatigue::default_card() : fatigue::load_card(start_path);
   LifeTestsFit out;
   out.cases = observed_cases(text, source, start, progress);
-  out.fit = fatigue::fit_life_card(out.cases, start, held);
+  try {
+    out.fit = fatigue::fit_life_card(out.cases, start, held);
+  } catch (const core::InputError& e) {  // about the cases as a whole: named by the file they came from
+    if (!e.file().empty()) throw;
+    throw core::InputError(e.detail(), source, 0, 0, e.key());
+  }
   fatigue::FatigueCard& card = out.fit.card;
   card.name = "life constants fitted to " + source;
   card.provenance["observed"] = {{"file", source}, {"sha256", core::sha256_hex(text)}, {"cases", out.cases.size()}};

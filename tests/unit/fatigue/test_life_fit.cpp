@@ -86,9 +86,17 @@ TEST(LifeFit, RunoutsBoundTheLifeFromBelowOnly) {
   bool said = false;
   for (const auto& w : card.warnings) said |= w.find("runout " + cases.back().name) != std::string::npos;
   EXPECT_TRUE(said);
-  // Runouts only: no law to fit (an error for the law, the start kept by the card, a refutation said).
+  // Runouts only: no law to fit (an error for the law, the start kept by the card, a refutation said);
+  // no failure in any mode is an input error naming failure_mode.
   std::vector<ObservedLife> only(runouts);
   EXPECT_THROW(fit_life_law(only, Mode::separation, o), core::InputError);
+  try {
+    fit_life_card(only, default_card());
+    ADD_FAILURE() << "runouts alone fitted a card";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.key(), "failure_mode");
+    EXPECT_NE(std::string(e.what()).find("no life test failed (6 runout case(s))"), std::string::npos) << e.what();
+  }
   only.push_back(synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, ""}, 3, 0.0, 6)[0]);
   only.front().observed_cycles = 1e30;
   const LifeCardFit start_kept = fit_life_card(only, default_card(), HeldConstants{true, true});
