@@ -328,9 +328,11 @@ const std::vector<int>* empty_cell_at(const Surface& s, const std::vector<double
 std::string range_warning(const Surface& s) {
   const Statistics& st = s.statistics;
   if (!std::isfinite(st.surface_min) || !std::isfinite(st.surface_max) || !std::isfinite(st.data_min)) return "";
-  const double margin = kRangeOvershoot * (st.data_max - st.data_min);
-  const bool negative = st.data_min > 0.0 && st.surface_min <= 0.0;
-  const bool positive = st.data_max < 0.0 && st.surface_max >= 0.0;
+  // (Round-off floor: constant data give a zero range, and a surface through them differs by 1e-15.)
+  const double margin = std::max(kRangeOvershoot * (st.data_max - st.data_min),
+                                 1e-9 * std::max(std::abs(st.data_min), std::abs(st.data_max)));
+  const bool negative = st.data_min > 0.0 && st.surface_min <= -1e-12 * st.data_max;
+  const bool positive = st.data_max < 0.0 && st.surface_max >= -1e-12 * st.data_min;
   const bool below = st.surface_min < st.data_min - margin, above = st.surface_max > st.data_max + margin;
   if (!(negative || positive || below || above)) return "";
   std::ostringstream out;

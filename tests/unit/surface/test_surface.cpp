@@ -379,6 +379,13 @@ TEST(SurfaceFit, ASurfaceThatSwingsOutOfTheDatasRangeIsAWarning) {
   EXPECT_LT(logarithmic.statistics.max_relative_error, 1e-9) << "still passes every point (N = p)";
   EXPECT_FALSE(any_contains(statistics_warnings(logarithmic), "the surface reaches"));
   EXPECT_GT(logarithmic.statistics.surface_min, 0.0);
+  // Constant data: the surface differs from them by round-off only, which is no swing.
+  SampleSet flat;
+  flat.x.resize(6, 2);
+  flat.y = Eigen::VectorXd::Constant(6, 5.0);
+  for (int r = 0; r < 6; ++r) flat.x(r, 0) = r / 2, flat.x(r, 1) = r % 2 ? 10.0 : 1.0;
+  FitOptions flat_options = glass_transition_options(Transform::linear);
+  EXPECT_EQ(range_warning(fit_surface(flat, flat_options)), "");
   // A surface without swings (Report V's full design, degree 2): no range warning.
   const auto quiet = fit_surface(make_design(levels(3, 3, 3), all_cells, twice, 0.02, 9), rubber_options());
   EXPECT_FALSE(any_contains(statistics_warnings(quiet), "the surface reaches"));
