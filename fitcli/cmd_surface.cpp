@@ -81,12 +81,11 @@ void run_fit(const FitArgs& a) {
   }
   const auto colon = a.y.find(':');
   options.dependent_name = a.y.substr(0, colon);
-  if (colon != std::string::npos) {
-    const std::string transform = a.y.substr(colon + 1);
-    if (transform != "log" && transform != "log10" && transform != "lin" && transform != "linear")
-      throw core::UsageError("--y " + a.y + ": unknown transform '" + transform + "' (COL:log fits log10 of the values, COL:lin the values)");
-    options.dependent_transform = surface::parse_transform(transform);
-  }
+  if (colon != std::string::npos) try {
+      options.dependent_transform = surface::parse_transform(a.y.substr(colon + 1));
+    } catch (const core::UsageError& e) {
+      throw core::UsageError("--y " + a.y + ": " + e.what() + "; COL:log fits log10 of the values");
+    }
   options.dependent_unit = unit_from_name(options.dependent_name);
   options.name = a.name;
   options.level_tolerance = a.level_tolerance;
