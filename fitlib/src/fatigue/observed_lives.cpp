@@ -152,11 +152,15 @@ void check_one_stress_fidelity(const std::vector<ObservedLife>& cases, const std
                                source, cases[k].line, 0, "stress_fidelity");
 }
 
+namespace {
+// The material a mode's cracks run in: mode 1 the bottom rubber, mode 2 the cushion (Report I).
+Role role_of(Mode mode) { return mode == Mode::radial_crack ? Role::bottom : Role::cushion; }
+}  // namespace
+
 bool has_peaks(Mode mode, const std::vector<PointHistory>& points, const FatigueCard& card,
                const LifeConditions& conditions) {
-  const Role role = mode == Mode::radial_crack ? Role::bottom : Role::cushion;
   for (const PointHistory& p : points)
-    if (p.role == role && !cycle_peaks_MPa(p, card.crack_sweep_deg, conditions).empty()) return true;
+    if (p.role == role_of(mode) && !cycle_peaks_MPa(p, card.crack_sweep_deg, conditions).empty()) return true;
   return false;
 }
 
@@ -168,9 +172,8 @@ ObservedLife observed_life(const std::string& name, Mode mode, double observed_c
   c.mode = mode;
   c.temperature_C = conditions.temperature_C;
   c.observed_cycles = observed_cycles;
-  const Role role = mode == Mode::radial_crack ? Role::bottom : Role::cushion;
   for (const PointHistory& p : points)
-    if (p.role == role) {
+    if (p.role == role_of(mode)) {
       std::vector<double> peaks = cycle_peaks_MPa(p, card.crack_sweep_deg, conditions);
       if (!peaks.empty()) c.point_peaks_MPa.push_back(std::move(peaks));
     }
