@@ -146,6 +146,8 @@ std::vector<double> parse_point(const std::string& text, std::size_t n) {
 void run_eval(const EvalArgs& a) {
   claim_output("--out", a.out, false);
   const auto s = surface::load_surface(input_path(a.surface));
+  // Said wherever the surface is read, as a card's failed quality verdict is.
+  if (const std::string range = surface::range_warning(s); !range.empty()) warning(range + " (" + a.surface + ")");
   const std::size_t n = s.dimension();
   std::vector<std::vector<double>> points;
   for (const auto& text : a.at) points.push_back(parse_point(text, n));

@@ -95,6 +95,10 @@ TEST(SurfaceCli, ALinearFitThatTurnsNegativeWarnsAndTheLogFitReturnsModuli) {
   ASSERT_EQ(linear.exit_code, 0) << linear.err;
   EXPECT_NE(linear.err.find("never change sign"), std::string::npos) << linear.err;
   EXPECT_NE(linear.err.find("--y storage_MPa:log"), std::string::npos) << linear.err;
+  // Read back, the linear surface says it again (its value at 85 °C, 1 Hz is negative).
+  const auto read_back = run_fitcli("surface eval --surface " + temp_file("glass_linear.json") + " --at 85,1");
+  ASSERT_EQ(read_back.exit_code, 0) << read_back.err;
+  EXPECT_NE(read_back.err.find("never change sign"), std::string::npos) << read_back.err;
   const auto logfile = temp_file("glass_log.json");
   const auto logfit = fit("storage_MPa:log", logfile);
   ASSERT_EQ(logfit.exit_code, 0) << logfit.err;
@@ -102,6 +106,7 @@ TEST(SurfaceCli, ALinearFitThatTurnsNegativeWarnsAndTheLogFitReturnsModuli) {
   EXPECT_NE(logfit.out.find("storage_MPa (fitted as log10)"), std::string::npos) << logfit.out;
   const auto e = run_fitcli("surface eval --surface " + logfile + " --at 85,1 --at 23,10");
   ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(e.err.find("the surface reaches"), std::string::npos) << e.err;
   std::istringstream rows(e.out);
   std::string header, at85, at23;
   std::getline(rows, header), std::getline(rows, at85), std::getline(rows, at23);
