@@ -94,13 +94,11 @@ std::string life_fit_script(const std::vector<fitlib::fatigue::ObservedLife>& ca
       s << "EOD\n";
     }
     const std::string name = to_string(f.mode), rgb = std::string("lc rgb '") + colour[m] + "'";
-    // Runouts as open triangles pointing right (the life lies beyond them), titled only when there are some.
-    const std::string runouts = f.runouts == 0 ? "" : "$r" + std::to_string(m) + " using %s with points pt 8 ps 1.2 " +
-                                                          rgb + " title '" + name + " runouts' noenhanced, ";
+    // Runouts as open triangles (their lives lie beyond them), drawn only when there are some.
     auto with_columns = [&](const char* columns) {
-      std::string out = runouts;
-      if (const auto at = out.find("%s"); at != std::string::npos) out.replace(at, 2, columns);
-      return out;
+      return f.runouts == 0 ? std::string() : "$r" + std::to_string(m) + " using " + columns +
+                                                  " with points pt 8 ps 1.2 " + rgb + " title '" + name +
+                                                  " runouts' noenhanced, ";
     };
     sn << "$m" << m << " using 1:2 with points pt 7 ps 0.8 " << rgb << " title '" << name << "' noenhanced, "
        << with_columns("1:2") << exact(f.law.sigma0_MPa) << "*x**(-1.0/" << exact(f.law.n) << ") with lines " << rgb

@@ -3,6 +3,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
+#include <tuple>
+#include <optional>
 
 #include "commands.hpp"
 #include "fitlib/card/card.hpp"
@@ -62,14 +65,20 @@ struct FitArgs {
   bool json = false;
 };
 
+// "COL" or "COL:TRANSFORM" of --x and --y: the column and the transform, if given (parse_transform's
+// UsageError for an unknown one).
+std::pair<std::string, std::optional<surface::Transform>> column_spec(const std::string& spec) {
+  const auto colon = spec.find(':');
+  if (colon == std::string::npos) return {spec, std::nullopt};
+  return {spec.substr(0, colon), surface::parse_transform(spec.substr(colon + 1))};
+}
+
 void run_fit(const FitArgs& a) {
   surface::FitOptions options;
   std::vector<std::string> columns;
   for (const auto& spec : a.x) {
     surface::AxisSpec axis;
-    const auto colon = spec.find(':');
-    axis.name = spec.substr(0, colon);
-    if (colon != std::string::npos) axis.transform = surface::parse_transform(spec.substr(colon + 1));
+    std::tie(axis.name, axis.transform) = column_spec(spec);
     axis.unit = unit_from_name(axis.name);
     columns.push_back(axis.name);
     options.axes.push_back(axis);
@@ -79,13 +88,13 @@ void run_fit(const FitArgs& a) {
       throw core::UsageError("--degree needs one value per --x (" + std::to_string(options.axes.size()) + ")");
     for (std::size_t k = 0; k < a.degrees.size(); ++k) options.axes[k].degree = a.degrees[k];
   }
-  const auto colon = a.y.find(':');
-  options.dependent_name = a.y.substr(0, colon);
-  if (colon != std::string::npos) try {
-      options.dependent_transform = surface::parse_transform(a.y.substr(colon + 1));
-    } catch (const core::UsageError& e) {
-      throw core::UsageError("--y " + a.y + ": " + e.what() + "; COL:log fits log10 of the values");
-    }
+  try {
+    const auto [name, transform] = column_spec(a.y);
+    options.dependent_name = name;
+    options.dependent_transform = transform.value_or(surface::Transform::linear);
+  } catch (const core::UsageError& e) {
+    throw core::UsageError("--y " + a.y + ": " + e.what() + "; COL:log fits log10 of the values");
+  }
   options.dependent_unit = unit_from_name(options.dependent_name);
   options.name = a.name;
   options.level_tolerance = a.level_tolerance;

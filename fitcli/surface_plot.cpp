@@ -21,16 +21,6 @@ constexpr int kCurvePoints = 121;
 const char* const kColours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
                                 "#a6761d", "#666666", "#1f78b4", "#e31a1c", "#33a02c", "#6a3d9a"};
 
-// The level of axis a nearest to x (in the axis's own coordinate).
-int nearest_level(const fitlib::surface::Axis& a, double x) {
-  int best = 0;
-  for (std::size_t l = 1; l < a.levels.size(); ++l)
-    if (std::abs(a.coordinate(a.levels[l]) - a.coordinate(x)) <
-        std::abs(a.coordinate(a.levels[static_cast<std::size_t>(best)]) - a.coordinate(x)))
-      best = static_cast<int>(l);
-  return best;
-}
-
 // One panel: the curves along axis k and the points of each.
 void axis_panel(std::ostringstream& s, const fitlib::surface::Surface& surface, const fitlib::surface::SampleSet& data,
                 std::size_t k) {
@@ -39,7 +29,7 @@ void axis_panel(std::ostringstream& s, const fitlib::surface::Surface& surface, 
   for (Eigen::Index r = 0; r < data.x.rows(); ++r) {
     std::vector<int> combo;
     for (std::size_t j = 0; j < n; ++j)
-      if (j != k) combo.push_back(nearest_level(surface.axes[j], data.x(r, static_cast<Eigen::Index>(j))));
+      if (j != k) combo.push_back(surface.axes[j].nearest_level(data.x(r, static_cast<Eigen::Index>(j))));
     rows_of[combo].push_back(r);
   }
   const fitlib::surface::Axis& a = surface.axes[k];

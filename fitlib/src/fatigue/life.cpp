@@ -135,21 +135,23 @@ std::vector<std::string> life_warnings(const LifeReport& r, bool points_have_his
                     std::to_string(m.dominant_peak_samples) +
                     " sample(s): the increments may miss its top, and the life moves with the peak to the life "
                     "exponent's power (docs/segment.md \"The driver exit's peel transient\")");
+  // A life outside the range (6.31) was fitted over: "the MODE life, N load cycles, is WHERE LIMIT: …".
+  auto unreadable = [](const ModeLife& m, const char* where, double limit, const char* fitted_and_reading) {
+    return std::string("the ") + to_string(m.mode) + " life, " + core::format_number(m.life_cycles, 4) +
+           " load cycles, is " + where + " " + core::format_number(limit) + ": its largest peak is " +
+           core::format_number(m.largest_peak_over_sigma0, 3) + " x sigma0, and the life law (6.31) was fitted to " +
+           fitted_and_reading;
+  };
   for (const ModeLife& m : r.modes)
     if (m.life_cycles < kShortestReadableLife_cycles)
-      out.push_back(std::string("the ") + to_string(m.mode) + " life, " + core::format_number(m.life_cycles, 4) +
-                    " load cycles, is below " + core::format_number(kShortestReadableLife_cycles) +
-                    ": its largest peak is " + core::format_number(m.largest_peak_over_sigma0, 3) +
-                    " x sigma0, and the life law (6.31) was fitted to belts that ran for hours; read it as "
-                    "failure at once, not as a number (are the cards a belt rubber's at this temperature?)");
+      out.push_back(unreadable(m, "below", kShortestReadableLife_cycles,
+                               "belts that ran for hours; read it as failure at once, not as a number (are the cards "
+                               "a belt rubber's at this temperature?)"));
   for (const ModeLife& m : r.modes)
     if (std::isfinite(m.life_cycles) && m.life_cycles > kLongestReadableLife_cycles)
-      out.push_back(std::string("the ") + to_string(m.mode) + " life, " + core::format_number(m.life_cycles, 4) +
-                    " load cycles, is beyond " + core::format_number(kLongestReadableLife_cycles) +
-                    ": its largest peak is " + core::format_number(m.largest_peak_over_sigma0, 3) +
-                    " x sigma0, and the life law (6.31) was fitted to belts that lived 1-2000 h (Report III; real "
-                    "drives live 10-100 times longer); read it as no fatigue failure in this mode at this load (a "
-                    "runout), not as a number");
+      out.push_back(unreadable(m, "beyond", kLongestReadableLife_cycles,
+                               "belts that lived 1-2000 h (Report III; real drives live 10-100 times longer); read it "
+                               "as no fatigue failure in this mode at this load (a runout), not as a number"));
   return out;
 }
 

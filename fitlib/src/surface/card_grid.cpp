@@ -130,7 +130,7 @@ Surface surface_from_grid(const ModulusGrid& grid, const std::string& quantity,
   options.level_tolerance = 0.0;
   // Moduli over decades of frequency: a polynomial in the values themselves swings below zero
   // between the levels (a Prony card's loss over 0.1–100 Hz and −20–80 °C reached −0.87 MPa), one
-  // in their log10 cannot; a grid with a value ≤ 0 stays linear (docs/surface.md "Card grids").
+  // in their log10 cannot; a grid with a value ≤ 0 stays linear (docs/surface.md "Command line").
   if ((data.y.array() > 0.0).all()) options.dependent_transform = Transform::log10;
   Surface s = fit_surface(data, options);
   s.provenance = {{"card", grid.card_name},

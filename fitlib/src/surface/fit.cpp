@@ -64,20 +64,17 @@ void validate(const SampleSet& d, const std::vector<Axis>& axes) {
   }
 }
 
-// The values the control points describe: y, or log10 y (each y > 0, else InputError at its cell).
-SampleSet fitted_values(const SampleSet& d, Transform transform) {
-  if (transform == Transform::linear) return d;
-  SampleSet out = d;
-  for (Eigen::Index r = 0; r < d.y.size(); ++r) {
+// log10 y, the values a log10 dependent's control points describe (each y > 0, else InputError at
+// its cell).
+Eigen::VectorXd log10_values(const SampleSet& d) {
+  for (Eigen::Index r = 0; r < d.y.size(); ++r)
     if (!(d.y[r] > 0.0)) {
       std::ostringstream msg;
       msg << where_row(d, r) << "the dependent value " << d.y[r]
           << " is not positive, but it is fitted as log10 (drop :log from --y for a linear fit)";
       throw core::InputError(msg.str(), d.source, line_of(d, r), d.column_of_y);
     }
-    out.y[r] = std::log10(d.y[r]);
-  }
-  return out;
+  return d.y.array().log10().matrix();
 }
 
 // Basis row φ_j(x) = Π_k B_{i_k}(u_k) for all flat j, built axis by axis in place.
@@ -219,8 +216,10 @@ ConstrainedBasis constrained_basis(const Surface& s) {
   return basis;
 }
 
-// Chunked Householder reduction of [A Z | y − A c0] to a (q+1)×(q+1) triangle.
-Eigen::MatrixXd reduced_triangle(const Surface& s, const SampleSet& data, const ConstrainedBasis& basis) {
+// Chunked Householder reduction of [A Z | y − A c0] to a (q+1)×(q+1) triangle; `y` the values the
+// control points describe (data.y, or its log10).
+Eigen::MatrixXd reduced_triangle(const Surface& s, const SampleSet& data, const Eigen::VectorXd& y,
+                                 const ConstrainedBasis& basis) {
   const Eigen::Index N = data.x.rows(), q = basis.q, p = static_cast<Eigen::Index>(s.size());
   const std::size_t n = s.axes.size();
   Eigen::MatrixXd R_aug = Eigen::MatrixXd::Zero(q + 1, q + 1);
@@ -237,10 +236,10 @@ Eigen::MatrixXd reduced_triangle(const Surface& s, const SampleSet& data, const 
       const Eigen::Map<const Eigen::RowVectorXd> phi_row(phi.data(), p);
       if (basis.constrained) {
         block.row(q + 1 + r).head(q) = phi_row * basis.Z;
-        block(q + 1 + r, q) = data.y[row] - phi_row.dot(basis.c0);
+        block(q + 1 + r, q) = y[row] - phi_row.dot(basis.c0);
       } else {
         block.row(q + 1 + r).head(q) = phi_row;
-        block(q + 1 + r, q) = data.y[row];
+        block(q + 1 + r, q) = y[row];
       }
     }
     Eigen::HouseholderQR<Eigen::MatrixXd> qr(block);
@@ -250,9 +249,10 @@ Eigen::MatrixXd reduced_triangle(const Surface& s, const SampleSet& data, const 
 }
 
 // Least-squares control points; NumericalError for a rank-deficient design.
-Eigen::VectorXd control_points(const Surface& s, const SampleSet& data, const ConstrainedBasis& basis) {
+Eigen::VectorXd control_points(const Surface& s, const SampleSet& data, const Eigen::VectorXd& y,
+                               const ConstrainedBasis& basis) {
   const Eigen::Index q = basis.q;
-  const Eigen::MatrixXd R_aug = reduced_triangle(s, data, basis);
+  const Eigen::MatrixXd R_aug = reduced_triangle(s, data, y, basis);
   const Eigen::MatrixXd R = R_aug.topLeftCorner(q, q);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> solver(R);
   solver.setThreshold(kRankThreshold);
@@ -269,9 +269,9 @@ Eigen::VectorXd control_points(const Surface& s, const SampleSet& data, const Co
 }
 
 // The surface's extremes over its interval, sampled on m_k + 1 equidistant parameters per axis,
-// m_k = f·d_k with f the largest of 8, 4, 2, 1 that keeps the grid within kRangeSamples points (the check costs at most ~15 ms)
-// (a degree-d polynomial swings at most d − 1 times; 8 samples per degree find the swings of
-// interest). Too many axes for even f = 1: not sampled (NaN).
+// m_k = f·d_k with f the largest of 8, 4, 2, 1 that keeps the grid within kRangeSamples points
+// (at most ~15 ms; a degree-d polynomial swings at most d − 1 times, and 8 samples per degree find
+// the swings of interest). Too many axes for even f = 1: not sampled (NaN).
 constexpr double kRangeSamples = 5e4;
 void sample_range(Surface& s) {
   const std::size_t n = s.axes.size();
@@ -374,7 +374,8 @@ Surface fit_surface(const SampleSet& data, const FitOptions& options) {
         << " distinct level combinations (cells); lower a degree (--degree) or add constraints";
     throw core::UsageError(msg.str());
   }
-  s.control_points = control_points(s, fitted_values(data, options.dependent_transform), basis);
+  s.control_points = control_points(
+      s, data, options.dependent_transform == Transform::log10 ? log10_values(data) : data.y, basis);
   fill_statistics(s, data, basis.q, occupied);
   return s;
 }

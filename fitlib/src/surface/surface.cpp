@@ -62,6 +62,15 @@ double Axis::value_at(double u) const {
   return transform == Transform::linear ? c : std::pow(10.0, c);
 }
 
+int Axis::nearest_level(double x) const {
+  int best = 0;
+  for (std::size_t l = 1; l < levels.size(); ++l)
+    if (std::abs(coordinate(levels[l]) - coordinate(x)) <
+        std::abs(coordinate(levels[static_cast<std::size_t>(best)]) - coordinate(x)))
+      best = static_cast<int>(l);
+  return best;
+}
+
 std::size_t Surface::size() const {
   std::size_t p = 1;
   for (const auto& a : axes) p *= static_cast<std::size_t>(a.degree + 1);
@@ -311,12 +320,7 @@ const std::vector<int>* empty_cell_at(const Surface& s, const std::vector<double
       cell.push_back(-1);
       continue;
     }
-    int nearest = 0;
-    for (std::size_t l = 1; l < a.levels.size(); ++l)
-      if (std::abs(a.coordinate(a.levels[l]) - a.coordinate(x[k])) <
-          std::abs(a.coordinate(a.levels[static_cast<std::size_t>(nearest)]) - a.coordinate(x[k])))
-        nearest = static_cast<int>(l);
-    cell.push_back(nearest);
+    cell.push_back(a.nearest_level(x[k]));
   }
   const auto found = std::find(s.missing_cells.begin(), s.missing_cells.end(), cell);
   return found == s.missing_cells.end() ? nullptr : &*found;
@@ -377,14 +381,18 @@ std::vector<std::string> statistics_warnings(const Surface& s) {
 
 namespace {
 
+// A transform as the JSON stores it (only the full names), InputError naming `key` otherwise.
+Transform stored_transform(const std::string& text, const std::string& source, const std::string& key) {
+  if (text != "linear" && text != "log10")
+    throw core::InputError("transform must be linear or log10", source, 0, 0, key);
+  return parse_transform(text);
+}
+
 Axis axis_from_json(const nlohmann::json& j, const std::string& source, const std::string& path) {
   Axis a;
   a.name = required<std::string>(j, "name", source, path);
   a.unit = j.value("unit", "");
-  const auto transform = required<std::string>(j, "transform", source, path);
-  if (transform != "linear" && transform != "log10")
-    throw core::InputError("transform must be linear or log10", source, 0, 0, path + "transform");
-  a.transform = parse_transform(transform);
+  a.transform = stored_transform(required<std::string>(j, "transform", source, path), source, path + "transform");
   const auto interval = required<std::vector<double>>(j, "interval", source, path);
   if (interval.size() != 2 || !(interval[0] <= interval[1]) || !std::isfinite(interval[1] - interval[0]))
     throw core::InputError("must be [start, end] with start <= end", source, 0, 0, path + "interval");
@@ -482,10 +490,7 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
     if (j.contains("dependent")) {
       s.dependent_name = j["dependent"].value("name", "");
       s.dependent_unit = j["dependent"].value("unit", "");
-      const std::string transform = j["dependent"].value("transform", "linear");
-      if (transform != "linear" && transform != "log10")
-        throw core::InputError("transform must be linear or log10", source, 0, 0, "dependent.transform");
-      s.dependent_transform = parse_transform(transform);
+      s.dependent_transform = stored_transform(j["dependent"].value("transform", "linear"), source, "dependent.transform");
     }
     const auto axes = required<nlohmann::json>(j, "axes", source, "");
     if (!axes.is_array() || axes.empty() || axes.size() > kMaxAxes)

@@ -54,6 +54,8 @@ struct Axis {
   bool contains(double x) const;
   // The variable's value at Bezier parameter u (the inverse of parameter()).
   double value_at(double u) const;
+  // The index of the level nearest to x in the transformed coordinate (0 when levels is empty).
+  int nearest_level(double x) const;
 };
 
 // One linear equation Σ coefficient · c[index] = rhs on the control points (flat indices).
