@@ -158,8 +158,17 @@ void apply_section(Scene& s, Reader& r) {
   s.cord_area_mm2 = r.number_or("cord_area_mm2", 5.0, 0.0, 1e4, true);
   s.bending_inertia_mm4 = r.number_or("bending_inertia_mm4", 834.0, 0.0, 1e9, true);
   for (const char* k : {"cog_pitch_mm", "cog_depth_mm", "cushion_mm", "length_mm", "cog_flank_angle_deg",
-                        "cog_land_half_width_mm", "cog_root_fillet_mm", "cog_tip_radius_mm"})
-    if (auto v = r.number(k, 0.0, 1e6, true)) s.extra_geometry_mm[k] = *v;
+                        "cog_land_half_width_mm", "cog_root_fillet_mm", "cog_tip_radius_mm"}) {
+    const bool round = std::string(k) == "cog_root_fillet_mm" || std::string(k) == "cog_tip_radius_mm";
+    const auto v = r.number(k, 0.0, 1e6, !round);
+    // A sharp corner's stress is singular: it grows with mesh refinement, and the life's design
+    // points (gap bottom, mid-cushion; docs/fatigue.md) would not see it.
+    if (v && *v == 0.0)
+      r.fail(k, "a sharp corner (0 mm) is a stress singularity that the segment's design points (gap bottom, "
+                "mid-cushion) do not see and whose stress grows with mesh refinement; give the corner's round, "
+                "e.g. the 0.500 in section's 0.75 mm fillet or 0.5 mm tip (docs/segment.md §Mesh)");
+    if (v) s.extra_geometry_mm[k] = *v;
+  }
 }
 // [segment] load case: strain, curvature (or radius), pressure.
 void parse_segment_load(Reader& r, SegmentSpec& g) {

@@ -1,6 +1,8 @@
 #include "fitlib/segment/section.hpp"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
@@ -65,13 +67,25 @@ void CogSection::validate() const {
   const double half_angle = 0.5 * (0.5 * core::kPi + a);
   const double fillet_reach = root_fillet_mm / std::tan(half_angle);
   const double tip_reach = tip_radius_mm / std::tan(half_angle);
+  auto mm = [](double v) {
+    std::ostringstream o;
+    o << std::setprecision(4) << v << " mm";
+    return o.str();
+  };
   if (!(root_fillet_mm >= 0.0) || land_half_width_mm - fillet_reach < 0.0)
-    bad("cog_root_fillet_mm", "root fillet does not fit on the land");
+    bad("cog_root_fillet_mm", "the root fillet of " + mm(root_fillet_mm) + " reaches " + mm(fillet_reach) +
+                                  " along the land, whose half-width (cog_land_half_width_mm) is " +
+                                  mm(land_half_width_mm) + ": reduce the fillet or widen the land");
   const double x_tip = land_half_width_mm + cog_depth_mm * std::tan(a);
   if (!(tip_radius_mm >= 0.0) || x_tip + tip_reach > 0.5 * cog_pitch_mm)
-    bad("cog_tip_radius_mm", "tip round does not fit on the cog tip (or the pitch is too small)");
+    bad("cog_tip_radius_mm", "the cog tip's corner lies " + mm(x_tip) + " from the gap centre and its round of " +
+                                 mm(tip_radius_mm) + " reaches " + mm(tip_reach) + " beyond it, past half the pitch (" +
+                                 mm(0.5 * cog_pitch_mm) + "): the cog does not fit in its pitch; increase cog_pitch_mm "
+                                 "or reduce the tip round, the land half-width, the cog depth or the flank angle");
   if (fillet_reach + tip_reach > cog_depth_mm / std::cos(a))
-    bad("cog_depth_mm", "root fillet and tip round overlap on the flank");
+    bad("cog_depth_mm", "the root fillet and the tip round need " + mm(fillet_reach + tip_reach) +
+                            " of the flank, which is " + mm(cog_depth_mm / std::cos(a)) +
+                            " long: deepen the cogs or reduce the rounds (the segment models cogged sections only)");
 }
 
 }  // namespace fitlib::segment

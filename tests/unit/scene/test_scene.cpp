@@ -80,6 +80,32 @@ TEST(SceneParse, UnknownKeysAndWrongUnitsNameTheKeyAndLine) {
   EXPECT_EQ(e.line(), 1);
 }
 
+// A cog that does not fit says by how much, in the section's own numbers, and a sharp corner
+// (a round of 0 mm: a stress singularity the design points do not see) is refused with that reason.
+TEST(SceneParse, ACogThatDoesNotFitSaysByHowMuchAndASharpCornerIsRefused) {
+  const std::string segment = "[segment]\nstrain = 0.01\n";
+  const auto belt = [&](const std::string& keys) { return with("[belt.stiffness]", "[belt]\n" + keys + "\n[belt.stiffness]") + segment; };
+  // Defaults: land half-width 1.75 mm, depth 2.5 mm, flank 20 deg: the tip corner at
+  // 1.75 + 2.5 tan 20° = 2.66 mm, past half of a 4 mm pitch before its round.
+  auto e = parse_error(belt("cog_pitch_mm = 4"));
+  EXPECT_EQ(e.key(), "belt.cog_tip_radius_mm");
+  EXPECT_NE(std::string(e.what()).find("corner lies 2.66 mm from the gap centre"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("past half the pitch (2 mm)"), std::string::npos) << e.what();
+  e = parse_error(belt("cog_root_fillet_mm = 3"));
+  EXPECT_EQ(e.key(), "belt.cog_root_fillet_mm");
+  EXPECT_NE(std::string(e.what()).find("half-width (cog_land_half_width_mm) is 1.75 mm"), std::string::npos) << e.what();
+  e = parse_error(belt("cog_depth_mm = 0.05"));
+  EXPECT_EQ(e.key(), "belt.cog_depth_mm");
+  EXPECT_NE(std::string(e.what()).find("cogged sections only"), std::string::npos) << e.what();
+  for (const char* key : {"cog_root_fillet_mm", "cog_tip_radius_mm"}) {
+    e = parse_error(belt(std::string(key) + " = 0"));
+    EXPECT_EQ(e.key(), std::string("belt.") + key);
+    EXPECT_NE(std::string(e.what()).find("sharp corner"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parse_error(belt("cog_root_fillet_mm = -1")).key(), "belt.cog_root_fillet_mm");
+  EXPECT_NO_THROW(scene::parse_scene(belt("cog_pitch_mm = 12\ncog_root_fillet_mm = 1"), "ok.toml"));
+}
+
 // A card or fatigue card the scene names but that is not there fails at its key and line, with the
 // path that was tried (the scene's folder), not later in the card reader with the bare file name.
 TEST(SceneParse, MissingCardFilesNameTheKeyLineAndThePathTried) {
