@@ -131,16 +131,21 @@ Stiffness resolve_stiffness(const Scene& s) {
   require_positive(s, "k1", k.k1_MPa, k.k1_source,
                    key(s.k1_MPa.has_value(), "belt.stiffness.k1_MPa", bottom.has_value(), "bottom"));
   using F = belt::FritzsonConstants;
-  std::string laws;  // the Fritzson laws this scene uses
-  for (const auto& [used, law] : {std::pair{!s.c_N && !cord, "(6.1) c"}, std::pair{!s.k1_MPa && !bottom, "(6.4) E33"},
-                                  std::pair{!s.EI_Nmm2 && !bottom, "(6.5) EI"}})
+  // The Fritzson laws this scene uses, and the card or key that would replace each.
+  const bool law_c = !s.c_N && !cord, law_k1 = !s.k1_MPa && !bottom, law_EI = !s.EI_Nmm2 && !bottom;
+  std::string laws, remedy;
+  for (const auto& [used, law] : {std::pair{law_c, "(6.1) c"}, std::pair{law_k1, "(6.4) E33"}, std::pair{law_EI, "(6.5) EI"}})
     if (used) laws += (laws.empty() ? "" : ", ") + std::string(law);
+  if (law_c) remedy = "a cord card under [belt.materials] (or belt.stiffness.c_N)";
+  if (law_k1 || law_EI)
+    remedy += (remedy.empty() ? "" : " and ") + std::string("a bottom card under [belt.materials] (or belt.stiffness.") +
+              (law_k1 && law_EI ? "k1_MPa and EI_Nmm2)" : law_k1 ? "k1_MPa)" : "EI_Nmm2)");
   if (!laws.empty() && (T < F::tested_low_C || T > F::tested_high_C))
     k.warnings.push_back("the Fritzson stiffness laws " + laws + " are straight lines through tests from " +
                          core::format_number(F::tested_low_C) + " to about " + core::format_number(F::tested_high_C) +
                          " degC; at " + core::format_number(T) + " degC they are extrapolated" +
                          (laws.find("(6.4)") != std::string::npos ? " (E33 of (6.4) is zero at 115.8 degC)" : "") +
-                         ": name bottom and cord cards under [belt.materials] or give [belt.stiffness]");
+                         "; give " + remedy);
   return k;
 }
 

@@ -334,6 +334,18 @@ TEST(Stiffness, FritzsonLawsWarnBeyondTheirTestsAndStopWhereTheyPassZero) {
   const auto k = scene::resolve_stiffness(s);
   ASSERT_EQ(k.warnings.size(), 1u);
   EXPECT_NE(k.warnings[0].find("at 110 degC they are extrapolated"), std::string::npos) << k.warnings[0];
+  EXPECT_NE(k.warnings[0].find("give a cord card under [belt.materials] (or belt.stiffness.c_N) and a bottom card "
+                               "under [belt.materials] (or belt.stiffness.k1_MPa and EI_Nmm2)"), std::string::npos)
+      << k.warnings[0];
+  // With a bottom card the warning asks only for what is missing: the cord's.
+  s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+  const auto with_bottom = scene::resolve_stiffness(s).warnings;
+  ASSERT_FALSE(with_bottom.empty());
+  EXPECT_NE(with_bottom.back().find("the Fritzson stiffness laws (6.1) c are"), std::string::npos) << with_bottom.back();
+  EXPECT_NE(with_bottom.back().find("; give a cord card under [belt.materials] (or belt.stiffness.c_N)"), std::string::npos)
+      << with_bottom.back();
+  EXPECT_EQ(with_bottom.back().find("bottom card"), std::string::npos) << with_bottom.back();
+  s.materials.clear();
   s.k1_MPa = 50.0;  // an override of the one law that fails keeps the others' warning, not the error
   s.temperature_C = 120.0;
   EXPECT_EQ(scene::resolve_stiffness(s).warnings.size(), 1u);
