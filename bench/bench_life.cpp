@@ -27,8 +27,9 @@
 // check, the lowest eigenvalues and the residual along Newton's direction); `gap=MM`, `cgrowth=X`,
 // `rgrowth=R`: the grading knobs gap_size_mm, column_growth, row_growth (docs/segment.md §Mesh);
 // `vtk=FILE`: write the mesh (straight reference) as VTK; `profile`: also monitor the cushion at
-// x = 0 every tenth of its depth. The probe
-// prints each cushion point (its depth below the cord line) and its own N2 (last cycle's peaks).
+// x = 0 every tenth of its depth; `land`: also monitor the gap centre line 0.05–1 mm above the gap
+// bottom (docs/segment.md "Convergence of the complete level"). The probe
+// prints each cushion and land point (its depth below the cord line) and its own life (last cycle's peaks).
 // `bc=radial|free|sheared`: the end faces (default: the life's, sheared); `section=X`: also monitor
 // x = ±X every 0.5 mm of depth (0.25 … 6.25 mm; these points count in the lives); `csv=PATH`: the
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
@@ -116,6 +117,7 @@ struct Probe {
   double gap_mm = -1.0, column_growth = 0.0, row_growth = 0.0;  // gap=, cgrowth=, rgrowth= (≤ 0 / −1: the mesh's)
   std::string vtk{};                            // vtk=FILE: the mesh as VTK
   bool profile = false;                         // monitor the cushion at x = 0, every tenth of its depth
+  bool land = false;                            // monitor the land above the gap bottom (x = 0)
   bool diagnose = false;                        // SolverKnobs::diagnose_failure
   double fillet_mm = -1.0, tip_mm = -1.0;       // fillet=, tip=: the cogs' root fillet and tip radius (< 0: the scene's)
   std::string end_condition{};                  // bc=radial|free (empty: the setup's)
@@ -241,6 +243,9 @@ Outcome run_probe(const Probe& pr) {
   if (pr.column_growth > 0.0) setup.mesh.column_growth = pr.column_growth;
   if (pr.row_growth > 0.0) setup.mesh.row_growth = pr.row_growth;
   if (!pr.vtk.empty()) segment::write_vtk(segment::build_mesh(setup.section, setup.mesh), pr.vtk);
+  const double gap_depth = setup.section.height_mm - setup.section.cog_depth_mm;
+  for (double d : {0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0})
+    if (pr.land) setup.extra_points.push_back({"land-" + std::to_string(d).substr(0, 4), 0.0, -(gap_depth - d)});
   for (int k = 1; k < 10 && pr.profile; ++k)
     setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
   for (int k = 0; pr.section_x >= 0.0 && k < 13; ++k)
@@ -307,7 +312,7 @@ void print_probe(const Probe& p, const Outcome& o) {
               r.final_state.threads, o.wall_s);
 }
 
-// Each cushion point of a probe: its straight-section position (from the wrapped reference, mould
+// Each cushion point of a probe (and each `land` point): its straight-section position (from the wrapped reference, mould
 // radius L/2π), its peak |σ11|, |σ12| over the last cycle and the
 // life of that point alone (docs/segment.md §"Mode 2 through the cushion").
 void print_cushion_points(const Probe& pr, const Outcome& o) {
@@ -317,9 +322,9 @@ void print_cushion_points(const Probe& pr, const Outcome& o) {
       fatigue::segment_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C, o.life.run);
   const double R = drive.geometry.belt_length_mm / (2.0 * M_PI);
   const auto histories = fatigue::segment_point_histories(o.life.run);
-  std::printf("cushion point | (x, depth) mm | max |s11| | max |s12| MPa | N2 of the point\n");
+  std::printf("cushion / land point | (x, depth) mm | max |s11| | max |s12| MPa | N2 / N1 of the point\n");
   for (std::size_t k = 0; k < histories.size(); ++k) {
-    if (histories[k].role != fatigue::Role::cushion) continue;
+    if (histories[k].role != fatigue::Role::cushion && histories[k].name.rfind("land-", 0) != 0) continue;
     const segment::MonitoredHistory& mh = o.life.run.points[k];
     const Eigen::Vector2d X = mh.X_mm;
     const double depth = R - std::hypot(X.x(), X.y() + R), x = R * std::atan2(X.x(), X.y() + R);
@@ -518,6 +523,7 @@ int main(int argc, char** argv) {
       if (a.rfind("rgrowth=", 0) == 0) p.row_growth = std::atof(a.c_str() + 8);
       if (a.rfind("vtk=", 0) == 0) p.vtk = a.substr(4);
       if (a == "profile") p.profile = true;
+      if (a == "land") p.land = true;
       if (a == "diagnose") p.diagnose = true;
       if (a.rfind("fillet=", 0) == 0) p.fillet_mm = std::atof(a.c_str() + 7);
       if (a.rfind("tip=", 0) == 0) p.tip_mm = std::atof(a.c_str() + 4);
