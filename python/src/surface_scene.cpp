@@ -1,5 +1,8 @@
 // Python bindings of surfaces (fit, eval, card grids), material points (update, drive, the
 // thesis cases) and scenes (load, run, load cycle / accumulation / tension test as NumPy).
+#include <algorithm>
+#include <cmath>
+
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 
@@ -189,6 +192,10 @@ py::dict drive_dict(const model::DriveResult& r) {
   return d;
 }
 
+void check_temperature(double T) {
+  if (std::isinf(T)) throw core::UsageError("the temperature must be finite (NaN = the card's reference)");
+}
+
 void bind_material_point(py::module_& m) {
   using model::MaterialPoint;
   py::class_<MaterialPoint, std::shared_ptr<MaterialPoint>>(m, "MaterialPoint",
@@ -200,6 +207,11 @@ void bind_material_point(py::module_& m) {
            [](const MaterialPoint& p, const py::object& state, const model::Vector6& strain, double dt_s, double T) {
              const auto s = to_vector(state);
              if (s.size() != p.state_size()) throw core::UsageError("state has the wrong size");
+             // The C++ contract takes finite input from the FE code; here it comes from a user.
+             if (!strain.allFinite()) throw core::UsageError("update: the strain is not finite");
+             if (!std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); }))
+               throw core::UsageError("update: the state is not finite");
+             check_temperature(T);
              std::vector<double> next(p.state_size());
              model::Matrix6 tangent;
              const model::Vector6 sigma = p.update(s.data(), strain, dt_s, T, next.data(), &tangent);
@@ -207,8 +219,14 @@ void bind_material_point(py::module_& m) {
            },
            py::arg("state"), py::arg("strain"), py::arg("dt_s"), py::arg("temperature_C") = std::nan(""),
            "(stress, next state, tangent) of one increment to the total strain")
-      .def("complex_stiffness", &MaterialPoint::complex_stiffness, py::arg("frequency_Hz"),
-           py::arg("temperature_C") = std::nan(""));
+      .def("complex_stiffness",
+           [](const MaterialPoint& p, double frequency_Hz, double T) {
+             if (!(frequency_Hz > 0.0 && std::isfinite(frequency_Hz)))
+               throw core::UsageError("complex_stiffness: the frequency must be finite and > 0 Hz");
+             check_temperature(T);
+             return p.complex_stiffness(frequency_Hz, T);
+           },
+           py::arg("frequency_Hz"), py::arg("temperature_C") = std::nan(""));
 
   m.def("make_material_point",
         [](const std::shared_ptr<model::Model>& model, const py::object& values, const std::string& fidelity,

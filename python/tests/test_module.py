@@ -228,6 +228,26 @@ def test_elastic_point_stiffness_is_the_storage_modulus():
     assert np.abs(free["stress_MPa"][:, :5]).max() < 1e-9 and free["strain"].shape == (11, 6)
 
 
+def test_material_point_refuses_non_finite_input_instead_of_answering_nan():
+    card = fitlib.load_card(source("datasets", "cards", "material-2-true.json"))
+    point = fitlib.make_material_point(card.model(), card.values(), frequency_Hz=55.0, temperature_C=80.0)
+    state, strain, nan, inf = point.initial_state(), np.full(6, 1e-3), float("nan"), float("inf")
+    assert np.all(np.isfinite(point.update(state, strain, 1e-3, nan)[0]))  # NaN temperature = the reference
+    for bad_strain in (np.full(6, nan), np.array([1e-3, inf, 0, 0, 0, 0])):
+        assert "strain is not finite" in str(expect(fitlib.UsageError, lambda: point.update(state, bad_strain, 1e-3)))
+    assert "state is not finite" in str(expect(fitlib.UsageError, lambda: point.update(np.full(point.state_size, nan), strain, 1e-3)))
+    assert "temperature" in str(expect(fitlib.UsageError, lambda: point.update(state, strain, 1e-3, inf)))
+    for f in (nan, -5.0, 0.0, inf):
+        expect(fitlib.UsageError, lambda: point.complex_stiffness(f))
+    expect(fitlib.UsageError, lambda: point.complex_stiffness(1.0, -inf))
+    expect(fitlib.UsageError, lambda: fitlib.make_material_point(card.model(), card.values(), "elastic", inf, 80.0))
+    expect(fitlib.UsageError, lambda: fitlib.make_material_point(card.model(), card.values(), "elastic", 1.0, inf))
+    e = expect(fitlib.UsageError, lambda: fitlib.drive(point, [0, 0.5, 1], [["strain", [0, nan, 0.02]]] + [None] * 5))
+    assert "component 1 is not finite at sample 1" in str(e)  # was "stress-controlled components did not converge"
+    expect(fitlib.UsageError, lambda: fitlib.drive_test(point, amplitude=nan, cycles=1, steps_per_cycle=20))
+    expect(fitlib.UsageError, lambda: fitlib.drive(point, [0, 1], [["strain", [0, 0.01]]] + [None] * 5, temperature_C=[80, inf]))
+
+
 def test_scene_load_cycle_equals_the_cli_load_history():
     path = source("datasets", "drives", "ref-0500-heavy.toml")
     fitcli("belt", "--scene", path, "--out", work("belt"))

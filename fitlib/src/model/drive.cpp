@@ -25,6 +25,17 @@ void check_program(const DriveProgram& p) {
                              std::to_string(n) + " times");
   if (!p.temperature_C.empty() && p.temperature_C.size() != n)
     throw core::UsageError("drive: temperature needs one value per time");
+  // A non-finite input would come out as a non-finite stress, or as a stress control that "did
+  // not converge": say which sample it is instead.
+  for (size_t k = 0; k < n; ++k) {
+    if (!std::isfinite(p.time_s[k])) throw core::UsageError("drive: time " + std::to_string(k) + " is not finite");
+    for (int i = 0; i < 6; ++i)
+      if (!p.components[i].values.empty() && !std::isfinite(p.components[i].values[k]))
+        throw core::UsageError("drive: component " + std::to_string(i + 1) + " is not finite at sample " +
+                               std::to_string(k));
+    if (!p.temperature_C.empty() && std::isinf(p.temperature_C[k]))
+      throw core::UsageError("drive: temperature " + std::to_string(k) + " is infinite (NaN = the reference)");
+  }
 }
 
 // Voigt index of a test's imposed component from its orientation label ("12", "22", ...);

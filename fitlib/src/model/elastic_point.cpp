@@ -1,6 +1,7 @@
 // The linear elastic material point and the elastic equivalent of any point (docs/model.md
 // §"Elastic fidelity").
 #include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -55,8 +56,10 @@ MaterialPointPtr elastic_point(const Matrix6& stiffness, std::string description
 
 MaterialPointPtr elastic_equivalent(const MaterialPoint& point, double frequency_Hz,
                                     double temperature_C) {
-  if (!(frequency_Hz > 0.0))
-    throw core::UsageError("elastic equivalent: the frequency must be > 0 Hz");
+  if (!(frequency_Hz > 0.0 && std::isfinite(frequency_Hz)))
+    throw core::UsageError("elastic equivalent: the frequency must be finite and > 0 Hz");
+  if (std::isinf(temperature_C))
+    throw core::UsageError("elastic equivalent: the temperature must be finite (NaN = the card's reference)");
   const Matrix6 C = point.complex_stiffness(frequency_Hz, temperature_C).real();
   nlohmann::json at = {{"frequency_Hz", frequency_Hz}};
   if (!std::isnan(temperature_C)) at["temperature_C"] = temperature_C;

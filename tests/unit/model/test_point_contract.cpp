@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/model/model.hpp"
@@ -251,6 +252,35 @@ TEST_P(PointContract, RestartFromSerialisedStateIsBitIdentical) {
     restored.swap(next);
     for (int i = 0; i < 6; ++i) EXPECT_EQ(s[i], straight[n][i]) << "step " << n;
   }
+}
+
+// A non-finite input to the driver (time, a component's value, an infinite temperature) is bad
+// input naming the sample, not a NaN stress or "stress control did not converge".
+TEST_P(PointContract, DriveRefusesNonFiniteInputNamingTheSample) {
+  DriveProgram p;
+  p.time_s = {0.0, 0.5, 1.0};
+  p.components[0].values = {0.0, 1e-3, 2e-3};  // ε11 imposed, the others stress-free
+  p.components[0].imposed = DriveControl::Imposed::strain;
+  EXPECT_NO_THROW(drive(*point_, p));
+  const auto refused = [&](DriveProgram bad, const std::string& says) {
+    try {
+      drive(*point_, bad);
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const fitlib::core::UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  DriveProgram bad = p;
+  bad.components[0].values[1] = std::nan("");
+  refused(bad, "component 1 is not finite at sample 1");
+  bad = p, bad.components[3].values = {0.0, 0.0, INFINITY};  // σ23 imposed (stress control)
+  refused(bad, "component 4 is not finite at sample 2");
+  bad = p, bad.time_s[2] = INFINITY;
+  refused(bad, "time 2 is not finite");
+  bad = p, bad.temperature_C = {40.0, -INFINITY, 40.0};
+  refused(bad, "temperature 1 is infinite");
+  bad = p, bad.temperature_C = {40.0, std::nan(""), 40.0};  // NaN = the reference temperature
+  EXPECT_NO_THROW(drive(*point_, bad));
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryModel, PointContract, ::testing::ValuesIn(cases()),
