@@ -246,6 +246,10 @@ def test_material_point_refuses_non_finite_input_instead_of_answering_nan():
     assert "component 1 is not finite at sample 1" in str(e)  # was "stress-controlled components did not converge"
     expect(fitlib.UsageError, lambda: fitlib.drive_test(point, amplitude=nan, cycles=1, steps_per_cycle=20))
     expect(fitlib.UsageError, lambda: fitlib.drive(point, [0, 1], [["strain", [0, 0.01]]] + [None] * 5, temperature_C=[80, inf]))
+    values = list(card.values())
+    values[0] = nan
+    assert "is not finite" in str(expect(fitlib.UsageError, lambda: fitlib.make_material_point(card.model(), values)))
+    assert "is not finite" in str(expect(fitlib.UsageError, lambda: card.model().moduli(values, [1.0])))
 
 
 def test_scene_load_cycle_equals_the_cli_load_history():

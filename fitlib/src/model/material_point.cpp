@@ -88,6 +88,10 @@ MaterialPointPtr make_material_point(const Model& model, const std::vector<doubl
     throw core::UsageError("material point: " + model.kind() + " needs " +
                            std::to_string(model.size()) + " parameters, got " +
                            std::to_string(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i)  // a NaN would reach every stress of the point
+    if (!std::isfinite(values[i]))
+      throw core::UsageError("material point: parameter '" + model.parameters()[i].name + "' of " + model.kind() +
+                             " is not finite");
   return model.material_point(values.data(), options);
 }
 

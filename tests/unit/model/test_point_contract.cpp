@@ -255,8 +255,9 @@ TEST_P(PointContract, RestartFromSerialisedStateIsBitIdentical) {
 }
 
 // A non-finite input to the driver (time, a component's value, an infinite temperature) is bad
-// input naming the sample, not a NaN stress or "stress control did not converge".
-TEST_P(PointContract, DriveRefusesNonFiniteInputNamingTheSample) {
+// input naming the sample, not a NaN stress or "stress control did not converge"; a non-finite
+// parameter names the parameter.
+TEST_P(PointContract, NonFiniteInputIsRefusedNamingTheSampleOrParameter) {
   DriveProgram p;
   p.time_s = {0.0, 0.5, 1.0};
   p.components[0].values = {0.0, 1e-3, 2e-3};  // ε11 imposed, the others stress-free
@@ -281,6 +282,16 @@ TEST_P(PointContract, DriveRefusesNonFiniteInputNamingTheSample) {
   refused(bad, "temperature 1 is infinite");
   bad = p, bad.temperature_C = {40.0, std::nan(""), 40.0};  // NaN = the reference temperature
   EXPECT_NO_THROW(drive(*point_, bad));
+  // Nor does a point take a non-finite parameter (it reached every stress as NaN).
+  std::vector<double> values = values_;
+  values.back() = std::nan("");
+  try {
+    make_material_point(*model_, values, GetParam().point);
+    ADD_FAILURE() << "a NaN parameter was accepted";
+  } catch (const fitlib::core::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("parameter '" + model_->parameters().back().name + "'"), std::string::npos)
+        << e.what();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryModel, PointContract, ::testing::ValuesIn(cases()),
