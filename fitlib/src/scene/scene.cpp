@@ -159,8 +159,8 @@ void apply_section(Scene& s, Reader& r) {
   s.bending_inertia_mm4 = r.number_or("bending_inertia_mm4", 834.0, 0.0, 1e9, true);
   for (const char* k : {"cog_pitch_mm", "cog_depth_mm", "cushion_mm", "length_mm", "cog_flank_angle_deg",
                         "cog_land_half_width_mm", "cog_root_fillet_mm", "cog_tip_radius_mm"}) {
-    const bool round = std::string(k) == "cog_root_fillet_mm" || std::string(k) == "cog_tip_radius_mm";
-    const auto v = r.number(k, 0.0, 1e6, !round);
+    const bool corner_round = std::string(k) == "cog_root_fillet_mm" || std::string(k) == "cog_tip_radius_mm";
+    const auto v = r.number(k, 0.0, 1e6, !corner_round);
     // A sharp corner's stress is singular: it grows with mesh refinement, and the life's design
     // points (gap bottom, mid-cushion; docs/fatigue.md) would not see it.
     if (v && *v == 0.0)
