@@ -15,10 +15,11 @@
 //    (~5 min, the reference ~3 of them).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
-// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [cuts=N] [tol=X] [full|fbar|reduced]
+// `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
 // [lagged] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse
 // (the elastic level's life mesh, 1 cushion row) | life (the life's default at FIDELITY) | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
+// `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: fatigue::life_solver's at FIDELITY);
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
@@ -107,7 +108,8 @@ struct Probe {
   int steps = 60;
   bool reuse = false, extrapolate = false, lagged = false;
   std::string integration{};  // empty: fatigue::SegmentLifeSetup's default
-  int stall = segment::SolverKnobs{}.stall_iterations, cuts = segment::SolverKnobs{}.max_cuts;
+  int stall = -1, cuts = segment::SolverKnobs{}.max_cuts;  // stall=N (< 0: the life's at the fidelity)
+  int growth = -1;  // grow=N: SolverKnobs::growth_iterations (< 0: the life's at the fidelity)
   double tolerance = segment::SolverKnobs{}.tolerance;  // tol=X: Newton's relative residual tolerance
   std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
   double levenberg = segment::SolverKnobs{}.levenberg;  // lm=μ0 (0: off)
@@ -259,7 +261,11 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
-  setup.solver.stall_iterations = pr.stall, setup.solver.max_cuts = pr.cuts;
+  const segment::Fidelity fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
+  setup.solver = fatigue::life_solver(fidelity, setup.solver);
+  if (pr.stall >= 0) setup.solver.stall_iterations = pr.stall;
+  if (pr.growth >= 0) setup.solver.growth_iterations = pr.growth;
+  setup.solver.max_cuts = pr.cuts;
   setup.solver.levenberg = pr.levenberg;
   setup.solver.tolerance = pr.tolerance;
   setup.solver.diagnose_failure = pr.diagnose;
@@ -277,7 +283,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
-  o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
+  o.fidelity = fidelity;
   o.temperature_C = s.temperature_C;
   o.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
   if (pr.lagged) o.damage_update = model::PointOptions::DamageUpdate::lagged;
@@ -532,6 +538,7 @@ int main(int argc, char** argv) {
       if (a.rfind("csv=", 0) == 0) p.csv = a.substr(4);
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
+      if (a.rfind("grow=", 0) == 0) p.growth = std::atoi(a.c_str() + 5);
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
       if (a == "inertia") p.inertia = true;

@@ -35,6 +35,11 @@ segment::MeshKnobs life_mesh(segment::Fidelity fidelity) {
   return fidelity == segment::Fidelity::complete ? complete_life_mesh() : life_mesh();
 }
 
+segment::SolverKnobs life_solver(segment::Fidelity fidelity, segment::SolverKnobs knobs) {
+  if (fidelity == segment::Fidelity::complete) knobs.stall_iterations = 6, knobs.growth_iterations = 5;
+  return knobs;
+}
+
 segment::CycleKnobs life_cycle() {
   segment::CycleKnobs c;
   c.ends = segment::EndCondition::sheared;

@@ -829,7 +829,8 @@ class StaticRun {
     out_.increments++;
     out_.final_residual = last_.residual;
     cuts_in_row_ = 0;
-    max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after each success
+    if (knobs_.growth_iterations <= 0 || last_.iterations <= knobs_.growth_iterations)
+      max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after an easy success
     inertia_pending_ = true;
     return true;
   }

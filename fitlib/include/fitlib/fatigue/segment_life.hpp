@@ -38,6 +38,14 @@ segment::MeshKnobs complete_life_mesh();
 // The life's default mesh at a fidelity: life_mesh() (elastic) or complete_life_mesh() (complete).
 segment::MeshKnobs life_mesh(segment::Fidelity fidelity);
 
+// The life's Newton step control at a fidelity, on `knobs`: at the complete level (points with
+// history, where a quarter of the iterations went into attempts that failed) a stall after 6
+// assemblies instead of 8 and a cut step grown back only after an increment that converged within
+// 5 assemblies: 13 % fewer iterations on the light drive, lives within 0.3 % (docs/decisions.md
+// "Segment life: the complete level's step control"); the elastic level keeps the solver's defaults,
+// which the stall of 6 would cost 6.5 % on the heavy drive.
+segment::SolverKnobs life_solver(segment::Fidelity fidelity, segment::SolverKnobs knobs = {});
+
 // The life's load-cycle knobs: CycleKnobs' defaults with the sheared end faces, which bring the
 // short life mesh's lives near a long segment's (docs/decisions.md "Segment life: sheared end faces").
 segment::CycleKnobs life_cycle();

@@ -39,6 +39,10 @@ struct SolverKnobs {
   // e.g. Fritzson's damage, converges only linearly near round-off; docs/segment.md §Solver).
   double stall_tolerance = 1e-5;
   int max_cuts = 6;               // halvings of an increment before giving up
+  // A cut step doubles back only after an increment that converged within this many assemblies
+  // (0: after any), as Abaqus grows its increment only after easy ones: one that needed more lies
+  // near where the cut was, and a doubled step there fails again (docs/segment.md §Cost).
+  int growth_iterations = 0;
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
   // Modified Newton: keep a factorisation while the residual contracts by this factor per
