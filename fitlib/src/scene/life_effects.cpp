@@ -337,8 +337,14 @@ std::vector<std::string> SegmentEquilibrium::warnings() const {
     return {"the segment's equilibrium check exceeds its bounds: the stresses are not in equilibrium to the stated "
             "tolerance (docs/segment.md \"Cord-line reactions\")"};
   if (!within_bounds())
-    return {"the cord line carries more of the belt force in the spans than its bound: the segment's ends or its "
-            "length disturb the middle (docs/segment.md \"Cord-line reactions\")"};
+    return {"the cord line carries more of the belt force in the spans than its bound (" +
+            core::format_number(span_cord_share, 3) + " of F/B against " + core::format_number(span_cord_share_bound, 3) +
+            "): " +
+            (history ? std::string("the rubber's relaxation in the spans passes stress to the cord line (a card that "
+                                   "relaxes slowly, as a fractional Zener's power law, more than the thesis cards' "
+                                   "0.8-1.0e-3), or ")
+                     : std::string()) +
+            "the segment's ends or its length disturb the middle (docs/segment.md \"Cord-line reactions\")"};
   return {};
 }
 
