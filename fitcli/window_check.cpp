@@ -51,8 +51,8 @@ WindowCheck::~WindowCheck() {
   for (const auto& [quantity, s] : seen_)
     warning("extrapolating: " + excess_text(s.first, s.highest) + " (" + card_path_ + ")");
   if (unknown_amplitude_ > 0.0)
-    warning(std::string("the card ") + fitlib::card::kUnknownAmplitude + ", and --amplitude " + exact(unknown_amplitude_) + " is beyond 1 %: the card answers alike at every amplitude, "
-            "where a filled rubber softens (" + card_path_ + ")");
+    warning(std::string("the card ") + window_.unknown_amplitude_clause() + ", and --amplitude " +
+            exact(unknown_amplitude_) + " is beyond 1 %: " + window_.unknown_amplitude_consequence() + " (" + card_path_ + ")");
 }
 
 }  // namespace fitcli

@@ -206,13 +206,13 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, std
     seen.frequency_Hz = NAN;  // the frequency was checked where the card was made a point
     seen.strain_amplitude = a;
     card_window_warnings(s, role, c, seen, warnings);
-    if (card::DataWindow(c).reads_unknown_amplitude(a))
-      warnings.push_back("card " + s.materials.at(role) + " (" + role + ") " + card::kUnknownAmplitude +
-                         ", and the segment drove it at " +
-                         core::format_number(a, 3) + ": such a card answers alike at every amplitude, where a filled "
-                         "rubber softens (the thesis's cushion rubber, datasets/materials/material-2.csv, keeps 63-69 % "
-                         "of its storage modulus from 0.5 % to 1.5 % amplitude); the life is that of a rubber that "
-                         "does not soften (docs/fatigue.md §8)");
+    const card::DataWindow window(c);
+    if (window.reads_unknown_amplitude(a))
+      warnings.push_back("card " + s.materials.at(role) + " (" + role + ") " + window.unknown_amplitude_clause() +
+                         ", and the segment drove it at " + core::format_number(a, 3) + ": " +
+                         window.unknown_amplitude_consequence() +
+                         (window.amplitude_dependent() ? "" : "; the life is that of a rubber that does not soften") +
+                         " (docs/fatigue.md §8)");
   }
 }
 

@@ -42,9 +42,17 @@ class DataWindow {
   // hand: no amplitude is outside, the card's strain range is not known) and `strain_amplitude`
   // lies beyond kSmallAmplitudeEnd — the caller says so (kUnknownAmplitude) and goes on.
   bool reads_unknown_amplitude(double strain_amplitude) const;
+  // What such a reading means: a card whose model does not depend on the amplitude "holds no strain
+  // amplitude (… a small-amplitude test)" and answers alike at every amplitude; a damage model's
+  // card (model::Model::amplitude_dependent, e.g. written by hand from the thesis's parameters)
+  // softens there by its law, but no test behind it says how far that law holds.
+  const char* unknown_amplitude_clause() const;
+  const char* unknown_amplitude_consequence() const;
+  bool amplitude_dependent() const { return amplitude_dependent_; }
 
  private:
   std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;
+  bool amplitude_dependent_ = false;
   model::ModelPtr model_;  // the card's model, for a_T, when reduced_ is set
   std::vector<double> values_;
 };
@@ -56,6 +64,9 @@ class DataWindow {
 constexpr double kSmallAmplitudeEnd = 0.01;
 inline constexpr const char* kUnknownAmplitude =
     "holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude test)";
+inline constexpr const char* kUnknownDamageAmplitude =
+    "holds no strain amplitude window (fit.data_window.strain_amplitude: a card written by hand, or fitted "
+    "without amplitudes)";
 
 // DataWindow(card).outside(c), for one condition.
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c);
