@@ -1,4 +1,5 @@
 // fitcli belt: run a scene's planner and write the load history and the summary.
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
@@ -32,6 +33,11 @@ void register_belt(CLI::App& app) {
   cmd->callback([=] {
     if (cmd->count("--out") > 0 && cmd->count("--out-dir") > 0)
       throw fitlib::core::UsageError("belt: give --out-dir only (--out DIR is its deprecated spelling)");
+    // --out names a file in every other subcommand: a name with an extension (lh.csv) was meant as
+    // one, and would become a folder of that name.
+    if (cmd->count("--out") > 0 && std::filesystem::path(*out_dir).has_extension())
+      throw fitlib::core::UsageError("belt writes a folder (load_history.csv, summary.json, …), not the file '" +
+                                     *out_dir + "': use --out-dir DIR (docs/cli.md)");
     if (cmd->count("--out") > 0) note("belt --out DIR is deprecated: use --out-dir DIR (docs/cli.md)");
     const auto scene = load_scene_input(*scene_path);
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);

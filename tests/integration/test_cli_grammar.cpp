@@ -441,6 +441,13 @@ TEST(CliGrammar, DeprecatedAliasesNoteTheirReplacement) {
   EXPECT_EQ(belt.exit_code, 0) << belt.err;
   EXPECT_NE(belt.err.find("--out-dir"), std::string::npos) << belt.err;
   EXPECT_FALSE(slurp(dir + "/summary.json").empty());
+  // ... but not a name with an extension: --out names a file elsewhere, and belt would make a
+  // folder called lh.csv.
+  const std::string file_like = temp_file("grammar_belt_lh.csv");
+  const auto as_file = run_fitcli("belt --scene " + source_path("tests/data/scenes/minimal.toml") + " --out " + file_like);
+  EXPECT_EQ(as_file.exit_code, 2) << as_file.err;
+  EXPECT_NE(as_file.err.find("belt writes a folder"), std::string::npos) << as_file.err;
+  EXPECT_FALSE(std::filesystem::exists(file_like));
   const auto synth = run_fitcli("synth --card " + source_path(kShearCard) + " --frequency-hz 1 --material old --out " +
                                 temp_file("grammar_synth.csv"));
   EXPECT_EQ(synth.exit_code, 0) << synth.err;
