@@ -6,6 +6,7 @@
 
 #include "bindings.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/data/eplexor.hpp"
 #include "fitlib/data/table.hpp"
@@ -129,7 +130,7 @@ py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, cons
     // As fitcli eval's option checks: frequencies positive, amplitudes not negative.
     if (!(b.columns[0][i] > 0.0) || !std::isfinite(b.columns[0][i]) || !(b.columns[2][i] >= 0.0))
       throw core::UsageError("frequencies must be positive and amplitudes not negative, got " +
-                             std::to_string(b.columns[0][i]) + " Hz, amplitude " + std::to_string(b.columns[2][i]));
+                             core::format_number(b.columns[0][i]) + " Hz, amplitude " + core::format_number(b.columns[2][i]));
     c.frequency_Hz = b.columns[0][i];
     c.temperature_C = b.columns[1][i];
     c.strain_amplitude = b.columns[2][i];

@@ -9,6 +9,7 @@
 
 #include "fitlib/core/enum_names.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
@@ -53,7 +54,7 @@ void validate(const ArcParameters& a) {
                            "belt.stiffness");
   if (a.wedge_half_angle_rad + std::atan(a.friction) >= kPi / 2)
     throw core::InputError(
-        "self-locking groove: mu >= cot(beta) (mu = " + std::to_string(a.friction) +
+        "self-locking groove: mu >= cot(beta) (mu = " + core::format_number(a.friction) +
             "), the belt wedges and the V-belt theory (A.23) does not apply",
         {}, 0, 0, "conditions.friction");
 }
@@ -230,7 +231,7 @@ void march_arc(const ArcParameters& a, ArcStepper& stepper, SlidingArcRhs& rhs, 
     ArcState cur = stepper.current_state();
     const double t1 = stepper.current_time();
     if (!std::isfinite(cur[0]) || !std::isfinite(cur[1]))
-      throw core::NumericalError("sliding-arc ODE diverged at phi = " + std::to_string(t1));
+      throw core::NumericalError("sliding-arc ODE diverged at phi = " + core::format_number(t1));
     const double t_hit = std::min(t1, phi_max);
     ArcState at_hit = cur;
     if (t_hit < t1) stepper.calc_state(t_hit, at_hit);

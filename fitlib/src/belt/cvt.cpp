@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
@@ -14,7 +15,7 @@ void check(double wrap, double alpha, const CvtFormulary& c, const char* key) {
     throw core::InputError("groove half-angle must lie in (0, 90) deg", {}, 0, 0, "cvt.groove_half_angle_deg");
   if (!(wrap > c.seat_rad + c.unseat_rad))
     throw core::InputError("wrap angle shorter than the seating and unseating regions (" +
-                               std::to_string((c.seat_rad + c.unseat_rad) * 180 / kPi) + " deg)",
+                               core::format_number((c.seat_rad + c.unseat_rad) * 180 / kPi) + " deg)",
                            {}, 0, 0, key);
 }
 // Parabolic seating/unseating profile 1 − (u − 1)², u ∈ [0, 1].

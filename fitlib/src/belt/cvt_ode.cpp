@@ -29,6 +29,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::belt {
@@ -244,8 +245,8 @@ CvtContactSolution solve_cvt_contact(const CvtContactBelt& b, const CvtContactCa
 
 namespace {
 [[noreturn]] void shooting_failed(double wrap, double res) {
-  throw core::NumericalError("CVT contact shooting did not converge at wrap " + std::to_string(wrap * 180 / kPi) +
-                             " deg (residual " + std::to_string(res) + ")");
+  throw core::NumericalError("CVT contact shooting did not converge at wrap " + core::format_number(wrap * 180 / kPi) +
+                             " deg (residual " + core::format_number(res) + ")");
 }
 
 // Newton's first guess for a short wrap: the best of a coarse grid over (χ_out, m_out).

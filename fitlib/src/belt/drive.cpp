@@ -38,7 +38,7 @@ DriveGeometry make_geometry(std::vector<Pulley> pulleys, double belt_height_mm) 
     // Outer flanks must clear each other: pitch radius plus the belt below the pitch line.
     if (a <= r1 + r2 + belt_height_mm)
       throw InputError("pulleys '" + p[i].name + "' and '" + p[j].name + "' overlap (centre distance " +
-                           std::to_string(a) + " mm <= sum of radii " + std::to_string(r1 + r2) + " mm)",
+                           core::format_number(a) + " mm <= sum of radii " + core::format_number(r1 + r2) + " mm)",
                        {}, 0, 0, n == 2 ? "drive.center_distance_mm" : pulley_key(j, "center_mm"));
     theta[i] = std::atan2(dy, dx) - std::asin((r2 - r1) / a);
     g.spans.push_back({std::sqrt(a * a - (r2 - r1) * (r2 - r1)), a});
@@ -58,7 +58,7 @@ DriveGeometry make_geometry(std::vector<Pulley> pulleys, double belt_height_mm) 
   }
   if (std::abs(total - 2.0 * kPi) > 1e-6)
     throw InputError("pulleys do not form a convex open drive (wrap angles sum to " +
-                         std::to_string(total * 180.0 / kPi) + " deg, not 360): list them in " +
+                         core::format_number(total * 180.0 / kPi) + " deg, not 360): list them in " +
                          (std::abs(total - 4.0 * kPi) < 1e-6 ? "counter-clockwise travel order (they are clockwise)"
                                                              : "counter-clockwise travel order around a convex path"),
                      {}, 0, 0, "drive.pulleys");

@@ -114,9 +114,9 @@ double set_zone_angles(PulleyCycle& pc, const BeltSection& belt, bool bend, doub
   const double alpha = pc.wrap_rad;
   const double contact_free = alpha - pc.phi_C_in_rad - pc.phi_C_out_rad - pc.phi_E_in_rad - pc.phi_E_out_rad;
   if (!(contact_free > 0.0))
-    throw InputError("wrap angle " + std::to_string(alpha * 180 / kPi) + " deg of pulley '" + pc.name +
+    throw InputError("wrap angle " + core::format_number(alpha * 180 / kPi) + " deg of pulley '" + pc.name +
                          "' is smaller than its entrance and exit zones (" +
-                         std::to_string((alpha - contact_free) * 180 / kPi) + " deg): the belt does not seat",
+                         core::format_number((alpha - contact_free) * 180 / kPi) + " deg): the belt does not seat",
                      {}, 0, 0, key);
   return contact_free;
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/model/time_series.hpp"
 #include "fitlib/core/units.hpp"
 
@@ -394,7 +395,7 @@ ViscoelasticEquations solve_viscoelastic_equations(const ViscoelasticDriveInput&
   if (!found)
     throw core::NumericalError("viscoelastic drive equations (17, 19, 20): no admissible solution "
                                "for any entrance-arc active set (last residual " +
-                               std::to_string(out.max_residual_N) + " N)");
+                               core::format_number(out.max_residual_N) + " N)");
   return out;
 }
 

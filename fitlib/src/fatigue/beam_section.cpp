@@ -5,6 +5,7 @@
 
 #include "fitlib/belt/stiffness.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::fatigue {
@@ -40,10 +41,10 @@ void check_section(const BeamSection& s) {
     bad("manufactured_curvature_1_mm", "curvature radius must exceed the land depth");
   for (double d : s.bottom_depths_mm)
     if (!(d >= s.cushion_mm && d <= s.land_depth_mm))
-      bad("bottom_depths_mm", "depth " + std::to_string(d) + " mm is not in the bottom layer");
+      bad("bottom_depths_mm", "depth " + core::format_number(d) + " mm is not in the bottom layer");
   for (double d : s.cushion_depths_mm)
     if (!(d >= 0.0 && d <= s.cushion_mm))
-      bad("cushion_depths_mm", "depth " + std::to_string(d) + " mm is not in the cushion");
+      bad("cushion_depths_mm", "depth " + core::format_number(d) + " mm is not in the cushion");
 }
 
 struct Monitor {

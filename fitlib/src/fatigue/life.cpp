@@ -31,7 +31,7 @@ std::vector<double> effective_stress_history(const PointHistory& p, double sweep
     const PlaneStress ps{s.s11_MPa, s.s22_MPa, s.s12_MPa};
     if (!std::isfinite(ps.s11_MPa) || !std::isfinite(ps.s22_MPa) || !std::isfinite(ps.s12_MPa))
       throw core::NumericalError("fatigue: non-finite stress at point '" + p.name + "', t = " +
-                                 std::to_string(s.t_s) + " s");
+                                 core::format_number(s.t_s) + " s");
     out.push_back(p.role == Role::bottom ? worst_radial_crack_stress_MPa(ps, sweep)
                                          : separation_stress_MPa(ps));
   }

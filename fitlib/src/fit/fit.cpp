@@ -9,6 +9,7 @@
 #include "backends.hpp"
 #include "quality.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/fit/problem.hpp"
@@ -347,7 +348,7 @@ void readmit(Problem& problem, FitResult& result, bool linear_only) {
     result.admissible = w;
     if (detail::apply_admissible_bounds(problem, w) == 0 || same) return;
     result.messages.push_back("admissible terms: window moved with the fitted temperature law to [" +
-                              std::to_string(w.tau_min_s) + ", " + std::to_string(w.tau_max_s) +
+                              core::format_number(w.tau_min_s) + ", " + core::format_number(w.tau_max_s) +
                               "] s; terms moved inside and the fit re-polished");
     repolish(problem, result, linear_only);
   }

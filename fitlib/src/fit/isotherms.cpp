@@ -79,7 +79,7 @@ std::vector<Isotherm> merge_same_temperature(std::vector<Isotherm> groups, doubl
     }
     auto& m = merged.back();
     messages.push_back("sets " + set_label(m) + " and " + set_label(g) + " have the same temperature (" +
-                       std::to_string(m.temperature_C) + " / " + std::to_string(g.temperature_C) +
+                       core::format_number(m.temperature_C) + " / " + core::format_number(g.temperature_C) +
                        " degC): merged into one isotherm");
     const double n1 = m.rows.size(), n2 = g.rows.size();
     m.temperature_C = (n1 * m.temperature_C + n2 * g.temperature_C) / (n1 + n2);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/fit/master_curve.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/model/time_series.hpp"
@@ -108,7 +109,7 @@ class IsothermShiftModel : public model::Model {
     }
     if (!(dist <= tolerance_C_))
       throw core::InputError("isotherm shifts: temperature " + std::to_string(c.temperature_C) +
-                             " degC is not within " + std::to_string(tolerance_C_) + " degC of an isotherm");
+                             " degC is not within " + core::format_number(tolerance_C_) + " degC of an isotherm");
     return best;
   }
   model::TestCondition reference(const model::TestCondition& c) const {
@@ -148,7 +149,7 @@ data::DynamicTestTable rows_with_vertical_factors(const MasterCurve& curve, cons
       if (std::abs(row.condition.temperature_C - iso.temperature_C) >= tolerance)
         throw core::InputError("joint shift refinement: the row's temperature " +
                                    std::to_string(row.condition.temperature_C) + " degC is nearer another isotherm than " +
-                                   iso.set + " (" + std::to_string(iso.temperature_C) + " degC)",
+                                   iso.set + " (" + core::format_number(iso.temperature_C) + " degC)",
                                row.source_file, row.source_line);
       const double b_T = std::pow(10.0, iso.log10_bT);
       row.storage_MPa *= b_T;

@@ -39,7 +39,7 @@ void prepare_series(std::vector<Isotherm>& isotherms, const data::DynamicTestTab
     if (n > 1 && distinct.size() < 2) {
       const auto& row = raw.rows[iso.rows.front()];
       throw core::InputError("master curve: isotherm " + detail::set_label(iso) + " (" +
-                                 std::to_string(iso.temperature_C) +
+                                 core::format_number(iso.temperature_C) +
                                  " degC) has a single frequency: its shift is not determined",
                              row.source_file, row.source_line);
     }

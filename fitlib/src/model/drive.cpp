@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/model/material_point.hpp"
 
 namespace fitlib::model {
@@ -96,7 +97,7 @@ DriveResult drive(const MaterialPoint& point, const DriveProgram& program) {
     }
     if (!converged)
       throw core::NumericalError("drive: stress-controlled components did not converge at t = " +
-                                 std::to_string(program.time_s[n]) + " s (" + point.describe() + ")");
+                                 core::format_number(program.time_s[n]) + " s (" + point.describe() + ")");
     state.swap(next);
     out.time_s.push_back(program.time_s[n]);
     out.strain.push_back(strain);

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/model/fritzson.hpp"
 #include "fitlib/core/units.hpp"
 
@@ -309,7 +310,7 @@ Vector6 uniaxial_step(const MaterialPoint& point, const MaterialState& state, in
     strain[lateral[1]] += step[1];
   }
   throw core::NumericalError("fritzson: uniaxial lateral-stress iteration did not converge at t = " +
-                             std::to_string(time_s) + " s");
+                             core::format_number(time_s) + " s");
 }
 
 // One step of the test to the prescribed `value`; `strain` carries the last strain in and the
