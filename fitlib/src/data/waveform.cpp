@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 #include "trig_series.hpp"
 
@@ -110,7 +111,7 @@ double mean_time_step(const std::vector<double>& time_s, std::vector<std::string
     max_step_deviation = std::max(max_step_deviation, std::abs(time_s[i] - time_s[i - 1] - dt));
   if (max_step_deviation > 1e-3 * dt)
     warnings.push_back("irregular sampling (time step varies by up to " +
-                       std::to_string(100.0 * max_step_deviation / dt) +
+                       core::format_number(100.0 * max_step_deviation / dt, 3) +
                        " %); the moving average assumes uniform steps");
   return dt;
 }
@@ -216,7 +217,7 @@ PeriodResult analyse_period(const SmoothSignals& x, double start, const Waveform
   r.loss_energy_MPa = core::kPi * loop / (gain * gain);
   if (std::abs(sin_delta) > 1.0 + 1e-9)
     throw InputError("loop area exceeds pi * stress amplitude * strain amplitude (sin delta = " +
-                     std::to_string(sin_delta) + "): not a sinusoidal response");
+                     core::format_number(sin_delta, 6) + "): not a sinusoidal response");
   r.loss_angle_rad = std::asin(std::clamp(sin_delta, -1.0, 1.0));
   const double abs_modulus_MPa = r.stress_amplitude_MPa / r.strain_amplitude;
   r.storage_MPa = abs_modulus_MPa * std::cos(r.loss_angle_rad);
@@ -277,7 +278,7 @@ WaveformReport analyse_waveform(const std::vector<double>& time_s,
   const double period_s = 1.0 / report.frequency_Hz;
   const double span_s = x.t.empty() ? 0.0 : x.t.back() - x.t.front();
   if (span_s < options.periods * period_s * (1.0 - 1e-9))
-    throw InputError("record holds " + std::to_string(span_s / period_s) +
+    throw InputError("record holds " + core::format_number(span_s / period_s, 4) +
                      " periods after smoothing; " + std::to_string(options.periods) +
                      " whole periods are needed");
   for (int k = 0; k < options.periods; ++k)
