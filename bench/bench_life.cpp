@@ -247,7 +247,7 @@ Outcome run_probe(const Probe& pr) {
   if (!pr.vtk.empty()) segment::write_vtk(segment::build_mesh(setup.section, setup.mesh), pr.vtk);
   const double gap_depth = setup.section.height_mm - setup.section.cog_depth_mm;
   for (double d : {0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0})
-    if (pr.land) setup.extra_points.push_back({"land-" + std::to_string(d).substr(0, 4), 0.0, -(gap_depth - d)});
+    if (pr.land) setup.extra_points.push_back({"land-" + std::to_string(d).substr(0, 4), 0.0, d - gap_depth});
   for (int k = 1; k < 10 && pr.profile; ++k)
     setup.extra_points.push_back({"cushion-" + std::to_string(k), 0.0, -0.1 * k * setup.section.cushion_mm});
   for (int k = 0; pr.section_x >= 0.0 && k < 13; ++k)

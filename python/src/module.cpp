@@ -108,9 +108,7 @@ std::vector<double> checked_values(const model::Model& m, const py::object& p) {
   if (v.size() != m.size())
     throw core::UsageError(m.kind() + " has " + std::to_string(m.size()) + " parameters, got " +
                            std::to_string(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v[i]))
-      throw core::UsageError(m.kind() + ": parameter '" + m.parameters()[i].name + "' is not finite");
+  model::require_finite_parameters(m, v);
   return v;
 }
 

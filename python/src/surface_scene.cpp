@@ -192,10 +192,6 @@ py::dict drive_dict(const model::DriveResult& r) {
   return d;
 }
 
-void check_temperature(double T) {
-  if (std::isinf(T)) throw core::UsageError("the temperature must be finite (NaN = the card's reference)");
-}
-
 void bind_material_point(py::module_& m) {
   using model::MaterialPoint;
   py::class_<MaterialPoint, std::shared_ptr<MaterialPoint>>(m, "MaterialPoint",
@@ -211,7 +207,7 @@ void bind_material_point(py::module_& m) {
              if (!strain.allFinite()) throw core::UsageError("update: the strain is not finite");
              if (!std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); }))
                throw core::UsageError("update: the state is not finite");
-             check_temperature(T);
+             model::require_temperature("update", T);
              std::vector<double> next(p.state_size());
              model::Matrix6 tangent;
              const model::Vector6 sigma = p.update(s.data(), strain, dt_s, T, next.data(), &tangent);
@@ -221,9 +217,7 @@ void bind_material_point(py::module_& m) {
            "(stress, next state, tangent) of one increment to the total strain")
       .def("complex_stiffness",
            [](const MaterialPoint& p, double frequency_Hz, double T) {
-             if (!(frequency_Hz > 0.0 && std::isfinite(frequency_Hz)))
-               throw core::UsageError("complex_stiffness: the frequency must be finite and > 0 Hz");
-             check_temperature(T);
+             model::require_steady_condition("complex_stiffness", frequency_Hz, T);
              return p.complex_stiffness(frequency_Hz, T);
            },
            py::arg("frequency_Hz"), py::arg("temperature_C") = std::nan(""));

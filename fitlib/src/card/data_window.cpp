@@ -65,14 +65,13 @@ nlohmann::json data_window_json(const data::DynamicTestTable& measured, const mo
   return w;
 }
 
-DataWindow::DataWindow(const Card& card) : amplitude_dependent_(card.model()->amplitude_dependent()) {
+DataWindow::DataWindow(const Card& card) : model_(card.model()) {
   const auto w = card.fit.value("data_window", nlohmann::json::object());
   if (!w.is_object()) return;
   frequency_ = bounds(w, "frequency_Hz");
   temperature_ = bounds(w, "temperature_C");
   amplitude_ = bounds(w, "strain_amplitude");
   if ((reduced_ = bounds(w, "reduced_frequency_Hz"))) {
-    model_ = card.model();
     values_ = card.values();
     if (!has_law(model_.get())) reduced_.reset();
   }
@@ -106,12 +105,16 @@ bool DataWindow::reads_unknown_amplitude(double strain_amplitude) const {
   return !amplitude_ && strain_amplitude > kSmallAmplitudeEnd;
 }
 
+bool DataWindow::amplitude_dependent() const { return model_->amplitude_dependent(); }
+
 const char* DataWindow::unknown_amplitude_clause() const {
-  return amplitude_dependent_ ? kUnknownDamageAmplitude : kUnknownAmplitude;
+  return amplitude_dependent() ? "holds no strain amplitude window (fit.data_window.strain_amplitude: a card written "
+                                 "by hand, or fitted without amplitudes)"
+                               : "holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude test)";
 }
 
 const char* DataWindow::unknown_amplitude_consequence() const {
-  return amplitude_dependent_ ? "its damage law softens it there, but no test behind the card says how far that law holds"
+  return amplitude_dependent() ? "its damage law softens it there, but no test behind the card says how far that law holds"
                               : "such a card answers alike at every amplitude, where a filled rubber softens (the "
                                 "thesis's cushion rubber, datasets/materials/material-2.csv, keeps 63-69 % of its "
                                 "storage modulus from 0.5 % to 1.5 % amplitude)";

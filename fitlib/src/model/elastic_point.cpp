@@ -56,10 +56,7 @@ MaterialPointPtr elastic_point(const Matrix6& stiffness, std::string description
 
 MaterialPointPtr elastic_equivalent(const MaterialPoint& point, double frequency_Hz,
                                     double temperature_C) {
-  if (!(frequency_Hz > 0.0 && std::isfinite(frequency_Hz)))
-    throw core::UsageError("elastic equivalent: the frequency must be finite and > 0 Hz");
-  if (std::isinf(temperature_C))
-    throw core::UsageError("elastic equivalent: the temperature must be finite (NaN = the card's reference)");
+  require_steady_condition("elastic equivalent", frequency_Hz, temperature_C);
   const Matrix6 C = point.complex_stiffness(frequency_Hz, temperature_C).real();
   nlohmann::json at = {{"frequency_Hz", frequency_Hz}};
   if (!std::isnan(temperature_C)) at["temperature_C"] = temperature_C;

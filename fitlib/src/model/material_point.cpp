@@ -82,16 +82,24 @@ std::vector<double> MaterialPoint::state_from_json(const nlohmann::json& j) cons
   return state;
 }
 
+void require_temperature(const std::string& who, double temperature_C) {
+  if (std::isinf(temperature_C))
+    throw core::UsageError(who + ": the temperature must be finite (NaN = the card's reference)");
+}
+
+void require_steady_condition(const std::string& who, double frequency_Hz, double temperature_C) {
+  if (!(frequency_Hz > 0.0 && std::isfinite(frequency_Hz)))
+    throw core::UsageError(who + ": the frequency must be finite and > 0 Hz");
+  require_temperature(who, temperature_C);
+}
+
 MaterialPointPtr make_material_point(const Model& model, const std::vector<double>& values,
                                      const PointOptions& options) {
   if (values.size() != model.size())
     throw core::UsageError("material point: " + model.kind() + " needs " +
                            std::to_string(model.size()) + " parameters, got " +
                            std::to_string(values.size()));
-  for (std::size_t i = 0; i < values.size(); ++i)  // a NaN would reach every stress of the point
-    if (!std::isfinite(values[i]))
-      throw core::UsageError("material point: parameter '" + model.parameters()[i].name + "' of " + model.kind() +
-                             " is not finite");
+  require_finite_parameters(model, values);  // a NaN would reach every stress of the point
   return model.material_point(values.data(), options);
 }
 

@@ -28,6 +28,12 @@ void check_strain_history(const StrainHistory& h) {
                              std::to_string(n) + ")");
 }
 
+void require_finite_parameters(const Model& model, const std::vector<double>& p) {
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!std::isfinite(p[i]))
+      throw core::UsageError(model.kind() + ": parameter '" + model.parameters()[i].name + "' is not finite");
+}
+
 std::string to_string(ShiftLaw law) {
   switch (law) {
     case ShiftLaw::none: return "none";

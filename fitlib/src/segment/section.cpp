@@ -1,10 +1,9 @@
 #include "fitlib/segment/section.hpp"
 
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::segment {
@@ -67,11 +66,7 @@ void CogSection::validate() const {
   const double half_angle = 0.5 * (0.5 * core::kPi + a);
   const double fillet_reach = root_fillet_mm / std::tan(half_angle);
   const double tip_reach = tip_radius_mm / std::tan(half_angle);
-  auto mm = [](double v) {
-    std::ostringstream o;
-    o << std::setprecision(4) << v << " mm";
-    return o.str();
-  };
+  auto mm = [](double v) { return core::format_number(v, 4) + " mm"; };
   if (!(root_fillet_mm >= 0.0) || land_half_width_mm - fillet_reach < 0.0)
     bad("cog_root_fillet_mm", "the root fillet of " + mm(root_fillet_mm) + " reaches " + mm(fillet_reach) +
                                   " along the land, whose half-width (cog_land_half_width_mm) is " +

@@ -40,7 +40,7 @@ class DataWindow {
   std::vector<WindowExcess> outside(const model::TestCondition& c) const;
   // True when the rows gave no strain amplitude (a small-amplitude test, or a card written by
   // hand: no amplitude is outside, the card's strain range is not known) and `strain_amplitude`
-  // lies beyond kSmallAmplitudeEnd — the caller says so (kUnknownAmplitude) and goes on.
+  // lies beyond kSmallAmplitudeEnd — the caller says so (unknown_amplitude_clause) and goes on.
   bool reads_unknown_amplitude(double strain_amplitude) const;
   // What such a reading means: a card whose model does not depend on the amplitude "holds no strain
   // amplitude (… a small-amplitude test)" and answers alike at every amplitude; a damage model's
@@ -48,25 +48,19 @@ class DataWindow {
   // softens there by its law, but no test behind it says how far that law holds.
   const char* unknown_amplitude_clause() const;
   const char* unknown_amplitude_consequence() const;
-  bool amplitude_dependent() const { return amplitude_dependent_; }
+  bool amplitude_dependent() const;
 
  private:
   std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;
-  bool amplitude_dependent_ = false;
-  model::ModelPtr model_;  // the card's model, for a_T, when reduced_ is set
+  model::ModelPtr model_;  // the card's model (a_T when reduced_ is set, its amplitude dependence)
   std::vector<double> values_;
 };
 
 // A card that knows no strain amplitude is named when read beyond this one (the scene's segment
 // levels; fitcli eval, synth, material-point, surface grid): it answers alike at every amplitude,
 // where a filled rubber softens (docs/decisions.md "Life: a card without strain amplitudes driven
-// beyond 1 % is a warning"). kUnknownAmplitude is the warnings' common clause.
+// beyond 1 % is a warning"); DataWindow::unknown_amplitude_clause is the warnings' common clause.
 constexpr double kSmallAmplitudeEnd = 0.01;
-inline constexpr const char* kUnknownAmplitude =
-    "holds no strain amplitude (fit.data_window.strain_amplitude: a small-amplitude test)";
-inline constexpr const char* kUnknownDamageAmplitude =
-    "holds no strain amplitude window (fit.data_window.strain_amplitude: a card written by hand, or fitted "
-    "without amplitudes)";
 
 // DataWindow(card).outside(c), for one condition.
 std::vector<WindowExcess> outside_data_window(const Card& card, const model::TestCondition& c);

@@ -122,6 +122,12 @@ class MaterialPoint {
 
 using MaterialPointPtr = std::shared_ptr<const MaterialPoint>;
 
+// Checks of a point's conditions where they come from a user (not in update, the FE code's hot
+// path): core::UsageError "WHO: the temperature must be finite (NaN = the card's reference)", and
+// for a steady response also "WHO: the frequency must be finite and > 0 Hz".
+void require_temperature(const std::string& who, double temperature_C);
+void require_steady_condition(const std::string& who, double frequency_Hz, double temperature_C);
+
 // card → point in one call: `model.material_point(values, options)` (model.hpp); this is the same
 // with a values vector whose size is checked.
 MaterialPointPtr make_material_point(const Model& model, const std::vector<double>& values,

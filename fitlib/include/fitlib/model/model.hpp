@@ -153,6 +153,10 @@ using ModelPtr = std::shared_ptr<const Model>;
 // Throws core::UsageError for an unknown name or option.
 ModelPtr make_model(const std::string& kind, const nlohmann::json& options);
 
+// core::UsageError "KIND: parameter 'NAME' is not finite" for the first non-finite value of p (the
+// model's parameters, in order): checked where values enter from a user, not on the fit's hot path.
+void require_finite_parameters(const Model& model, const std::vector<double>& p);
+
 // The names make_model accepts (the built-in ones, then the registered ones).
 std::vector<std::string> model_kinds();
 
