@@ -2,24 +2,27 @@
 // 1. For every bundled reference drive (datasets/drives/ref-0500-*.toml with the thesis-like
 //    cards material-1-true (bottom) and material-2-true (cushion)) and every fidelity level of
 //    [life]: life per mode, governing mode, wall time of the whole scene run (`fitcli life`'s
-//    route, 2 load cycles) and its ratio to the beam row.
+//    route, 2 load cycles) and its ratio to the beam row; "complete held" is the complete level with
+//    the cards' damage held at what their tables' tests reached (it passes every drive).
 // 2. The segment's convergence on the medium drive: life versus mesh (the default 144 elements and
 //    a 0.6/2.0 mm mesh), versus the segment's length (27 mm sheared and radial ends, 54, 81 mm) and versus steps per cycle (20/40/80), for Report I's isotropic elastic
 //    materials (iso: E 20/8 MPa, ν 0.49, bare drive) and the cards' elastic level, relative to the
 //    finer (the complete level stops on the medium drive: its table is 5).
 // 3. Time versus elements and versus steps, and the exponent of each (least squares in log–log).
 // 4. The beam level's 1000-drive sweep through the planner.
-// 5. The complete level's convergence on the light drive (the only reference drive it passes):
+// 5. The complete level's convergence on the light drive (the only reference drive it passes with
+//    the damage law at every amplitude):
 //    cushion rows, element size, grading and steps against 0.25 mm elements with 3 cushion rows
 //    (docs/segment.md "Which segment N1 should be read from"); `bench_life meshconv` prints it alone
 //    (~5 min, the reference ~3 of them).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
-// [lagged] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse
+// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse
 // (the elastic level's life mesh, 1 cushion row) | life (the life's default at FIDELITY) | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: fatigue::life_solver's at FIDELITY);
+// `hold`: the cards' damage held at what their tables' tests reached (RoleMaterialOptions::damage_driver_hold);
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
 // set=C_d=0.001); `rows=N`, `fine=MM`, `coarse=MM`, `central=P`, `ends=P`: the mesh's cushion rows,
@@ -59,8 +62,12 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "drive_sweep.hpp"
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/data_window.hpp"
+#include "fitlib/data/table.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/segment_life.hpp"
@@ -82,11 +89,29 @@ scene::Scene reference(const std::string& load) {
   return s;
 }
 
-scene::Scene life_scene(const std::string& load, const std::string& fidelity) {
+// The bundled card of `material` ("material-1", "material-2") with the data window of the
+// synthetic table drawn from it (datasets/materials/<material>.csv), written once to a temporary file:
+// its window's damage drivers let the complete level hold the damage at what those tests reached.
+std::string windowed_card(const std::string& material) {
+  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-" + material + ".json";
+  card::Card c = card::load_card(kRoot + "/datasets/cards/" + material + "-true.json");
+  const data::DynamicTestTable table = data::read_dynamic_table(kRoot + "/datasets/materials/" + material + ".csv");
+  c.fit["data_window"] = card::data_window_json(table, c.model().get(), c.values());
+  card::save_card(path, c);
+  return path;
+}
+
+// `level` "complete held": the complete level with the cards' damage held at what their tables'
+// tests reached ([life] damage_hold, from windowed_card).
+scene::Scene life_scene(const std::string& load, const std::string& level) {
   scene::Scene s = reference(load);
   s.outputs = {{"life", true}};
   s.life = scene::LifeSpec{};
-  s.life->fidelity = fidelity;
+  s.life->fidelity = level == "complete held" ? "complete" : level;
+  if (level == "complete held") {
+    static const std::string bottom = windowed_card("material-1"), cushion = windowed_card("material-2");
+    s.materials["bottom"] = bottom, s.materials["cushion"] = cushion;
+  }
   s.life->cycles = 2;
   return s;
 }
@@ -134,6 +159,7 @@ struct Probe {
   double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
   double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
   bool inertia = false;                         // SolverKnobs::inertia
+  bool hold = false;                            // hold: the cards' damage held at their tables' tests (windowed_card)
   int cycles = 2;                               // cycles=N
   double flank = -1.0;                          // flank=K: CycleKnobs::flank_stiffness_N_mm4 (< 0: the setup's)
   double tflank = -1.0;                         // tflank=K: CycleKnobs::flank_stick_N_mm4 (< 0: the setup's)
@@ -296,6 +322,9 @@ Outcome run_probe(const Probe& pr) {
     for (const auto& [name, value] : pr.overrides)
       for (std::size_t i = 0; i < values.size(); ++i)
         if (c.model()->parameters()[i].name == name) values[i] = value;
+    o.damage_driver_hold = pr.hold ? card::DataWindow(card::load_card(windowed_card(k == 0 ? "material-1" : "material-2")))
+                                         .damage_drivers()
+                                   : std::vector<double>{};
     setup.materials[k] = segment::role_point(*c.model(), values, o);
   }
   setup.temperature_C = s.temperature_C;
@@ -542,6 +571,7 @@ int main(int argc, char** argv) {
       if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
       if (a == "inertia") p.inertia = true;
+      if (a == "hold") p.hold = true;
       if (a.rfind("flank=", 0) == 0) p.flank = std::atof(a.c_str() + 6);
       if (a.rfind("tflank=", 0) == 0) p.tflank = std::atof(a.c_str() + 7);
       if (a.rfind("vflank=", 0) == 0) p.vflank = std::atof(a.c_str() + 7);
@@ -601,11 +631,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows
-    level_table({"beam", "elastic", "complete"});
+    level_table({"beam", "elastic", "complete", "complete held"});
     return 0;
   }
   const bool quick = argc > 1 && std::string(argv[1]) == "quick";  // no complete rows (minutes each)
-  level_table(quick ? std::vector<const char*>{"beam", "elastic"} : std::vector<const char*>{"beam", "elastic", "complete"});
+  level_table(quick ? std::vector<const char*>{"beam", "elastic"}
+                    : std::vector<const char*>{"beam", "elastic", "complete", "complete held"});
   convergence("iso");
   convergence("elastic");
   if (!quick) complete_convergence();  // the medium drive's complete level stops at its fold

@@ -1,5 +1,7 @@
 #include "fitlib/card/data_window.hpp"
 
+#include "fitlib/core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -47,8 +49,14 @@ nlohmann::json data_window_json(const data::DynamicTestTable& measured, const mo
                                 const std::vector<double>& p) {
   const bool law = has_law(model);
   Range reduced, frequency, temperature, amplitude;
+  std::vector<double> drivers;  // the largest damage driver each of the model's reached
   for (const auto& row : measured.rows) {
     const auto& c = row.condition;
+    if (model) {
+      const std::vector<double> d = model->damage_drivers(c);
+      drivers.resize(std::max(drivers.size(), d.size()), 0.0);
+      for (std::size_t j = 0; j < d.size(); ++j) drivers[j] = std::max(drivers[j], d[j]);
+    }
     if (law) {
       const double f_reduced = c.frequency_Hz * shift_factor(*model, p, c.temperature_C);
       if (std::isfinite(f_reduced)) reduced.widen(f_reduced);
@@ -62,6 +70,7 @@ nlohmann::json data_window_json(const data::DynamicTestTable& measured, const mo
   if (!frequency.empty()) w["frequency_Hz"] = frequency.json();
   if (!temperature.empty()) w["temperature_C"] = temperature.json();
   if (!amplitude.empty()) w["strain_amplitude"] = amplitude.json();
+  if (!amplitude.empty() && !drivers.empty()) w["damage_driver"] = drivers;
   return w;
 }
 
@@ -71,6 +80,10 @@ DataWindow::DataWindow(const Card& card) : model_(card.model()) {
   frequency_ = bounds(w, "frequency_Hz");
   temperature_ = bounds(w, "temperature_C");
   amplitude_ = bounds(w, "strain_amplitude");
+  if (const auto d = w.find("damage_driver"); d != w.end() && d->is_array())
+    for (const auto& x : *d)
+      if (x.is_number() && std::isfinite(x.get<double>()) && x.get<double>() >= 0.0) damage_driver_.push_back(x.get<double>());
+      else throw core::InputError("fit.data_window.damage_driver: expected finite numbers >= 0");
   if ((reduced_ = bounds(w, "reduced_frequency_Hz"))) {
     values_ = card.values();
     if (!has_law(model_.get())) reduced_.reset();

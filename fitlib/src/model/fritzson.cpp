@@ -126,6 +126,10 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
   // Describes shear, uniaxial (all orientations) and bulk alike; shear is its natural card.
   TestMode native_mode() const override { return TestMode::shear; }
   bool amplitude_dependent() const override { return true; }
+  std::vector<double> damage_drivers(const TestCondition& c) const override {
+    const std::array<double, 3> d = steady_test_drivers(c);
+    return anisotropic_ ? std::vector<double>(d.begin(), d.end()) : std::vector<double>{d[0]};
+  }
   double bulk_modulus(const double* p) const override { return p[kK]; }
   TemperatureLawInfo temperature_law_info() const override {
     TemperatureLawInfo info;  // no horizontal shift; reversible linear factors per part

@@ -2,6 +2,7 @@
 // (fritzson_point.cpp) with its state flattened, and its small-amplitude complex stiffness.
 #include <nlohmann/json.hpp>
 
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/fritzson_point.hpp"
 #include "fritzson_contract.hpp"
@@ -16,11 +17,14 @@ class FritzsonContractPoint final : public model::MaterialPoint {
   FritzsonContractPoint(std::vector<double> p, bool anisotropic, double reference_C, Scheme scheme,
                         DamageUpdate damage_update)
       : point_(std::move(p), anisotropic, reference_C, scheme, damage_update), reference_C_(reference_C) {}
+  void hold_damage_beyond(const std::vector<double>& ceiling) { point_.hold_damage_beyond(ceiling); }
 
   std::string describe() const override {
     return std::string(point_.anisotropic() ? "fritzson" : "fritzson-iso") +
            (point_.scheme() == Scheme::exponential ? " (exponential" : " (backward Euler") +
-           (point_.damage_update() == DamageUpdate::lagged ? ", lagged damage)" : ")");
+           (point_.damage_update() == DamageUpdate::lagged ? ", lagged damage" : "") +
+           (point_.damage_driver_hold().empty() ? "" : ", damage held at its tests' drivers") +
+           ")";
   }
   std::size_t state_size() const override { return kFlatStateSize; }
   // The virgin MaterialState is all zeros.
@@ -66,6 +70,7 @@ model::MaterialPointPtr make_contract_point(std::vector<double> p, bool anisotro
   const auto point = std::make_shared<FritzsonContractPoint>(
       std::move(p), anisotropic, reference_C,
       options.fritzson_exponential ? Scheme::exponential : Scheme::backward_euler, options.damage_update);
+  point->hold_damage_beyond(options.damage_driver_hold);
   if (options.fidelity == PointOptions::Fidelity::elastic)
     return points::elastic_equivalent(*point, options.frequency_Hz, options.temperature_C);
   return point;

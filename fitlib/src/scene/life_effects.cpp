@@ -89,6 +89,24 @@ InputFile file_input(const std::string& role, const std::string& path, const std
   return {role, path, core::sha256_hex(core::read_file(path)), use};
 }
 
+// The complete level's damage hold for a damage card (docs/decisions.md "Complete level: damage held
+// beyond the tested amplitudes"): the drivers its tests reached (fit.data_window.damage_driver)
+// unless [life] damage_hold = false; said beside the lives.
+constexpr const char* kDamageHeld = "its damage is held at the drivers its tests reached";
+std::vector<double> damage_hold(const Scene& s, const std::string& role, const card::Card& c,
+                                std::vector<std::string>& warnings) {
+  const std::vector<double> tested = card::DataWindow(c).damage_drivers();
+  if (tested.empty() || (s.life && !s.life->damage_hold)) return {};
+  const std::string head = "card " + s.materials.at(role) + " (" + role + "): " + kDamageHeld;
+  std::string drivers;
+  for (double d : tested) drivers += (drivers.empty() ? "" : ", ") + core::format_number(d, 3);
+  if (std::none_of(warnings.begin(), warnings.end(), [&](const std::string& w) { return w.rfind(head, 0) == 0; }))
+    warnings.push_back(head + " (fit.data_window.damage_driver " + drivers +
+                       "): the complete level does not extrapolate the damage law beyond its tests; [life] "
+                       "damage_hold = false runs the law at every amplitude");
+  return tested;
+}
+
 }  // namespace
 
 model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segment::RoleMaterialOptions options,
@@ -101,6 +119,8 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
   model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
   if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
   card_window_warnings(s, role, c, seen, warnings);
+  if (options.fidelity == segment::Fidelity::complete && model->amplitude_dependent())
+    options.damage_driver_hold = damage_hold(s, role, c, warnings);
   try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
     options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
     return segment::role_point(*model, values, options);
@@ -156,7 +176,8 @@ namespace {
 
 // The segment run; a numerical failure says what the user can do.
 segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
-                                 const fatigue::SegmentLifeSetup& setup, const std::string& fidelity) {
+                                 const fatigue::SegmentLifeSetup& setup, const std::string& fidelity,
+                                 const std::vector<std::string>& warnings) {
   try {
     return fatigue::segment_run(cycle, drive, setup);
   } catch (const core::NumericalError& e) {
@@ -171,11 +192,17 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
                                  "can fold under Report I's dead contact loads (docs/segment.md \"Diagnosis at the "
                                  "failing state\")" + evidence +
                                  "; [life] fidelity = \"beam\" gives the layered section's life without the FE");
+    const bool held = std::any_of(warnings.begin(), warnings.end(),
+                                  [](const std::string& w) { return w.find(kDamageHeld) != std::string::npos; });
     throw core::NumericalError(std::string(e.what()) +
                                ". The complete level stops like this on the medium and heavy reference drives with "
-                               "the thesis cards: the load path folds where the damaged rubber of a gap's land (a cog's tip "
-                               "corner on one-row meshes) cannot carry Report I's dead contact loads further (docs/segment.md "
-                               "\"Diagnosis at the failing state\", \"Flank foundation\", \"Tangential flank\")" + evidence +
+                               "the thesis cards when their damage law is read far beyond the tested amplitudes: the "
+                               "load path folds where the damaged rubber of a gap's land (a cog's tip corner on one-row "
+                               "meshes) cannot carry Report I's dead contact loads further (docs/segment.md \"Diagnosis "
+                               "at the failing state\", \"Damage held beyond the tested amplitudes\")" + evidence +
+                               (held ? "" : "; a card fitted to its table (fitcli fit) holds the damage at the "
+                                            "drivers its tests reached (fit.data_window.damage_driver), where the "
+                                            "reference drives pass") +
                                "; [life] fidelity = \"elastic\" runs the segment with the cards' elastic equivalents");
   }
 }
@@ -207,7 +234,12 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, std
     seen.strain_amplitude = a;
     card_window_warnings(s, role, c, seen, warnings);
     const card::DataWindow window(c);
-    if (window.reads_unknown_amplitude(a))
+    const std::string held = "card " + s.materials.at(role) + " (" + role + "): " + kDamageHeld;
+    const auto said = std::find_if(warnings.begin(), warnings.end(),
+                                   [&](const std::string& w) { return w.rfind(held, 0) == 0; });
+    if (said != warnings.end())  // a held damage law is not read beyond its hold: say how far the belt went
+      *said += " (the segment drove it at " + core::format_number(a, 3) + ")";
+    else if (window.reads_unknown_amplitude(a))
       warnings.push_back("card " + s.materials.at(role) + " (" + role + ") " + window.unknown_amplitude_clause() +
                          ", and the segment drove it at " + core::format_number(a, 3) + ": " +
                          window.unknown_amplitude_consequence() +
@@ -243,7 +275,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
         if (now > shown) progress->advance(now - shown), shown = now;
       };
     }
-    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity);
+    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, r.warnings);
     r.stresses = fatigue::segment_point_histories(run);
     strain_window_warnings(s, run, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);

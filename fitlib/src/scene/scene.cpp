@@ -489,7 +489,7 @@ TensionTestSpec parse_tension_test(const toml::table& t, const std::string& sour
 
 LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, const std::string& source) {
   Reader lr(t, "life", source);
-  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure"});
+  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure", "damage_hold"});
   LifeSpec l;
   if (auto f = lr.string("fidelity")) {
     if (!fatigue::is_stress_fidelity(*f))
@@ -500,6 +500,7 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
   l.cycles = static_cast<int>(lr.number_or("cycles", l.cycles, 1, 1e4));
   l.crack_sweep_deg = lr.number("crack_sweep_deg", 0.0, 90.0);
   l.diagnose_failure = lr.boolean("diagnose_failure").value_or(false);
+  l.damage_hold = lr.boolean("damage_hold").value_or(true);
   lr.finish();
   return l;
 }

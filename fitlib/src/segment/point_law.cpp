@@ -44,6 +44,7 @@ model::MaterialPointPtr role_point(const model::Model& model, const std::vector<
   po.frequency_Hz = o.frequency_Hz;
   po.bulk_modulus_MPa = o.bulk_modulus_MPa;
   po.damage_update = o.damage_update;
+  po.damage_driver_hold = o.damage_driver_hold;
   return model::make_material_point(model, values, po);
 }
 

@@ -129,6 +129,43 @@ TEST(DataWindow, BoxOfMeasuredConditionsWithSlackAtTheBounds) {
   EXPECT_TRUE(card::outside_data_window(card, c).empty());
 }
 
+// A damage model's window keeps the largest damage driver its rows' tests reached, each closed form
+// (shear γ → γ/√2; uniaxial ε along the fibre → √(3/2) ε for I, √2 ε for A1, A2): material 1's
+// program (datasets/materials/material-1.csv) — shear 12, 23 to 0.045, uniaxial 22 to 0.015, 33 to
+// 0.01 — gives I 0.0318 and A2 0.0318 (shear), A1 0.0141 (uniaxial 33). The complete level holds
+// the damage there (docs/decisions.md "Complete level: damage held beyond the tested amplitudes").
+TEST(DataWindow, DamageModelsKeepTheLargestDriverTheirTestsReached) {
+  data::DynamicTestTable t;
+  const std::pair<model::TestMode, const char*> tests[] = {
+      {model::TestMode::shear, "12"}, {model::TestMode::shear, "23"}, {model::TestMode::uniaxial, "22"},
+      {model::TestMode::uniaxial, "33"}, {model::TestMode::bulk, ""}};
+  const double largest[] = {0.045, 0.045, 0.015, 0.01, 0.001};
+  for (int k = 0; k < 5; ++k)
+    for (double a : {0.005, largest[k]}) {
+      data::DynamicTestRow row;
+      row.condition.mode = tests[k].first, row.condition.orientation = tests[k].second;
+      row.condition.strain_amplitude = a;
+      t.rows.push_back(row);
+    }
+  const auto model = model::make_model("fritzson", {{"reference_C", 23.0}});
+  const std::vector<double> p(model->parameters().size(), 1.0);
+  const auto w = card::data_window_json(t, model.get(), p);
+  ASSERT_TRUE(w.contains("damage_driver")) << w.dump();
+  const std::vector<double> d = w["damage_driver"];
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_NEAR(d[0], 0.045 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(d[1], std::sqrt(2.0) * 0.01, 1e-15);
+  EXPECT_NEAR(d[2], 0.045 / std::sqrt(2.0), 1e-15);
+  card::Card card;
+  card.model_kind = "fritzson";
+  card.model_options = {{"reference_C", 23.0}};
+  card.fit["data_window"] = w;
+  EXPECT_EQ(card::DataWindow(card).damage_drivers(), d);
+  EXPECT_FALSE(card::data_window_json(t, model::make_model("elastic-iso", {}).get(), {}).contains("damage_driver"));
+  card.fit["data_window"]["damage_driver"] = {0.03, "x", 0.03};
+  EXPECT_THROW(card::DataWindow{card}, core::InputError);
+}
+
 // With a temperature law the frequency bound is the rows' reduced frequency f·a_T(T): 100 Hz
 // measured at 60 °C is data at 100·a_T(60) Hz at the reference, and at temperature T the window
 // is [lo, hi] / a_T(T) (closed-form WLF below).

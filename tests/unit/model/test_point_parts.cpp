@@ -149,6 +149,60 @@ TEST(PointParts, LinearCardWithoutBulkModulusNamesTheFix) {
   EXPECT_EQ(make_material_point(*model, p, o)->state_size(), 12u);
 }
 
+// The damage held at the drivers a card's tests reached (PointOptions::damage_driver_hold;
+// docs/decisions.md "Complete level: damage held beyond the tested amplitudes"): the law itself up to
+// the hold, bit for bit; beyond it the damage stops growing, so the peak stress grows in proportion
+// to the amplitude (where the law goes on softening), and the state still records the law's driver.
+TEST(PointParts, FritzsonDamageHeldAtTheTestedDriversIsTheLawBelowAndLinearBeyond) {
+  const auto model = make_model("fritzson", {{"reference_C", 23.0}});
+  TestCondition shear23;
+  shear23.mode = TestMode::shear, shear23.orientation = "23", shear23.strain_amplitude = 0.045;
+  TestCondition axial33 = shear23;
+  axial33.mode = TestMode::uniaxial, axial33.orientation = "33", axial33.strain_amplitude = 0.01;
+  // Closed forms: shear γ → γ/√2 (I, A2); uniaxial ε along the fibre → √(3/2) ε (I), √2 ε (A1, A2).
+  const std::vector<double> s23 = model->damage_drivers(shear23), a33 = model->damage_drivers(axial33);
+  ASSERT_EQ(s23.size(), 3u);
+  EXPECT_NEAR(s23[0], 0.045 / std::sqrt(2.0), 1e-15);
+  EXPECT_EQ(s23[1], 0.0);
+  EXPECT_NEAR(s23[2], 0.045 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(a33[0], std::sqrt(1.5) * 0.01, 1e-15);
+  EXPECT_NEAR(a33[1], std::sqrt(2.0) * 0.01, 1e-15);
+  EXPECT_EQ(make_model("fritzson-iso", {{"reference_C", 23.0}})->damage_drivers(shear23).size(), 1u);
+  EXPECT_TRUE(make_model("elastic-iso", {})->damage_drivers(shear23).empty());
+
+  PointOptions held;
+  held.damage_driver_hold = {s23[0], a33[1], s23[2]};
+  const auto law = make_material_point(*model, fritzson_material1());
+  const auto hold = make_material_point(*model, fritzson_material1(), held);
+  // Peak |σ12| of 3 cycles of simple shear 12 at amplitude γ (10 Hz), and each point's last state.
+  auto peak = [](const MaterialPoint& point, double gamma, std::vector<double>& state) {
+    state = point.initial_state();
+    std::vector<double> next(point.state_size());
+    double top = 0.0;
+    for (int n = 1; n <= 120; ++n) {
+      Vector6 e = Vector6::Zero();
+      e[5] = gamma * std::sin(2.0 * M_PI * n / 40.0);
+      top = std::max(top, std::abs(point.update(state.data(), e, 2.5e-3, NAN, next.data(), nullptr)[5]));
+      state.swap(next);
+    }
+    return top;
+  };
+  std::vector<double> x_law, x_hold;
+  EXPECT_EQ(peak(*law, 0.04, x_law), peak(*hold, 0.04, x_hold));  // driver 0.028 < 0.0318: the law
+  EXPECT_EQ(x_law, x_hold);
+  const double law_1 = peak(*law, 0.2, x_law), law_2 = peak(*law, 0.4, x_law);
+  const double hold_1 = peak(*hold, 0.2, x_hold), hold_2 = peak(*hold, 0.4, x_hold);
+  for (int k = 13; k < 19; ++k) EXPECT_EQ(x_law[k], x_hold[k]) << k;  // e^a, e^o (FlatState): the law's drivers
+  EXPECT_NEAR(hold_2 / hold_1, 2.0, 0.02);        // held: linear in the amplitude
+  EXPECT_LT(law_2 / law_1, 1.9);                  // the law: still softening
+  EXPECT_GT(hold_1, law_1);                       // less damage than the law's
+  EXPECT_NE(hold->describe().find("damage held"), std::string::npos);
+  held.damage_driver_hold = {0.03};
+  EXPECT_THROW(make_material_point(*model, fritzson_material1(), held), fitlib::core::UsageError);
+  held.damage_driver_hold = {0.03, NAN, 0.03};
+  EXPECT_THROW(make_material_point(*model, fritzson_material1(), held), fitlib::core::UsageError);
+}
+
 }  // namespace
 
 // Damage evolution 4.37, ė_a = C_d (1 − e_a/e_o)|ė_o| while e_o > e_a, by backward Euler has |Δe_o|:

@@ -15,7 +15,8 @@
 namespace fitlib::card {
 
 // {"frequency_Hz": [lo, hi], "temperature_C": [lo, hi], "strain_amplitude": [lo, hi]}, each
-// present only when the rows give it (finite temperatures, amplitudes above 0). With a model
+// present only when the rows give it (finite temperatures, amplitudes above 0); with a model with
+// damage and amplitudes, "damage_driver": the largest of each driver the rows' tests reach. With a model
 // that carries a temperature law (and its parameters p), also "reduced_frequency_Hz": the
 // rows' f·a_T(T) — time–temperature superposition makes a frequency measured at another
 // temperature data at the reference, so eval checks f·a_T against it instead of f.
@@ -49,9 +50,13 @@ class DataWindow {
   const char* unknown_amplitude_clause() const;
   const char* unknown_amplitude_consequence() const;
   bool amplitude_dependent() const;
+  // The largest damage driver of each of the model's (Model::damage_drivers) that its rows reached
+  // ("damage_driver"); empty for a model without damage, or a card written before it was stored.
+  const std::vector<double>& damage_drivers() const { return damage_driver_; }
 
  private:
   std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;
+  std::vector<double> damage_driver_;
   model::ModelPtr model_;  // the card's model (a_T when reduced_ is set, its amplitude dependence)
   std::vector<double> values_;
 };

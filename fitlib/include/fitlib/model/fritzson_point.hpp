@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <limits>
 #include <type_traits>
 #include <string>
 #include <vector>
@@ -118,6 +119,10 @@ class MaterialPoint {
   Scheme scheme() const { return scheme_; }
   DamageUpdate damage_update() const { return damage_update_; }
   const std::vector<double>& parameters() const { return p_; }
+  // Hold the damage drivers (I, or I, A1, A2) at `ceiling` (PointOptions::damage_driver_hold): the
+  // stress reads min(e^a, ceiling), the state records e^a itself; empty = no hold.
+  void hold_damage_beyond(const std::vector<double>& ceiling);
+  const std::vector<double>& damage_driver_hold() const { return hold_; }
 
   // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
   template <typename T, typename In, typename Out>
@@ -134,7 +139,15 @@ class MaterialPoint {
   double reference_C_;
   Scheme scheme_;
   DamageUpdate damage_update_;
+  std::vector<double> hold_;
+  static constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
+  std::array<double, 3> driver_ceiling_{{kNoCeiling, kNoCeiling, kNoCeiling}};
 };
+
+// The damage drivers (I, A1, A2: 4.32, 4.77, 4.78) that a steady test at `c` reaches: its strain
+// amplitude as a deviatoric tensor (shear ij: e_ij = γ/2; uniaxial ii: e_ii = ε, the others −ε/2,
+// incompressible; bulk: none) through the drivers' norms. Fibre along 3.
+std::array<double, 3> steady_test_drivers(const TestCondition& c);
 
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses
 // are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, docs/fritzson.md §7);

@@ -64,6 +64,12 @@ struct PointOptions {
   //   (docs/model.md §"Material point", docs/decisions.md "Lagged damage update").
   enum class DamageUpdate { implicit, lagged };
   DamageUpdate damage_update = DamageUpdate::implicit;
+  // Models with damage (ignored by the others): the damage drivers, in the model's order
+  // (Model::damage_drivers), beyond which the damage is held — what the tests behind the card reached
+  // (fit.data_window.damage_driver), as a solver holds tabulated data constant outside its range;
+  // empty = the damage law at every amplitude (docs/decisions.md "Complete level: damage held
+  // beyond the tested amplitudes").
+  std::vector<double> damage_driver_hold;
 };
 
 class MaterialPoint {

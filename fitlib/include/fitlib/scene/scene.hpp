@@ -89,6 +89,10 @@ struct LifeSpec {
   int cycles = 3;                         // load cycles the segment levels run (beam: one exact cycle)
   std::optional<double> crack_sweep_deg;  // overrides the card's mode-1 sweep
   bool diagnose_failure = false;          // a failed segment run says why (SolverKnobs::diagnose_failure)
+  // Complete level, cards with damage: hold the damage at the drivers the card's tests reached
+  // (fit.data_window.damage_driver; model::PointOptions::damage_driver_hold); false = the law at
+  // every amplitude.
+  bool damage_hold = true;
 };
 
 struct Scene {

@@ -39,6 +39,8 @@ struct RoleMaterialOptions {
   // complete fidelity, models with damage: the model's own (implicit) update, or damage lagged by
   // one increment (model::PointOptions::DamageUpdate; docs/segment.md §Cost, "Complete level").
   model::PointOptions::DamageUpdate damage_update = model::PointOptions::DamageUpdate::implicit;
+  // complete fidelity, models with damage: model::PointOptions::damage_driver_hold.
+  std::vector<double> damage_driver_hold;
 };
 
 // The point of a card (its model and parameter values) for one role.
