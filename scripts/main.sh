@@ -4,6 +4,7 @@
 #   staged fit of the thesis's damage model → card → modulus surface
 #   belt load cycle of a reference drive
 #   lab tables → fitted cards (materials 1 and 2) → fatigue life of the reference drive
+#   (the elastic level, then the complete level with the cards' full models)
 # Results land in OUT_DIR (default out/).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -65,4 +66,9 @@ card = "$root/datasets/cards/fatigue-fritzson-1988.json"
 EOF
 "$fitcli" life --scene "$scene" --out-dir "$out/life" --plot "$out/life.png"
 
-echo "== done: cards, curves, plots, surface, load history and life (figure: $out/life.png) in $out"
+echo "== 7. The same drive at the complete level: the fitted cards' full models (damage held at what their tests reached)"
+complete="$out/ref-0500-medium-fitted-cards-complete.toml"
+sed 's/^\[life\]$/[life]\nfidelity = "complete"/' "$scene" > "$complete"
+"$fitcli" life --scene "$complete" --out-dir "$out/life-complete"
+
+echo "== done: cards, curves, plots, surface, load history and lives (figure: $out/life.png) in $out"

@@ -316,6 +316,14 @@ void bind_model(py::module_& m) {
       .def_property_readonly("options", [](const Model& mo) { return to_python(mo.options()); })
       .def_property_readonly("native_mode", [](const Model& mo) { return std::string(model::to_string(mo.native_mode())); })
       .def_property_readonly("amplitude_dependent", &Model::amplitude_dependent)
+      .def("damage_drivers",
+           [](const Model& mo, const std::string& mode, const std::string& orientation, double strain_amplitude) {
+             model::TestCondition c;
+             c.mode = mode_or_native(mo, mode), c.orientation = orientation, c.strain_amplitude = strain_amplitude;
+             return to_array(mo.damage_drivers(c));
+           },
+           py::arg("mode") = "", py::arg("orientation") = "", py::arg("strain_amplitude") = 0.0,
+           "The damage drivers a steady test reaches (empty for a model without damage)")
       .def("default_parameters", [](const Model& mo) { return to_array(mo.default_parameters()); })
       .def("temperature_law", [](const Model& mo, const py::object& p) {
         return to_python(mo.temperature_law(checked_values(mo, p).data()));

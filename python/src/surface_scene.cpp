@@ -224,17 +224,21 @@ void bind_material_point(py::module_& m) {
 
   m.def("make_material_point",
         [](const std::shared_ptr<model::Model>& model, const py::object& values, const std::string& fidelity,
-           double frequency_Hz, double temperature_C, double bulk_modulus_MPa) {
+           double frequency_Hz, double temperature_C, double bulk_modulus_MPa, const py::object& damage_driver_hold) {
           if (fidelity != "viscoelastic" && fidelity != "elastic")
             throw core::UsageError("fidelity must be viscoelastic or elastic, not '" + fidelity + "'");
           model::PointOptions o;
           o.fidelity = fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
                                              : model::PointOptions::Fidelity::viscoelastic;
           o.frequency_Hz = frequency_Hz, o.temperature_C = temperature_C, o.bulk_modulus_MPa = bulk_modulus_MPa;
+          if (!damage_driver_hold.is_none()) o.damage_driver_hold = to_vector(damage_driver_hold);
           return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values), o));
         },
         py::arg("model"), py::arg("values"), py::arg("fidelity") = "viscoelastic", py::arg("frequency_Hz") = 1.0,
-        py::arg("temperature_C") = std::nan(""), py::arg("bulk_modulus_MPa") = std::nan(""));
+        py::arg("temperature_C") = std::nan(""), py::arg("bulk_modulus_MPa") = std::nan(""),
+        py::arg("damage_driver_hold") = py::none(),
+        "damage_driver_hold: a damage model's drivers held beyond these (a card's fit.data_window.damage_driver, "
+        "as the segment's complete level does); None = the damage law at every amplitude");
   m.def("drive",
         [](const MaterialPoint& p, const py::object& time_s, const py::sequence& components, const py::object& T) {
           model::DriveProgram program;

@@ -252,6 +252,24 @@ def test_material_point_refuses_non_finite_input_instead_of_answering_nan():
     assert "is not finite" in str(expect(fitlib.UsageError, lambda: card.model().moduli(values, [1.0])))
 
 
+def test_material_point_holds_damage_at_the_drivers_a_test_reached():
+    card = fitlib.load_card(source("datasets", "cards", "material-2-true.json"))
+    model = card.model()
+    held = model.damage_drivers("shear", "12", 0.045)  # γ/√2, the segment's complete level holds it there
+    assert np.allclose(held, [0.045 / np.sqrt(2.0)], rtol=1e-14)
+    assert len(fitlib.make_model("elastic-iso").damage_drivers("shear", "12", 0.045)) == 0
+    law = fitlib.make_material_point(model, card.values())
+    hold = fitlib.make_material_point(model, card.values(), damage_driver_hold=held)
+    def peak(point, gamma):  # peak shear stress of 3 cycles of simple shear at 10 Hz
+        t = np.linspace(0.0, 0.3, 121)
+        shear = [["strain", np.zeros_like(t)]] * 5 + [["strain", gamma * np.sin(20 * np.pi * t)]]
+        return np.max(np.abs(fitlib.drive(point, t, shear)["stress_MPa"][:, 5]))
+    assert peak(hold, 0.04) == peak(law, 0.04)  # driver 0.028 below the hold: the law
+    assert abs(peak(hold, 0.4) / peak(hold, 0.2) - 2.0) < 0.02  # beyond it: no more damage
+    assert peak(law, 0.4) / peak(law, 0.2) < 1.9
+    expect(fitlib.UsageError, lambda: fitlib.make_material_point(model, card.values(), damage_driver_hold=[0.03, 0.03]))
+
+
 def test_scene_load_cycle_equals_the_cli_load_history():
     path = source("datasets", "drives", "ref-0500-heavy.toml")
     fitcli("belt", "--scene", path, "--out", work("belt"))

@@ -174,10 +174,20 @@ double field_position(const std::string& at, const belt::LoadCycle& cycle) {
 
 namespace {
 
+// What holds the damage where the complete level folds: nothing to say when a card's damage is held.
+std::string damage_hold_remedy(const Scene& s, const std::vector<std::string>& warnings) {
+  if (std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find(kDamageHeld) != std::string::npos; }))
+    return "";
+  if (s.life && !s.life->damage_hold) return "; [life] damage_hold = true (the default) holds the damage at the drivers "
+                                             "the cards' tests reached";
+  return "; a card fitted to its table (fitcli fit) holds the damage at the drivers its tests reached "
+         "(fit.data_window.damage_driver), where the reference drives pass";
+}
+
 // The segment run; a numerical failure says what the user can do.
 segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
                                  const fatigue::SegmentLifeSetup& setup, const std::string& fidelity,
-                                 const std::vector<std::string>& warnings) {
+                                 const std::string& hold_remedy) {
   try {
     return fatigue::segment_run(cycle, drive, setup);
   } catch (const core::NumericalError& e) {
@@ -192,17 +202,13 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
                                  "can fold under Report I's dead contact loads (docs/segment.md \"Diagnosis at the "
                                  "failing state\")" + evidence +
                                  "; [life] fidelity = \"beam\" gives the layered section's life without the FE");
-    const bool held = std::any_of(warnings.begin(), warnings.end(),
-                                  [](const std::string& w) { return w.find(kDamageHeld) != std::string::npos; });
     throw core::NumericalError(std::string(e.what()) +
                                ". The complete level stops like this on the medium and heavy reference drives with "
                                "the thesis cards when their damage law is read far beyond the tested amplitudes: the "
                                "load path folds where the damaged rubber of a gap's land (a cog's tip corner on one-row "
                                "meshes) cannot carry Report I's dead contact loads further (docs/segment.md \"Diagnosis "
                                "at the failing state\", \"Damage held beyond the tested amplitudes\")" + evidence +
-                               (held ? "" : "; a card fitted to its table (fitcli fit) holds the damage at the "
-                                            "drivers its tests reached (fit.data_window.damage_driver), where the "
-                                            "reference drives pass") +
+                               hold_remedy +
                                "; [life] fidelity = \"elastic\" runs the segment with the cards' elastic equivalents");
   }
 }
@@ -275,7 +281,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
         if (now > shown) progress->advance(now - shown), shown = now;
       };
     }
-    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, r.warnings);
+    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, damage_hold_remedy(s, r.warnings));
     r.stresses = fatigue::segment_point_histories(run);
     strain_window_warnings(s, run, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
