@@ -27,7 +27,7 @@ struct Args {
   std::string card, case_id, out, test = "shear", orientation, fidelity = "viscoelastic";
   int steps_per_cycle = 200, cycles = 5;
   double amplitude = 0.01, mean_strain = 0.0, frequency_Hz = 1.0;
-  bool allow_extrapolation = false;
+  bool allow_extrapolation = false, hold_damage = false;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();
   bool json = false;
@@ -100,6 +100,13 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
            " MPa from its instantaneous modulus and Poisson ratio " +
            fitlib::core::short_number(card::kDefaultPoissonRatio) + " (as eval and export; --bulk-modulus to choose)");
   }
+  if (a.hold_damage) {  // as the segment's complete level (docs/segment.md "Damage held beyond the tested amplitudes")
+    options.damage_driver_hold = card::DataWindow(card).damage_drivers();
+    if (options.damage_driver_hold.empty())
+      throw core::InputError("--hold-damage: the card holds no damage drivers of its tests (fit.data_window.damage_driver: "
+                             "a card of a model with damage, fitted to a table with strain amplitudes)",
+                             a.card, 0, 0, "fit.data_window.damage_driver");
+  }
   const auto point = model::make_material_point(*card.model(), card.values(), options);
   const auto history = model::fritzson::cyclic_history(a.amplitude, a.mean_strain, a.frequency_Hz,
                                                        a.cycles, a.steps_per_cycle);
@@ -140,6 +147,9 @@ void register_material_point(CLI::App& app) {
                                         : cmd->add_option(name, args->temperature_C);
     old->group("");  // hidden from --help
   }
+  cmd->add_flag("--hold-damage", args->hold_damage,
+                "Hold the damage at the drivers the card's tests reached (fit.data_window.damage_driver), as the "
+                "segment's complete level does");
   cmd->add_option("--fidelity", args->fidelity, "viscoelastic (default) or elastic (storage moduli at --frequency-hz)");
   cmd->add_option("--bulk-modulus", args->bulk_modulus_MPa, "MPa, for a linear card without K (default: from its instantaneous modulus and Poisson ratio 0.4995)")
       ->check(positive_number());

@@ -1,5 +1,7 @@
 // End to end for the other subcommands: belt scenes, surfaces, staged Fritzson fits, master
 // curves — run as a user runs them.
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -158,6 +160,41 @@ TEST(FritzsonCli, StagedFitOfMaterialTwoNamesWhatTheDataCannotDetermine) {
   EXPECT_EQ(run_fitcli("material-point --card " + source_path("datasets/cards/material-1-true.json") +
                        " --case 7.3 --out " + loops).exit_code, 0);
   EXPECT_GT(slurp(loops).size(), 1000u);
+}
+
+// The fitted card keeps the largest damage driver its tests reached (shear to γ 0.045: 0.045/√2;
+// tension only to 0.015), and material-point --hold-damage drives the point the segment's complete
+// level uses: the law up to it, no more damage beyond — the last cycle's peak shear stress doubles
+// with the amplitude, where the law's softens (docs/decisions.md "Complete level: damage held
+// beyond the tested amplitudes"); a card without the drivers is refused at the key.
+TEST(FritzsonCli, AFittedDamageCardHoldsItsTestedDriversForMaterialPoint) {
+  const auto card = temp_file("material-2-held.json");
+  ASSERT_EQ(run_fitcli("fit --data " + source_path("datasets/materials/material-2.csv") +
+                       " --model fritzson-iso --backend staged --schedule " +
+                       source_path("datasets/schedules/fritzson-iso.json") + " --out " + card).exit_code, 0);
+  const auto drivers = nlohmann::json::parse(slurp(card))["fit"]["data_window"]["damage_driver"];
+  ASSERT_EQ(drivers.size(), 1u) << drivers.dump();
+  EXPECT_NEAR(drivers[0].get<double>(), 0.045 / std::sqrt(2.0), 1e-15);
+  auto last_peak = [&](double amplitude, const std::string& hold) {  // |σ12| over the last of 3 cycles
+    const auto r = run_fitcli("material-point --card " + card + " --amplitude " + std::to_string(amplitude) +
+                              " --frequency-hz 10 --temperature-c 40 --cycles 3 --steps-per-cycle 100 "
+                              "--allow-extrapolation -q" + hold);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream rows(r.out);
+    std::string line;
+    std::getline(rows, line);
+    double peak = 0.0;
+    for (int n = 0; std::getline(rows, line); ++n)
+      if (n > 200) peak = std::max(peak, std::abs(std::stod(line.substr(line.rfind(',') + 1))));
+    return peak;
+  };
+  EXPECT_NEAR(last_peak(0.4, " --hold-damage") / last_peak(0.2, " --hold-damage"), 2.0, 0.02);
+  EXPECT_LT(last_peak(0.4, "") / last_peak(0.2, ""), 1.9);
+  EXPECT_GT(last_peak(0.2, " --hold-damage"), 1.3 * last_peak(0.2, ""));
+  const auto refused = run_fitcli("material-point --card " + source_path("datasets/cards/material-2-true.json") +
+                                  " --hold-damage");
+  EXPECT_EQ(refused.exit_code, 3);
+  EXPECT_NE(refused.err.find("'fit.data_window.damage_driver'"), std::string::npos) << refused.err;
 }
 
 TEST(FitCli, MasterCurveFromRawIsothermsWritesShifts) {
