@@ -174,10 +174,15 @@ double field_position(const std::string& at, const belt::LoadCycle& cycle) {
 
 namespace {
 
+// Whether card_point held a card's damage (it says so in a warning).
+bool damage_held(const std::vector<std::string>& warnings) {
+  return std::any_of(warnings.begin(), warnings.end(),
+                     [](const std::string& w) { return w.find(kDamageHeld) != std::string::npos; });
+}
+
 // What holds the damage where the complete level folds: nothing to say when a card's damage is held.
 std::string damage_hold_remedy(const Scene& s, const std::vector<std::string>& warnings) {
-  if (std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find(kDamageHeld) != std::string::npos; }))
-    return "";
+  if (damage_held(warnings)) return "";
   if (s.life && !s.life->damage_hold) return "; [life] damage_hold = true (the default) holds the damage at the drivers "
                                              "the cards' tests reached";
   return "; a card fitted to its table (fitcli fit) holds the damage at the drivers its tests reached "
@@ -270,6 +275,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings);
+    r.segment_damage_held = damage_held(r.warnings);
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
@@ -327,6 +333,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   if (std::string w = fatigue::stress_fidelity_warning(card, life.plan.fidelity); !w.empty())
     r.warnings.push_back(std::move(w));
   life.equilibrium = r.segment_equilibrium;
+  life.damage_held = r.segment_damage_held;
   life.fields = r.segment_fields;
   r.life = std::move(life);
 }

@@ -117,6 +117,7 @@ struct LifeResult {
   std::vector<InputFile> inputs;
   fatigue::LifeReport report;
   std::optional<SegmentEquilibrium> equilibrium;
+  bool damage_held = false;  // the complete level held a card's damage at its tests' drivers
   std::vector<FieldFile> fields;
 };
 
@@ -134,6 +135,7 @@ struct SceneResult {
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
   std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
+  bool segment_damage_held = false;  // LifeResult::damage_held
   std::vector<FieldFile> segment_fields;
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
