@@ -1,5 +1,6 @@
 #include "fitlib/card/card.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
@@ -133,6 +134,19 @@ ParameterEstimate read_parameter(const json& p, const core::ParameterSpec& spec,
   return e;
 }
 
+// fit.data_window.damage_driver (data_window.hpp): one finite driver >= 0 per damage driver of the model.
+void check_damage_drivers(const json& fit, const model::Model& m, const std::string& source) {
+  const auto w = fit.find("data_window");
+  if (w == fit.end() || !w->is_object() || !w->contains("damage_driver")) return;
+  const json& d = w->at("damage_driver");
+  const std::size_t drivers = m.damage_drivers(model::TestCondition{}).size();
+  const auto bad = [](const json& x) { return !x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < 0.0; };
+  if (!d.is_array() || d.size() != drivers || std::any_of(d.begin(), d.end(), bad))
+    throw core::InputError("expected " + std::to_string(drivers) + " finite number(s) >= 0, one per damage driver of model '" +
+                               m.kind() + "'",
+                           source, 0, 0, "fit.data_window.damage_driver");
+}
+
 }  // namespace
 
 Card card_from_json(const json& j, const std::string& source) {
@@ -159,6 +173,7 @@ Card card_from_json(const json& j, const std::string& source) {
     card.parameters.push_back(
         read_parameter(list[i], specs[i], source, "parameters[" + std::to_string(i) + "]."));
   card.fit = object_or_empty(j, "fit", source);
+  check_damage_drivers(card.fit, *m, source);
   card.provenance = object_or_empty(j, "provenance", source);
   return card;
 }
