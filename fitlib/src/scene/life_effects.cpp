@@ -25,6 +25,24 @@ namespace fitlib::scene {
 namespace detail {
 namespace {
 
+// The warning's words when the complete level holds a card's damage (damage_hold below), and the
+// start of that warning for one card and role.
+constexpr const char* kDamageHeld = "its damage is held at the drivers its tests reached";
+std::string held_head(const Scene& s, const std::string& role) {
+  return "card " + s.materials.at(role) + " (" + role + "): " + kDamageHeld;
+}
+std::vector<std::string>::iterator held_warning(const Scene& s, const std::string& role, std::vector<std::string>& warnings) {
+  const std::string head = held_head(s, role);
+  return std::find_if(warnings.begin(), warnings.end(), [&](const std::string& w) { return w.rfind(head, 0) == 0; });
+}
+
+// ", damage held at its tests' drivers" when the complete level held this card's damage.
+std::string held_clause(const Scene& s, const SceneResult& r, const std::string& role) {
+  const std::string head = held_head(s, role);
+  const bool held = std::any_of(r.warnings.begin(), r.warnings.end(), [&](const std::string& w) { return w.rfind(head, 0) == 0; });
+  return held ? ", damage held at its tests' drivers" : "";
+}
+
 // What the life took from a material card, read off the stiffness sources.
 std::string card_use(const Scene& s, const SceneResult& r, const std::string& role) {
   const std::string path = s.materials.at(role);
@@ -43,7 +61,7 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
   if (fidelity != "beam" && (role == "bottom" || role == "cushion"))
     use += std::string(use.empty() ? "" : ", ") +
            (fidelity == "elastic" ? "segment FE material (storage stiffness at the scene's temperature and load frequency)"
-                                  : "segment FE material (the card's full model)");
+                                  : "segment FE material (the card's full model" + held_clause(s, r, role) + ")");
   if (use.empty()) use = "not read at fidelity " + fidelity;
   return use;
 }
@@ -92,16 +110,14 @@ InputFile file_input(const std::string& role, const std::string& path, const std
 // The complete level's damage hold for a damage card (docs/decisions.md "Complete level: damage held
 // beyond the tested amplitudes"): the drivers its tests reached (fit.data_window.damage_driver)
 // unless [life] damage_hold = false; said beside the lives.
-constexpr const char* kDamageHeld = "its damage is held at the drivers its tests reached";
 std::vector<double> damage_hold(const Scene& s, const std::string& role, const card::Card& c,
                                 std::vector<std::string>& warnings) {
   const std::vector<double> tested = card::DataWindow(c).damage_drivers();
   if (tested.empty() || (s.life && !s.life->damage_hold)) return {};
-  const std::string head = "card " + s.materials.at(role) + " (" + role + "): " + kDamageHeld;
   std::string drivers;
   for (double d : tested) drivers += (drivers.empty() ? "" : ", ") + core::format_number(d, 3);
-  if (std::none_of(warnings.begin(), warnings.end(), [&](const std::string& w) { return w.rfind(head, 0) == 0; }))
-    warnings.push_back(head + " (fit.data_window.damage_driver " + drivers +
+  if (held_warning(s, role, warnings) == warnings.end())  // once per card and role
+    warnings.push_back(held_head(s, role) + " (fit.data_window.damage_driver " + drivers +
                        "): the complete level does not extrapolate the damage law beyond its tests; [life] "
                        "damage_hold = false runs the law at every amplitude");
   return tested;
@@ -245,9 +261,7 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, std
     seen.strain_amplitude = a;
     card_window_warnings(s, role, c, seen, warnings);
     const card::DataWindow window(c);
-    const std::string held = "card " + s.materials.at(role) + " (" + role + "): " + kDamageHeld;
-    const auto said = std::find_if(warnings.begin(), warnings.end(),
-                                   [&](const std::string& w) { return w.rfind(held, 0) == 0; });
+    const auto said = held_warning(s, role, warnings);
     if (said != warnings.end())  // a held damage law is not read beyond its hold: say how far the belt went
       *said += " (the segment drove it at " + core::format_number(a, 3) + ")";
     else if (window.reads_unknown_amplitude(a))
