@@ -317,12 +317,15 @@ void bind_model(py::module_& m) {
       .def_property_readonly("native_mode", [](const Model& mo) { return std::string(model::to_string(mo.native_mode())); })
       .def_property_readonly("amplitude_dependent", &Model::amplitude_dependent)
       .def("damage_drivers",
-           [](const Model& mo, const std::string& mode, const std::string& orientation, double strain_amplitude) {
+           [](const Model& mo, const py::object& p, const std::string& mode, const std::string& orientation,
+              double strain_amplitude, double frequency_Hz, double temperature_C) {
              model::TestCondition c;
              c.mode = mode_or_native(mo, mode), c.orientation = orientation, c.strain_amplitude = strain_amplitude;
-             return to_array(mo.damage_drivers(c));
+             c.frequency_Hz = frequency_Hz, c.temperature_C = temperature_C;
+             return to_array(mo.damage_drivers(checked_values(mo, p).data(), c));
            },
-           py::arg("mode") = "", py::arg("orientation") = "", py::arg("strain_amplitude") = 0.0,
+           py::arg("p"), py::arg("mode") = "", py::arg("orientation") = "", py::arg("strain_amplitude") = 0.0,
+           py::arg("frequency_Hz") = 1.0, py::arg("temperature_C") = std::nan(""),
            "The damage drivers a steady test reaches (empty for a model without damage)")
       .def("default_parameters", [](const Model& mo) { return to_array(mo.default_parameters()); })
       .def("temperature_law", [](const Model& mo, const py::object& p) {

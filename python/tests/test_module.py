@@ -255,9 +255,9 @@ def test_material_point_refuses_non_finite_input_instead_of_answering_nan():
 def test_material_point_holds_damage_at_the_drivers_a_test_reached():
     card = fitlib.load_card(source("datasets", "cards", "material-2-true.json"))
     model = card.model()
-    held = model.damage_drivers("shear", "12", 0.045)  # γ/√2, the segment's complete level holds it there
+    held = model.damage_drivers(card.values(), "shear", "12", 0.045)  # γ/√2, where the complete level holds it
     assert np.allclose(held, [0.045 / np.sqrt(2.0)], rtol=1e-14)
-    assert len(fitlib.make_model("elastic-iso").damage_drivers("shear", "12", 0.045)) == 0
+    assert len(fitlib.make_model("elastic-iso").damage_drivers([10.0, 0.3], "shear", "12", 0.045)) == 0
     law = fitlib.make_material_point(model, card.values())
     hold = fitlib.make_material_point(model, card.values(), damage_driver_hold=held)
     def peak(point, gamma):  # peak shear stress of 3 cycles of simple shear at 10 Hz

@@ -139,7 +139,9 @@ void check_damage_drivers(const json& fit, const model::Model& m, const std::str
   const auto w = fit.find("data_window");
   if (w == fit.end() || !w->is_object() || !w->contains("damage_driver")) return;
   const json& d = w->at("damage_driver");
-  const std::size_t drivers = m.damage_drivers(model::TestCondition{}).size();
+  model::TestCondition shear;  // any test: the count is the model's
+  shear.orientation = "12";
+  const std::size_t drivers = m.amplitude_dependent() ? m.damage_drivers(m.default_parameters().data(), shear).size() : 0;
   const auto bad = [](const json& x) { return !x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < 0.0; };
   if (!d.is_array() || d.size() != drivers || std::any_of(d.begin(), d.end(), bad))
     throw core::InputError("expected " + std::to_string(drivers) + " finite number(s) >= 0, one per damage driver of model '" +

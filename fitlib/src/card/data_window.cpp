@@ -52,8 +52,8 @@ nlohmann::json data_window_json(const data::DynamicTestTable& measured, const mo
   std::vector<double> drivers;  // the largest damage driver each of the model's reached
   for (const auto& row : measured.rows) {
     const auto& c = row.condition;
-    if (model) {
-      const std::vector<double> d = model->damage_drivers(c);
+    if (model && p.size() == model->parameters().size()) {
+      const std::vector<double> d = model->damage_drivers(p.data(), c);
       drivers.resize(std::max(drivers.size(), d.size()), 0.0);
       for (std::size_t j = 0; j < d.size(); ++j) drivers[j] = std::max(drivers[j], d[j]);
     }

@@ -126,8 +126,17 @@ class FritzsonModel final : public AutodiffModel<FritzsonModel> {
   // Describes shear, uniaxial (all orientations) and bulk alike; shear is its natural card.
   TestMode native_mode() const override { return TestMode::shear; }
   bool amplitude_dependent() const override { return true; }
-  std::vector<double> damage_drivers(const TestCondition& c) const override {
-    const std::array<double, 3> d = steady_test_drivers(c);
+  // The drivers the moduli of a test read (evaluate): shear γ/√2 for I, and for A2 in 13/23; uniaxial
+  // the fixed point of the damaged lateral strains (A2 reads the fibre strain as A1 does, 4.78).
+  std::vector<double> damage_drivers(const double* p, const TestCondition& c) const override {
+    std::array<double, 3> d{{0.0, 0.0, 0.0}};
+    const Orientation o = checked_orientation(c);
+    if (c.mode == TestMode::shear) {
+      d[0] = shear_driver(c), d[2] = o.fibre_shear ? shear_driver(c) : 0.0;
+    } else if (c.mode == TestMode::uniaxial) {
+      solve_drivers(p, c, o.uniaxial_axis, d[0], d[1]);
+      d[2] = d[1];
+    }
     return anisotropic_ ? std::vector<double>(d.begin(), d.end()) : std::vector<double>{d[0]};
   }
   double bulk_modulus(const double* p) const override { return p[kK]; }

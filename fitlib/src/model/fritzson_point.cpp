@@ -185,22 +185,6 @@ void MaterialPoint::hold_damage_beyond(const std::vector<double>& ceiling) {
   for (std::size_t j = 0; j < 3; ++j) driver_ceiling_[j] = j < hold_.size() ? hold_[j] : kNoCeiling;
 }
 
-std::array<double, 3> steady_test_drivers(const TestCondition& c) {
-  double e[6] = {0, 0, 0, 0, 0, 0};  // tensor components 11 22 33 23 13 12
-  const std::string& o = c.orientation;
-  const double a = c.strain_amplitude;
-  if (c.mode == TestMode::shear) {
-    const int index = o == "23" || o == "32" ? 3 : o == "13" || o == "31" ? 4 : 5;
-    e[index] = 0.5 * a;
-  } else if (c.mode == TestMode::uniaxial) {
-    const int axis = o == "22" ? 1 : o == "33" ? 2 : 0;
-    for (int i = 0; i < 3; ++i) e[i] = i == axis ? a : -0.5 * a;
-  }
-  std::array<double, 3> drivers;
-  oscillation_norms(e, drivers.data());
-  return drivers;
-}
-
 template <typename T, typename In, typename Out>
 void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
                                 double temperature_C, Out& next, T* stress) const {

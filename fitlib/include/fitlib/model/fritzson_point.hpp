@@ -144,11 +144,6 @@ class MaterialPoint {
   std::array<double, 3> driver_ceiling_{{kNoCeiling, kNoCeiling, kNoCeiling}};
 };
 
-// The damage drivers (I, A1, A2: 4.32, 4.77, 4.78) that a steady test at `c` reaches: its strain
-// amplitude as a deviatoric tensor (shear ij: e_ij = γ/2; uniaxial ii: e_ii = ε, the others −ε/2,
-// incompressible; bulk: none) through the drivers' norms. Fibre along 3.
-std::array<double, 3> steady_test_drivers(const TestCondition& c);
-
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses
 // are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, docs/fritzson.md §7);
 // uniaxial: ε_ii prescribed, the other normal stresses zero (lateral strains solved by Newton

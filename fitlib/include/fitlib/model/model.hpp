@@ -119,8 +119,8 @@ class Model {
   // true when moduli depend on strain amplitude (damage): linear FE formats cannot hold it.
   virtual bool amplitude_dependent() const { return false; }
   // the damage drivers (the amplitudes its damage functions read, in the model's order) that a
-  // steady dynamic test at `c` reaches; empty for a model without damage;
-  virtual std::vector<double> damage_drivers(const TestCondition& c) const { return {}; }
+  // steady dynamic test at `c` reaches with parameters p; empty for a model without damage;
+  virtual std::vector<double> damage_drivers(const double* p, const TestCondition& c) const { return {}; }
   // the model as an exact Kelvin chain (discrete retardation spectrum), if it is one;
   virtual bool kelvin_series(const double* p, KelvinSeries* out) const { return false; }
   // its constant (elastic) bulk modulus K in MPa, if it has one; NaN otherwise;
