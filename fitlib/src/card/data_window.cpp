@@ -1,7 +1,5 @@
 #include "fitlib/card/data_window.hpp"
 
-#include "fitlib/core/error.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -80,10 +78,8 @@ DataWindow::DataWindow(const Card& card) : model_(card.model()) {
   frequency_ = bounds(w, "frequency_Hz");
   temperature_ = bounds(w, "temperature_C");
   amplitude_ = bounds(w, "strain_amplitude");
-  if (const auto d = w.find("damage_driver"); d != w.end() && d->is_array())
-    for (const auto& x : *d)
-      if (x.is_number() && std::isfinite(x.get<double>()) && x.get<double>() >= 0.0) damage_driver_.push_back(x.get<double>());
-      else throw core::InputError("fit.data_window.damage_driver: expected finite numbers >= 0");
+  if (const auto d = w.find("damage_driver"); d != w.end() && d->is_array())  // checked by card_from_json
+    damage_driver_ = d->get<std::vector<double>>();
   if ((reduced_ = bounds(w, "reduced_frequency_Hz"))) {
     values_ = card.values();
     if (!has_law(model_.get())) reduced_.reset();

@@ -164,8 +164,18 @@ TEST(DataWindow, DamageModelsKeepTheLargestDriverTheirTestsReached) {
   card.fit["data_window"] = w;
   EXPECT_EQ(card::DataWindow(card).damage_drivers(), d);
   EXPECT_FALSE(card::data_window_json(t, model::make_model("elastic-iso", {}).get(), {}).contains("damage_driver"));
-  card.fit["data_window"]["damage_driver"] = {0.03, "x", 0.03};
-  EXPECT_THROW(card::DataWindow{card}, core::InputError);
+  card::Card held = truth;
+  held.fit["data_window"] = w;
+  EXPECT_EQ(card::DataWindow(card::card_from_json(card::card_to_json(held))).damage_drivers(), d);
+  for (const nlohmann::json bad : {nlohmann::json{0.03, "x", 0.03}, nlohmann::json{0.03, 0.01}, nlohmann::json{0.03, -0.01, 0.03}}) {
+    held.fit["data_window"]["damage_driver"] = bad;  // a card read from a file: refused at the key
+    try {
+      card::card_from_json(card::card_to_json(held), "held.json");
+      ADD_FAILURE() << bad;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("fit.data_window.damage_driver"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // With a temperature law the frequency bound is the rows' reduced frequency f·a_T(T): 100 Hz
