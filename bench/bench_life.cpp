@@ -90,26 +90,31 @@ scene::Scene reference(const std::string& load) {
 }
 
 // The bundled card of `material` ("material-1", "material-2") with the data window of the
-// synthetic table drawn from it (datasets/materials/<material>.csv), written once to a temporary file:
-// its window's damage drivers let the complete level hold the damage at what those tests reached.
-std::string windowed_card(const std::string& material) {
-  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-" + material + ".json";
+// synthetic table drawn from it (datasets/materials/<material>.csv): its window's damage drivers let
+// the complete level hold the damage at what those tests reached.
+card::Card windowed_card(const std::string& material) {
   card::Card c = card::load_card(kRoot + "/datasets/cards/" + material + "-true.json");
   const data::DynamicTestTable table = data::read_dynamic_table(kRoot + "/datasets/materials/" + material + ".csv");
   c.fit["data_window"] = card::data_window_json(table, c.model().get(), c.values());
-  card::save_card(path, c);
+  return c;
+}
+
+// windowed_card written to a temporary file, for a scene.
+std::string windowed_card_file(const std::string& material) {
+  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-" + material + ".json";
+  card::save_card(path, windowed_card(material));
   return path;
 }
 
 // `level` "complete held": the complete level with the cards' damage held at what their tables'
-// tests reached ([life] damage_hold, from windowed_card).
+// tests reached ([life] damage_hold, from windowed_card_file).
 scene::Scene life_scene(const std::string& load, const std::string& level) {
   scene::Scene s = reference(load);
   s.outputs = {{"life", true}};
   s.life = scene::LifeSpec{};
   s.life->fidelity = level == "complete held" ? "complete" : level;
   if (level == "complete held") {
-    static const std::string bottom = windowed_card("material-1"), cushion = windowed_card("material-2");
+    static const std::string bottom = windowed_card_file("material-1"), cushion = windowed_card_file("material-2");
     s.materials["bottom"] = bottom, s.materials["cushion"] = cushion;
   }
   s.life->cycles = 2;
@@ -322,8 +327,7 @@ Outcome run_probe(const Probe& pr) {
     for (const auto& [name, value] : pr.overrides)
       for (std::size_t i = 0; i < values.size(); ++i)
         if (c.model()->parameters()[i].name == name) values[i] = value;
-    o.damage_driver_hold = pr.hold ? card::DataWindow(card::load_card(windowed_card(k == 0 ? "material-1" : "material-2")))
-                                         .damage_drivers()
+    o.damage_driver_hold = pr.hold ? card::DataWindow(windowed_card(k == 0 ? "material-1" : "material-2")).damage_drivers()
                                    : std::vector<double>{};
     setup.materials[k] = segment::role_point(*c.model(), values, o);
   }

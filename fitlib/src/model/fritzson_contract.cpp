@@ -23,7 +23,7 @@ class FritzsonContractPoint final : public model::MaterialPoint {
     return std::string(point_.anisotropic() ? "fritzson" : "fritzson-iso") +
            (point_.scheme() == Scheme::exponential ? " (exponential" : " (backward Euler") +
            (point_.damage_update() == DamageUpdate::lagged ? ", lagged damage" : "") +
-           (point_.damage_driver_hold().empty() ? "" : ", damage held at its tests' drivers") +
+           (point_.damage_held() ? ", damage held at its tests' drivers" : "") +
            ")";
   }
   std::size_t state_size() const override { return kFlatStateSize; }

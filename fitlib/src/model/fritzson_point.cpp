@@ -181,8 +181,7 @@ void MaterialPoint::hold_damage_beyond(const std::vector<double>& ceiling) {
     if (!(c >= 0.0) || !std::isfinite(c))
       throw core::UsageError("fritzson material point: a damage driver's hold must be finite and >= 0, not " +
                              core::format_number(c));
-  hold_ = ceiling;
-  for (std::size_t j = 0; j < 3; ++j) driver_ceiling_[j] = j < hold_.size() ? hold_[j] : kNoCeiling;
+  for (std::size_t j = 0; j < 3; ++j) driver_ceiling_[j] = j < ceiling.size() ? ceiling[j] : kNoCeiling;
 }
 
 template <typename T, typename In, typename Out>

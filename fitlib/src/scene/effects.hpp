@@ -30,9 +30,11 @@ inline double load_frequency_Hz(const belt::DriveCase& drive) {
 // The material point of a [belt.materials] role's card at `options` (the segment's fidelity,
 // temperature, frequency; the bulk modulus from the card or [belt.materials] poisson_ratio), with
 // its data-window warnings; InputError at belt.materials.<role> for what the card cannot give
-// (life_effects.cpp; the life's segment levels and `fitcli segment`).
+// (life_effects.cpp; the life's segment levels and `fitcli segment`). At the complete level a damage
+// card's damage is held at its tests' drivers (unless [life] damage_hold = false); `damage_held` says
+// whether it was.
 model::MaterialPointPtr card_point(const Scene& scene, const std::string& role, segment::RoleMaterialOptions options,
-                                   std::vector<std::string>& warnings);
+                                   std::vector<std::string>& warnings, bool* damage_held = nullptr);
 
 // Belt mechanics (belt_effects.cpp).
 ViscoelasticTension viscoelastic_tension(const belt::DriveCase& drive, bool inertia);

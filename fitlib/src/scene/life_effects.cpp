@@ -20,28 +20,11 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 
 namespace fitlib::scene {
 namespace detail {
 namespace {
-
-// The warning's words when the complete level holds a card's damage (damage_hold below), and the
-// start of that warning for one card and role.
-constexpr const char* kDamageHeld = "its damage is held at the drivers its tests reached";
-std::string held_head(const Scene& s, const std::string& role) {
-  return "card " + s.materials.at(role) + " (" + role + "): " + kDamageHeld;
-}
-std::vector<std::string>::iterator held_warning(const Scene& s, const std::string& role, std::vector<std::string>& warnings) {
-  const std::string head = held_head(s, role);
-  return std::find_if(warnings.begin(), warnings.end(), [&](const std::string& w) { return w.rfind(head, 0) == 0; });
-}
-
-// ", damage held at its tests' drivers" when the complete level held this card's damage.
-std::string held_clause(const Scene& s, const SceneResult& r, const std::string& role) {
-  const std::string head = held_head(s, role);
-  const bool held = std::any_of(r.warnings.begin(), r.warnings.end(), [&](const std::string& w) { return w.rfind(head, 0) == 0; });
-  return held ? ", damage held at its tests' drivers" : "";
-}
 
 // What the life took from a material card, read off the stiffness sources.
 std::string card_use(const Scene& s, const SceneResult& r, const std::string& role) {
@@ -61,7 +44,8 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
   if (fidelity != "beam" && (role == "bottom" || role == "cushion"))
     use += std::string(use.empty() ? "" : ", ") +
            (fidelity == "elastic" ? "segment FE material (storage stiffness at the scene's temperature and load frequency)"
-                                  : "segment FE material (the card's full model" + held_clause(s, r, role) + ")");
+                                  : std::string("segment FE material (the card's full model") +
+                                        (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")");
   if (use.empty()) use = "not read at fidelity " + fidelity;
   return use;
 }
@@ -109,24 +93,16 @@ InputFile file_input(const std::string& role, const std::string& path, const std
 
 // The complete level's damage hold for a damage card (docs/decisions.md "Complete level: damage held
 // beyond the tested amplitudes"): the drivers its tests reached (fit.data_window.damage_driver)
-// unless [life] damage_hold = false; said beside the lives.
-std::vector<double> damage_hold(const Scene& s, const std::string& role, const card::Card& c,
-                                std::vector<std::string>& warnings) {
-  const std::vector<double> tested = card::DataWindow(c).damage_drivers();
-  if (tested.empty() || (s.life && !s.life->damage_hold)) return {};
-  std::string drivers;
-  for (double d : tested) drivers += (drivers.empty() ? "" : ", ") + core::format_number(d, 3);
-  if (held_warning(s, role, warnings) == warnings.end())  // once per card and role
-    warnings.push_back(held_head(s, role) + " (fit.data_window.damage_driver " + drivers +
-                       "): the complete level does not extrapolate the damage law beyond its tests; [life] "
-                       "damage_hold = false runs the law at every amplitude");
-  return tested;
+// unless [life] damage_hold = false; strain_window_warnings says so beside the lives.
+std::vector<double> damage_hold(const Scene& s, const card::Card& c) {
+  if (s.life && !s.life->damage_hold) return {};
+  return card::DataWindow(c).damage_drivers();
 }
 
 }  // namespace
 
 model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segment::RoleMaterialOptions options,
-                                   std::vector<std::string>& warnings) {
+                                   std::vector<std::string>& warnings, bool* damage_held) {
   const card::Card c = material_card(s, role);
   const model::ModelPtr model = c.model();
   const std::vector<double> values = c.values();
@@ -136,7 +112,8 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
   if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
   card_window_warnings(s, role, c, seen, warnings);
   if (options.fidelity == segment::Fidelity::complete && model->amplitude_dependent())
-    options.damage_driver_hold = damage_hold(s, role, c, warnings);
+    options.damage_driver_hold = damage_hold(s, c);
+  if (damage_held) *damage_held = !options.damage_driver_hold.empty();
   try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
     options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
     return segment::role_point(*model, values, options);
@@ -147,9 +124,10 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
 
 // The segment levels (docs/segment.md "Loading"): materials per role from the scene's cards at
 // the level's fidelity (card_point), or, below the complete level, the [segment] table's E and nu
-// when the scene gives no card for the role.
+// when the scene gives no card for the role; `held` gets the roles whose card's damage is held.
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
-                                                         const std::string& fidelity, std::vector<std::string>& warnings) {
+                                                         const std::string& fidelity, std::vector<std::string>& warnings,
+                                                         std::set<std::string>& held) {
   std::array<model::MaterialPointPtr, 2> points;
   const auto& roles = kSegmentRoles;
   segment::RoleMaterialOptions options;
@@ -158,7 +136,9 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   options.frequency_Hz = load_frequency_Hz(drive);
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
-      points[k] = card_point(s, roles[k], options, warnings);
+      bool damage_held = false;
+      points[k] = card_point(s, roles[k], options, warnings, &damage_held);
+      if (damage_held) held.insert(roles[k]);
     } else {
       if (options.fidelity == segment::Fidelity::complete)  // it would run isotropic elasticity under its name
         throw core::InputError(std::string("[life] fidelity = \"complete\" runs the full card models, and the scene "
@@ -190,15 +170,9 @@ double field_position(const std::string& at, const belt::LoadCycle& cycle) {
 
 namespace {
 
-// Whether card_point held a card's damage (it says so in a warning).
-bool damage_held(const std::vector<std::string>& warnings) {
-  return std::any_of(warnings.begin(), warnings.end(),
-                     [](const std::string& w) { return w.find(kDamageHeld) != std::string::npos; });
-}
-
 // What holds the damage where the complete level folds: nothing to say when a card's damage is held.
-std::string damage_hold_remedy(const Scene& s, const std::vector<std::string>& warnings) {
-  if (damage_held(warnings)) return "";
+std::string damage_hold_remedy(const Scene& s, const std::set<std::string>& held) {
+  if (!held.empty()) return "";
   if (s.life && !s.life->damage_hold) return "; [life] damage_hold = true (the default) holds the damage at the drivers "
                                              "the cards' tests reached";
   return "; a card fitted to its table (fitcli fit) holds the damage at the drivers its tests reached "
@@ -238,7 +212,8 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
 // engineering shear 2 e12 (logarithmic, belt frame) over the last cycle, the largest at the role's
 // monitored points — against the card's data window: fitted at 1–4.5 %, a damage law read at
 // 10 % is extrapolated, and the table says so (docs/fatigue.md §8).
-void strain_window_warnings(const Scene& s, const segment::CycleResult& run, std::vector<std::string>& warnings) {
+void strain_window_warnings(const Scene& s, const segment::CycleResult& run, const std::set<std::string>& held,
+                            std::vector<std::string>& warnings) {
   std::map<std::string, double> amplitude;  // by role
   for (const segment::MonitoredHistory& m : run.points) {
     if (m.samples.empty()) continue;
@@ -261,10 +236,14 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, std
     seen.strain_amplitude = a;
     card_window_warnings(s, role, c, seen, warnings);
     const card::DataWindow window(c);
-    const auto said = held_warning(s, role, warnings);
-    if (said != warnings.end())  // a held damage law is not read beyond its hold: say how far the belt went
-      *said += " (the segment drove it at " + core::format_number(a, 3) + ")";
-    else if (window.reads_unknown_amplitude(a))
+    if (held.count(role)) {  // a held damage law is not read beyond its hold: say so, and how far the belt went
+      std::string drivers;
+      for (double d : window.damage_drivers()) drivers += (drivers.empty() ? "" : ", ") + core::format_number(d, 3);
+      warnings.push_back("card " + s.materials.at(role) + " (" + role + "): its damage is held at the drivers its tests "
+                         "reached (fit.data_window.damage_driver " + drivers + "): the complete level does not "
+                         "extrapolate the damage law beyond its tests; [life] damage_hold = false runs the law at "
+                         "every amplitude (the segment drove it at " + core::format_number(a, 3) + ")");
+    } else if (window.reads_unknown_amplitude(a))
       warnings.push_back("card " + s.materials.at(role) + " (" + role + ") " + window.unknown_amplitude_clause() +
                          ", and the segment drove it at " + core::format_number(a, 3) + ": " +
                          window.unknown_amplitude_consequence() +
@@ -288,8 +267,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
-    setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings);
-    r.segment_damage_held = damage_held(r.warnings);
+    setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings, r.segment_damage_held);
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
@@ -301,9 +279,9 @@ void segment_stresses(const Scene& s, SceneResult& r) {
         if (now > shown) progress->advance(now - shown), shown = now;
       };
     }
-    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, damage_hold_remedy(s, r.warnings));
+    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, damage_hold_remedy(s, r.segment_damage_held));
     r.stresses = fatigue::segment_point_histories(run);
-    strain_window_warnings(s, run, r.warnings);
+    strain_window_warnings(s, run, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
     for (std::string& w : r.segment_equilibrium->warnings()) r.warnings.push_back(std::move(w));
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
@@ -347,7 +325,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   if (std::string w = fatigue::stress_fidelity_warning(card, life.plan.fidelity); !w.empty())
     r.warnings.push_back(std::move(w));
   life.equilibrium = r.segment_equilibrium;
-  life.damage_held = r.segment_damage_held;
+  life.damage_held = !r.segment_damage_held.empty();
   life.fields = r.segment_fields;
   r.life = std::move(life);
 }

@@ -202,7 +202,8 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
       << std::defaultfloat << std::setprecision(static_cast<int>(precision));
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
-    if ((!s.segment || !s.segment->life_mesh_changed) && l.plan.fidelity == "complete" && l.damage_held)
+    const bool default_mesh = !s.segment || !s.segment->life_mesh_changed;
+    if (default_mesh && l.plan.fidelity == "complete" && l.damage_held)
       // docs/segment.md "Damage held beyond the tested amplitudes"
       o << "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over the central "
            "pitch, three cushion rows, sheared end faces), with the cards' damage held at their tests' drivers, "
@@ -211,7 +212,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "and gap_size_mm = 0.3 read N1 there at about 3 x the time; 0.25 mm elements fold on the medium drive). "
            "One cushion row ([segment] cushion_rows = 1) makes the mid-cushion N2 far too short (docs/segment.md "
            "\"Damage held beyond the tested amplitudes\")\n";
-    else if ((!s.segment || !s.segment->life_mesh_changed) && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
+    else if (default_mesh && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
       o << "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over the central "
            "pitch, three cushion rows, sheared end faces) gives on the light drive N2 within 12 % of meshes with "
            "0.25 to 0.6 mm elements and 3 to 5 cushion rows, and N1 61 % shorter than 0.25 mm elements' (on the "
@@ -219,7 +220,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "the complete level's N1 is not settled by the element size). One cushion row ([segment] "
            "cushion_rows = 1) makes the mid-cushion N2 about 800 x too short (a spurious pressure through the "
            "row at the driver's exit) (docs/segment.md \"Which segment N1 should be read from\")\n";
-    else if (!s.segment || !s.segment->life_mesh_changed)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
+    else if (default_mesh)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, one cushion "
            "row, sheared end faces) gives, against an 81 mm segment on the light, medium and heavy reference "
            "drives, the same governing mode and, with the thesis cards, N2 within 13 % (elastic level). Against "

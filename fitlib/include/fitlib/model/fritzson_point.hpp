@@ -122,7 +122,7 @@ class MaterialPoint {
   // Hold the damage drivers (I, or I, A1, A2) at `ceiling` (PointOptions::damage_driver_hold): the
   // stress reads min(e^a, ceiling), the state records e^a itself; empty = no hold.
   void hold_damage_beyond(const std::vector<double>& ceiling);
-  const std::vector<double>& damage_driver_hold() const { return hold_; }
+  bool damage_held() const { return driver_ceiling_[0] != kNoCeiling; }
 
   // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
   template <typename T, typename In, typename Out>
@@ -139,7 +139,6 @@ class MaterialPoint {
   double reference_C_;
   Scheme scheme_;
   DamageUpdate damage_update_;
-  std::vector<double> hold_;
   static constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
   std::array<double, 3> driver_ceiling_{{kNoCeiling, kNoCeiling, kNoCeiling}};
 };

@@ -2,6 +2,7 @@
 // Typed results of a scene run: one slot per effect's product (docs/belt.md "Planner"). JSON is
 // made only by the writers (writers.hpp).
 #include <map>
+#include <set>
 #include <optional>
 #include <string>
 #include <vector>
@@ -135,7 +136,7 @@ struct SceneResult {
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
   std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
-  bool segment_damage_held = false;  // LifeResult::damage_held
+  std::set<std::string> segment_damage_held;  // roles whose card's damage the complete level held
   std::vector<FieldFile> segment_fields;
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
