@@ -29,6 +29,10 @@ using detail::ElementVector;
 using detail::LinearSolver;
 using detail::SparseMatrix;
 
+// An increment that failed from the rotated predictor is retaken without its rotation terms only
+// when they moved the start by more than this (Euclidean norm over the nodes).
+constexpr double kRetakeRotation_mm = 1e-4;
+
 // Global unknowns: two local components per node; a constrained node's basis is rotated.
 struct Dofs {
   std::vector<Eigen::Matrix2d> R;  // columns = local basis vectors
@@ -496,8 +500,15 @@ class Newton {
     int since_best = 0;
     double best_iterate_res = inf;
     best_q_.resize(0);
+    kept_ = false;
+    bool restored = false;  // r_ and K_ hold q_'s, kept from before its step (no assembly needed)
     for (int it = 0; it < knobs_.max_iterations; ++it) {
-      o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
+      // (A restored start leaves the point states at the rejected iterate's: giving up there
+      // re-evaluates them before q_ is accepted.)
+      const bool states_elsewhere = restored;
+      if (restored) o.bad_element = -1;
+      else o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
+      restored = false;
       const double res = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
       o.residual = res;
       const bool worse = !(res < res_prev) && !(std::isfinite(res) && energy(dq) < 0.8 * energy_prev);
@@ -509,6 +520,7 @@ class Newton {
         if (++since_best > knobs_.stall_iterations) return o;
         mu = mu > 0.0 ? 10.0 * mu : knobs_.levenberg;  // retake the step from its start on K + μ·diag|K|
         q_ = q_prev, fresh = true, res_prev = inf, shifted_retake = true;
+        restored = restore_kept();  // the retake's start was an iterate: its K and r need no assembly
         continue;
       }
       if (worse && std::isfinite(res_prev) && alpha > 1.0 / 32.0) {
@@ -529,6 +541,8 @@ class Newton {
       // Giving up at this iterate (stalled, or no step to take): accepted at the loose tolerance.
       auto give_up = [&] {
         o.converged = !predictor && res <= knobs_.stall_tolerance * scale;
+        if (o.converged && states_elsewhere) o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);
+        o.converged = o.converged && o.bad_element < 0;
         return o;
       };
       if (!predictor && res < best_iterate_res) best_iterate_res = res, best_q_ = q_;  // (the predictor's is the old q)
@@ -543,6 +557,7 @@ class Newton {
       if (shifted_retake) retake_res = res;
       else if (res < retake_res) mu = 0.0;  // below the overshoot's start: Newton's basin, no shift
       shifted_retake = false;
+      keep(fresh && !predictor);  // before the shift: a retake from here restores it
       if (fresh && mu > 0.0) shift_diagonal(mu);
       for (int i = 0; i < r_.size(); ++i)
         if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
@@ -575,6 +590,21 @@ class Newton {
     return o;
   }
 
+  // The unshifted tangent and the residual of the iterate a step is taken from (`valid`: they are
+  // its own, not the predictor's linearisation about the last increment's state).
+  void keep(bool valid) {
+    kept_ = valid;
+    if (!valid) return;
+    kept_K_.assign(K_.K.valuePtr(), K_.K.valuePtr() + K_.K.nonZeros());
+    kept_r_ = r_;
+  }
+  bool restore_kept() {
+    if (!kept_) return false;
+    std::copy(kept_K_.begin(), kept_K_.end(), K_.K.valuePtr());
+    r_ = kept_r_;
+    return true;
+  }
+
   // K_ii += μ |K_ii| (Marquardt's scaling: the shift is unit-free and leaves stiff dofs stiff).
   void shift_diagonal(double mu) {
     double* K = K_.K.valuePtr();
@@ -601,6 +631,9 @@ class Newton {
   Eigen::VectorXd& q_;
   Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
+  bool kept_ = false;          // kept_K_ and kept_r_ are the last step's start (keep)
+  std::vector<double> kept_K_;
+  Eigen::VectorXd kept_r_;
 };
 
 }  // namespace
@@ -798,9 +831,14 @@ class StaticRun {
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
     const bool rotated = knobs_.rotated_predictor && p_.frame_turn && !extrapolate;
-    newton_.set_rotation(rotated ? rotation_terms(target) : Eigen::VectorXd());
+    Eigen::VectorXd rotation = rotated ? rotation_terms(target) : Eigen::VectorXd();
+    // Without terms this small the retake starts where this try did, to within Newton's first
+    // correction: measured, such retakes never converged where the try had not (docs/segment.md
+    // §Cost, "Retakes that cannot help").
+    const bool retake = rotated && rotation.norm() > kRetakeRotation_mm;
+    newton_.set_rotation(std::move(rotation));
     last_ = newton_.solve(target, q_start, extrapolate);
-    if (rotated && !last_.converged) {  // retaken on the plain linear predictor before a cut
+    if (retake && !last_.converged) {  // retaken on the plain linear predictor before a cut
       out_.newton_iterations += last_.iterations;
       out_.factorizations += last_.factorizations;
       q_ = q_saved;
