@@ -64,7 +64,7 @@ void load_cycle_panel(std::ostringstream& s, const fitlib::belt::LoadCycle& cycl
   double K_low = 0.0, K_high = 0.0;
   for (const auto& x : cycle.samples) K_low = std::min(K_low, x.K_1_mm), K_high = std::max(K_high, x.K_1_mm);
   s << "set multiplot layout " << panels << ",1 title " << gnuplot_quoted(title + "; grey: pulley contact")
-    << " noenhanced font ',12'\nset ylabel 'belt force F [N]'\nset y2label 'curvature K [1/mm]'\nset ytics nomirror\n"
+    << " noenhanced font ',11'\nset ylabel 'belt force F [N]'\nset y2label 'curvature K [1/mm]'\nset ytics nomirror\n"
     << "set y2tics\nset y2range [" << exact(K_low - 0.05 * (K_high - K_low)) << ":"
     << exact(K_high + 0.1 * (K_high - K_low) + 1e-12) << "]\nplot $load using 1:2 with lines lc rgb '#2c7bb6' title 'F', $load using 1:3 axes x1y2 with lines "
        "lc rgb '#d7191c' title 'K'\nset y2range [*:*]\n";
@@ -101,7 +101,8 @@ std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::sc
   for (std::size_t k = 0; k < report.modes.size(); ++k) mode_panel(s, report.modes[k], cycle.cycle_time_s, static_cast<int>(k));
   const std::string governing = report.governing == "none" ? "no significant peak"
                                                             : report.governing + ", " + cycles_text(report.life_cycles);
-  load_cycle_panel(s, cycle, panels, scene_title(scene) + ": governing " + governing);
+  // The level in the title: an elastic and a complete figure of one drive are read side by side.
+  load_cycle_panel(s, cycle, panels, scene_title(scene) + ", " + r.life->plan.fidelity + " level: governing " + governing);
   s << "unset y2tics\nunset y2label\nset ytics mirror\nunset key\nset yrange [0:*]\n";
   for (std::size_t k = 0; k < report.modes.size(); ++k) {
     const auto& m = report.modes[k];

@@ -69,6 +69,6 @@ EOF
 echo "== 7. The same drive at the complete level: the fitted cards' full models (damage held at what their tests reached)"
 complete="$out/ref-0500-medium-fitted-cards-complete.toml"
 sed 's/^\[life\]$/[life]\nfidelity = "complete"/' "$scene" > "$complete"
-"$fitcli" life --scene "$complete" --out-dir "$out/life-complete"
+"$fitcli" life --scene "$complete" --out-dir "$out/life-complete" --plot "$out/life-complete.png"
 
-echo "== done: cards, curves, plots, surface, load history and lives (figure: $out/life.png) in $out"
+echo "== done: cards, curves, plots, surface, load history and lives (figures: $out/life.png, $out/life-complete.png) in $out"
