@@ -345,9 +345,9 @@ Outcome run_probe(const Probe& pr) {
 void print_probe(const Probe& p, const Outcome& o) {
   const auto& r = o.life.run;
   const auto& m = o.life.report.modes;
-  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %d | %.2f s |\n", p.load.c_str(),
+  std::printf("| %s | %s | %s | %d | %d | %d | %d | %d | %d | %d | %.4g | %.4g | %s | %d | %.2f s |\n", p.load.c_str(),
               p.fidelity.c_str(), p.mesh.c_str(), r.elements, p.steps, r.increments, r.newton_iterations,
-              r.factorizations, r.cuts, m[0].life_cycles, m[1].life_cycles, o.life.report.governing.c_str(),
+              r.factorizations, r.final_state.assemblies, r.cuts, m[0].life_cycles, m[1].life_cycles, o.life.report.governing.c_str(),
               r.final_state.threads, o.wall_s);
 }
 
@@ -378,8 +378,8 @@ void print_cushion_points(const Probe& pr, const Outcome& o) {
 }
 
 const char* kProbeHeader =
-    "| drive | fidelity | mesh | elements | steps/cycle | increments | iterations | factorisations | cuts "
-    "| N1 | N2 | governing | threads | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    "| drive | fidelity | mesh | elements | steps/cycle | increments | iterations | factorisations | assemblies | cuts "
+    "| N1 | N2 | governing | threads | time |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 double effect_s(const scene::SceneResult& r, const std::string& name) {
   for (const auto& e : r.plan.effects)

@@ -440,7 +440,7 @@ double free_norm(const Eigen::VectorXd& r, const Dofs& d, bool free) {
 // to five times.
 struct NewtonOutcome {
   bool converged = false;
-  int iterations = 0, factorizations = 0, bad_element = -1;
+  int iterations = 0, factorizations = 0, assemblies = 0, bad_element = -1;
   double residual = std::numeric_limits<double>::infinity();
 };
 
@@ -480,8 +480,9 @@ class Newton {
     for (int i = 0; i < q_start.size(); ++i)
       if (d_.eq[i] >= 0) linear_start(i) = q_last_(i);
     q_ = q_last_;
+    const int assemblies = o.assemblies;
     o = iterate(lambda, linear_start, false);
-    o.iterations += spent, o.factorizations += factorizations;
+    o.iterations += spent, o.factorizations += factorizations, o.assemblies += assemblies;
     return o;
   }
 
@@ -507,7 +508,7 @@ class Newton {
       // re-evaluates them before q_ is accepted.)
       const bool states_elsewhere = restored;
       if (restored) o.bad_element = -1;
-      else o.bad_element = a_.run(q_, lambda, predictor ? &dq_p : nullptr, r_, fresh ? &K_ : nullptr, &coupling_);
+      else o.bad_element = assemble(q_, lambda, predictor ? &dq_p : nullptr, fresh, &o);
       restored = false;
       const double res = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
       o.residual = res;
@@ -531,7 +532,7 @@ class Newton {
       }
       if (worse && std::isfinite(res_prev) && res_prev <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0)) {
         q_ = q_prev;  // no step lowers the residual, which is below the loose tolerance: accept its start
-        o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);  // the trial states at q_prev
+        o.bad_element = assemble(q_, lambda, nullptr, false, &o);  // the trial states at q_prev
         o.residual = res_prev;
         o.converged = o.bad_element < 0;
         return o;
@@ -541,7 +542,7 @@ class Newton {
       // Giving up at this iterate (stalled, or no step to take): accepted at the loose tolerance.
       auto give_up = [&] {
         o.converged = !predictor && res <= knobs_.stall_tolerance * scale;
-        if (o.converged && states_elsewhere) o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);
+        if (o.converged && states_elsewhere) o.bad_element = assemble(q_, lambda, nullptr, false, &o);
         o.converged = o.converged && o.bad_element < 0;
         return o;
       };
@@ -584,10 +585,16 @@ class Newton {
     }
     // Out of assemblies: the last iterate, evaluated (the loop may end on a step not yet assembled,
     // and the committed states must be its own), accepted at the loose tolerance as a stalled one is.
-    o.bad_element = a_.run(q_, lambda, nullptr, r_, nullptr, nullptr);
+    o.bad_element = assemble(q_, lambda, nullptr, false, &o);
     o.residual = o.bad_element >= 0 ? inf : free_norm(r_, d_, true);
     o.converged = o.residual <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0);
     return o;
+  }
+
+  // The element loop at q: r_, and K_ when `tangent` (the predictor's coupling with `dq_p`).
+  int assemble(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, bool tangent, NewtonOutcome* o) {
+    ++o->assemblies;
+    return a_.run(q, lambda, dq_p, r_, tangent ? &K_ : nullptr, dq_p ? &coupling_ : nullptr);
   }
 
   // The unshifted tangent and the residual of the iterate a step is taken from (`valid`: they are
@@ -841,12 +848,14 @@ class StaticRun {
     if (retake && !last_.converged) {  // retaken on the plain linear predictor before a cut
       out_.newton_iterations += last_.iterations;
       out_.factorizations += last_.factorizations;
+      out_.assemblies += last_.assemblies;
       q_ = q_saved;
       newton_.set_rotation(Eigen::VectorXd());
       last_ = newton_.solve(target, q_start, false);
     }
     out_.newton_iterations += last_.iterations;
     out_.factorizations += last_.factorizations;
+    out_.assemblies += last_.assemblies;
     have_factor_ = have_factor_ || last_.factorizations > 0;
     if (!last_.converged) {
       q_ = q_saved;

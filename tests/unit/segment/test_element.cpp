@@ -51,7 +51,7 @@ MeshKnobs patch_mesh() {
   return k;
 }
 
-void expect_patch_exact(Integration integration, const MeshKnobs& k = patch_mesh()) {
+StaticSolution expect_patch_exact(Integration integration, const MeshKnobs& k = patch_mesh()) {
   const Mesh m = build_mesh(CogSection{}, k);
   Eigen::Matrix2d F;
   F << 1.06, 0.03, -0.02, 0.95;
@@ -80,11 +80,21 @@ void expect_patch_exact(Integration integration, const MeshKnobs& k = patch_mesh
     for (const auto& g : el) worst_s = std::max(worst_s, (g.cauchy_MPa - sigma).cwiseAbs().maxCoeff());
   EXPECT_LT(worst_u, 1e-12) << to_string(integration);
   EXPECT_LT(worst_s, 1e-10 * sigma.cwiseAbs().maxCoeff()) << to_string(integration);
+  return s;
 }
 
 }  // namespace
 
 TEST(SegmentElement, FiniteStrainPatchTestIsExactToRoundOff) { expect_patch_exact(Integration::reduced); }
+
+// The run's cost counters: where Newton converges without a rejected step, every iteration is one
+// element loop and each increment ends with the loop that shows it converged.
+TEST(SegmentElement, AnIncrementCostsOneElementLoopPerIterationAndOneToConverge) {
+  const StaticSolution s = expect_patch_exact(Integration::reduced);
+  EXPECT_EQ(s.cuts, 0);
+  EXPECT_EQ(s.factorizations, s.newton_iterations);
+  EXPECT_EQ(s.assemblies, s.newton_iterations + s.increments);
+}
 
 // The graded mesh (docs/segment.md §Mesh: narrow columns at the gap, rows growing from the
 // profile) keeps the element exact: grading only moves nodes, the edges stay straight or on the profile.

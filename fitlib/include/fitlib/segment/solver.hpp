@@ -163,6 +163,9 @@ struct StaticSolution {
   std::vector<double> state;       // all integration points' committed states, one block
   std::vector<std::size_t> state_offset;  // per element, into `state`
   int increments = 0, newton_iterations = 0, cuts = 0, factorizations = 0;
+  // Element loops (residual, with the tangent where one is factorised), failed attempts and line
+  // search included: the run's other cost beside the factorisations.
+  int assemblies = 0;
   double final_residual = 0.0;
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run; 2 when GMRES fell back to the LU)
