@@ -475,14 +475,14 @@ class Newton {
   NewtonOutcome solve(double lambda, const Eigen::VectorXd& q_start, bool extrapolated) {
     NewtonOutcome o = iterate(lambda, q_start, extrapolated);
     if (o.converged || !extrapolated) return o;
-    const int spent = o.iterations, factorizations = o.factorizations;
+    const NewtonOutcome extrapolation = o;
     Eigen::VectorXd linear_start = q_start;  // the extrapolation led astray: the linear predictor
     for (int i = 0; i < q_start.size(); ++i)
       if (d_.eq[i] >= 0) linear_start(i) = q_last_(i);
     q_ = q_last_;
-    const int assemblies = o.assemblies;
     o = iterate(lambda, linear_start, false);
-    o.iterations += spent, o.factorizations += factorizations, o.assemblies += assemblies;
+    o.iterations += extrapolation.iterations, o.factorizations += extrapolation.factorizations;
+    o.assemblies += extrapolation.assemblies;
     return o;
   }
 
@@ -558,7 +558,7 @@ class Newton {
       if (shifted_retake) retake_res = res;
       else if (res < retake_res) mu = 0.0;  // below the overshoot's start: Newton's basin, no shift
       shifted_retake = false;
-      keep(fresh && !predictor);  // before the shift: a retake from here restores it
+      keep(fresh && !predictor && knobs_.levenberg > 0.0);  // before the shift: a retake from here restores it
       if (fresh && mu > 0.0) shift_diagonal(mu);
       for (int i = 0; i < r_.size(); ++i)
         if (d_.eq[i] >= 0) rhs(d_.eq[i]) = -r_(i);
@@ -819,6 +819,13 @@ class StaticRun {
     return extra;
   }
 
+  // An attempt's work, added to the run's.
+  void tally(const NewtonOutcome& attempt) {
+    out_.newton_iterations += attempt.iterations;
+    out_.factorizations += attempt.factorizations;
+    out_.assemblies += attempt.assemblies;
+  }
+
   // One increment to `target`: true (states committed) when Newton converged, else q restored.
   bool increment(double target) {
     rotate_bases(target);
@@ -846,16 +853,12 @@ class StaticRun {
     newton_.set_rotation(std::move(rotation));
     last_ = newton_.solve(target, q_start, extrapolate);
     if (retake && !last_.converged) {  // retaken on the plain linear predictor before a cut
-      out_.newton_iterations += last_.iterations;
-      out_.factorizations += last_.factorizations;
-      out_.assemblies += last_.assemblies;
+      tally(last_);
       q_ = q_saved;
       newton_.set_rotation(Eigen::VectorXd());
       last_ = newton_.solve(target, q_start, false);
     }
-    out_.newton_iterations += last_.iterations;
-    out_.factorizations += last_.factorizations;
-    out_.assemblies += last_.assemblies;
+    tally(last_);
     have_factor_ = have_factor_ || last_.factorizations > 0;
     if (!last_.converged) {
       q_ = q_saved;
