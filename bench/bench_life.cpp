@@ -18,10 +18,10 @@
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
-// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: coarse
-// (the elastic level's life mesh, 1 cushion row) | life (the life's default at FIDELITY) | medium | fine;
+// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: life or
+// coarse (the life's default, both levels) | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
-// `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: fatigue::life_solver's at FIDELITY);
+// `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: the solver's);
 // `hold`: the cards' damage held at what their tables' tests reached (RoleMaterialOptions::damage_driver_hold);
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
@@ -121,11 +121,10 @@ scene::Scene life_scene(const std::string& load, const std::string& level) {
   return s;
 }
 
-// The segment meshes of the convergence table (docs/segment.md §Cost). "life": the life's default
-// at the probe's fidelity (fatigue::life_mesh(fidelity): the complete level's has 3 cushion rows).
-segment::MeshKnobs mesh_named(const std::string& name, const std::string& fidelity) {
-  if (name == "life") return fatigue::life_mesh(fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic);
-  segment::MeshKnobs m = fatigue::life_mesh();  // "coarse", the life's default (the elastic level's)
+// The segment meshes of the convergence table (docs/segment.md §Cost). "life" and "coarse": the
+// life's default (fatigue::life_mesh(), both levels).
+segment::MeshKnobs mesh_named(const std::string& name) {
+  segment::MeshKnobs m = fatigue::life_mesh();
   if (name == "medium") m.fine_size_mm = 0.6, m.coarse_size_mm = 2.0, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
   if (name == "fine") m.fine_size_mm = 0.4, m.coarse_size_mm = 1.5, m.central_pitches = 2, m.end_pitches = 2, m.cushion_rows = 2;
   if (name == "long") m.central_pitches = 2, m.end_pitches = 2;    // the life mesh's sizes, 54 mm long
@@ -266,7 +265,7 @@ Outcome run_probe(const Probe& pr) {
   setup.section = scene::cog_section(s);
   if (pr.fillet_mm >= 0.0) setup.section.root_fillet_mm = pr.fillet_mm;
   if (pr.tip_mm >= 0.0) setup.section.tip_radius_mm = pr.tip_mm;
-  setup.mesh = mesh_named(pr.mesh, pr.fidelity);
+  setup.mesh = mesh_named(pr.mesh);
   if (pr.rows > 0) setup.mesh.cushion_rows = pr.rows;
   if (pr.fine_mm > 0.0) setup.mesh.fine_size_mm = pr.fine_mm;
   if (pr.central > 0.0) setup.mesh.central_pitches = pr.central;
@@ -292,8 +291,6 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.reuse_tangent = pr.reuse;
   setup.solver.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
-  const segment::Fidelity fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
-  setup.solver = fatigue::life_solver(fidelity, setup.solver);
   if (pr.stall >= 0) setup.solver.stall_iterations = pr.stall;
   if (pr.growth >= 0) setup.solver.growth_iterations = pr.growth;
   setup.solver.max_cuts = pr.cuts;
@@ -314,7 +311,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
-  o.fidelity = fidelity;
+  o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
   o.temperature_C = s.temperature_C;
   o.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
   if (pr.lagged) o.damage_update = model::PointOptions::DamageUpdate::lagged;
@@ -480,8 +477,7 @@ void convergence(const std::string& fidelity) {
 }
 
 // The complete level's lives on the light drive against mesh and steps (docs/segment.md "Which
-// segment N1 should be read from"). Mid-cushion N2 needs >= 3 cushion rows (one row carries a spurious
-// pressure gradient at the driver's exit); N1 scatters with the element size over the cogs.
+// segment N1 should be read from"); points read as the mean over the elements that share them.
 void complete_convergence() {
   std::printf("\n## 5. Complete level, light drive: convergence in mesh and steps (2 cycles)\n\n%s", kProbeHeader);
   struct Row {
@@ -492,11 +488,9 @@ void complete_convergence() {
     double fine, coarse;
   };
   const Row rows[] = {
-      {"elastic level's life mesh (1 cushion row, graded)", "coarse", 60, 0, 0.0, 0.0},
-      {"the same, 120 steps", "coarse", 120, 0, 0.0, 0.0},
-      {"1 mm graded, 3 cushion rows", "coarse", 60, 3, 0.0, 0.0},
-      {"complete level's life mesh (3 rows, ungraded)", "life", 60, 0, 0.0, 0.0},
+      {"life mesh (1 cushion row, graded)", "life", 60, 0, 0.0, 0.0},
       {"the same, 120 steps", "life", 120, 0, 0.0, 0.0},
+      {"1 mm graded, 3 cushion rows", "life", 60, 3, 0.0, 0.0},
       {"0.5 mm graded, 1 cushion row", "coarse", 60, 0, 0.5, 0.0},
       {"0.6 mm graded, 3 rows", "coarse", 60, 3, 0.6, 0.0},
       {"0.35 mm graded, 3 rows", "coarse", 60, 3, 0.35, 0.0},

@@ -349,8 +349,8 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
     for (const char* part : {"(bottom): its damage is held at the drivers its tests reached (fit.data_window.damage_driver "
                              "0.0318, 0.0141, 0.0318)", "(cushion): its damage is held at the drivers its tests reached",
                              "damage_hold = false runs the law", "(the segment drove it at 0.",
-                             "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over "
-                             "the central pitch, three cushion rows, sheared end faces), with the cards' damage held",
+                             "note: the complete level on the life's default segment (192 elements, 27 mm long, graded "
+                             "at the central gap, one cushion row, sheared end faces), with the cards' damage held",
                              "segment FE material (the card's full model, damage held at its tests' drivers)"})
       EXPECT_NE(r.out.find(part), std::string::npos) << part << " in: " << r.out;
   }

@@ -299,12 +299,12 @@ TEST(SegmentLife, CompleteLevelOnTheLightDriveDiffersBetweenCycleOneAndTwoWhileT
   EXPECT_LT(de, 1e-6);
 }
 
-// The driver exit's peel transient (docs/segment.md): at the complete level, on the one-cushion-row
-// mesh (fatigue::life_mesh(), the elastic level's; card_run's default) the mid-cushion's separation
-// stress peaks for ~0.6 mm of path (4·10⁻⁵ s) while the turning friction passes x = 0, and N2
-// (exponent 11.69) follows whether an increment lands on its top. The load fronts' dense increments
-// make N2 independent of the step count; without them 120 steps miss the top. The peak itself is
-// the single row's spurious pressure (next test): the complete level's mesh has three rows.
+// The driver exit's peel (docs/segment.md "Stress at a point"): mid-cushion lies on a column edge
+// of the life mesh. Read from one element (extrapolated to its side) the complete level's
+// mid-cushion separation stress peaked for ~0.6 mm of path at the driver's exit, N2 followed whether
+// an increment landed on that top and the load fronts' dense increments were needed to catch it;
+// read as the mean of the two elements that share the edge, the top is gone and N2 does not depend
+// on the step count with or without the fronts.
 TEST(SegmentLife, CompleteLevelsSeparationLifeOnTheLightDriveDoesNotDependOnTheStepCount) {
   auto separation = [](int steps, double front_spacing_mm) {
     CardRun r = card_run("light", 1, segment::Fidelity::complete);
@@ -316,23 +316,21 @@ TEST(SegmentLife, CompleteLevelsSeparationLifeOnTheLightDriveDoesNotDependOnTheS
   std::printf("light drive, complete, 1 cycle: N2 60 steps %.4g (%d samples on the top), 120 steps %.4g (%d), "
               "120 steps without the fronts %.4g (%d)\n", n60.life_cycles, n60.dominant_peak_samples, n120.life_cycles,
               n120.dominant_peak_samples, bare.life_cycles, bare.dominant_peak_samples);
-  EXPECT_NEAR(std::log(n60.life_cycles / n120.life_cycles), 0.0, std::log(1.25));
-  EXPECT_FALSE(fatigue::peak_under_resolved(n60));
-  EXPECT_FALSE(fatigue::peak_under_resolved(n120));
-  EXPECT_GT(bare.life_cycles, 2.0 * n120.life_cycles);
-  EXPECT_TRUE(fatigue::peak_under_resolved(bare));
+  EXPECT_NEAR(std::log(n60.life_cycles / n120.life_cycles), 0.0, std::log(1.05));  // measured 0.4 %
+  EXPECT_NEAR(std::log(bare.life_cycles / n120.life_cycles), 0.0, std::log(1.05));  // 0.5 % (2.0x before)
+  for (const fatigue::ModeLife* m : {&n60, &n120, &bare}) EXPECT_FALSE(fatigue::peak_under_resolved(*m));
 }
 
-// One cushion row at the complete level (docs/segment.md "Which segment N1 should be read from"): the
-// glassy, near-incompressible cushion carries a pressure gradient through its single row of elements
-// at the driver's exit (−3.6 MPa at the cord line to +2.2 MPa at the cushion's bottom, 2 cycles), so
-// mid-cushion's radial stress σ11 turns tensile (+0.5 MPa, the "peel") and N2 is ~800× short; three
-// or more rows give σ11 ≈ −0.35 MPa there and N2 within 11 % of each other (1–0.25 mm elements, 3–5
-// rows, CPE8R and F-bar). The complete level's life mesh has three rows: N1 governs.
-TEST(SegmentLife, CompleteLevelsSeparationLifeNeedsMoreThanOneCushionRow) {
-  const auto run = [](const segment::MeshKnobs& mesh) {
+// One or three cushion rows at the complete level (docs/decisions.md "Segment: a point's stress is
+// averaged over the elements that share it"). Mid-cushion sits at the one row's mid-height on a
+// column edge: read from one element, its radial stress σ11 turned tensile at the driver's exit
+// (+0.48 MPa, the "peel"), N2 came out ~600× short and separation governed, so the complete level
+// had its own three-row mesh; averaged over the edge's two elements, one row reads σ11 ≤ 0.15 MPa,
+// N2 within 15 % of three rows', and radial crack governs on both.
+TEST(SegmentLife, CompleteLevelsSeparationLifeIsTheSameOnOneAndThreeCushionRows) {
+  const auto run = [](int cushion_rows) {
     CardRun r = card_run("light", 1, segment::Fidelity::complete);
-    r.setup.mesh = mesh;
+    r.setup.mesh.cushion_rows = cushion_rows;
     return card_life(r);
   };
   const auto peak_s11 = [](const fatigue::SegmentLife& l) {  // mid-cushion's largest radial stress
@@ -340,28 +338,29 @@ TEST(SegmentLife, CompleteLevelsSeparationLifeNeedsMoreThanOneCushionRow) {
     for (const auto& q : l.run.points[1].samples) top = std::max(top, q.s11_MPa);
     return top;
   };
-  const fatigue::SegmentLife one = run(fatigue::life_mesh()), three = run(fatigue::complete_life_mesh());
+  const fatigue::SegmentLife one = run(1), three = run(3);
   ASSERT_EQ(one.run.points[1].point.name, "mid_cushion");
-  ASSERT_EQ(three.run.elements, 180);
+  ASSERT_EQ(one.run.elements, 192);
   const double n1[2] = {one.report.modes[0].life_cycles, three.report.modes[0].life_cycles};
   const double n2[2] = {one.report.modes[1].life_cycles, three.report.modes[1].life_cycles};
   std::printf("light drive, complete, 1 cycle: one cushion row N1 %.4g N2 %.4g (mid-cushion s11 up to %.3f MPa, %s); "
               "three rows N1 %.4g N2 %.4g (%.3f MPa, %s)\n", n1[0], n2[0], peak_s11(one), one.report.governing.c_str(),
               n1[1], n2[1], peak_s11(three), three.report.governing.c_str());
-  EXPECT_GT(peak_s11(one), 0.3);  // measured 0.481 MPa
-  EXPECT_LT(peak_s11(three), 0.2);  // 0.139 MPa, away from the driver's exit
-  EXPECT_GT(n2[1], 100.0 * n2[0]);  // 6.54e12 against 1.04e10
-  EXPECT_EQ(one.report.governing, "separation");
-  EXPECT_EQ(three.report.governing, "radial_crack");
-  EXPECT_GT(n2[1], 10.0 * n1[1]);  // N1 4.26e10 (the one-row graded mesh's 7.40e10: N1 is not settled)
+  for (const fatigue::SegmentLife* l : {&one, &three}) {
+    EXPECT_LT(peak_s11(*l), 0.2);
+    EXPECT_EQ(l->report.governing, "radial_crack");
+    EXPECT_GT(l->report.modes[1].life_cycles, 10.0 * l->report.modes[0].life_cycles);
+  }
+  EXPECT_NEAR(std::log(n2[0] / n2[1]), 0.0, std::log(1.15));
+  EXPECT_NEAR(std::log(n1[0] / n1[1]), 0.0, std::log(1.15));
 }
 
 // The gap bottom's exit hump (docs/segment.md "The gap bottom's exit peak"): at the complete level
 // N1 is set by a ~2 mm wide tension hump while the driven pulley's exit passes under the central
 // gap's neighbouring cog, just beyond the load fronts' dense increments. Body forces averaged over
-// each element make the hump smooth (not switched an element at a time) and the band of 0.5 mm
-// increments beyond the fronts samples it: N1 does not depend on the step count. Without the band
-// 60 steps read the hump's flanks only (1.8 mm apart there).
+// each element make the hump smooth; read at the gap bottom as the mean of the elements that share
+// it, N1 depends neither on the step count nor on the band of 0.5 mm increments beyond the fronts
+// (which 60 steps needed when one element's corner was read: 1.29x without it).
 TEST(SegmentLife, CompleteLevelsGapBottomLifeOnTheLightDriveDoesNotDependOnTheStepCount) {
   auto radial_crack = [](int steps, bool banded) {
     CardRun r = card_run("light", 1, segment::Fidelity::complete);
@@ -374,32 +373,30 @@ TEST(SegmentLife, CompleteLevelsGapBottomLifeOnTheLightDriveDoesNotDependOnTheSt
               "60 steps without the band %.4g (%d)\n", n60.life_cycles,
               n60.dominant_peak_samples, n120.life_cycles, n120.dominant_peak_samples, bare.life_cycles,
               bare.dominant_peak_samples);
-  EXPECT_NEAR(std::log(n60.life_cycles / n120.life_cycles), 0.0, std::log(1.10));
-  EXPECT_GE(n60.dominant_peak_samples, 3);
-  EXPECT_GE(n120.dominant_peak_samples, 3);
-  EXPECT_GT(bare.life_cycles, 1.2 * n120.life_cycles);  // measured 1.29
+  EXPECT_NEAR(std::log(n60.life_cycles / n120.life_cycles), 0.0, std::log(1.10));  // measured 3.9 %
+  EXPECT_NEAR(std::log(bare.life_cycles / n120.life_cycles), 0.0, std::log(1.10));  // 5.2 %
 }
 
-// The complete level's step control (fatigue::life_solver; docs/decisions.md "Segment life: the
-// complete level's step control"): a stall after 6 assemblies and cut steps grown back only after
-// easy increments take fewer Newton iterations on the light drive (one cycle: 1555 against 1651;
-// two: 2259 against 2603) and leave its lives as they are; the elastic level keeps the defaults.
-TEST(SegmentLife, CompleteLevelsStepControlTakesFewerIterationsForTheSameLives) {
-  const segment::SolverKnobs defaults, elastic = fatigue::life_solver(segment::Fidelity::elastic);
-  EXPECT_EQ(elastic.stall_iterations, defaults.stall_iterations);
-  EXPECT_EQ(elastic.growth_iterations, 0);
+// The Newton step control's knobs (SolverKnobs::stall_iterations, growth_iterations) change the
+// work, not the answer: a stall after 6 assemblies and cut steps grown back only after increments
+// that converged within 5 leave the complete level's lives within 2 % on the light drive. (They were
+// the complete level's default on the ungraded three-row mesh, −13 % iterations there; on the life
+// mesh they save nothing: 1505 against 1493 iterations here, docs/decisions.md "Segment: a point's
+// stress is averaged over the elements that share it".)
+TEST(SegmentLife, StepControlKnobsChangeTheWorkNotTheLives) {
   const auto run = [](const segment::SolverKnobs& knobs) {
     CardRun r = card_run("light", 1, segment::Fidelity::complete);
-    r.setup.mesh = fatigue::life_mesh(segment::Fidelity::complete);
     r.setup.solver = knobs;
     return card_life(r);
   };
-  const fatigue::SegmentLife before = run(defaults), after = run(fatigue::life_solver(segment::Fidelity::complete));
-  std::printf("light, complete, 1 cycle: %d -> %d Newton iterations, %d -> %d cuts\n", before.run.newton_iterations,
-              after.run.newton_iterations, before.run.cuts, after.run.cuts);
-  EXPECT_LT(after.run.newton_iterations, 0.97 * before.run.newton_iterations);
+  segment::SolverKnobs strict;
+  strict.stall_iterations = 6, strict.growth_iterations = 5;
+  const fatigue::SegmentLife defaults = run({}), controlled = run(strict);
+  std::printf("light, complete, 1 cycle: %d / %d Newton iterations, %d / %d cuts\n", defaults.run.newton_iterations,
+              controlled.run.newton_iterations, defaults.run.cuts, controlled.run.cuts);
+  EXPECT_NE(controlled.run.newton_iterations, defaults.run.newton_iterations);
   for (int k = 0; k < 2; ++k)
-    EXPECT_NEAR(after.report.modes[k].life_cycles / before.report.modes[k].life_cycles, 1.0, 0.01) << "mode " << k;
+    EXPECT_NEAR(controlled.report.modes[k].life_cycles / defaults.report.modes[k].life_cycles, 1.0, 0.02) << "mode " << k;
 }
 
 // The complete level on the medium drive, one cycle: the thesis cards fail 0.81 L round the belt

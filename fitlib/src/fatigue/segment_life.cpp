@@ -19,27 +19,6 @@ segment::MeshKnobs life_mesh() {
   return m;
 }
 
-segment::MeshKnobs complete_life_mesh() {
-  segment::MeshKnobs m = life_mesh();
-  // Three cushion rows put mid-cushion (N2's point) at the middle row's centre; one row carries a
-  // spurious pressure gradient at the complete level (docs/decisions.md "Segment life: the complete
-  // level's mesh has three cushion rows"). Columns ungraded (rows still thinning by row_growth
-  // towards the land): the graded columns cost 1.6x with three rows and do not settle the complete
-  // level's N1 either.
-  m.cushion_rows = 3;
-  m.gap_size_mm = 0.0;
-  return m;
-}
-
-segment::MeshKnobs life_mesh(segment::Fidelity fidelity) {
-  return fidelity == segment::Fidelity::complete ? complete_life_mesh() : life_mesh();
-}
-
-segment::SolverKnobs life_solver(segment::Fidelity fidelity, segment::SolverKnobs knobs) {
-  if (fidelity == segment::Fidelity::complete) knobs.stall_iterations = 6, knobs.growth_iterations = 5;
-  return knobs;
-}
-
 segment::CycleKnobs life_cycle() {
   segment::CycleKnobs c;
   c.ends = segment::EndCondition::sheared;

@@ -259,9 +259,8 @@ void segment_stresses(const Scene& s, SceneResult& r) {
   in_scene(s, [&] {
     fatigue::SegmentLifeSetup setup;
     setup.section = cog_section(s);
-    const segment::Fidelity fidelity = segment::fidelity_from_string(r.plan.life->fidelity);
-    setup.mesh = s.segment ? s.segment->life_mesh_at(fidelity) : fatigue::life_mesh(fidelity);
-    setup.solver = fatigue::life_solver(fidelity, s.segment ? s.segment->setup.solver : segment::SolverKnobs{});
+    setup.mesh = s.segment ? s.segment->life_mesh : fatigue::life_mesh();
+    setup.solver = s.segment ? s.segment->setup.solver : segment::SolverKnobs{};
     setup.solver.threads = segment_threads(s);
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;

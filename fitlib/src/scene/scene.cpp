@@ -285,7 +285,6 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   parse_segment_solver(r, g);
   parse_segment_mesh(r, g.setup.mesh);
   parse_segment_mesh(r, g.life_mesh);  // `fitcli life`: the keys given change the life's mesh, the rest stay
-  parse_segment_mesh(r, g.complete_life_mesh);  // likewise the complete level's
   g.life_mesh_changed = std::any_of(kSegmentMeshKeys.begin(), kSegmentMeshKeys.end(), [&](const std::string& k) { return r.has(k); });
   if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, scene, g, source);
   g.frequency_Hz = r.number("frequency_Hz", 0.0, 1e9, true);

@@ -205,28 +205,24 @@ std::string life_text(const Scene& s, const SceneResult& r) {
     const bool default_mesh = !s.segment || !s.segment->life_mesh_changed;
     if (default_mesh && l.plan.fidelity == "complete" && l.damage_held)
       // docs/segment.md "Damage held beyond the tested amplitudes"
-      o << "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over the central "
-           "pitch, three cushion rows, sheared end faces), with the cards' damage held at their tests' drivers, "
-           "gives on the light and medium drives N2 within 5 % of meshes with 0.25 to 0.6 mm elements and N1 0.28 "
-           "to 0.37 x theirs (on the safe side), which agree within 16 % of each other ([segment] fine_size_mm = 0.6 "
-           "and gap_size_mm = 0.3 read N1 there at about 3 x the time; 0.25 mm elements fold on the medium drive). "
-           "One cushion row ([segment] cushion_rows = 1) makes the mid-cushion N2 far too short (docs/segment.md "
+      o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
+           "central gap, one cushion row, sheared end faces), with the cards' damage held at their tests' drivers, "
+           "gives on the light, medium and heavy drives N1 0.76 to 1.02 x and N2 0.92 to 1.02 x those of 0.35 to "
+           "0.6 mm elements with three cushion rows (N1 shorter, on the safe side, where it differs by more than 2 %; [segment] fine_size_mm = "
+           "0.6 reads them at about 3 x the time; 0.35 mm elements fold on the heavy drive) (docs/segment.md "
            "\"Damage held beyond the tested amplitudes\")\n";
     else if (default_mesh && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
-      o << "note: the complete level's default segment (180 elements, 27 mm long, 1 mm elements over the central "
-           "pitch, three cushion rows, sheared end faces) gives on the light drive N2 within 12 % of meshes with "
-           "0.25 to 0.6 mm elements and 3 to 5 cushion rows, and N1 61 % shorter than 0.25 mm elements' (on the "
-           "safe side of it; the N1 of 0.25 to 0.6 mm elements scatter from 0.32 to 1.32 x the 0.25 mm value: "
-           "the complete level's N1 is not settled by the element size). One cushion row ([segment] "
-           "cushion_rows = 1) makes the mid-cushion N2 about 800 x too short (a spurious pressure through the "
-           "row at the driver's exit) (docs/segment.md \"Which segment N1 should be read from\")\n";
+      o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
+           "central gap, one cushion row, sheared end faces) gives on the light drive N1 0.89 x and N2 0.96 x "
+           "those of 0.35 mm elements with three cushion rows (0.6 mm: 0.99 and 0.94 x) (docs/segment.md "
+           "\"Which segment N1 should be read from\")\n";
     else if (default_mesh)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, one cushion "
            "row, sheared end faces) gives, against an 81 mm segment on the light, medium and heavy reference "
            "drives, the same governing mode and, with the thesis cards, N2 within 13 % (elastic level). Against "
-           "the same segment with 0.35 mm elements and three cushion rows its N1 is 9 to 32 % shorter (on the "
-           "safe side) and its N2 within 9 %. [segment] fine_size_mm = 0.5 selects 0.5 mm elements (N1 within "
-           "7 % of 0.35 mm's) at about 3.5 x the time (docs/segment.md \"Which segment N1 should be read from\")\n";
+           "the same segment with 0.35 mm elements and three cushion rows its N1 is 6 to 11 % shorter (on the "
+           "safe side) and its N2 within 7 %; [segment] fine_size_mm = 0.35 and cushion_rows = 3 read them at "
+           "about 11 x the time (docs/segment.md \"Stress at a point\")\n";
   }
   for (const std::string& w : r.warnings) o << "WARNING: " << w << "\n";
   for (const FieldFile& f : l.fields)

@@ -971,34 +971,32 @@ SectionForce section_force(const StaticProblem& p, const StaticSolution& s, doub
   return out;
 }
 
-PointLocation locate(const Mesh& m, const Eigen::Vector2d& P) {
+namespace {
+
+// P's isoparametric coordinates in element e by Newton on its reference map; false if P is not in it.
+bool inverse_map(const Mesh& m, int e, const Eigen::Vector2d& P, Eigen::Vector2d& xi) {
   const int npe = m.nodes_per_element;
   double N[8], dxi[8], deta[8];
-  for (int e = 0; e < m.element_count(); ++e) {
-    Eigen::Vector2d lo = m.X[m.elements[e][0]], hi = lo;
-    for (int a = 0; a < npe; ++a) lo = lo.cwiseMin(m.X[m.elements[e][a]]), hi = hi.cwiseMax(m.X[m.elements[e][a]]);
-    const double pad = 1e-9 * (1.0 + (hi - lo).norm());
-    if ((P.array() < lo.array() - pad).any() || (P.array() > hi.array() + pad).any()) continue;
-    Eigen::Vector2d xi = Eigen::Vector2d::Zero();  // inverse isoparametric map by Newton
-    for (int it = 0; it < 30; ++it) {
-      detail::shape(npe, xi.x(), xi.y(), N, dxi, deta);
-      Eigen::Vector2d x = Eigen::Vector2d::Zero();
-      Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
-      for (int a = 0; a < npe; ++a) {
-        const Eigen::Vector2d& Xa = m.X[m.elements[e][a]];
-        x += N[a] * Xa;
-        J.col(0) += dxi[a] * Xa, J.col(1) += deta[a] * Xa;
-      }
-      xi += J.inverse() * (P - x);
+  Eigen::Vector2d lo = m.X[m.elements[e][0]], hi = lo;
+  for (int a = 0; a < npe; ++a) lo = lo.cwiseMin(m.X[m.elements[e][a]]), hi = hi.cwiseMax(m.X[m.elements[e][a]]);
+  const double pad = 1e-9 * (1.0 + (hi - lo).norm());
+  if ((P.array() < lo.array() - pad).any() || (P.array() > hi.array() + pad).any()) return false;
+  xi.setZero();
+  for (int it = 0; it < 30; ++it) {
+    detail::shape(npe, xi.x(), xi.y(), N, dxi, deta);
+    Eigen::Vector2d x = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+    for (int a = 0; a < npe; ++a) {
+      const Eigen::Vector2d& Xa = m.X[m.elements[e][a]];
+      x += N[a] * Xa;
+      J.col(0) += dxi[a] * Xa, J.col(1) += deta[a] * Xa;
     }
-    if (xi.allFinite() && xi.cwiseAbs().maxCoeff() <= 1.0 + 1e-7) return {e, xi};
+    xi += J.inverse() * (P - x);
   }
-  std::ostringstream msg;
-  msg << "point (" << P.x() << ", " << P.y() << ") mm is outside the segment mesh";
-  throw core::InputError(msg.str());
+  return xi.allFinite() && xi.cwiseAbs().maxCoeff() <= 1.0 + 1e-7;
 }
 
-IntegrationPointStress interpolate(const StaticSolution& s, const PointLocation& at, int n, const Eigen::Vector2d& X) {
+IntegrationPointStress interpolate_in(const StaticSolution& s, const ElementPoint& at, int n, const Eigen::Vector2d& X) {
   const std::vector<double> g = detail::gauss_abscissae(n);
   auto lagrange = [&](int i, double t) {
     double v = 1.0;
@@ -1014,6 +1012,34 @@ IntegrationPointStress interpolate(const StaticSolution& s, const PointLocation&
       out.cauchy_MPa += w * q.cauchy_MPa, out.sigma33_MPa += w * q.sigma33_MPa;
       out.piola_MPa += w * q.piola_MPa, out.F += w * q.F;
     }
+  return out;
+}
+
+}  // namespace
+
+PointLocation locate(const Mesh& m, const Eigen::Vector2d& P) {
+  PointLocation out;
+  Eigen::Vector2d xi;
+  for (int e = 0; e < m.element_count(); ++e) {
+    if (!inverse_map(m, e, P, xi)) continue;
+    if (out.element < 0) out.element = e, out.xi = xi;
+    else if (m.roles[e] == m.roles[out.element]) out.shared.push_back({e, xi});
+  }
+  if (out.element >= 0) return out;
+  std::ostringstream msg;
+  msg << "point (" << P.x() << ", " << P.y() << ") mm is outside the segment mesh";
+  throw core::InputError(msg.str());
+}
+
+IntegrationPointStress interpolate(const StaticSolution& s, const PointLocation& at, int n, const Eigen::Vector2d& X) {
+  IntegrationPointStress out = interpolate_in(s, {at.element, at.xi}, n, X);
+  for (const ElementPoint& other : at.shared) {
+    const IntegrationPointStress q = interpolate_in(s, other, n, X);
+    out.cauchy_MPa += q.cauchy_MPa, out.sigma33_MPa += q.sigma33_MPa;
+    out.piola_MPa += q.piola_MPa, out.F += q.F;
+  }
+  const double w = 1.0 / (1.0 + static_cast<double>(at.shared.size()));
+  out.cauchy_MPa *= w, out.sigma33_MPa *= w, out.piola_MPa *= w, out.F *= w;
   return out;
 }
 

@@ -1,6 +1,5 @@
-// The life's default segment meshes (fatigue::life_mesh(), docs/segment.md §Mesh): graded towards the
-// central gap bottom where N1 is read; the complete level's (fatigue::complete_life_mesh()) with three
-// cushion rows.
+// The life's default segment mesh (fatigue::life_mesh(), docs/segment.md §Mesh), both levels: graded
+// towards the central gap bottom where N1 is read; a point's stress read over the elements sharing it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,33 +24,45 @@ TEST(LifeMesh, HasItsElementCountAndWellShapedElements) {
     for (int a : e.nodes) EXPECT_NEAR(m.X[a].y(), segment::CogSection{}.bottom_y_mm(m.X[a].x()), 1e-12);
 }
 
-// The complete level's mesh (docs/decisions.md "Segment life: the complete level's mesh has three
-// cushion rows"): the life mesh's sizes, three equal cushion rows, no column grading, 180 elements;
-// mid-cushion (N2's point, 0.25 mm below the cord line) at the middle cushion row's mid-height, not on
-// a row edge (where the reading extrapolates one element's stress: 2, 4 or 6 rows gave N2 5.5e12,
-// 3.0e11, 1.3e10 there against 5.7e12 with 3 and 5 rows). Measured: min det J / mean 0.779, aspect ratio 13.5 (the ends' 2.5 mm columns
-// over the 0.167 mm cushion rows).
-TEST(LifeMesh, CompleteLevelsMeshHasThreeCushionRowsWithMidCushionInsideTheMiddleOne) {
-  const segment::MeshKnobs k = complete_life_mesh();
-  EXPECT_EQ(k.cushion_rows, 3);
-  EXPECT_EQ(k.gap_size_mm, 0.0);
-  EXPECT_EQ(k.fine_size_mm, life_mesh().fine_size_mm);
-  EXPECT_EQ(k.coarse_size_mm, life_mesh().coarse_size_mm);
-  EXPECT_EQ(life_mesh(segment::Fidelity::complete).cushion_rows, 3);
-  EXPECT_EQ(life_mesh(segment::Fidelity::elastic).cushion_rows, life_mesh().cushion_rows);
+// A point's stress on the life mesh (docs/decisions.md "Segment: a point's stress is averaged over
+// the elements that share it"): N1's gap bottom and N2's mid-cushion lie on column edges, and a
+// point on the cushion/bottom interface on a corner of four elements; the reading is the mean over
+// the elements of the first one's role that hold the point, an element's own interior point its own.
+// Each element's integration points carry σ = e·I (e its index), so the mean is known.
+TEST(LifeMesh, APointsStressIsTheMeanOverTheElementsOfItsRoleThatShareIt) {
   const segment::CogSection section;
-  const segment::Mesh m = segment::build_mesh(section, k);
-  EXPECT_EQ(m.element_count(), 180);
-  const segment::MeshQuality q = segment::mesh_quality(m);
-  EXPECT_GT(q.min_jacobian_ratio, 0.7);
-  EXPECT_LT(q.max_aspect_ratio, 14.0);
-  const segment::PointLocation at = segment::locate(m, Eigen::Vector2d(0.0, -0.5 * section.cushion_mm));
-  EXPECT_EQ(m.roles[at.element], segment::Role::cushion);
-  double top = -1e300, bottom = 1e300;  // its row: the middle one of three, mid-cushion at its mid-height
-  for (int a = 0; a < m.nodes_per_element; ++a)
-    top = std::max(top, m.X[m.elements[at.element][a]].y()), bottom = std::min(bottom, m.X[m.elements[at.element][a]].y());
-  EXPECT_NEAR(top, -section.cushion_mm / 3.0, 1e-12);
-  EXPECT_NEAR(bottom, -2.0 * section.cushion_mm / 3.0, 1e-12);
+  const segment::Mesh m = segment::build_mesh(section, life_mesh());
+  segment::StaticSolution s;
+  for (int e = 0; e < m.element_count(); ++e) {
+    segment::IntegrationPointStress q;
+    q.cauchy_MPa = static_cast<double>(e) * Eigen::Matrix2d::Identity();
+    s.points.emplace_back(4, q);  // 2 × 2 points (CPE8R)
+  }
+  const auto mean_of = [&](const segment::PointLocation& at) {
+    double sum = at.element;
+    for (const segment::ElementPoint& p : at.shared) sum += p.element;
+    return sum / (1.0 + static_cast<double>(at.shared.size()));
+  };
+  struct Case {
+    Eigen::Vector2d X;
+    std::size_t shared;
+  };
+  const Case cases[] = {{{0.0, section.land_y_mm()}, 1},      // gap bottom: two columns at the surface
+                        {{0.0, -0.5 * section.cushion_mm}, 1},  // mid-cushion: one row, a column edge
+                        {{0.0, -section.cushion_mm}, 1},        // the interface: two of the four elements
+                        {{0.0, -0.1}, 1}};
+  for (const Case& c : cases) {
+    const segment::PointLocation at = segment::locate(m, c.X);
+    ASSERT_EQ(at.shared.size(), c.shared) << c.X.transpose();
+    for (const segment::ElementPoint& p : at.shared) EXPECT_EQ(m.roles[p.element], m.roles[at.element]);
+    const segment::IntegrationPointStress q = segment::interpolate(s, at, 2, c.X);
+    EXPECT_NEAR(q.cauchy_MPa(0, 0), mean_of(at), 1e-12) << c.X.transpose();
+    EXPECT_NEAR(q.cauchy_MPa(0, 1), 0.0, 1e-12);
+  }
+  // Inside one element: its own stress.
+  const segment::PointLocation inside = segment::locate(m, Eigen::Vector2d(0.2, -0.2));
+  EXPECT_TRUE(inside.shared.empty());
+  EXPECT_NEAR(segment::interpolate(s, inside, 2, Eigen::Vector2d(0.2, -0.2)).cauchy_MPa(1, 1), inside.element, 1e-12);
 }
 
 }  // namespace fitlib::fatigue

@@ -224,11 +224,11 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(lives[1][k] / lives[0][k], 1.0, 1e-6) << "mode " << k;
 }
 
-// The complete level runs its own default mesh (fatigue::complete_life_mesh(): three cushion rows,
-// 180 elements; docs/decisions.md "Segment life: the complete level's mesh has three cushion rows")
-// and the table's note says what that mesh is accurate to. Light drive, one cycle: N2 ≈ 150 × N1,
-// radial crack governs (one cushion row's spurious peel made separation govern).
-TEST(SceneLife, CompleteLevelRunsItsOwnMeshAndItsNoteSaysHowAccurateItIs) {
+// The complete level runs the life's mesh (fatigue::life_mesh(), 192 elements, one cushion row,
+// graded; docs/decisions.md "Segment: a point's stress is averaged over the elements that share it")
+// and the table's note says what that mesh is accurate to at the complete level. Light drive, one
+// cycle: radial crack governs, N2 far beyond N1.
+TEST(SceneLife, CompleteLevelRunsTheLifesMeshAndItsNoteSaysHowAccurateItIs) {
   auto s = with_cards_elastic("light");
   s.life->fidelity = "complete";
   s.life->cycles = 1;
@@ -238,7 +238,7 @@ TEST(SceneLife, CompleteLevelRunsItsOwnMeshAndItsNoteSaysHowAccurateItIs) {
   EXPECT_EQ(r.life->report.governing, "radial_crack");
   EXPECT_GT(r.life->report.modes[1].life_cycles, 30.0 * r.life->report.modes[0].life_cycles);
   const std::string t = scene::life_text(s, r);
-  EXPECT_NE(t.find("note: the complete level's default segment (180 elements, 27 mm long"), std::string::npos) << t;
+  EXPECT_NE(t.find("note: the complete level on the life's default segment (192 elements, 27 mm long"), std::string::npos) << t;
   EXPECT_EQ(t.find("note: the life's default segment (192 elements"), std::string::npos) << t;
 }
 
@@ -323,8 +323,7 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
 // its check, put into a life result, makes the table warn and life.json say within_bounds false.
 // The same run at the default tolerance stays within the bounds and the table does not warn.
 // A [segment] table in a life scene changes the life's mesh only by the mesh keys it gives (before,
-// it replaced the whole life mesh by the static case's defaults: `threads = 1` alone moved the life);
-// so for the complete level's mesh (three cushion rows, ungraded).
+// it replaced the whole life mesh by the static case's defaults: `threads = 1` alone moved the life).
 TEST(SceneLife, SegmentMeshKeysChangeOnlyThemselvesInTheLifesMesh) {
   const std::string base = core::read_file(kDrives + "ref-0500-medium.toml");
   const segment::MeshKnobs life = fatigue::life_mesh();
@@ -341,20 +340,6 @@ TEST(SceneLife, SegmentMeshKeysChangeOnlyThemselvesInTheLifesMesh) {
   EXPECT_EQ(s.segment->life_mesh.row_growth, life.row_growth);
   EXPECT_EQ(s.segment->setup.mesh.fine_size_mm, 0.5);  // `fitcli segment` keeps its own defaults
   EXPECT_EQ(s.segment->setup.mesh.coarse_size_mm, segment::MeshKnobs{}.coarse_size_mm);
-  // The complete level's mesh likewise: the key given, its own three cushion rows and no grading kept.
-  const segment::MeshKnobs complete = fatigue::complete_life_mesh();
-  const segment::MeshKnobs& c = s.segment->life_mesh_at(segment::Fidelity::complete);
-  EXPECT_EQ(c.fine_size_mm, 0.5);
-  EXPECT_EQ(c.cushion_rows, 3);
-  EXPECT_EQ(c.gap_size_mm, complete.gap_size_mm);
-  EXPECT_EQ(s.segment->life_mesh_at(segment::Fidelity::elastic).cushion_rows, life.cushion_rows);
-  s = scene::parse_scene(base + "\n[segment]\ncushion_rows = 1\n", "x.toml");  // a key given changes both
-  EXPECT_EQ(s.segment->life_mesh_at(segment::Fidelity::complete).cushion_rows, 1);
-  EXPECT_EQ(s.segment->life_mesh_at(segment::Fidelity::complete).gap_size_mm, 0.0);
-  EXPECT_EQ(s.segment->life_mesh_at(segment::Fidelity::elastic).gap_size_mm, life.gap_size_mm);
-  s = scene::parse_scene(base + "\n[segment]\nthreads = 1\n", "x.toml");  // no mesh key: each level's default
-  EXPECT_EQ(segment::build_mesh(scene::cog_section(s), s.segment->life_mesh_at(segment::Fidelity::complete)).element_count(),
-            180);
 }
 
 TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {

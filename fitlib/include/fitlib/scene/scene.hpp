@@ -71,15 +71,10 @@ struct SegmentSpec {
   // The static case's load frequency (Hz) for the cards' elastic equivalents ([belt.materials]);
   // unset: the drive's, one load cycle per belt revolution (scene::run_segment_case).
   std::optional<double> frequency_Hz;
-  // The life's meshes per fidelity (fatigue::life_mesh(), fatigue::complete_life_mesh()), each
-  // with the [segment] mesh keys the scene gives: a key given changes that knob in both, the others
-  // keep each level's default.
+  // The life's mesh (fatigue::life_mesh()) with the [segment] mesh keys the scene gives: a key
+  // given changes that knob, the others keep the default.
   segment::MeshKnobs life_mesh = fatigue::life_mesh();
-  segment::MeshKnobs complete_life_mesh = fatigue::complete_life_mesh();
   bool life_mesh_changed = false;  // a mesh key was given
-  const segment::MeshKnobs& life_mesh_at(segment::Fidelity fidelity) const {
-    return fidelity == segment::Fidelity::complete ? complete_life_mesh : life_mesh;
-  }
 };
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").

@@ -193,17 +193,26 @@ struct SectionForce {
 SectionForce section_force(const StaticProblem& problem, const StaticSolution& solution, double x_cut_mm,
                            const Eigen::Vector2d& about_mm, Integration integration);
 
-// A reference point's element and isoparametric coordinates (ξ, η) ∈ [−1, 1]². Throws
-// core::InputError if the point is outside the mesh.
+// A reference point's element and isoparametric coordinates (ξ, η) ∈ [−1, 1]², and the other
+// elements of the same role that hold it (a node or side they share). Throws core::InputError if
+// the point is outside the mesh.
+struct ElementPoint {
+  int element = -1;
+  Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+};
 struct PointLocation {
   int element = -1;
   Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+  std::vector<ElementPoint> shared;
 };
 PointLocation locate(const Mesh& mesh, const Eigen::Vector2d& X_mm);
 
 // The integration points' Cauchy stress, σ33, first Piola stress and F of the located element,
 // interpolated to the point by Lagrange polynomials through the Gauss points (extrapolated beyond
-// the outermost ones, e.g. to a surface); X_mm is the point's reference position.
+// the outermost ones, e.g. to a surface), averaged over the elements that share the point (as FE
+// post-processors average nodal stresses: one element's extrapolation to its corner carries the
+// gradient's one-sided error, docs/segment.md "Stress at a point"); X_mm is the point's reference
+// position.
 IntegrationPointStress interpolate(const StaticSolution& solution, const PointLocation& at, int gauss_order_1d,
                                    const Eigen::Vector2d& X_mm);
 
