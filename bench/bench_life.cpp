@@ -38,8 +38,7 @@
 // x = ±X every 0.5 mm of depth (0.25 … 6.25 mm; these points count in the lives); `csv=PATH`: the
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
-// planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `fronts=MM`: the load
-// fronts' increment spacing (0 = off); `bodyds=MM`: the body forces' sampling over each element
+// planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `bodyds=MM`: the body forces' sampling over each element
 // (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
 // (implicit dynamics, docs/segment.md "Inertia"); `flank=K`: the flank foundation's stiffness
 // (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
@@ -160,7 +159,6 @@ struct Probe {
   int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
   int krylov = -1;                              // krylov=N: SolverKnobs::krylov_iterations (< 0: the default)
   double krylov_tolerance = -1.0;               // ktol=X: SolverKnobs::krylov_tolerance (< 0: the default)
-  double fronts_mm = -1.0;                      // fronts=MM: CycleKnobs::front_spacing_mm (< 0: the default)
   double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
   bool inertia = false;                         // SolverKnobs::inertia
   bool hold = false;                            // hold: the cards' damage held at their tables' tests (windowed_card)
@@ -307,7 +305,6 @@ Outcome run_probe(const Probe& pr) {
   if (pr.flank >= 0.0) setup.cycle.flank_stiffness_N_mm4 = pr.flank;
   if (pr.tflank >= 0.0) setup.cycle.flank_stick_N_mm4 = pr.tflank;
   if (pr.vflank >= 0.0) setup.cycle.flank_slide_floor_mm_s = pr.vflank;
-  if (pr.fronts_mm >= 0.0) setup.cycle.front_spacing_mm = pr.fronts_mm;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
@@ -488,13 +485,13 @@ void complete_convergence() {
     double fine, coarse;
   };
   const Row rows[] = {
-      {"life mesh (1 cushion row, graded)", "life", 60, 0, 0.0, 0.0},
-      {"the same, 120 steps", "life", 120, 0, 0.0, 0.0},
-      {"1 mm graded, 3 cushion rows", "life", 60, 3, 0.0, 0.0},
-      {"0.5 mm graded, 1 cushion row", "coarse", 60, 0, 0.5, 0.0},
-      {"0.6 mm graded, 3 rows", "coarse", 60, 3, 0.6, 0.0},
-      {"0.35 mm graded, 3 rows", "coarse", 60, 3, 0.35, 0.0},
-      {"reference: 0.25 mm, 1.25 mm ends, graded, 3 rows", "coarse", 60, 3, 0.25, 1.25},
+      {"life mesh (1 cushion row, graded)", "life", 120, 0, 0.0, 0.0},
+      {"the same, 240 steps", "life", 240, 0, 0.0, 0.0},
+      {"1 mm graded, 3 cushion rows", "life", 120, 3, 0.0, 0.0},
+      {"0.5 mm graded, 1 cushion row", "coarse", 120, 0, 0.5, 0.0},
+      {"0.6 mm graded, 3 rows", "coarse", 120, 3, 0.6, 0.0},
+      {"0.35 mm graded, 3 rows", "coarse", 120, 3, 0.35, 0.0},
+      {"reference: 0.25 mm, 1.25 mm ends, graded, 3 rows", "coarse", 120, 3, 0.25, 1.25},
   };
   std::vector<std::pair<const Row*, Outcome>> out;
   for (const Row& row : rows) {
@@ -566,7 +563,6 @@ int main(int argc, char** argv) {
       if (a.rfind("oracle=", 0) == 0) p.oracle = a.substr(7);
       if (a.rfind("tol=", 0) == 0) p.tolerance = std::atof(a.c_str() + 4);
       if (a.rfind("grow=", 0) == 0) p.growth = std::atoi(a.c_str() + 5);
-      if (a.rfind("fronts=", 0) == 0) p.fronts_mm = std::atof(a.c_str() + 7);
       if (a.rfind("bodyds=", 0) == 0) p.body_sampling_mm = std::atof(a.c_str() + 7);
       if (a == "inertia") p.inertia = true;
       if (a == "hold") p.hold = true;

@@ -19,9 +19,10 @@ segment::MeshKnobs life_mesh() {
   return m;
 }
 
-segment::CycleKnobs life_cycle() {
+segment::CycleKnobs life_cycle(segment::Fidelity fidelity) {
   segment::CycleKnobs c;
   c.ends = segment::EndCondition::sheared;
+  if (fidelity == segment::Fidelity::complete) c.steps_per_cycle = 120;
   return c;
 }
 

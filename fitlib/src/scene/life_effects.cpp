@@ -261,6 +261,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.section = cog_section(s);
     setup.mesh = s.segment ? s.segment->life_mesh : fatigue::life_mesh();
     setup.solver = s.segment ? s.segment->setup.solver : segment::SolverKnobs{};
+    setup.cycle = fatigue::life_cycle(segment::fidelity_from_string(r.plan.life->fidelity));
     setup.solver.threads = segment_threads(s);
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;

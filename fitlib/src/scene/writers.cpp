@@ -207,14 +207,14 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       // docs/segment.md "Damage held beyond the tested amplitudes"
       o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
            "central gap, one cushion row, sheared end faces), with the cards' damage held at their tests' drivers, "
-           "gives on the light, medium and heavy drives N1 0.76 to 1.02 x and N2 0.92 to 1.02 x those of 0.35 to "
+           "gives on the light, medium and heavy drives N1 0.76 to 1.01 x and N2 0.93 to 1.02 x those of 0.35 to "
            "0.6 mm elements with three cushion rows (N1 shorter, on the safe side, where it differs by more than 2 %; [segment] fine_size_mm = "
            "0.6 reads them at about 3 x the time; 0.35 mm elements fold on the heavy drive) (docs/segment.md "
            "\"Damage held beyond the tested amplitudes\")\n";
     else if (default_mesh && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
       o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
-           "central gap, one cushion row, sheared end faces) gives on the light drive N1 0.89 x and N2 0.96 x "
-           "those of 0.35 mm elements with three cushion rows (0.6 mm: 0.99 and 0.94 x) (docs/segment.md "
+           "central gap, one cushion row, sheared end faces) gives on the light drive N1 0.82 x and N2 0.98 x "
+           "those of 0.35 mm elements with three cushion rows (0.6 mm: 0.95 and 0.95 x) (docs/segment.md "
            "\"Which segment N1 should be read from\")\n";
     else if (default_mesh)  // measured accuracy of the life's default mesh (docs/fatigue.md "Measured (bench/bench_life)")
       o << "note: the life's default segment (192 elements, 27 mm long, graded at the central gap, one cushion "

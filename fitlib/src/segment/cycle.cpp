@@ -225,33 +225,6 @@ std::vector<double> cycle_breakpoints(const belt::LoadHistory& h, int steps, dou
   return tau;
 }
 
-std::vector<double> front_positions(const belt::LoadHistory& h, const CycleDrive& d, const CycleKnobs& k) {
-  if (!(k.front_spacing_mm > 0.0)) return {};
-  const double L = h.length_mm(), ds = 0.5 * k.front_spacing_mm;
-  const int M = static_cast<int>(std::ceil(L / ds));
-  std::vector<Eigen::Vector2d> b(M + 1);
-  double largest = 0.0;
-  for (int i = 0; i <= M; ++i) b[i] = contact_body_force(h.at_position(i * ds), d), largest = std::max(largest, b[i].norm());
-  std::vector<bool> dense(M, false), band(M, false);
-  const bool banded = k.front_band_mm > 0.0 && k.front_band_spacing_mm > 0.0;
-  const int margin = static_cast<int>(std::ceil(k.front_margin_mm / ds));
-  const int reach = banded ? static_cast<int>(std::ceil((k.front_margin_mm + k.front_band_mm) / ds)) : 0;
-  for (int i = 0; i < M; ++i)
-    if ((b[i + 1] - b[i]).norm() > k.front_rate_per_mm * largest * ds) {
-      for (int j = std::max(0, i - margin); j <= std::min(M - 1, i + 1 + margin); ++j) dense[j] = true;
-      for (int j = std::max(0, i - reach); j <= std::min(M - 1, i + 1 + reach); ++j) band[j] = true;
-    }
-  std::vector<double> out;  // grid points i < M lie in [0, L)
-  for (int i = 0; i < M; i += 2)  // every other grid point: the spacing
-    if (dense[i]) out.push_back(i * ds);
-  // The band: a coarser grid of its own, where the dense one is not.
-  const int every = std::max(2, static_cast<int>(std::lround(k.front_band_spacing_mm / ds)));
-  for (int i = 0; banded && i < M; i += every)
-    if (band[i] && !dense[i]) out.push_back(i * ds);
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 namespace {
 
 // Where the last converged increment was, in the user's terms: the bending step, or the cycle and
@@ -595,15 +568,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   } else {
     const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight,
                                                                 straight.half_length_mm);
-    // The last cycle (where the peaks are read) adds the load fronts' dense increments when a law
-    // carries history (the glassy peel transient); without history the planned steps read the
-    // peaks within 8 % of N2 at 0.57 of the cost (docs/segment.md "The driver exit's peel transient").
-    std::vector<double> last = per_cycle;
-    if (history)
-      for (double s_mm : front_positions(h, drive, knobs)) last.push_back(s_mm / h.length_mm());
-    std::sort(last.begin(), last.end());
     for (int c = 0; c < knobs.cycles; ++c)
-      for (double b : c + 1 == knobs.cycles ? last : per_cycle) {
+      for (double b : per_cycle) {
         const double lambda = std::min(1.0, (1.0 + c + b) / T);
         if (k.schedule.empty() || lambda > k.schedule.back() + 1e-12) k.schedule.push_back(lambda);
       }

@@ -40,16 +40,6 @@ struct CycleKnobs {
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   int curve_intervals = 24;             // intervals per side of the cord curve
-  // Load fronts (docs/segment.md "The driver exit's peel transient"): where the contact body force
-  // at the segment's middle changes by more than `front_rate_per_mm` of its largest value per mm
-  // of path (the friction turning at a pulley's exit), ± `front_margin_mm`, the last cycle gets an
-  // increment every `front_spacing_mm` (0 = off) when a point law carries history: the monitored
-  // points' peaks there last ~0.6 mm.
-  double front_spacing_mm = 0.1, front_rate_per_mm = 0.3, front_margin_mm = 1.0;
-  // Beyond that margin, over a further `front_band_mm`, an increment every `front_band_spacing_mm`
-  // (0 = off): the gap bottom's tension peaks ~2 mm wide while a pulley's exit passes under the
-  // neighbouring cog, half a pitch from the middle (docs/segment.md "The gap bottom's exit peak").
-  double front_band_mm = 4.5, front_band_spacing_mm = 0.5;
   // Each element's contact body force is the mean of 6.6–6.9 over its path extent, sampled every
   // `body_force_sampling_mm` (0 = at its centre only): the force then moves continuously in time
   // when a pulley's exit passes, instead of switching an element at a time (docs/segment.md
@@ -186,9 +176,6 @@ double span_cord_share_bound(const CycleResult& run);
 // reaches it).
 std::vector<double> cycle_breakpoints(const belt::LoadHistory& history, int steps, double change_weight,
                                       double reach_mm = 0.0);
-
-// The path positions (mm, within [0, L)) of the load fronts' dense increments (CycleKnobs::front_*).
-std::vector<double> front_positions(const belt::LoadHistory& history, const CycleDrive& drive, const CycleKnobs& knobs);
 
 // Body force (N/mm³, local: along the belt l and radial outward r) at a load state, 6.6–6.7.
 Eigen::Vector2d contact_body_force(const belt::LoadState& state, const CycleDrive& drive);
