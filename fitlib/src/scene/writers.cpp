@@ -209,7 +209,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "central gap, one cushion row, sheared end faces), with the cards' damage held at their tests' drivers, "
            "gives on the light, medium and heavy drives N1 0.76 to 1.01 x and N2 0.93 to 1.02 x those of 0.35 to "
            "0.6 mm elements with three cushion rows (N1 shorter, on the safe side, where it differs by more than 2 %; [segment] fine_size_mm = "
-           "0.6 reads them at about 3 x the time; 0.35 mm elements fold on the heavy drive) (docs/segment.md "
+           "0.6 reads them at about 3 x the time; the heavy drive runs near its fold, where some finer meshes stop) (docs/segment.md "
            "\"Damage held beyond the tested amplitudes\")\n";
     else if (default_mesh && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
       o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
