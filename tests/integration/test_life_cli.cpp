@@ -348,6 +348,14 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
     const auto life = nlohmann::json::parse(slurp(out + "/life.json"));
     for (const auto& m : life["modes"]) EXPECT_TRUE(std::isfinite(m["life_cycles"].get<double>())) << m.dump();
     EXPECT_EQ(life["governing_mode"], "radial_crack");
+    // What the stresses came from (the complete level: 120 planned steps per cycle), in the JSON too.
+    const auto& run = life["segment_run"];
+    EXPECT_EQ(run["elements"], 192);
+    EXPECT_EQ(run["cycles"], 2);
+    EXPECT_EQ(run["steps_per_cycle"], 120);
+    EXPECT_GE(run["increments"].get<int>(), 2 * 120);
+    EXPECT_GT(run["newton_iterations"].get<int>(), run["increments"].get<int>());
+    EXPECT_GE(run["cuts"].get<int>(), 0);
     for (const char* part : {"(bottom): its damage is held at the drivers its tests reached (fit.data_window.damage_driver "
                              "0.0318, 0.0141, 0.0318)", "(cushion): its damage is held at the drivers its tests reached",
                              "damage_hold = false runs the law", "(the segment drove it at 0.",

@@ -283,6 +283,8 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     r.stresses = fatigue::segment_point_histories(run);
     strain_window_warnings(s, run, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
+    r.segment_run = SegmentRun{run.elements, setup.cycle.cycles, setup.cycle.steps_per_cycle,
+                               run.increments, run.newton_iterations, run.cuts};
     for (std::string& w : r.segment_equilibrium->warnings()) r.warnings.push_back(std::move(w));
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
       const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
@@ -325,6 +327,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   if (std::string w = fatigue::stress_fidelity_warning(card, life.plan.fidelity); !w.empty())
     r.warnings.push_back(std::move(w));
   life.equilibrium = r.segment_equilibrium;
+  life.segment_run = r.segment_run;
   life.damage_held = !r.segment_damage_held.empty();
   life.fields = r.segment_fields;
   r.life = std::move(life);

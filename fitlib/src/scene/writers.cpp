@@ -134,6 +134,9 @@ json life_summary_json(const LifeResult& l, bool effective_stress_history = fals
                                 {"span_section_mismatch_bound", B::span_section_mismatch},
                                 {"span_increments", e.span_increments}, {"within_bounds", e.within_bounds()}};
   }
+  if (const std::optional<SegmentRun>& w = l.segment_run)
+    j["segment_run"] = {{"elements", w->elements}, {"cycles", w->cycles}, {"steps_per_cycle", w->steps_per_cycle},
+                        {"increments", w->increments}, {"newton_iterations", w->newton_iterations}, {"cuts", w->cuts}};
   if (!l.fields.empty()) {  // full-field stress files (VTK) by name, so the bytes do not depend on the folder
     json fields = json::array();
     for (const FieldFile& f : l.fields)
@@ -202,6 +205,10 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
       << std::defaultfloat << std::setprecision(static_cast<int>(precision));
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
+    if (const std::optional<SegmentRun>& w = l.segment_run)
+      o << "segment run: " << w->elements << " elements, " << w->cycles << " load cycle(s) of " << w->steps_per_cycle
+        << " planned steps, " << w->increments << " increments, " << w->newton_iterations << " Newton iterations, "
+        << w->cuts << " step cuts\n";
     const bool default_mesh = !s.segment || !s.segment->life_mesh_changed;
     if (default_mesh && l.plan.fidelity == "complete" && l.damage_held)
       // docs/segment.md "Damage held beyond the tested amplitudes"

@@ -219,6 +219,12 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
     // The life's default mesh: the table says how far its N2 is from a converged segment length.
     EXPECT_NE(scene::life_text(s, r).find("note: the life's default segment (192 elements, 27 mm long"),
               std::string::npos);
+    // What the stresses came from: the elastic level's 60 planned steps per cycle on 192 elements.
+    ASSERT_TRUE(r.life->segment_run.has_value());
+    EXPECT_EQ(r.life->segment_run->cycles, cycles);
+    EXPECT_NE(scene::life_text(s, r).find("segment run: 192 elements, " + std::to_string(cycles) +
+                                          " load cycle(s) of 60 planned steps, "),
+              std::string::npos) << scene::life_text(s, r);
   }
   ASSERT_EQ(lives[0].size(), 2u);
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(lives[1][k] / lives[0][k], 1.0, 1e-6) << "mode " << k;
@@ -240,6 +246,7 @@ TEST(SceneLife, CompleteLevelRunsTheLifesMeshAndItsNoteSaysHowAccurateItIs) {
   const std::string t = scene::life_text(s, r);
   EXPECT_NE(t.find("note: the complete level on the life's default segment (192 elements, 27 mm long"), std::string::npos) << t;
   EXPECT_EQ(t.find("note: the life's default segment (192 elements"), std::string::npos) << t;
+  EXPECT_NE(t.find("segment run: 192 elements, 1 load cycle(s) of 120 planned steps, "), std::string::npos) << t;
 }
 
 // The complete level runs the cards' models: a role without a card is refused naming its key (it

@@ -107,6 +107,12 @@ struct SegmentEquilibrium {
   std::vector<std::string> warnings() const;  // one when a check exceeds its bound, else none
 };
 
+// What the segment levels' stresses came from: the mesh's element count, the load cycles and their
+// planned steps, and the solver's work (life.json `segment_run`, docs/cli.md `life`).
+struct SegmentRun {
+  int elements = 0, cycles = 0, steps_per_cycle = 0, increments = 0, newton_iterations = 0, cuts = 0;
+};
+
 struct FieldFile {         // a full-field stress written by the segment run
   std::string at;           // as asked: "entrance" or a position in mm
   double s_mm = 0.0;        // path position of the segment's middle in the last cycle
@@ -118,6 +124,7 @@ struct LifeResult {
   std::vector<InputFile> inputs;
   fatigue::LifeReport report;
   std::optional<SegmentEquilibrium> equilibrium;
+  std::optional<SegmentRun> segment_run;
   bool damage_held = false;  // the complete level held a card's damage at its tests' drivers
   std::vector<FieldFile> fields;
 };
@@ -136,6 +143,7 @@ struct SceneResult {
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
   std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
+  std::optional<SegmentRun> segment_run;
   std::set<std::string> segment_damage_held;  // roles whose card's damage the complete level held
   std::vector<FieldFile> segment_fields;
   std::optional<LifeResult> life;
