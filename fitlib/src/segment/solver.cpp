@@ -996,8 +996,16 @@ bool inverse_map(const Mesh& m, int e, const Eigen::Vector2d& P, Eigen::Vector2d
   return xi.allFinite() && xi.cwiseAbs().maxCoeff() <= 1.0 + 1e-7;
 }
 
-IntegrationPointStress interpolate_in(const StaticSolution& s, const ElementPoint& at, int n, const Eigen::Vector2d& X) {
-  const std::vector<double> g = detail::gauss_abscissae(n);
+void add_scaled(IntegrationPointStress& out, const IntegrationPointStress& q, double w) {
+  out.cauchy_MPa += w * q.cauchy_MPa, out.sigma33_MPa += w * q.sigma33_MPa;
+  out.piola_MPa += w * q.piola_MPa, out.F += w * q.F;
+}
+
+// One element's integration-point values at `at` by the Lagrange polynomials through the Gauss
+// abscissae g.
+IntegrationPointStress interpolate_in(const StaticSolution& s, const ElementPoint& at, const std::vector<double>& g,
+                                      const Eigen::Vector2d& X) {
+  const int n = static_cast<int>(g.size());
   auto lagrange = [&](int i, double t) {
     double v = 1.0;
     for (int j = 0; j < n; ++j)
@@ -1006,12 +1014,8 @@ IntegrationPointStress interpolate_in(const StaticSolution& s, const ElementPoin
   };
   IntegrationPointStress out{X, Eigen::Matrix2d::Zero(), 0.0, Eigen::Matrix2d::Zero(), Eigen::Matrix2d::Zero()};
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const double w = lagrange(i, at.xi.x()) * lagrange(j, at.xi.y());
-      const IntegrationPointStress& q = s.points[at.element][j * n + i];
-      out.cauchy_MPa += w * q.cauchy_MPa, out.sigma33_MPa += w * q.sigma33_MPa;
-      out.piola_MPa += w * q.piola_MPa, out.F += w * q.F;
-    }
+    for (int i = 0; i < n; ++i)
+      add_scaled(out, s.points[at.element][j * n + i], lagrange(i, at.xi.x()) * lagrange(j, at.xi.y()));
   return out;
 }
 
@@ -1032,12 +1036,9 @@ PointLocation locate(const Mesh& m, const Eigen::Vector2d& P) {
 }
 
 IntegrationPointStress interpolate(const StaticSolution& s, const PointLocation& at, int n, const Eigen::Vector2d& X) {
-  IntegrationPointStress out = interpolate_in(s, {at.element, at.xi}, n, X);
-  for (const ElementPoint& other : at.shared) {
-    const IntegrationPointStress q = interpolate_in(s, other, n, X);
-    out.cauchy_MPa += q.cauchy_MPa, out.sigma33_MPa += q.sigma33_MPa;
-    out.piola_MPa += q.piola_MPa, out.F += q.F;
-  }
+  const std::vector<double> g = detail::gauss_abscissae(n);
+  IntegrationPointStress out = interpolate_in(s, {at.element, at.xi}, g, X);
+  for (const ElementPoint& other : at.shared) add_scaled(out, interpolate_in(s, other, g, X), 1.0);
   const double w = 1.0 / (1.0 + static_cast<double>(at.shared.size()));
   out.cauchy_MPa *= w, out.sigma33_MPa *= w, out.piola_MPa *= w, out.F *= w;
   return out;
