@@ -144,7 +144,7 @@ namespace {
 // The data sheet's columns (field indices; T < 0 when absent), test mode and unit factors.
 struct DataColumns {
   int f = -1, T = -1, storage = -1, loss = -1;
-  model::TestMode mode = model::TestMode::uniaxial;
+  core::TestMode mode = core::TestMode::uniaxial;
   double to_MPa[2];  // storage, loss
 };
 
@@ -159,7 +159,7 @@ DataColumns locate_columns(Workbook& book) {
     };
     if (name == "f") take(d.f);
     else if (name == "T") take(d.T);
-    else if (name == "E'" || name == "G'") take(d.storage), d.mode = name[0] == 'G' ? model::TestMode::shear : d.mode;
+    else if (name == "E'" || name == "G'") take(d.storage), d.mode = name[0] == 'G' ? core::TestMode::shear : d.mode;
     else if (name == "E''" || name == "G''") take(d.loss);
   }
   if (d.f < 0) throw book.error("missing column 'f'", 0);

@@ -21,7 +21,7 @@ struct Columns {
   int time = -1, modulus = -1, temperature = -1, set = -1;
   double to_MPa = 1.0;
   bool kelvin = false;
-  model::TestMode mode = model::TestMode::uniaxial;
+  core::TestMode mode = core::TestMode::uniaxial;
 };
 
 Columns layout(const std::vector<std::string>& names, int name_line, const std::vector<std::string>& units,
@@ -44,7 +44,7 @@ Columns layout(const std::vector<std::string>& names, int name_line, const std::
       claim(c.time);
     } else if (name == "E_relax" || name == "G_relax") {
       claim(c.modulus);
-      c.mode = name[0] == 'G' ? model::TestMode::shear : model::TestMode::uniaxial;
+      c.mode = name[0] == 'G' ? core::TestMode::shear : core::TestMode::uniaxial;
       try {
         c.to_MPa = core::modulus_to_MPa(unit);
       } catch (const core::InputError&) {

@@ -27,7 +27,7 @@ const std::map<std::string, KeyKind>& metadata_keys() {
 constexpr int kMaxSpecimens = 1000;  // specimens loaded in parallel (2 in a double sandwich)
 
 void apply_mode(SpecimenInfo& info, const std::string& label, const specimen_keys::ErrorAt& error) {
-  const auto mode = model::test_mode_from_label(label);
+  const auto mode = core::test_mode_from_label(label);
   if (!mode) throw error("unknown test mode '" + label + "' (expected " + kModeLabels + ")");
   info.mode = *mode;
   info.has_mode = true;
@@ -108,15 +108,15 @@ void stress_strain_from_force(const SpecimenInfo& specimen, const std::vector<do
   const double area_mm2 = require(specimen.area_mm2, "area_mm2");
   double force_to_stress = 0.0, displacement_to_strain = 0.0;
   switch (specimen.mode) {
-    case model::TestMode::shear:  // τ = F/(n·A), γ = u/h (each sandwich layer sees u)
+    case core::TestMode::shear:  // τ = F/(n·A), γ = u/h (each sandwich layer sees u)
       force_to_stress = 1.0 / (specimen.n_specimens * area_mm2);
       displacement_to_strain = 1.0 / require(specimen.thickness_mm, "thickness_mm");
       break;
-    case model::TestMode::uniaxial:  // σ = F/(n·A), ε = u/L
+    case core::TestMode::uniaxial:  // σ = F/(n·A), ε = u/L
       force_to_stress = 1.0 / (specimen.n_specimens * area_mm2);
       displacement_to_strain = 1.0 / require(specimen.length_mm, "length_mm");
       break;
-    case model::TestMode::bulk:  // p = F/A on the piston, ε_v = ΔV/V0 = A·u/V0
+    case core::TestMode::bulk:  // p = F/A on the piston, ε_v = ΔV/V0 = A·u/V0
       force_to_stress = 1.0 / area_mm2;
       displacement_to_strain = area_mm2 / require(specimen.volume_mm3, "volume_mm3");
       break;

@@ -84,7 +84,7 @@ struct Layout {
   std::size_t field_count = 0;
   int header_line = 0;  // last header line (pyvisco: the units row)
   bool has_default_mode = false;
-  model::TestMode default_mode = model::TestMode::shear;
+  core::TestMode default_mode = core::TestMode::shear;
   Layout() {
     column.fill(-1);
     to_MPa.fill(1.0);
@@ -114,9 +114,9 @@ struct RowFields {
   bool given(Role role) const { return layout.has(role) && !text(role).empty(); }
 };
 
-void read_mode(const RowFields& in, model::TestCondition& c) {
+void read_mode(const RowFields& in, core::TestCondition& c) {
   if (in.given(kMode)) {
-    const auto mode = model::test_mode_from_label(in.text(kMode));
+    const auto mode = core::test_mode_from_label(in.text(kMode));
     if (!mode)
       throw in.fail(kMode, "unknown test mode '" + in.text(kMode) + "' (expected " + kModeLabels + ")");
     c.mode = *mode;
@@ -127,7 +127,7 @@ void read_mode(const RowFields& in, model::TestCondition& c) {
   }
 }
 
-void read_frequency(const RowFields& in, model::TestCondition& c) {
+void read_frequency(const RowFields& in, core::TestCondition& c) {
   if (in.layout.has(kFrequencyHz)) {
     c.frequency_Hz = in.number(kFrequencyHz, "frequency");
     if (!(c.frequency_Hz > 0.0)) throw in.fail(kFrequencyHz, "non-positive frequency");
@@ -167,7 +167,7 @@ void read_moduli(const RowFields& in, DynamicTestRow& row) {
   }
 }
 
-void read_temperature(const RowFields& in, model::TestCondition& c) {
+void read_temperature(const RowFields& in, core::TestCondition& c) {
   if (in.given(kTemperatureC)) {
     c.temperature_C = in.number(kTemperatureC, "temperature");
     if (!(c.temperature_C > -core::kZeroCelsiusInKelvin))
@@ -181,7 +181,7 @@ void read_temperature(const RowFields& in, model::TestCondition& c) {
 
 // Amplitude, mean strain and modulus, orientation, weight and labels.
 void read_optional(const RowFields& in, DynamicTestRow& row) {
-  model::TestCondition& c = row.condition;
+  core::TestCondition& c = row.condition;
   if (in.given(kStrainAmplitude)) {
     c.strain_amplitude = in.number(kStrainAmplitude, "strain amplitude");
     if (c.strain_amplitude < 0.0) throw in.fail(kStrainAmplitude, "negative strain amplitude");
@@ -381,8 +381,8 @@ class TableParser {
                              name_line);
     // The column letter decides the mode: E is tensile (uniaxial), G is shear.
     layout_.has_default_mode = true;
-    layout_.default_mode = modulus_letter == 'G' ? model::TestMode::shear
-                                                 : model::TestMode::uniaxial;
+    layout_.default_mode = modulus_letter == 'G' ? core::TestMode::shear
+                                                 : core::TestMode::uniaxial;
   }
 
   void read_rows(const std::vector<CsvLine>& lines, std::size_t next) {
@@ -476,7 +476,7 @@ std::string format_dynamic_table(const DynamicTestTable& table) {
                                       {"storage modulus", row.storage_MPa}, {"loss modulus", row.loss_MPa},
                                       {"strain amplitude", c.strain_amplitude}, {"mean strain", c.mean_strain}})
       core::require_finite(value, what + at);
-    out << model::to_string(c.mode) << ',' << c.orientation << ',' << format_exact(c.frequency_Hz)
+    out << core::to_string(c.mode) << ',' << c.orientation << ',' << format_exact(c.frequency_Hz)
         << ',' << (c.has_temperature() ? format_exact(c.temperature_C) : "") << ','
         << format_exact(c.strain_amplitude) << ',' << format_exact(c.mean_strain) << ','
         << format_exact(row.storage_MPa) << ',' << format_exact(row.loss_MPa) << ','

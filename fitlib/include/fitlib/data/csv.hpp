@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fitlib/model/test_condition.hpp"
+#include "fitlib/core/test_condition.hpp"
 
 namespace fitlib::data {
 

@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "fitlib/model/test_condition.hpp"
+#include "fitlib/core/test_condition.hpp"
 
 namespace fitlib::data {
 
 struct RelaxationRow {
-  model::TestMode mode = model::TestMode::uniaxial;  // E → uniaxial, G → shear
+  core::TestMode mode = core::TestMode::uniaxial;  // E → uniaxial, G → shear
   double time_s = 0.0;
   double modulus_MPa = 0.0;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN: the reference

@@ -5,13 +5,13 @@
 #include <string>
 #include <vector>
 
-#include "fitlib/model/test_condition.hpp"
+#include "fitlib/core/test_condition.hpp"
 
 namespace fitlib::data {
 
 // Specimen constants (formats.md §2) and labels for the table row.
 struct SpecimenInfo {
-  model::TestMode mode = model::TestMode::shear;
+  core::TestMode mode = core::TestMode::shear;
   bool has_mode = false;
   double area_mm2 = std::numeric_limits<double>::quiet_NaN();       // loaded area, one specimen
   double thickness_mm = std::numeric_limits<double>::quiet_NaN();   // shear: sheared height h

@@ -3,12 +3,12 @@
 #include <string>
 #include <vector>
 
-#include "fitlib/model/test_condition.hpp"
+#include "fitlib/core/test_condition.hpp"
 
 namespace fitlib::data {
 
 struct DynamicTestRow {
-  model::TestCondition condition;  // mode, orientation, frequency, temperature, amplitude, mean
+  core::TestCondition condition;  // mode, orientation, frequency, temperature, amplitude, mean
   double storage_MPa = 0.0;        // E′ or G′ (K′ for bulk)
   double loss_MPa = 0.0;           // E″ or G″
   double mean_modulus_MPa = 0.0;   // valid only when has_mean_modulus
@@ -32,7 +32,7 @@ struct ReadOptions {
   TableFormat format = TableFormat::native;
   // Mode for files without a `mode` column (pyvisco: uniaxial unless the columns say G).
   bool has_default_mode = false;
-  model::TestMode default_mode = model::TestMode::shear;
+  core::TestMode default_mode = core::TestMode::shear;
   // Turn row errors into warnings listing each skipped row (never silently).
   bool skip_bad_rows = false;
   // Native format: a column the contract does not know is an error (a typo such as

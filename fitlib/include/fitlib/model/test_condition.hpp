@@ -1,46 +1,17 @@
 #pragma once
-// What a dynamic test imposes: mode, orientation, frequency, temperature, amplitude, mean strain.
-#include <cmath>
-#include <limits>
-#include <optional>
+// The test vocabulary (fitlib/core/test_condition.hpp) under the model's names, and its parser.
 #include <string>
+
+#include "fitlib/core/test_condition.hpp"
 
 namespace fitlib::model {
 
-enum class TestMode { shear, uniaxial, bulk };
+using core::TestCondition;
+using core::TestMode;
+using core::test_mode_from_label;
+using core::to_string;
 
-// "shear" | "uniaxial" (aliases "tension", "compression") | "bulk"; nullopt otherwise.
-inline std::optional<TestMode> test_mode_from_label(const std::string& text) {
-  if (text == "shear") return TestMode::shear;
-  if (text == "uniaxial" || text == "tension" || text == "compression") return TestMode::uniaxial;
-  if (text == "bulk") return TestMode::bulk;
-  return std::nullopt;
-}
-
-// Same, throwing core::UsageError for anything else.
+// test_mode_from_label, throwing core::UsageError for anything else.
 TestMode parse_test_mode(const std::string& text);
-
-inline const char* to_string(TestMode mode) {
-  switch (mode) {
-    case TestMode::shear: return "shear";
-    case TestMode::uniaxial: return "uniaxial";
-    case TestMode::bulk: return "bulk";
-  }
-  return "?";
-}
-
-struct TestCondition {
-  TestMode mode = TestMode::shear;
-  // Thesis label ("11", "22", "33", "12", "13", "23", ...); empty = isotropic / not given.
-  std::string orientation;
-  double frequency_Hz = 1.0;
-  // NaN = the card's reference temperature.
-  double temperature_C = std::numeric_limits<double>::quiet_NaN();
-  // Amplitude of the oscillating strain (shear: engineering γ_a); 0 = small-amplitude limit.
-  double strain_amplitude = 0.0;
-  double mean_strain = 0.0;
-
-  bool has_temperature() const { return !std::isnan(temperature_C); }
-};
 
 }  // namespace fitlib::model

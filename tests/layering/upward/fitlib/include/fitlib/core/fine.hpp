@@ -1,0 +1,3 @@
+#pragma once
+// A fixture of the layering test: an include within the module is allowed.
+#include "fitlib/core/error.hpp"
