@@ -69,7 +69,7 @@
 #include "fitlib/data/table.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fatigue/card.hpp"
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/segment/point_law.hpp"
@@ -121,9 +121,9 @@ scene::Scene life_scene(const std::string& load, const std::string& level) {
 }
 
 // The segment meshes of the convergence table (docs/segment.md §Cost). "life" and "coarse": the
-// life's default (fatigue::life_mesh(), both levels).
+// life's default (scene::life_mesh(), both levels).
 segment::MeshKnobs mesh_named(const std::string& name) {
-  segment::MeshKnobs m = fatigue::life_mesh();
+  segment::MeshKnobs m = scene::life_mesh();
   if (name == "medium") m.fine_size_mm = 0.6, m.coarse_size_mm = 2.0, m.central_pitches = 1, m.end_pitches = 1, m.cushion_rows = 1;
   if (name == "fine") m.fine_size_mm = 0.4, m.coarse_size_mm = 1.5, m.central_pitches = 2, m.end_pitches = 2, m.cushion_rows = 2;
   if (name == "long") m.central_pitches = 2, m.end_pitches = 2;    // the life mesh's sizes, 54 mm long
@@ -135,7 +135,7 @@ struct Probe {
   std::string load = "medium", fidelity = "elastic", mesh = "medium";
   int steps = 60;
   bool reuse = false, extrapolate = false, lagged = false;
-  std::string integration{};  // empty: fatigue::SegmentLifeSetup's default
+  std::string integration{};  // empty: scene::SegmentLifeSetup's default
   int stall = -1, cuts = segment::SolverKnobs{}.max_cuts;  // stall=N (< 0: the life's at the fidelity)
   int growth = -1;  // grow=N: SolverKnobs::growth_iterations (< 0: the life's at the fidelity)
   double tolerance = segment::SolverKnobs{}.tolerance;  // tol=X: Newton's relative residual tolerance
@@ -214,7 +214,7 @@ std::function<double(int, double, double)> oracle_end(const std::string& path, i
 // The planned path positions of both cycles plus every ds mm over [a, b] of the last one (the
 // transient's peak sampled densely: docs/segment.md "The driver exit's peel transient").
 std::vector<double> dense_positions(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
-                                    const fatigue::SegmentLifeSetup& setup, const std::array<double, 3>& dense) {
+                                    const scene::SegmentLifeSetup& setup, const std::array<double, 3>& dense) {
   const belt::LoadHistory h(cycle, drive.belt, setup.temperature_C);
   const double L = h.length_mm(), half = segment::build_mesh(setup.section, setup.mesh).half_length_mm;
   std::vector<double> s;
@@ -230,7 +230,7 @@ std::vector<double> dense_positions(const belt::LoadCycle& cycle, const belt::Dr
 }
 
 struct Outcome {
-  fatigue::SegmentLife life;
+  scene::SegmentLife life;
   double wall_s = 0.0;
   double main_cpu_s = 0.0;  // the calling thread's CPU time: the run's wall time on an idle machine, nearly
   segment::MeshKnobs mesh{};
@@ -259,7 +259,7 @@ Outcome run_probe(const Probe& pr) {
     if (pr.loads[1] > pr.loads[0] && q.s_mm >= pr.loads[0] && q.s_mm <= pr.loads[1])
       std::printf("load s %.2f mm zone %s p %.4g MPa gamma %.1f deg slide %.4g mm/s friction used %.4g of %.4g\n", q.s_mm,
                   belt::to_string(q.zone), q.p_MPa, q.gamma_rad * 180.0 / M_PI, q.slide_mm_s, q.friction_used, drive.friction);
-  fatigue::SegmentLifeSetup setup;
+  scene::SegmentLifeSetup setup;
   setup.section = scene::cog_section(s);
   if (pr.fillet_mm >= 0.0) setup.section.root_fillet_mm = pr.fillet_mm;
   if (pr.tip_mm >= 0.0) setup.section.tip_radius_mm = pr.tip_mm;
@@ -329,7 +329,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.dense[2] > 0.0) setup.cycle.positions_mm = dense_positions(cycle, drive, setup, pr.dense);
   const core::Stopwatch watch;
   const double cpu0 = thread_cpu_s();
-  Outcome out{fatigue::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
+  Outcome out{scene::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
   out.wall_s = watch.seconds();
   out.main_cpu_s = thread_cpu_s() - cpu0;
   out.mesh = setup.mesh, out.integration = setup.solver.integration;
@@ -352,9 +352,9 @@ void print_cushion_points(const Probe& pr, const Outcome& o) {
   const scene::Scene s = probe_scene(pr);
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const fatigue::LifeConditions conditions =
-      fatigue::segment_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C, o.life.run);
+      scene::segment_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C, o.life.run);
   const double R = drive.geometry.belt_length_mm / (2.0 * M_PI);
-  const auto histories = fatigue::segment_point_histories(o.life.run);
+  const auto histories = scene::segment_point_histories(o.life.run);
   std::printf("cushion / land point | (x, depth) mm | max |s11| | max |s12| MPa | N2 / N1 of the point\n");
   for (std::size_t k = 0; k < histories.size(); ++k) {
     if (histories[k].role != fatigue::Role::cushion && histories[k].name.rfind("land-", 0) != 0) continue;

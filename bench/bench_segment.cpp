@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fitlib/core/timer.hpp"
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/segment/static_case.hpp"
@@ -63,14 +63,14 @@ void cycle_steps(const char* out_dir) {
   double t0 = 0.0;
   const int steps[] = {10, 20, 40, 80, 160};
   for (int k = 0; k < 5; ++k) {
-    fatigue::SegmentLifeSetup setup;
+    scene::SegmentLifeSetup setup;
     setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5, setup.mesh.central_pitches = 1.0;
     setup.mesh.end_pitches = 1.0, setup.mesh.cushion_rows = 1;
     setup.cycle.steps_per_cycle = steps[k];
     setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
     setup.temperature_C = s.temperature_C;
-    const fatigue::SegmentLife life = fatigue::segment_life(cycle, drive, setup, fatigue::default_card());
+    const scene::SegmentLife life = scene::segment_life(cycle, drive, setup, fatigue::default_card());
     if (t0 == 0.0) t0 = life.wall_s;
     double gap_min = 0.0;
     for (const auto& q : life.run.points[0].samples) gap_min = std::min(gap_min, q.s22_MPa);

@@ -11,7 +11,7 @@
 
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/segment/end_faces.hpp"
 #include "fitlib/segment/flank.hpp"
 #include "fitlib/segment/point_law.hpp"
@@ -26,13 +26,13 @@ model::MaterialPointPtr iso(double E, double nu) {
   return model::make_material_point(*m, {E, nu});
 }
 
-fatigue::SegmentLife reference_life(const std::string& load, int steps_per_cycle,
+scene::SegmentLife reference_life(const std::string& load, int steps_per_cycle,
                                     segment::Integration element = segment::Integration::reduced,
-                                    const segment::MeshKnobs& mesh = fatigue::life_mesh(), int cycles = 2) {
+                                    const segment::MeshKnobs& mesh = scene::life_mesh(), int cycles = 2) {
   const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-" + load + ".toml");
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
-  fatigue::SegmentLifeSetup setup;
+  scene::SegmentLifeSetup setup;
   setup.mesh = mesh;
   setup.cycle.cycles = cycles;
   setup.cycle.steps_per_cycle = steps_per_cycle;
@@ -40,7 +40,7 @@ fatigue::SegmentLife reference_life(const std::string& load, int steps_per_cycle
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
   setup.solver.integration = element;
-  return fatigue::segment_life(cycle, drive, setup, fatigue::default_card());
+  return scene::segment_life(cycle, drive, setup, fatigue::default_card());
 }
 
 }  // namespace
@@ -48,17 +48,17 @@ fatigue::SegmentLife reference_life(const std::string& load, int steps_per_cycle
 // fatigue.md §3: only the last load cycle's peaks count. Report I's isotropic elastic segment
 // repeats its cycle, so two simulated cycles give the life of one (counting both halved it).
 TEST(SegmentLife, TwoSimulatedCyclesGiveTheLifeOfOne) {
-  fatigue::SegmentLife one = reference_life("medium", 40), two = one;
+  scene::SegmentLife one = reference_life("medium", 40), two = one;
   {
     const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-medium.toml");
     const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
-    fatigue::SegmentLifeSetup setup;
+    scene::SegmentLifeSetup setup;
     setup.cycle.cycles = 1;
     setup.cycle.steps_per_cycle = 40;
     setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
     setup.temperature_C = s.temperature_C;
-    one = fatigue::segment_life(belt::compute_load_cycle(drive), drive, setup, fatigue::default_card());
+    one = scene::segment_life(belt::compute_load_cycle(drive), drive, setup, fatigue::default_card());
   }
   for (int k = 0; k < 2; ++k)
     EXPECT_NEAR(two.report.modes[k].life_cycles / one.report.modes[k].life_cycles, 1.0, 1e-6) << "mode " << k;
@@ -69,13 +69,13 @@ TEST(SegmentLife, TwoSimulatedCyclesGiveTheLifeOfOne) {
 // agrees with a uniform 0.4 mm mesh (544 elements; 0.3 and 0.25 mm move it by < 1 %), while the
 // same mesh without the grading is 26 % low (bench_life probe, 60 steps: 8.39e7, 8.20e7, 6.05e7).
 TEST(SegmentLife, GradedLifeMeshGivesTheGapBottomLifeOfAFineUniformMesh) {
-  segment::MeshKnobs uniform = fatigue::life_mesh(), fine = uniform;
+  segment::MeshKnobs uniform = scene::life_mesh(), fine = uniform;
   uniform.gap_size_mm = 0.0, uniform.row_growth = 1.0;
   fine.gap_size_mm = 0.0, fine.row_growth = 1.0, fine.fine_size_mm = 0.4;
   const auto n1 = [](const segment::MeshKnobs& m) {
     return reference_life("medium", 30, segment::Integration::reduced, m, 1).report.modes[0].life_cycles;
   };
-  const double graded = n1(fatigue::life_mesh()), reference = n1(fine), ungraded = n1(uniform);
+  const double graded = n1(scene::life_mesh()), reference = n1(fine), ungraded = n1(uniform);
   std::printf("medium, iso, 30 steps: N1 graded %.4g, uniform 1.0 mm %.4g, uniform 0.4 mm %.4g\n", graded, ungraded,
               reference);
   EXPECT_NEAR(graded / reference, 1.0, 0.06);
@@ -88,8 +88,8 @@ TEST(SegmentLife, GradedLifeMeshGivesTheGapBottomLifeOfAFineUniformMesh) {
 // 0.25 mm by F-bar's 3 × 3 rule, and N2 (exponent 11.69, steep through the cushion) differed by 2 ×
 // (docs/segment.md §"Mode 2 through the cushion"). Now the two elements agree on both lives.
 TEST(SegmentLife, BothElementsGiveTheSameLivesAtTheMonitoredPoints) {
-  const fatigue::SegmentLife reduced = reference_life("medium", 40);
-  const fatigue::SegmentLife fbar = reference_life("medium", 40, segment::Integration::fbar);
+  const scene::SegmentLife reduced = reference_life("medium", 40);
+  const scene::SegmentLife fbar = reference_life("medium", 40, segment::Integration::fbar);
   const double n1 = fbar.report.modes[0].life_cycles / reduced.report.modes[0].life_cycles;
   const double n2 = fbar.report.modes[1].life_cycles / reduced.report.modes[1].life_cycles;
   std::printf("medium, iso, 40 steps: F-bar / CPE8R N1 %.3f, N2 %.3f\n", n1, n2);
@@ -102,7 +102,7 @@ TEST(SegmentLife, BothElementsGiveTheSameLivesAtTheMonitoredPoints) {
 // materials, E 20/8 MPa, ν 0.49; the bundled drives, no constant tuned) shows it between the light
 // and the severe reference drive.
 TEST(SegmentLife, ModeSwitchesFromRadialCrackOnTheLightDriveToSeparationOnTheSevereDrive) {
-  const fatigue::SegmentLife light = reference_life("light", 40), severe = reference_life("severe", 40);
+  const scene::SegmentLife light = reference_life("light", 40), severe = reference_life("severe", 40);
   EXPECT_EQ(light.report.governing, "radial_crack");
   EXPECT_EQ(severe.report.governing, "separation");
   for (const auto* l : {&light, &severe}) {
@@ -127,13 +127,13 @@ TEST(SegmentLife, CordLineReactionsInTheSpansAreSmallAgainstTheBeltForce) {
   const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-light.toml");
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
-  fatigue::SegmentLifeSetup setup;  // the life's mesh
+  scene::SegmentLifeSetup setup;  // the life's mesh
   setup.cycle.cycles = 1;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
   setup.cycle.ends = segment::EndCondition::radial;  // an endless belt's uniform span: no cord reactions
-  const segment::CycleResult r = fatigue::segment_run(cycle, drive, setup);
+  const segment::CycleResult r = scene::segment_run(cycle, drive, setup);
   int spans = 0;
   for (const auto& q : r.loads) {
     if (!q.span) continue;
@@ -163,20 +163,20 @@ TEST(SegmentLife, ShearedEndFacesBringTheShortSegmentsLivesToALongSegments) {
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   auto life = [&](segment::EndCondition ends, double pitches) {
-    fatigue::SegmentLifeSetup setup;
+    scene::SegmentLifeSetup setup;
     setup.cycle.cycles = 1;
     setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
     setup.temperature_C = s.temperature_C;
     setup.cycle.ends = ends;
     setup.mesh.central_pitches = setup.mesh.end_pitches = pitches;
-    return fatigue::segment_life(cycle, drive, setup, fatigue::default_card());
+    return scene::segment_life(cycle, drive, setup, fatigue::default_card());
   };
-  const fatigue::SegmentLifeSetup defaults;
+  const scene::SegmentLifeSetup defaults;
   EXPECT_EQ(defaults.cycle.ends, segment::EndCondition::sheared);  // the life's default
-  const fatigue::SegmentLife sheared = life(segment::EndCondition::sheared, 1.0), radial = life(segment::EndCondition::radial, 1.0);
-  const fatigue::SegmentLife longer = life(segment::EndCondition::radial, 3.0);  // 81 mm
-  auto ratio = [&](const fatigue::SegmentLife& a, int mode) {
+  const scene::SegmentLife sheared = life(segment::EndCondition::sheared, 1.0), radial = life(segment::EndCondition::radial, 1.0);
+  const scene::SegmentLife longer = life(segment::EndCondition::radial, 3.0);  // 81 mm
+  auto ratio = [&](const scene::SegmentLife& a, int mode) {
     return a.report.modes[mode].life_cycles / longer.report.modes[mode].life_cycles;
   };
   std::printf("N1 / N2 against 81 mm: sheared %.4f / %.4f, radial %.4f / %.4f\n", ratio(sheared, 0), ratio(sheared, 1),
@@ -195,7 +195,7 @@ TEST(SegmentLife, ReferenceDriveGivesFiniteLivesFromTheSegment) {
   const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-light.toml");
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
-  fatigue::SegmentLifeSetup setup;
+  scene::SegmentLifeSetup setup;
   setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5, setup.mesh.central_pitches = 1.0;
   setup.mesh.end_pitches = 1.0, setup.mesh.cushion_rows = 1;
   setup.cycle.cycles = 2;
@@ -203,12 +203,12 @@ TEST(SegmentLife, ReferenceDriveGivesFiniteLivesFromTheSegment) {
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
-  const fatigue::SegmentLife life = fatigue::segment_life(cycle, drive, setup, fatigue::default_card());
+  const scene::SegmentLife life = scene::segment_life(cycle, drive, setup, fatigue::default_card());
   ASSERT_EQ(life.report.modes.size(), 2u);
   for (const auto& m : life.report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
   EXPECT_NE(life.report.governing, "none");
   EXPECT_LT(life.run.equilibrium_error, 1e-6);
-  const auto histories = fatigue::segment_point_histories(life.run);
+  const auto histories = scene::segment_point_histories(life.run);
   EXPECT_EQ(histories[0].role, fatigue::Role::bottom);   // gap bottom
   EXPECT_EQ(histories[1].role, fatigue::Role::cushion);  // mid-cushion
   std::printf("segment life (light, elastic, coarse): N1 %.4g, N2 %.4g cycles, governing %s; %d elements, "
@@ -225,7 +225,7 @@ namespace {
 struct CardRun {
   belt::DriveCase drive;
   belt::LoadCycle cycle;
-  fatigue::SegmentLifeSetup setup;
+  scene::SegmentLifeSetup setup;
 };
 
 CardRun card_run(const std::string& load, int cycles, segment::Fidelity fidelity, double c_d = 0.0,
@@ -237,7 +237,7 @@ CardRun card_run(const std::string& load, int cycles, segment::Fidelity fidelity
   CardRun run{scene::make_drive(s, scene::resolve_stiffness(s)), {}, {}};
   run.cycle = belt::compute_load_cycle(run.drive);
   run.setup.section = scene::cog_section(s);
-  run.setup.cycle = fatigue::life_cycle(fidelity);  // the life's mesh and steps per cycle
+  run.setup.cycle = scene::life_cycle(fidelity);  // the life's mesh and steps per cycle
   run.setup.cycle.cycles = cycles;
   run.setup.cycle.manufactured_radius_mm = run.drive.geometry.belt_length_mm / (2.0 * M_PI);
   run.setup.temperature_C = s.temperature_C;
@@ -257,8 +257,8 @@ CardRun card_run(const std::string& load, int cycles, segment::Fidelity fidelity
   return run;
 }
 
-fatigue::SegmentLife card_life(const CardRun& r) {
-  return fatigue::segment_life(r.cycle, r.drive, r.setup, fatigue::default_card());
+scene::SegmentLife card_life(const CardRun& r) {
+  return scene::segment_life(r.cycle, r.drive, r.setup, fatigue::default_card());
 }
 
 // Largest |σ22(cycle 2) − σ22(cycle 1)| at the gap bottom over the path positions sampled in both
@@ -285,7 +285,7 @@ double cycle_difference(const segment::CycleResult& run, double length_mm) {
 TEST(SegmentLife, CompleteLevelOnTheLightDriveDiffersBetweenCycleOneAndTwoWhileTheElasticLevelRepeats) {
   const CardRun complete = card_run("light", 2, segment::Fidelity::complete);
   const CardRun elastic = card_run("light", 2, segment::Fidelity::elastic);
-  const fatigue::SegmentLife c = card_life(complete), e = card_life(elastic);
+  const scene::SegmentLife c = card_life(complete), e = card_life(elastic);
   for (const auto* l : {&c, &e}) {
     EXPECT_LT(l->run.equilibrium_error, 1e-6);
     for (const auto& m : l->report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
@@ -300,7 +300,7 @@ TEST(SegmentLife, CompleteLevelOnTheLightDriveDiffersBetweenCycleOneAndTwoWhileT
   EXPECT_LT(de, 1e-6);
 }
 
-// The complete level's steps (fatigue::life_cycle(Fidelity::complete), docs/decisions.md "Segment
+// The complete level's steps (scene::life_cycle(Fidelity::complete), docs/decisions.md "Segment
 // life: the complete level takes 120 steps per cycle and no load fronts"): its points carry history,
 // and 120 planned steps per cycle read the light drive's lives within 5 % of 240 steps (2 cycles:
 // N1 +2 %, N2 +2.5 %), where 60 read N1 14 % long. Before the points were read as the mean of the
@@ -312,8 +312,8 @@ TEST(SegmentLife, CompleteLevelsLivesOnTheLightDriveSettleWithTheStepCount) {
     if (steps > 0) r.setup.cycle.steps_per_cycle = steps;
     return card_life(r).report;
   };
-  EXPECT_EQ(fatigue::life_cycle(segment::Fidelity::complete).steps_per_cycle, 120);
-  EXPECT_EQ(fatigue::life_cycle(segment::Fidelity::elastic).steps_per_cycle, 60);
+  EXPECT_EQ(scene::life_cycle(segment::Fidelity::complete).steps_per_cycle, 120);
+  EXPECT_EQ(scene::life_cycle(segment::Fidelity::elastic).steps_per_cycle, 60);
   const fatigue::LifeReport planned = lives(0), fine = lives(240);
   for (int k = 0; k < 2; ++k) {
     const fatigue::ModeLife &a = planned.modes[k], &b = fine.modes[k];
@@ -336,12 +336,12 @@ TEST(SegmentLife, CompleteLevelsSeparationLifeIsTheSameOnOneAndThreeCushionRows)
     r.setup.mesh.cushion_rows = cushion_rows;
     return card_life(r);
   };
-  const auto peak_s11 = [](const fatigue::SegmentLife& l) {  // mid-cushion's largest radial stress
+  const auto peak_s11 = [](const scene::SegmentLife& l) {  // mid-cushion's largest radial stress
     double top = -1e300;
     for (const auto& q : l.run.points[1].samples) top = std::max(top, q.s11_MPa);
     return top;
   };
-  const fatigue::SegmentLife one = run(1), three = run(3);
+  const scene::SegmentLife one = run(1), three = run(3);
   ASSERT_EQ(one.run.points[1].point.name, "mid_cushion");
   ASSERT_EQ(one.run.elements, 192);
   const double n1[2] = {one.report.modes[0].life_cycles, three.report.modes[0].life_cycles};
@@ -349,7 +349,7 @@ TEST(SegmentLife, CompleteLevelsSeparationLifeIsTheSameOnOneAndThreeCushionRows)
   std::printf("light drive, complete, 1 cycle: one cushion row N1 %.4g N2 %.4g (mid-cushion s11 up to %.3f MPa, %s); "
               "three rows N1 %.4g N2 %.4g (%.3f MPa, %s)\n", n1[0], n2[0], peak_s11(one), one.report.governing.c_str(),
               n1[1], n2[1], peak_s11(three), three.report.governing.c_str());
-  for (const fatigue::SegmentLife* l : {&one, &three}) {
+  for (const scene::SegmentLife* l : {&one, &three}) {
     EXPECT_LT(peak_s11(*l), 0.2);
     EXPECT_EQ(l->report.governing, "radial_crack");
     EXPECT_GT(l->report.modes[1].life_cycles, 10.0 * l->report.modes[0].life_cycles);
@@ -372,7 +372,7 @@ TEST(SegmentLife, StepControlKnobsChangeTheWorkNotTheLives) {
   };
   segment::SolverKnobs strict;
   strict.stall_iterations = 6, strict.growth_iterations = 5;
-  const fatigue::SegmentLife defaults = run({}), controlled = run(strict);
+  const scene::SegmentLife defaults = run({}), controlled = run(strict);
   std::printf("light, complete, 1 cycle: %d / %d Newton iterations, %d / %d cuts\n", defaults.run.newton_iterations,
               controlled.run.newton_iterations, defaults.run.cuts, controlled.run.cuts);
   EXPECT_NE(controlled.run.newton_iterations, defaults.run.newton_iterations);
@@ -393,7 +393,7 @@ TEST(SegmentLife, CompleteLevelFailsAtTheMediumDrivesExitWithEitherDamageUpdateA
     run.setup.mesh.gap_size_mm = 0.0, run.setup.mesh.row_growth = 1.0;
     return run;
   };
-  const fatigue::SegmentLife slow = card_life(ungraded(card_run("medium", 1, segment::Fidelity::complete, 1e-3)));
+  const scene::SegmentLife slow = card_life(ungraded(card_run("medium", 1, segment::Fidelity::complete, 1e-3)));
   EXPECT_LT(slow.run.equilibrium_error, 1e-6);
   for (const auto& m : slow.report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
   for (Update update : {Update::implicit, Update::lagged}) {
@@ -430,7 +430,7 @@ TEST(SegmentLife, FlankFoundationLetsTheCompleteLevelPassTheMediumDrivesFold) {
   CardRun run = card_run("medium", 2, segment::Fidelity::complete);
   run.setup.cycle.flank_stiffness_N_mm4 = derived_flank_stiffness("medium", run);
   EXPECT_NEAR(run.setup.cycle.flank_stiffness_N_mm4, 0.0452, 5e-4);
-  const fatigue::SegmentLife life = card_life(run);
+  const scene::SegmentLife life = card_life(run);
   std::printf("medium, complete, flank k %.4g N/mm^4: N1 %.4g N2 %.4g %s; %d increments, %d cuts; radial share "
               "largest %.3g, mean %.3g\n", run.setup.cycle.flank_stiffness_N_mm4, life.report.modes[0].life_cycles,
               life.report.modes[1].life_cycles, life.report.governing.c_str(), life.run.increments, life.run.cuts,
@@ -467,20 +467,20 @@ TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesN
 // unsymmetric path (GMRES) at the elastic level. Both balance.
 TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
   const CardRun base = card_run("light", 2, segment::Fidelity::elastic);
-  const fatigue::SegmentLife off = card_life(base);
+  const scene::SegmentLife off = card_life(base);
   const segment::ContractLaw bottom(base.setup.materials[0]);
   CardRun stick = base, slide = base;
   stick.setup.cycle.flank_stick_N_mm4 =
       segment::flank_stick_stiffness_N_mm4(segment::axial_modulus_MPa(bottom) / 4.0, base.drive.belt.width_mm);
   EXPECT_NEAR(stick.setup.cycle.flank_stick_N_mm4, 0.286, 2e-3);
   slide.setup.cycle.flank_slide_floor_mm_s = 1e5;
-  const fatigue::SegmentLife a = card_life(stick), b = card_life(slide);
+  const scene::SegmentLife a = card_life(stick), b = card_life(slide);
   std::printf("light, elastic: stick k_t %.4g N/mm^4 N1 %.4g N2 %.4g along %.3g; slide floor 1e5 mm/s N1 %.4g N2 %.4g "
               "along %.3g; off N1 %.4g N2 %.4g\n", stick.setup.cycle.flank_stick_N_mm4, a.report.modes[0].life_cycles,
               a.report.modes[1].life_cycles, a.run.flank_stick_share, b.report.modes[0].life_cycles,
               b.report.modes[1].life_cycles, b.run.flank_stick_share, off.report.modes[0].life_cycles,
               off.report.modes[1].life_cycles);
-  for (const fatigue::SegmentLife* life : {&a, &b}) {
+  for (const scene::SegmentLife* life : {&a, &b}) {
     EXPECT_LT(life->run.equilibrium_error, 1e-6);
     EXPECT_NEAR(life->report.modes[0].life_cycles / off.report.modes[0].life_cycles, 1.0, 0.01);
   }
@@ -504,7 +504,7 @@ TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingThe
   CardRun shifted = card_run("medium", 2, segment::Fidelity::elastic);
   CardRun plain = shifted;
   plain.setup.solver.levenberg = 0.0;
-  const fatigue::SegmentLife a = card_life(shifted), b = card_life(plain);
+  const scene::SegmentLife a = card_life(shifted), b = card_life(plain);
   std::printf("medium, elastic level: cuts %d -> %d, iterations %d -> %d (levenberg off -> on)\n", b.run.cuts,
               a.run.cuts, b.run.newton_iterations, a.run.newton_iterations);
   EXPECT_GE(b.run.cuts, 2);  // 4 before the element-mean body forces smoothed the exits

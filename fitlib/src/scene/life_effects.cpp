@@ -8,7 +8,7 @@
 #include "fitlib/core/progress.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/card.hpp"
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/card/conversion.hpp"
 #include "fitlib/card/data_window.hpp"
@@ -58,8 +58,8 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
 constexpr double kMaxSegmentLifeWork = 1e5;
 
 // Refuses a run beyond the cap before the FE starts, naming the scene and the keys that set it.
-void check_segment_work(const Scene& s, const fatigue::SegmentLifeSetup& setup) {
-  const double work = fatigue::segment_run_work(setup);
+void check_segment_work(const Scene& s, const scene::SegmentLifeSetup& setup) {
+  const double work = scene::segment_run_work(setup);
   if (work <= kMaxSegmentLifeWork) return;
   const auto& c = setup.cycle;
   const double elements = work / (c.bend_steps + static_cast<double>(c.cycles) * c.steps_per_cycle);
@@ -181,10 +181,10 @@ std::string damage_hold_remedy(const Scene& s, const std::set<std::string>& held
 
 // The segment run; a numerical failure says what the user can do.
 segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
-                                 const fatigue::SegmentLifeSetup& setup, const std::string& fidelity,
+                                 const scene::SegmentLifeSetup& setup, const std::string& fidelity,
                                  const std::string& hold_remedy) {
   try {
-    return fatigue::segment_run(cycle, drive, setup);
+    return scene::segment_run(cycle, drive, setup);
   } catch (const core::NumericalError& e) {
     const std::string evidence = setup.solver.diagnose_failure
                                      ? ""
@@ -257,11 +257,11 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, con
 void segment_stresses(const Scene& s, SceneResult& r) {
   require_running_belt(s, *r.drive);
   in_scene(s, [&] {
-    fatigue::SegmentLifeSetup setup;
+    scene::SegmentLifeSetup setup;
     setup.section = cog_section(s);
-    setup.mesh = s.segment ? s.segment->life_mesh : fatigue::life_mesh();
+    setup.mesh = s.segment ? s.segment->life_mesh : scene::life_mesh();
     setup.solver = s.segment ? s.segment->setup.solver : segment::SolverKnobs{};
-    setup.cycle = fatigue::life_cycle(segment::fidelity_from_string(r.plan.life->fidelity));
+    setup.cycle = scene::life_cycle(segment::fidelity_from_string(r.plan.life->fidelity));
     setup.solver.threads = segment_threads(s);
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
@@ -280,7 +280,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
       };
     }
     const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, damage_hold_remedy(s, r.segment_damage_held));
-    r.stresses = fatigue::segment_point_histories(run);
+    r.stresses = scene::segment_point_histories(run);
     strain_window_warnings(s, run, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
     r.segment_run = SegmentRun{run.elements, setup.cycle.cycles, setup.cycle.steps_per_cycle,
@@ -291,7 +291,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
         r.segment_fields.push_back({s.life_field_at[k], setup.cycle.vtk_at_s_mm[k], path});
     }
-    r.life_conditions = fatigue::segment_conditions(*r.cycle, *r.drive, s.temperature_C, run);
+    r.life_conditions = scene::segment_conditions(*r.cycle, *r.drive, s.temperature_C, run);
   });
 }
 

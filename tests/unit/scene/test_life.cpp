@@ -17,7 +17,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/model/model.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/writers.hpp"
@@ -230,7 +230,7 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(lives[1][k] / lives[0][k], 1.0, 1e-6) << "mode " << k;
 }
 
-// The complete level runs the life's mesh (fatigue::life_mesh(), 192 elements, one cushion row,
+// The complete level runs the life's mesh (scene::life_mesh(), 192 elements, one cushion row,
 // graded; docs/decisions.md "Segment: a point's stress is averaged over the elements that share it")
 // and the table's note says what that mesh is accurate to at the complete level. Light drive, one
 // cycle: radial crack governs, N2 far beyond N1.
@@ -279,12 +279,12 @@ TEST(SceneLife, CompleteLevelWithoutACardForARoleIsRefusedNamingTheRole) {
 // The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
 // cycle); the life's mesh has 192 elements (docs/segment.md "Cost").
 TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
-  fatigue::SegmentLifeSetup setup;
+  scene::SegmentLifeSetup setup;
   setup.section = scene::cog_section(scene::load_scene(kDrives + "ref-0500-light.toml"));
   setup.cycle.cycles = 3;
-  EXPECT_EQ(fatigue::segment_run_work(setup), 192.0 * (4 + 3 * 60));
+  EXPECT_EQ(scene::segment_run_work(setup), 192.0 * (4 + 3 * 60));
   setup.cycle.cycles = 10000, setup.cycle.steps_per_cycle = 30, setup.cycle.bend_steps = 2;
-  EXPECT_EQ(fatigue::segment_run_work(setup), 192.0 * (2 + 10000.0 * 30));
+  EXPECT_EQ(scene::segment_run_work(setup), 192.0 * (2 + 10000.0 * 30));
 }
 
 // [life] cycles × mesh elements × steps beyond the cap: refused before the FE starts (10⁴ cycles
@@ -333,7 +333,7 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
 // it replaced the whole life mesh by the static case's defaults: `threads = 1` alone moved the life).
 TEST(SceneLife, SegmentMeshKeysChangeOnlyThemselvesInTheLifesMesh) {
   const std::string base = core::read_file(kDrives + "ref-0500-medium.toml");
-  const segment::MeshKnobs life = fatigue::life_mesh();
+  const segment::MeshKnobs life = scene::life_mesh();
   auto s = scene::parse_scene(base + "\n[segment]\nthreads = 1\n", "x.toml");
   ASSERT_TRUE(s.segment);
   EXPECT_FALSE(s.segment->life_mesh_changed);
@@ -353,7 +353,7 @@ TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
   const auto s = with_life("light");
   const auto drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const auto cycle = belt::compute_load_cycle(drive);
-  fatigue::SegmentLifeSetup setup;
+  scene::SegmentLifeSetup setup;
   setup.section = scene::cog_section(s);
   setup.cycle.cycles = 1;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -370,7 +370,7 @@ TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
   };
   for (const double tolerance : {1e-9, 1e-3}) {
     setup.solver.tolerance = tolerance, setup.solver.stall_tolerance = std::max(tolerance, 1e-5);
-    const scene::SegmentEquilibrium check = scene::segment_equilibrium(fatigue::segment_run(cycle, drive, setup));
+    const scene::SegmentEquilibrium check = scene::segment_equilibrium(scene::segment_run(cycle, drive, setup));
     const bool loose = tolerance > 1e-6;
     EXPECT_EQ(check.within_bounds(), !loose) << "tolerance " << tolerance << ": error " << check.equilibrium_error;
     std::printf("tolerance %g: equilibrium error %.3g, span cord share %.3g, span section mismatch %.3g\n", tolerance,

@@ -162,11 +162,12 @@ TEST(SegmentFlank, BlockPulledAlongTheBeltSticksSlipsAndUnloadsElastically) {
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
   p.following_force = stick_contact(m, line, 0.0, k_t, limit);
   std::vector<std::pair<double, double>> pulled;  // λ, Σ reactions along x
-  p.on_increment = [&](double lambda, const StaticSolution& s) {
+  CallbackObserver watch([&](double lambda, const StaticSolution& s) {
     double r = 0.0;
     for (const Eigen::Vector2d& f : s.reaction_N_mm) r += f.x();
     pulled.emplace_back(lambda, r);
-  };
+  });
+  p.observers.push_back(&watch);
   SolverKnobs knobs;
   knobs.steps = 8;
   solve_static(p, knobs);

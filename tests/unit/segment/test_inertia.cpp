@@ -43,10 +43,11 @@ ShearRun shear_run(const Mesh& m, double b_N_mm3, double t_end_s, int steps, boo
   for (int n = 0; n < m.node_count(); ++n)
     if (std::abs(m.X[n].x()) < 1e-9 && m.X[n].y() < m.X[bottom].y() + 1e-9) bottom = n;
   ShearRun out;
-  p.on_increment = [&](double lambda, const StaticSolution& s) {
+  CallbackObserver watch([&](double lambda, const StaticSolution& s) {
     out.t_s.push_back(lambda * t_end_s);
     out.u_bottom_mm.push_back(s.u_mm[bottom].x());
-  };
+  });
+  p.observers.push_back(&watch);
   SolverKnobs knobs;
   knobs.steps = steps;
   knobs.inertia = inertia;

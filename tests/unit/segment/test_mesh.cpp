@@ -32,7 +32,7 @@ std::vector<double> row_lines_at(const Mesh& m, double x) {
   return {y.rbegin(), y.rend()};
 }
 
-// The life mesh's knobs (fatigue::life_mesh(), a module to the right of segment's tests).
+// The life mesh's knobs (scene::life_mesh(), a module to the right of segment's tests).
 MeshKnobs graded() {
   MeshKnobs k;
   k.central_pitches = 1.0, k.end_pitches = 1.0, k.fine_size_mm = 1.0, k.coarse_size_mm = 2.5, k.cushion_rows = 1;

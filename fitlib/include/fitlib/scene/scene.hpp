@@ -11,7 +11,7 @@
 #include "fitlib/belt/drive.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/card/conversion.hpp"
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/segment/static_case.hpp"
 
 namespace fitlib::scene {
@@ -71,9 +71,9 @@ struct SegmentSpec {
   // The static case's load frequency (Hz) for the cards' elastic equivalents ([belt.materials]);
   // unset: the drive's, one load cycle per belt revolution (scene::run_segment_case).
   std::optional<double> frequency_Hz;
-  // The life's mesh (fatigue::life_mesh()) with the [segment] mesh keys the scene gives: a key
+  // The life's mesh (scene::life_mesh()) with the [segment] mesh keys the scene gives: a key
   // given changes that knob, the others keep the default.
-  segment::MeshKnobs life_mesh = fatigue::life_mesh();
+  segment::MeshKnobs life_mesh = scene::life_mesh();
   bool life_mesh_changed = false;  // a mesh key was given
 };
 

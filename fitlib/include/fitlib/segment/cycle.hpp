@@ -63,7 +63,7 @@ struct CycleKnobs {
   // Report I's dead friction).
   double flank_slide_floor_mm_s = 0.0;
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
-  // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, fatigue::life_cycle).
+  // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, scene::life_cycle).
   EndCondition ends = EndCondition::radial;
   // Optional, instead of the sheared condition's model (e.g. a longer run's sections, sub-modelling):
   // σ12 (MPa, the cord curve's local frame) on the end faces and their warping (mm along the cord

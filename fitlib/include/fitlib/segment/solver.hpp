@@ -15,6 +15,7 @@
 
 #include "fitlib/segment/elastic.hpp"
 #include "fitlib/segment/mesh.hpp"
+#include "fitlib/segment/observer.hpp"
 
 namespace fitlib::segment {
 
@@ -138,8 +139,9 @@ struct StaticProblem {
     Eigen::Vector2d centre_mm = Eigen::Vector2d::Zero();
   };
   std::function<void(double lambda_from, double lambda_to, std::vector<FrameTurn>& per_node)> frame_turn;
-  // Optional: called after every converged increment with its stresses, displacements, reactions.
-  std::function<void(double lambda, const StaticSolution& increment)> on_increment;
+  // Called in order after every converged increment with its stresses, displacements, reactions
+  // (not owned; each must outlive the solve).
+  std::vector<IncrementObserver*> observers;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
   // SolverKnobs::inertia: mass density (t/mm³ = 10¹² kg/m³) and, optionally, each node's
   // displacement (global, mm) at λ when carried rigidly with its column's cord frame; the inertia

@@ -1,5 +1,5 @@
 // Life from the segment FE (fitlib/fatigue/segment_life.hpp).
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 
 #include <chrono>
 
@@ -8,7 +8,7 @@
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/segment/point_law.hpp"
 
-namespace fitlib::fatigue {
+namespace fitlib::scene {
 
 segment::MeshKnobs life_mesh() {
   segment::MeshKnobs m;
@@ -26,12 +26,12 @@ segment::CycleKnobs life_cycle(segment::Fidelity fidelity) {
   return c;
 }
 
-std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run) {
-  std::vector<PointHistory> out;
+std::vector<fatigue::PointHistory> segment_point_histories(const segment::CycleResult& run) {
+  std::vector<fatigue::PointHistory> out;
   for (const segment::MonitoredHistory& m : run.points) {
-    PointHistory p;
+    fatigue::PointHistory p;
     p.name = m.point.name;
-    p.role = m.role == segment::Role::bottom ? Role::bottom : Role::cushion;
+    p.role = m.role == segment::Role::bottom ? fatigue::Role::bottom : fatigue::Role::cushion;
     p.x_mm = m.point.x_mm, p.y_mm = m.point.y_mm;
     for (const segment::CycleSample& c : m.samples)
       p.samples.push_back({c.t_s, c.s11_MPa, c.s22_MPa, c.s12_MPa, c.e11, c.e22, c.e12});
@@ -49,7 +49,7 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
                                  const SegmentLifeSetup& setup) {
   if (!setup.materials[0] || !setup.materials[1])
     throw core::UsageError("segment life: a material point per role (bottom, cushion) is required");
-  cycle_conditions(cycle, drive, setup.temperature_C);  // refuses a standing belt before the FE runs
+  fatigue::cycle_conditions(cycle, drive, setup.temperature_C);  // refuses a standing belt before the FE runs
   const belt::LoadHistory history(cycle, drive.belt, setup.temperature_C);
   segment::CycleDrive d;
   d.history = &history;
@@ -64,23 +64,23 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
                             setup.extra_points);
 }
 
-LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,
+fatigue::LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,
                                   const segment::CycleResult& run) {
-  LifeConditions c = cycle_conditions(cycle, drive, temperature_C);
+  fatigue::LifeConditions c = fatigue::cycle_conditions(cycle, drive, temperature_C);
   c.cycle_time_s = run.cycle_time_s;
   return c;
 }
 
 SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
-                         const FatigueCard& card) {
+                         const fatigue::FatigueCard& card) {
   const auto t0 = std::chrono::steady_clock::now();
   SegmentLife out;
   out.run = segment_run(cycle, drive, setup);
-  LifeConditions conditions = segment_conditions(cycle, drive, setup.temperature_C, out.run);
+  fatigue::LifeConditions conditions = segment_conditions(cycle, drive, setup.temperature_C, out.run);
   conditions.peaks = setup.peaks;
-  out.report = evaluate_life(segment_point_histories(out.run), card, conditions);
+  out.report = fatigue::evaluate_life(segment_point_histories(out.run), card, conditions);
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 
-}  // namespace fitlib::fatigue
+}  // namespace fitlib::scene

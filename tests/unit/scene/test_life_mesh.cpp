@@ -1,16 +1,16 @@
-// The life's default segment mesh (fatigue::life_mesh(), docs/segment.md §Mesh), both levels: graded
+// The life's default segment mesh (scene::life_mesh(), docs/segment.md §Mesh), both levels: graded
 // towards the central gap bottom where N1 is read; a point's stress read over the elements sharing it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "fitlib/fatigue/segment_life.hpp"
+#include "fitlib/scene/segment_life.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/solver.hpp"
 
-namespace fitlib::fatigue {
+namespace fitlib::scene {
 
-// The life mesh (fatigue::life_mesh()): its size, and its elements positive and bounded in shape.
+// The life mesh (scene::life_mesh()): its size, and its elements positive and bounded in shape.
 // Measured: min det J / mean 0.709, aspect ratio 7.46 (the ends' 2.5 mm columns over the graded
 // rows); ungraded 0.779 and 5.15.
 TEST(LifeMesh, HasItsElementCountAndWellShapedElements) {
@@ -65,4 +65,4 @@ TEST(LifeMesh, APointsStressIsTheMeanOverTheElementsOfItsRoleThatShareIt) {
   EXPECT_NEAR(segment::interpolate(s, inside, 2, Eigen::Vector2d(0.2, -0.2)).cauchy_MPa(1, 1), inside.element, 1e-12);
 }
 
-}  // namespace fitlib::fatigue
+}  // namespace fitlib::scene

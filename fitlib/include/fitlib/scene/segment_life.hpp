@@ -1,5 +1,5 @@
 #pragma once
-// Life from the segment FE (issue 11 items 1–2 joined): load cycle → segment driven by it
+// Life from the segment FE, orchestrated here (scene): load cycle → segment driven by it
 // (segment/cycle.hpp) → stress histories at the monitored points → fatigue life. One library call
 // the scene planner runs for the `elastic` and `complete` fidelities; the beam level is
 // beam_section.hpp.
@@ -12,11 +12,11 @@
 #include "fitlib/segment/cycle.hpp"
 #include "fitlib/segment/point_law.hpp"
 
-namespace fitlib::fatigue {
+namespace fitlib::scene {
 
 // The monitored histories of a segment run as fatigue input: local stresses (1 radial,
 // 2 longitudinal), the role from the element's material.
-std::vector<PointHistory> segment_point_histories(const segment::CycleResult& run);
+std::vector<fatigue::PointHistory> segment_point_histories(const segment::CycleResult& run);
 
 // The life's default mesh, both levels: 1.0 mm central (one pitch), 2.5 mm ends (one pitch each),
 // one cushion row, graded to 0.3 mm columns and thinner rows at the central gap bottom, 192
@@ -43,11 +43,11 @@ struct SegmentLifeSetup {
   std::array<model::MaterialPointPtr, 2> materials;  // by segment::Role: bottom, cushion
   std::vector<segment::NamedPoint> extra_points;
   double temperature_C = 20.0;
-  PeakOptions peaks;
+  fatigue::PeakOptions peaks;
 };
 
 struct SegmentLife {
-  LifeReport report;
+  fatigue::LifeReport report;
   segment::CycleResult run;
   double wall_s = 0.0;
 };
@@ -64,12 +64,12 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
 // The life conditions of a segment run: the load cycle's (cycle_conditions), with the run's cycle
 // time, so that only its last simulated cycle counts (fatigue.md §3; the bending step and the
 // earlier cycles are the transient).
-LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,
+fatigue::LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,
                                   const segment::CycleResult& run);
 
 // InputError for a standing belt or a drive without a load cycle; NumericalError (exit 4) when
 // the segment's Newton fails, naming increment and element.
 SegmentLife segment_life(const belt::LoadCycle& cycle, const belt::DriveCase& drive, const SegmentLifeSetup& setup,
-                         const FatigueCard& card);
+                         const fatigue::FatigueCard& card);
 
-}  // namespace fitlib::fatigue
+}  // namespace fitlib::scene

@@ -1,0 +1,135 @@
+#pragma once
+// The segment's element loop (solver.cpp): each element's internal force and consistent tangent
+// through the material-point contract (element.hpp), the loads of StaticProblem (follower
+// pressure, dead body and nodal forces, the following force, inertia), added into the residual and
+// the tangent's slots in the nodes' local bases. Threaded over elements, bit-identical whatever the
+// thread count.
+#include <limits>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dofs.hpp"
+#include "element.hpp"
+#include "inertia.hpp"
+#include "worker_pool.hpp"
+#include "fitlib/segment/solver.hpp"
+
+namespace fitlib::segment::detail {
+
+// One element's response as the scatter adds it: force and tangent in its nodes' local bases,
+// its points' states, and whether every point responded (the element loop's per-element buffer).
+struct ElementBuffer {
+  std::vector<Eigen::Vector2d> X, u;
+  detail::ElementVector f;
+  detail::ElementMatrix K;
+  std::vector<detail::ElementState> states;
+  bool ok = false;
+};
+
+class Assembler {
+ public:
+  Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool)
+      : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar), pool_(pool),
+        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1) {
+    if (p.body_force || p.following_force.at) point_weights();
+  }
+
+  std::size_t points_per_element() const { return rule_.size(); }
+  // The step the point states are updated over (state_n → state_next).
+  void set_step(const double* state_n, double* state_next, double dt_s) {
+    state_n_ = state_n, state_next_ = state_next, dt_s_ = dt_s;
+  }
+  void set_offsets(const std::vector<std::size_t>* offset) { offset_ = offset; }
+  // SolverKnobs::inertia (segment/inertia.hpp); `diagonal`: per equation, the slot of K_ii.
+  void set_inertia(const detail::BackwardEulerInertia* inertia, const std::vector<int>* diagonal) {
+    inertia_ = inertia, diagonal_ = diagonal;
+  }
+
+  Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
+
+  // One element's response at q, as run() computes it (the failure diagnosis).
+  bool element_at(const Eigen::VectorXd& q, int e, detail::ElementVector& f, detail::ElementMatrix* Ke,
+                  std::vector<detail::ElementState>* states = nullptr) const;
+  const PlaneStrainLaw& law_of(int e) const { return *p_.laws[static_cast<int>(p_.mesh->roles[e])]; }
+  detail::ElementStep step_of(int e) const {
+    const std::size_t at = (*offset_)[e];
+    return {state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};
+  }
+
+  // Residual (local components, all dofs) and, if asked, the free-free tangent into the pattern's
+  // values and K_fp·dq_p into coupling. Returns the failing element, or −1. The elements' responses
+  // are computed on the pool into their buffers, then added in element order up to the first
+  // failing one, exactly as a serial loop would (bit-identical whatever the thread count).
+  int run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
+          Pattern* K, Eigen::VectorXd* coupling,
+          std::vector<std::vector<IntegrationPointStress>>* states = nullptr) const;
+
+  // Per element, the following force's ∫ b dV at q (global; empty without one), at the λ of the
+  // last assembly.
+  std::vector<Eigen::Vector2d> following_forces(const Eigen::VectorXd& q) const;
+
+  // StaticProblem::following_force's commit at every integration point's position at q (serial).
+  void commit_following(const Eigen::VectorXd& q) const;
+
+  // Per node, the inertia force m·a at q (global; empty without inertia).
+  std::vector<Eigen::Vector2d> inertia_forces(const Eigen::VectorXd& q) const;
+
+ private:
+  // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
+  // buffer and element e's trial states).
+  void respond(const Eigen::VectorXd& q, int e, bool tangent, bool states, ElementBuffer& b) const;
+
+  // f and K from global components to the nodes' local bases (Rᵀf, R_aᵀ K_ab R_b); a node without
+  // a constraint has R = I and is left as it is.
+  void to_local(const int* nodes, int n, detail::ElementVector& f, detail::ElementMatrix* K) const;
+
+  // The shape functions at the rule's points and each point's reference volume dV (the body
+  // forces' and the following force's weights; the shape functions are the same in every element).
+  void point_weights();
+
+  // StaticProblem::following_force at element e's points (global components): −∫ N_a b dV into the
+  // force, −∫ N_a N_b ∂b/∂x dV into the tangent.
+  void add_following(int e, const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
+                     detail::ElementVector& f, detail::ElementMatrix* K) const;
+
+  // The follower pressure λ p on the bottom edges (StaticProblem::pressure_MPa), with its tangent.
+  void add_pressure(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
+                    Pattern* K, Eigen::VectorXd* coupling) const;
+
+  // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
+  // −∫ N_a b dV (the residual is internal minus external force).
+  void add_body_forces(double lambda, Eigen::VectorXd& r) const;
+
+  bool moves(int n) const { return d_.eq[2 * n] >= 0 || d_.eq[2 * n + 1] >= 0; }
+
+  // m·a of every node with a free component into the residual (a cord-line node follows its frame
+  // exactly), m/Δt² onto the diagonal of its free equations (the mass is isotropic, so a node's
+  // rotated basis leaves it diagonal and uncoupled from the prescribed components).
+  void add_inertia(const Eigen::VectorXd& q, Eigen::VectorXd& r, Pattern* K) const;
+
+  // Adds an element's (or edge's) local force and tangent: free-free entries into K's slots,
+  // free-prescribed ones times the prescribed step into coupling (the predictor).
+  template <typename Nodes>
+  void scatter(const Nodes& nodes, const detail::ElementVector& f, const detail::ElementMatrix* Ke, const Eigen::VectorXd* dq_p,
+               Eigen::VectorXd& r, Pattern* K, const std::vector<int>* slots, Eigen::VectorXd* coupling) const;
+
+  const StaticProblem& p_;
+  const Dofs& d_;
+  std::vector<detail::GaussPoint> rule_;
+  bool f_bar_ = false;
+  detail::WorkerPool& pool_;
+  mutable std::vector<ElementBuffer> buffers_;
+  const std::vector<std::size_t>* offset_ = nullptr;
+  const double* state_n_ = nullptr;
+  double* state_next_ = nullptr;
+  double dt_s_ = 0.0;
+  mutable std::vector<Eigen::Vector2d> body_, nodal_;  // the dead loads at body_at_, nodal_at_
+  mutable double body_at_ = std::numeric_limits<double>::quiet_NaN(), nodal_at_ = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> shape_, volume_;  // point_weights(): N_a per point of the rule, dV per element and point
+  mutable double following_at_ = std::numeric_limits<double>::quiet_NaN();  // the λ following_force was prepared at
+  const detail::BackwardEulerInertia* inertia_ = nullptr;
+  const std::vector<int>* diagonal_ = nullptr;
+};
+
+}  // namespace fitlib::segment::detail
