@@ -18,7 +18,7 @@ using fitlib::data::parse_dynamic_table;
 using fitlib::data::read_dynamic_table;
 using fitlib::data::ReadOptions;
 using fitlib::data::TableFormat;
-using fitlib::model::TestMode;
+using fitlib::core::TestMode;
 
 namespace {
 

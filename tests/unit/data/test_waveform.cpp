@@ -190,7 +190,7 @@ TEST(Waveform, SeededNoiseErrorIsWithinTheReportedScatter) {
 
 TEST(Waveform, ForceDisplacementDoubleSandwichShear) {
   fitlib::data::SpecimenInfo specimen;
-  specimen.mode = fitlib::model::TestMode::shear;
+  specimen.mode = fitlib::core::TestMode::shear;
   specimen.has_mode = true;
   specimen.area_mm2 = 50.8 * 12.7;
   specimen.thickness_mm = 12.7;
@@ -220,7 +220,7 @@ TEST(Waveform, ForceDisplacementDoubleSandwichShear) {
 
 TEST(Waveform, ForceDisplacementCompressionWithPreload) {
   fitlib::data::SpecimenInfo specimen;
-  specimen.mode = fitlib::model::TestMode::uniaxial;
+  specimen.mode = fitlib::core::TestMode::uniaxial;
   specimen.has_mode = true;
   specimen.area_mm2 = 100.0;
   specimen.length_mm = 10.0;
@@ -290,14 +290,14 @@ TEST(Waveform, RefusesUnusableSignals) {
 
 TEST(WaveformFile, ShearSandwichWithHeaderMetadata) {
   const auto record = fitlib::data::read_waveform(kWaveforms + "shear_sandwich_3Hz.csv");
-  EXPECT_EQ(record.specimen.mode, fitlib::model::TestMode::shear);
+  EXPECT_EQ(record.specimen.mode, fitlib::core::TestMode::shear);
   EXPECT_EQ(record.specimen.n_specimens, 2);
   EXPECT_EQ(record.specimen.area_mm2, 645.16);
   EXPECT_EQ(record.time_s.size(), 1024u);
   EXPECT_EQ(record.source_sha256.size(), 64u);
   const auto report = analyse_waveform(record.time_s, record.stress_MPa, record.strain);
   const auto row = fitlib::data::waveform_row(report, record.specimen, record.source_file);
-  EXPECT_EQ(row.condition.mode, fitlib::model::TestMode::shear);
+  EXPECT_EQ(row.condition.mode, fitlib::core::TestMode::shear);
   EXPECT_LT(rel(row.condition.frequency_Hz, 3.0), 1e-12);
   EXPECT_LT(rel(row.storage_MPa, 4.0), 1e-9);
   EXPECT_LT(rel(row.loss_MPa, 0.8), 1e-9);
@@ -322,7 +322,7 @@ TEST(WaveformFile, ShearSandwichWithHeaderMetadata) {
 TEST(WaveformFile, CompressionWithJsonSidecar) {
   const auto record = fitlib::data::read_waveform(kWaveforms + "compression_34Hz.csv",
                                                   kWaveforms + "compression_34Hz.json");
-  EXPECT_EQ(record.specimen.mode, fitlib::model::TestMode::uniaxial);
+  EXPECT_EQ(record.specimen.mode, fitlib::core::TestMode::uniaxial);
   const auto report = analyse_waveform(record.time_s, record.stress_MPa, record.strain);
   EXPECT_EQ(report.smoothing_window, 1);  // 102.4 samples per period / 40 < 3
   const auto row = fitlib::data::waveform_row(report, record.specimen);

@@ -34,7 +34,7 @@ TEST(Eplexor, RawExportGivesTheRowsOfPyviscosCsv) {
     const auto& a = xls.table.rows[i];
     const auto& b = csv.rows[i];
     SCOPED_TRACE("row " + std::to_string(i));
-    EXPECT_EQ(a.condition.mode, model::TestMode::uniaxial);
+    EXPECT_EQ(a.condition.mode, core::TestMode::uniaxial);
     EXPECT_LE(relative(a.condition.frequency_Hz, b.condition.frequency_Hz), 5e-10);
     EXPECT_LE(relative(a.condition.temperature_C, b.condition.temperature_C), 5e-10);
     EXPECT_LE(relative(a.storage_MPa, b.storage_MPa), 5e-10);
@@ -48,7 +48,7 @@ TEST(Eplexor, RawExportGivesTheRowsOfPyviscosCsv) {
 TEST(Eplexor, MasterExportReadsModeAndShiftList) {
   const auto x = data::read_eplexor(dataset("pyvisco-eplexor-master.xls"));
   ASSERT_EQ(x.table.rows.size(), 210u);
-  EXPECT_EQ(x.table.rows.front().condition.mode, model::TestMode::uniaxial);
+  EXPECT_EQ(x.table.rows.front().condition.mode, core::TestMode::uniaxial);
   EXPECT_DOUBLE_EQ(x.table.rows.front().condition.frequency_Hz, 8.3176377110270465e-06);
   EXPECT_DOUBLE_EQ(x.table.rows.front().storage_MPa, 82.391631190160041);
   EXPECT_TRUE(x.table.rows.front().set.empty());
@@ -64,7 +64,7 @@ TEST(Eplexor, MasterExportReadsModeAndShiftList) {
 TEST(Eplexor, ShearMasterExport) {
   const auto x = data::read_eplexor(dataset("pyvisco-eplexor-master-shear.xls"));
   ASSERT_EQ(x.table.rows.size(), 183u);
-  for (const auto& r : x.table.rows) EXPECT_EQ(r.condition.mode, model::TestMode::shear);
+  for (const auto& r : x.table.rows) EXPECT_EQ(r.condition.mode, core::TestMode::shear);
   EXPECT_DOUBLE_EQ(x.table.rows.front().storage_MPa, 0.94613442786072244);
   EXPECT_DOUBLE_EQ(x.table.rows.front().loss_MPa, 0.076453927860698698);
   ASSERT_TRUE(x.has_shift_list);
@@ -154,7 +154,7 @@ TEST(ShiftFactors, ErrorsNameLineAndColumn) {
 TEST(Relaxation, ReadsPyviscoMasterAndRawIsotherms) {
   const auto master = data::read_relaxation_table(dataset("pyvisco-time-master.csv"));
   ASSERT_EQ(master.rows.size(), 481u);
-  EXPECT_EQ(master.rows.front().mode, model::TestMode::uniaxial);
+  EXPECT_EQ(master.rows.front().mode, core::TestMode::uniaxial);
   EXPECT_EQ(master.rows.front().time_s, 0.00281764);
   EXPECT_EQ(master.rows.front().modulus_MPa, 1714.266);
   EXPECT_TRUE(std::isnan(master.rows.front().temperature_C));
@@ -169,7 +169,7 @@ TEST(Relaxation, ReadsPyviscoMasterAndRawIsotherms) {
 
 TEST(Relaxation, ShearUnitsAndErrors) {
   const auto g = data::parse_relaxation_table("t,G_relax\ns,kPa\n1,500\n", "g.csv");
-  EXPECT_EQ(g.rows.front().mode, model::TestMode::shear);
+  EXPECT_EQ(g.rows.front().mode, core::TestMode::shear);
   EXPECT_EQ(g.rows.front().modulus_MPa, 0.5);
   const auto fails_at = [](const std::string& text, int line, int column) {
     try {
