@@ -142,7 +142,7 @@ fit::TermSelection select_with_default_objective(const FitCardOptions& o, const 
   if (std::none_of(verdict.begin(), verdict.end(), on_storage)) {
     fit = both;
     balanced.messages.push_back("default objective: both moduli count (relative errors, weights 1:1): the data are "
-                                "Kramers-Kronig consistent to within their noise; " + s.str());
+                                "Kramers-Kronig consistent to within the verdict's thresholds; " + s.str());
     return balanced;
   }
   const auto [lo, hi] = loss_miss_span(first.result, table, 1.5);
@@ -211,8 +211,8 @@ FitCardResult read_back_checked(const FitCardOptions& o, Run run) {
 // --terms N of a series model with linear moduli and no temperature law of its own (fitcli's
 // default backend): the moduli by NNLS on the model's log-spaced τ grid over the data (then
 // polished in log space for log10 residuals), and the free-τ fit from there only where it pays:
-// when the grid is sparser than one term per decade of the data (docs/fitting.md "Fixed term
-// counts"); the lower cost is kept. Nothing when the model or the options are others.
+// when there are fewer terms than decades of data (docs/fitting.md "Fixed term counts"); the
+// lower cost is kept. Nothing when the model or the options are others.
 std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const data::DynamicTestTable& table,
                                              const fit::FitOptions& options, int terms) {
   const auto make = [&](int) { return m; };
@@ -225,9 +225,9 @@ std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const dat
   fit::FitResult fixed = fit::fit(m, table, grid);
   const auto s = fit::summarize(table);
   const double decades = std::log10(s.omega_max_rad_s / s.omega_min_rad_s);
-  if (terms - 1 >= decades) {
+  if (terms >= decades) {
     fixed.messages.push_back("--terms " + std::to_string(terms) + ": moduli by NNLS on the log-spaced time grid (" +
-                             core::format_number((terms - 1) / std::max(decades, 1e-9), 3) +
+                             core::format_number(terms / std::max(decades, 1e-9), 3) +
                              " terms per decade of the data: free times would not pay)");
     return fixed;
   }
