@@ -160,6 +160,10 @@ void print_summary(const FitArgs& a, const fitlib::card::FitCardResult& r) {
     if (f.modulus == "relaxation") out << "t = " << 1.0 / (2.0 * M_PI * f.max_at_frequency_Hz) << " s\n";
     else out << f.max_at_frequency_Hz << " Hz\n";
   }
+  const auto cost = fitlib::card::fe_cost(*result.model, result.values);
+  if (cost.terms > 0)
+    out << "FE cost: " << cost.terms << " terms, " << cost.state_variables
+        << " state variables per integration point (3-D solid)\n";
   out << "verdict: "
       << (result.quality.acceptable() ? "within the thresholds (docs/fitting.md)"
                                       : std::to_string(result.quality.warnings.size()) + " warning(s) on stderr")

@@ -93,9 +93,39 @@ const char* kHeader =
     "set grid lc rgb '#dddddd'\nset key outside right top box opaque font ',9'\nset logscale x\n"
     "set format x '10^{%L}'\nset palette defined (0 '#2c7bb6', 0.5 '#ffbf00', 1 '#d7191c')\nunset colorbox\n";
 
-// Storage, loss, tan δ, residuals; `mode_letter` E or G.
+// The card's 95 % confidence band (fit.confidence_band) as a data block $band: f, E′ low/high,
+// E″ low/high, tan δ low/high; false when the card has none.
+bool band_block(const nlohmann::json& fit, std::ostringstream& s) {
+  const auto b = fit.find("confidence_band");
+  if (b == fit.end() || !b->is_object() || !b->contains("frequency_Hz")) return false;
+  const auto& f = (*b)["frequency_Hz"];
+  s << "$band << EOD\n";
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    s << exact(f[k].get<double>());
+    for (const char* c : {"storage_low_MPa", "storage_high_MPa", "loss_low_MPa", "loss_high_MPa", "tan_delta_low",
+                          "tan_delta_high"})
+      s << " " << exact((*b)[c][k].get<double>());
+    s << "\n";
+  }
+  s << "EOD\n";
+  return true;
+}
+
+// What the title adds from the card's verdict: where the data are not Kramers–Kronig consistent.
+std::string kramers_kronig_note(const nlohmann::json& fit) {
+  const auto q = fit.find("quality");
+  if (q == fit.end() || !q->contains("kramers_kronig_inconsistent_Hz")) return "";
+  const auto& span = (*q)["kramers_kronig_inconsistent_Hz"];
+  char b[160];
+  std::snprintf(b, sizeof b, "; data not Kramers-Kronig consistent between %.3g and %.3g Hz", span[0].get<double>(),
+                span[1].get<double>());
+  return b;
+}
+
+// Storage, loss, tan δ, residuals; `mode_letter` E or G; the card's band shaded where it has one.
 std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitlib::model::Model& model,
-                             const std::vector<double>& p, const std::string& title, const std::string& png) {
+                             const std::vector<double>& p, const std::string& title, const std::string& png,
+                             const nlohmann::json& fit) {
   const auto groups = groups_of(t);
   const std::string M = t.rows.front().condition.mode == fitlib::model::TestMode::shear ? "G" : "E";
   std::ostringstream s;
@@ -124,10 +154,14 @@ std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitl
     }
     s << "EOD\n";
   }
+  const bool band = n == 1 && band_block(fit, s);  // the band is at one temperature
   const auto colour = [&](int g) { return palette_colour(g, n); };
   const auto panel = [&](const std::string& ylabel, int column, bool logy, int curve_column) {
     s << (logy ? "set logscale y\nset format y '10^{%L}'\n" : "unset logscale y\nset format y '%g'\n");
     s << "set xlabel 'frequency f [Hz]'\nset ylabel \"" << ylabel << "\"\nplot ";
+    if (band)
+      s << "$band using 1:" << 2 * column - 2 << ":" << 2 * column - 1
+        << " with filledcurves fs transparent solid 0.35 noborder lc rgb '#7f7f7f' title '95 % band', ";
     for (int g = 0; g < n; ++g) {
       s << (g ? ", " : "") << "$d" << g << " using 1:" << column << " with points pt 7 ps 0.6 " << colour(g)
         << " title '" << groups[g].label << "'";
@@ -136,7 +170,9 @@ std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitl
     }
     s << "\n";
   };
-  s << "set multiplot layout 2,2 title " << gnuplot_quoted(title + " (points: data, lines: card)")
+  s << "set multiplot layout 2,2 title "
+    << gnuplot_quoted(title + " (points: data, lines: card" + (band ? ", shade: its 95 % band" : "") + ")" +
+                      kramers_kronig_note(fit))
     << " noenhanced font ',13'\n";
   panel("storage modulus " + M + "' [MPa]", 2, true, 2);
   panel("loss modulus " + M + "'' [MPa]", 3, true, 3);
@@ -252,7 +288,7 @@ void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& d
     if (is_relaxation_data(data, format)) return relaxation_script(read_relaxation_tables(data), *model, p, shown, tmp);
     data::ReadOptions read;
     read.format = format == "pyvisco" ? data::TableFormat::pyvisco : data::TableFormat::native;
-    return frequency_script(read_tables(data, format, read), *model, p, shown, tmp);
+    return frequency_script(read_tables(data, format, read), *model, p, shown, tmp, card.fit);
   });
 }
 

@@ -1,12 +1,21 @@
 #include "fitlib/card/fit_card.hpp"
 
 #include <boost/algorithm/string/join.hpp>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
 
+#include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
+#include "fitlib/card/export.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/fit/relaxation.hpp"
 #include "fitlib/fit/shift_laws.hpp"
 #include "fitlib/fit/spectrum.hpp"
 #include "fitlib/model/model.hpp"
+#include "fitlib/model/time_series.hpp"
 
 namespace fitlib::card {
 namespace {
@@ -93,6 +102,145 @@ fit::FitOptions auto_fit_options(const FitCardOptions& o) {
   return fit;
 }
 
+// Rows where `r`'s loss misses the data by more than `factor` (the frequency span; lo > hi: none).
+std::pair<double, double> loss_miss_span(const fit::FitResult& r, const data::DynamicTestTable& table, double factor) {
+  double lo = INFINITY, hi = 0.0;
+  for (const auto& row : table.rows) {
+    if (!(row.loss_MPa > 0.0)) continue;
+    const double loss = r.model->moduli(r.values.data(), row.condition).loss;
+    if (std::max(loss / row.loss_MPa, row.loss_MPa / loss) > factor) {
+      lo = std::min(lo, row.condition.frequency_Hz);
+      hi = std::max(hi, row.condition.frequency_Hz);
+    }
+  }
+  return {lo, hi};
+}
+
+// The default objective of --terms auto by the spectrum, chosen from the data (docs/fitting.md
+// "Default objective"): both moduli count (relative errors, weights 1:1) when one spectrum
+// follows both, i.e. when the verdict of that fit has no warning on the storage modulus (size or
+// bias): the data are then Kramers–Kronig consistent to within the verdict's thresholds. Else E′
+// leads (storage weight fit::kSpectrumStorageWeight) and a warning says by how much and where
+// E″ is given up. `fit` becomes the options of the selection returned.
+fit::TermSelection select_with_default_objective(const FitCardOptions& o, const nlohmann::json& options,
+                                                 const data::DynamicTestTable& table, fit::FitOptions& fit) {
+  fit::FitOptions both = fit;
+  both.residual = fit::kSpectrumResidual;
+  both.storage_weight = both.loss_weight = 1.0;
+  fit::TermSelection balanced = fit::select_terms(o.model, options, table, both, term_options(o));
+  fit::TermSelection first = fit::select_terms(o.model, options, table, fit, term_options(o));
+  const fit::FitMetrics& b = balanced.result.metrics;
+  const fit::FitMetrics& e = first.result.metrics;
+  const double cost = e.rms_log10_storage > 0.0 ? b.rms_log10_storage / e.rms_log10_storage : 1.0;
+  std::ostringstream s;
+  s << "with both moduli counting the storage rms log10 error is " << core::format_number(b.rms_log10_storage, 3)
+    << " (x" << core::format_number(cost, 3) << " the E'-first fit's " << core::format_number(e.rms_log10_storage, 3)
+    << ", loss " << core::format_number(b.rms_log10_loss, 3) << " against " << core::format_number(e.rms_log10_loss, 3)
+    << ")";
+  const auto on_storage = [](const std::string& w) { return w.find("the storage modulus") != std::string::npos; };
+  const auto& verdict = balanced.result.quality.warnings;
+  if (std::none_of(verdict.begin(), verdict.end(), on_storage)) {
+    fit = both;
+    balanced.messages.push_back("default objective: both moduli count (relative errors, weights 1:1): the data are "
+                                "Kramers-Kronig consistent to within the verdict's thresholds; " + s.str());
+    return balanced;
+  }
+  const auto [lo, hi] = loss_miss_span(first.result, table, 1.5);
+  std::ostringstream w;
+  w << "default objective: E' leads (relative errors, storage weight " << fit.storage_weight
+    << ") because the data are not Kramers-Kronig consistent: " << s.str() << "; E'' is given up: rms log10 "
+    << core::format_number(e.rms_log10_loss, 3) << " instead of " << core::format_number(b.rms_log10_loss, 3);
+  if (lo <= hi) w << ", off by more than a factor 1.5 between " << lo << " and " << hi << " Hz";
+  w << " (--storage-weight 1 --loss-weight 1 --residual relative fits both)";
+  first.result.quality.warnings.push_back(w.str());
+  return first;
+}
+
+// What eval and export would say of the card: the reader's checks (card_from_json) on the JSON
+// it is written as, then export's admissibility (docs/fitting.md "Round trip at fit time").
+std::string read_back_problems(const Card& card) {
+  Card back;
+  try {
+    back = card_from_json(card_to_json(card), "the card");
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return admissibility_problems(back);
+}
+
+// The relaxed floor (FitOptions::relaxed_floor) that lifts the relaxed modulus to 1.05 ×
+// kMinRelaxedRatio × the instantaneous one; 0 when that is not the card's problem or its fit
+// has no floor to raise.
+double raised_relaxed_floor(const Card& card, const fit::FitOptions& o) {
+  model::MaxwellSeries s;
+  if (!exact_maxwell_series(*card.model(), card.values(), &s) || s.relaxed >= kMinRelaxedRatio * s.glassy())
+    return 0.0;
+  const double floor = card.fit.value("admissible", nlohmann::json::object()).value("relaxed_min_MPa", 0.0);
+  if (!(floor > 0.0) || !(o.relaxed_floor > 0.0)) return 0.0;
+  return o.relaxed_floor * 1.05 * kMinRelaxedRatio * s.glassy() / floor;
+}
+
+// Runs `run` until its card reads back: a relaxed modulus below kMinRelaxedRatio × the
+// instantaneous one is refitted with the floor raised (up to 3 times); any other problem, or one
+// that stays, is a NumericalError (exit 4) naming it, and nothing is written.
+template <class Run>
+FitCardResult read_back_checked(const FitCardOptions& o, Run run) {
+  FitCardOptions used = o;
+  for (int round = 0;; ++round) {
+    FitCardResult r = run(used);
+    const std::string problems = read_back_problems(r.card);
+    if (problems.empty()) {
+      if (round > 0) {
+        const std::string note = "refitted with the relaxed modulus floor raised to " +
+                                 core::format_number(used.fit.relaxed_floor, 4) +
+                                 " x the lowest storage so that E_inf >= " + core::format_number(kMinRelaxedRatio, 3) +
+                                 " x the instantaneous modulus (FE stability; export refuses less)";
+        r.result.messages.push_back(note);
+        r.card.fit["messages"].push_back(note);
+      }
+      return r;
+    }
+    const double floor = raised_relaxed_floor(r.card, used.fit);
+    if (!(floor > 0.0) || round == 3)
+      throw core::NumericalError("the card this fit would write does not read back in eval/export (" + problems +
+                                 "); nothing written");
+    used.fit.relaxed_floor = floor;
+  }
+}
+
+// --terms N of a series model with linear moduli and no temperature law of its own (fitcli's
+// default backend): the moduli by NNLS on the model's log-spaced τ grid over the data (then
+// polished in log space for log10 residuals), and the free-τ fit from there only where it pays:
+// when there are fewer terms than decades of data (docs/fitting.md "Fixed term counts"); the
+// lower cost is kept. Nothing when the model or the options are others.
+std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const data::DynamicTestTable& table,
+                                             const fit::FitOptions& options, int terms) {
+  const auto make = [&](int) { return m; };
+  if (options.backend != fit::Backend::automatic || !fit::spectrum_applies(make) ||
+      m->temperature_law_info().law != model::ShiftLaw::none || !options.fixed.empty())
+    return std::nullopt;
+  fit::FitOptions grid = options;
+  grid.backend = fit::Backend::nnls;
+  grid.polish = options.residual == fit::ResidualKind::log10;
+  fit::FitResult fixed = fit::fit(m, table, grid);
+  const auto s = fit::summarize(table);
+  const double decades = std::log10(s.omega_max_rad_s / s.omega_min_rad_s);
+  if (terms >= decades) {
+    fixed.messages.push_back("--terms " + std::to_string(terms) + ": moduli by NNLS on the log-spaced time grid (" +
+                             core::format_number(terms / std::max(decades, 1e-9), 3) +
+                             " terms per decade of the data: free times would not pay)");
+    return fixed;
+  }
+  fit::FitResult free = fit::fit(m, table, options, &fixed.values);
+  const bool keep_free = free.metrics.cost < fixed.metrics.cost;
+  fit::FitResult& kept = keep_free ? free : fixed;
+  kept.messages.push_back("--terms " + std::to_string(terms) + ": NNLS on the log-spaced time grid (cost " +
+                          core::format_number(fixed.metrics.cost, 6) + "), then free times (cost " +
+                          core::format_number(free.metrics.cost, 6) + "): " + (keep_free ? "free" : "grid") +
+                          " kept (fewer than one term per decade of the data)");
+  return std::move(kept);
+}
+
 }  // namespace
 
 fit::MasterCurve refine_master_curve(const data::DynamicTestTable& raw, fit::MasterCurve curve,
@@ -111,24 +259,39 @@ fit::MasterCurve refine_master_curve(const data::DynamicTestTable& raw, fit::Mas
   return fit::refine_shifts_with_spectrum(make, raw, std::move(curve), auto_fit_options(o), spectrum).curve;
 }
 
-FitCardResult fit_card(const data::DynamicTestTable& table, const FitCardOptions& o) {
+FitCardResult fit_card(const data::DynamicTestTable& table, const FitCardOptions& options) {
+  return read_back_checked(options, [&](const FitCardOptions& o) { return fit_card_unchecked(table, o); });
+}
+
+FitCardResult fit_relaxation_card(const data::RelaxationTable& table, const FitCardOptions& options) {
+  return read_back_checked(options, [&](const FitCardOptions& o) { return fit_relaxation_card_unchecked(table, o); });
+}
+
+FitCardResult fit_card_unchecked(const data::DynamicTestTable& table, const FitCardOptions& o) {
   if (table.rows.empty()) throw core::InputError("no usable rows", boost::algorithm::join(table.source_files, " "));
   // The model describes the mode of the data unless the data mix modes.
   nlohmann::json options = model_options(o, table.rows.front().condition.mode);
   const fit::FitOptions fit = auto_fit_options(o);
   const bool has_terms = model::make_model(o.model, options)->options().contains("terms");
   if (has_terms && o.terms == "auto") {
-    auto selection = fit::select_terms(o.model, options, table, fit, term_options(o));
+    fit::FitOptions chosen = fit;
+    auto selection = by_spectrum(o) && !o.objective_given
+                         ? select_with_default_objective(o, options, table, chosen)
+                         : fit::select_terms(o.model, options, table, fit, term_options(o));
     auto result = take_result(selection);
     FitCardOptions used = o;
-    used.fit = fit;
+    used.fit = chosen;
     return finish(used, std::move(result), table, std::move(selection));
   }
-  if (has_terms) options["terms"] = fixed_terms(o);
-  return finish(o, fit::fit(model::make_model(o.model, options), table, fit), table, std::nullopt);
+  if (!has_terms) return finish(o, fit::fit(model::make_model(o.model, options), table, fit), table, std::nullopt);
+  const int terms = fixed_terms(o);
+  options["terms"] = terms;
+  const model::ModelPtr m = model::make_model(o.model, options);
+  std::optional<fit::FitResult> grid = fixed_grid_fit(m, table, fit, terms);
+  return finish(o, grid ? std::move(*grid) : fit::fit(m, table, fit), table, std::nullopt);
 }
 
-FitCardResult fit_relaxation_card(const data::RelaxationTable& table, const FitCardOptions& o) {
+FitCardResult fit_relaxation_card_unchecked(const data::RelaxationTable& table, const FitCardOptions& o) {
   if (table.rows.empty()) throw core::InputError("no usable rows", boost::algorithm::join(table.source_files, " "));
   nlohmann::json options = model_options(o, table.rows.front().mode);
   if (!model::make_model(o.model, options)->options().contains("terms"))

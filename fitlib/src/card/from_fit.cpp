@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "fitlib/card/conversion.hpp"
 #include "fitlib/card/data_window.hpp"
+#include "fitlib/model/time_series.hpp"
 
 namespace fitlib::card {
 namespace {
@@ -29,10 +31,48 @@ nlohmann::json quality_json(const fit::QualityVerdict& q) {
     figures.push_back({{"group", f.group}, {"modulus", f.modulus}, {"count", f.count},
                        {"mean_rel_error", f.mean_rel_error}, {"max_rel_error", f.max_rel_error},
                        {"max_at_frequency_Hz", f.max_at_frequency_Hz}});
-  return {{"acceptable", q.acceptable()}, {"warnings", q.warnings}, {"figures", figures}};
+  nlohmann::json j = {{"acceptable", q.acceptable()}, {"warnings", q.warnings}, {"figures", figures}};
+  if (q.kramers_kronig_lo_Hz <= q.kramers_kronig_hi_Hz)
+    j["kramers_kronig_inconsistent_Hz"] = {q.kramers_kronig_lo_Hz, q.kramers_kronig_hi_Hz};
+  return j;
+}
+
+// fit.confidence_band: columns over frequency (docs/formats.md §3).
+nlohmann::json band_json(const fit::ConfidenceBand& band) {
+  nlohmann::json j = {{"level", 0.95}, {"mode", model::to_string(band.condition.mode)}};
+  if (band.condition.has_temperature()) j["temperature_C"] = band.condition.temperature_C;
+  const auto column = [&](auto member) {
+    nlohmann::json c = nlohmann::json::array();
+    for (const auto& b : band.points) c.push_back(b.*member);
+    return c;
+  };
+  using B = fit::BandPoint;
+  j["frequency_Hz"] = column(&B::frequency_Hz);
+  j["storage_MPa"] = column(&B::storage);
+  j["storage_low_MPa"] = column(&B::storage_low);
+  j["storage_high_MPa"] = column(&B::storage_high);
+  j["loss_MPa"] = column(&B::loss);
+  j["loss_low_MPa"] = column(&B::loss_low);
+  j["loss_high_MPa"] = column(&B::loss_high);
+  j["tan_delta"] = column(&B::tan_delta);
+  j["tan_delta_low"] = column(&B::tan_delta_low);
+  j["tan_delta_high"] = column(&B::tan_delta_high);
+  return j;
 }
 
 }  // namespace
+
+FeCost fe_cost(const model::Model& model, const std::vector<double>& values) {
+  FeCost cost;
+  model::MaxwellSeries s;
+  if (!exact_maxwell_series(model, values, &s) || model.native_mode() == model::TestMode::bulk) return cost;
+  for (double m : s.moduli) cost.terms += m > 0.0;
+  const bool bulk_relaxes =
+      elastic_constants(model.native_mode(), s.glassy(), model.bulk_modulus(values.data()), kDefaultPoissonRatio)
+          .bulk_relaxes;
+  cost.state_variables = cost.terms * (bulk_relaxes ? 12 : 6);
+  return cost;
+}
 
 nlohmann::json admissible_to_json(const fit::AdmissibleWindow& w) {
   nlohmann::json j = {{"tau_min_s", w.tau_min_s}, {"tau_max_s", w.tau_max_s},
@@ -81,6 +121,10 @@ Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,
               {"iterations", m.iterations},
               {"messages", r.messages}};
   card.fit["quality"] = quality_json(r.quality);
+  if (!r.band.points.empty()) card.fit["confidence_band"] = band_json(r.band);
+  const FeCost cost = fe_cost(*r.model, r.values);
+  if (cost.terms > 0)
+    card.fit["fe_cost"] = {{"terms", cost.terms}, {"state_variables_per_integration_point", cost.state_variables}};
   if (r.admissible.applies) card.fit["admissible"] = admissible_to_json(r.admissible);
   const auto window = data_window_json(provenance.measured ? *provenance.measured : table, r.model.get(), r.values);
   if (!window.empty()) card.fit["data_window"] = window;

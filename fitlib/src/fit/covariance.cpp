@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "admissible.hpp"
 #include "backends.hpp"
 #include "fitlib/core/error.hpp"
 
@@ -21,6 +22,7 @@ constexpr double kRankTolerance = 1e-8;    // σ_i / σ_max below this: a null-s
 constexpr double kNullShare = 1e-6;
 constexpr double kDominant = 0.3;          // |v_k| naming a parameter in a null-space vector
 constexpr double kHighCorrelation = 0.99;
+constexpr double kMeaningfulFactor = 10.0;  // widest per-term interval given (either way)
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -137,7 +139,7 @@ Eigen::MatrixXd covariance(const ScaledSpectrum& sp, double s2) {
 
 // The standard error and 95 % interval of free parameter k (index i), or the reason it has none.
 bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const Eigen::VectorXd& null_share,
-                  const Eigen::MatrixXd& cov_x, double t, ParameterResult& pr) {
+                  const Eigen::MatrixXd& cov_x, double t, bool series_term, ParameterResult& pr) {
   const int i = problem.free()[k];
   const double p_i = problem.natural()[i];
   const bool log = problem.is_log(i);  // log: interval in log space, exponentiated (positive)
@@ -157,11 +159,55 @@ bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const
   // overflows is no interval.
   if (!std::isfinite(se) || !std::isfinite(low) || !std::isfinite(high))
     return pr.reason = "interval not finite: the data barely inform this parameter", false;
+  // A series term's interval over more than a factor kMeaningfulFactor either way tells an
+  // engineer nothing (issue 35: the auto card's spanned two to three decades); the confidence
+  // band of the curve is what the data determine.
+  if (series_term && log && t * se_x > std::log(kMeaningfulFactor))
+    return pr.reason = "interval wider than a factor 10 either way: the data determine the card's curve (its "
+                       "confidence band), not this term",
+           false;
   pr.reason.clear();
   pr.std_error = se;
   pr.ci95_low = low;
   pr.ci95_high = high;
   return true;
+}
+
+// The band of E′, E″ and tan δ at 10 frequencies per decade over the data (BandPoint): the
+// gradient of each logarithm in the fitted coordinates x, σ² = gᵀ Cov_x g, interval exp(ln v ± tσ).
+ConfidenceBand confidence_band(const Problem& problem, const Eigen::MatrixXd& cov_x, double t) {
+  ConfidenceBand band;
+  const auto& rows = problem.table().rows;
+  if (rows.empty()) return band;
+  double lo = INFINITY, hi = 0.0;
+  for (const auto& row : rows) lo = std::min(lo, row.condition.frequency_Hz), hi = std::max(hi, row.condition.frequency_Hz);
+  band.condition = rows.front().condition;
+  const int n = problem.num_parameters(), nf = problem.num_free();
+  const std::vector<double>& p = problem.natural();
+  const int points = std::max(2, static_cast<int>(std::lround(10.0 * std::log10(hi / lo))) + 1);
+  Eigen::MatrixXd jac(3, n);
+  for (int k = 0; k < points; ++k) {
+    model::TestCondition c = band.condition;
+    c.frequency_Hz = lo * std::pow(hi / lo, double(k) / (points - 1));
+    const auto m = problem.model().moduli(p.data(), c, jac);
+    if (!(m.storage > 0.0) || !(m.loss > 0.0)) continue;
+    Eigen::VectorXd gs(nf), gl(nf);
+    for (int j = 0; j < nf; ++j) {
+      const int i = problem.free()[j];
+      const double dp_dx = problem.is_log(i) ? p[i] : 1.0;
+      gs[j] = jac(0, i) * dp_dx / m.storage;
+      gl[j] = jac(1, i) * dp_dx / m.loss;
+    }
+    const auto half = [&](const Eigen::VectorXd& g) { return t * std::sqrt(std::max(g.dot(cov_x * g), 0.0)); };
+    const double hs = half(gs), hl = half(gl), ht = half(gl - gs);
+    BandPoint b{c.frequency_Hz, m.storage, m.storage * std::exp(-hs), m.storage * std::exp(hs),
+                m.loss, m.loss * std::exp(-hl), m.loss * std::exp(hl), m.loss / m.storage,
+                m.loss / m.storage * std::exp(-ht), m.loss / m.storage * std::exp(ht)};
+    const double all[] = {b.storage_low, b.storage_high, b.loss_low, b.loss_high, b.tan_delta_low, b.tan_delta_high};
+    if (std::all_of(std::begin(all), std::end(all), [](double x) { return std::isfinite(x) && x > 0.0; }))
+      band.points.push_back(b);
+  }
+  return band;
 }
 
 // Pairs of parameters with intervals whose correlation exceeds kHighCorrelation.
@@ -219,11 +265,17 @@ void assess(const Problem& problem, FitResult& result) {
   const double t = boost::math::quantile(boost::math::students_t(dof), 0.975);
   const Eigen::MatrixXd cov_x = covariance(sp, 2.0 * cost / dof);
   std::vector<bool> usable(nf, false);
+  const SeriesTerms series = series_terms(problem.specs());
+  std::vector<bool> in_series(problem.num_parameters(), false);
+  for (int i : series.moduli) in_series[i] = true;
+  for (int i : series.times) in_series[i] = true;
   for (int k = 0; k < nf; ++k) {
-    usable[k] = set_interval(problem, k, sp, null_share, cov_x, t, result.parameters[problem.free()[k]]);
+    const int i = problem.free()[k];
+    usable[k] = set_interval(problem, k, sp, null_share, cov_x, t, in_series[i], result.parameters[i]);
     if (usable[k]) ++result.metrics.n_active;
   }
   report_correlations(problem, cov_x, usable, result);
+  result.band = confidence_band(problem, cov_x, t);
 }
 
 }  // namespace fitlib::fit::detail

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "admissible.hpp"
+#include "bias_check.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 
@@ -20,7 +21,9 @@ constexpr double kKramersKronigLossFactor = 1.5;
 struct Accumulator {
   int count = 0;
   double sum = 0.0, max = 0.0, max_f = 0.0;
-  void add(double e, double f) {
+  std::vector<SignedError> signed_errors;  // for the bias check (bias_check.hpp)
+  void add(double e, double f, double signed_error) {
+    signed_errors.push_back({f, signed_error});
     ++count;
     sum += e;
     if (e > max || count == 1) {  // the first row's frequency when every error is 0
@@ -89,11 +92,12 @@ void accumulate_errors(const Problem& problem, const std::vector<double>& p,
     const bool elastic = e.component == 1 && e.data < Problem::kLossFloor * row.storage_MPa;
     if (elastic || !(e.data > 0.0) || e.sqrt_weight == 0.0) continue;
     const double value = e.component == 0 ? m.storage : e.component == 1 ? m.loss : m.mean;
-    const double err = std::abs(value - e.data) / e.data;
+    const double signed_err = (value - e.data) / e.data;
+    const double err = std::abs(signed_err);
     const double f = row.condition.frequency_Hz;
-    acc[{"", e.component}].add(err, f);
+    acc[{"", e.component}].add(err, f, signed_err);
     if (by_temperature || mixed_modes)
-      acc[{group_of(row.condition, by_temperature, mixed_modes), e.component}].add(err, f);
+      acc[{group_of(row.condition, by_temperature, mixed_modes), e.component}].add(err, f, signed_err);
     if (e.component == 0) storage_error[e.row] = err;
     if (e.component == 1 && storage_error[e.row] <= th.storage_mean) {
       const double factor = std::max(value / e.data, e.data / value);
@@ -135,7 +139,17 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
   KramersKronigSpan kk;
   accumulate_errors(problem, p, th, acc, kk);
   QualityVerdict v;
-  for (const auto& [key, a] : acc) v.figures.push_back(figures_of(key, a, th, v.warnings));
+  std::map<int, std::vector<GroupBias>> biased;  // component → its biased groups
+  for (const auto& [key, a] : acc) {
+    v.figures.push_back(figures_of(key, a, th, v.warnings));
+    const double floor = kBiasFloorShare * (key.second == 1 ? th.loss_mean : th.storage_mean);
+    if (auto b = group_bias(a.signed_errors, floor)) {
+      b->group = key.first.empty() ? "all" : key.first;
+      biased[key.second].push_back(*b);
+    }
+  }
+  static const char* names[] = {"storage", "loss", "mean"};
+  for (const auto& [component, groups] : biased) v.warnings.push_back(bias_warning(names[component], groups));
   // "all" first, then the groups in their sorted order.
   std::stable_partition(v.figures.begin(), v.figures.end(), [](const ErrorFigures& f) { return f.group == "all"; });
   // A data temperature where the fitted law has no material (its fitter's guard answered there):
@@ -151,6 +165,8 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
     break;
   }
   if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
+    v.kramers_kronig_lo_Hz = kk.lo_Hz;
+    v.kramers_kronig_hi_Hz = kk.hi_Hz;
     std::ostringstream s;
     s << "data not Kramers-Kronig consistent ";
     if (kk.lo_Hz < kk.hi_Hz)

@@ -24,10 +24,12 @@ constexpr int kBrentBits = 40;
 
 }  // namespace
 
-WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT, double reference_C) {
+WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT, double reference_C,
+               double C1_max, double C2_max_K) {
   WlfFit fit;
   if (temperatures_C.size() < 3) return fit;
-  // Variable projection: for fixed C2 the law is linear in C1 (closed form); C2 by Brent over
+  // Variable projection: for fixed C2 the law is linear in C1 (closed form; clamped to
+  // [0, C1_max], which is the bounded optimum of a one-variable quadratic); C2 by Brent over
   // u = ln(C2 − C2_min), C2_min = max(T_ref − T) so that no data temperature reaches the pole.
   double c2_min = 0.0;
   for (double t : temperatures_C) c2_min = std::max(c2_min, reference_C - t);
@@ -38,7 +40,8 @@ WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<doub
       const double dt = temperatures_C[k] - reference_C, g = -dt / (c2 + dt);
       sgg += g * g, sgs += g * log10_aT[k];
     }
-    const double c1 = sgg > 0 ? sgs / sgg : 0.0;
+    double c1 = sgg > 0 ? sgs / sgg : 0.0;
+    if (std::isfinite(C1_max)) c1 = std::clamp(c1, std::numeric_limits<double>::min(), C1_max);
     double ss = 0;
     for (std::size_t k = 0; k < temperatures_C.size(); ++k) {
       const double dt = temperatures_C[k] - reference_C;
@@ -47,7 +50,7 @@ WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<doub
     if (c1_out) *c1_out = c1;
     return ss;
   };
-  const double u_lo = std::log(1e-2), u_hi = std::log(1e5);
+  const double u_lo = std::log(1e-2), u_hi = std::max(u_lo, std::log(std::min(1e5, C2_max_K - c2_min)));
   double best_u = u_lo, best = std::numeric_limits<double>::infinity();
   for (int i = 0; i <= 200; ++i) {
     const double u = u_lo + (u_hi - u_lo) * i / 200.0, ss = solve(u, nullptr);
@@ -108,12 +111,20 @@ PolynomialShiftFit fit_polynomial_shift(const std::vector<double>& temperatures_
 namespace detail {
 
 LawConstants fit_law_constants(model::ShiftLaw law, const std::vector<double>& temperatures_C,
-                               const std::vector<double>& log10_aT, double reference_C, int polynomial_degree) {
+                               const std::vector<double>& log10_aT, double reference_C, int polynomial_degree,
+                               const std::vector<core::ParameterSpec>& bounds) {
   LawConstants c;
+  const auto upper = [&](std::size_t k) {
+    return k < bounds.size() ? bounds[k].upper : std::numeric_limits<double>::infinity();
+  };
   if (law == model::ShiftLaw::wlf) {
-    const WlfFit w = fit_wlf(temperatures_C, log10_aT, reference_C);
+    const WlfFit w = fit_wlf(temperatures_C, log10_aT, reference_C, upper(0), upper(1));
     if (std::isnan(w.C1)) throw core::UsageError("shift law: no WLF fit (it needs at least 3 isotherms)");
     c.values = {w.C1, w.C2_K};
+    for (std::size_t k = 0; k < 2; ++k)
+      if (std::isfinite(upper(k)) && c.values[k] >= upper(k) * (1.0 - 1e-12))
+        c.held_at_bound.push_back(bounds[k].name + " at its bound " + core::format_number(upper(k), 6) +
+                                  " (the unbounded fit lies beyond)");
     c.summary = "WLF C1 = " + core::format_number(w.C1, 6) + ", C2 = " + core::format_number(w.C2_K, 6) + " K";
     c.rms_decades = w.rms_decades;
   } else if (law == model::ShiftLaw::polynomial) {
@@ -133,6 +144,15 @@ LawConstants fit_law_constants(model::ShiftLaw law, const std::vector<double>& t
   } else {
     throw core::UsageError("shift law '" + model::to_string(law) +
                            "' cannot be fitted to shifts (wlf, arrhenius or polynomial)");
+  }
+  // Arrhenius and the polynomial are linear in their constants: clamped one by one, a constant
+  // past its bound is held there (the card would refuse it). WLF is bounded inside its fit.
+  for (std::size_t k = 0; k < c.values.size() && k < bounds.size(); ++k) {
+    const double lower = bounds[k].transform == core::Transform::log ? std::max(bounds[k].lower, std::numeric_limits<double>::min())
+                                                                     : bounds[k].lower;
+    const double held = std::clamp(c.values[k], lower, bounds[k].upper);
+    if (held != c.values[k]) c.held_at_bound.push_back(bounds[k].name + " " + core::format_number(c.values[k], 6) + " held at " + core::format_number(held, 6));
+    c.values[k] = held;
   }
   return c;
 }
@@ -155,11 +175,14 @@ model::ModelPtr model_with_law(const model::Model& m, model::ShiftLaw law, doubl
 FitResult with_law_from_shifts(const FitResult& result, const std::vector<double>& temperatures_C,
                                const std::vector<double>& log10_aT, double reference_C, model::ShiftLaw law,
                                int polynomial_degree) {
-  const detail::LawConstants constants = detail::fit_law_constants(law, temperatures_C, log10_aT, reference_C, polynomial_degree);
   if (!result.model) throw core::UsageError("shift law: the fit result has no model");
   FitResult out = result;
   out.model = model_with_law(*result.model, law, reference_C, polynomial_degree);
   const model::TemperatureLawInfo info = out.model->temperature_law_info();
+  std::vector<core::ParameterSpec> bounds;  // the card reads back only constants inside these
+  for (int i : info.shift_parameters) bounds.push_back(out.model->parameters()[i]);
+  const detail::LawConstants constants =
+      detail::fit_law_constants(law, temperatures_C, log10_aT, reference_C, polynomial_degree, bounds);
   if (info.law != law || info.shift_parameters.size() != constants.values.size())
     throw core::UsageError("shift law: model '" + out.model->kind() + "' does not carry a " + model::to_string(law) +
                            " law");
@@ -200,6 +223,8 @@ FitResult with_law_from_shifts(const FitResult& result, const std::vector<double
                                         : std::string("another --temperature-law (polynomial) may follow them")));
   out.messages.push_back("master curve: " + constants.summary + " at T_ref = " + core::format_number(reference_C, 6) +
                          " degC, fitted to " + std::to_string(temperatures_C.size()) + " isotherm shifts");
+  for (const std::string& held : constants.held_at_bound)
+    out.messages.push_back("master curve: " + held + ": the law is the best fit inside the bounds the card admits");
   return out;
 }
 

@@ -61,7 +61,18 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
   sel.spectrum_path = std::move(s.path);
   sel.spectrum_lambda = s.lambda;
   sel.result = std::move(s.result);
-  if (terms.solver_cap <= 0 || full.terms <= terms.solver_cap) return sel;
+  if (terms.compact.enabled) {
+    const core::Stopwatch economy;
+    FitResult compact = compact_spectrum(make, table, options, sel.result, terms.compact);
+    if (compact.values.size() < sel.result.values.size()) {
+      TermRow row = row_of(compact, economy.seconds());
+      row.message = "term economy: ";
+      sel.rows.push_back(row);
+      sel.chosen = row.terms;
+      sel.result = std::move(compact);
+    }
+  }
+  if (terms.solver_cap <= 0 || sel.chosen <= terms.solver_cap) return sel;
   const core::Stopwatch clock;
   FitResult capped = cap_spectrum(make, table, options, sel.result, terms.solver_cap);
   const TermRow cap = row_of(capped, clock.seconds());
@@ -220,7 +231,7 @@ std::string format_term_table(const TermSelection& sel) {
     for (std::size_t k = 0; k < sel.rows.size(); ++k) {
       const TermRow& r = sel.rows[k];
       std::snprintf(line, sizeof line, "%s%d terms, rms log10 E' %.5f, E'' %.5f, cost %.6g, %.3f ms%s\n",
-                    k == 0 ? "" : "solver cap: ", r.terms, r.rms_log10_storage, r.rms_log10_loss, r.cost,
+                    k == 0 ? "" : r.message.empty() ? "solver cap: " : r.message.c_str(), r.terms, r.rms_log10_storage, r.rms_log10_loss, r.cost,
                     1e3 * r.wall_time_s, r.terms == sel.chosen ? "  <- chosen" : "");
       s << line;
     }

@@ -23,6 +23,16 @@ struct CardProvenance {
 Card card_from_fit(const fit::FitResult& result, const fit::FitOptions& options,
                    const data::DynamicTestTable& table, const CardProvenance& provenance);
 
+// What the card costs an FE model (card "fit.fe_cost", the fit summary): its active series terms
+// and the state variables they add at every integration point of a 3-D solid — one symmetric
+// stress tensor (6 numbers) per term and relaxing part, deviatoric, plus volumetric when the
+// bulk relaxes too (a uniaxial card without K, exported with one set of weights). 0 terms: none.
+struct FeCost {
+  int terms = 0;
+  int state_variables = 0;
+};
+FeCost fe_cost(const model::Model& model, const std::vector<double>& values);
+
 // The admissible window as stored in a card's "fit.admissible" (export checks a card against it).
 nlohmann::json admissible_to_json(const fit::AdmissibleWindow& window);
 

@@ -73,7 +73,24 @@ struct ErrorFigures {
 struct QualityVerdict {
   std::vector<ErrorFigures> figures;  // per modulus for all rows, then per temperature/mode group
   std::vector<std::string> warnings;  // one per figure past its threshold, and data warnings
+  // Where the data are not Kramers–Kronig consistent (storage fitted, loss off by > 1.5×);
+  // lo > hi: nowhere found.
+  double kramers_kronig_lo_Hz = 1.0, kramers_kronig_hi_Hz = 0.0;
   bool acceptable() const { return warnings.empty(); }
+};
+
+// The 95 % confidence band of the fitted curve at one frequency (docs/fitting.md "Confidence
+// band"): E′, E″ and tan δ with their intervals from the covariance of the free parameters
+// (delta method on the logarithms, Student's t with the fit's degrees of freedom).
+struct BandPoint {
+  double frequency_Hz = 0.0;
+  double storage = 0.0, storage_low = 0.0, storage_high = 0.0;
+  double loss = 0.0, loss_low = 0.0, loss_high = 0.0;
+  double tan_delta = 0.0, tan_delta_low = 0.0, tan_delta_high = 0.0;
+};
+struct ConfidenceBand {
+  model::TestCondition condition;  // mode and temperature of the band (the first row's)
+  std::vector<BandPoint> points;   // 10 per decade over the data's frequencies; empty: no covariance
 };
 
 struct ParameterResult {
@@ -130,6 +147,7 @@ struct FitResult {
   std::string objective;                    // e.g. "sum of squared log10 errors, w(E')=10"
   AdmissibleWindow admissible;
   QualityVerdict quality;
+  ConfidenceBand band;
 };
 
 // Fits `model` to `table`. `start` overrides the model's initial_parameters(summary).

@@ -104,8 +104,12 @@ QualityVerdict measured_isotherm_verdict(const model::Model& model, const std::v
 // Arrhenius fits are rebuilt from `raw`.
 void apply_shifts(MasterCurve& curve, const data::DynamicTestTable& raw, const std::vector<double>& log10_aT);
 
-// WLF and Arrhenius fits of (T, log a_T) points.
-WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT, double reference_C);
+// WLF and Arrhenius fits of (T, log a_T) points. `C1_max`, `C2_max_K`: the WLF fit is the best one
+// with C1 and C2 at most these (a card's bounds, docs/fitting.md "Round trip at fit time"); the
+// default leaves them free.
+WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT, double reference_C,
+               double C1_max = std::numeric_limits<double>::infinity(),
+               double C2_max_K = std::numeric_limits<double>::infinity());
 ArrheniusFit fit_arrhenius(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT,
                            double reference_C);
 

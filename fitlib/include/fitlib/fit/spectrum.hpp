@@ -18,6 +18,8 @@ namespace fitlib::fit {
 // the log10 error to first order, and exact for the linear solve (no polish needed).
 constexpr double kSpectrumStorageWeight = 80.0;
 constexpr ResidualKind kSpectrumResidual = ResidualKind::relative;
+// card::fit_card counts both moduli (weights 1:1) where the data allow it (docs/fitting.md
+// "Default objective"); these weights are the E′-first default where they do not.
 
 struct SpectrumOptions {
   double per_decade = 2.0;   // time constants per decade
@@ -66,6 +68,19 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make,
 // and from the model's own start; the lower cost is kept.
 FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                        const FitOptions& options, const FitResult& spectrum, int max_terms);
+
+// Term economy (docs/fitting.md "Term economy"): the fewest terms, merged from the spectrum's
+// positive ones by Ward's criterion with the moduli re-solved at the merged times, whose fit keeps
+// the spectrum's figures: rms log10 E′ and E″ within rms_tolerance, the relaxed modulus within
+// relaxed_tolerance, at most extra_sign_changes more sign changes of d tanδ / d log f.
+struct CompactOptions {
+  bool enabled = true;
+  double rms_tolerance = 0.05;
+  double relaxed_tolerance = 0.05;
+  int extra_sign_changes = 2;
+};
+FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
+                           const FitOptions& options, const FitResult& spectrum, const CompactOptions& compact = {});
 
 // Raw isotherms: the spectrum on the master of `curve` (pairwise shifts), then the shifts and
 // the spectrum refined together by block coordinate descent: every shift but the anchor's

@@ -37,6 +37,7 @@ struct TermOptions {
   double accuracy_log10 = kRelaxationAccuracyLog10;
   TermMethod method = TermMethod::spectrum;  // sweep where the spectrum does not apply
   SpectrumOptions spectrum;
+  CompactOptions compact;  // the spectrum's terms merged to the fewest that keep its figures
 };
 
 struct TermRow {
