@@ -29,15 +29,21 @@ data::QuasiStaticTable only(const data::QuasiStaticTable& t, std::initializer_li
   return out;
 }
 
+data::QuasiStaticRow row(DeformationMode mode, double x, double stress) {
+  data::QuasiStaticRow r;
+  r.mode = mode, r.abscissa = x, r.stress_MPa = stress;
+  return r;
+}
+
 // The law's stresses at Treloar-like stretches in three modes (and volumetric for a compressible law).
 data::QuasiStaticTable synthetic(const model::Model& m, const std::vector<double>& p) {
   data::QuasiStaticTable t;
   for (DeformationMode mode : {DeformationMode::uniaxial, DeformationMode::equibiaxial, DeformationMode::planar})
     for (double x : {0.7, 0.85, 1.1, 1.4, 2.0, 3.0, 4.0})
-      t.rows.push_back({mode, x, m.hyperelastic()->nominal_stress(p.data(), mode, x)});
+      t.rows.push_back(row(mode, x, m.hyperelastic()->nominal_stress(p.data(), mode, x)));
   if (m.hyperelastic()->compressible())
     for (double J : {0.97, 0.98, 0.99, 0.995})
-      t.rows.push_back({DeformationMode::volumetric, J, m.hyperelastic()->nominal_stress(p.data(), DeformationMode::volumetric, J)});
+      t.rows.push_back(row(DeformationMode::volumetric, J, m.hyperelastic()->nominal_stress(p.data(), DeformationMode::volumetric, J)));
   return t;
 }
 
@@ -133,7 +139,7 @@ TEST(HyperelasticFit, UnstableWithinTheDataIsRefusedAndBeyondItIsAWarning) {
   const std::vector<double> unstable = {0.2158, -0.06304};
   data::QuasiStaticTable low;
   for (double x : {1.1, 1.2, 1.3, 1.4, 1.5})
-    low.rows.push_back({DeformationMode::uniaxial, x, m->hyperelastic()->nominal_stress(unstable.data(), DeformationMode::uniaxial, x)});
+    low.rows.push_back(row(DeformationMode::uniaxial, x, m->hyperelastic()->nominal_stress(unstable.data(), DeformationMode::uniaxial, x)));
   const auto r = fit::fit_hyperelastic(low, m);
   std::string all_warnings;
   for (const auto& w : r.warnings) all_warnings += w + "\n";
