@@ -14,6 +14,8 @@
 #include "fitlib/card/data_window.hpp"
 #include "fitlib/card/export.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/model/hyperelastic.hpp"
+#include "hyperelastic.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
 #include "plot.hpp"
@@ -26,6 +28,7 @@ struct EvalArgs {
   std::string card, mode, orientation, out, plot, data_format = "native";
   std::vector<std::string> data;  // --plot: tables to plot against
   std::vector<double> frequency_Hz, temperature_C, amplitude, time_s;
+  std::vector<double> stretch;  // hyperelastic cards (hyperelastic.hpp)
   double poisson_ratio = fitlib::card::ExportOptions{}.poisson_ratio;
   bool json = false, allow_extrapolation = false;
 };
@@ -119,8 +122,22 @@ void run_eval_frequency(const EvalArgs& a, const fitlib::card::Card& card, fitli
     emit(a.out, csv.str());
 }
 
+// A hyperelastic card: stresses over --stretch in --mode; the dynamic options do not apply.
+void run_eval_hyperelastic(const EvalArgs& a) {
+  if (!a.frequency_Hz.empty() || !a.time_s.empty() || !a.temperature_C.empty() || !a.amplitude.empty() ||
+      !a.plot.empty())
+    throw fitlib::core::UsageError("eval of a hyperelastic card takes --mode and --stretch (plot it with fitcli plot)");
+  claim_output("--out", a.out, false);
+  const auto card = fitlib::card::load_card(input_path(a.card));
+  if (!card.model()->hyperelastic())
+    throw fitlib::core::UsageError("--stretch: card '" + a.card + "' (model " + card.model_kind +
+                                   ") is not hyperelastic; evaluate it with --frequency-hz or --time-s");
+  run_hyperelastic_eval(card, a.card, a.mode, a.stretch, a.out, a.json);
+}
+
 void run_eval(const EvalArgs& a) {
   using namespace fitlib;
+  if (!a.stretch.empty()) return run_eval_hyperelastic(a);
   if (a.frequency_Hz.empty() == a.time_s.empty())
     throw core::UsageError("eval: give --frequency-hz (complex moduli) or --time-s (relaxation, creep), one of them");
   if (!a.plot.empty() && a.data.empty()) throw core::UsageError("eval --plot needs --data (the table to plot against)");
@@ -147,6 +164,10 @@ void register_eval(CLI::App& app) {
   cmd->add_option("--orientation", args->orientation, "Thesis orientation label (11, 22, 33, 12, 13, 23)");
   cmd->add_option("--frequency-hz", args->frequency_Hz, "Frequencies in Hz, comma separated")
       ->delimiter(',')->check(positive_number());
+  cmd->add_option("--stretch", args->stretch,
+                  "Hyperelastic cards: stretches (simple_shear: shear strains, volumetric: volume ratios), comma "
+                  "separated; --mode uniaxial (default) | equibiaxial | planar | simple_shear | volumetric")
+      ->delimiter(',');
   cmd->add_option("--time-s", args->time_s,
                   "Times in s, comma separated: relaxation modulus M(t) and creep compliance J(t) instead")
       ->delimiter(',')->check(positive_number());

@@ -16,7 +16,9 @@
 #include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/shift_laws.hpp"
 #include "fitlib/fit/terms.hpp"
+#include "fitlib/model/hyperelastic.hpp"
 #include "fitlib/model/linear.hpp"
+#include "hyperelastic.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
 #include "plot.hpp"
@@ -76,6 +78,7 @@ struct FitArgs {
   fitlib::fit::FitOptions fit;
   std::string command_line;
   MasterCurveArgs master;  // --master-curve
+  HyperelasticFitArgs hyper;  // a hyperelastic --model: quasi-static tables (hyperelastic.hpp)
 };
 
 // The command line as library options (card/fit_card.hpp); `shifts` from --master-curve/--shifts.
@@ -259,6 +262,28 @@ void run_fit(FitArgs a) {
   finish(a, card::fit_card(table, options), data);
 }
 
+// A hyperelastic --model: the options that apply to quasi-static fits, the rest refused.
+void run_hyperelastic(const FitArgs& a, const CLI::App& cmd) {
+  for (const char* dynamic : {"--temperature-law", "--master-curve", "--shifts", "--bulk-modulus", "--backend",
+                              "--storage-weight", "--loss-weight", "--mean-weight", "--mode", "--format"})
+    if (cmd.count(dynamic))
+      throw fitlib::core::UsageError(std::string(dynamic) + " applies to dynamic-test fits, not to the hyperelastic model '" +
+                                     a.model + "'");
+  HyperelasticFitArgs h = a.hyper;
+  h.data = a.data, h.model = a.model, h.out = a.out, h.name = a.name, h.plot = a.plot, h.json = a.json;
+  h.command_line = command_line();
+  if (cmd.count("--residual")) h.residual = a.residual;
+  if (cmd.count("--terms")) {
+    if (a.terms.empty() || a.terms.find_first_not_of("0123456789") != std::string::npos)
+      throw fitlib::core::UsageError("--terms: a hyperelastic model takes a number of terms, not '" + a.terms + "'");
+    h.terms = std::stoi(a.terms);
+  }
+  if (cmd.count("--multistart")) h.multistart = a.fit.multistart;
+  h.max_iterations = a.fit.max_iterations;
+  h.seed = a.fit.seed;
+  run_hyperelastic_fit(h);
+}
+
 }  // namespace
 
 void register_fit(CLI::App& app) {
@@ -266,7 +291,9 @@ void register_fit(CLI::App& app) {
   auto* cmd = app.add_subcommand("fit", "Fit a model to dynamic-test tables and write a material card");
   cmd->add_option("--data", a->data, "Data file(s): dynamic-test CSV, pyvisco CSV, EPLEXOR .xls (- = stdin)")
       ->required();
-  cmd->add_option("--model", a->model, "prony | zener3 | retardation | fractional-zener | fritzson | fritzson-iso")
+  cmd->add_option("--model", a->model,
+                  "prony | zener3 | retardation | fractional-zener | fritzson | fritzson-iso; quasi-static tables: "
+                  "neo-hooke | mooney-rivlin | yeoh | reduced-polynomial | ogden | arruda-boyce | gent")
       ->required();
   cmd->add_option("--terms", a->terms, "Number of terms, or 'auto' (AIC, BIC and pyvisco's rule)")
       ->capture_default_str();
@@ -296,8 +323,9 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--reference-c", a->reference_C, "Reference temperature, degC")
       ->capture_default_str()->check(temperature_c_range());
   cmd->add_flag("--bulk-modulus", a->bulk_modulus, "Add a constant bulk modulus K (mode conversion)");
-  cmd->add_option("--residual", a->residual, "log10 | relative | complex (errors relative to |E*|)")
-      ->capture_default_str()->check(CLI::IsMember({"log10", "relative", "complex"}));
+  cmd->add_option("--residual", a->residual,
+                  "log10 | relative | complex (errors relative to |E*|); hyperelastic: relative (default) | absolute")
+      ->capture_default_str()->check(CLI::IsMember({"log10", "relative", "complex", "absolute"}));
   cmd->add_option("--storage-weight", a->fit.storage_weight,
                   "Weight of storage-modulus residuals (--terms auto default: 80, with --residual relative)")
       ->capture_default_str();
@@ -330,7 +358,15 @@ void register_fit(CLI::App& app) {
                   "--master-curve/--shifts: shift file to write (pyvisco format T,log_aT)");
   cmd->add_option("--shifts", a->master.shifts_in,
                   "Raw isotherms: shift them by the factors of this file (pyvisco T,log_aT) instead of fitting shifts");
+  cmd->add_flag("--compressible", a->hyper.compressible,
+                "Hyperelastic models: add D1 (1/MPa), fitted to the volumetric rows");
+  cmd->add_option("--mode-weight", a->hyper.mode_weights,
+                  "Hyperelastic models: weight of a test mode's residuals, MODE=WEIGHT (repeatable)");
+  cmd->add_option("--stability-range", a->hyper.stability_range,
+                  "Hyperelastic models: Drucker check from MIN to MAX stretch (default 0.1,10)")
+      ->delimiter(',')->expected(2);
   cmd->callback([a, cmd] {
+    if (fitlib::model::is_hyperelastic_kind(a->model)) return run_hyperelastic(*a, *cmd);
     FitArgs args = *a;
     args.objective_given = cmd->count("--residual") + cmd->count("--storage-weight") + cmd->count("--loss-weight") > 0;
     args.command_line = command_line();

@@ -24,6 +24,8 @@
 #include "inputs.hpp"
 #include "output.hpp"
 #include "plot.hpp"
+#include "hyperelastic.hpp"
+#include "fitlib/model/hyperelastic.hpp"
 
 namespace fitcli {
 namespace {
@@ -284,6 +286,7 @@ void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& d
   const auto model = card.model();
   const auto p = card.values();
   const std::string shown = title.empty() ? card.name : title;
+  if (model->hyperelastic()) return plot_hyperelastic(card, data, title, out);
   write_png(out, [&](const std::string& tmp) {
     if (is_relaxation_data(data, format)) return relaxation_script(read_relaxation_tables(data), *model, p, shown, tmp);
     data::ReadOptions read;

@@ -1,6 +1,8 @@
 #include "fitlib/card/export.hpp"
 
 #include "fitlib/card/conversion.hpp"
+#include "fitlib/card/hyperelastic.hpp"
+#include "export_text.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -143,6 +145,8 @@ PronyExport prepare(const Card& card, const std::string& format, const ExportOpt
   return e;
 }
 
+}  // namespace
+
 // `text` as comment lines of at most 80 characters (Abaqus reads 256 per line, LS-DYNA's cards 80).
 std::string comment_lines(const char* comment, const std::string& text) {
   std::ostringstream out, line;
@@ -159,6 +163,8 @@ std::string comment_lines(const char* comment, const std::string& text) {
   if (line.tellp() > 0) out << comment << " " << line.str() << "\n";
   return out.str();
 }
+
+namespace {
 
 std::string header(const Card& card, const char* comment, const PronyExport& e) {
   std::ostringstream out;
@@ -272,6 +278,7 @@ std::string export_card(const Card& card, const std::string& format, const Expor
   // CalculiX has no built-in Prony viscoelasticity (it needs a user material): not a format.
   if (format != "abaqus" && format != "ansys" && format != "lsdyna")
     throw core::UsageError("unknown export format '" + format + "' (abaqus, ansys, lsdyna)");
+  if (card.model()->hyperelastic()) return export_hyperelastic(card, format, options);
   const PronyExport e = prepare(card, format, options);
   if (format == "abaqus") return abaqus(card, e);
   if (format == "ansys") return ansys(card, e, options.material_id);

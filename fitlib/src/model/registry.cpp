@@ -6,6 +6,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/model/elastic.hpp"
 #include "fitlib/model/fritzson.hpp"
+#include "fitlib/model/hyperelastic.hpp"
 #include "fitlib/model/linear.hpp"
 #include "fitlib/model/model.hpp"
 
@@ -35,6 +36,7 @@ ModelPtr make_model(const std::string& kind, const nlohmann::json& options) {
   if (is_linear_kind(kind)) return make_linear_model(kind, options);
   if (fritzson::is_fritzson_kind(kind)) return fritzson::make_fritzson_model(kind, options);
   if (is_elastic_kind(kind)) return make_elastic_model(kind, options);
+  if (is_hyperelastic_kind(kind)) return make_hyperelastic_model(kind, options);
   if (const ModelFactory factory = registered_factory(kind)) return factory(options);
   std::string known;
   for (const auto& k : model_kinds()) known += (known.empty() ? "" : ", ") + k;
@@ -44,6 +46,7 @@ ModelPtr make_model(const std::string& kind, const nlohmann::json& options) {
 std::vector<std::string> model_kinds() {
   std::vector<std::string> kinds = {"prony", "zener3", "retardation", "fractional-zener", "fritzson",
                                     "fritzson-iso", "elastic-iso", "elastic-ortho"};
+  for (const auto& k : hyperelastic_kinds()) kinds.push_back(k);
   std::lock_guard<std::mutex> lock(registered().mutex);
   for (const auto& entry : registered().factories) kinds.push_back(entry.first);
   return kinds;

@@ -48,6 +48,7 @@ struct MaxwellSeries;   // time_series.hpp
 struct KelvinSeries;    // time_series.hpp
 struct PointOptions;    // material_point.hpp
 class MaterialPoint;    // material_point.hpp
+class HyperelasticLaw;  // hyperelastic.hpp
 
 // The horizontal temperature law of a model, as typed data for fitters and exports.
 enum class ShiftLaw { none, wlf, arrhenius, polynomial, other };
@@ -141,6 +142,10 @@ class Model {
   // throws core::UsageError, for models built elsewhere, e.g. a fitter's internal models).
   virtual std::shared_ptr<const MaterialPoint> material_point(const double* p,
                                                              const PointOptions& options) const;
+
+  // The large-strain elastic law of a hyperelastic model (nominal stress per quasi-static test
+  // mode, its typed form for exports); null for the others.
+  virtual const HyperelasticLaw* hyperelastic() const { return nullptr; }
 
   // Default values of all parameters (a start for fitting, a sane demo card).
   std::vector<double> default_parameters() const;
