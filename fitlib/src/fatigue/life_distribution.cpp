@@ -17,12 +17,13 @@ double normal_quantile(double percent) {
   return boost::math::quantile(boost::math::normal(), percent / 100.0);
 }
 
-BLife b_life(double percent, double log10_median, const ModeDistribution& d, bool with_interval,
+// B_p = N_law 10^(z_p s): B50 is the deterministic life to the bit.
+BLife b_life(double percent, double median_cycles, const ModeDistribution& d, bool with_interval,
              double cycles_per_hour) {
   BLife b;
   b.percent = percent;
-  const double centre = log10_median + normal_quantile(percent) * d.sigma_log10;
-  b.cycles = std::pow(10.0, centre);
+  const double shift = normal_quantile(percent) * d.sigma_log10;
+  b.cycles = median_cycles * std::pow(10.0, shift);
   b.has_hours = cycles_per_hour > 0.0;
   const double per_h = b.has_hours ? cycles_per_hour : HUGE_VAL;  // 0 h where hours are not known
   b.h = b.cycles / per_h;
@@ -30,8 +31,8 @@ BLife b_life(double percent, double log10_median, const ModeDistribution& d, boo
   if (!with_interval) return b;
   // Student t with the scatter's degrees of freedom: the covariance is s²(JᵀJ)⁻¹ with s estimated.
   const double t = d.dof > 0 ? boost::math::quantile(boost::math::students_t(d.dof), 0.95) : normal_quantile(95.0);
-  b.low_cycles = std::pow(10.0, centre - t * d.constants_sd_log10);
-  b.high_cycles = std::pow(10.0, centre + t * d.constants_sd_log10);
+  b.low_cycles = median_cycles * std::pow(10.0, shift - t * d.constants_sd_log10);
+  b.high_cycles = median_cycles * std::pow(10.0, shift + t * d.constants_sd_log10);
   b.low_h = b.low_cycles / per_h, b.high_h = b.high_cycles / per_h;
   return b;
 }
@@ -66,9 +67,9 @@ std::optional<ModeDistribution> mode_distribution(const ModeLife& m, const LifeL
       for (int k = 0; k < 3; ++k) var += g[i] * (*law.covariance)[i][k] * g[k];
     d.constants_sd_log10 = std::sqrt(std::max(var, 0.0));
   }
-  const double median = std::log10(m.life_cycles);  // the deterministic life is the median
-  d.b10 = b_life(10.0, median, d, law.covariance.has_value(), cycles_per_hour);
-  d.b50 = b_life(50.0, median, d, law.covariance.has_value(), cycles_per_hour);
+  // the deterministic life is the median
+  d.b10 = b_life(10.0, m.life_cycles, d, law.covariance.has_value(), cycles_per_hour);
+  d.b50 = b_life(50.0, m.life_cycles, d, law.covariance.has_value(), cycles_per_hour);
   return d;
 }
 

@@ -132,7 +132,7 @@ void add_intervals(const Eigen::MatrixXd& J, double ss, double ln_sigma0,
     if (!est[k].fixed) free.push_back(&est[k]), slot.push_back(k);
   LawCovariance full{};
   for (int i = 0; i < p; ++i)
-    for (int k = 0; k < p; ++k) full[slot[i]][slot[k]] = cov(i, k);
+    for (int k = 0; k < p; ++k) full[slot[i]][slot[k]] = 0.5 * (cov(i, k) + cov(k, i));  // symmetric to the bit
   law.covariance = full;
   law.scatter = LifeScatter{"lognormal", std::sqrt(ss / (m - p)), m - p};
   for (int k = 0; k < p; ++k) {

@@ -42,8 +42,8 @@ TEST(Heat, FrictionPowerOfAConstantSlidingArc) {
     c.samples.push_back(q);
   }
   const double flank = b.height_mm / std::cos(b.wedge_half_angle_rad);
-  // The trapezoid rule's ramps at either end of the arc add half a step each of the half weight.
-  const double expected = 2.0 * flank * 0.5 * 0.4 * 30.0 * (40.0 + 0.5) * 1e-3;
+  // 40 mm of arc, and the trapezoid rule's ramp into and out of it (1 mm each at half weight) add 1 mm.
+  const double expected = 2.0 * flank * 0.5 * 0.4 * 30.0 * (40.0 + 1.0) * 1e-3;
   EXPECT_NEAR(belt::friction_power_W(c, b), expected, 1e-12);
   EXPECT_EQ(belt::friction_power_W(c, b, 1), 0.0);
 }

@@ -6,7 +6,9 @@
 #include <cmath>
 
 #include "../../../fitlib/src/scene/effects.hpp"
+#include "common/temp_path.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
@@ -118,6 +120,29 @@ TEST(SceneHeat, SceneKeysAndErrors) {
   } catch (const core::NumericalError& e) {
     EXPECT_NE(std::string(e.what()).find("thermal runaway"), std::string::npos) << e.what();
   }
+}
+
+// A card with scatter and covariance: the table and life.json carry B10/B50; two runs give the same bytes.
+TEST(SceneHeat, DistributionWithHeatIsPrintedAndByteReproducible) {
+  fatigue::FatigueCard c = fatigue::default_card();
+  c.separation.scatter = fatigue::LifeScatter{"lognormal", 0.25, 10};
+  c.separation.covariance = fatigue::LawCovariance{{{1e-3, 0.0, 0.0}, {0.0, 0.04, 0.0}, {0.0, 0.0, 1e-5}}};
+  const std::string path = fitlib_test::temp_dir() + "scatter-card.json";
+  fatigue::save_card(path, c);
+  auto s = drive("medium", true);
+  s.life = scene::LifeSpec{};
+  s.life->card = path;
+  const auto a = scene::run_life(s), b = scene::run_life(s);
+  const std::string ja = scene::life_json(s, a, false).dump(2), jb = scene::life_json(s, b, false).dump(2);
+  EXPECT_EQ(ja, jb);
+  ASSERT_EQ(a.life->distribution.size(), 1u);  // the radial crack's law states no scatter
+  const auto& d = a.life->distribution[0];
+  EXPECT_LT(d.b10.h, d.b50.h);
+  EXPECT_EQ(d.b50.cycles, a.life->report.modes[1].life_cycles);
+  const std::string text = scene::life_text(s, a);
+  EXPECT_NE(text.find("B10"), std::string::npos) << text;
+  EXPECT_NE(text.find("belt temperature:"), std::string::npos) << text;
+  EXPECT_NE(ja.find("\"heat_buildup\""), std::string::npos);
 }
 
 }  // namespace
