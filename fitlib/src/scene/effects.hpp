@@ -50,7 +50,9 @@ EffectChange effect_change(const belt::LoadCycle& with, const belt::LoadCycle& w
 // Heat build-up (heat_effects.cpp; docs/thermal.md): the heat sources of a load cycle at the scene's
 // temperature, and the effect: the belt temperature's fixed point, the stiffness, drive and load
 // cycle re-made at it.
-belt::HeatSources heat_sources(const Scene& scene, const belt::DriveCase& drive, const belt::LoadCycle& cycle);
+// `warnings`: the cards' data-window warnings at the layers' amplitudes (nullptr: none).
+belt::HeatSources heat_sources(const Scene& scene, const belt::DriveCase& drive, const belt::LoadCycle& cycle,
+                               std::vector<std::string>* warnings = nullptr);
 void heat_buildup(const Scene& scene, SceneResult& r);
 
 // Life (life_effects.cpp).

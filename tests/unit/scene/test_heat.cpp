@@ -122,6 +122,30 @@ TEST(SceneHeat, SceneKeysAndErrors) {
   }
 }
 
+// With the thesis cards at the beam level the cushion's friction shear, read stress-controlled on the hot
+// card (γ = τ/|G*|), feeds back: the medium drive settles above 100 degC, the heavy one runs
+// past the cards' temperature law: a thermal runaway, exit 4 (docs/thermal.md §4).
+TEST(SceneHeat, ThesisCardsSettleOnTheMediumDriveAndRunAwayOnTheHeavyOne) {
+  auto cards = [](const std::string& load) {
+    auto s = drive(load, true);
+    s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+    s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
+    s.life = scene::LifeSpec{};
+    s.life->fidelity = "beam";
+    return s;
+  };
+  const auto medium = scene::run_life(cards("medium"));
+  ASSERT_TRUE(medium.heat);
+  EXPECT_GT(medium.heat->temperature_C, 100.0);
+  EXPECT_GT(medium.heat->sources.layers.back().strain_amplitude, 1.0);  // the cushion's shear, far beyond 4.5 %
+  try {
+    scene::run_life(cards("heavy"));
+    FAIL() << "the heavy drive settled";
+  } catch (const core::NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("thermal runaway"), std::string::npos) << e.what();
+  }
+}
+
 // A card with scatter and covariance: the table and life.json carry B10/B50; two runs give the same bytes.
 TEST(SceneHeat, DistributionWithHeatIsPrintedAndByteReproducible) {
   fatigue::FatigueCard c = fatigue::default_card();
