@@ -110,7 +110,7 @@ void add_note(std::string& note, const std::string& text) { note += (note.empty(
 // instead when there are too few cases or the constants are not identifiable. J's columns are
 // the free constants in est's order.
 // The covariance goes to `law` (the card's, ln σ0, n, b with zeros for held constants) and the
-// residual standard deviation s = √(ss/(m − p)) to its scatter (docs/fatigue.md §6 "Scatter").
+// residual standard deviation s = √(ss/(m − p)) to its scatter (docs/fatigue.md §9).
 void add_intervals(const Eigen::MatrixXd& J, double ss, double ln_sigma0,
                    std::vector<ConstantEstimate>& est, std::string& note, LifeLaw& law) {
   const int m = static_cast<int>(J.rows()), p = static_cast<int>(J.cols());
