@@ -118,7 +118,8 @@ void heat_buildup(const Scene& s, SceneResult& r) {
     } catch (const core::InputError& e) {  // the heat, not the scene, took the belt where its inputs end
       if (T == s.thermal.ambient_C) throw;  // the first iterate: the scene's own inputs at the ambient
       throw core::NumericalError("thermal runaway: the heat balance takes the belt to " + core::short_number(T) +
-                                 " degC, where " + e.what() + " (docs/thermal.md §4)");
+                                 " degC, where " + (e.detail().empty() ? std::string(e.what()) : e.detail()) +
+                                 " (docs/thermal.md §4)");
     }
   };
   r.heat = belt::solve_belt_temperature(*r.drive, s.thermal, remake);

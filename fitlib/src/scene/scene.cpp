@@ -578,7 +578,7 @@ Scene parse_scene_table(const toml::table& root, const std::string& source) {
   if (const toml::table* ht = top.table("thermal")) s.thermal = parse_thermal(*ht, source);
   const auto heat = s.effects.find("heat_buildup");
   if (heat != s.effects.end() && heat->second && !s.ambient_C)
-    top.fail("conditions", "[effects] heat_buildup = true needs [conditions] ambient_C, the air's temperature the "
+    top.fail("conditions.ambient_C", "[effects] heat_buildup = true needs [conditions] ambient_C, the air's temperature the "
                            "belt's heat balance starts from (docs/thermal.md)");
   if (s.ambient_C) s.thermal.ambient_C = *s.ambient_C;
   top.finish();
