@@ -57,6 +57,9 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
     const std::string& level = r.card.law(f.mode).stress_fidelity;
     t << std::setw(11) << sig4(f.rms_log10_error) << (level.empty() ? "not stated" : level + " level") << "\n";
     if (!f.note.empty()) t << "  note: " << f.note << "\n";
+    if (const auto& sc = r.card.law(f.mode).scatter)  // docs/fatigue.md §9
+      t << "  scatter: log-normal about the law, s " << sig4(sc->sigma_log10) << " log10 (" << sc->dof
+        << " dof), with the constants' covariance, written into the card (fitcli life prints B10 and B50)\n";
   }
   for (const std::string& w : r.warnings) t << "WARNING: " << w << "\n";
   return t.str();

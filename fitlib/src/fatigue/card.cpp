@@ -43,6 +43,10 @@ namespace {
 json law_json(const LifeLaw& l) {
   json j = {{"sigma0_MPa", l.sigma0_MPa}, {"n", l.n}, {"b_per_C", l.b_per_C}};
   if (!l.stress_fidelity.empty()) j["stress_fidelity"] = l.stress_fidelity;
+  if (l.scatter)
+    j["scatter"] = {{"distribution", l.scatter->distribution}, {"sigma_log10", l.scatter->sigma_log10},
+                    {"dof", l.scatter->dof}};
+  if (l.covariance) j["covariance"] = {{"parameters", {"ln_sigma0", "n", "b_per_C"}}, {"matrix", *l.covariance}};
   return j;
 }
 
@@ -88,8 +92,48 @@ class Reader {
 
 constexpr double kHuge = 1e300;
 
+LifeScatter read_scatter(const Reader& law) {
+  Reader r(law.at("scatter"), law.source(), law.key("scatter"), {"distribution", "sigma_log10", "dof"});
+  LifeScatter sc;
+  sc.distribution = r.text("distribution");
+  if (sc.distribution != "lognormal")
+    throw core::InputError("'" + sc.distribution + "' is not a scatter distribution this version reads (lognormal)",
+                           law.source(), 0, 0, r.key("distribution"));
+  sc.sigma_log10 = r.number("sigma_log10", 0.0, 10.0);
+  sc.dof = static_cast<int>(r.number("dof", 1.0, 1e9));
+  return sc;
+}
+
+// A symmetric 3 x 3 matrix over (ln σ0, n, b) with a non-negative diagonal.
+LawCovariance read_covariance(const Reader& law) {
+  Reader r(law.at("covariance"), law.source(), law.key("covariance"), {"parameters", "matrix"});
+  const json& names = r.at("parameters");
+  if (names != json({"ln_sigma0", "n", "b_per_C"}))
+    throw core::InputError("expected [\"ln_sigma0\", \"n\", \"b_per_C\"]", law.source(), 0, 0, r.key("parameters"));
+  const json& m = r.at("matrix");
+  const std::string key = r.key("matrix");
+  if (!m.is_array() || m.size() != 3) throw core::InputError("expected a 3 x 3 array", law.source(), 0, 0, key);
+  LawCovariance c{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!m[i].is_array() || m[i].size() != 3) throw core::InputError("expected a 3 x 3 array", law.source(), 0, 0, key);
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (!m[i][k].is_number() || !std::isfinite(m[i][k].get<double>()))
+        throw core::InputError("expected finite numbers", law.source(), 0, 0, key);
+      c[i][k] = m[i][k].get<double>();
+    }
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (c[i][i] < 0.0) throw core::InputError("a negative variance on the diagonal", law.source(), 0, 0, key);
+    for (std::size_t k = 0; k < i; ++k)
+      if (std::abs(c[i][k] - c[k][i]) > 1e-12 * (std::abs(c[i][k]) + std::abs(c[k][i])))
+        throw core::InputError("the covariance is not symmetric", law.source(), 0, 0, key);
+  }
+  return c;
+}
+
 LifeLaw read_law(const Reader& modes, const std::string& name) {
-  Reader r(modes.at(name), modes.source(), modes.key(name), {"sigma0_MPa", "n", "b_per_C", "stress_fidelity"});
+  Reader r(modes.at(name), modes.source(), modes.key(name),
+           {"sigma0_MPa", "n", "b_per_C", "stress_fidelity", "scatter", "covariance"});
   LifeLaw law{r.number("sigma0_MPa", 0.0, kHuge, true), r.number("n", 0.0, 1000.0, true),
               r.number("b_per_C", -10.0, 10.0), ""};
   if (r.has("stress_fidelity")) {
@@ -98,6 +142,8 @@ LifeLaw read_law(const Reader& modes, const std::string& name) {
       throw core::InputError("'" + law.stress_fidelity + "' is not a stress level (beam, elastic or complete)",
                              modes.source(), 0, 0, r.key("stress_fidelity"));
   }
+  if (r.has("scatter")) law.scatter = read_scatter(r);
+  if (r.has("covariance")) law.covariance = read_covariance(r);
   return law;
 }
 

@@ -109,8 +109,10 @@ void add_note(std::string& note, const std::string& text) { note += (note.empty(
 // from ln σ0's, exponentiated (stays positive), with a delta-method standard error. A note
 // instead when there are too few cases or the constants are not identifiable. J's columns are
 // the free constants in est's order.
+// The covariance goes to `law` (the card's, ln σ0, n, b with zeros for held constants) and the
+// residual standard deviation s = √(ss/(m − p)) to its scatter (docs/fatigue.md §9).
 void add_intervals(const Eigen::MatrixXd& J, double ss, double ln_sigma0,
-                   std::vector<ConstantEstimate>& est, std::string& note) {
+                   std::vector<ConstantEstimate>& est, std::string& note, LifeLaw& law) {
   const int m = static_cast<int>(J.rows()), p = static_cast<int>(J.cols());
   const Eigen::MatrixXd JtJ = J.transpose() * J;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
@@ -125,8 +127,14 @@ void add_intervals(const Eigen::MatrixXd& J, double ss, double ln_sigma0,
   const Eigen::MatrixXd cov = lu.inverse() * (ss / (m - p));
   const double t = boost::math::quantile(boost::math::students_t(m - p), 0.975);
   std::vector<ConstantEstimate*> free;
-  for (ConstantEstimate& e : est)
-    if (!e.fixed) free.push_back(&e);
+  std::vector<std::size_t> slot;  // each free constant's place in (ln σ0, n, b)
+  for (std::size_t k = 0; k < est.size(); ++k)
+    if (!est[k].fixed) free.push_back(&est[k]), slot.push_back(k);
+  LawCovariance full{};
+  for (int i = 0; i < p; ++i)
+    for (int k = 0; k < p; ++k) full[slot[i]][slot[k]] = 0.5 * (cov(i, k) + cov(k, i));  // symmetric to the bit
+  law.covariance = full;
+  law.scatter = LifeScatter{"lognormal", std::sqrt(ss / (m - p)), m - p};
   for (int k = 0; k < p; ++k) {
     ConstantEstimate& e = *free[k];
     const double se = std::sqrt(std::max(cov(k, k), 0.0));
@@ -194,7 +202,7 @@ LifeFitResult fit_life_law(const std::vector<ObservedLife>& all, Mode mode, cons
   result.constants = {{"sigma0_MPa", "MPa", result.law.sigma0_MPa},
                       {"n", "1", lp.n, lp.fix_n},
                       {"b_per_C", "1/°C", lp.b, lp.fix_b}};
-  add_intervals(J, ss, lp.ln_sigma0, result.constants, result.note);
+  add_intervals(J, ss, lp.ln_sigma0, result.constants, result.note, result.law);
   result.violated_runouts = violated_runouts(all, mode, result.law, o.reference_temperature_C, kScatterWarning_log10);
   return result;
 }

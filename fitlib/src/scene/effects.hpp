@@ -47,6 +47,14 @@ double best_of_three(const belt::DriveCase& drive, const belt::LoadCycleOptions&
 // Largest relative pointwise change of F, p, γ, K and friction use between two cycles.
 EffectChange effect_change(const belt::LoadCycle& with, const belt::LoadCycle& without);
 
+// Heat build-up (heat_effects.cpp; docs/thermal.md): the heat sources of a load cycle at the scene's
+// temperature, and the effect: the belt temperature's fixed point, the stiffness, drive and load
+// cycle re-made at it.
+// `warnings`: the cards' data-window warnings at the layers' amplitudes (nullptr: none).
+belt::HeatSources heat_sources(const Scene& scene, const belt::DriveCase& drive, const belt::LoadCycle& cycle,
+                               std::vector<std::string>* warnings = nullptr);
+void heat_buildup(const Scene& scene, SceneResult& r);
+
 // Life (life_effects.cpp).
 // Why this build cannot run the segment levels (elastic, complete); nullopt once it can.
 void segment_stresses(const Scene& scene, SceneResult& r);

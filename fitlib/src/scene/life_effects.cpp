@@ -322,6 +322,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
+  life.distribution = fatigue::life_distribution(life.report, card, *r.life_conditions);
   const bool history = r.segment_equilibrium && r.segment_equilibrium->history;
   for (std::string& w : fatigue::life_warnings(life.report, history)) r.warnings.push_back(std::move(w));
   if (std::string w = fatigue::stress_fidelity_warning(card, life.plan.fidelity); !w.empty())
@@ -330,6 +331,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   life.segment_run = r.segment_run;
   life.damage_held = !r.segment_damage_held.empty();
   life.fields = r.segment_fields;
+  life.heat = r.heat;
   r.life = std::move(life);
 }
 

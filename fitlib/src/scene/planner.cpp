@@ -113,11 +113,13 @@ SceneResult run_effects(const Scene& s, const belt::LoadCycleOptions& options) {
   r.plan = make_plan(s);
   r.load_cycle_options = options;
   const auto& reg = effect_registry();
+  Scene at = s;  // after the heat build-up, every effect runs at the belt's temperature (docs/thermal.md)
   for (std::size_t i = 0; i < reg.size(); ++i) {
     EffectReport& e = r.plan.effects[i];
     if (e.status != EffectStatus::run) continue;
-    e.wall_s = reg[i].run(s, r);
+    e.wall_s = reg[i].run(at, r);
     e.ran = true;
+    if (r.heat) at.temperature_C = r.heat->temperature_C;
   }
   r.total_wall_s = total.seconds();
   return r;

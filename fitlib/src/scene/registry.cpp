@@ -94,6 +94,9 @@ std::vector<Effect> make_registry() {
                  nullptr, {}, timed([](const Scene& s, SceneResult& r) {
                    r.tension_test = detail::tension_test(*r.drive, s.tension_test.value_or(TensionTestSpec{}), s.friction);
                  })});
+  reg.push_back({"heat_buildup", "heat (the belt temperature of its heat balance; stiffness, drive, cycle at it)",
+                 "wall time of the fixed point (a stiffness, drive and load cycle per iteration)", {}, "heat_buildup",
+                 always({"contact_arcs"}), "", nullptr, {}, timed(detail::heat_buildup)});
   reg.push_back({"beam_stresses", "stresses, life_conditions", kOneRun, {}, "", always({"contact_arcs"}), "",
                  nullptr, {}, timed(detail::beam_stresses)});
   reg.push_back({"segment_fe", "stresses, life_conditions", kOneRun, {}, "", always({"contact_arcs"}), "",

@@ -303,7 +303,7 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
 
 const std::vector<std::string>& effect_names() {
   static const std::vector<std::string> names{"bending_zones", "inertia", "full_ode",
-                                              "driver_exit_ramp", "viscoelastic_tension"};
+                                              "driver_exit_ramp", "viscoelastic_tension", "heat_buildup"};
   return names;
 }
 const std::vector<std::string>& output_names() {
@@ -504,6 +504,24 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
   return l;
 }
 
+// [thermal]: the heat balance's coefficients, each over its documented default (docs/thermal.md §3).
+belt::ThermalOptions parse_thermal(const toml::table& t, const std::string& source) {
+  Reader r(t, "thermal", source);
+  r.allow({"convection_W_m2K", "contact_W_m2K", "pulley_C", "rubber_conductivity_W_mK", "specific_heat_J_kgC",
+           "friction_to_belt", "loss_angle_deg", "max_temperature_C"});
+  belt::ThermalOptions o;
+  o.convection_W_m2K = r.number_or("convection_W_m2K", o.convection_W_m2K, 0.0, 1e6, true);
+  o.contact_W_m2K = r.number_or("contact_W_m2K", o.contact_W_m2K, 0.0, 1e7);
+  o.pulley_C = r.number_or("pulley_C", o.pulley_C, -273.15, 1000.0);
+  o.rubber_conductivity_W_mK = r.number_or("rubber_conductivity_W_mK", o.rubber_conductivity_W_mK, 0.0, 1e3, true);
+  o.specific_heat_J_kgC = r.number_or("specific_heat_J_kgC", o.specific_heat_J_kgC, 0.0, 1e5, true);
+  o.friction_to_belt = r.number_or("friction_to_belt", o.friction_to_belt, 0.0, 1.0);
+  o.loss_angle_deg = r.number_or("loss_angle_deg", o.loss_angle_deg, 0.0, 90.0, true);
+  o.max_temperature_C = r.number_or("max_temperature_C", o.max_temperature_C, -273.15, 1e4);
+  r.finish();
+  return o;
+}
+
 void parse_flags(Reader& top, const char* table, const std::vector<std::string>& names,
                  std::map<std::string, bool>& out, const std::string& source) {
   if (const toml::table* t = top.table(table)) {
@@ -537,15 +555,16 @@ Scene parse_scene_table(const toml::table& root, const std::string& source) {
   const std::filesystem::path base = std::filesystem::path(source).parent_path();
   Reader top(root, "", source);
   top.allow({"name", "drive", "belt", "conditions", "effects", "outputs", "accumulation", "cvt",
-             "tension_test", "segment", "life"});
+             "tension_test", "segment", "life", "thermal"});
   s.name = top.string("name").value_or(std::filesystem::path(source).stem().string());
   parse_drive(s, top, root, source);
   parse_belt(s, top, base, source);
   if (const toml::table* ct = top.table("conditions")) {
     Reader cr(*ct, "conditions", source);
-    cr.allow({"temperature_C", "friction"});
+    cr.allow({"temperature_C", "friction", "ambient_C"});
     s.temperature_C = cr.number_or("temperature_C", 20.0, -273.15, 1000.0);
     s.friction = cr.number_or("friction", 0.8, 0.0, 100.0);
+    s.ambient_C = cr.number("ambient_C", -273.15, 1000.0);
     cr.finish();
   }
   parse_flags(top, "effects", effect_names(), s.effects, source);
@@ -556,6 +575,12 @@ Scene parse_scene_table(const toml::table& root, const std::string& source) {
   if (const toml::table* tt = top.table("tension_test")) s.tension_test = parse_tension_test(*tt, source);
   if (const toml::table* st = top.table("segment")) s.segment = parse_segment(s, *st, source);
   if (const toml::table* lt = top.table("life")) s.life = parse_life(*lt, base, source);
+  if (const toml::table* ht = top.table("thermal")) s.thermal = parse_thermal(*ht, source);
+  const auto heat = s.effects.find("heat_buildup");
+  if (heat != s.effects.end() && heat->second && !s.ambient_C)
+    top.fail("conditions.ambient_C", "[effects] heat_buildup = true needs [conditions] ambient_C, the air's temperature the "
+                           "belt's heat balance starts from (docs/thermal.md)");
+  if (s.ambient_C) s.thermal.ambient_C = *s.ambient_C;
   top.finish();
   return s;
 }

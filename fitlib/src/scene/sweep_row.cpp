@@ -43,6 +43,16 @@ Column mode_life(const std::string& mode, bool hours) {
   };
 }
 
+// B10 of one mode, or of the governing one (mode ""), in hours; empty when its card states no scatter.
+Column b10_hours(const std::string& mode) {
+  return [=](const SceneResult& r) {
+    const std::string& want = mode.empty() ? r.life->report.governing : mode;
+    for (const auto& d : r.life->distribution)
+      if (fatigue::to_string(d.mode) == want && d.b10.has_hours) return number(d.b10.h);
+    return std::string();
+  };
+}
+
 struct ColumnSpec {
   const char* output;  // the scene output it needs: load_history or life
   Column column;
@@ -79,6 +89,14 @@ const std::map<std::string, ColumnSpec>& columns() {
       {"separation_life_h", {"life", mode_life("separation", true)}},
       {"cord_break_life_cycles", {"life", mode_life("cord_break", false)}},
       {"cord_break_life_h", {"life", mode_life("cord_break", true)}},
+      {"B10_h", {"life", b10_hours("")}},
+      {"radial_crack_B10_h", {"life", b10_hours("radial_crack")}},
+      {"separation_B10_h", {"life", b10_hours("separation")}},
+      // the heat balance's belt temperature ([effects] heat_buildup; empty without it)
+      {"belt_temperature_C", {"load_history", [](const SceneResult& r) {
+         return r.heat ? number(r.heat->temperature_C) : std::string();
+       }}},
+      {"heat_W", {"load_history", [](const SceneResult& r) { return r.heat ? number(r.heat->heat_in_W) : std::string(); }}},
   };
   return table;
 }

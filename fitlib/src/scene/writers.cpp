@@ -117,6 +117,34 @@ json effect_changes_json(const std::map<std::string, EffectChange>& changes) {
   return j;
 }
 
+// The heat balance's fixed point (docs/thermal.md): temperature, each source and loss in W per belt.
+json heat_json(const belt::BeltTemperature& h) {
+  json layers = json::array();
+  for (const belt::HysteresisLayer& l : h.sources.layers)
+    layers.push_back({{"layer", l.name}, {"volume_mm3", l.volume_mm3}, {"loss_modulus_MPa", l.loss_modulus_MPa},
+                      {"strain_amplitude", l.strain_amplitude}, {"work_per_cycle_J", belt::hysteresis_work_J(l)}});
+  return {{"belt_temperature_C", h.temperature_C}, {"ambient_C", h.ambient_C}, {"pulley_C", h.paths.pulley_C},
+          {"iterations", h.iterations}, {"hysteresis_W", h.sources.hysteresis_W},
+          {"friction_W", h.sources.friction_W}, {"friction_to_belt", h.paths.friction_to_belt},
+          {"heat_in_W", h.heat_in_W}, {"convection_W", h.convection_W}, {"contact_W", h.contact_W},
+          {"convection_W_m2K", h.paths.convection_W_m2K}, {"air_area_m2", h.paths.air_area_m2},
+          {"contact_W_m2K", h.paths.contact_W_m2K}, {"contact_area_m2", h.paths.contact_area_m2},
+          {"balance_error", h.balance_error}, {"layers", layers}};
+}
+
+std::string heat_text(const belt::BeltTemperature& h) {
+  std::ostringstream o;
+  o << "belt temperature: " << core::format_number(h.temperature_C, 4) << " degC from its heat balance (ambient "
+    << core::format_number(h.ambient_C, 4) << ", pulleys " << core::format_number(h.paths.pulley_C, 4) << " degC; "
+    << h.iterations << " fixed-point iterations)\n  heat in " << core::format_number(h.heat_in_W, 4)
+    << " W per belt: hysteresis " << core::format_number(h.sources.hysteresis_W, 4) << " W, friction "
+    << core::format_number(h.sources.friction_W, 4) << " W of which the belt takes "
+    << core::format_number(100.0 * h.paths.friction_to_belt, 3) << " %\n  heat out: convection "
+    << core::format_number(h.convection_W, 4) << " W (h " << core::format_number(h.paths.convection_W_m2K, 4)
+    << " W/m2K), to the pulleys " << core::format_number(h.contact_W, 4) << " W\n";
+  return o.str();
+}
+
 json life_summary_json(const LifeResult& l, bool effective_stress_history = false) {
   json j = fatigue::life_to_json(l.report, effective_stress_history);
   j["fidelity"] = l.plan.fidelity;
@@ -125,6 +153,8 @@ json life_summary_json(const LifeResult& l, bool effective_stress_history = fals
   for (const auto& f : l.inputs)
     inputs.push_back({{"role", f.role}, {"path", f.path}, {"sha256", f.sha256}, {"used_for", f.used_for}});
   j["inputs"] = inputs;
+  if (!l.distribution.empty()) j["distribution"] = fatigue::life_distribution_json(l.distribution);
+  if (l.heat) j["heat_buildup"] = heat_json(*l.heat);
   if (l.equilibrium) {  // the segment's equilibrium check with its bounds (docs/formats.md §5)
     using B = segment::EquilibriumBounds;
     const SegmentEquilibrium& e = *l.equilibrium;
@@ -192,9 +222,10 @@ std::string effects_table(const Plan& plan) {
 std::string life_text(const Scene& s, const SceneResult& r) {
   const LifeResult& l = r.life.value();
   std::ostringstream o;
-  o << "scene: " << s.name << " (" << s.temperature_C << " degC)\n"
+  o << "scene: " << s.name << " (" << (l.heat ? l.heat->temperature_C : s.temperature_C) << " degC)\n"
     << "fidelity: " << l.plan.fidelity << " (" << l.plan.reason << ")\n"
-    << fatigue::life_table(l.report);
+    << (l.heat ? heat_text(*l.heat) : "") << fatigue::life_table(l.report)
+    << fatigue::life_distribution_table(l.report, l.distribution);
   if (l.equilibrium) {
     using B = segment::EquilibriumBounds;
     const SegmentEquilibrium& e = *l.equilibrium;
@@ -268,6 +299,7 @@ json summary_json(const Scene& s, const SceneResult& r, bool wall_times) {
   if (r.cvt) j["cvt_thrust"] = cvt_json(*r.cvt);
   if (r.tension_test) j["tension_test"] = tension_test_json(*r.tension_test);
   if (r.life) j["life"] = life_summary_json(*r.life);
+  if (r.heat && !r.life) j["heat_buildup"] = heat_json(*r.heat);
   if (!r.warnings.empty()) j["warnings"] = r.warnings;
   return j;
 }
@@ -277,7 +309,7 @@ json life_json(const Scene& s, const SceneResult& r, bool wall_times) {
   j["scene"] = s.name;
   j["source"] = s.path;
   j["version"] = FITLIB_VERSION;
-  j["temperature_C"] = s.temperature_C;
+  j["temperature_C"] = r.heat ? r.heat->temperature_C : s.temperature_C;  // the heat balance's when it ran
   j["effects"] = effects_json(r.plan, wall_times);
   if (wall_times) j["total_wall_s"] = r.total_wall_s;
   if (!r.warnings.empty()) j["warnings"] = r.warnings;

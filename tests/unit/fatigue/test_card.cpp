@@ -114,7 +114,7 @@ TEST(FatigueCard, ErrorsNameFileAndKey) {
     card_from_json(k, "c.json");
     ADD_FAILURE() << "accepted sigma_0";
   } catch (const core::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("takes b_per_C, n, sigma0_MPa, stress_fidelity"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("takes b_per_C, covariance, n, scatter, sigma0_MPa, stress_fidelity"), std::string::npos)
         << e.what();
   }
   k = j;

@@ -3,6 +3,7 @@
 // (6.31) per failure mode, their reference temperature, and optionally Gerbert's cord-break law
 // (3.6)/(3.7). A bundled default with Report I's printed constants is datasets/cards/
 // fatigue-fritzson-1988.json; default_card() returns the same values.
+#include <array>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,20 @@ enum class Mode { radial_crack = 1, separation = 2 };
 const char* to_string(Mode mode);  // "radial_crack", "separation"
 std::optional<Mode> mode_from_string(const std::string& text);  // the inverse; nullopt for other text
 
+// The scatter of the observed lives about a mode's law: log10 N_obs − log10 N_law is normal with
+// mean 0 and standard deviation sigma_log10 (a log-normal life whose median is the law's;
+// docs/decisions.md "Life as a distribution: log-normal scatter about the law"), estimated by
+// life-fit with `dof` degrees of freedom (cases − free constants).
+struct LifeScatter {
+  std::string distribution = "lognormal";  // the only one read (the card's key says which)
+  double sigma_log10 = 0.0;
+  int dof = 0;
+};
+
+// Covariance of the constants (ln σ0, n, b_per_C) in that order, as life-fit estimates it
+// (s²(JᵀJ)⁻¹); a held constant's row and column are zero.
+using LawCovariance = std::array<std::array<double, 3>, 3>;
+
 // N = [Σ (σ_e,i/σ0)ⁿ]⁻¹ · 2^(−b(T − T_ref)) (6.31), N in load cycles (belt revolutions).
 struct LifeLaw {
   double sigma0_MPa = 1.0;
@@ -23,6 +38,8 @@ struct LifeLaw {
   // "complete"; "" = not stated). The levels' stresses differ by orders of magnitude in σⁿ, so
   // constants read at another level give a life off their scale (docs/fatigue.md §4).
   std::string stress_fidelity;
+  std::optional<LifeScatter> scatter = std::nullopt;  // optional in the card (docs/fatigue.md §4)
+  std::optional<LawCovariance> covariance = std::nullopt;  // optional in the card
 };
 bool is_stress_fidelity(const std::string& text);  // "beam", "elastic" or "complete"
 

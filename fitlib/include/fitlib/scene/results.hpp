@@ -8,9 +8,11 @@
 #include <vector>
 
 #include "fitlib/belt/drive.hpp"
+#include "fitlib/belt/heat.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/belt/viscoelastic.hpp"
 #include "fitlib/fatigue/life.hpp"
+#include "fitlib/fatigue/life_distribution.hpp"
 
 namespace fitlib::scene {
 
@@ -127,6 +129,9 @@ struct LifeResult {
   std::optional<SegmentRun> segment_run;
   bool damage_held = false;  // the complete level held a card's damage at its tests' drivers
   std::vector<FieldFile> fields;
+  // B10/B50 per mode whose card law states a scatter (docs/fatigue.md §9); empty: medians only.
+  std::vector<fatigue::ModeDistribution> distribution;
+  std::optional<belt::BeltTemperature> heat;  // [effects] heat_buildup: the temperature the life ran at
 };
 
 struct SceneResult {
@@ -142,6 +147,9 @@ struct SceneResult {
   std::optional<TensionTest> tension_test;
   std::optional<std::vector<fatigue::PointHistory>> stresses;  // at the monitored points
   std::optional<fatigue::LifeConditions> life_conditions;
+  // [effects] heat_buildup: the belt's temperature from its heat balance; every later effect runs
+  // at it (planner.cpp), the stiffness, drive and load cycle above are the fixed point's.
+  std::optional<belt::BeltTemperature> heat;
   std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
   std::optional<SegmentRun> segment_run;
   std::set<std::string> segment_damage_held;  // roles whose card's damage the complete level held

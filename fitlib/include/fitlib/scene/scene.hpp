@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitlib/belt/drive.hpp"
+#include "fitlib/belt/heat.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/card/conversion.hpp"
 #include "fitlib/scene/segment_life.hpp"
@@ -112,6 +113,10 @@ struct Scene {
   // [conditions]
   double temperature_C = 20.0;
   double friction = 0.8;
+  // The air's temperature; with [effects] heat_buildup = true the belt's temperature is the heat
+  // balance's fixed point over it, and temperature_C is not read (docs/thermal.md).
+  std::optional<double> ambient_C;
+  belt::ThermalOptions thermal;  // [thermal]: the balance's coefficients over their defaults
   // [effects], [outputs]: exactly the keys listed
   std::map<std::string, bool> effects;
   std::map<std::string, bool> outputs;

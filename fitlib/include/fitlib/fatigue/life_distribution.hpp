@@ -1,0 +1,52 @@
+#pragma once
+// Life as a distribution (docs/fatigue.md §9): per mode, the law's life (6.31) is the median of a
+// log-normal life, log10 N ~ Normal(log10 N_law, s²) with s the card's scatter (life-fit's residual
+// standard deviation of log10 life; docs/decisions.md "Life as a distribution: log-normal scatter
+// about the law"). B_p, the life by which p % of the belts have failed, is
+//   log10 B_p = log10 N_law + z_p s          (z_10 = −1.2816, z_50 = 0),
+// and its 90 % interval carries the constants' uncertainty (their covariance C over (ln σ0, n, b))
+// to first order: log10 B_p ± t_0.95 √(gᵀ C g), g = ∂ log10 N/∂(ln σ0, n, b) at the design point.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fitlib/fatigue/card.hpp"
+#include "fitlib/fatigue/life.hpp"
+
+namespace fitlib::fatigue {
+
+struct BLife {
+  double percent = 50.0;
+  double cycles = 0.0, h = 0.0;
+  bool has_hours = false;     // the conditions give cycles per hour
+  bool has_interval = false;  // the card has the constants' covariance
+  double low_cycles = 0.0, high_cycles = 0.0, low_h = 0.0, high_h = 0.0;  // 90 % interval
+};
+
+struct ModeDistribution {
+  Mode mode = Mode::radial_crack;
+  double sigma_log10 = 0.0;        // the card's scatter of log10 life about the law
+  int dof = 0;                     // its degrees of freedom
+  double constants_sd_log10 = 0.0; // √(gᵀ C g): the law's own uncertainty in log10 N
+  BLife b10, b50;
+};
+
+// ∂ log10 N/∂(ln σ0, n, b) of (6.31) at one point's peaks and temperature offset dT = T − T_ref.
+std::array<double, 3> log10_life_gradient(const std::vector<double>& peaks_MPa, const LifeLaw& law, double dT);
+
+// The distribution of one mode's life (nullopt when it is unbounded or the law has no scatter).
+std::optional<ModeDistribution> mode_distribution(const ModeLife& mode, const LifeLaw& law, double temperature_C,
+                                                  double reference_C, double cycles_per_hour);
+
+// Each finite mode of the report whose card law states a scatter, in the report's order.
+std::vector<ModeDistribution> life_distribution(const LifeReport& report, const FatigueCard& card,
+                                                const LifeConditions& conditions);
+
+// One line per mode: "B10 … [low, high] h, B50 …"; a note for each finite mode without a scatter.
+std::string life_distribution_table(const LifeReport& report, const std::vector<ModeDistribution>& d);
+nlohmann::json life_distribution_json(const std::vector<ModeDistribution>& d);
+
+}  // namespace fitlib::fatigue

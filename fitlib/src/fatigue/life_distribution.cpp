@@ -1,0 +1,144 @@
+// Life as a distribution per mode: B10 and B50 with the constants' uncertainty (life_distribution.hpp).
+#include "fitlib/fatigue/life_distribution.hpp"
+
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <cstdio>
+
+namespace fitlib::fatigue {
+
+namespace {
+
+constexpr double kLn10 = 2.30258509299404568, kLog10Of2 = 0.30102999566398120;
+
+// z_p of the standard normal: the life by which p % have failed lies z_p s below the median.
+double normal_quantile(double percent) {
+  return boost::math::quantile(boost::math::normal(), percent / 100.0);
+}
+
+// B_p = N_law 10^(z_p s): B50 is the deterministic life to the bit.
+BLife b_life(double percent, double median_cycles, const ModeDistribution& d, bool with_interval,
+             double cycles_per_hour) {
+  BLife b;
+  b.percent = percent;
+  const double shift = normal_quantile(percent) * d.sigma_log10;
+  b.cycles = median_cycles * std::pow(10.0, shift);
+  b.has_hours = cycles_per_hour > 0.0;
+  const double per_h = b.has_hours ? cycles_per_hour : HUGE_VAL;  // 0 h where hours are not known
+  b.h = b.cycles / per_h;
+  b.has_interval = with_interval;
+  if (!with_interval) return b;
+  // Student t with the scatter's degrees of freedom: the covariance is s²(JᵀJ)⁻¹ with s estimated.
+  const double t = d.dof > 0 ? boost::math::quantile(boost::math::students_t(d.dof), 0.95) : normal_quantile(95.0);
+  b.low_cycles = median_cycles * std::pow(10.0, shift - t * d.constants_sd_log10);
+  b.high_cycles = median_cycles * std::pow(10.0, shift + t * d.constants_sd_log10);
+  b.low_h = b.low_cycles / per_h, b.high_h = b.high_cycles / per_h;
+  return b;
+}
+
+}  // namespace
+
+std::array<double, 3> log10_life_gradient(const std::vector<double>& peaks_MPa, const LifeLaw& law, double dT) {
+  // ln S = ln Σ (σ_i/σ0)ⁿ; ∂ln S/∂ln σ0 = −n, ∂ln S/∂n = Σ w_i ln(σ_i/σ0) with w_i the terms' shares.
+  double top = -HUGE_VAL;
+  for (double p : peaks_MPa) top = std::max(top, law.n * std::log(p / law.sigma0_MPa));
+  double sum = 0.0, weighted = 0.0;
+  for (double p : peaks_MPa) {
+    const double x = std::log(p / law.sigma0_MPa), w = std::exp(law.n * x - top);
+    sum += w, weighted += w * x;
+  }
+  return {law.n / kLn10, -(weighted / sum) / kLn10, -dT * kLog10Of2};
+}
+
+std::optional<ModeDistribution> mode_distribution(const ModeLife& m, const LifeLaw& law, double temperature_C,
+                                                  double reference_C, double cycles_per_hour) {
+  if (!law.scatter || !std::isfinite(m.life_cycles) || m.peaks.empty()) return std::nullopt;
+  ModeDistribution d;
+  d.mode = m.mode;
+  d.sigma_log10 = law.scatter->sigma_log10;
+  d.dof = law.scatter->dof;
+  if (law.covariance) {
+    std::vector<double> peaks;
+    for (const Peak& p : m.peaks) peaks.push_back(p.stress_MPa);
+    const auto g = log10_life_gradient(peaks, law, temperature_C - reference_C);
+    double var = 0.0;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) var += g[i] * (*law.covariance)[i][k] * g[k];
+    d.constants_sd_log10 = std::sqrt(std::max(var, 0.0));
+  }
+  // the deterministic life is the median
+  d.b10 = b_life(10.0, m.life_cycles, d, law.covariance.has_value(), cycles_per_hour);
+  d.b50 = b_life(50.0, m.life_cycles, d, law.covariance.has_value(), cycles_per_hour);
+  return d;
+}
+
+std::vector<ModeDistribution> life_distribution(const LifeReport& report, const FatigueCard& card,
+                                                const LifeConditions& conditions) {
+  std::vector<ModeDistribution> out;
+  for (const ModeLife& m : report.modes)
+    if (auto d = mode_distribution(m, card.law(m.mode), conditions.temperature_C, card.reference_temperature_C,
+                                   conditions.cycles_per_hour))
+      out.push_back(*d);
+  return out;
+}
+
+namespace {
+
+std::string b_text(const BLife& b) {
+  const bool hours = b.has_hours;
+  char buf[160];
+  const double x = hours ? b.h : b.cycles, lo = hours ? b.low_h : b.low_cycles, hi = hours ? b.high_h : b.high_cycles;
+  const char* unit = hours ? "h" : "cycles";
+  if (b.has_interval)
+    std::snprintf(buf, sizeof buf, "B%.0f %.4g %s [%.4g, %.4g]", b.percent, x, unit, lo, hi);
+  else
+    std::snprintf(buf, sizeof buf, "B%.0f %.4g %s", b.percent, x, unit);
+  return buf;
+}
+
+}  // namespace
+
+std::string life_distribution_table(const LifeReport& report, const std::vector<ModeDistribution>& dist) {
+  std::string out, without;
+  for (const ModeLife& m : report.modes) {
+    if (!std::isfinite(m.life_cycles)) continue;
+    const ModeDistribution* d = nullptr;
+    for (const ModeDistribution& x : dist)
+      if (x.mode == m.mode) d = &x;
+    if (!d) {
+      without += (without.empty() ? "" : " and ") + std::string(to_string(m.mode));
+      continue;
+    }
+    char head[160];
+    std::snprintf(head, sizeof head, "%-13s log-normal, s %.3g log10 (%d dof): ", to_string(m.mode), d->sigma_log10,
+                  d->dof);
+    out += std::string(head) + b_text(d->b10) + ", " + b_text(d->b50) +
+           (d->b10.has_interval ? " (90 % intervals: the constants' covariance)\n"
+                                : " (no interval: the card has no covariance of the constants)\n");
+  }
+  if (!without.empty())
+    out += "distribution: the fatigue card states no scatter of the " + without + " lives (fitcli life-fit "
+           "writes it), so the lives above are medians without B10\n";
+  return out;
+}
+
+nlohmann::json life_distribution_json(const std::vector<ModeDistribution>& dist) {
+  using nlohmann::json;
+  json out = json::array();
+  for (const ModeDistribution& d : dist) {
+    json modes = {{"mode", to_string(d.mode)}, {"distribution", "lognormal"}, {"sigma_log10", d.sigma_log10},
+                  {"dof", d.dof}, {"constants_sd_log10", d.constants_sd_log10}};
+    for (const BLife* b : {&d.b10, &d.b50}) {
+      json e = {{"cycles", b->cycles}};
+      if (b->has_hours) e["h"] = b->h;
+      if (b->has_interval) e["ci90_cycles"] = {b->low_cycles, b->high_cycles};
+      if (b->has_interval && b->has_hours) e["ci90_h"] = {b->low_h, b->high_h};
+      modes[b->percent < 50.0 ? "B10" : "B50"] = e;
+    }
+    out.push_back(modes);
+  }
+  return out;
+}
+
+}  // namespace fitlib::fatigue

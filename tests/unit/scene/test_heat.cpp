@@ -1,0 +1,172 @@
+// The heat build-up of a scene (docs/thermal.md): off changes nothing, the balance closes at the
+// fixed point, the temperature rises with torque and speed on the bundled drives, and the life runs
+// at the belt's temperature.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../../../fitlib/src/scene/effects.hpp"
+#include "common/temp_path.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/fatigue/card.hpp"
+#include "fitlib/fatigue/beam_section.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/scene.hpp"
+#include "fitlib/scene/writers.hpp"
+
+using namespace fitlib;
+
+namespace {
+
+const std::string kDrives = FITLIB_SOURCE_DIR "/datasets/drives/";
+
+scene::Scene drive(const std::string& load, bool heat, double ambient_C = 25.0) {
+  auto s = scene::load_scene(kDrives + "ref-0500-" + load + ".toml");
+  s.outputs["life"] = true;
+  if (heat) s.effects["heat_buildup"] = true, s.ambient_C = ambient_C, s.thermal.ambient_C = ambient_C;
+  return s;
+}
+
+// [effects] heat_buildup = false (or absent) leaves the life at [conditions] temperature_C, bit for bit.
+TEST(SceneHeat, OffGivesTodaysLivesBitForBit) {
+  for (const char* load : {"light", "medium", "heavy"}) {
+    auto absent = drive(load, false), off = drive(load, false);
+    off.effects["heat_buildup"] = false;
+    const auto a = scene::run_life(absent), b = scene::run_life(off);
+    EXPECT_FALSE(a.heat || b.heat);
+    ASSERT_EQ(a.life->report.modes.size(), b.life->report.modes.size());
+    for (std::size_t k = 0; k < a.life->report.modes.size(); ++k)
+      EXPECT_EQ(a.life->report.modes[k].life_cycles, b.life->report.modes[k].life_cycles);
+    EXPECT_EQ(scene::life_json(absent, a, false).dump(), scene::life_json(off, b, false).dump());
+    EXPECT_EQ(scene::life_json(absent, a, false)["temperature_C"], 80.0);  // the scene's, as before
+    // Today's route: the fatigue module's own beam level at the scene's temperature (as SceneLife tests it).
+    const auto d = scene::make_drive(absent, scene::resolve_stiffness(absent));
+    belt::LoadCycleOptions o;
+    o.effects = scene::make_plan(absent).load_cycle;
+    const auto cycle = belt::compute_load_cycle(d, o);
+    const auto direct = fatigue::beam_life(cycle, d, fatigue::default_beam_section(d, 80.0), fatigue::default_card(), 80.0);
+    for (std::size_t k = 0; k < direct.modes.size(); ++k)
+      EXPECT_EQ(a.life->report.modes[k].life_cycles, direct.modes[k].life_cycles) << load;
+  }
+}
+
+// Sources (re-made independently at the fixed point's temperature) equal the losses to 1e-6.
+TEST(SceneHeat, EnergyBalanceClosesAtTheFixedPoint) {
+  for (const char* load : {"light", "heavy"}) {
+    const auto s = drive(load, true);
+    const auto r = scene::run_life(s);
+    ASSERT_TRUE(r.heat);
+    const double T = r.heat->temperature_C;
+    scene::Scene at = s;
+    at.temperature_C = T;
+    const auto d = scene::make_drive(at, scene::resolve_stiffness(at));
+    belt::LoadCycleOptions o;
+    o.effects = scene::make_plan(s).load_cycle;
+    const auto cycle = belt::compute_load_cycle(d, o);
+    const belt::HeatSources q = scene::detail::heat_sources(at, d, cycle);
+    const belt::HeatPaths p = belt::heat_paths(d, s.thermal, T);
+    const double in = q.hysteresis_W + p.friction_to_belt * q.friction_W;
+    double out = p.convection_W_K * (T - s.thermal.ambient_C);
+    for (double g : p.contact_W_K) out += g * (T - p.pulley_C);
+    EXPECT_NEAR(out / in, 1.0, 1e-6) << load;
+    EXPECT_GT(T, 25.0);
+    EXPECT_GT(r.heat->iterations, 1);
+    // The life ran at the belt's temperature.
+    EXPECT_EQ(r.life_conditions->temperature_C, T);
+  }
+}
+
+TEST(SceneHeat, TemperatureRisesWithTorqueAndSpeedOnTheBundledDrives) {
+  double last = -HUGE_VAL;
+  for (const char* load : {"light", "medium", "heavy", "severe"}) {
+    auto s = drive(load, true);
+    s.outputs["life"] = false;
+    const auto r = scene::run_scene(s);
+    ASSERT_TRUE(r.heat) << load;
+    EXPECT_GT(r.heat->temperature_C, last) << load;
+    last = r.heat->temperature_C;
+  }
+  last = -HUGE_VAL;
+  for (double rpm : {1000.0, 2000.0, 3000.0, 4500.0}) {
+    auto s = drive("medium", true);
+    s.outputs["life"] = false;
+    s.pulleys[0].speed_rpm = rpm;
+    const auto r = scene::run_scene(s);
+    EXPECT_GT(r.heat->temperature_C, last) << rpm;
+    last = r.heat->temperature_C;
+  }
+}
+
+TEST(SceneHeat, SceneKeysAndErrors) {
+  const std::string base = "[drive]\ncenter_distance_mm = 300\npulleys = [ {name = \"a\", pitch_diameter_mm = 100, "
+                           "role = \"driver\", speed_rpm = 3000}, {name = \"b\", pitch_diameter_mm = 100, role = "
+                           "\"driven\"} ]\ntorque_Nm = 15\ninitial_tension_N = 600\n";
+  EXPECT_THROW(scene::parse_scene(base + "[effects]\nheat_buildup = true\n", "h.toml"), core::InputError);
+  const auto s = scene::parse_scene(base + "[effects]\nheat_buildup = true\n[conditions]\nambient_C = 30\n"
+                                           "[thermal]\nconvection_W_m2K = 50\npulley_C = 45\n", "h.toml");
+  EXPECT_EQ(s.thermal.ambient_C, 30.0);
+  EXPECT_EQ(s.thermal.convection_W_m2K, 50.0);
+  const auto r = scene::run_scene(s);
+  ASSERT_TRUE(r.heat);
+  EXPECT_EQ(r.heat->paths.convection_W_m2K, 50.0);
+  EXPECT_EQ(r.heat->paths.pulley_C, 45.0);
+  EXPECT_THROW(scene::parse_scene(base + "[thermal]\nconvection = 50\n", "h.toml"), core::InputError);
+  // A belt that makes its heat faster than it loses it: exit 4, "thermal runaway".
+  auto hot = s;
+  hot.thermal.convection_W_m2K = 1e-3, hot.thermal.contact_W_m2K = 0.0, hot.thermal.max_temperature_C = 120.0;
+  try {
+    scene::run_scene(hot);
+    FAIL() << "no runaway";
+  } catch (const core::NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("thermal runaway"), std::string::npos) << e.what();
+  }
+}
+
+// With the thesis cards at the beam level the cushion's friction shear, read stress-controlled on the hot
+// card (γ = τ/|G*|), feeds back: the medium drive settles above 100 degC, the heavy one runs
+// past the cards' temperature law: a thermal runaway, exit 4 (docs/thermal.md §4).
+TEST(SceneHeat, ThesisCardsSettleOnTheMediumDriveAndRunAwayOnTheHeavyOne) {
+  auto cards = [](const std::string& load) {
+    auto s = drive(load, true);
+    s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+    s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
+    s.life = scene::LifeSpec{};
+    s.life->fidelity = "beam";
+    return s;
+  };
+  const auto medium = scene::run_life(cards("medium"));
+  ASSERT_TRUE(medium.heat);
+  EXPECT_GT(medium.heat->temperature_C, 100.0);
+  EXPECT_GT(medium.heat->sources.layers.back().strain_amplitude, 1.0);  // the cushion's shear, far beyond 4.5 %
+  try {
+    scene::run_life(cards("heavy"));
+    FAIL() << "the heavy drive settled";
+  } catch (const core::NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("thermal runaway"), std::string::npos) << e.what();
+  }
+}
+
+// A card with scatter and covariance: the table and life.json carry B10/B50; two runs give the same bytes.
+TEST(SceneHeat, DistributionWithHeatIsPrintedAndByteReproducible) {
+  fatigue::FatigueCard c = fatigue::default_card();
+  c.separation.scatter = fatigue::LifeScatter{"lognormal", 0.25, 10};
+  c.separation.covariance = fatigue::LawCovariance{{{1e-3, 0.0, 0.0}, {0.0, 0.04, 0.0}, {0.0, 0.0, 1e-5}}};
+  const std::string path = fitlib_test::temp_dir() + "scatter-card.json";
+  fatigue::save_card(path, c);
+  auto s = drive("medium", true);
+  s.life = scene::LifeSpec{};
+  s.life->card = path;
+  const auto a = scene::run_life(s), b = scene::run_life(s);
+  const std::string ja = scene::life_json(s, a, false).dump(2), jb = scene::life_json(s, b, false).dump(2);
+  EXPECT_EQ(ja, jb);
+  ASSERT_EQ(a.life->distribution.size(), 1u);  // the radial crack's law states no scatter
+  const auto& d = a.life->distribution[0];
+  EXPECT_LT(d.b10.h, d.b50.h);
+  EXPECT_EQ(d.b50.cycles, a.life->report.modes[1].life_cycles);
+  const std::string text = scene::life_text(s, a);
+  EXPECT_NE(text.find("B10"), std::string::npos) << text;
+  EXPECT_NE(text.find("belt temperature:"), std::string::npos) << text;
+  EXPECT_NE(ja.find("\"heat_buildup\""), std::string::npos);
+}
+
+}  // namespace
