@@ -25,7 +25,7 @@ struct HysteresisLayer {
 // W = π E″ ε_a² per unit volume and cycle (Report V (4.25) times ρc/f), J per cycle of the layer.
 double hysteresis_work_J(const HysteresisLayer& layer);
 // Σ W over the layers times the load frequency (W per belt). The complete level's dissipation
-// integral over the segment (the contract's) is to replace the layers here (docs/thermal.md §5).
+// integral over the segment (the contract's) is to replace the layers here (docs/thermal.md §1).
 double hysteresis_power_W(const std::vector<HysteresisLayer>& layers, double load_frequency_Hz);
 // Report V (4.25): the adiabatic rate of rise π ε_a² E″ f/(c ρ), °C/s.
 double adiabatic_heating_rate_C_s(double loss_modulus_MPa, double strain_amplitude, double frequency_Hz,
