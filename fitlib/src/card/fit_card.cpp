@@ -208,15 +208,16 @@ FitCardResult read_back_checked(const FitCardOptions& o, Run run) {
   }
 }
 
+// The grid alone where it is as dense as the smooth spectrum's (2 per decade): free times do not
+// pay there; sparser grids are refined with free times (a 6-term truth over 6 decades needs them).
+constexpr double kGridPerDecade = 2.0;
+constexpr double kPolishPays = 0.02;  // rms log10 (≈ 5 %) above which the log-space polish runs
+
 // --terms N of a series model with linear moduli and no temperature law of its own (fitcli's
 // default backend): the moduli by NNLS on the model's log-spaced τ grid over the data (then
 // polished in log space only where that pays), and the free-τ fit from there only where it pays:
 // fewer than kGridPerDecade terms per decade of data (docs/fitting.md "Fixed term counts"); the
 // lower cost is kept. Nothing when the model or the options are others.
-// The grid alone where it is as dense as the smooth spectrum's (2 per decade): free times do not
-// pay there; sparser grids are refined with free times (a 6-term truth over 6 decades needs them).
-constexpr double kGridPerDecade = 2.0;
-constexpr double kPolishPays = 0.02;  // rms log10 (≈ 5 %) above which the log-space polish runs
 std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const data::DynamicTestTable& table,
                                              const fit::FitOptions& options, int terms) {
   const auto make = [&](int) { return m; };
