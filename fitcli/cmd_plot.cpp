@@ -119,7 +119,7 @@ std::string kramers_kronig_note(const nlohmann::json& fit) {
   if (q == fit.end() || !q->contains("kramers_kronig_inconsistent_Hz")) return "";
   const auto& span = (*q)["kramers_kronig_inconsistent_Hz"];
   char b[160];
-  std::snprintf(b, sizeof b, "; data not Kramers-Kronig consistent between %.3g and %.3g Hz", span[0].get<double>(),
+  std::snprintf(b, sizeof b, "; data Kramers-Kronig inconsistent %.3g to %.3g Hz", span[0].get<double>(),
                 span[1].get<double>());
   return b;
 }
@@ -173,7 +173,7 @@ std::string frequency_script(const fitlib::data::DynamicTestTable& t, const fitl
     s << "\n";
   };
   s << "set multiplot layout 2,2 title "
-    << gnuplot_quoted(title + " (points: data, lines: card" + (band ? ", shade: its 95 % band" : "") + ")" +
+    << gnuplot_quoted(title + " (points: data, lines: card" + (band ? ", shade: 95 % band" : "") + ")" +
                       kramers_kronig_note(fit))
     << " noenhanced font ',13'\n";
   panel("storage modulus " + M + "' [MPa]", 2, true, 2);

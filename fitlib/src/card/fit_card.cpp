@@ -208,24 +208,40 @@ FitCardResult read_back_checked(const FitCardOptions& o, Run run) {
   }
 }
 
+// The grid alone where it is as dense as the smooth spectrum's (2 per decade): free times do not
+// pay there; sparser grids are refined with free times (a 6-term truth over 6 decades needs them).
+constexpr double kGridPerDecade = 2.0;
+constexpr double kPolishPays = 0.02;  // rms log10 (≈ 5 %) above which the log-space polish runs
+
 // --terms N of a series model with linear moduli and no temperature law of its own (fitcli's
 // default backend): the moduli by NNLS on the model's log-spaced τ grid over the data (then
-// polished in log space for log10 residuals), and the free-τ fit from there only where it pays:
-// when there are fewer terms than decades of data (docs/fitting.md "Fixed term counts"); the
+// polished in log space only where that pays), and the free-τ fit from there only where it pays:
+// fewer than kGridPerDecade terms per decade of data (docs/fitting.md "Fixed term counts"); the
 // lower cost is kept. Nothing when the model or the options are others.
 std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const data::DynamicTestTable& table,
                                              const fit::FitOptions& options, int terms) {
   const auto make = [&](int) { return m; };
+  // Fewer residuals than twice the free-time fit's parameters: the old path, whose verdict says
+  // when the data cannot determine the card.
+  const std::size_t residuals = 2 * table.rows.size();
   if (options.backend != fit::Backend::automatic || !fit::spectrum_applies(make) ||
-      m->temperature_law_info().law != model::ShiftLaw::none || !options.fixed.empty())
+      m->temperature_law_info().law != model::ShiftLaw::none || !options.fixed.empty() ||
+      residuals < 2 * (2 * static_cast<std::size_t>(terms) + 1))
     return std::nullopt;
   fit::FitOptions grid = options;
   grid.backend = fit::Backend::nnls;
-  grid.polish = options.residual == fit::ResidualKind::log10;
+  grid.polish = false;
   fit::FitResult fixed = fit::fit(m, table, grid);
+  // The linear solve is the log10 objective to first order: the log-space polish pays only where
+  // the errors are large enough for the second order to matter (rms log10 above kPolishPays).
+  const fit::FitMetrics& lm = fixed.metrics;
+  if (options.residual == fit::ResidualKind::log10 && std::max(lm.rms_log10_storage, lm.rms_log10_loss) > kPolishPays) {
+    grid.polish = true;
+    fixed = fit::fit(m, table, grid);
+  }
   const auto s = fit::summarize(table);
   const double decades = std::log10(s.omega_max_rad_s / s.omega_min_rad_s);
-  if (terms >= decades) {
+  if (terms >= kGridPerDecade * decades) {
     fixed.messages.push_back("--terms " + std::to_string(terms) + ": moduli by NNLS on the log-spaced time grid (" +
                              core::format_number(terms / std::max(decades, 1e-9), 3) +
                              " terms per decade of the data: free times would not pay)");
@@ -237,7 +253,7 @@ std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const dat
   kept.messages.push_back("--terms " + std::to_string(terms) + ": NNLS on the log-spaced time grid (cost " +
                           core::format_number(fixed.metrics.cost, 6) + "), then free times (cost " +
                           core::format_number(free.metrics.cost, 6) + "): " + (keep_free ? "free" : "grid") +
-                          " kept (fewer than one term per decade of the data)");
+                          " kept (fewer than 2 terms per decade of the data)");
   return std::move(kept);
 }
 

@@ -28,6 +28,11 @@ WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<doub
                double C1_max, double C2_max_K) {
   WlfFit fit;
   if (temperatures_C.size() < 3) return fit;
+  // The free fit where it lies inside the bounds (the same search, the same numbers).
+  if (std::isfinite(C1_max) || std::isfinite(C2_max_K)) {
+    const WlfFit free = fit_wlf(temperatures_C, log10_aT, reference_C);
+    if (free.C1 > 0.0 && free.C1 <= C1_max && free.C2_K <= C2_max_K) return free;
+  }
   // Variable projection: for fixed C2 the law is linear in C1 (closed form; clamped to
   // [0, C1_max], which is the bounded optimum of a one-variable quadratic); C2 by Brent over
   // u = ln(C2 − C2_min), C2_min = max(T_ref − T) so that no data temperature reaches the pole.

@@ -19,22 +19,11 @@ using detail::merge_to;
 FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                        const FitOptions& options, const FitResult& spectrum, int max_terms) {
   if (max_terms < 1) throw core::UsageError("term cap: at least 1 term");
-  const detail::SeriesTerms s = detail::series_terms(spectrum.model->parameters());
-  std::vector<Term> terms;
-  for (std::size_t k = 0; k < s.times.size(); ++k)
-    if (spectrum.values[s.moduli[k]] > 0.0)
-      terms.push_back({spectrum.values[s.moduli[k]], std::log(spectrum.values[s.times[k]])});
-  std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) { return a.log_tau < b.log_tau; });
+  std::vector<Term> terms = detail::positive_terms(spectrum);
   if (static_cast<int>(terms.size()) <= max_terms) return spectrum;
   terms = merge_to(std::move(terms), max_terms);
   const model::ModelPtr capped = make(max_terms);
-  const detail::SeriesTerms cs = detail::series_terms(capped->parameters());
-  std::vector<double> start(capped->size(), 0.0);
-  for (int k = 0; k < max_terms; ++k) {
-    start[cs.moduli[k]] = terms[k].modulus;
-    start[cs.times[k]] = std::exp(terms[k].log_tau);
-  }
-  detail::set_non_series_values(*capped, detail::non_series_values(*spectrum.model, spectrum.values), start);
+  std::vector<double> start = detail::start_from_terms(*capped, spectrum, terms);
   FitOptions free_times = options;
   free_times.backend = Backend::automatic;
   FitResult merged = fit(capped, table, free_times, &start);

@@ -65,15 +65,9 @@ bool keeps(const Figures& f, const Figures& ref, const CompactOptions& o) {
 // for log10 ones), the times held.
 FitResult merged_fit(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                      const FitOptions& options, const FitResult& spectrum, const std::vector<Term>& terms, int n) {
-  const std::vector<Term> merged = detail::merge_to(terms, n);
   const model::ModelPtr m = make(n);
   const detail::SeriesTerms ms = detail::series_terms(m->parameters());
-  std::vector<double> start(m->size(), 0.0);
-  for (int k = 0; k < n; ++k) {
-    start[ms.moduli[k]] = merged[k].modulus;
-    start[ms.times[k]] = std::exp(merged[k].log_tau);
-  }
-  detail::set_non_series_values(*m, detail::non_series_values(*spectrum.model, spectrum.values), start);
+  std::vector<double> start = detail::start_from_terms(*m, spectrum, detail::merge_to(terms, n));
   FitOptions held = options;
   held.backend = Backend::nnls;
   held.polish = options.residual == ResidualKind::log10;
@@ -87,12 +81,7 @@ FitResult merged_fit(const std::function<model::ModelPtr(int)>& make, const data
 
 FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                            const FitOptions& options, const FitResult& spectrum, const CompactOptions& o) {
-  const detail::SeriesTerms s = detail::series_terms(spectrum.model->parameters());
-  std::vector<Term> terms;
-  for (std::size_t k = 0; k < s.times.size(); ++k)
-    if (spectrum.values[s.moduli[k]] > 0.0)
-      terms.push_back({spectrum.values[s.moduli[k]], std::log(spectrum.values[s.times[k]])});
-  std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) { return a.log_tau < b.log_tau; });
+  const std::vector<Term> terms = detail::positive_terms(spectrum);
   const int full = static_cast<int>(terms.size());
   if (full <= 1) return spectrum;
   const Figures ref = figures_of(spectrum, table);

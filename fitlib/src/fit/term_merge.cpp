@@ -1,7 +1,12 @@
 #include "term_merge.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
+
+#include "admissible.hpp"
+#include "spectrum_system.hpp"
 
 namespace fitlib::fit::detail {
 
@@ -25,6 +30,27 @@ std::vector<Term> merge_to(std::vector<Term> terms, int n) {
     terms.erase(terms.begin() + static_cast<std::ptrdiff_t>(best) + 1);
   }
   return terms;
+}
+
+std::vector<Term> positive_terms(const FitResult& spectrum) {
+  const SeriesTerms s = series_terms(spectrum.model->parameters());
+  std::vector<Term> terms;
+  for (std::size_t k = 0; k < s.times.size(); ++k)
+    if (spectrum.values[s.moduli[k]] > 0.0)
+      terms.push_back({spectrum.values[s.moduli[k]], std::log(spectrum.values[s.times[k]])});
+  std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) { return a.log_tau < b.log_tau; });
+  return terms;
+}
+
+std::vector<double> start_from_terms(const model::Model& m, const FitResult& spectrum, const std::vector<Term>& terms) {
+  const SeriesTerms ms = series_terms(m.parameters());
+  std::vector<double> start(m.size(), 0.0);
+  for (std::size_t k = 0; k < terms.size() && k < ms.moduli.size(); ++k) {
+    start[ms.moduli[k]] = terms[k].modulus;
+    start[ms.times[k]] = std::exp(terms[k].log_tau);
+  }
+  set_non_series_values(m, non_series_values(*spectrum.model, spectrum.values), start);
+  return start;
 }
 
 }  // namespace fitlib::fit::detail

@@ -103,12 +103,7 @@ TEST(DefaultObjective, ConsistentDataOfKnownTruthCountBothModuli) {
 // stay (Trust.DefaultFitOfPyviscoMasterBeatsPyviscoAndAnsysOnEveryFigure), and the verdict says
 // how much E″ is given up and where.
 TEST(DefaultObjective, InconsistentPyviscoMasterKeepsStorageFirstAndSaysWhatLossGivesUp) {
-  data::ReadOptions ro;
-  ro.format = data::TableFormat::pyvisco;
-  ro.has_default_mode = true;
-  ro.default_mode = model::TestMode::uniaxial;
-  const auto master =
-      data::read_dynamic_table(std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/pyvisco-freq-master.csv", ro);
+  const auto master = fit::testing::read_pyvisco("datasets/materials/pyvisco-freq-master.csv");
   const card::FitCardResult r = card::fit_card(master, auto_options());
   EXPECT_EQ(r.card.fit["weights"]["storage"].get<double>(), fit::kSpectrumStorageWeight);
   EXPECT_NEAR(r.result.metrics.rms_log10_storage, 0.0093, 0.0005);

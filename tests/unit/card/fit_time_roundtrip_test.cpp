@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../fit/fit_testing.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/card/conversion.hpp"
 #include "fitlib/card/export.hpp"
@@ -23,14 +24,10 @@
 namespace fitlib {
 namespace {
 
-std::string dataset(const std::string& name) { return std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/" + name; }
+std::string dataset(const std::string& name) { return fit::testing::repo_path("datasets/materials/" + name); }
 
 data::DynamicTestTable pyvisco_table(const std::string& name) {
-  data::ReadOptions o;
-  o.format = data::TableFormat::pyvisco;
-  o.has_default_mode = true;
-  o.default_mode = model::TestMode::uniaxial;
-  return data::read_dynamic_table(dataset(name), o);
+  return fit::testing::read_pyvisco("datasets/materials/" + name);
 }
 
 card::FitCardOptions prony_options(const std::string& terms) {
@@ -104,7 +101,13 @@ TEST(FitTimeRoundTrip, WlfFitIsTheBestFitInsideTheCardsBounds) {
   fit::FitResult r;
   r.model = model::make_model("prony", {{"terms", 1}});
   r.values = r.model->default_parameters();
-  for (const auto& spec : r.model->parameters()) r.parameters.push_back({spec.name, spec.unit, 1.0});
+  for (const auto& spec : r.model->parameters()) {
+    fit::ParameterResult p;
+    p.name = spec.name;
+    p.unit = spec.unit;
+    p.value = 1.0;
+    r.parameters.push_back(p);
+  }
   const fit::FitResult with = fit::with_law_from_shifts(r, t, a, 20.0, model::ShiftLaw::wlf);
   const auto info = with.model->temperature_law_info();
   EXPECT_LE(with.values[info.shift_parameters[0]], 1e3);
