@@ -43,9 +43,9 @@ class ViscoHyperelasticPoint final : public MaterialPoint {
   Vector6 update(const double* state_n, const Vector6& strain, double dt_s, double T, double* state_next,
                  Matrix6* tangent) const override {
     if (!(dt_s >= 0.0)) throw core::UsageError(description_ + ": the time step must be ≥ 0");
-    std::vector<double> scratch(state_size());
     const Vector6 s = stress(state_n, strain, dt_s, T, state_next);
     if (tangent) {  // central differences of this very update (pure in state_n and ε)
+      std::vector<double> scratch(state_size());
       const double h = 1e-6;
       for (int k = 0; k < 6; ++k) {
         Vector6 a = strain, b = strain;
