@@ -101,8 +101,12 @@ Card visco_hyperelastic_card(const Card& base, const Card& prony, const std::str
   c.model();  // checks the combination (Σ g_i < 1, the base's options)
   c.fit = {{"base", base.fit}, {"prony", prony.fit},
            {"quality", {{"warnings", nlohmann::json::array()}}}};
-  for (const Card* part : {&base, &prony})
-    if (const std::string q = fit_quality_warning(*part); !q.empty()) c.fit["quality"]["warnings"].push_back(q);
+  for (const auto& [label, part] : {std::pair{"base card: ", &base}, std::pair{"prony card: ", &prony}}) {
+    const auto q = part->fit.find("quality");
+    if (q == part->fit.end() || !q->contains("warnings") || !(*q)["warnings"].is_array()) continue;
+    for (const auto& w : (*q)["warnings"])
+      if (w.is_string()) c.fit["quality"]["warnings"].push_back(label + w.get<std::string>());
+  }
   c.fit["quality"]["acceptable"] = c.fit["quality"]["warnings"].empty();
   c.provenance = {{"base", base.provenance}, {"prony", prony.provenance}, {"fitlib_version", FITLIB_VERSION}};
   return c;
