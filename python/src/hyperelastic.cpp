@@ -38,7 +38,8 @@ void bind_hyperelastic(py::module_& m) {
   m.def(
       "nominal_stress",
       [](const card::Card& c, const std::string& mode, const py::object& x) {
-        const auto* law = c.model()->hyperelastic();
+        const auto model = c.model();  // the law lives as long as its model
+        const auto* law = model->hyperelastic();
         if (!law) throw core::UsageError("card '" + c.name + "' is not hyperelastic");
         const auto p = c.values();
         std::vector<double> out;
