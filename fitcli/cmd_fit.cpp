@@ -9,6 +9,7 @@
 #include "fitlib/card/fit_card.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/data/quasi_static.hpp"
 #include "fitlib/data/relaxation.hpp"
 #include "fitlib/data/shift_factors.hpp"
 #include "fitlib/data/table.hpp"
@@ -216,6 +217,11 @@ void run_fit(FitArgs a) {
   if (!a.plot.empty()) claim_png("--plot", a.plot);
   if (quiet()) a.fit.progress = false;
   const auto data = input_paths(a.data);
+  for (const auto& d : data)  // a quasi-static table read as dynamic data would fail at its columns
+    if (data::looks_like_quasi_static_csv(core::read_file(d)))
+      throw core::UsageError(with_stdin_named(d) + " is a quasi-static table (docs/formats.md §7): fit it with a "
+                             "hyperelastic --model (neo-hooke, mooney-rivlin, yeoh, reduced-polynomial, ogden, "
+                             "arruda-boyce, gent)");
   if (!a.fit.schedule_path.empty()) a.fit.schedule_path = input_path(a.fit.schedule_path);
   auto options = fit_card_options(a);
   if (is_relaxation_data(data, a.format)) {

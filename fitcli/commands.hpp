@@ -19,6 +19,7 @@ void register_segment(CLI::App& app);
 void register_life(CLI::App& app);
 void register_life_fit(CLI::App& app);
 void register_sweep(CLI::App& app);
+void register_visco_card(CLI::App& app);
 
 // The export formats with their Prony term limits, for help texts (cmd_export.cpp).
 std::string export_formats_text();

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   fitcli::register_life(app);
   fitcli::register_life_fit(app);
   fitcli::register_sweep(app);
+  fitcli::register_visco_card(app);
   fitcli::require_finite_numbers(app);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "fitcli: error: " + std::string(e.what()) + " (--help lists the options)\n";

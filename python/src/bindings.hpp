@@ -43,5 +43,6 @@ void bind_segment_life(py::module_& m);       // segment_life.cpp
 // The life of a scene result as a dict (None when it did not run); segment_life.cpp.
 py::object life_dict(const scene::SceneResult& result);
 void bind_sweep(py::module_& m);
+void bind_hyperelastic(py::module_& m);       // hyperelastic.cpp
 
 }  // namespace fitlib::python

@@ -372,4 +372,5 @@ PYBIND11_MODULE(_fitlib, m) {
   fitlib::python::bind_master_relaxation(m);
   fitlib::python::bind_segment_life(m);
   fitlib::python::bind_sweep(m);
+  fitlib::python::bind_hyperelastic(m);
 }

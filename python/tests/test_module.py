@@ -440,6 +440,17 @@ def test_scene_warnings_equal_the_cli():
     assert "fitted to complete-level stresses, and this run's stresses are the beam level's" in result.warnings[1]
     assert fitlib.load_scene(source("datasets", "drives", "ref-0500-medium.toml")).run().warnings == []
 
+def test_hyperelastic_fit_equals_the_cli():
+    data = source("datasets", "materials", "treloar1944-czhao.csv")
+    card, warnings = fitlib.fit_hyperelastic_card([data], "ogden", terms=3, name="ogden-fit")
+    out = work("og3.json")
+    fitcli("fit", "--data", data, "--model", "ogden", "--terms", "3", "--out", out)
+    cli = fitlib.load_card(out)
+    assert list(card.values()) == list(cli.values()) and warnings == []
+    stretch = [1.1, 1.5, 2.0, 3.0]
+    rows = list(csv.DictReader(io.StringIO(fitcli("eval", "--card", out, "--mode", "planar", "--stretch", "1.1,1.5,2,3"))))
+    assert list(fitlib.nominal_stress(card, "planar", stretch)) == [float(r["nominal_stress_MPa"]) for r in rows]
+
 def main():
     tests = [(name, f) for name, f in globals().items() if name.startswith("test_") and callable(f)]
     failed = 0

@@ -311,6 +311,9 @@ TEST(CliGrammar, JsonParsesForEverySubcommand) {
   std::filesystem::create_directories(dir);
   const std::string card = dir + "/card.json", surface = dir + "/s.json";
   ASSERT_EQ(run_fitcli("fit --data " + source_path(kShearCsv) + " --model prony --terms 3 -q --out " + card).exit_code, 0);
+  const std::string hyperelastic = dir + "/hyperelastic.json";
+  ASSERT_EQ(run_fitcli("fit --data " + source_path("datasets/materials/treloar1944-czhao.csv") +
+                       " --model yeoh -q --out " + hyperelastic).exit_code, 0);
   const std::string scene = dir + "/segment.toml";
   std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-light.toml"))
                        << "\n[segment]\nfine_size_mm = 1.0\ncoarse_size_mm = 2.5\ncentral_pitches = 1.0\n"
@@ -320,6 +323,7 @@ TEST(CliGrammar, JsonParsesForEverySubcommand) {
   const std::map<std::string, std::string> runs = {
       {"fit", "fit --data " + source_path(kShearCsv) + " --model prony --terms 3"},
       {"eval", "eval --card " + card + " --frequency-hz 1,10"},
+      {"visco-card", "visco-card --base " + hyperelastic + " --prony " + card + " -q"},
       {"export", "export --card " + card + " --format abaqus"},
       {"synth", "synth --card " + card + " --frequency-hz 1,10 --out " + dir + "/synth.csv"},
       {"waveform", "waveform --signals " + wave + "stress_strain_harmonic_60Hz.csv " + wave + "shear_sandwich_3Hz.csv"},

@@ -100,4 +100,23 @@ TEST(HyperelasticCli, RefusalsAndBadInput) {
   EXPECT_EQ(run_fitcli("fit --data " + kTreloar + " --model ogden --terms 7").exit_code, 2);
   EXPECT_EQ(run_fitcli("fit --data " + kTreloar + " --model yeoh --compressible").exit_code, 3);
   EXPECT_EQ(run_fitcli("fit --data " + kTreloar + " --model yeoh --temperature-law wlf").exit_code, 2);
+  const auto dynamic = run_fitcli("fit --data " + kTreloar + " --model prony --terms 2");
+  EXPECT_EQ(dynamic.exit_code, 2);
+  EXPECT_NE(dynamic.err.find("is a quasi-static table"), std::string::npos) << dynamic.err;
+}
+
+TEST(HyperelasticCli, ViscoCardCombinesAndExports) {
+  const std::string base = temp_file("vbase.json"), prony = temp_file("vprony.json"), vh = temp_file("vh.json");
+  ASSERT_EQ(run_fitcli("fit --data " + kTreloar + " --model ogden --terms 3 --out " + base).exit_code, 0);
+  const auto p = run_fitcli("fit --data " + source_path("datasets/materials/synthetic-prony-shear.csv") +
+                            " --model prony --terms 3 --out " + prony);
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const auto c = run_fitcli("visco-card --base " + base + " --prony " + prony + " --name VH --out " + vh);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const auto deck = run_fitcli("export --card " + vh + " --format abaqus");
+  ASSERT_EQ(deck.exit_code, 0) << deck.err;
+  EXPECT_NE(deck.out.find("*HYPERELASTIC, OGDEN, N=3, MODULI=LONG TERM"), std::string::npos) << deck.out;
+  EXPECT_NE(deck.out.find("*VISCOELASTIC, TIME=PRONY"), std::string::npos) << deck.out;
+  EXPECT_EQ(run_fitcli("eval --card " + vh + " --stretch 2").exit_code, 0);
+  EXPECT_EQ(run_fitcli("visco-card --base " + prony + " --prony " + prony).exit_code, 2);
 }

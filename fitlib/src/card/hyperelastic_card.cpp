@@ -3,6 +3,7 @@
 
 #include "fitlib/card/hyperelastic.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/model/time_series.hpp"
 
 namespace fitlib::card {
 
@@ -72,6 +73,43 @@ HyperelasticCardResult fit_hyperelastic_card(const data::QuasiStaticTable& table
                      {"fitlib_version", FITLIB_VERSION},
                      {"command", o.command}};
   return r;
+}
+
+Card visco_hyperelastic_card(const Card& base, const Card& prony, const std::string& name) {
+  if (!base.model()->hyperelastic()) throw core::UsageError("the base card (model " + base.model_kind + ") is not hyperelastic");
+  model::MaxwellSeries s;
+  const auto pv = prony.values();
+  if (!prony.model()->maxwell_series(pv.data(), &s) || prony.model()->native_mode() != model::TestMode::shear)
+    throw core::UsageError("the Prony card (model " + prony.model_kind + ") is no exact shear Maxwell series");
+  Card c;
+  c.name = name;
+  c.model_kind = "visco-hyperelastic";
+  c.model_options = {{"base", base.model_kind}, {"base_options", base.model_options}, {"terms", s.moduli.size()}};
+  c.parameters = base.parameters;
+  for (double G : s.moduli) {
+    ParameterEstimate e;
+    e.value = G / s.glassy();
+    e.std_error_reason = "relative modulus of the Prony card";
+    c.parameters.push_back(e);
+  }
+  for (double tau : s.times_s) {
+    ParameterEstimate e;
+    e.value = tau;
+    e.std_error_reason = "time of the Prony card";
+    c.parameters.push_back(e);
+  }
+  c.model();  // checks the combination (Σ g_i < 1, the base's options)
+  c.fit = {{"base", base.fit}, {"prony", prony.fit},
+           {"quality", {{"warnings", nlohmann::json::array()}}}};
+  for (const auto& [label, part] : {std::pair{"base card: ", &base}, std::pair{"prony card: ", &prony}}) {
+    const auto q = part->fit.find("quality");
+    if (q == part->fit.end() || !q->contains("warnings") || !(*q)["warnings"].is_array()) continue;
+    for (const auto& w : (*q)["warnings"])
+      if (w.is_string()) c.fit["quality"]["warnings"].push_back(label + w.get<std::string>());
+  }
+  c.fit["quality"]["acceptable"] = c.fit["quality"]["warnings"].empty();
+  c.provenance = {{"base", base.provenance}, {"prony", prony.provenance}, {"fitlib_version", FITLIB_VERSION}};
+  return c;
 }
 
 }  // namespace fitlib::card

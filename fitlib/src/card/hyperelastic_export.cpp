@@ -10,6 +10,7 @@
 #include "fitlib/card/hyperelastic.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
+#include "fitlib/model/time_series.hpp"
 
 namespace fitlib::card {
 namespace {
@@ -197,6 +198,19 @@ std::string export_hyperelastic(const Card& card, const std::string& format, con
     throw core::UsageError("the card's initial shear modulus " + num(f.initial_shear_modulus_MPa) +
                            " MPa is not > 0: no FE code accepts it");
   const Volumetric v = volumetric(f, options.poisson_ratio);
+  model::MaxwellSeries prony;
+  if (m->maxwell_series(values.data(), &prony)) {  // visco-hyperelastic: the base is the long-term response
+    if (format != "abaqus")
+      throw core::UsageError(format + ": a visco-hyperelastic card is written for abaqus only (its base as "
+                             "*HYPERELASTIC, MODULI=LONG TERM with *VISCOELASTIC, TIME=PRONY)");
+    std::string deck = abaqus(card, f, v);
+    const auto at = deck.find("\n", deck.find("*HYPERELASTIC, "));
+    deck.insert(at, ", MODULI=LONG TERM");
+    deck += "*VISCOELASTIC, TIME=PRONY\n";
+    for (std::size_t i = 0; i < prony.moduli.size(); ++i)  // g_i, k_i = 0 (bulk elastic), tau_i
+      deck += num(prony.moduli[i] / prony.glassy()) + ",0," + num(prony.times_s[i]) + "\n";
+    return deck;
+  }
   if (format == "abaqus") return abaqus(card, f, v);
   if (format == "ansys") return ansys(card, f, v, options.material_id);
   if (format == "lsdyna") return lsdyna(card, f, v, options);

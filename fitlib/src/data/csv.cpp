@@ -135,4 +135,20 @@ bool is_known_orientation(const std::string& label) {
          std::end(kOrientations);
 }
 
+const CsvLine* next_content_line(const std::vector<CsvLine>& lines, std::size_t& next) {
+  while (next < lines.size() && is_blank_or_comment(lines[next].text)) ++next;
+  return next < lines.size() ? &lines[next++] : nullptr;
+}
+
+std::vector<std::string> first_content_fields(const std::string& bytes) {
+  try {
+    const auto lines = split_csv_lines(bytes, "");
+    std::size_t next = 0;
+    const CsvLine* first = next_content_line(lines, next);
+    return first ? split_csv_fields(first->text, "", first->number) : std::vector<std::string>{};
+  } catch (const core::InputError&) {
+    return {};
+  }
+}
+
 }  // namespace fitlib::data

@@ -13,11 +13,6 @@ namespace {
 
 using model::DeformationMode;
 
-const CsvLine* next_content(const std::vector<CsvLine>& lines, std::size_t& next) {
-  while (next < lines.size() && is_blank_or_comment(lines[next].text)) ++next;
-  return next < lines.size() ? &lines[next++] : nullptr;
-}
-
 // Column indices (−1: absent). `stretch` holds the stretch column or its strain alternative,
 // read as λ = 1 + stretch_scale · value + stretch_offset.
 struct Columns {
@@ -147,17 +142,9 @@ QuasiStaticRow parse_row(const std::vector<std::string>& f, const Columns& c, co
 }  // namespace
 
 bool looks_like_quasi_static_csv(const std::string& bytes) {
-  try {
-    const auto lines = split_csv_lines(bytes, "");
-    std::size_t next = 0;
-    const CsvLine* first = next_content(lines, next);
-    if (!first) return false;
-    const auto fields = split_csv_fields(first->text, "", first->number);
-    return std::find(fields.begin(), fields.end(), "mode") != fields.end() &&
-           std::any_of(fields.begin(), fields.end(), is_abscissa_column);
-  } catch (const core::InputError&) {
-    return false;
-  }
+  const auto fields = first_content_fields(bytes);
+  return std::find(fields.begin(), fields.end(), "mode") != fields.end() &&
+         std::any_of(fields.begin(), fields.end(), is_abscissa_column);
 }
 
 QuasiStaticTable parse_quasi_static_table(const std::string& bytes, const std::string& file) {
@@ -166,10 +153,10 @@ QuasiStaticTable parse_quasi_static_table(const std::string& bytes, const std::s
   table.source_sha256.push_back(core::sha256_hex(bytes));
   const auto lines = split_csv_lines(bytes, file);
   std::size_t next = 0;
-  const CsvLine* header = next_content(lines, next);
+  const CsvLine* header = next_content_line(lines, next);
   if (!header) throw core::InputError("no header row (empty file)", file, 1);
   const Columns c = layout(split_csv_fields(header->text, file, header->number), header->number, file);
-  for (const CsvLine* line = next_content(lines, next); line; line = next_content(lines, next)) {
+  for (const CsvLine* line = next_content_line(lines, next); line; line = next_content_line(lines, next)) {
     const auto f = split_csv_fields(line->text, file, line->number);
     if (static_cast<int>(f.size()) != c.count)
       throw core::InputError("row has " + std::to_string(f.size()) + " fields, header has " + std::to_string(c.count),

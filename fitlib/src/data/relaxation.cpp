@@ -12,11 +12,6 @@
 namespace fitlib::data {
 namespace {
 
-const CsvLine* next_content(const std::vector<CsvLine>& lines, std::size_t& next) {
-  while (next < lines.size() && is_blank_or_comment(lines[next].text)) ++next;
-  return next < lines.size() ? &lines[next++] : nullptr;
-}
-
 struct Columns {
   int time = -1, modulus = -1, temperature = -1, set = -1;
   double to_MPa = 1.0;
@@ -72,16 +67,8 @@ Columns layout(const std::vector<std::string>& names, int name_line, const std::
 }  // namespace
 
 bool looks_like_relaxation_csv(const std::string& bytes) {
-  try {
-    const auto lines = split_csv_lines(bytes, "");
-    std::size_t next = 0;
-    const CsvLine* first = next_content(lines, next);
-    if (!first) return false;
-    const auto fields = split_csv_fields(first->text, "", first->number);
-    return !fields.empty() && fields[0] == "t";
-  } catch (const core::InputError&) {
-    return false;
-  }
+  const auto fields = first_content_fields(bytes);
+  return !fields.empty() && fields[0] == "t";
 }
 
 RelaxationTable parse_relaxation_table(const std::string& bytes, const std::string& file) {
@@ -90,14 +77,14 @@ RelaxationTable parse_relaxation_table(const std::string& bytes, const std::stri
   table.source_sha256.push_back(core::sha256_hex(bytes));
   const auto lines = split_csv_lines(bytes, file);
   std::size_t next = 0;
-  const CsvLine* names = next_content(lines, next);
+  const CsvLine* names = next_content_line(lines, next);
   if (!names) throw core::InputError("no header row (empty file)", file, 1);
-  const CsvLine* units = next_content(lines, next);
+  const CsvLine* units = next_content_line(lines, next);
   if (!units) throw core::InputError("pyvisco file needs a units row after the header", file, names->number + 1);
   const Columns c = layout(split_csv_fields(names->text, file, names->number), names->number,
                            split_csv_fields(units->text, file, units->number), units->number, file);
   const std::size_t count = std::max({c.time, c.modulus, c.temperature, c.set}) + 1;
-  for (const CsvLine* line = next_content(lines, next); line; line = next_content(lines, next)) {
+  for (const CsvLine* line = next_content_line(lines, next); line; line = next_content_line(lines, next)) {
     const auto f = split_csv_fields(line->text, file, line->number);
     if (f.size() != count)
       throw core::InputError("row has " + std::to_string(f.size()) + " fields, header has " + std::to_string(count),

@@ -11,6 +11,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/rng.hpp"
+#include "fitlib/model/time_series.hpp"
 
 namespace fitlib::fit {
 namespace {
@@ -309,6 +310,10 @@ HyperelasticFitResult fit_hyperelastic(const data::QuasiStaticTable& table, mode
                                        const HyperelasticFitOptions& o) {
   const model::HyperelasticLaw* law = model->hyperelastic();
   if (!law) throw core::UsageError("model '" + model->kind() + "' is not hyperelastic");
+  model::MaxwellSeries series;
+  if (model->maxwell_series(model->default_parameters().data(), &series))
+    throw core::UsageError(model->kind() + ": fit its hyperelastic base to quasi-static tests and its Prony "
+                           "series to dynamic ones, then combine the cards (card::visco_hyperelastic_card)");
   const Rows rows = fitted_rows(table, *law, o);
   HyperelasticFitResult r;
   r.model = model;

@@ -37,6 +37,7 @@ ModelPtr make_model(const std::string& kind, const nlohmann::json& options) {
   if (fritzson::is_fritzson_kind(kind)) return fritzson::make_fritzson_model(kind, options);
   if (is_elastic_kind(kind)) return make_elastic_model(kind, options);
   if (is_hyperelastic_kind(kind)) return make_hyperelastic_model(kind, options);
+  if (is_visco_hyperelastic_kind(kind)) return make_visco_hyperelastic_model(options);
   if (const ModelFactory factory = registered_factory(kind)) return factory(options);
   std::string known;
   for (const auto& k : model_kinds()) known += (known.empty() ? "" : ", ") + k;
@@ -47,6 +48,7 @@ std::vector<std::string> model_kinds() {
   std::vector<std::string> kinds = {"prony", "zener3", "retardation", "fractional-zener", "fritzson",
                                     "fritzson-iso", "elastic-iso", "elastic-ortho"};
   for (const auto& k : hyperelastic_kinds()) kinds.push_back(k);
+  kinds.push_back("visco-hyperelastic");
   std::lock_guard<std::mutex> lock(registered().mutex);
   for (const auto& entry : registered().factories) kinds.push_back(entry.first);
   return kinds;

@@ -136,3 +136,28 @@ TEST(HyperelasticExport, ConventionsPerCode) {
   EXPECT_THROW(card::export_hyperelastic(g, "abaqus", e), core::UsageError);
   EXPECT_NE(card::export_hyperelastic(g, "ansys", e).find("TB,HYPER,1,,,GENT\nTBDATA,1,0.3,90,"), std::string::npos);
 }
+
+TEST(HyperelasticExport, ViscoHyperelasticCardCombinesABaseAndAPronyCard) {
+  const auto m = model::make_model("ogden", {{"terms", 1}});
+  card::Card base;
+  base.name = "OG", base.model_kind = "ogden", base.model_options = m->options();
+  base.parameters = estimates({0.4, 2.0});
+  card::Card prony;
+  prony.name = "P", prony.model_kind = "prony", prony.model_options = {{"terms", 2}};
+  const auto pm = prony.model();
+  std::vector<double> pv = pm->default_parameters();
+  // G_inf, G_1, G_2, tau_1, tau_2 in the prony model's order
+  std::vector<std::string> names;
+  for (const auto& s : pm->parameters()) names.push_back(s.name);
+  ASSERT_EQ(names, (std::vector<std::string>{"G_inf", "G_1", "G_2", "tau_1", "tau_2"}));
+  prony.parameters = estimates({2.0, 1.0, 1.0, 0.01, 1.0});
+  const card::Card c = card::visco_hyperelastic_card(base, prony, "VH");
+  EXPECT_EQ(c.values(), (std::vector<double>{0.4, 2.0, 0.25, 0.25, 0.01, 1.0}));
+  const card::Card back = card::card_from_json(card::card_to_json(c));
+  EXPECT_EQ(back.values(), c.values());
+  const std::string deck = card::export_card(back, "abaqus");
+  EXPECT_NE(deck.find("*HYPERELASTIC, OGDEN, N=1, MODULI=LONG TERM\n0.4,2,"), std::string::npos) << deck;
+  EXPECT_NE(deck.find("*VISCOELASTIC, TIME=PRONY\n0.25,0,0.01\n0.25,0,1\n"), std::string::npos) << deck;
+  EXPECT_THROW(card::export_card(back, "ansys"), core::UsageError);
+  EXPECT_THROW(card::visco_hyperelastic_card(prony, prony, "X"), core::UsageError);
+}

@@ -185,3 +185,38 @@ TEST(Hyperelastic, MaterialPointGivesTheUniaxialStressOfTheLaw) {
     EXPECT_NEAR(P, expect, 2e-3 * std::abs(expect)) << c.kind;
   }
 }
+
+TEST(ViscoHyperelastic, StepInSimpleShearRelaxesAsTheProny) {
+  // A finite simple-shear step (γ = 1) held: τ_dev(t) = τ∞_dev g(t)/(1 − Σ g_i),
+  // g(t) = 1 − Σ g_i (1 − e^(−t/τ_i)); the hydrostatic part stays elastic.
+  const ModelPtr m = make_model("visco-hyperelastic", {{"base", "ogden"}, {"base_options", {{"terms", 2}}}, {"terms", 2}});
+  const std::vector<double> p = {0.4, 1.5, 0.005, 5.0, 0.3, 0.2, 0.1, 10.0};
+  PointOptions o;
+  o.bulk_modulus_MPa = 1000.0;
+  const auto point = m->material_point(p.data(), o);
+  const auto base = make_model("ogden", {{"terms", 2}})->material_point(p.data(), o);
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  F(0, 1) = 1.0;
+  const Vector6 e = log_strain(F);
+  std::vector<double> state = point->initial_state(), next(point->state_size());
+  point->update(state.data(), e, 1e-12, NAN, next.data());
+  state.swap(next);
+  const Vector6 inf = base->update(nullptr, e, 0.0, NAN, nullptr);
+  double t = 1e-12;
+  for (double dt : {0.01, 0.04, 0.2, 0.75, 3.0, 6.0, 40.0}) {
+    Matrix6 C;
+    const Vector6 s = point->update(state.data(), e, dt, NAN, next.data(), &C);
+    state.swap(next);
+    t += dt;
+    const double g = 1.0 - 0.3 * (1.0 - std::exp(-t / 0.1)) - 0.2 * (1.0 - std::exp(-t / 10.0));
+    EXPECT_NEAR(s[5], inf[5] * g / 0.5, 1e-6 * std::abs(inf[5])) << "t " << t;
+    EXPECT_NEAR(s.head<3>().sum(), inf.head<3>().sum(), 1e-9 * std::abs(inf[0]) + 1e-12) << "t " << t;
+  }
+  // Small-strain dynamic stiffness: G* of the Prony about μ0 = G∞ of the base.
+  const auto C = point->complex_stiffness(1.0, NAN);
+  TestCondition shear;
+  shear.frequency_Hz = 1.0;
+  EXPECT_NEAR(C(5, 5).real(), m->moduli(p.data(), shear).storage, 1e-12);
+  EXPECT_NEAR(C(5, 5).imag(), m->moduli(p.data(), shear).loss, 1e-12);
+  EXPECT_NEAR(m->relaxation_modulus(p.data(), shear, 1e6), 0.405, 1e-9);
+}

@@ -22,6 +22,13 @@ std::vector<CsvLine> split_csv_lines(const std::string& bytes, const std::string
 // True for lines that carry no data: blank (spaces only) or starting with `#`.
 bool is_blank_or_comment(const std::string& text);
 
+// The next line with data at or after `next` (which moves past it); null at the end.
+const CsvLine* next_content_line(const std::vector<CsvLine>& lines, std::size_t& next);
+
+// The fields of the first line with data of `bytes`; empty when there is none or it does not
+// split (for the readers' looks_like_* sniffers).
+std::vector<std::string> first_content_fields(const std::string& bytes);
+
 // Fields of one line: split at commas, spaces and tabs around each field trimmed; a field may be
 // double-quoted ("a, b"; "" is a literal quote). Throws InputError for an unterminated quote.
 std::vector<std::string> split_csv_fields(const std::string& text, const std::string& file_name,

@@ -72,6 +72,12 @@ ModelPtr make_hyperelastic_model(const std::string& kind, const nlohmann::json& 
 // The hyperelastic kinds, in the order help texts list them.
 const std::vector<std::string>& hyperelastic_kinds();
 
+// The visco-hyperelastic card (docs/hyperelastic.md §"Visco-hyperelastic"): options
+// {"base": a hyperelastic kind, "base_options": {...}, "terms": N}; parameters: the base's
+// (its long-term response), then g_1..g_N (relative shear moduli, Σ g_i < 1) and tau_1..tau_N (s).
+bool is_visco_hyperelastic_kind(const std::string& kind);
+ModelPtr make_visco_hyperelastic_model(const nlohmann::json& options);
+
 // Drucker stability along one mode (uniaxial, equibiaxial or planar) from stretch 1 outward to
 // `stretch` (> 1 tension, < 1 compression): the first stretch on a log-spaced scan where the
 // tangent is not positive definite (or the law leaves its domain), 0 when stable all the way.
