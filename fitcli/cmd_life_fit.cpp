@@ -50,7 +50,7 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
   for (const auto& f : r.fits) {
     t << std::setw(14) << fitlib::fatigue::to_string(f.mode) << std::setw(7) << f.cases << std::setw(9) << f.runouts;
     if (!f.rejected.empty()) {
-      t << "not fitted: the start card's constants are kept (WARNING below)\n";
+      t << "not fitted: the start card's constants are kept (the warning on stderr says why)\n";
       continue;
     }
     for (const auto& c : f.constants) t << std::setw(28) << with_interval(c);
@@ -58,7 +58,6 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
     t << std::setw(11) << sig4(f.rms_log10_error) << (level.empty() ? "not stated" : level + " level") << "\n";
     if (!f.note.empty()) t << "  note: " << f.note << "\n";
   }
-  for (const std::string& w : r.warnings) t << "WARNING: " << w << "\n";
   return t.str();
 }
 
@@ -148,6 +147,7 @@ void run(const LifeFitArgs& a) {
     return;
   }
   summary() << fit_table(fit);
+  for (const std::string& w : fit.warnings) warning(w);  // stderr, as every command's (--quiet hides them)
   if (a.out != "-") summary() << "card written to " << a.out << "\n";
 }
 
