@@ -45,8 +45,7 @@ TEST(Outputs, StdoutThatCannotBeWrittenExitsThree) {
                                  "material-point --card " + kCard + " --cycles 1 --steps-per-cycle 20",
                                  "sweep --sweep " + kSweep + " --threads 1 --quiet"}) {
     EXPECT_EQ(exit_of(fitcli + " " + args + " >/dev/full 2>" + err), 3) << args;
-    EXPECT_NE(slurp(err).find("stdout: cannot write the output (No space left on device)"), std::string::npos)
-        << slurp(err);
+    EXPECT_NE(slurp(err).find("stdout: cannot write the output"), std::string::npos) << slurp(err);
     EXPECT_EQ(exit_of(fitcli + " " + args + " >&- 2>" + err), 3) << args;  // a closed stdout
     EXPECT_NE(slurp(err).find("stdout: cannot write the output"), std::string::npos) << slurp(err);
   }
