@@ -13,7 +13,7 @@ _fitcli() {
     return
   fi
   local subcommands
-  subcommands=$(awk '/^SUBCOMMANDS:/ {on = 1; next} on && /^ +[a-z]/ {print $1}' <<<"$help")
+  subcommands=$(awk 'tolower($0) ~ /^subcommands:/ {on = 1; next} on && /^ +[a-z]/ {print $1}' <<<"$help")
   if [[ -n $subcommands ]]; then
     COMPREPLY=($(compgen -W "$subcommands" -- "$cur"))
   else

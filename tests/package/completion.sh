@@ -24,7 +24,7 @@ got=$(complete_line "$fitcli" surface "")
 [[ " $got " == *" grid "* ]] || { echo "completion of 'surface ': $got"; exit 1; }
 echo "completion: subcommands, options and nested subcommands"
 if command -v help2man >/dev/null; then
-  grep -q '^\.TH FITCLI' "$3" && grep -q 'material-point' "$3" && grep -q -- '--version' "$3" \
+  grep -q '^\.TH FITCLI' "$3" && grep -qF 'material\-point' "$3" && grep -qF '\-\-version' "$3" \
     || { echo "man page $3 lacks its title or subcommands"; exit 1; }
   echo "man page: $(wc -l <"$3") lines"
 fi
