@@ -43,6 +43,10 @@ void bind_errors(py::module_& m) {
   static py::exception<core::NumericalError> numerical(m, "NumericalError", base.ptr());
   for (py::handle error : std::initializer_list<py::handle>{base, input, usage, numerical})
     error.attr("__module__") = "fitlib";
+  base.attr("__doc__") = "Any error of fitlib; exit_code is fitcli's exit code for it (docs/python.md)";
+  input.attr("__doc__") = "Bad input (fitcli exit 3): file, line, column and key name where it is; detail the reason";
+  usage.attr("__doc__") = "Misuse: an argument out of its range or options that conflict (fitcli exit 2)";
+  numerical.attr("__doc__") = "A solver failed or a result would not be finite (fitcli exit 4)";
   base.attr("exit_code") = int(core::kNumericalFailure);
   input.attr("exit_code") = int(core::kBadInput);
   usage.attr("exit_code") = int(core::kUsageError);

@@ -364,7 +364,7 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
                              "note: the complete level on the life's default segment (192 elements, 27 mm long, graded "
                              "at the central gap, one cushion row, sheared end faces), with the cards' damage held",
                              "segment FE material (the card's full model, damage held at its tests' drivers)"})
-      EXPECT_NE(r.out.find(part), std::string::npos) << part << " in: " << r.out;
+      EXPECT_NE((r.out + r.err).find(part), std::string::npos) << part << " in: " << r.out << r.err;  // warnings: stderr
   }
 }
 
