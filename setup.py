@@ -7,12 +7,12 @@ import subprocess
 import sys
 
 from setuptools import Distribution, setup
-from setuptools.command.build_py import build_py
+from setuptools.command.build_ext import build_ext
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-class BuildWithCMake(build_py):
+class BuildWithCMake(build_ext):  # run because the distribution has an extension (below)
     def run(self):
         build = os.environ.get("FITLIB_BUILD_DIR")
         if not build:
@@ -35,4 +35,4 @@ class BinaryDistribution(Distribution):
         return True
 
 
-setup(cmdclass={"build_py": BuildWithCMake}, distclass=BinaryDistribution)
+setup(cmdclass={"build_ext": BuildWithCMake}, distclass=BinaryDistribution)
