@@ -95,10 +95,6 @@ class ProgressLine {
   std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now(), shown_ = t0_;
 };
 
-}  // namespace
-
-namespace {
-
 // The result file (and its .partial) may be none of the files the sweep reads: the sweep file,
 // its scenes and cards (fitcli refuses --out = --sweep too; the scenes are named inside).
 void refuse_output_on_input(const Sweep& sweep, const std::string& out) {
