@@ -381,6 +381,17 @@ void bind_scene(py::module_& m) {
   m.def("accumulation_map",
         [](const std::string& spectrum, double shear_stress_MPa, long cycles, int cycle_points, double omega_min,
            double omega_max, int omega_points, double kappa, double strain_limit) {
+          // fitcli accumulate's option ranges and work cap
+          require_in("shear_stress_MPa", shear_stress_MPa, 1e-300, 1e100);
+          require_in("cycles", static_cast<double>(cycles), 1, 1e12);
+          require_in("cycle_points", cycle_points, 1, scene::kMaxAccumulationPoints);
+          require_in("omega_points", omega_points, 1, scene::kMaxAccumulationPoints);
+          require_in("omega_min", omega_min, 1e-300, 1e100);
+          require_in("omega_max", omega_max, omega_min, 1e100);
+          require_in("kappa", kappa, 0.0, 1e100);
+          if (static_cast<double>(cycle_points) * omega_points > scene::kMaxAccumulationWork)
+            throw core::UsageError("cycle_points x omega_points exceeds the work cap " +
+                                   core::format_number(scene::kMaxAccumulationWork) + " (README, work caps)");
           scene::AccumulationSpec spec;
           spec.spectrum = spectrum, spec.shear_stress_MPa = shear_stress_MPa, spec.cycles = cycles;
           spec.cycle_points = cycle_points, spec.omega_min_rad_s = omega_min, spec.omega_max_rad_s = omega_max;

@@ -80,6 +80,9 @@ def test_grid_and_sweep_are_capped_before_work():
     raises(fitlib.InputError, lambda: fitlib.card_grid(card, f, np.linspace(20, 30, 1000)), "work cap", "points")
     raises(fitlib.UsageError, lambda: fitlib.sweep(SWEEP, threads=0), "threads")
     raises(fitlib.UsageError, lambda: fitlib.sweep(SWEEP, threads=-3), "threads")
+    raises(fitlib.UsageError, lambda: fitlib.accumulation_map("box", cycle_points=100000, omega_points=100000),
+           "work cap")
+    raises(fitlib.UsageError, lambda: fitlib.accumulation_map("box", cycle_points=0), "cycle_points")
 
 
 def test_card_eval_and_export_refuse_beyond_the_window_as_the_cli():
