@@ -28,10 +28,6 @@ std::vector<double> to_vector(const py::handle& object);
 
 
 
-// The arguments broadcast against one another (NumPy rules), each flattened; TypeError for
-// anything that is not numbers.
-std::vector<std::vector<double>> broadcast_columns(const std::vector<py::object>& arguments);
-
 // Python's warnings.warn(message) (what fitcli prints as "warning: ..." on stderr).
 void warn(const std::string& message);
 

@@ -97,14 +97,6 @@ Broadcast broadcast(const std::vector<py::object>& arguments) {
   return b;
 }
 
-}  // namespace
-
-std::vector<std::vector<double>> broadcast_columns(const std::vector<py::object>& arguments) {
-  return broadcast(arguments).columns;
-}
-
-namespace {
-
 py::array_t<double> shaped(const std::vector<double>& v, const std::vector<py::ssize_t>& shape) {
   return to_array(v).attr("reshape")(py::tuple(py::cast(shape)));
 }
