@@ -47,3 +47,25 @@ if(FITLIB_TESTS)
             ${CMAKE_CURRENT_SOURCE_DIR}/tests/package/consumer)
   set_tests_properties(package_consumer PROPERTIES LABELS package TIMEOUT 600)
 endif()
+
+# The man page (help2man from fitcli's own --help and --version, Debian help2man) and the bash
+# completion (scripts/fitcli-completion.bash, which reads --help too), docs/cli.md.
+install(FILES scripts/fitcli-completion.bash DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
+  RENAME fitcli)
+find_program(HELP2MAN help2man)
+if(HELP2MAN)
+  add_custom_command(OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1
+    COMMAND ${HELP2MAN} --no-info --no-discard-stderr --name "fit elastomer models to dynamic tests, write material cards, run belt scenes"
+            --output ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1 $<TARGET_FILE:fitcli>
+    DEPENDS fitcli VERBATIM)
+  add_custom_target(fitcli_man ALL DEPENDS ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1)
+  install(FILES ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+else()
+  message(STATUS "help2man not found: no fitcli man page (scripts/install-deps.sh installs it)")
+endif()
+if(FITLIB_TESTS)
+  add_test(NAME cli_completion_and_man
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tests/package/completion.sh $<TARGET_FILE:fitcli>
+            ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fitcli-completion.bash ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1)
+  set_tests_properties(cli_completion_and_man PROPERTIES LABELS package TIMEOUT 120)
+endif()

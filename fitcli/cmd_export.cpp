@@ -40,7 +40,8 @@ void register_export(CLI::App& app) {
       ->capture_default_str()->check(poisson_ratio_range());
   cmd->add_option("--material-id", args->options.material_id, "Material number (ANSYS, LS-DYNA)")
       ->capture_default_str()->check(number_in(1, 999999));  // fits every deck's field
-  cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)");
+  cmd->add_option("--density", args->options.density_t_per_mm3, "Mass density RO in t/mm3 (LS-DYNA; rubber ~1.2e-9)")
+      ->check(number_in(0, 1e-6));  // 1e-6 t/mm3 = 1000 g/cm3: beyond any solid (a negative one was written)
   cmd->add_option("--temperature-c", args->options.temperature_C,
                   "Export at this temperature (degC): times scaled by the card's shift factor, no temperature shift "
                   "in the deck (for laws the solver lacks)")

@@ -230,7 +230,8 @@ void run_fit(FitArgs a) {
     if (a.master.enabled || !a.master.shifts_in.empty()) {
       measured = table;
       data::ShiftFactorTable given;
-      if (a.master.enabled) {  // model-free shifts of the isotherms, then as given shifts
+      if (a.master.shifts_in.empty()) {  // model-free shifts of the isotherms, then as given shifts
+        // (--shifts wins over --master-curve, as for frequency data; it was ignored here)
         fit::MasterCurveOptions mo;
         mo.reference_C = a.reference_C;
         a.master.curve = fit::build_relaxation_master_curve(table, mo);

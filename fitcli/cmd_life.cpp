@@ -76,7 +76,7 @@ void register_life(CLI::App& app) {
       std::cout << fitlib::scene::life_json(scene, result, *record_timing).dump(2) << "\n";
       return;
     }
-    std::cout << fitlib::scene::life_text(scene, result) << "effects:\n"
+    std::cout << without_warnings(fitlib::scene::life_text(scene, result)) << "effects:\n"
               << fitlib::scene::effects_table(result.plan);
     for (const auto& f : files) std::cout << "wrote " << f << "\n";
   });

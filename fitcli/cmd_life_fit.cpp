@@ -50,7 +50,7 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
   for (const auto& f : r.fits) {
     t << std::setw(14) << fitlib::fatigue::to_string(f.mode) << std::setw(7) << f.cases << std::setw(9) << f.runouts;
     if (!f.rejected.empty()) {
-      t << "not fitted: the start card's constants are kept (WARNING below)\n";
+      t << "not fitted: the start card's constants are kept (the warning on stderr says why)\n";
       continue;
     }
     for (const auto& c : f.constants) t << std::setw(28) << with_interval(c);
@@ -61,7 +61,6 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
       t << "  scatter: log-normal about the law, s " << sig4(sc->sigma_log10) << " log10 (" << sc->dof
         << " dof), with the constants' covariance, written into the card (fitcli life prints B10 and B50)\n";
   }
-  for (const std::string& w : r.warnings) t << "WARNING: " << w << "\n";
   return t.str();
 }
 
@@ -151,6 +150,7 @@ void run(const LifeFitArgs& a) {
     return;
   }
   summary() << fit_table(fit);
+  for (const std::string& w : fit.warnings) warning(w);  // stderr, as every command's (--quiet hides them)
   if (a.out != "-") summary() << "card written to " << a.out << "\n";
 }
 

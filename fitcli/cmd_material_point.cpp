@@ -12,6 +12,7 @@
 #include "fitlib/core/finite_output.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
 #include "fitlib/model/material_point.hpp"
+#include "fitlib/model/work_caps.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
 #include "window_check.hpp"
@@ -19,9 +20,9 @@
 namespace fitcli {
 namespace {
 
-// Work caps (docs/reliability.md): 1e6 steps of a Prony point take ~5 s and write ~70 MB.
-constexpr double kMaxSteps = 1e6;
-constexpr int kMaxStepsPerCycle = 10000;
+// Work caps (docs/reliability.md): fitlib/model/work_caps.hpp, shared with the Python module.
+constexpr double kMaxSteps = fitlib::model::kMaxPointSteps;
+constexpr int kMaxStepsPerCycle = fitlib::model::kMaxCaseStepsPerCycle;
 
 struct Args {
   std::string card, case_id, out, test = "shear", orientation, fidelity = "viscoelastic";

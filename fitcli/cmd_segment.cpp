@@ -36,7 +36,7 @@ void register_segment(CLI::App& app) {
     if (c.frequency_Hz > 0.0)
       std::cout << "cards read at " << fitlib::core::format_number(c.temperature_C) << " degC, "
                 << fitlib::core::format_number(c.frequency_Hz, 4) << " Hz (storage stiffness)\n";
-    for (const auto& w : c.warnings) std::cout << "WARNING: " << w << "\n";
+    for (const auto& w : c.warnings) warning(w);  // stderr, as every command's
     std::cout << "segment: " << r.elements << " elements, " << r.equations << " equations, " << r.increments
               << " increments, " << r.newton_iterations << " Newton iterations, " << std::setprecision(3)
               << r.wall_s << " s\n";

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "fitlib/core/error.hpp"
 #include "output.hpp"
 #include "fitlib/scene/sweep_run.hpp"
 #ifdef FITLIB_HAVE_MPI
@@ -67,7 +68,11 @@ void register_sweep(CLI::App& app) {
       ->check(CLI::Range(1, 1024));
   add_verbosity_flags(cmd);  // --quiet: no progress; --verbose: grid size, workers and sweep hash
   cmd->add_option("--stop-after", a->stop_after, "Tests: stop once N cases are done, as if killed")->group("");
-  cmd->callback([a] { run(*a); });
+  cmd->callback([a, cmd] {
+    if (a->json && cmd->count("--out") > 0 && a->out == "-")  // the CSV was dropped for the JSON
+      throw fitlib::core::UsageError("--out - and --json both write stdout: give --out a file");
+    run(*a);
+  });
 }
 
 }  // namespace fitcli

@@ -5,9 +5,12 @@
 #include "fitlib/core/error.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "path_guard.hpp"
+#include "suggest.hpp"
 #include "version_info.hpp"
 
 int main(int argc, char** argv) {
+  fitcli::guard_standard_streams();
   CLI::App app{"fitcli: fit material models to dynamic tests, write cards, run belt scenes (docs/cli.md)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", fitcli::version_text());
@@ -28,15 +31,32 @@ int main(int argc, char** argv) {
   fitcli::register_sweep(app);
   fitcli::register_visco_card(app);
   fitcli::require_finite_numbers(app);
+  // After the whole command line is parsed, before the subcommand runs.
+  app.parse_complete_callback([&app] { fitcli::refuse_colliding_paths(app); });
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "fitcli: error: " + std::string(e.what()) + " (--help lists the options)\n";
   });
   fitcli::set_command_line(argc, argv);
   try {
+    fitcli::refuse_empty_list_items(argc, argv);
     app.parse(argc, argv);
+    fitcli::finish_stdout();
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? 0 : fitlib::core::kUsageError;
+    if (code != 0) {
+      std::vector<std::string> names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
+      if (const std::string hint = fitcli::subcommand_hint(argc, argv, names); !hint.empty())
+        std::cerr << "fitcli: " << hint << "\n";
+      return fitlib::core::kUsageError;
+    }
+    try {  // --help and --version print on stdout too
+      fitcli::finish_stdout();
+    } catch (const std::exception& f) {
+      std::cerr << "fitcli: error: " << f.what() << "\n";
+      return fitlib::core::exit_code_for(f);
+    }
+    return 0;
   } catch (const std::exception& e) {
     std::cerr << "fitcli: error: " << fitcli::with_stdin_named(e.what()) << "\n";
     return fitlib::core::exit_code_for(e);

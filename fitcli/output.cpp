@@ -1,7 +1,12 @@
 #include "output.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
@@ -110,6 +115,19 @@ void require_finite_numbers(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_finite_numbers(*sub);
 }
 
+void refuse_empty_list_items(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i], option = i > 1 ? argv[i - 1] : "";
+    if (const auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos)
+      option = arg.substr(0, eq), arg = arg.substr(eq + 1);
+    const bool numbers = !arg.empty() && arg.find_first_not_of("0123456789+-.eE,") == std::string::npos;
+    if (numbers && arg.find(',') != std::string::npos &&
+        (arg.find(",,") != std::string::npos || arg.front() == ',' || arg.back() == ','))
+      throw fitlib::core::UsageError((option.rfind("-", 0) == 0 ? option + ": " : std::string()) +
+                                     "an empty value in the list '" + arg + "' (two commas in a row, or one at an end)");
+  }
+}
+
 void add_verbosity_flags(CLI::App* cmd) {
   auto* q = cmd->add_flag("--quiet,-q", verbosity().quiet, "No notes or warnings on stderr (errors only)");
   auto* v = cmd->add_flag("--verbose,-v", verbosity().verbose, "More notes on stderr");
@@ -135,6 +153,16 @@ void detail(const std::string& message) {
   if (verbose()) std::cerr << "fitcli: note: " << message << "\n";
 }
 
+std::string without_warnings(const std::string& text) {
+  std::istringstream lines(text);
+  std::string kept;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("WARNING: ", 0) == 0) warning(line.substr(9));
+    else kept += line + "\n";
+  }
+  return kept;
+}
+
 std::ostream& summary() {
   if (!verbosity().stdout_taken) return std::cout;
   return quiet() ? null_stream() : std::cerr;
@@ -150,10 +178,44 @@ void claim_output(const std::string& option, const std::string& path, bool json)
   }
 }
 
+void guard_standard_streams() {
+  const char* devices[] = {"/dev/null", "/dev/full", "/dev/full"};
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int opened = ::open(devices[fd], fd == 0 ? O_RDONLY : O_WRONLY);
+    if (opened >= 0 && opened != fd) {  // lower fds were open: move it to its place
+      ::dup2(opened, fd);
+      ::close(opened);
+    }
+  }
+}
+
+namespace {
+int& stdout_errno() {  // the reason of the first failed write of stdout
+  static int error = 0;
+  return error;
+}
+void flush_stdout() {
+  errno = 0;
+  std::cout.flush();
+  if (!std::cout && stdout_errno() == 0) stdout_errno() = errno;
+}
+}  // namespace
+
+void finish_stdout() {
+  flush_stdout();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+  int error = stdout_errno() != 0 ? stdout_errno() : errno;
+  if (std::fclose(stdout) != 0 && !failed) error = errno;
+  else if (!failed) return;
+  const std::string why = error != 0 ? std::string(" (") + std::strerror(error) + ")" : std::string();
+  throw fitlib::core::InputError("cannot write the output" + why + ": the results are lost", "stdout");
+}
+
 void emit(const std::string& path, const std::string& content) {
   if (path.empty() || path == "-") {
     std::cout << content;
-    std::cout.flush();
+    flush_stdout();
   } else {
     fitlib::core::write_file_atomically(path, content);
   }

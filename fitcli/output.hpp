@@ -39,6 +39,9 @@ CLI::Validator mean_strain_range();
 // Every number option (type FLOAT) of `app` and its subcommands refuses NaN and inf: CLI11's
 // ranges let NaN through, and a NaN option reached results (exit 4) or was read as "unset".
 void require_finite_numbers(CLI::App& app);
+// A number list with an empty item ("--time-s 1,,2", "20,"): CLI11 dropped the gap silently.
+// UsageError naming the option. Run on the raw command line before parsing.
+void refuse_empty_list_items(int argc, char** argv);
 // --json on `cmd`: one JSON document of `what`, on stdout (nothing else there) unless `what` says
 // it goes to --out.
 void add_json_flag(CLI::App* cmd, bool& json, const std::string& what);
@@ -50,6 +53,10 @@ void note(const std::string& message);
 void warning(const std::string& message);
 void detail(const std::string& message);
 
+// `text` without its "WARNING: …" lines, each said by warning() instead: warnings go to stderr
+// (and --quiet hides them) wherever a library's table holds them (life_text).
+std::string without_warnings(const std::string& text);
+
 // Where the human summary of a run goes: stdout, or stderr (as notes) when a "-" output
 // already took stdout (then nothing with --quiet).
 std::ostream& summary();
@@ -57,6 +64,15 @@ std::ostream& summary();
 // Declares that output `path` of option `option` will be written: "-" takes stdout (a usage
 // error with --json, whose document is stdout's); a file path is checked now, before the work.
 void claim_output(const std::string& option, const std::string& path, bool json);
+
+// Standard streams the caller closed (`fitcli … >&-`) are reopened before any file is opened:
+// stdout and stderr on /dev/full, stdin on /dev/null. Else the first file opened takes fd 1 and
+// receives stdout's text; now a write to a closed stdout fails as one to a full disk does.
+void guard_standard_streams();
+
+// Flushes and closes stdout; InputError "stdout: cannot write …" (exit 3, as a file that cannot be
+// written) when any write to it failed: a full disk, /dev/full, a closed stdout.
+void finish_stdout();
 
 // Writes to `path` atomically, or to stdout when path is empty or "-".
 void emit(const std::string& path, const std::string& content);

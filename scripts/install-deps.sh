@@ -11,6 +11,7 @@ packages=(
   python3-dev pybind11-dev python3-pybind11
   calculix-ccx
   libopenmpi-dev openmpi-bin
+  help2man
 )
 # Optional: clang and its libFuzzer runtime for the fuzz harnesses (scripts/fuzz.sh); the build
 # and every test work without them (gcc only), the test command then skips the fuzzing step.

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include "fitlib/model/model.hpp"
 #include "fitlib/scene/results.hpp"
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,11 +28,20 @@ std::vector<double> to_vector(const py::handle& object);
 
 
 
+// Python's warnings.warn(message) (what fitcli prints as "warning: ..." on stderr).
+void warn(const std::string& message);
+
+// Refusals before work, as fitcli's option checks (docs/python.md "Checks"): UsageError naming the
+// argument when `value` is outside [low, high] (or not finite).
+void require_in(const char* argument, double value, double low, double high);
+
 // Storage, loss, tan δ and mean modulus of `m` with parameters `p` over NumPy-broadcast arrays
 // of frequency, temperature (None = the reference) and strain amplitude; mode "" = native.
+// `at`, when given, answers each condition instead of the model (Card.eval: window, conversion).
+using ModuliAt = std::function<model::Moduli<double>(const model::TestCondition&)>;
 py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, const py::object& f,
                        const py::object& T, const py::object& amplitude, const std::string& mode,
-                       const std::string& orientation);
+                       const std::string& orientation, const ModuliAt& at = {});
 
 void bind_errors(py::module_& m);
 void bind_data_model(py::module_& m);

@@ -1,7 +1,13 @@
 // Python bindings of fit (options, results, term selection) and card (load, save, JSON, eval,
 // FE export). docs/python.md lists the names.
 #include "bindings.hpp"
+#include <cmath>
+
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
+#include "fitlib/card/data_window.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/card/export.hpp"
 #include "fitlib/card/fit_card.hpp"
 #include "fitlib/card/from_fit.hpp"
@@ -18,6 +24,39 @@ Options from_keywords(const py::kwargs& kwargs) {
   for (const auto& item : kwargs) py::setattr(options, item.first, item.second);
   return options.template cast<Options>();
 }
+
+// fitcli's data window (fitcli/window_check.cpp) for Card.eval and Card.export: a temperature
+// where the card's law describes no material is refused; a condition beyond the window is an
+// InputError at fit.data_window.<key> unless allow_extrapolation, then one UserWarning.
+class WindowGuard {
+ public:
+  WindowGuard(const card::Card& c, bool allow) : card_(c), window_(c), allow_(allow) {}
+  void check(const model::TestCondition& at) {
+    if (!std::isnan(at.temperature_C) && at.temperature_C != checked_T_) {
+      card::require_material_at(card_, "card " + card_.name, at.temperature_C, "", "temperature_C");
+      checked_T_ = at.temperature_C;
+    }
+    const auto excess = window_.outside(at);
+    if (excess.empty()) return;
+    const auto& x = excess.front();
+    const std::string text = x.quantity + " " + core::format_number(x.value) + " is outside the card's data window [" +
+                             core::format_number(x.low) + ", " + core::format_number(x.high) + "]";
+    if (!allow_)
+      throw core::InputError(text + "; pass allow_extrapolation=True to evaluate there anyway", "card " + card_.name,
+                             0, 0, "fit.data_window." + x.key);
+    if (first_.empty()) first_ = text;
+  }
+  void finish() const {
+    if (!first_.empty()) warn("extrapolating: " + first_ + " (card " + card_.name + ")");
+  }
+
+ private:
+  const card::Card& card_;
+  card::DataWindow window_;
+  bool allow_;
+  double checked_T_ = std::nan("");
+  std::string first_;
+};
 
 std::string method_name(fit::TermMethod m) { return m == fit::TermMethod::spectrum ? "spectrum" : "sweep"; }
 
@@ -69,7 +108,7 @@ void bind_fit_options(py::module_& m) {
 
 void bind_fit_result(py::module_& m) {
   using namespace fit;
-  py::class_<ParameterResult>(m, "ParameterResult")
+  py::class_<ParameterResult>(m, "ParameterResult", "A fitted parameter: name, unit, value, fixed, std_error (None where not estimable), reason, ci95")
       .def_readonly("name", &ParameterResult::name)
       .def_readonly("unit", &ParameterResult::unit)
       .def_readonly("value", &ParameterResult::value)
@@ -81,7 +120,7 @@ void bind_fit_result(py::module_& m) {
       .def("__repr__", [](const ParameterResult& p) {
         return "<" + p.name + " = " + std::to_string(p.value) + " " + p.unit + ">";
       });
-  py::class_<FitMetrics>(m, "FitMetrics")
+  py::class_<FitMetrics>(m, "FitMetrics", "Figures of a fit's residuals (rms, max relative errors, ...)")
       .def_readonly("n_points", &FitMetrics::n_points)
       .def_readonly("n_residuals", &FitMetrics::n_residuals)
       .def_readonly("n_free", &FitMetrics::n_free)
@@ -98,7 +137,7 @@ void bind_fit_result(py::module_& m) {
       .def_readonly("rank", &FitMetrics::rank)
       .def_readonly("iterations", &FitMetrics::iterations)
       .def_readonly("n_active", &FitMetrics::n_active);
-  py::class_<Identifiability>(m, "Identifiability")
+  py::class_<Identifiability>(m, "Identifiability", "Whether the data determine the parameters: condition number, rank, null space, correlations")
       .def_readonly("condition_number", &Identifiability::condition_number)
       .def_readonly("rank", &Identifiability::rank)
       .def_readonly("null_space", &Identifiability::null_space)
@@ -108,18 +147,18 @@ void bind_fit_result(py::module_& m) {
         for (const auto& p : i.correlated) out.append(py::make_tuple(p.a, p.b, p.correlation));
         return out;
       });
-  py::class_<ErrorFigures>(m, "ErrorFigures")
+  py::class_<ErrorFigures>(m, "ErrorFigures", "Errors of one modulus of a fit (quality verdict, docs/fitting.md)")
       .def_readonly("group", &ErrorFigures::group)
       .def_readonly("modulus", &ErrorFigures::modulus)
       .def_readonly("count", &ErrorFigures::count)
       .def_readonly("mean_rel_error", &ErrorFigures::mean_rel_error)
       .def_readonly("max_rel_error", &ErrorFigures::max_rel_error)
       .def_readonly("max_at_frequency_Hz", &ErrorFigures::max_at_frequency_Hz);
-  py::class_<QualityVerdict>(m, "QualityVerdict")
+  py::class_<QualityVerdict>(m, "QualityVerdict", "A fit's quality verdict: figures, warnings, acceptable")
       .def_readonly("figures", &QualityVerdict::figures)
       .def_readonly("warnings", &QualityVerdict::warnings)
       .def_property_readonly("acceptable", &QualityVerdict::acceptable);
-  py::class_<FitResult>(m, "FitResult")
+  py::class_<FitResult>(m, "FitResult", "A fit: values, parameters, metrics, identifiability, quality, backend, messages")
       .def_property_readonly("model", [](const FitResult& r) { return std::const_pointer_cast<model::Model>(r.model); })
       .def_property_readonly("values", [](const FitResult& r) { return to_array(r.values); })
       .def_readonly("parameters", &FitResult::parameters)
@@ -146,7 +185,7 @@ void bind_fit_result(py::module_& m) {
 
 void bind_terms(py::module_& m) {
   using namespace fit;
-  py::class_<TermRow>(m, "TermRow")
+  py::class_<TermRow>(m, "TermRow", "One row of a term selection: the fit with N terms and its criteria")
       .def_readonly("terms", &TermRow::terms)
       .def_readonly("wall_time_s", &TermRow::wall_time_s)
       .def_readonly("rms_log10_storage", &TermRow::rms_log10_storage)
@@ -158,7 +197,7 @@ void bind_terms(py::module_& m) {
       .def_readonly("converged", &TermRow::converged)
       .def_readonly("failed", &TermRow::failed)
       .def_readonly("message", &TermRow::message);
-  py::class_<TermSelection>(m, "TermSelection")
+  py::class_<TermSelection>(m, "TermSelection", "fitcli fit --terms auto: the rows, the number each rule picks, the chosen fit")
       .def_readonly("rows", &TermSelection::rows)
       .def_readonly("by_aic", &TermSelection::by_aic)
       .def_readonly("by_bic", &TermSelection::by_bic)
@@ -197,7 +236,7 @@ void bind_terms(py::module_& m) {
 void bind_card(py::module_& m) {
   using card::Card;
   using card::ParameterEstimate;
-  py::class_<ParameterEstimate>(m, "ParameterEstimate")
+  py::class_<ParameterEstimate>(m, "ParameterEstimate", "A card's parameter: name, unit, value, std_error, fixed")
       .def_readonly("value", &ParameterEstimate::value)
       .def_readonly("fixed", &ParameterEstimate::fixed)
       .def_readonly("std_error", &ParameterEstimate::std_error)
@@ -225,38 +264,64 @@ void bind_card(py::module_& m) {
       .def("save", [](const Card& c, const std::string& path) { card::save_card(path, c); }, py::arg("path"))
       .def("eval",
            [](const Card& c, const py::object& f, const py::object& T, const py::object& amplitude,
-              const std::string& mode, const std::string& orientation) {
-             return moduli_arrays(*c.model(), c.values(), f, T, amplitude, mode, orientation);
+              const std::string& mode, const std::string& orientation, double poisson_ratio, bool allow_extrapolation) {
+             require_in("poisson_ratio", poisson_ratio, 0.0, 0.4999999);
+             const auto model = c.model();
+             const auto values = c.values();
+             WindowGuard window(c, allow_extrapolation);
+             auto out = moduli_arrays(*model, values, f, T, amplitude, mode, orientation,
+                                      [&](const model::TestCondition& at) {
+                                        window.check(at);
+                                        return card::moduli_in_mode(*model, values, at, poisson_ratio);
+                                      });
+             window.finish();
+             return out;
            },
            py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(), py::arg("strain_amplitude") = 0.0,
-           py::arg("mode") = "", py::arg("orientation") = "", "fitcli eval over broadcast arrays")
+           py::arg("mode") = "", py::arg("orientation") = "", py::arg("poisson_ratio") = card::kDefaultPoissonRatio,
+           py::arg("allow_extrapolation") = false,
+           "fitcli eval over broadcast arrays: another mode converts as the export does (poisson_ratio, for a "
+           "card without a bulk modulus); beyond the card's data window an InputError unless allow_extrapolation "
+           "(then a UserWarning)")
       .def("export",
            [](const Card& c, const std::string& format, double poisson_ratio, int material_id, bool allow_inadmissible,
-              double density_t_per_mm3, const py::object& temperature_C) {
+              double density_t_per_mm3, const py::object& temperature_C, bool allow_extrapolation) {
              card::ExportOptions o;
+             require_in("poisson_ratio", poisson_ratio, 0.0, 0.4999999);
+             require_in("material_id", material_id, 1, 999999);  // fitcli export --material-id
+             require_in("density_t_per_mm3", density_t_per_mm3, 0.0, 1e-6);
              o.poisson_ratio = poisson_ratio, o.material_id = material_id, o.allow_inadmissible = allow_inadmissible;
              o.density_t_per_mm3 = density_t_per_mm3;
-             if (!temperature_C.is_none()) o.temperature_C = temperature_C.cast<double>();
+             if (!temperature_C.is_none()) {
+               o.temperature_C = temperature_C.cast<double>();
+               require_in("temperature_C", o.temperature_C, -273.15, 1000.0);
+               WindowGuard window(c, allow_extrapolation);  // the temperature alone, as fitcli export
+               model::TestCondition at;
+               at.frequency_Hz = std::nan(""), at.temperature_C = o.temperature_C;
+               window.check(at);
+               window.finish();
+             }
              return card::export_card(c, format, o);
            },
            py::arg("format"), py::arg("poisson_ratio") = 0.4995, py::arg("material_id") = 1,
            py::arg("allow_inadmissible") = false, py::arg("density_t_per_mm3") = 0.0, py::arg("temperature_C") = py::none(),
+           py::arg("allow_extrapolation") = false,
            "FE keywords: abaqus | ansys | lsdyna (fitlib.export_formats()); temperature_C: the card at one temperature "
-           "(fitcli export --temperature-c)")
+           "(fitcli export --temperature-c; beyond the data window refused unless allow_extrapolation)")
       .def("admissibility_problems", &card::admissibility_problems);
 
-  m.def("load_card", &card::load_card, py::arg("path"));
+  m.def("load_card", &card::load_card, py::arg("path"), "Reads and validates a material card (formats.md §3); InputError names the file and key");
   m.def("card_from_json",
         [](const py::object& j, const std::string& source) { return card::card_from_json(to_json(j), source); },
-        py::arg("document"), py::arg("source") = "card");
+        py::arg("document"), py::arg("source") = "card", "A card from its JSON document (a dict), validated as load_card; source names it in errors");
   m.def("card_from_fit",
         [](const fit::FitResult& r, const fit::FitOptions& o, const data::DynamicTestTable& t, const std::string& name,
            const std::string& command, bool record_timing) {
           return card::card_from_fit(r, o, t, {name, command, record_timing});
         },
         py::arg("result"), py::arg("options"), py::arg("table"), py::arg("name"), py::arg("command") = "",
-        py::arg("record_timing") = false);
-  m.def("max_prony_terms", &card::max_prony_terms, py::arg("format"));
+        py::arg("record_timing") = false, "The card of a fit: parameters with uncertainty, the fit's figures, data files and window");
+  m.def("max_prony_terms", &card::max_prony_terms, py::arg("format"), "The most Prony terms the FE format takes (abaqus, ansys, lsdyna)");
   m.def("export_formats", &card::export_formats, "The formats Card.export writes");
 }
 

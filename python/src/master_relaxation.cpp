@@ -39,6 +39,10 @@ fit::VerticalShift vertical_shift(const std::string& name) {
 data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::object& log10_aT, double reference_C) {
   const auto T = to_vector(temperatures_C), a = to_vector(log10_aT);
   if (T.size() != a.size()) throw core::UsageError("temperatures and log10 a_T differ in length");
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    require_in("temperature_C", T[i], -273.15, 1000.0);
+    require_in("log10_aT", a[i], -1e3, 1e3);
+  }
   data::ShiftFactorTable table;
   table.reference_C = reference_C;
   for (std::size_t i = 0; i < T.size(); ++i) table.factors.push_back({T[i], a[i]});
@@ -64,8 +68,8 @@ void bind_shift_factors(py::module_& m) {
       .def("save", [](const ShiftFactorTable& t, const std::string& path) {
         core::write_file_atomically(path, data::format_shift_factors(t));
       }, py::arg("path"));
-  m.def("read_shift_factors", &data::read_shift_factors, py::arg("path"));
-  m.def("parse_shift_factors", &data::parse_shift_factors, py::arg("text"), py::arg("file_name") = "shifts");
+  m.def("read_shift_factors", &data::read_shift_factors, py::arg("path"), "Reads pyvisco's shift-factor file (T,log_aT; docs/data.md §3)");
+  m.def("parse_shift_factors", &data::parse_shift_factors, py::arg("text"), py::arg("file_name") = "shifts", "Shift factors from pyvisco's text; file_name names it in errors");
 }
 
 py::dict wlf_dict(const fit::WlfFit& w) {
@@ -155,24 +159,44 @@ void bind_master_curve(py::module_& m) {
         py::arg("curve"), py::arg("table"), py::arg("log10_aT"), "A copy of the curve with new shifts");
 }
 
+// The shifts a law is fitted to: as many temperatures as log10 a_T, at least `needed` of them,
+// every number finite and in range (fit_wlf returned a dict of NaN for empty or mismatched input).
+std::pair<std::vector<double>, std::vector<double>> shift_points(const py::object& T, const py::object& a, double ref,
+                                                                 int needed, const char* law) {
+  const auto table = shift_table(T, a, ref);
+  require_in("reference_C", ref, -273.15, 1000.0);
+  if (table.factors.size() < static_cast<std::size_t>(needed))
+    throw core::UsageError(std::string(law) + " shift law: needs at least " + std::to_string(needed) +
+                           " shifts, got " + std::to_string(table.factors.size()));
+  std::pair<std::vector<double>, std::vector<double>> out;
+  for (const auto& f : table.factors) out.first.push_back(f.temperature_C), out.second.push_back(f.log10_aT);
+  return out;
+}
+
 void bind_shift_laws(py::module_& m) {
   m.def("fit_wlf",
-        [](const py::object& T, const py::object& a, double ref) { return wlf_dict(fit::fit_wlf(to_vector(T), to_vector(a), ref)); },
-        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"));
+        [](const py::object& T, const py::object& a, double ref) {
+          const auto [t, s] = shift_points(T, a, ref, 3, "WLF");
+          return wlf_dict(fit::fit_wlf(t, s, ref));
+        },
+        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "WLF law fitted to shifts: dict C1, C2_K, rms_decades (at least 3 shifts, as many T as log10 a_T)");
   m.def("fit_arrhenius",
         [](const py::object& T, const py::object& a, double ref) {
-          return arrhenius_dict(fit::fit_arrhenius(to_vector(T), to_vector(a), ref));
+          const auto [t, s] = shift_points(T, a, ref, 2, "Arrhenius");
+          return arrhenius_dict(fit::fit_arrhenius(t, s, ref));
         },
-        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"));
+        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "Arrhenius law fitted to shifts: dict activation_energy_kJ_mol, rms_decades (at least 2 shifts)");
   m.def("fit_polynomial_shift",
         [](const py::object& T, const py::object& a, double ref, int degree) {
-          const auto p = fit::fit_polynomial_shift(to_vector(T), to_vector(a), ref, degree);
+          require_in("degree", degree, 1, 6);  // fitcli --polynomial-degree
+          const auto [t, s] = shift_points(T, a, ref, degree, "polynomial");
+          const auto p = fit::fit_polynomial_shift(t, s, ref, degree);
           py::dict d;
           d["coefficients"] = to_array(p.coefficients), d["rms_decades"] = p.rms_decades;
           return d;
         },
-        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), py::arg("degree") = 3);
-  m.def("given_log10_aT", &fit::given_log10_aT, py::arg("shifts"), py::arg("temperature_C"), py::arg("reference_C"));
+        py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), py::arg("degree") = 3, "pyvisco's polynomial law: dict coefficients (C_1..C_degree), rms_decades (degree 1..6)");
+  m.def("given_log10_aT", &fit::given_log10_aT, py::arg("shifts"), py::arg("temperature_C"), py::arg("reference_C"), "log10 a_T of given shift factors at T, relative to reference_C");
   m.def("fit_master_curve",
         [](const std::shared_ptr<model::Model>& model, const data::DynamicTestTable& raw,
            const fit::MasterCurveOptions& curve_options, const fit::FitOptions& fit_options, bool refine) {
@@ -186,7 +210,7 @@ void bind_shift_laws(py::module_& m) {
         py::arg("model"), py::arg("table"), py::arg("curve_options") = fit::MasterCurveOptions{},
         py::arg("fit_options") = fit::FitOptions{}, py::arg("refine_shifts") = false,
         "Master curve, the model fitted to it, and optionally shifts and model refined together");
-  m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"));
+  m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"), "The fit's model with WLF fitted to the master curve's shifts, constants held");
   m.def("with_law_from_shifts",
         [](const fit::FitResult& r, const py::object& T, const py::object& a, double ref, const std::string& law,
            int degree) {
@@ -226,15 +250,15 @@ void bind_relaxation(py::module_& m) {
       })
       .def_readonly("source_files", &RelaxationTable::source_files)
       .def_readonly("source_sha256", &RelaxationTable::source_sha256);
-  m.def("read_relaxation_table", &data::read_relaxation_table, py::arg("path"));
-  m.def("parse_relaxation_table", &data::parse_relaxation_table, py::arg("text"), py::arg("file_name") = "relaxation");
+  m.def("read_relaxation_table", &data::read_relaxation_table, py::arg("path"), "Reads pyvisco's relaxation table (t, E_relax; docs/data.md §4)");
+  m.def("parse_relaxation_table", &data::parse_relaxation_table, py::arg("text"), py::arg("file_name") = "relaxation", "A relaxation table from pyvisco's text; file_name names it in errors");
   m.def("shift_relaxation_table", &fit::shift_relaxation_table, py::arg("table"), py::arg("shifts"),
         py::arg("reference_C"), "Rows at reduced time t / a_T (fitcli fit --shifts on relaxation data)");
   m.def("fit_relaxation",
         [](const std::shared_ptr<model::Model>& model, const RelaxationTable& t, const fit::FitOptions& o) {
           return fit::fit_relaxation(model, t, o);
         },
-        py::arg("model"), py::arg("table"), py::arg("options") = fit::FitOptions{});
+        py::arg("model"), py::arg("table"), py::arg("options") = fit::FitOptions{}, "A model fitted to relaxation data M(t) (fitcli fit on t, E_relax files)");
   m.def("select_relaxation_terms",
         [](const std::string& kind, const py::object& options, const RelaxationTable& t, const fit::FitOptions& o,
            const fit::TermOptions& terms) { return fit::select_relaxation_terms(kind, to_json(options), t, o, terms); },
@@ -248,7 +272,7 @@ void bind_relaxation(py::module_& m) {
           d["max_relative"] = r.max_relative, d["mean_relative"] = r.mean_relative;
           return d;
         },
-        py::arg("model"), py::arg("p"), py::arg("table"));
+        py::arg("model"), py::arg("p"), py::arg("table"), "Errors of M(t) of a model against relaxation data: rms_log10, rms/max/mean relative");
 }
 
 }  // namespace

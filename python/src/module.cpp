@@ -31,7 +31,7 @@ py::array_t<double> to_array(const std::vector<double>& v) {
 
 std::vector<double> to_vector(const py::handle& object) {
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
-  if (!a) throw py::type_error("expected numbers or an array of numbers");
+  if (!a) throw py::type_error("expected numbers or an array of numbers, got " + std::string(py::repr(object)));
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
@@ -43,6 +43,10 @@ void bind_errors(py::module_& m) {
   static py::exception<core::NumericalError> numerical(m, "NumericalError", base.ptr());
   for (py::handle error : std::initializer_list<py::handle>{base, input, usage, numerical})
     error.attr("__module__") = "fitlib";
+  base.attr("__doc__") = "Any error of fitlib; exit_code is fitcli's exit code for it (docs/python.md)";
+  input.attr("__doc__") = "Bad input (fitcli exit 3): file, line, column and key name where it is; detail the reason";
+  usage.attr("__doc__") = "Misuse: an argument out of its range or options that conflict (fitcli exit 2)";
+  numerical.attr("__doc__") = "A solver failed or a result would not be finite (fitcli exit 4)";
   base.attr("exit_code") = int(core::kNumericalFailure);
   input.attr("exit_code") = int(core::kBadInput);
   usage.attr("exit_code") = int(core::kUsageError);
@@ -78,8 +82,12 @@ struct Broadcast {
 
 Broadcast broadcast(const std::vector<py::object>& arguments) {
   py::list arrays;
-  for (const auto& a : arguments)
-    arrays.append(py::array_t<double, py::array::forcecast>::ensure(a));
+  for (const auto& a : arguments) {
+    auto array = py::array_t<double, py::array::forcecast>::ensure(a);
+    // ensure() gives a null handle for text ("abc"): appended, it was a SystemError
+    if (!array) throw py::type_error("expected numbers or an array of numbers, got " + std::string(py::repr(a)));
+    arrays.append(array);
+  }
   const py::list out = py::module_::import("numpy").attr("broadcast_arrays")(*arrays);
   Broadcast b;
   const auto first = out[0].cast<py::array>();
@@ -117,7 +125,7 @@ std::vector<double> checked_values(const model::Model& m, const py::object& p) {
 // Moduli over broadcast arrays of frequency, temperature and amplitude.
 py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, const py::object& f,
                        const py::object& T, const py::object& amplitude, const std::string& mode,
-                       const std::string& orientation) {
+                       const std::string& orientation, const ModuliAt& at) {
   const auto b = broadcast({f, or_nan(T), amplitude});
   const std::size_t n = b.columns[0].size();
   std::vector<double> storage(n), loss(n), mean(n), tan_delta(n);
@@ -129,10 +137,12 @@ py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, cons
     if (!(b.columns[0][i] > 0.0) || !std::isfinite(b.columns[0][i]) || !(b.columns[2][i] >= 0.0))
       throw core::UsageError("frequencies must be positive and amplitudes not negative, got " +
                              core::format_number(b.columns[0][i]) + " Hz, amplitude " + core::format_number(b.columns[2][i]));
+    if (!std::isnan(b.columns[1][i])) require_in("temperature_C", b.columns[1][i], -273.15, 1000.0);
+    require_in("strain_amplitude", b.columns[2][i], 0.0, 10.0);  // fitcli's --amplitude range
     c.frequency_Hz = b.columns[0][i];
     c.temperature_C = b.columns[1][i];
     c.strain_amplitude = b.columns[2][i];
-    const auto r = m.moduli(p.data(), c);
+    const auto r = at ? at(c) : m.moduli(p.data(), c);
     storage[i] = r.storage, loss[i] = r.loss, mean[i] = r.mean, tan_delta[i] = r.loss / r.storage;
   }
   py::dict out;
@@ -236,10 +246,39 @@ data::DynamicTestTable read_table(const py::object& paths, const std::string& fo
   return all;
 }
 
+// A table from arrays: written as native CSV text and read back by the library's reader, so the
+// arrays meet every check a file does (finite numbers, positive frequencies, magnitudes ≤ 1e100).
+data::DynamicTestTable table_from_arrays(const py::object& f, const py::object& storage, const py::object& loss,
+                                         const py::object& T, const py::object& amplitude,
+                                         const py::object& mean_strain, const py::object& weight,
+                                         const std::string& mode) {
+  std::vector<std::string> names{"frequency_Hz", "storage_MPa", "loss_MPa"};
+  std::vector<py::object> given{f, storage, loss};
+  const std::vector<std::pair<const char*, py::object>> optional{
+      {"temperature_C", T}, {"strain_amplitude", amplitude}, {"mean_strain", mean_strain}, {"weight", weight}};
+  for (const auto& [name, value] : optional)
+    if (!value.is_none()) names.push_back(name), given.push_back(value);
+  const auto columns = broadcast(given).columns;
+  std::string text = "mode";
+  for (const auto& name : names) text += "," + name;
+  text += "\n";
+  for (std::size_t i = 0; i < columns[0].size(); ++i) {
+    text += mode;
+    for (const auto& column : columns) text += "," + core::format_number(column[i]);
+    text += "\n";
+  }
+  return data::parse_dynamic_table(text, "arrays", data::ReadOptions{});
+}
+
 void bind_table(py::module_& m) {
   using data::DynamicTestRow;
   using data::DynamicTestTable;
   py::class_<DynamicTestTable> table(m, "Table", "A dynamic-test table (formats.md §1); columns as NumPy arrays");
+  table.def(py::init(&table_from_arrays), py::arg("frequency_Hz"), py::arg("storage_MPa"), py::arg("loss_MPa"),
+            py::arg("temperature_C") = py::none(), py::arg("strain_amplitude") = py::none(),
+            py::arg("mean_strain") = py::none(), py::arg("weight") = py::none(), py::arg("mode") = "shear",
+            "A table from NumPy arrays (or numbers, broadcast): checked as the CSV reader checks a file "
+            "(errors name 'arrays', line = index + 2)");
   table.def("__len__", [](const DynamicTestTable& t) { return t.rows.size(); });
   // Numeric columns as arrays (mean_modulus_MPa: NaN where a row has none), labels as lists.
   def_column(table, "frequency_Hz", [](const DynamicTestRow& r) { return r.condition.frequency_Hz; });
@@ -271,7 +310,7 @@ void bind_table(py::module_& m) {
         [](const std::string& text, const std::string& file_name, const std::string& format, const std::string& mode) {
           return data::parse_dynamic_table(text, file_name, read_options(format, mode, false, false));
         },
-        py::arg("text"), py::arg("file_name") = "table", py::arg("format") = "native", py::arg("mode") = "");
+        py::arg("text"), py::arg("file_name") = "table", py::arg("format") = "native", py::arg("mode") = "", "A dynamic-test table from CSV text (native or pyvisco); file_name names it in errors");
   m.def("read_eplexor_shifts",
         [](const std::string& path) {
           const auto x = data::read_eplexor(path);
@@ -345,7 +384,7 @@ void bind_model(py::module_& m) {
            py::arg("temperature_C") = py::none(), py::arg("mode") = "", py::arg("orientation") = "")
       .def("__repr__", [](const Model& mo) { return "<fitlib.Model " + mo.kind() + " " + mo.options().dump() + ">"; });
 
-  m.def("model_kinds", &model::model_kinds);
+  m.def("model_kinds", &model::model_kinds, "The model kinds make_model builds");
   m.def("make_model",
         [](const std::string& kind, const py::object& options) {
           return std::const_pointer_cast<Model>(model::make_model(kind, to_json(options)));

@@ -10,8 +10,10 @@
 #include "fitlib/belt/accumulation.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/model/fritzson_cases.hpp"
 #include "fitlib/model/material_point.hpp"
+#include "fitlib/model/work_caps.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/writers.hpp"
@@ -73,7 +75,7 @@ surface::SampleSet samples(const py::object& x, const py::object& y, const surfa
 
 void bind_surface(py::module_& m) {
   using surface::Surface;
-  py::class_<surface::Axis>(m, "SurfaceAxis")
+  py::class_<surface::Axis>(m, "SurfaceAxis", "An axis of a surface: name, unit, transform, degree, interval")
       .def_readonly("name", &surface::Axis::name)
       .def_readonly("unit", &surface::Axis::unit)
       .def_property_readonly("transform", [](const surface::Axis& a) { return std::string(surface::to_string(a.transform)); })
@@ -107,10 +109,10 @@ void bind_surface(py::module_& m) {
         return s.contains(p.row(0).data());
       });
 
-  m.def("load_surface", &surface::load_surface, py::arg("path"));
+  m.def("load_surface", &surface::load_surface, py::arg("path"), "Reads and validates a surface JSON (docs/surface.md); InputError names the file and key");
   m.def("surface_from_json",
         [](const py::object& j, const std::string& source) { return surface::surface_from_json(to_json(j), source); },
-        py::arg("document"), py::arg("source") = "surface");
+        py::arg("document"), py::arg("source") = "surface", "A surface from its JSON document (a dict), validated as load_surface");
   m.def("fit_surface",
         [](const py::object& x, const py::object& y, const py::list& axes, const std::string& dependent_name,
            const std::string& name, const std::string& missing, double level_tolerance, const py::object& constraints,
@@ -150,7 +152,7 @@ void bind_surface(py::module_& m) {
           return surface::evaluate_card_grid(c, r);
         },
         py::arg("card"), py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(),
-        py::arg("strain_amplitude") = py::none(), py::arg("mode") = "shear", py::arg("orientation") = "");
+        py::arg("strain_amplitude") = py::none(), py::arg("mode") = "shear", py::arg("orientation") = "", "fitcli surface grid: the card's moduli over amplitudes x frequencies x temperatures (at most 1e6 points)");
   py::class_<surface::ModulusGrid>(m, "ModulusGrid", "A card over a grid (fitcli surface grid)")
       .def_property_readonly("columns", [](const surface::ModulusGrid& g) {
         std::vector<double> a, f, T, s, l, mean;
@@ -243,6 +245,7 @@ void bind_material_point(py::module_& m) {
         [](const MaterialPoint& p, const py::object& time_s, const py::sequence& components, const py::object& T) {
           model::DriveProgram program;
           program.time_s = to_vector(time_s);
+          require_in("len(time_s)", static_cast<double>(program.time_s.size()), 1, model::kMaxPointSteps);
           if (components.size() != 6) throw core::UsageError("drive needs 6 components (None = traction-free)");
           for (int i = 0; i < 6; ++i) program.components[i] = control(components[i]);
           if (!T.is_none()) program.temperature_C = to_vector(T);
@@ -253,6 +256,17 @@ void bind_material_point(py::module_& m) {
   m.def("drive_test",
         [](const MaterialPoint& p, const std::string& mode, const std::string& orientation, double amplitude,
            double mean_strain, double frequency_Hz, int cycles, int steps_per_cycle, double T) {
+          // fitcli material-point's option ranges and work cap
+          require_in("amplitude", amplitude, 0.0, 10.0);
+          require_in("mean_strain", mean_strain, -10.0, 10.0);
+          require_in("frequency_Hz", frequency_Hz, 1e-100, 1e100);
+          if (!std::isnan(T)) require_in("temperature_C", T, -273.15, 1000.0);
+          require_in("cycles", cycles, 1, 1e6);
+          require_in("steps_per_cycle", steps_per_cycle, 4, 1e6);
+          if (static_cast<double>(cycles) * steps_per_cycle > model::kMaxPointSteps)
+            throw core::UsageError("cycles x steps_per_cycle = " + core::format_number(double(cycles) * steps_per_cycle) +
+                                   " steps, above the work cap " + core::format_number(model::kMaxPointSteps) +
+                                   " (about 5 s of a Prony point; docs/reliability.md)");
           model::TestCondition c;
           c.mode = model::parse_test_mode(mode), c.orientation = orientation, c.temperature_C = T;
           const auto h = model::fritzson::cyclic_history(amplitude, mean_strain, frequency_Hz, cycles, steps_per_cycle);
@@ -267,6 +281,7 @@ void bind_material_point(py::module_& m) {
         "fitcli material-point: ε(t) = mean − a cos 2πft in the test's program");
   m.def("fritzson_thesis_case",
         [](const card::Card& c, const std::string& id, int steps_per_cycle) {
+          require_in("steps_per_cycle", steps_per_cycle, 4, model::kMaxCaseStepsPerCycle);  // fitcli's work cap
           const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*c.model(), c.values());
           const auto loops = model::fritzson::run_thesis_case(point, model::fritzson::thesis_case(id), steps_per_cycle);
           py::dict d;
@@ -330,12 +345,12 @@ void bind_scene(py::module_& m) {
       .def_readonly("outputs", &Scene::outputs)
       .def_readonly("materials", &Scene::materials)
       .def("run", [](const Scene& s) { return scene::run_scene(s); }, "Runs the planner (fitcli belt)");
-  py::class_<scene::EffectReport>(m, "EffectReport")
+  py::class_<scene::EffectReport>(m, "EffectReport", "One effect of a scene run: name, ran, wall_s, reason")
       .def_readonly("name", &scene::EffectReport::name)
       .def_readonly("ran", &scene::EffectReport::ran)
       .def_readonly("wall_s", &scene::EffectReport::wall_s)
       .def_readonly("reason", &scene::EffectReport::reason);
-  py::class_<SceneResult>(m, "SceneResult")
+  py::class_<SceneResult>(m, "SceneResult", "What a scene run computed: effects, load cycle, life, warnings (None for what did not run)")
       .def_property_readonly("effects", [](const SceneResult& r) { return r.plan.effects; })
       .def_property_readonly("unavailable_outputs", [](const SceneResult& r) { return r.plan.unavailable_outputs; })
       .def_readonly("warnings", &SceneResult::warnings,
@@ -356,16 +371,27 @@ void bind_scene(py::module_& m) {
       .def_readonly("total_wall_s", &SceneResult::total_wall_s)
       .def("load_history_csv", &scene::load_history_csv);
 
-  m.def("load_scene", &scene::load_scene, py::arg("path"));
-  m.def("parse_scene", &scene::parse_scene, py::arg("toml_text"), py::arg("source_name") = "scene");
-  m.def("run_scene", [](const Scene& s) { return scene::run_scene(s); }, py::arg("scene"));
+  m.def("load_scene", &scene::load_scene, py::arg("path"), "Reads and validates a scene TOML (formats.md §5)");
+  m.def("parse_scene", &scene::parse_scene, py::arg("toml_text"), py::arg("source_name") = "scene", "A scene from TOML text; source_name names it in errors (relative card paths from the current folder)");
+  m.def("run_scene", [](const Scene& s) { return scene::run_scene(s); }, py::arg("scene"), "Runs the effects the scene asks for (fitcli belt): a SceneResult");
   m.def("scene_summary", [](const Scene& s, const SceneResult& r) { return to_python(scene::summary_json(s, r)); },
         py::arg("scene"), py::arg("result"), "The summary.json document of fitcli belt");
   m.def("write_scene_outputs", &scene::write_outputs, py::arg("scene"), py::arg("result"), py::arg("folder"),
-        py::arg("record_timing") = false);
+        py::arg("record_timing") = false, "Writes the scene's outputs (load_history.csv, summary.json, ...) into a folder, as fitcli belt");
   m.def("accumulation_map",
         [](const std::string& spectrum, double shear_stress_MPa, long cycles, int cycle_points, double omega_min,
            double omega_max, int omega_points, double kappa, double strain_limit) {
+          // fitcli accumulate's option ranges and work cap
+          require_in("shear_stress_MPa", shear_stress_MPa, 1e-300, 1e100);
+          require_in("cycles", static_cast<double>(cycles), 1, 1e12);
+          require_in("cycle_points", cycle_points, 1, scene::kMaxAccumulationPoints);
+          require_in("omega_points", omega_points, 1, scene::kMaxAccumulationPoints);
+          require_in("omega_min", omega_min, 1e-300, 1e100);
+          require_in("omega_max", omega_max, omega_min, 1e100);
+          require_in("kappa", kappa, 0.0, 1e100);
+          if (static_cast<double>(cycle_points) * omega_points > scene::kMaxAccumulationWork)
+            throw core::UsageError("cycle_points x omega_points exceeds the work cap " +
+                                   core::format_number(scene::kMaxAccumulationWork) + " (README, work caps)");
           scene::AccumulationSpec spec;
           spec.spectrum = spectrum, spec.shear_stress_MPa = shear_stress_MPa, spec.cycles = cycles;
           spec.cycle_points = cycle_points, spec.omega_min_rad_s = omega_min, spec.omega_max_rad_s = omega_max;

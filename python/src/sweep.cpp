@@ -9,6 +9,7 @@ void bind_sweep(py::module_& m) {
   m.def(
       "sweep",
       [](const std::string& path, int threads, const std::string& out, bool csv) {
+        require_in("threads", threads, 1, 1024);  // fitcli sweep --threads
         const auto sweep = scene::load_sweep(path);
         scene::ThreadExecutor executor(threads);
         scene::SweepRunOptions options;

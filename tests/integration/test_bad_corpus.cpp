@@ -111,9 +111,14 @@ struct RunResult {
 };
 
 // Own runner with names unique to this process and row (not cli_runner.hpp's shared counter).
-RunResult run(const std::string& args, const std::string& base) {
-  const std::string cmd = "timeout -s KILL 300 " + std::string(FITCLI_EXE) + " " + args + " >" +
-                          base + ".out 2>" + base + ".err </dev/null";
+// {stdout_full} in the arguments sends stdout to /dev/full, {stdout_closed} closes it.
+RunResult run(std::string args, const std::string& base) {
+  std::string to = ">" + base + ".out";
+  for (const auto& [token, redirect] : {std::pair<std::string, std::string>{"{stdout_full}", ">/dev/full"},
+                                        {"{stdout_closed}", ">&-"}})
+    if (const auto at = args.find(token); at != std::string::npos) args.erase(at, token.size()), to = redirect;
+  const std::string cmd = "timeout -s KILL 300 " + std::string(FITCLI_EXE) + " " + args + " " + to + " 2>" +
+                          base + ".err </dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -176,7 +181,15 @@ std::string check_row(const Row& r, const std::string& tmp) {
   }
   const std::string out = tmp + "/out-" + std::to_string(r.line) + ".keep";
   write_bytes(out, kSentinel);
-  std::string args = replace_all(r.args, "{}", input);
+  // The same file by other names: through "/./", a symbolic link and a hard link.
+  const std::string link = out + ".symlink", hard = out + ".hardlink";
+  fs::remove(link), fs::remove(hard);
+  fs::create_symlink(out, link);
+  fs::create_hard_link(out, hard);
+  std::string args = replace_all(r.args, "{out_dotted}", tmp + "/./out-" + std::to_string(r.line) + ".keep");
+  args = replace_all(args, "{out_link}", link);
+  args = replace_all(args, "{out_hard}", hard);
+  args = replace_all(args, "{}", input);
   args = replace_all(args, "{root}", FITLIB_SOURCE_DIR);
   args = replace_all(args, "{out}", out);
   args = replace_all(args, "{nodir}", tmp + "/no-dir-" + std::to_string(r.line));

@@ -37,7 +37,9 @@ TEST(LifeCli, ConstantsFittedAtAnotherLevelAreAWarning) {
   const std::string out = unique_dir("life_level_out");
   const auto builtin = run_fitcli("life --scene " + scene + " --out-dir " + out);
   ASSERT_EQ(builtin.exit_code, 0) << builtin.err;
-  EXPECT_NE(builtin.out.find("WARNING: " + warning), std::string::npos) << builtin.out;
+  // on stderr, as every command's warnings (docs/cli.md "Conventions")
+  EXPECT_NE(builtin.err.find("fitcli: warning: " + warning), std::string::npos) << builtin.err;
+  EXPECT_EQ(builtin.out.find("WARNING"), std::string::npos) << builtin.out;
   for (const char* file : {"/life.json", "/summary.json"}) {
     const std::string text = slurp(out + file);
     EXPECT_NE(text.find(warning), std::string::npos) << file;
@@ -362,7 +364,7 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
                              "note: the complete level on the life's default segment (192 elements, 27 mm long, graded "
                              "at the central gap, one cushion row, sheared end faces), with the cards' damage held",
                              "segment FE material (the card's full model, damage held at its tests' drivers)"})
-      EXPECT_NE(r.out.find(part), std::string::npos) << part << " in: " << r.out;
+      EXPECT_NE((r.out + r.err).find(part), std::string::npos) << part << " in: " << r.out << r.err;  // warnings: stderr
   }
 }
 
@@ -605,10 +607,10 @@ TEST(LifeCli, EveryWarningOfTheTableIsInTheJsonAndThePlotMayGoIntoTheOutputFolde
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(slurp(out + "/life.png").substr(0, 4), "\x89PNG");
   std::vector<std::string> table;
-  std::istringstream text(r.out);
+  std::istringstream text(r.err);  // warnings on stderr
   for (std::string line; std::getline(text, line);)
-    if (line.rfind("WARNING: ", 0) == 0) table.push_back(line.substr(9));
-  ASSERT_FALSE(table.empty()) << r.out;  // the span check's cord-line share (about 0.017 against 0.01)
+    if (line.rfind("fitcli: warning: ", 0) == 0) table.push_back(line.substr(17));
+  ASSERT_FALSE(table.empty()) << r.err;  // the span check's cord-line share (about 0.017 against 0.01)
   for (const char* file : {"/life.json", "/summary.json"}) {
     const auto j = nlohmann::json::parse(slurp(out + file));
     ASSERT_TRUE(j.contains("warnings")) << file;

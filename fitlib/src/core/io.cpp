@@ -41,6 +41,16 @@ void check_output_path(const std::string& path) {
   if (::access(folder.c_str(), W_OK) != 0) throw InputError("output folder is not writable", path);
 }
 
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
+  const fs::path ra = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  const fs::path rb = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return !ec && ra == rb;
+}
+
 void prepare_output_dir(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -50,6 +60,9 @@ void prepare_output_dir(const std::string& dir) {
 }
 
 std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))  // it opened, and read as an empty file
+    throw InputError("is a folder, not a file", path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open file", path);
   std::ostringstream ss;

@@ -69,6 +69,11 @@ std::string format_shift_factors(const ShiftFactorTable& table) {
 }
 
 double interpolate_log10_aT(const ShiftFactorTable& table, double temperature_C, double tolerance_C) {
+  // An empty table read front() of nothing (a segmentation fault from Python).
+  if (table.factors.empty()) throw core::InputError("no shift factors to interpolate", table.source_file);
+  if (!std::isfinite(temperature_C) || !(tolerance_C >= 0.0))
+    throw core::UsageError("shift factors: temperature and tolerance must be finite (tolerance >= 0), got " +
+                           format_exact(temperature_C) + " and " + format_exact(tolerance_C) + " degC");
   std::vector<ShiftFactor> sorted = table.factors;
   std::sort(sorted.begin(), sorted.end(),
             [](const ShiftFactor& a, const ShiftFactor& b) { return a.temperature_C < b.temperature_C; });

@@ -25,6 +25,14 @@ std::string time_domain_hint(const std::string& column) {
   return "; relaxation data (a modulus over time) are read in pyvisco's layout: a header t,E_relax (or G_relax), "
          "a units row s,MPa, then the rows, with --format pyvisco (docs/data.md §4)";
 }
+// A pyvisco frequency table read as native: "unknown column 'f'" said nothing of --format.
+std::string pyvisco_hint(const std::string& column) {
+  for (const char* name : {"f", "omega", "E_stor", "E_loss", "G_stor", "G_loss", "Set"})
+    if (column == name)
+      return "; did you mean --format pyvisco? '" + column +
+             "' is a column of pyvisco's layout (f, E_stor, E_loss, T, Set, a units row; docs/data.md)";
+  return "";
+}
 constexpr double kMaxTableMagnitude = 1e100;   // any number in a table
 constexpr double kMinTableFrequency_Hz = 1e-100;
 
@@ -287,7 +295,7 @@ class TableParser {
         }
       if (known) continue;
       const std::string message = "unknown column '" + name + "' (known: " + kKnownColumns + ")" +
-                                  unknown_column_hint(name) + time_domain_hint(name);
+                                  unknown_column_hint(name) + time_domain_hint(name) + pyvisco_hint(name);
       if (!options_.allow_unknown_columns) throw core::InputError(message, file_, line, column);
       table_.warnings.push_back(core::InputError(message + "; ignored", file_, line, column).what());
     }

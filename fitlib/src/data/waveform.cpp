@@ -181,6 +181,14 @@ void period_amplitudes(const TrigSeries& s, const TrigSeries& e, double gain, Pe
   if (!(smooth_stress_amplitude / smooth_strain_amplitude <= 1e12))
     throw InputError("stress amplitude / strain amplitude is not a plausible modulus (strain amplitude " +
                      core::short_number(smooth_strain_amplitude) + ")");
+  // A constant stress (the amplitude is round-off) gave a row with a modulus of 2e-15 MPa: below
+  // 1 Pa (1e-6 MPa) no solid answers, and an amplitude below 1e-9 of the stress level is noise.
+  if (!(smooth_stress_amplitude / smooth_strain_amplitude >= 1e-6) ||
+      smooth_stress_amplitude <= 1e-9 * std::max(std::abs(sigma_max), std::abs(sigma_min)))
+    throw InputError("the stress signal does not oscillate (amplitude " + core::short_number(smooth_stress_amplitude) +
+                     " MPa at a level of " + core::short_number(std::max(std::abs(sigma_max), std::abs(sigma_min))) +
+                     " MPa, modulus " + core::short_number(smooth_stress_amplitude / smooth_strain_amplitude) +
+                     " MPa)");
   r.stress_amplitude_MPa = smooth_stress_amplitude / gain;
   r.strain_amplitude = smooth_strain_amplitude / gain;
   r.mean_stress_MPa = 0.5 * (sigma_max + sigma_min);

@@ -71,6 +71,9 @@ ObservedLife read_life_row(const std::vector<std::string>& f, const Columns& col
     const double v = data::parse_csv_number(field(c), c, file, line, col.at(c) + 1);
     if (c != "temperature_C" && !(v > 0.0))
       throw core::InputError(c + " must be positive", file, line, col.at(c) + 1, c);
+    if (c == "temperature_C" && !(v >= -273.15 && v <= 1000.0))  // as every scene's temperature
+      throw core::InputError("temperature_C must be in [-273.15, 1000] degC, got " + field(c), file, line,
+                             col.at(c) + 1, c);
     return v;
   };
   ObservedLife row;

@@ -22,10 +22,18 @@ constexpr double kGasConstant_kJ_molK = 8.314462618e-3;
 constexpr double kLn10 = 2.302585092994046;
 constexpr int kBrentBits = 40;
 
+// Temperatures and shifts pair up (a shorter log10_aT was read past its end).
+void require_same_length(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT) {
+  if (temperatures_C.size() != log10_aT.size())
+    throw core::UsageError("shift law: " + std::to_string(temperatures_C.size()) + " temperatures but " +
+                           std::to_string(log10_aT.size()) + " log10 a_T");
+}
+
 }  // namespace
 
 WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT, double reference_C,
                double C1_max, double C2_max_K) {
+  require_same_length(temperatures_C, log10_aT);
   WlfFit fit;
   if (temperatures_C.size() < 3) return fit;
   // The free fit where it lies inside the bounds (the same search, the same numbers).
@@ -73,6 +81,7 @@ WlfFit fit_wlf(const std::vector<double>& temperatures_C, const std::vector<doub
 
 ArrheniusFit fit_arrhenius(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT,
                            double reference_C) {
+  require_same_length(temperatures_C, log10_aT);
   ArrheniusFit fit;
   if (temperatures_C.size() < 2) return fit;
   // Linear through the origin in h = (1/T − 1/T_ref) / (R ln 10).
@@ -92,6 +101,7 @@ ArrheniusFit fit_arrhenius(const std::vector<double>& temperatures_C, const std:
 
 PolynomialShiftFit fit_polynomial_shift(const std::vector<double>& temperatures_C, const std::vector<double>& log10_aT,
                                         double reference_C, int degree) {
+  require_same_length(temperatures_C, log10_aT);
   const int m = static_cast<int>(temperatures_C.size());
   if (degree < 1 || m < degree)
     throw core::UsageError("polynomial shift law: degree " + std::to_string(degree) + " needs at least as many shifts (" +

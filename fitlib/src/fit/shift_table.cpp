@@ -1,5 +1,7 @@
 // A master curve's shifts as a text table for reading and as CSV (data, shortest round trip).
+#include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 #include "fitlib/core/format.hpp"
@@ -7,21 +9,38 @@
 
 namespace fitlib::fit {
 
+namespace {
+
+// A figure of the table, "-" where there is none (the reference isotherm's pair rms, a law that
+// needs more isotherms): every --master-curve table printed "nan".
+std::string figure(double value, int significant = 0) {
+  if (!std::isfinite(value)) return "-";
+  return significant > 0 ? core::format_number(value, significant) : core::format_number(value);
+}
+
+std::string column(double value, int width, int decimals) {
+  char text[64];
+  if (std::isfinite(value)) std::snprintf(text, sizeof text, "%*.*f", width, decimals, value);
+  else std::snprintf(text, sizeof text, "%*s", width, "-");
+  return text;
+}
+
+}  // namespace
+
 std::string format_shift_table(const MasterCurve& curve) {
   std::ostringstream s;
   s << "master curve: " << curve.isotherms.size() << " isotherms, T_ref = " << core::format_number(curve.reference_C, 6)
     << " degC\n";
   s << "      T_C   log10_aT   log10_bT   pair_rms  overlap  set\n";
   for (const auto& iso : curve.isotherms) {
-    char line[160];
-    std::snprintf(line, sizeof line, "%9.3f %10.4f %10.4f %10.4f %8d  %s\n", iso.temperature_C, iso.log10_aT,
-                  iso.log10_bT, iso.pair_rms_decades, iso.pair_overlap_points, iso.set.c_str());
-    s << line;
+    s << column(iso.temperature_C, 9, 3) << " " << column(iso.log10_aT, 10, 4) << " " << column(iso.log10_bT, 10, 4)
+      << " " << column(iso.pair_rms_decades, 10, 4) << " " << std::setw(8) << iso.pair_overlap_points << "  " << iso.set
+      << "\n";
   }
-  s << "WLF: C1 = " << core::format_number(curve.wlf.C1, 6) << ", C2 = " << core::format_number(curve.wlf.C2_K, 6)
-    << " K, rms " << core::format_number(curve.wlf.rms_decades, 3) << " decades\n";
-  s << "Arrhenius: E_a = " << core::format_number(curve.arrhenius.activation_energy_kJ_mol, 6) << " kJ/mol, rms "
-    << core::format_number(curve.arrhenius.rms_decades, 3) << " decades\n";
+  s << "WLF: C1 = " << figure(curve.wlf.C1, 6) << ", C2 = " << figure(curve.wlf.C2_K, 6) << " K, rms "
+    << figure(curve.wlf.rms_decades, 3) << " decades\n";
+  s << "Arrhenius: E_a = " << figure(curve.arrhenius.activation_energy_kJ_mol, 6) << " kJ/mol, rms "
+    << figure(curve.arrhenius.rms_decades, 3) << " decades\n";
   for (const auto& m : curve.messages) s << "note: " << m << "\n";
   return s.str();
 }
@@ -29,10 +48,10 @@ std::string format_shift_table(const MasterCurve& curve) {
 std::string shift_table_csv(const MasterCurve& curve) {
   std::ostringstream s;
   s << "# fitlib master curve shifts, T_ref = " << core::format_number(curve.reference_C) << " degC\n";
-  s << "# WLF C1 = " << core::format_number(curve.wlf.C1) << ", C2_K = " << core::format_number(curve.wlf.C2_K)
-    << ", rms_decades = " << core::format_number(curve.wlf.rms_decades, 6) << "\n";
-  s << "# Arrhenius E_a_kJ_mol = " << core::format_number(curve.arrhenius.activation_energy_kJ_mol)
-    << ", rms_decades = " << core::format_number(curve.arrhenius.rms_decades, 6) << "\n";
+  s << "# WLF C1 = " << figure(curve.wlf.C1) << ", C2_K = " << figure(curve.wlf.C2_K)
+    << ", rms_decades = " << figure(curve.wlf.rms_decades, 6) << "\n";
+  s << "# Arrhenius E_a_kJ_mol = " << figure(curve.arrhenius.activation_energy_kJ_mol)
+    << ", rms_decades = " << figure(curve.arrhenius.rms_decades, 6) << "\n";
   s << "T_C,log10_aT,log10_bT,set\n";
   for (const auto& iso : curve.isotherms) {
     std::string set = iso.set;

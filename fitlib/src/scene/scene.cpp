@@ -91,6 +91,12 @@ class Reader {
                    double hi = INFINITY, bool lo_open = false) {
     return number(key, lo, hi, lo_open).value_or(fallback);
   }
+  // A count (cycles, steps, nodes): a whole number in [lo, hi]; 2.5 cycles ran as 2.
+  double count_or(const std::string& key, double fallback, double lo, double hi) {
+    const auto v = number(key, lo, hi, false);
+    if (v && *v != std::floor(*v)) fail(key, "must be a whole number, got " + core::format_number(*v));
+    return v.value_or(fallback);
+  }
   std::optional<std::string> string(const std::string& key) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
@@ -195,7 +201,7 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
   } catch (const core::UsageError& e) {
     r.fail("integration", e.what());
   }
-  g.setup.solver.steps = static_cast<int>(r.number_or("steps", 4, 1, kMaxSegmentSteps));
+  g.setup.solver.steps = static_cast<int>(r.count_or("steps", 4, 1, kMaxSegmentSteps));
   // The element loop's threads (default min(2, hardware)); the results do not depend on it.
   if (auto t = r.number("threads", 1, kMaxSegmentThreads)) {
     if (*t != std::floor(*t)) r.fail("threads", "threads must be a whole number");
@@ -212,7 +218,7 @@ void parse_segment_mesh(Reader& r, segment::MeshKnobs& mk) {
   mk.coarse_size_mm = r.number_or("coarse_size_mm", mk.coarse_size_mm, 0.05, 100.0);
   mk.central_pitches = r.number_or("central_pitches", mk.central_pitches, 0.0, 20.0, true);
   mk.end_pitches = r.number_or("end_pitches", mk.end_pitches, 0.0, 20.0);
-  mk.cushion_rows = static_cast<int>(r.number_or("cushion_rows", mk.cushion_rows, 1, 100));
+  mk.cushion_rows = static_cast<int>(r.count_or("cushion_rows", mk.cushion_rows, 1, 100));
   mk.gap_size_mm = r.number_or("gap_size_mm", mk.gap_size_mm, 0.0, 100.0);  // 0: no grading
   mk.column_growth = r.number_or("column_growth", mk.column_growth, 0.05, 10.0);
   mk.row_growth = r.number_or("row_growth", mk.row_growth, 1.0, 3.0);
@@ -439,12 +445,12 @@ AccumulationSpec parse_accumulation(const toml::table& t, const std::string& sou
             "omega_points", "kappa", "spectrum", "strain_limit"});
   AccumulationSpec a;
   a.shear_stress_MPa = ar.number_or("shear_stress_MPa", a.shear_stress_MPa, 0.0, 1e6, true);
-  a.cycles = static_cast<long>(ar.number_or("cycles", 10000, 1, 1e12));
-  a.cycle_points = static_cast<int>(ar.number_or("cycle_points", 50, 1, kMaxAccumulationPoints));
+  a.cycles = static_cast<long>(ar.count_or("cycles", 10000, 1, 1e12));
+  a.cycle_points = static_cast<int>(ar.count_or("cycle_points", 50, 1, kMaxAccumulationPoints));
   a.omega_min_rad_s = ar.number_or("omega_min_rad_s", a.omega_min_rad_s, 0.0, 1e9, true);
   a.omega_max_rad_s = ar.number_or("omega_max_rad_s", a.omega_max_rad_s, 0.0, 1e9, true);
   if (a.omega_max_rad_s < a.omega_min_rad_s) ar.fail("omega_max_rad_s", "must be >= omega_min_rad_s");
-  a.omega_points = static_cast<int>(ar.number_or("omega_points", 100, 1, kMaxAccumulationPoints));
+  a.omega_points = static_cast<int>(ar.count_or("omega_points", 100, 1, kMaxAccumulationPoints));
   if (static_cast<double>(a.cycle_points) * a.omega_points > kMaxAccumulationWork)
     ar.fail("omega_points", "cycle_points x omega_points exceeds the work cap " + std::to_string(kMaxAccumulationWork) +
                                 " (README, work caps)");
@@ -478,8 +484,8 @@ TensionTestSpec parse_tension_test(const toml::table& t, const std::string& sour
   x.S_N = tr.number("S_N", 0.0, 1e12, true);
   x.tau_T_s = tr.number_or("tau_T_s", x.tau_T_s, 0.0, 1e9);
   x.tau_eps_s = tr.number_or("tau_eps_s", x.tau_eps_s, 0.0, 1e9);
-  x.nodes = static_cast<int>(tr.number_or("nodes", x.nodes, 2, kMaxTensionNodes));
-  x.steps = static_cast<int>(tr.number_or("steps", x.steps, 1, kMaxTensionSteps));
+  x.nodes = static_cast<int>(tr.count_or("nodes", x.nodes, 2, kMaxTensionNodes));
+  x.steps = static_cast<int>(tr.count_or("steps", x.steps, 1, kMaxTensionSteps));
   if (static_cast<double>(x.nodes) * x.steps > kMaxTensionWork)
     tr.fail(tr.has("steps") ? "steps" : "nodes", "nodes x steps exceeds the work cap " +
                                                    std::to_string(kMaxTensionWork) + " (README, work caps)");
@@ -496,7 +502,7 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
     l.fidelity = *f;
   }
   if (auto c = card_file(lr, "card", base)) l.card = *c;
-  l.cycles = static_cast<int>(lr.number_or("cycles", l.cycles, 1, 1e4));
+  l.cycles = static_cast<int>(lr.count_or("cycles", l.cycles, 1, 1e4));
   l.crack_sweep_deg = lr.number("crack_sweep_deg", 0.0, 90.0);
   l.diagnose_failure = lr.boolean("diagnose_failure").value_or(false);
   l.damage_hold = lr.boolean("damage_hold").value_or(true);

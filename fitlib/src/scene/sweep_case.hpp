@@ -18,4 +18,8 @@ Scene case_scene(const Sweep& sweep, const SweepCase& c);
 // values), so a key the scene format rejects is a sweep-file error naming the value's line.
 void validate_sweep_values(const Sweep& sweep, const toml::table& sweep_root);
 
+// The work cap in core-hours (sweep_cost_core_hours above kMaxSweepCoreHours): InputError naming
+// the sweep file, key life.fidelity and the estimate, before the first case runs.
+void check_sweep_cost(const Sweep& sweep);
+
 }  // namespace fitlib::scene

@@ -122,6 +122,10 @@ void parse_axes(const toml::table& root, Sweep& s, const std::string& source) {
       axis.values.push_back(value);
       axis.labels.push_back(label);
     }
+    for (const auto& other : s.axes)
+      if (other.key == axis.key) fail(source, t, at + ".key", "a second axis on " + axis.key + ": give one axis its values");
+    for (const auto& other : s.fixed)
+      if (other.key == axis.key) fail(source, t, at + ".key", axis.key + " is set in [set] too: give it in one place");
     s.axes.push_back(std::move(axis));
   }
 }
@@ -186,6 +190,7 @@ Sweep parse_sweep(const std::string& text, const std::string& source) {
   for (const auto& f : s.scenes) s.scene_texts.push_back(core::read_file(f));
   hash_inputs(s, text);
   validate_sweep_values(s, root);
+  check_sweep_cost(s);
   return s;
 }
 

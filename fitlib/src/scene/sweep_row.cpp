@@ -140,6 +140,26 @@ std::vector<std::string> sweep_header(const Sweep& sweep) {
   return h;
 }
 
+namespace {
+
+// A case's message with the files as the sweep file writes them: the scenes and cards are read at
+// resolved (absolute) paths, which made the table depend on where it ran (docs/sweep.md "Columns").
+std::string as_written(const Sweep& sweep, std::string message) {
+  auto replace = [&](const std::string& from, const std::string& to) {
+    if (from.empty() || from == to) return;
+    for (auto at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+      message.replace(at, from.size(), to);
+  };
+  for (const auto& a : sweep.axes)
+    if (a.key.rfind("belt.materials.", 0) == 0)
+      for (std::size_t v = 0; v < a.values.size(); ++v)
+        if (const auto* path = std::get_if<std::string>(&a.values[v])) replace(*path, a.labels[v]);
+  for (std::size_t k = 0; k < sweep.scenes.size(); ++k) replace(sweep.scenes[k], sweep.scene_labels[k]);
+  return message;
+}
+
+}  // namespace
+
 std::string sweep_row(const Sweep& sweep, std::size_t index) {
   const SweepCase c = sweep_case(sweep, index);
   std::vector<std::string> fields{std::to_string(index), sweep.scene_labels[c.scene]};
@@ -157,7 +177,7 @@ std::string sweep_row(const Sweep& sweep, std::size_t index) {
   fields.insert(fields.end(), results.begin(), results.end());
   fields.push_back(status);
   std::replace(message.begin(), message.end(), '\n', ' ');  // one row per line (resume reads lines)
-  fields.push_back(message);
+  fields.push_back(as_written(sweep, message));
   std::string row;
   for (std::size_t i = 0; i < fields.size(); ++i) row += (i ? "," : "") + csv_field(fields[i]);
   return row;

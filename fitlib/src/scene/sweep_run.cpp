@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/file_lock.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/sweep_run.hpp"
@@ -20,29 +22,54 @@ std::string head_text(const Sweep& sweep) {
   return head + "\n";
 }
 
-// Finished rows of FILE.partial: its head must be this sweep's; row k must be case k; a cut last
-// line is dropped. Returns the case count and keeps the bytes in `table`.
-std::size_t read_partial(const std::string& partial, const std::string& head, std::size_t case_count,
-                         std::string& table) {
-  const std::string bytes = core::read_file(partial);
-  if (bytes.size() < head.size() && head.compare(0, bytes.size(), bytes) == 0) {  // cut in the head
-    table = head;
-    return 0;
-  }
-  if (bytes.compare(0, head.size(), head) != 0)
+// FILE.partial is the table with one more column, row_sha256: the first 16 hex digits of the
+// SHA-256 of the sweep's hash (of the sweep file and every scene and card it names: the case's
+// inputs) and the row (its case number and results). A resumed row that was edited or damaged
+// (a number changed, a nan) is then refused at its line instead of reaching the final file.
+std::string row_checksum(const Sweep& sweep, const std::string& row) {
+  return core::sha256_hex(sweep.sha256 + "\n" + row).substr(0, 16);
+}
+
+std::string partial_head(const std::string& head) { return head.substr(0, head.size() - 1) + ",row_sha256\n"; }
+
+std::string partial_rows(const Sweep& sweep, const std::vector<std::string>& rows) {
+  std::string text;
+  for (const auto& row : rows) text += row + "," + row_checksum(sweep, row) + "\n";
+  return text;
+}
+
+// The finished rows of FILE.partial, verified: its head must be this sweep's; row k must be case
+// k with its checksum; a cut last line is dropped. Returns the case count; the table's rows (without
+// the checksums) go to `table`, the lines kept to `kept`.
+std::size_t read_partial(const std::string& partial, const Sweep& sweep, const std::string& head,
+                         std::string& table, std::string& kept) {
+  const std::string bytes = core::read_file(partial), phead = partial_head(head);
+  table = head;
+  kept = phead;
+  if (bytes.size() < phead.size() && phead.compare(0, bytes.size(), bytes) == 0) return 0;  // cut in the head
+  if (bytes.compare(0, phead.size(), phead) != 0)
     throw core::InputError("the unfinished result file was written for another sweep or other input files "
                            "(its first lines differ); remove it to start over",
                            partial, 1, 1);
-  std::size_t done = 0, pos = head.size();
+  std::size_t done = 0, pos = phead.size();
   for (std::size_t nl; (nl = bytes.find('\n', pos)) != std::string::npos; pos = nl + 1, ++done) {
-    const std::string expect = std::to_string(done) + ",";
-    if (bytes.compare(pos, expect.size(), expect) != 0)
+    const int line = static_cast<int>(done + 3);
+    const std::string text = bytes.substr(pos, nl - pos), expect = std::to_string(done) + ",";
+    if (done >= sweep.case_count)
+      throw core::InputError("holds more rows than the sweep has cases; remove it to start over", partial, line, 1);
+    if (text.compare(0, expect.size(), expect) != 0)
       throw core::InputError("expected the row of case " + std::to_string(done) + "; remove the file to start over",
-                             partial, static_cast<int>(done + 3), 1);
+                             partial, line, 1);
+    const auto comma = text.rfind(',');
+    const std::string row = text.substr(0, comma);
+    if (comma == std::string::npos || text.substr(comma + 1) != row_checksum(sweep, row))
+      throw core::InputError("the row of case " + std::to_string(done) +
+                                 " does not match its row_sha256 (the file was edited or damaged); remove it "
+                                 "to start over",
+                             partial, line, static_cast<int>(comma == std::string::npos ? 1 : comma + 2));
+    table += row + "\n";
+    kept += text + "\n";
   }
-  if (done > case_count)
-    throw core::InputError("holds more rows than the sweep has cases; remove it to start over", partial, 1, 1);
-  table = bytes.substr(0, pos);
   return done;
 }
 
@@ -68,6 +95,22 @@ class ProgressLine {
   std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now(), shown_ = t0_;
 };
 
+// The result file (and its .partial) may be none of the files the sweep reads: the sweep file,
+// its scenes and cards (fitcli refuses --out = --sweep too; the scenes are named inside).
+void refuse_output_on_input(const Sweep& sweep, const std::string& out) {
+  std::vector<std::string> inputs = sweep.scenes;
+  inputs.push_back(sweep.path);
+  for (const auto& a : sweep.axes)
+    for (const auto& v : a.values)
+      if (const auto* path = std::get_if<std::string>(&v); path && a.key.rfind("belt.materials.", 0) == 0)
+        inputs.push_back(*path);
+  for (const auto& in : inputs)
+    for (const std::string& written : {out, out + ".partial"})
+      if (core::same_file(written, in))
+        throw core::InputError("the result file would replace " + in + ", which the sweep reads; write elsewhere",
+                               written);
+}
+
 }  // namespace
 
 std::string sweep_table_head(const Sweep& sweep) {
@@ -79,11 +122,15 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
   const bool writer = ex.writes(), to_file = writer && !opt.out_path.empty();
   const std::string head = head_text(sweep), partial = opt.out_path + ".partial";
   std::size_t done = 0;
+  std::unique_ptr<core::OutputLock> lock;
   if (to_file) {
     core::check_output_path(opt.out_path);
-    if (std::filesystem::exists(partial)) done = read_partial(partial, head, sweep.case_count, result.table);
+    refuse_output_on_input(sweep, opt.out_path);
+    lock = std::make_unique<core::OutputLock>(opt.out_path);
+    std::string kept = partial_head(head);
+    if (std::filesystem::exists(partial)) done = read_partial(partial, sweep, head, result.table, kept);
     else result.table = head;
-    core::write_file_atomically(partial, result.table);  // drops a cut last line
+    core::write_file_atomically(partial, kept);  // drops a cut last line
   } else if (writer) {
     result.table = head;
   }
@@ -100,8 +147,9 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
     if (opt.stop_after > done) end = std::min(end, opt.stop_after);
     const auto t0 = std::chrono::steady_clock::now();
     std::string text;
-    for (const auto& row : ex.rows(sweep, done, end)) text += row + "\n";
-    if (to_file && !(out << text << std::flush))
+    const auto rows = ex.rows(sweep, done, end);
+    for (const auto& row : rows) text += row + "\n";
+    if (to_file && !(out << partial_rows(sweep, rows) << std::flush))
       throw core::InputError("cannot append to the result file", partial);
     result.table += text;
     done = end;
@@ -112,9 +160,10 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
     chunk = ex.share(chunk);
   }
   result.complete = true;
-  if (to_file) {
+  if (to_file) {  // the table without the checksums, then the partial goes
     out.close();
-    std::filesystem::rename(partial, opt.out_path);
+    core::write_file_atomically(opt.out_path, result.table);
+    std::filesystem::remove(partial);
   }
   return result;
 }

@@ -1,6 +1,7 @@
 // Card → modulus grid → surface.
 #include "fitlib/surface/card_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +38,15 @@ ModulusGrid evaluate_card_grid(const card::Card& card, const CardGridRequest& re
     if (!(f > 0.0)) throw core::UsageError("frequencies must be positive, got " + format_number(f));
   for (double a : request.strain_amplitude)
     if (!(a >= 0.0)) throw core::UsageError("strain amplitudes must be >= 0, got " + format_number(a));
+  const double points = static_cast<double>(request.frequency_Hz.size()) *
+                        static_cast<double>(std::max<std::size_t>(1, request.temperature_C.size())) *
+                        static_cast<double>(std::max<std::size_t>(1, request.strain_amplitude.size()));
+  if (points > kMaxCardGridPoints)
+    throw core::InputError("amplitudes x frequencies x temperatures = " + format_number(points) +
+                               " points, about " + format_number(points * kCardGridPointCostS, 3) +
+                               " s and " + format_number(points * 73 / 1e6, 3) + " MB of CSV, above the work cap " +
+                               format_number(kMaxCardGridPoints) + " points (README, work caps); split the grid",
+                           "", 0, 0, "grid points");
   ModulusGrid grid;
   grid.request = request;
   grid.card_name = card.name;

@@ -480,6 +480,7 @@ Statistics statistics_from_json(const nlohmann::json& st) {
 }  // namespace
 
 Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
+  std::string at = "name";  // the key being read, for a JSON type error (it named none)
   try {
     Surface s;
     const auto schema = required<std::string>(j, "schema", source, "");
@@ -487,6 +488,7 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
       throw core::InputError("unknown schema '" + schema + "' (expected " + Surface::kSchema + ")",
                              source, 0, 0, "schema");
     s.name = j.value("name", "");
+    at = "dependent";
     if (j.contains("dependent")) {
       s.dependent_name = j["dependent"].value("name", "");
       s.dependent_unit = j["dependent"].value("unit", "");
@@ -512,15 +514,19 @@ Surface surface_from_json(const nlohmann::json& j, const std::string& source) {
                              source, 0, 0, "control_points.values");
     s.control_points = Eigen::Map<const Eigen::VectorXd>(values.data(),
                                                          static_cast<Eigen::Index>(values.size()));
+    at = "level_grid";
     s.level_grid = j.value("level_grid", false);
+    at = "missing_cells";
     if (j.contains("missing_cells"))
       s.missing_cells = j["missing_cells"].get<std::vector<std::vector<int>>>();
+    at = "constraints";
     if (j.contains("constraints")) s.constraints = constraints_from_json(j["constraints"], s, source);
+    at = "statistics";
     if (j.contains("statistics")) s.statistics = statistics_from_json(j["statistics"]);
     if (j.contains("provenance")) s.provenance = j["provenance"];
     return s;
   } catch (const nlohmann::json::exception& e) {
-    throw core::InputError(std::string("malformed surface: ") + e.what(), source);
+    throw core::InputError(std::string("wrong type: ") + e.what(), source, 0, 0, at);
   }
 }
 

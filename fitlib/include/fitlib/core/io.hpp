@@ -12,6 +12,10 @@ void write_file_atomically(const std::string& path, const std::string& content);
 // them all first and write them all at the end, so a failed run leaves none behind.
 void check_output_path(const std::string& path);
 
+// True when `a` and `b` name one file: the same inode when both exist (hard links, symlinks,
+// "./x" and "x"), else the same resolved absolute path. "-" (stdin/stdout) is no file.
+bool same_file(const std::string& a, const std::string& b);
+
 // Creates the output folder `dir` (and its parents); InputError naming it when that fails.
 void prepare_output_dir(const std::string& dir);
 

@@ -16,6 +16,17 @@ namespace fitlib::scene {
 // 0.2 core-hours (docs/sweep.md "Scaling", bench_sweep), segment-level ones far more.
 constexpr double kMaxSweepCases = 1e6;
 
+// Work cap in estimated cost: CPU time per case at each life fidelity level on the 2-core
+// reference machine (beam: bench_sweep's 0.675 ms; elastic about 1 s, complete 2.5-3.5 s: README
+// tour, bench_life), summed over the cases, at most a day of one core (docs/decisions.md
+// "sweep: work cap in core-hours"). An elastic 10^6-case sweep (about 280 core-hours) is refused.
+struct SweepCaseCosts {
+  double beam, elastic, complete;
+};
+constexpr SweepCaseCosts kSweepCaseCostS{0.675e-3, 1.0, 3.5};
+constexpr double kMaxSweepCoreHours = 24.0;
+
+
 // The columns of a sweep file without [outputs]: the load cycle's headline figures and the life
 // per mode at the planner's fidelity (docs/sweep.md "Columns").
 inline const std::vector<std::string> kDefaultSweepColumns{
@@ -51,6 +62,11 @@ struct Sweep {
 // InputError naming the sweep file, line:column and key path.
 Sweep load_sweep(const std::string& path);
 Sweep parse_sweep(const std::string& toml_text, const std::string& source);
+
+// The estimate: Σ over the cases of their level's cost (a case's level from the planner on its
+// scene; an axis of cards, [life] or [segment] keys enumerated when at most 256 combinations,
+// else its dearest value for every case), in core-hours.
+double sweep_cost_core_hours(const Sweep& sweep);
 
 // Case i of the grid: scene index and one value index per axis. Scenes vary slowest, then the
 // axes in file order; the last axis varies fastest (mixed radix).

@@ -1,0 +1,59 @@
+#include "path_guard.hpp"
+
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
+
+namespace fitcli {
+namespace {
+
+// The options that name files, by role. A sweep's --out also writes FILE.partial (docs/sweep.md).
+const std::set<std::string>& output_options() {
+  static const std::set<std::string> names = {"--out", "--plot", "--vtk", "--surface-out", "--shifts-out", "--peaks-out"};
+  return names;
+}
+const std::set<std::string>& input_options() {
+  static const std::set<std::string> names = {"--data",   "--card",     "--scene",     "--sweep",
+                                              "--shifts", "--schedule", "--observed",  "--start",
+                                              "--signals", "--specimen", "--surface", "--constraints"};
+  return names;
+}
+
+using Named = std::pair<std::string, std::string>;  // option, path
+
+void collect(const CLI::App& app, std::vector<Named>& inputs, std::vector<Named>& outputs) {
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->get_lnames().empty()) continue;
+    const std::string name = "--" + o->get_lnames().front();
+    const bool in = input_options().count(name) > 0, out = output_options().count(name) > 0;
+    if (!in && !out) continue;
+    for (const std::string& path : o->results()) {
+      if (path.empty() || path == "-") continue;
+      (in ? inputs : outputs).emplace_back(name, path);
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands()) collect(*sub, inputs, outputs);
+}
+
+}  // namespace
+
+void refuse_colliding_paths(const CLI::App& app) {
+  std::vector<Named> inputs, outputs;
+  collect(app, inputs, outputs);
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    for (const auto& [option, path] : inputs)
+      if (fitlib::core::same_file(outputs[i].second, path))
+        throw fitlib::core::UsageError(outputs[i].first + " " + outputs[i].second + " is the file " + option +
+                                       " reads (" + path + "): the run would replace its own input; write elsewhere");
+    for (std::size_t j = 0; j < i; ++j)
+      if (fitlib::core::same_file(outputs[i].second, outputs[j].second))
+        throw fitlib::core::UsageError(outputs[i].first + " and " + outputs[j].first + " name one file (" +
+                                       outputs[i].second + "): one output would replace the other");
+  }
+}
+
+}  // namespace fitcli

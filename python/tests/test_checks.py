@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""The Python module as safe as the CLI (issue 37; run by ctest as `python_checks`).
+
+Each bad call that crashed, returned NaN, raised a raw C++ or SystemError, or ran unbounded must
+raise fitlib's typed error (InputError, UsageError: exit codes 3 and 2 of the CLI) before any work;
+every public name has a docstring; tables build from NumPy arrays with the reader's checks.
+Environment: PYTHONPATH = <build>/python, FITLIB_ROOT = the source tree.
+"""
+import math
+import os
+import re
+import sys
+import time
+import traceback
+import warnings
+
+import numpy as np
+
+import fitlib
+
+ROOT = os.environ["FITLIB_ROOT"]
+CARD = os.path.join(ROOT, "tests", "data", "bad", "card", "ok.json")          # a Prony card
+WINDOW_CARD = os.path.join(ROOT, "tests", "data", "bad", "card", "window_23_60.json")
+FRITZSON = os.path.join(ROOT, "datasets", "cards", "material-2-true.json")
+SWEEP = os.path.join(ROOT, "tests", "data", "sweep", "small.toml")
+
+
+def raises(error, call, *words):
+    """call() raises `error` (not a subclass of something else) whose text holds every word, fast."""
+    t0 = time.time()
+    try:
+        call()
+    except error as e:
+        for w in words:
+            assert w in str(e), f"{w!r} not in {e}"
+        assert time.time() - t0 < 5, "refused only after the work"
+        return e
+    except Exception as e:  # noqa: BLE001
+        raise AssertionError(f"{type(e).__name__}: {e} instead of {error.__name__}") from e
+    raise AssertionError(f"no {error.__name__}")
+
+
+def test_empty_shift_table_is_an_error_not_a_segfault():
+    raises(fitlib.InputError, lambda: fitlib.ShiftFactorTable([], []).interpolate(20.0), "no shift factors")
+    raises(fitlib.UsageError, lambda: fitlib.ShiftFactorTable([20, 30], [0, -1]).interpolate(float("nan")))
+    raises(fitlib.UsageError, lambda: fitlib.ShiftFactorTable([20], [0, 1]), "differ in length")
+    raises(fitlib.UsageError, lambda: fitlib.ShiftFactorTable([float("nan")], [0]), "temperature_C")
+
+
+def test_shift_laws_refuse_too_few_or_mismatched_shifts():
+    for call in (lambda: fitlib.fit_wlf([], [], 20.0), lambda: fitlib.fit_wlf([10, 20], [1, 0], 20.0),
+                 lambda: fitlib.fit_arrhenius([20], [0], 20.0),
+                 lambda: fitlib.fit_polynomial_shift([10, 20], [1, 0], 20.0, degree=3)):
+        raises(fitlib.UsageError, call, "shift")
+    raises(fitlib.UsageError, lambda: fitlib.fit_wlf([10, 20, 30], [1, 0], 20.0), "differ in length")
+    raises(fitlib.UsageError, lambda: fitlib.fit_wlf([10, 20, 30], [1, float("inf"), -1], 20.0), "log10_aT")
+    wlf = fitlib.fit_wlf([0, 20, 40, 60], [2.0, 0.0, -1.5, -2.6], 20.0)  # a real fit stays finite
+    assert all(math.isfinite(v) for v in wlf.values()), wlf
+
+
+def test_material_point_arguments_have_the_cli_ranges_and_work_cap():
+    card = fitlib.load_card(CARD)
+    point = fitlib.make_material_point(card.model(), card.values(), bulk_modulus_MPa=2000.0)
+    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, steps_per_cycle=-5), "steps_per_cycle")
+    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, cycles=0), "cycles")
+    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, cycles=100000, steps_per_cycle=100), "work cap")
+    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, amplitude=1e9), "amplitude")
+    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, frequency_Hz=0.0), "frequency_Hz")
+    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, temperature_C=-300.0), "temperature_C")
+    out = fitlib.drive_test(point, cycles=1, steps_per_cycle=20)
+    assert np.all(np.isfinite(out["stress_MPa"]))
+    fritzson = fitlib.load_card(FRITZSON)
+    raises(fitlib.UsageError, lambda: fitlib.fritzson_thesis_case(fritzson, "7.1", steps_per_cycle=10**9),
+           "steps_per_cycle")
+
+
+def test_grid_and_sweep_are_capped_before_work():
+    card = fitlib.load_card(CARD)
+    f = np.logspace(-1, 2, 10000)
+    raises(fitlib.InputError, lambda: fitlib.card_grid(card, f, np.linspace(20, 30, 1000)), "work cap", "points")
+    raises(fitlib.UsageError, lambda: fitlib.sweep(SWEEP, threads=0), "threads")
+    raises(fitlib.UsageError, lambda: fitlib.sweep(SWEEP, threads=-3), "threads")
+    raises(fitlib.UsageError, lambda: fitlib.accumulation_map("box", cycle_points=100000, omega_points=100000),
+           "work cap")
+    raises(fitlib.UsageError, lambda: fitlib.accumulation_map("box", cycle_points=0), "cycle_points")
+
+
+def test_card_eval_and_export_refuse_beyond_the_window_as_the_cli():
+    card = fitlib.load_card(WINDOW_CARD)
+    window = card.fit["data_window"]
+    inside = window["frequency_Hz"][0]
+    raises(fitlib.InputError, lambda: card.eval(1e6), "fit.data_window", "allow_extrapolation")
+    e = raises(fitlib.InputError, lambda: card.eval(inside, temperature_C=200.0), "allow_extrapolation")
+    assert e.key.startswith("fit.data_window."), e.key
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        out = card.eval(1e6, allow_extrapolation=True)
+    assert np.all(np.isfinite(out["storage_MPa"])) and any("extrapolating" in str(w.message) for w in seen)
+    raises(fitlib.InputError, lambda: card.export("abaqus", temperature_C=200.0), "allow_extrapolation")
+    raises(fitlib.UsageError, lambda: card.export("abaqus", poisson_ratio=0.7), "poisson_ratio")
+    raises(fitlib.UsageError, lambda: card.export("ansys", material_id=0), "material_id")
+
+
+def test_card_eval_converts_modes_as_the_cli():
+    card = fitlib.load_card(CARD)  # a shear card without K: E* from G* at nu = 0.4995
+    g = card.eval(1.0)["storage_MPa"]
+    e = card.eval(1.0, mode="uniaxial")["storage_MPa"]
+    assert 2.9 < float(e / g) < 3.01, (g, e)
+
+
+def test_text_for_a_number_is_a_type_error_not_a_system_error():
+    card = fitlib.load_card(CARD)
+    raises(TypeError, lambda: card.eval("abc"), "abc")
+    raises(TypeError, lambda: card.eval(1.0, temperature_C="warm"), "warm")
+    raises(TypeError, lambda: card.model().moduli(card.values(), "abc"), "abc")
+
+
+def test_tables_build_from_numpy_arrays_with_the_readers_checks():
+    f = np.array([0.1, 1.0, 10.0])
+    t = fitlib.Table(f, np.array([2.0, 2.5, 3.0]), np.array([0.2, 0.3, 0.4]), temperature_C=23.0)
+    assert len(t) == 3 and list(t.mode) == ["shear"] * 3 and np.allclose(t.temperature_C, 23.0)
+    assert np.array_equal(t.frequency_Hz, f)
+    raises(fitlib.InputError, lambda: fitlib.Table(f, [2.0, float("nan"), 3.0], [0.2, 0.3, 0.4]), "arrays:3")
+    raises(fitlib.InputError, lambda: fitlib.Table([-1.0], [2.0], [0.2]), "arrays:2")
+    raises(ValueError, lambda: fitlib.Table(f, [2.0, 3.0], [0.2, 0.3, 0.4]))  # shapes that do not broadcast
+
+
+def test_every_public_name_has_a_docstring():
+    missing = []
+    for name in sorted(n for n in dir(fitlib) if not n.startswith("_")):
+        obj = getattr(fitlib, name)
+        if isinstance(obj, (int, float, str)) or type(obj).__name__ == "module":
+            continue
+        # pybind11 writes the signature ("name(args) -> type") into every function's __doc__: a
+        # docstring is text beyond it
+        lines = (getattr(obj, "__doc__", None) or "").splitlines()
+        text = [l for l in lines if l.strip() and not re.match(r"^\s*(\d+\. )?" + name + r"\(", l)
+                and l.strip() != "Overloaded function."]
+        if not text:
+            missing.append(name)
+    assert not missing, f"{len(missing)} public names without a docstring: {missing}"
+
+
+def main():
+    tests = [(n, f) for n, f in sorted(globals().items()) if n.startswith("test_")]
+    failed = 0
+    for name, test in tests:
+        try:
+            test()
+            print(f"ok   {name}")
+        except Exception:  # noqa: BLE001
+            failed += 1
+            print(f"FAIL {name}\n{traceback.format_exc()}")
+    print(f"{len(tests) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,179 @@
+// Outputs that never lie or get lost (docs/reliability.md "Outputs"): a failed write of stdout is
+// an error (exit 3), an output that is an input or another output is refused before any work
+// (exit 2), a sweep's output is locked, and each row a sweep resumes is verified.
+#include <sys/file.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/scene/sweep.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kCard = source_path("tests/data/bad/card/ok.json");
+const std::string kTable = source_path("datasets/materials/synthetic-prony-shear.csv");
+const std::string kSweep = source_path("tests/data/sweep/small.toml");
+
+std::string copy_of(const std::string& from, const std::string& name) {
+  const std::string to = temp_file(name);
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  return to;
+}
+
+// run_fitcli appends its own redirections; these run the shell line themselves.
+int exit_of(const std::string& line) {
+  const int status = std::system(line.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+TEST(Outputs, StdoutThatCannotBeWrittenExitsThree) {
+  const std::string err = temp_file("stdout_full.err");
+  const std::string fitcli = FITCLI_EXE;
+  for (const std::string args : {"eval --card " + kCard + " --frequency-hz 1,2,3",
+                                 "eval --card " + kCard + " --time-s 1,2 --json",
+                                 "export --card " + kCard + " --format abaqus",
+                                 "material-point --card " + kCard + " --cycles 1 --steps-per-cycle 20",
+                                 "sweep --sweep " + kSweep + " --threads 1 --quiet"}) {
+    EXPECT_EQ(exit_of(fitcli + " " + args + " >/dev/full 2>" + err), 3) << args;
+    EXPECT_NE(slurp(err).find("stdout: cannot write the output"), std::string::npos) << slurp(err);
+    EXPECT_EQ(exit_of(fitcli + " " + args + " >&- 2>" + err), 3) << args;  // a closed stdout
+    EXPECT_NE(slurp(err).find("stdout: cannot write the output"), std::string::npos) << slurp(err);
+  }
+  // A closed stdout no longer lends fd 1 to the card being written: the card is the card.
+  const std::string card = temp_file("closed_stdout_card.json");
+  EXPECT_EQ(exit_of(fitcli + " fit --data " + kTable + " --model prony --terms 2 --out " + card + " --quiet >&- 2>" + err), 3);
+  EXPECT_EQ(slurp(card).rfind("{", 0), 0u) << slurp(card).substr(0, 200);
+  // Nothing on stdout: a closed stdout is no error.
+  EXPECT_EQ(exit_of(fitcli + " export --card " + kCard + " --format abaqus --out " + temp_file("m.inp") + " >&- 2>" + err), 0)
+      << slurp(err);
+}
+
+TEST(Outputs, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
+  const std::string table = copy_of(kTable, "collide_table.csv"), card = copy_of(kCard, "collide_card.json");
+  const std::string sweep = temp_file("collide_sweep.toml");
+  const std::string table_bytes = slurp(table), card_bytes = slurp(card);
+  fs::create_symlink(card, temp_file("card_link.json"));
+  fs::create_hard_link(table, temp_file("table_hard.csv"));
+  const std::string dir = fs::path(table).parent_path().string();
+  struct Case {
+    std::string args, message;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"fit --data " + table + " --model prony --terms 2 --out " + table, "--out " + table + " is the file --data reads"},
+           {"fit --data " + table + " --model prony --terms 2 --out " + dir + "/./collide_table.csv", "--data reads"},
+           {"fit --data " + table + " --model prony --terms 2 --out " + temp_file("table_hard.csv"), "--data reads"},
+           {"eval --card " + card + " --frequency-hz 1 --out " + card, "--card reads"},
+           {"eval --card " + temp_file("card_link.json") + " --frequency-hz 1 --out " + card, "--card reads"},
+           {"export --card " + card + " --format abaqus --out " + card, "--card reads"},
+           {"fit --data " + table + " --model prony --terms 2 --out " + temp_file("c.json") + " --plot " +
+                temp_file("c.json"), "--plot and --out name one file"},
+           {"life-fit --observed " + source_path("datasets/life-tests/synthetic-beam.csv") + " --out " +
+                temp_file("lf.json") + " --peaks-out " + temp_file("lf.json"), "--peaks-out and --out name one file"},
+       }) {
+    const auto r = run_fitcli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(slurp(table), table_bytes);
+  EXPECT_EQ(slurp(card), card_bytes);
+  EXPECT_FALSE(fs::exists(temp_file("c.json")));
+  EXPECT_FALSE(fs::exists(temp_file("lf.json")));
+}
+
+std::string cut_checksums(const std::string& partial) {  // FILE.partial without its row_sha256 column
+  std::string out;
+  std::istringstream in(partial);
+  for (std::string line; std::getline(in, line);) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
+TEST(Outputs, ADamagedResumedRowIsRefusedAtItsLine) {
+  const std::string whole = temp_file("sweep_whole.csv"), out = temp_file("sweep_damaged.csv");
+  ASSERT_EQ(run_fitcli("sweep --sweep " + kSweep + " --out " + whole + " --threads 1 --quiet").exit_code, 0);
+  ASSERT_EQ(run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1 --quiet --stop-after 9").exit_code, 0);
+  const std::string partial = slurp(out + ".partial");
+  EXPECT_EQ(slurp(whole).compare(0, cut_checksums(partial).size(), cut_checksums(partial)), 0);
+  // Row of case 4 (line 7): one digit of a number changed, then a nan.
+  auto line_start = [&](int line) {
+    std::size_t at = 0;
+    for (int k = 1; k < line; ++k) at = partial.find('\n', at) + 1;
+    return at;
+  };
+  const std::size_t row = line_start(7), digit = partial.find_first_of("123456789", partial.find(",", row + 2));
+  std::string changed = partial;
+  changed[digit] = changed[digit] == '9' ? '8' : static_cast<char>(changed[digit] + 1);
+  std::ofstream(out + ".partial", std::ios::binary | std::ios::trunc) << changed;
+  auto r = run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(out + ".partial:7:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("row_sha256"), std::string::npos) << r.err;
+  std::string with_nan = partial;
+  with_nan.replace(digit, 1, "nan");
+  std::ofstream(out + ".partial", std::ios::binary | std::ios::trunc) << with_nan;
+  r = run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(out + ".partial:7:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // The intact partial resumes to the bytes of an uninterrupted run.
+  std::ofstream(out + ".partial", std::ios::binary | std::ios::trunc) << partial;
+  r = run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(out), slurp(whole));
+  EXPECT_FALSE(fs::exists(out + ".partial"));
+  EXPECT_FALSE(fs::exists(out + ".lock"));
+}
+
+TEST(Outputs, TwoSweepsOnOneOutputTheSecondIsRefused) {
+  const std::string out = temp_file("sweep_locked.csv");
+  const int fd = ::open((out + ".lock").c_str(), O_RDWR | O_CREAT, 0644);  // as a running sweep holds it
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const auto r = run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(out + ": another run is writing this output now"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out + ".partial"));
+  ::close(fd);  // the holder is gone: its leftover lock file blocks nothing
+  const auto again = run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1 --quiet");
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_TRUE(fs::exists(out));
+}
+
+// 10^6 cases at the beam level (0.675 ms each: 0.19 core-hours) run; the same grid at the elastic
+// level (1 s each: about 280 core-hours) is refused with its estimate before any case runs.
+TEST(Outputs, SweepWorkCapCountsCostNotCases) {
+  auto values = [](double first, double step) {
+    std::string v;
+    for (int i = 0; i < 100; ++i) v += (i ? ", " : "") + std::to_string(first + i * step);
+    return "[" + v + "]";
+  };
+  const std::string path = temp_file("beam_million.toml");
+  std::ofstream(path) << "scenes = [\"" << source_path("datasets/drives/ref-0500-medium.toml") << "\"]\n"
+                      << "[set]\n\"life.fidelity\" = \"beam\"\n"
+                      << "[[axis]]\nkey = \"drive.torque_Nm\"\nvalues = " << values(5, 0.1) << "\n"
+                      << "[[axis]]\nkey = \"conditions.temperature_C\"\nvalues = " << values(20, 1) << "\n"
+                      << "[[axis]]\nkey = \"conditions.friction\"\nvalues = " << values(0.3, 0.002) << "\n"
+                      << "[outputs]\ncolumns = [\"life_h\"]\n";
+  const auto beam = fitlib::scene::load_sweep(path);
+  EXPECT_EQ(beam.case_count, 1000000u);
+  EXPECT_NEAR(fitlib::scene::sweep_cost_core_hours(beam), 1e6 * 0.675e-3 / 3600, 1e-9);
+  try {
+    fitlib::scene::load_sweep(source_path("tests/data/bad/sweep/elastic_million.toml"));
+    ADD_FAILURE() << "an elastic 10^6-case sweep was accepted";
+  } catch (const fitlib::core::InputError& e) {
+    EXPECT_EQ(e.key(), "life.fidelity");
+    EXPECT_NE(std::string(e.what()).find("about 278 core-hours"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
