@@ -11,7 +11,7 @@
 namespace fitlib::data {
 namespace {
 
-using model::DeformationMode;
+using core::DeformationMode;
 
 // Column indices (−1: absent). `stretch` holds the stretch column or its strain alternative,
 // read as λ = 1 + stretch_scale · value + stretch_offset.
@@ -77,11 +77,11 @@ Columns layout(const std::vector<std::string>& names, int line, const std::strin
 double required(const std::vector<std::string>& f, int index, const std::string& name, DeformationMode mode,
                 const std::string& file, int line) {
   if (index < 0)
-    throw core::InputError(std::string("a ") + model::to_string(mode) + " row needs the column '" + name +
+    throw core::InputError(std::string("a ") + core::to_string(mode) + " row needs the column '" + name +
                                "', which the header lacks",
                            file, line);
   if (f[index].empty())
-    throw core::InputError(std::string("empty '") + name + "' in a " + model::to_string(mode) + " row", file, line,
+    throw core::InputError(std::string("empty '") + name + "' in a " + core::to_string(mode) + " row", file, line,
                            index + 1);
   return parse_csv_number(f[index], name, file, line, index + 1);
 }
@@ -91,7 +91,7 @@ void require_empty(const std::vector<std::string>& f, std::initializer_list<std:
                    DeformationMode mode, const std::string& file, int line) {
   for (const auto& [index, name] : columns)
     if (index >= 0 && !f[index].empty())
-      throw core::InputError(std::string("a ") + model::to_string(mode) + " row has a value in '" + name +
+      throw core::InputError(std::string("a ") + core::to_string(mode) + " row has a value in '" + name +
                                  "' (leave the other modes' columns empty)",
                              file, line, index + 1);
 }
@@ -100,9 +100,9 @@ QuasiStaticRow parse_row(const std::vector<std::string>& f, const Columns& c, co
   QuasiStaticRow row;
   row.source_file = file;
   row.source_line = line;
-  const auto mode = model::deformation_mode_from_label(f[c.mode]);
+  const auto mode = core::deformation_mode_from_label(f[c.mode]);
   if (!mode)
-    throw core::InputError("unknown mode '" + f[c.mode] + "' (expected " + model::kDeformationModeLabels + ")", file,
+    throw core::InputError("unknown mode '" + f[c.mode] + "' (expected " + core::kDeformationModeLabels + ")", file,
                            line, c.mode + 1);
   row.mode = *mode;
   switch (row.mode) {

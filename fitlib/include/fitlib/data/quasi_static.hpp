@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "fitlib/model/deformation_mode.hpp"
+#include "fitlib/core/deformation_mode.hpp"
 
 namespace fitlib::data {
 
 struct QuasiStaticRow {
-  model::DeformationMode mode = model::DeformationMode::uniaxial;
-  double abscissa = 1.0;   // stretch λ, shear strain γ or volume ratio J (model::abscissa_name)
+  core::DeformationMode mode = core::DeformationMode::uniaxial;
+  double abscissa = 1.0;   // stretch λ, shear strain γ or volume ratio J (core::abscissa_name)
   double stress_MPa = 0.0;  // nominal stress P11 (P12 in simple shear) or the pressure
   std::string specimen;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();     // NaN: not given
