@@ -7,7 +7,7 @@
 #include "fitlib/data/quasi_static.hpp"
 
 using namespace fitlib;
-using model::DeformationMode;
+using core::DeformationMode;
 
 namespace {
 
