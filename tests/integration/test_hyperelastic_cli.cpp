@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -119,4 +121,28 @@ TEST(HyperelasticCli, ViscoCardCombinesAndExports) {
   EXPECT_NE(deck.out.find("*VISCOELASTIC, TIME=PRONY"), std::string::npos) << deck.out;
   EXPECT_EQ(run_fitcli("eval --card " + vh + " --stretch 2").exit_code, 0);
   EXPECT_EQ(run_fitcli("visco-card --base " + prony + " --prony " + prony).exit_code, 2);
+}
+
+// A visco-hyperelastic card (Ogden 3 on Treloar, a Prony series) as both roles of the medium drive
+// at the complete level: the segment runs it through the material-point contract to finite lives,
+// in equilibrium (issue 36 item 4).
+TEST(HyperelasticCli, ViscoHyperelasticCardRunsTheCompleteLevel) {
+  const std::string dir = temp_file("vh-life-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(run_fitcli("fit --data " + kTreloar + " --model ogden --terms 3 --out " + dir + "/H.json").exit_code, 0);
+  ASSERT_EQ(run_fitcli("fit --data " + source_path("datasets/materials/synthetic-prony-shear.csv") +
+                       " --model prony --terms 4 --out " + dir + "/P.json").exit_code, 0);
+  ASSERT_EQ(run_fitcli("visco-card --base " + dir + "/H.json --prony " + dir + "/P.json --out " + dir + "/VH.json").exit_code, 0);
+  std::ofstream(dir + "/vh.toml") << slurp(source_path("datasets/drives/ref-0500-medium.toml"))
+                                  << "\n[belt.materials]\nbottom = \"VH.json\"\ncushion = \"VH.json\"\n"
+                                  << "\n[life]\nfidelity = \"complete\"\ncycles = 1\n";
+  const auto r = run_fitcli("life --scene " + dir + "/vh.toml --out-dir " + dir + "/out --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto life = nlohmann::json::parse(r.out);
+  ASSERT_EQ(life["modes"].size(), 2u);
+  for (const auto& mode : life["modes"]) {
+    EXPECT_TRUE(std::isfinite(mode["life_cycles"].get<double>()) && mode["life_cycles"].get<double>() > 0.0) << mode.dump();
+  }
+  const auto& e = life["segment_equilibrium"];
+  EXPECT_LT(e["equilibrium_error"].get<double>(), e["equilibrium_error_bound"].get<double>());
 }
