@@ -121,7 +121,7 @@ bool Newton::step(Attempt& at, double res) {
     at.dq = linear_.solve(at.rhs);
   }
   if (!at.dq.allFinite()) return false;
-  const bool slow = at.stale_step && !(res <= knobs_.reuse_contraction * at.res_prev);
+  const bool slow = at.stale_step && !(res <= kReuseContraction * at.res_prev);
   at.stale_step = !at.fresh;
   at.q_prev = at.predictor ? at.q_start : q_;  // the predictor step is taken whole
   at.res_prev = at.predictor ? kInfinity : res;

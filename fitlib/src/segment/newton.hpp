@@ -1,7 +1,7 @@
 #pragma once
 // One load increment's Newton iterations (solver.cpp; docs/segment.md §Solver), with a named step
 // policy. A step is taken on the consistent tangent (or, with `reuse_tangent`, on a kept
-// factorisation while the residual contracts by `reuse_contraction` per iteration: modified Newton).
+// factorisation while the residual contracts by kReuseContraction per iteration: modified Newton).
 // A step that makes no progress — lowers neither the free residual norm nor the energy measure
 // |Δq·r| below kEnergyDrop of its start (a near-incompressible body's residual may rise on the way),
 // or inverts an element — is met, in this order, by:
@@ -38,6 +38,8 @@ class Newton {
   static constexpr double kLargestShift = 1e4;
   // The line search's shortest step (five halvings).
   static constexpr double kSmallestStep = 1.0 / 32.0;
+  // With `reuse_tangent`, a kept factorisation serves while the residual contracts by this per step.
+  static constexpr double kReuseContraction = 0.25;
   // A shift scaled below this is dropped (the iteration is back in Newton's basin).
   static constexpr double kNegligibleShift = 1e-9;
 

@@ -46,11 +46,10 @@ struct SolverKnobs {
   int growth_iterations = 0;
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
   Integration integration = Integration::reduced;
-  // Modified Newton: keep a factorisation while the residual contracts by this factor per
-  // iteration, and start each increment from the last one's extrapolated motion. Off by default:
-  // slower on the load cycle, whose transitions need fresh tangents (docs/segment.md §Cost).
+  // Modified Newton: keep a factorisation while the residual contracts by Newton::kReuseContraction
+  // per iteration, and start each increment from the last one's extrapolated motion. Off by
+  // default: slower on the load cycle, whose transitions need fresh tangents (docs/segment.md §Cost).
   bool reuse_tangent = false;
-  double reuse_contraction = 0.25;
   // Start each increment (after a converged one, not after a cut) from the last increment's
   // displacement extrapolated linearly in λ (time), capped at its size; a start that does not
   // converge is retaken from the linear predictor (docs/segment.md §Solver).
