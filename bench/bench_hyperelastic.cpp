@@ -6,27 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "median_time.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/data/quasi_static.hpp"
 #include "fitlib/fit/hyperelastic.hpp"
 
 using namespace fitlib;
-
-namespace {
-
-template <class F>
-double median_time(int repeats, F&& f) {
-  std::vector<double> t;
-  for (int k = 0; k < repeats; ++k) {
-    const core::Stopwatch w;
-    f();
-    t.push_back(w.seconds());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::string(argv[1]) == "--quick";

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "median_time.hpp"
 #include "fitlib/card/fit_card.hpp"
 #include "fitlib/core/rng.hpp"
 #include "fitlib/core/timer.hpp"
@@ -59,18 +60,6 @@ std::vector<double> truth(int terms) {
   return p;
 }
 
-// Median wall time (s) of `repeats` calls.
-template <class F>
-double median_time(int repeats, F&& f) {
-  std::vector<double> t;
-  for (int k = 0; k < repeats; ++k) {
-    const core::Stopwatch w;
-    f();
-    t.push_back(w.seconds());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 struct LogRms {
   double storage = 0, loss = 0;

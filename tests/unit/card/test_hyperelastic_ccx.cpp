@@ -70,10 +70,19 @@ std::vector<card::ParameterEstimate> estimates(std::initializer_list<double> val
   return out;
 }
 
+// A card of law `kind` with its model's resolved options and the given parameter values.
+card::Card law_card(const std::string& name, const std::string& kind, const nlohmann::json& options,
+                    std::initializer_list<double> values) {
+  card::Card c;
+  c.name = name, c.model_kind = kind, c.model_options = model::make_model(kind, options)->options();
+  c.parameters = estimates(values);
+  return c;
+}
+
 }  // namespace
 
 TEST(HyperelasticCalculix, EveryExportedLawGivesTheCardsStressInOneElement) {
-  if (!have_ccx()) GTEST_SKIP() << "ccx not installed";
+  ASSERT_TRUE(have_ccx()) << "ccx not installed (scripts/install-deps.sh installs calculix-ccx)";
   const auto table =
       data::read_quasi_static_table(std::string(FITLIB_SOURCE_DIR) + "/datasets/materials/treloar1944-czhao.csv");
   const std::vector<std::pair<std::string, nlohmann::json>> laws = {
@@ -107,23 +116,17 @@ TEST(HyperelasticCalculix, CompressibleCardKeepsItsD1) {
   // A compressible card's D1 enters the deck as fitted; ccx's uniaxial stress still matches the
   // card's incompressible evaluation when K ≫ μ0 (docs/decisions.md "Hyperelastic: deviatoric and
   // volumetric fitted apart").
-  if (!have_ccx()) GTEST_SKIP() << "ccx not installed";
-  const auto m = model::make_model("neo-hooke", {{"compressible", true}});
-  card::Card c;
-  c.name = "NH", c.model_kind = "neo-hooke", c.model_options = m->options();
-  c.parameters = estimates({0.2, 2.0 / 2000.0});
+  ASSERT_TRUE(have_ccx()) << "ccx not installed (scripts/install-deps.sh installs calculix-ccx)";
+  const card::Card c = law_card("NH", "neo-hooke", {{"compressible", true}}, {0.2, 2.0 / 2000.0});
   const std::string material = card::export_hyperelastic(c, "abaqus", {});
   EXPECT_NE(material.find("0.2,0.001\n"), std::string::npos) << material;
-  const double expect = m->hyperelastic()->nominal_stress(c.values().data(), DeformationMode::uniaxial, 1.5);
+  const double expect = c.model()->hyperelastic()->nominal_stress(c.values().data(), DeformationMode::uniaxial, 1.5);
   EXPECT_NEAR(ccx_nominal_stress(material, "NH", DeformationMode::uniaxial, 1.5, "nh"), expect, 0.005 * expect);
 }
 
 TEST(HyperelasticExport, ConventionsPerCode) {
   // Ogden: Abaqus μ_i as in the card; ANSYS and LS-DYNA 2 μ_i/α_i; Gent has no Abaqus form.
-  const auto m = model::make_model("ogden", {{"terms", 1}});
-  card::Card c;
-  c.name = "OG", c.model_kind = "ogden", c.model_options = m->options();
-  c.parameters = estimates({0.4, 2.0});
+  const card::Card c = law_card("OG", "ogden", {{"terms", 1}}, {0.4, 2.0});
   card::ExportOptions e;
   e.density_t_per_mm3 = 1.2e-9;
   EXPECT_NE(card::export_hyperelastic(c, "abaqus", e).find("*HYPERELASTIC, OGDEN, N=1\n0.4,2,"), std::string::npos);
@@ -138,10 +141,7 @@ TEST(HyperelasticExport, ConventionsPerCode) {
 }
 
 TEST(HyperelasticExport, ViscoHyperelasticCardCombinesABaseAndAPronyCard) {
-  const auto m = model::make_model("ogden", {{"terms", 1}});
-  card::Card base;
-  base.name = "OG", base.model_kind = "ogden", base.model_options = m->options();
-  base.parameters = estimates({0.4, 2.0});
+  const card::Card base = law_card("OG", "ogden", {{"terms", 1}}, {0.4, 2.0});
   card::Card prony;
   prony.name = "P", prony.model_kind = "prony", prony.model_options = {{"terms", 2}};
   const auto pm = prony.model();
