@@ -222,7 +222,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   const detail::CycleFrame frame{&m, &path_x, &h, T, period, [&h, &integral, K_m, reach, n, T](double lambda) {
                                    return detail::cord_curve(lambda * T, h, integral, K_m, reach, n);
-                                 }};
+                                 }, std::nullopt, 0.0};
   CycleKnobs::EndProfile warping = knobs.end_warping_mm, shear = knobs.end_shear_MPa;
   if (knobs.ends == EndCondition::sheared && !warping && !shear)
     detail::long_belt_ends(section, straight, laws, drive, warping, shear);

@@ -61,7 +61,7 @@ PointMonitor::PointMonitor(const CycleFrame& frame, const Mesh& straight, double
 
 void PointMonitor::converged(double lambda, const StaticSolution& s) {
   const double tau = frame_.tau(lambda);
-  const NeutralCurve curve = frame_.curve_at(lambda);
+  const NeutralCurve& curve = frame_.curve(lambda);
   for (MonitoredHistory& mh : out_) {
     CycleSample c = local_sample(interpolate(s, mh.at, order_, mh.X_mm),
                                  curve.at(curve.s_from_unstrained(mh.point.x_mm)).phi_rad);
@@ -94,7 +94,7 @@ void EquilibriumCheck::converged(double lambda, const StaticSolution& s) {
   out_.equilibrium_error = std::max(out_.equilibrium_error, (reactions + applied).norm() / scale);
   out_.max_cord_reaction_N_mm = std::max(out_.max_cord_reaction_N_mm, cord.norm());
   IncrementLoads q{tau * frame_.period_s, frame_.s_mm(tau), cord, applied};
-  const NeutralCurve curve = frame_.curve_at(lambda);
+  const NeutralCurve& curve = frame_.curve(lambda);
   flank_totals(s, curve, q);
   longitudinal_loads(p, s, curve, m, *frame_.path_x, in_.integration, q);
   const belt::LoadHistory& h = *frame_.history;

@@ -3,6 +3,7 @@
 // the monitored points' stress and strain histories, the equilibrium check and the increment's
 // load totals, the full-field VTK snapshots, and progress.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,13 @@ struct CycleFrame {
   double tau(double lambda) const { return lambda * T; }
   // The segment's middle's path position at λ (0 in the bending step).
   double s_mm(double tau) const { return std::max(0.0, tau - 1.0) * history->length_mm(); }
+  // The cord curve at λ, built once per increment for every observer that reads it.
+  const NeutralCurve& curve(double lambda) const {
+    if (!curve_ || lambda != curve_lambda_) curve_.emplace(curve_at(lambda)), curve_lambda_ = lambda;
+    return *curve_;
+  }
+  mutable std::optional<NeutralCurve> curve_;  // curve()'s cache
+  mutable double curve_lambda_ = 0.0;
 };
 
 // The named points' stresses (local frame of the cord curve) and logarithmic strains, interpolated
