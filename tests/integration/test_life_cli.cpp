@@ -1,6 +1,7 @@
 // fitcli life end to end on every bundled reference drive: finite lives and a governing mode,
 // life.json in the output folder equal to --json, bad scenes exit 3, the elastic level runs the segment.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -321,7 +322,8 @@ TEST(LifeCli, CompleteLevelFailureOnTheMediumDriveSaysWhereWhyAndWhatRuns) {
 // shear to 0.045, uniaxial to 0.015 and 0.01). So held, the medium drive passes both cycles, where the
 // law extrapolated to the cushion's shear amplitude of ~0.9 folds the land in cycle 2; the table
 // says what was held, and damage_hold = false brings the fold back with its remedy named.
-TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDrive) {
+// The [belt.materials] lines of the thesis cards with the window of their synthetic tables.
+std::string windowed_cards(const std::string& tag) {
   const double shear = 0.045 / std::sqrt(2.0), fibre = std::sqrt(2.0) * 0.01;
   std::string cards;
   for (const auto& [role, material, drivers] :
@@ -329,20 +331,25 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
         {"cushion", "material-2", {shear}}}) {
     nlohmann::json card = nlohmann::json::parse(slurp(source_path(std::string("datasets/cards/") + material + "-true.json")));
     card["fit"]["data_window"] = {{"strain_amplitude", {0.001, 0.045}}, {"damage_driver", drivers}};
-    const std::string path = unique_dir(std::string("held_") + material) + ".json";
+    const std::string path = unique_dir(tag + "_" + material) + ".json";
     std::ofstream(path) << card.dump(2);
     cards += std::string(role) + " = \"" + path + "\"\n";
   }
+  return cards;
+}
+
+TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDrive) {
+  const std::string cards = windowed_cards("held");
   const std::string drive = slurp(source_path("datasets/drives/ref-0500-medium.toml"));
   for (const bool hold : {true, false}) {
     const std::string scene = unique_dir(std::string("life_held_") + (hold ? "on" : "off")) + ".toml";
     std::ofstream(scene) << drive << "\n[belt.materials]\n" << cards << "[life]\nfidelity = \"complete\"\ncycles = 2\n"
-                         << (hold ? "" : "damage_hold = false\n");
+                         << (hold ? "" : "beyond_tests = \"extrapolate\"\n");
     const std::string out = unique_dir(std::string("life_held_out_") + (hold ? "on" : "off"));
     const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
     if (!hold) {
       EXPECT_EQ(r.exit_code, 4) << r.err;
-      for (const char* part : {"the load path folds", "[life] damage_hold = true (the default) holds"})
+      for (const char* part : {"the load path folds", "[life] beyond_tests = \"hold\" (the default) holds"})
         EXPECT_NE(r.err.find(part), std::string::npos) << part << " in: " << r.err;
       continue;
     }
@@ -350,6 +357,30 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
     const auto life = nlohmann::json::parse(slurp(out + "/life.json"));
     for (const auto& m : life["modes"]) EXPECT_TRUE(std::isfinite(m["life_cycles"].get<double>())) << m.dump();
     EXPECT_EQ(life["governing_mode"], "radial_crack");
+    // Beyond the tests (docs/fatigue.md §8): the cushion's shear of ~0.9 is ~20x the window's 0.045, so
+    // the separation life says so, flagged, and prints two significant digits.
+    EXPECT_EQ(life["beyond_tests"], "hold");
+    ASSERT_EQ(life["cards_read"].size(), 2u) << life.dump();
+    const auto& cushion = life["cards_read"][1];
+    EXPECT_EQ(cushion["role"], "cushion");
+    EXPECT_TRUE(cushion["frequency_Hz"].is_null());  // the complete level: the full model, no one frequency
+    EXPECT_EQ(cushion["largest_tested_strain_amplitude"], 0.045);
+    EXPECT_NEAR(cushion["beyond_tests_factor"].get<double>(),
+                cushion["reached_strain_amplitude"].get<double>() / 0.045, 1e-12);
+    EXPECT_GT(cushion["beyond_tests_factor"].get<double>(), 5.0);
+    const auto& separation = life["modes"][1];
+    EXPECT_EQ(separation["mode"], "separation");
+    EXPECT_TRUE(separation["extrapolated"].get<bool>());
+    EXPECT_NE(separation["beyond_tests"].get<std::string>().find("cushion read at "), std::string::npos);
+    const std::size_t row = r.out.find("\nseparation ") + 1;
+    ASSERT_NE(row, 0u) << r.out;
+    const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
+    const std::size_t cycles = line.find(" cycles (");
+    ASSERT_NE(cycles, std::string::npos) << line;
+    const std::string number = line.substr(line.find_first_not_of(' ', 10), cycles - line.find_first_not_of(' ', 10));
+    const std::string mantissa = number.substr(0, number.find('e'));
+    EXPECT_LE(std::count_if(mantissa.begin(), mantissa.end(), [](char c) { return std::isdigit(c) != 0; }), 2) << line;
+    EXPECT_NE(r.out.find("beyond the tests: cushion read at "), std::string::npos) << r.out;
     // What the stresses came from (the complete level: 120 planned steps per cycle), in the JSON too.
     const auto& run = life["segment_run"];
     EXPECT_EQ(run["elements"], 192);
@@ -360,12 +391,29 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
     EXPECT_GE(run["cuts"].get<int>(), 0);
     for (const char* part : {"(bottom): its damage is held at the drivers its tests reached (fit.data_window.damage_driver "
                              "0.0318, 0.0141, 0.0318)", "(cushion): its damage is held at the drivers its tests reached",
-                             "damage_hold = false runs the law", "(the segment drove it at 0.",
+                             "beyond_tests = \"extrapolate\" runs the law", "(the segment drove it at 0.",
                              "note: the complete level on the life's default segment (192 elements, 27 mm long, graded "
                              "at the central gap, one cushion row, sheared end faces), with the cards' damage held",
                              "segment FE material (the card's full model, damage held at its tests' drivers)"})
       EXPECT_NE((r.out + r.err).find(part), std::string::npos) << part << " in: " << r.out << r.err;  // warnings: stderr
   }
+}
+
+// [life] beyond_tests = "refuse" (docs/decisions.md "Life: one policy for a card driven beyond its
+// tests"): the medium drive drives both windowed cards beyond 0.045, so the life is refused, exit 3,
+// naming the key and each card with its factor, and no output is left.
+TEST(LifeCli, BeyondTestsRefuseExitsThreeNamingTheKey) {
+  const std::string scene = unique_dir("life_refuse") + ".toml";
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml")) << "\n[belt.materials]\n"
+                       << windowed_cards("refuse") << "[life]\nfidelity = \"elastic\"\ncycles = 1\n"
+                       << "elastic_amplitude = \"small\"\nbeyond_tests = \"refuse\"\n";
+  const std::string out = unique_dir("life_refuse_out");
+  const auto r = run_fitcli("life --scene " + scene + " --out-dir " + out);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  for (const char* part : {"life.beyond_tests", "the segment drove a card beyond its tests", "cushion read at ",
+                           "x its largest tested amplitude", "\"hold\" holds the damage"})
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/life.json"));
 }
 
 // The elastic level folds too where the side pressure is high: the medium drive with a 40 mm

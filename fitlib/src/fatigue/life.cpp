@@ -223,11 +223,11 @@ nlohmann::json finite_or_null(double x) {
 
 namespace {
 
-std::string life_text(double cycles, double hours) {
+std::string life_text(double cycles, double hours, int digits = 4) {
   if (!std::isfinite(cycles)) return "unbounded";
   char buf[96];
-  if (std::isfinite(hours)) std::snprintf(buf, sizeof buf, "%.4g cycles (%.4g h)", cycles, hours);
-  else std::snprintf(buf, sizeof buf, "%.4g cycles", cycles);
+  if (std::isfinite(hours)) std::snprintf(buf, sizeof buf, "%.*g cycles (%.*g h)", digits, cycles, digits, hours);
+  else std::snprintf(buf, sizeof buf, "%.*g cycles", digits, cycles);
   return buf;
 }
 
@@ -239,17 +239,21 @@ std::string life_table(const LifeReport& r) {
   for (const ModeLife& m : r.modes) {
     std::snprintf(buf, sizeof buf, "%-13s %-32s design point %s (x %.3g, y %.3g mm), %zu peaks, "
                   "sum (s/s0)^n %.4g\n", to_string(m.mode),
-                  life_text(m.life_cycles, m.life_h).c_str(), m.design_point.c_str(), m.x_mm,
+                  life_text(m.life_cycles, m.life_h, m.significant_digits).c_str(), m.design_point.c_str(), m.x_mm,
                   m.y_mm, m.peaks.size(), m.sum_terms);
     out += buf;
+    if (!m.beyond_tests.empty()) out += "              beyond the tests: " + m.beyond_tests + "\n";
   }
+  int governing_digits = 4;
+  for (const ModeLife& m : r.modes)
+    if (r.governing == to_string(m.mode)) governing_digits = m.significant_digits;
   if (r.cord_break) {
     const CordBreakLife& k = *r.cord_break;
     std::snprintf(buf, sizeof buf, "%-13s %-32s mean %.4g MPa, amplitude %.4g MPa\n", "cord_break",
                   life_text(k.life_cycles, k.life_h).c_str(), k.mean_MPa, k.amplitude_MPa);
     out += buf;
   }
-  out += "governing: " + r.governing + ", " + life_text(r.life_cycles, r.life_h) + "\n";
+  out += "governing: " + r.governing + ", " + life_text(r.life_cycles, r.life_h, governing_digits) + "\n";
   return out;
 }
 
@@ -271,6 +275,7 @@ nlohmann::json life_to_json(const LifeReport& r, bool effective_stress_history) 
                      {"unbounded", !std::isfinite(m.life_cycles)},
                      {"peaks", peaks},
                      {"miner_shares", shares}});
+    if (!m.beyond_tests.empty()) modes.back()["beyond_tests"] = m.beyond_tests, modes.back()["extrapolated"] = true;
     if (effective_stress_history)
       modes.back()["effective_stress"] = {{"t_s", m.t_s}, {"MPa", m.effective_stress_MPa}};
   }

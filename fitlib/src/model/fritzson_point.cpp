@@ -156,6 +156,14 @@ void record_step(const T* strain, const T* integral, const T* amplitude, const T
 
 }  // namespace
 
+std::array<double, 3> steady_drivers(const Vector6& strain_amplitude) {
+  double e[6];
+  std::array<double, 3> d{};
+  deviatoric(strain_amplitude.data(), e);
+  oscillation_norms(e, d.data());
+  return d;
+}
+
 MaterialState::MaterialState() {
   for (auto& v : viscous_I) v.setZero();
   for (auto& v : viscous_A2) v.setZero();

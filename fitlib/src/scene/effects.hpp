@@ -31,10 +31,12 @@ inline double load_frequency_Hz(const belt::DriveCase& drive) {
 // temperature, frequency; the bulk modulus from the card or [belt.materials] poisson_ratio), with
 // its data-window warnings; InputError at belt.materials.<role> for what the card cannot give
 // (life_effects.cpp; the life's segment levels and `fitcli segment`). At the complete level a damage
-// card's damage is held at its tests' drivers (unless [life] damage_hold = false); `damage_held` says
-// whether it was.
+// card's damage is held at its tests' drivers (unless [life] beyond_tests = "extrapolate"); `damage_held`
+// says whether it was. `amplitude` (elastic fidelity): the strain amplitude the card is read at
+// (model::PointOptions::strain_amplitude; a damage card's drivers held as at the complete level).
 model::MaterialPointPtr card_point(const Scene& scene, const std::string& role, segment::RoleMaterialOptions options,
-                                   std::vector<std::string>& warnings, bool* damage_held = nullptr);
+                                   std::vector<std::string>& warnings, bool* damage_held = nullptr,
+                                   const std::optional<model::Vector6>& amplitude = std::nullopt);
 
 // Belt mechanics (belt_effects.cpp).
 ViscoelasticTension viscoelastic_tension(const belt::DriveCase& drive, bool inertia);

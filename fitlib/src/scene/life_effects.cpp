@@ -1,6 +1,7 @@
 // Life effects of a scene (docs/fatigue.md "Life of a scene"): the fidelity level, the stress
 // histories at the monitored points (beam level; the segment levels once they land) and the
 // fatigue life on them.
+#include "card_reading.hpp"
 #include "effects.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
@@ -43,7 +44,10 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
   const std::string& fidelity = r.plan.life->fidelity;
   if (fidelity != "beam" && (role == "bottom" || role == "cushion"))
     use += std::string(use.empty() ? "" : ", ") +
-           (fidelity == "elastic" ? "segment FE material (storage stiffness at the scene's temperature and load frequency)"
+           (fidelity == "elastic" ? std::string("segment FE material (storage stiffness at the scene's temperature and load "
+                                                "frequency") +
+                                        (r.amplitude_iteration ? ", at the strain amplitude the segment reached" : "") +
+                                        (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")"
                                   : std::string("segment FE material (the card's full model") +
                                         (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")");
   if (use.empty()) use = "not read at fidelity " + fidelity;
@@ -91,18 +95,32 @@ InputFile file_input(const std::string& role, const std::string& path, const std
   return {role, path, core::sha256_hex(core::read_file(path)), use};
 }
 
-// The complete level's damage hold for a damage card (docs/decisions.md "Complete level: damage held
-// beyond the tested amplitudes"): the drivers its tests reached (fit.data_window.damage_driver)
-// unless [life] damage_hold = false; strain_window_warnings says so beside the lives.
+// The damage hold for a damage card (docs/decisions.md "Complete level: damage held beyond the tested
+// amplitudes", "Life: one policy for a card driven beyond its tests"): the drivers its tests reached
+// (fit.data_window.damage_driver) unless [life] beyond_tests = "extrapolate" ("refuse" runs held and
+// refuses afterwards); strain_window_warnings says so beside the lives.
 std::vector<double> damage_hold(const Scene& s, const card::Card& c) {
-  if (s.life && !s.life->damage_hold) return {};
+  if (s.life && s.life->beyond_tests == LifeSpec::BeyondTests::extrapolate) return {};
   return card::DataWindow(c).damage_drivers();
+}
+
+// The elastic equivalent at an amplitude (model::PointOptions::strain_amplitude), which
+// segment::RoleMaterialOptions does not carry.
+model::MaterialPointPtr elastic_point_at(const model::Model& m, const std::vector<double>& values,
+                                         const segment::RoleMaterialOptions& o, const model::Vector6& amplitude) {
+  model::PointOptions po;
+  po.fidelity = model::PointOptions::Fidelity::elastic;
+  po.temperature_C = o.temperature_C, po.frequency_Hz = o.frequency_Hz, po.bulk_modulus_MPa = o.bulk_modulus_MPa;
+  po.damage_driver_hold = o.damage_driver_hold;
+  po.strain_amplitude = amplitude;
+  return model::make_material_point(m, values, po);
 }
 
 }  // namespace
 
 model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segment::RoleMaterialOptions options,
-                                   std::vector<std::string>& warnings, bool* damage_held) {
+                                   std::vector<std::string>& warnings, bool* damage_held,
+                                   const std::optional<model::Vector6>& amplitude) {
   const card::Card c = material_card(s, role);
   const model::ModelPtr model = c.model();
   const std::vector<double> values = c.values();
@@ -111,11 +129,13 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
   model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
   if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
   card_window_warnings(s, role, c, seen, warnings);
-  if (options.fidelity == segment::Fidelity::complete && model->amplitude_dependent())
+  if (model->amplitude_dependent() && (options.fidelity == segment::Fidelity::complete || amplitude))
     options.damage_driver_hold = damage_hold(s, c);
   if (damage_held) *damage_held = !options.damage_driver_hold.empty();
   try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
     options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
+    if (amplitude && options.fidelity == segment::Fidelity::elastic)
+      return elastic_point_at(*model, values, options, *amplitude);
     return segment::role_point(*model, values, options);
   } catch (const core::UsageError& e) {
     throw core::InputError("card " + s.materials.at(role) + ": " + e.what(), s.path, 0, 0, "belt.materials." + role);
@@ -127,7 +147,8 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
 // when the scene gives no card for the role; `held` gets the roles whose card's damage is held.
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
                                                          const std::string& fidelity, std::vector<std::string>& warnings,
-                                                         std::set<std::string>& held) {
+                                                         std::set<std::string>& held,
+                                                         const std::map<std::string, model::Vector6>& amplitudes) {
   std::array<model::MaterialPointPtr, 2> points;
   const auto& roles = kSegmentRoles;
   segment::RoleMaterialOptions options;
@@ -137,7 +158,9 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
   for (int k = 0; k < 2; ++k) {
     if (s.materials.count(roles[k])) {
       bool damage_held = false;
-      points[k] = card_point(s, roles[k], options, warnings, &damage_held);
+      const auto a = amplitudes.find(roles[k]);
+      points[k] = card_point(s, roles[k], options, warnings, &damage_held,
+                             a == amplitudes.end() ? std::nullopt : std::optional<model::Vector6>(a->second));
       if (damage_held) held.insert(roles[k]);
     } else {
       if (options.fidelity == segment::Fidelity::complete)  // it would run isotropic elasticity under its name
@@ -173,8 +196,8 @@ namespace {
 // What holds the damage where the complete level folds: nothing to say when a card's damage is held.
 std::string damage_hold_remedy(const Scene& s, const std::set<std::string>& held) {
   if (!held.empty()) return "";
-  if (s.life && !s.life->damage_hold) return "; [life] damage_hold = true (the default) holds the damage at the drivers "
-                                             "the cards' tests reached";
+  if (s.life && s.life->beyond_tests == LifeSpec::BeyondTests::extrapolate)
+    return "; [life] beyond_tests = \"hold\" (the default) holds the damage at the drivers the cards' tests reached";
   return "; a card fitted to its table (fitcli fit) holds the damage at the drivers its tests reached "
          "(fit.data_window.damage_driver), where the reference drives pass";
 }
@@ -208,25 +231,14 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
   }
 }
 
-// The strain amplitude the segment drove each role's card at — half the range of e11, e22 and the
-// engineering shear 2 e12 (logarithmic, belt frame) over the last cycle, the largest at the role's
-// monitored points — against the card's data window: fitted at 1–4.5 %, a damage law read at
-// 10 % is extrapolated, and the table says so (docs/fatigue.md §8).
-void strain_window_warnings(const Scene& s, const segment::CycleResult& run, const std::set<std::string>& held,
-                            std::vector<std::string>& warnings) {
+// The strain amplitude the segment drove each role's card at (reached_amplitudes: half the range of
+// e11, e22 and the engineering shear 2 e12 over the last cycle, the largest at the role's monitored
+// points) against the card's data window: fitted at 1–4.5 %, a damage law read at 10 % is
+// extrapolated, and the table says so (docs/fatigue.md §8).
+void strain_window_warnings(const Scene& s, const std::map<std::string, ReachedAmplitude>& reached,
+                            const std::set<std::string>& held, std::vector<std::string>& warnings) {
   std::map<std::string, double> amplitude;  // by role
-  for (const segment::MonitoredHistory& m : run.points) {
-    if (m.samples.empty()) continue;
-    const double from_s = m.samples.back().t_s - run.cycle_time_s;
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (const segment::CycleSample& c : m.samples) {
-      if (c.t_s < from_s) continue;
-      const double e[3] = {c.e11, c.e22, 2.0 * c.e12};
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], e[k]), hi[k] = std::max(hi[k], e[k]);
-    }
-    double& a = amplitude[m.role == segment::Role::bottom ? "bottom" : "cushion"];
-    for (int k = 0; k < 3; ++k) a = std::max(a, 0.5 * (hi[k] - lo[k]));
-  }
+  for (const auto& [role, a] : reached) amplitude[role] = a.strain_amplitude;
   for (const auto& [role, a] : amplitude) {
     if (!s.materials.count(role)) continue;
     const card::Card c = material_card(s, role);
@@ -240,8 +252,8 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, con
       std::string drivers;
       for (double d : window.damage_drivers()) drivers += (drivers.empty() ? "" : ", ") + core::format_number(d, 3);
       warnings.push_back("card " + s.materials.at(role) + " (" + role + "): its damage is held at the drivers its tests "
-                         "reached (fit.data_window.damage_driver " + drivers + "): the complete level does not "
-                         "extrapolate the damage law beyond its tests; [life] damage_hold = false runs the law at "
+                         "reached (fit.data_window.damage_driver " + drivers + "): the segment does not "
+                         "extrapolate the damage law beyond its tests; [life] beyond_tests = \"extrapolate\" runs the law at "
                          "every amplitude (the segment drove it at " + core::format_number(a, 3) + ")");
     } else if (window.reads_unknown_amplitude(a))
       warnings.push_back("card " + s.materials.at(role) + " (" + role + ") " + window.unknown_amplitude_clause() +
@@ -250,6 +262,65 @@ void strain_window_warnings(const Scene& s, const segment::CycleResult& run, con
                          (window.amplitude_dependent() ? "" : "; the life is that of a rubber that does not soften") +
                          " (docs/fatigue.md §8)");
   }
+}
+
+// The elastic level's iteration (docs/decisions.md "Elastic level: each card read at the amplitude
+// the segment drives it"): each amplitude-dependent card is re-read at the strain amplitude the last
+// run reached and the segment rerun, until no role's amplitude changes by more than kTolerance
+// (relative) between the run that read it and the run it gave; NumericalError after kMaxRuns runs.
+segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, scene::SegmentLifeSetup& setup,
+                                             segment::CycleResult run, const std::string& remedy,
+                                             std::map<std::string, ReachedAmplitude>& read_at) {
+  constexpr double kTolerance = 0.02;
+  constexpr int kMaxRuns = 8;
+  // The roles whose card softens with the amplitude. Under "hold" a damage card whose window names no
+  // drivers (a card written by hand, as the bundled thesis cards) has nothing to hold at: it keeps the
+  // small-amplitude stiffness, and a warning says so.
+  const bool extrapolate = s.life && s.life->beyond_tests == LifeSpec::BeyondTests::extrapolate;
+  std::set<std::string> roles;
+  for (const char* role : kSegmentRoles) {
+    if (!s.materials.count(role)) continue;
+    const card::Card c = material_card(s, role);
+    if (!c.model()->amplitude_dependent()) continue;
+    if (extrapolate || !card::DataWindow(c).damage_drivers().empty()) roles.insert(role);
+    else
+      r.warnings.push_back("card " + s.materials.at(role) + " (" + role + "): the elastic level reads it at the small "
+                           "amplitude: its data window names no damage drivers its tests reached "
+                           "(fit.data_window.damage_driver; fitcli fit writes them) to hold the damage law at, and "
+                           "[life] beyond_tests = \"extrapolate\" reads the law at the amplitude the segment reaches");
+  }
+  if (roles.empty()) return run;
+  AmplitudeIteration it{1, kTolerance, {}};
+  for (;;) {
+    const std::map<std::string, ReachedAmplitude> reached = reached_amplitudes(run);
+    double change = 0.0;
+    std::string worst;
+    for (const std::string& role : roles) {
+      if (!reached.count(role)) continue;
+      const double now = reached.at(role).strain_amplitude;
+      const double before = read_at.count(role) ? read_at.at(role).strain_amplitude : 0.0;
+      const double c = now > 0.0 ? std::abs(now - before) / now : (before > 0.0 ? 1.0 : 0.0);
+      if (c >= change) change = c, worst = role + " read at " + core::format_number(before, 4) + ", reached " +
+                                           core::format_number(now, 4);
+    }
+    it.changes.push_back(change);
+    if (change <= kTolerance) break;
+    if (it.runs == kMaxRuns)
+      throw core::NumericalError("the elastic level's cards did not settle at the amplitude the segment drives them: "
+                                 "after " + std::to_string(kMaxRuns) + " runs the " + worst + " (change " +
+                                 core::format_number(100.0 * change, 3) + " %, tolerance " +
+                                 core::format_number(100.0 * kTolerance, 3) + " %); [life] fidelity = \"complete\" "
+                                 "runs the cards' full models (docs/decisions.md \"Elastic level: each card read at the "
+                                 "amplitude the segment drives it\")");
+    std::map<std::string, model::Vector6> amplitudes;
+    for (const std::string& role : roles)
+      if (reached.count(role)) read_at[role] = reached.at(role), amplitudes[role] = voigt_amplitude(reached.at(role));
+    setup.materials = segment_materials(s, *r.drive, "elastic", r.warnings, r.segment_damage_held, amplitudes);
+    run = run_segment(*r.cycle, *r.drive, setup, "elastic", remedy);
+    ++it.runs;
+  }
+  r.amplitude_iteration = it;
+  return run;
 }
 
 }  // namespace
@@ -267,7 +338,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
-    setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings, r.segment_damage_held);
+    setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings, r.segment_damage_held, {});
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
@@ -279,9 +350,16 @@ void segment_stresses(const Scene& s, SceneResult& r) {
         if (now > shown) progress->advance(now - shown), shown = now;
       };
     }
-    const segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, damage_hold_remedy(s, r.segment_damage_held));
+    const std::string remedy = damage_hold_remedy(s, r.segment_damage_held);
+    segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, remedy);
+    std::map<std::string, ReachedAmplitude> read_at;  // the elastic level's amplitudes, by role
+    if (r.plan.life->fidelity == "elastic" && (!s.life || s.life->elastic_at_reached_amplitude))
+      run = read_cards_where_driven(s, r, setup, std::move(run), remedy, read_at);
+    const std::map<std::string, ReachedAmplitude> reached = reached_amplitudes(run);
+    r.segment_cards_read = card_readings(s, r.plan.life->fidelity, load_frequency_Hz(*r.drive), reached, read_at);
+    refuse_beyond_tests(s, r.segment_cards_read);
     r.stresses = scene::segment_point_histories(run);
-    strain_window_warnings(s, run, r.segment_damage_held, r.warnings);
+    strain_window_warnings(s, reached, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
     r.segment_run = SegmentRun{run.elements, setup.cycle.cycles, setup.cycle.steps_per_cycle,
                                run.increments, run.newton_iterations, run.cuts};
@@ -330,6 +408,10 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   life.equilibrium = r.segment_equilibrium;
   life.segment_run = r.segment_run;
   life.damage_held = !r.segment_damage_held.empty();
+  life.cards_read = r.segment_cards_read;
+  life.amplitude_iteration = r.amplitude_iteration;
+  life.beyond_tests = to_string(spec.beyond_tests);
+  mark_lives_beyond_tests(life.cards_read, life.report);
   life.fields = r.segment_fields;
   life.heat = r.heat;
   r.life = std::move(life);

@@ -492,9 +492,29 @@ TensionTestSpec parse_tension_test(const toml::table& t, const std::string& sour
   return x;
 }
 
+// [life] beyond_tests, or its older spelling damage_hold (true = hold, false = extrapolate); both given
+// must agree.
+LifeSpec::BeyondTests parse_beyond_tests(Reader& lr) {
+  using B = LifeSpec::BeyondTests;
+  const std::optional<bool> hold = lr.boolean("damage_hold");
+  const std::optional<B> old = hold ? std::optional<B>(*hold ? B::hold : B::extrapolate) : std::nullopt;
+  const std::optional<std::string> word = lr.string("beyond_tests");
+  if (!word) return old.value_or(B::hold);
+  B policy = B::hold;
+  if (*word == "extrapolate") policy = B::extrapolate;
+  else if (*word == "refuse") policy = B::refuse;
+  else if (*word != "hold")
+    lr.fail("beyond_tests", "beyond_tests must be \"hold\", \"extrapolate\" or \"refuse\", not \"" + *word + "\"");
+  if (old && *old != policy)
+    lr.fail("beyond_tests", "beyond_tests = \"" + *word + "\" contradicts damage_hold = " + (*hold ? "true" : "false") +
+                                " (its older spelling): give one of them");
+  return policy;
+}
+
 LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, const std::string& source) {
   Reader lr(t, "life", source);
-  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure", "damage_hold"});
+  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure", "damage_hold", "beyond_tests",
+            "elastic_amplitude"});
   LifeSpec l;
   if (auto f = lr.string("fidelity")) {
     if (!fatigue::is_stress_fidelity(*f))
@@ -505,7 +525,12 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
   l.cycles = static_cast<int>(lr.count_or("cycles", l.cycles, 1, 1e4));
   l.crack_sweep_deg = lr.number("crack_sweep_deg", 0.0, 90.0);
   l.diagnose_failure = lr.boolean("diagnose_failure").value_or(false);
-  l.damage_hold = lr.boolean("damage_hold").value_or(true);
+  l.beyond_tests = parse_beyond_tests(lr);
+  if (auto a = lr.string("elastic_amplitude")) {
+    if (*a != "reached" && *a != "small")
+      lr.fail("elastic_amplitude", "elastic_amplitude must be \"reached\" or \"small\", not \"" + *a + "\"");
+    l.elastic_at_reached_amplitude = *a == "reached";
+  }
   lr.finish();
   return l;
 }
@@ -539,6 +564,15 @@ void parse_flags(Reader& top, const char* table, const std::vector<std::string>&
 }
 
 }  // namespace
+
+const char* to_string(LifeSpec::BeyondTests policy) {
+  switch (policy) {
+    case LifeSpec::BeyondTests::hold: return "hold";
+    case LifeSpec::BeyondTests::extrapolate: return "extrapolate";
+    case LifeSpec::BeyondTests::refuse: return "refuse";
+  }
+  return "hold";
+}
 
 toml::table parse_scene_toml(const std::string& text, const std::string& source) {
   core::check_toml_limits(text, source);

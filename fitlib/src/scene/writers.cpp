@@ -145,6 +145,34 @@ std::string heat_text(const belt::BeltTemperature& h) {
   return o.str();
 }
 
+json card_reading_json(const CardReading& c) {
+  json j = {{"role", c.role}, {"card", c.card}, {"temperature_C", c.temperature_C},
+            {"frequency_Hz", c.frequency_Hz ? json(*c.frequency_Hz) : json(nullptr)},
+            {"read_at_strain_amplitude", c.read_amplitude ? json(*c.read_amplitude) : json(nullptr)},
+            {"reached_strain_amplitude", c.reached_amplitude},
+            {"largest_tested_strain_amplitude", c.largest_tested_amplitude ? json(*c.largest_tested_amplitude) : json(nullptr)}};
+  if (c.read_at) j["read_at_components"] = {{"e11", (*c.read_at)[0]}, {"e22", (*c.read_at)[1]}, {"g12", (*c.read_at)[2]}};
+  if (const std::optional<double> f = c.beyond_tests_factor()) j["beyond_tests_factor"] = *f;
+  return j;
+}
+
+// One line per card: where it was read and how far beyond its tests the segment drove it.
+std::string card_reading_text(const CardReading& c) {
+  std::ostringstream o;
+  o << "card read: " << c.role << " " << c.card << " at " << core::format_number(c.temperature_C, 4) << " degC";
+  if (c.frequency_Hz) o << ", " << core::format_number(*c.frequency_Hz, 4) << " Hz";
+  if (c.read_at)
+    o << ", strain amplitude " << core::format_number(*c.read_amplitude, 3) << " (e11 "
+      << core::format_number((*c.read_at)[0], 3) << ", e22 " << core::format_number((*c.read_at)[1], 3) << ", g12 "
+      << core::format_number((*c.read_at)[2], 3) << ")";
+  else o << (c.frequency_Hz ? ", small amplitude" : ", the card's full model");
+  o << "; the segment reached " << core::format_number(c.reached_amplitude, 3);
+  if (c.largest_tested_amplitude) o << ", tests up to " << core::format_number(*c.largest_tested_amplitude, 3);
+  if (const std::optional<double> f = c.beyond_tests_factor()) o << " (" << core::format_number(*f, 2) << "x beyond)";
+  o << "\n";
+  return o.str();
+}
+
 json life_summary_json(const LifeResult& l, bool effective_stress_history = false) {
   json j = fatigue::life_to_json(l.report, effective_stress_history);
   j["fidelity"] = l.plan.fidelity;
@@ -167,6 +195,14 @@ json life_summary_json(const LifeResult& l, bool effective_stress_history = fals
   if (const std::optional<SegmentRun>& w = l.segment_run)
     j["segment_run"] = {{"elements", w->elements}, {"cycles", w->cycles}, {"steps_per_cycle", w->steps_per_cycle},
                         {"increments", w->increments}, {"newton_iterations", w->newton_iterations}, {"cuts", w->cuts}};
+  if (!l.cards_read.empty()) {  // docs/fatigue.md §8 "The cards at the amplitude the segment drives them"
+    json cards = json::array();
+    for (const CardReading& c : l.cards_read) cards.push_back(card_reading_json(c));
+    j["cards_read"] = cards;
+    j["beyond_tests"] = l.beyond_tests;
+  }
+  if (const std::optional<AmplitudeIteration>& a = l.amplitude_iteration)
+    j["amplitude_iteration"] = {{"runs", a->runs}, {"tolerance", a->tolerance}, {"changes", a->changes}};
   if (!l.fields.empty()) {  // full-field stress files (VTK) by name, so the bytes do not depend on the folder
     json fields = json::array();
     for (const FieldFile& f : l.fields)
@@ -262,6 +298,12 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "safe side) and its N2 within 7 %; [segment] fine_size_mm = 0.35 and cushion_rows = 3 read them at "
            "about 11 x the time (docs/segment.md \"Stress at a point\")\n";
   }
+  for (const CardReading& c : l.cards_read) o << card_reading_text(c);
+  if (const std::optional<AmplitudeIteration>& a = l.amplitude_iteration)
+    o << "elastic level: cards read at the amplitude the segment reached, " << a->runs << " runs, last change "
+      << core::format_number(100.0 * a->changes.back(), 2) << " % (tolerance " << core::format_number(100.0 * a->tolerance, 2)
+      << " %)\n";
+  if (!l.cards_read.empty()) o << "beyond the tests: [life] beyond_tests = \"" << l.beyond_tests << "\"\n";
   for (const std::string& w : r.warnings) o << "WARNING: " << w << "\n";
   for (const FieldFile& f : l.fields)
     o << "stress field at " << f.at << " (s = " << core::format_number(f.s_mm) << " mm, last cycle): " << f.path << "\n";

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
 #include "fitlib/core/error.hpp"
 #include "fitlib/fatigue/life.hpp"
 
@@ -246,6 +248,51 @@ TEST(Life, BadHistoriesAreRefused) {
   }
   EXPECT_THROW(evaluate_life({point("e", Role::bottom, {})}, default_card(), at(80.0)),
                core::InputError);
+}
+
+// The reference of 2^(−bΔT) (docs/decisions.md "Fatigue: the reference temperature of 2^(-b dT) read
+// against the thesis"): ΔT is measured from the card's reference_temperature_C, not from 0 °C (the
+// Celsius zero of T in (6.24)) nor room temperature; Report I's card keeps 80 °C, inside the
+// 60–140 °C over which Report III states the halving per 10 °C (L2949). Moving the reference by
+// 60 °C is the lever the decision pins: 2^(60 b), 445x on separation, 3.34x on the radial crack.
+TEST(Life, TheReferenceOfDeltaTIsTheCardsEightyDegreesInsideTheLawsStatedRange) {
+  const FatigueCard card = default_card();
+  EXPECT_EQ(card.reference_temperature_C, 80.0);
+  EXPECT_GE(card.reference_temperature_C, 60.0);
+  EXPECT_LE(card.reference_temperature_C, 140.0);
+  FatigueCard room = card;
+  room.reference_temperature_C = 20.0;
+  for (Role role : {Role::bottom, Role::cushion}) {
+    const std::vector<PointHistory> pts = {point("p", role, {0, 3, 0.2, 1.5, 0})};
+    const double b = role == Role::bottom ? 0.02897 : 0.1466;
+    const double at80 = evaluate_life(pts, card, at(80.0)).life_cycles;
+    EXPECT_NEAR(evaluate_life(pts, card, at(80.0)).modes[0].temperature_factor, 1.0, 0.0);
+    EXPECT_NEAR(evaluate_life(pts, room, at(80.0)).life_cycles / at80, std::exp2(-60.0 * b), 1e-12);
+  }
+  EXPECT_NEAR(std::exp2(60.0 * 0.1466), 445.0, 0.5);
+}
+
+// A life whose stresses came from a card read beyond its tests (ModeLife::beyond_tests, set by the
+// scene) prints kDigitsBeyondTests significant digits and its clause, and the JSON flags it.
+TEST(Life, ALifeReadBeyondTheTestsIsPrintedWithTwoDigitsAndFlagged) {
+  const FatigueCard card = default_card();
+  LifeReport r = evaluate_life({point("a", Role::bottom, {0, 2.345678, 0})}, card, at(80.0));
+  EXPECT_NE(life_table(r).find(" cycles ("), std::string::npos);
+  char four[32], two[32];
+  std::snprintf(four, sizeof four, "%.4g cycles", r.life_cycles);
+  std::snprintf(two, sizeof two, "%.2g cycles", r.life_cycles);
+  EXPECT_NE(life_table(r).find(four), std::string::npos) << life_table(r);
+  EXPECT_FALSE(life_to_json(r)["modes"][0].contains("extrapolated"));
+  r.modes[0].beyond_tests = "bottom read at 2.1x its largest tested amplitude (0.095 against 0.045)";
+  r.modes[0].significant_digits = kDigitsBeyondTests;
+  const std::string table = life_table(r);
+  EXPECT_EQ(table.find(four), std::string::npos) << table;
+  EXPECT_NE(table.find(two), std::string::npos) << table;
+  EXPECT_NE(table.find("governing: radial_crack, " + std::string(two)), std::string::npos) << table;
+  EXPECT_NE(table.find("beyond the tests: bottom read at 2.1x"), std::string::npos) << table;
+  const auto j = life_to_json(r);
+  EXPECT_TRUE(j["modes"][0]["extrapolated"].get<bool>());
+  EXPECT_EQ(j["modes"][0]["life_cycles"].get<double>(), r.life_cycles);  // the JSON keeps every digit
 }
 
 }  // namespace

@@ -53,6 +53,8 @@ class DataWindow {
   // The largest damage driver of each of the model's (Model::damage_drivers) that its rows reached
   // ("damage_driver"); empty for a model without damage, or a card written before it was stored.
   const std::vector<double>& damage_drivers() const { return damage_driver_; }
+  // The strain amplitudes of its rows ("strain_amplitude": [lo, hi]); none when they gave none.
+  const std::optional<std::pair<double, double>>& strain_amplitude_range() const { return amplitude_; }
 
  private:
   std::optional<std::pair<double, double>> frequency_, reduced_, temperature_, amplitude_;

@@ -85,7 +85,16 @@ struct ModeLife {
   double dominant_peak_share = 0.0;
   int dominant_peak_samples = 0;
   double largest_peak_over_sigma0 = 0.0;  // the largest peak's σ_e/σ0
+  // Set by the caller when the stresses came from a card read beyond its tests ("cushion read at 13x
+  // its largest tested amplitude"): life_table prints the life with kDigitsBeyondTests significant
+  // digits and the clause, life_to_json adds "beyond_tests" and "extrapolated": true.
+  std::string beyond_tests;
+  int significant_digits = 4;
 };
+
+// Significant digits of a life read beyond its cards' tests (docs/decisions.md "Life: one policy for a
+// card driven beyond its tests"): the damage treatment alone moves such a life by 2-4x.
+constexpr int kDigitsBeyondTests = 2;
 
 // A life dominated (> 90 % of the sum) by one peak that fewer than 3 samples carry: the increments
 // may have missed its top, so the life can be off by the life exponent (docs/segment.md "The driver

@@ -9,6 +9,7 @@
 // ln U = ½ ln(FᵀF) (docs/model.md, "Finite strain"), the stress is the Kirchhoff stress in the unrotated frame.
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <type_traits>
@@ -123,6 +124,8 @@ class MaterialPoint {
   // stress reads min(e^a, ceiling), the state records e^a itself; empty = no hold.
   void hold_damage_beyond(const std::vector<double>& ceiling);
   bool damage_held() const { return driver_ceiling_[0] != kNoCeiling; }
+  // The driver the stress reads for an amplitude e^a of part j (0 I, 1 A1, 2 A2): e^a, or its hold.
+  double held_driver(int j, double amplitude) const { return std::min(amplitude, driver_ceiling_[j]); }
 
   // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
   template <typename T, typename In, typename Out>
@@ -142,6 +145,11 @@ class MaterialPoint {
   static constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
   std::array<double, 3> driver_ceiling_{{kNoCeiling, kNoCeiling, kNoCeiling}};
 };
+
+// The damage drivers (I, A1, A2: 4.32, 4.77, 4.78) of a steady oscillation of amplitude ε̂ (Voigt,
+// engineering shear) about its mean: the norms of its deviatoric part, the e^a the update reaches
+// once the amplitude has saturated (the elastic equivalent at an amplitude, PointOptions::strain_amplitude).
+std::array<double, 3> steady_drivers(const Vector6& strain_amplitude);
 
 // A dynamic test's loading at one point: which strain the test prescribes and which stresses
 // are zero. shear: γ_ij prescribed, all other strains 0 (simple shear, γ < 0.1, docs/fritzson.md §7);

@@ -29,6 +29,7 @@
 #include <complex>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,14 @@ struct PointOptions {
   Fidelity fidelity = Fidelity::viscoelastic;
   double frequency_Hz = 1.0;                                          // elastic fidelity only
   double temperature_C = std::numeric_limits<double>::quiet_NaN();    // NaN = card reference
+  // Elastic fidelity: the amplitude ε̂ of a steady strain oscillation about its mean, ε(t) = ε_mean +
+  // ε̂ cos ωt (Voigt, engineering shear, with signs), at which the elastic equivalent is read. A
+  // model whose moduli depend on the amplitude (Model::amplitude_dependent) gives the storage
+  // stiffness of its steady response there, the secant of the cycle's first harmonic (Fritzson: the
+  // damage drivers of that oscillation, held at damage_driver_hold when given; docs/model.md
+  // "Elastic equivalent at an amplitude"); the others answer alike at every amplitude. Unset = the
+  // small-amplitude (virgin) stiffness.
+  std::optional<Vector6> strain_amplitude;
   // Bulk modulus K (MPa) for a linear shear card without its own K; NaN = the card's K (an error
   // when it has none).
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();

@@ -1,6 +1,7 @@
 #pragma once
 // Typed results of a scene run: one slot per effect's product (docs/belt.md "Planner"). JSON is
 // made only by the writers (writers.hpp).
+#include <array>
 #include <map>
 #include <set>
 #include <optional>
@@ -121,6 +122,33 @@ struct FieldFile {         // a full-field stress written by the segment run
   std::string path;
 };
 
+// How the segment levels read a role's card (docs/fatigue.md §8 "The cards at the amplitude the
+// segment drives them"): at the elastic level the storage stiffness at the scene's temperature, the
+// load frequency and (a card whose moduli depend on the amplitude) the strain amplitude the segment
+// reached; at the complete level the card's full model at the temperature.
+struct CardReading {
+  std::string role, card;
+  double temperature_C = 0.0;
+  std::optional<double> frequency_Hz;  // elastic level
+  // Elastic level, an amplitude-dependent card: the amplitude it was read at, (e11, e22, 2 e12) and
+  // its largest component; unset: the small-amplitude stiffness (or the complete level).
+  std::optional<std::array<double, 3>> read_at;
+  std::optional<double> read_amplitude;
+  double reached_amplitude = 0.0;  // half the range of e11, e22, 2 e12 over the last cycle, largest point
+  std::optional<double> largest_tested_amplitude;  // the card's fit.data_window.strain_amplitude[1]
+  // reached / largest tested, when above 1: the card was read beyond its tests.
+  std::optional<double> beyond_tests_factor() const;
+};
+
+// The elastic level's iteration to the amplitudes the segment reaches (docs/decisions.md "Elastic
+// level: each card read at the amplitude the segment drives it"): runs, the tolerance and each run's
+// largest relative change of a role's amplitude.
+struct AmplitudeIteration {
+  int runs = 0;
+  double tolerance = 0.0;
+  std::vector<double> changes;
+};
+
 struct LifeResult {
   LifePlan plan;
   std::vector<InputFile> inputs;
@@ -132,6 +160,9 @@ struct LifeResult {
   // B10/B50 per mode whose card law states a scatter (docs/fatigue.md §9); empty: medians only.
   std::vector<fatigue::ModeDistribution> distribution;
   std::optional<belt::BeltTemperature> heat;  // [effects] heat_buildup: the temperature the life ran at
+  std::vector<CardReading> cards_read;          // the segment levels
+  std::optional<AmplitudeIteration> amplitude_iteration;
+  std::string beyond_tests;                     // the [life] beyond_tests policy the run took
 };
 
 struct SceneResult {
@@ -154,6 +185,8 @@ struct SceneResult {
   std::optional<SegmentRun> segment_run;
   std::set<std::string> segment_damage_held;  // roles whose card's damage the complete level held
   std::vector<FieldFile> segment_fields;
+  std::vector<CardReading> segment_cards_read;
+  std::optional<AmplitudeIteration> amplitude_iteration;
   std::optional<LifeResult> life;
   double total_wall_s = 0.0;
   // Inputs used beyond what they vouch for: a card evaluated outside its data window (the

@@ -85,11 +85,19 @@ struct LifeSpec {
   int cycles = 3;                         // load cycles the segment levels run (beam: one exact cycle)
   std::optional<double> crack_sweep_deg;  // overrides the card's mode-1 sweep
   bool diagnose_failure = false;          // a failed segment run says why (SolverKnobs::diagnose_failure)
-  // Complete level, cards with damage: hold the damage at the drivers the card's tests reached
-  // (fit.data_window.damage_driver; model::PointOptions::damage_driver_hold); false = the law at
-  // every amplitude.
-  bool damage_hold = true;
+  // Where the segment drives a card beyond its tests (docs/decisions.md "Life: one policy for a card
+  // driven beyond its tests"): hold — a damage card's damage is held at the drivers its tests reached
+  // (fit.data_window.damage_driver; model::PointOptions::damage_driver_hold) at both segment levels;
+  // extrapolate — the damage law at every amplitude; refuse — the life is refused (exit 3, key
+  // life.beyond_tests) where a card is driven beyond its largest tested amplitude. `damage_hold =
+  // true | false` is the older spelling of hold | extrapolate.
+  enum class BeyondTests { hold, extrapolate, refuse };
+  BeyondTests beyond_tests = BeyondTests::hold;
+  // Elastic level: read the amplitude-dependent cards at the amplitude the segment reaches (true, the
+  // default; [life] elastic_amplitude = "reached") or at the smallest ("small", as before issue 33).
+  bool elastic_at_reached_amplitude = true;
 };
+const char* to_string(LifeSpec::BeyondTests policy);
 
 struct Scene {
   std::string name;
