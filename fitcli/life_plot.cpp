@@ -18,10 +18,11 @@
 namespace fitcli {
 namespace {
 
-std::string cycles_text(double n) {
+// Three significant digits, or fewer for a life read beyond its cards' tests (ModeLife::significant_digits).
+std::string cycles_text(double n, int digits = 3) {
   if (!std::isfinite(n)) return "unbounded";
   char b[48];
-  std::snprintf(b, sizeof b, "%.3g cycles", n);
+  std::snprintf(b, sizeof b, "%.*g cycles", std::min(digits, 3), n);
   return b;
 }
 
@@ -99,8 +100,11 @@ std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::sc
   std::ostringstream s;
   load_cycle_data(s, cycle, panels, png);
   for (std::size_t k = 0; k < report.modes.size(); ++k) mode_panel(s, report.modes[k], cycle.cycle_time_s, static_cast<int>(k));
+  int digits = 3;
+  for (const auto& m : report.modes)
+    if (report.governing == fitlib::fatigue::to_string(m.mode)) digits = m.significant_digits;
   const std::string governing = report.governing == "none" ? "no significant peak"
-                                                            : report.governing + ", " + cycles_text(report.life_cycles);
+                                                            : report.governing + ", " + cycles_text(report.life_cycles, digits);
   // The level in the title: an elastic and a complete figure of one drive are read side by side.
   load_cycle_panel(s, cycle, panels, scene_title(scene) + ", " + r.life->plan.fidelity + " level: governing " + governing);
   s << "unset y2tics\nunset y2label\nset ytics mirror\nunset key\nset yrange [0:*]\n";
@@ -108,7 +112,7 @@ std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::sc
     const auto& m = report.modes[k];
     if (k + 1 == report.modes.size()) s << "set xlabel 'time in the load cycle [ms]'\n";
     s << "set title " << gnuplot_quoted(std::string(fitlib::fatigue::to_string(m.mode)) + " at " + m.design_point +
-                                         ": " + cycles_text(m.life_cycles) + " (red: the peaks in the sum)")
+                                         ": " + cycles_text(m.life_cycles, m.significant_digits) + " (red: the peaks in the sum)")
       << " noenhanced\nset ylabel 'σ_e [MPa]'\nplot $e" << k << " using 1:2 with lines lc rgb 'black', $p" << k
       << " using 1:2 with points pt 7 ps 1.1 lc rgb '#d7191c'\n";
   }
