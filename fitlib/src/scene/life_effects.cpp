@@ -336,7 +336,18 @@ segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, sce
       break;
     }
     setup.materials = points;
-    run = run_segment(*r.cycle, *r.drive, setup, "elastic", remedy);
+    try {
+      run = run_segment(*r.cycle, *r.drive, setup, "elastic", remedy);
+    } catch (const core::NumericalError& e) {
+      std::string read;
+      for (const auto& [role, a] : read_at) read += (read.empty() ? "" : ", ") + role + " " + core::format_number(a.strain_amplitude, 3);
+      throw core::NumericalError(std::string(e.what()) + ". This was run " + std::to_string(it.runs + 1) +
+                                 " of the elastic level's reading of the cards at the amplitude the segment reached (" +
+                                 read + "): one secant stiffness per role, that of its most strained point, softens "
+                                 "the whole role; [life] elastic_amplitude = \"small\" reads the cards at their "
+                                 "small-amplitude stiffness, fidelity = \"complete\" softens each point by its own "
+                                 "amplitude");
+    }
     ++it.runs;
   }
   r.amplitude_iteration = it;
