@@ -514,7 +514,8 @@ LifePlan choose_life_plan(const Scene& s) {
   // The elastic level takes about 1 s (0.97-1.05 s CPU per drive with the thesis cards, 2 cycles,
   // graded life mesh); the complete level is asked for: it stops on the medium and heavy reference
   // drives (docs/segment.md "Cost").
-  return {"elastic", "default: " + why + " (about 1 s); "
+  return {"elastic", "default: " + why + " (about 1 s a segment run; cards with tested damage drivers are read at "
+                     "the strain amplitude the segment reaches, in two or more runs); "
                      "[life] fidelity = \"complete\" runs the full card models (about 5 s on the light drive; "
                      "with the damage model's cards the load path folds on the medium and heavy reference drives: "
                      "docs/segment.md), \"beam\" the layered "
