@@ -44,7 +44,8 @@ TEST(SceneHeat, OffGivesTodaysLivesBitForBit) {
     belt::LoadCycleOptions o;
     o.effects = scene::make_plan(absent).load_cycle;
     const auto cycle = belt::compute_load_cycle(d, o);
-    const auto direct = fatigue::beam_life(cycle, d, fatigue::default_beam_section(d, 80.0), fatigue::default_card(), 80.0);
+    const auto direct = fatigue::beam_life(cycle, d, fatigue::default_beam_section(d, 80.0),
+                                           fatigue::card_at_level(fatigue::default_card(), "beam"), 80.0);
     for (std::size_t k = 0; k < direct.modes.size(); ++k)
       EXPECT_EQ(a.life->report.modes[k].life_cycles, direct.modes[k].life_cycles) << load;
   }

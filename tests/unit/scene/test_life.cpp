@@ -71,7 +71,8 @@ TEST(SceneLife, EqualsTheFatigueModulesBeamLifeOnEveryReferenceDrive) {
     const auto s = with_life(load);
     const auto r = scene::run_scene(s);
     ASSERT_TRUE(r.life.has_value()) << load;
-    const auto expected = beam_route(s, fatigue::default_card());
+    // the planner reads the card's beam-level constants (docs/fatigue.md §4 "One life scale for every level")
+    const auto expected = beam_route(s, fatigue::card_at_level(fatigue::default_card(), "beam"));
     ASSERT_EQ(r.life->report.modes.size(), expected.modes.size());
     for (std::size_t m = 0; m < expected.modes.size(); ++m) {
       EXPECT_EQ(r.life->report.modes[m].life_cycles, expected.modes[m].life_cycles) << load;
@@ -137,6 +138,7 @@ TEST(SceneLife, CardAndSweepFromTheSceneWithTheCardsSha256) {
   // A card with another separation exponent and a zero crack sweep: the life must follow it.
   fatigue::FatigueCard card = fatigue::default_card();
   card.separation.n = 9.0;
+  card.levels.clear();  // no beam-level constants: the run reads the modes'
   const auto path = fitlib_test::temp_path("card.json");
   fatigue::save_card(path, card);
   auto s = with_life("medium");
@@ -156,7 +158,8 @@ TEST(SceneLife, CardAndSweepFromTheSceneWithTheCardsSha256) {
   // The bundled card given by path gives the default life.
   s.life->card = kBundledCard;
   s.life->crack_sweep_deg.reset();
-  EXPECT_EQ(scene::run_scene(s).life->report.life_cycles, beam_route(s, fatigue::default_card()).life_cycles);
+  EXPECT_EQ(scene::run_scene(s).life->report.life_cycles,
+            beam_route(s, fatigue::card_at_level(fatigue::default_card(), "beam")).life_cycles);
 }
 
 TEST(SceneLife, LifeJsonWithoutWallTimesIsByteIdenticalAndFinite) {
