@@ -43,7 +43,10 @@ bool off_scale(const scene::SceneResult& r) {
   return false;
 }
 
-const nlohmann::json& calibration() { return fatigue::default_card().provenance.at("level_calibration"); }
+const nlohmann::json& calibration() {
+  static const fatigue::FatigueCard card = fatigue::default_card();
+  return card.provenance.at("level_calibration");
+}
 
 std::vector<std::string> accelerated_drives() {
   std::vector<std::string> out;
