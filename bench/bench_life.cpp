@@ -17,6 +17,7 @@
 //    (~5 min, the reference ~3 of them).
 // 6. What heat build-up and the life distribution cost per drive against the run without them
 //    (`bench_life heat` prints it alone).
+// 7. The level calibration's held-out drives (bench/life_calibration.hpp; `bench_life calibration`).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
@@ -66,6 +67,7 @@
 #include <unistd.h>
 
 #include "drive_sweep.hpp"
+#include "life_calibration.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/card/data_window.hpp"
 #include "fitlib/data/table.hpp"
@@ -694,6 +696,11 @@ int main(int argc, char** argv) {
     heat_table();
     return 0;
   }
+  if (argc > 1 && std::string(argv[1]) == "calibration") {  // the level calibration's held-out table only
+    bench_life::calibration_table(kRoot + "/datasets/drives", windowed_card_file("material-1"),
+                                  windowed_card_file("material-2"));
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "levels") {  // table 1 only, with the complete rows
     level_table({"beam", "elastic", "complete", "complete held"});
     return 0;
@@ -704,6 +711,9 @@ int main(int argc, char** argv) {
   convergence("iso");
   convergence("elastic");
   if (!quick) complete_convergence();  // the medium drive's complete level stops at its fold
+  if (!quick)
+    bench_life::calibration_table(kRoot + "/datasets/drives", windowed_card_file("material-1"),
+                                  windowed_card_file("material-2"));
   beam_sweep();
   heat_table();
   return 0;

@@ -27,14 +27,25 @@ std::optional<Mode> mode_from_string(const std::string& text) {
   return std::nullopt;
 }
 
+namespace detail {
+extern const char* const kDefaultCardJson;  // generated from the bundled card (CMakeLists.txt)
+}
+
 FatigueCard default_card() {
-  FatigueCard c;
-  c.name = "Fritzson 1988, 0.500 in raw-edge cogged V-belt, 1 % damage level";
-  c.provenance = {{"source", "D. Fritzson 1988, Report I §6.5.2, Eqs 6.31 constants (L1133-1140)"},
-                  {"reference_temperature", "project decision (docs/decisions.md, fatigue: reference temperature)"},
-                  {"stress_fidelity", "Report I's stresses of the complete model (viscoelastic damage, 2 load cycles; "
-                                      "docs/decisions.md, fatigue card: the level of the stresses its constants were "
-                                      "fitted to)"}};
+  static const FatigueCard card = card_from_json(
+      core::parse_json(detail::kDefaultCardJson, "built-in fatigue card"), "built-in fatigue card");
+  return card;
+}
+
+FatigueCard card_at_level(const FatigueCard& card, const std::string& fidelity) {
+  FatigueCard c = card;
+  c.levels.clear();
+  const auto level = card.levels.find(fidelity);
+  if (level == card.levels.end()) return c;
+  for (Mode m : {Mode::radial_crack, Mode::separation}) {
+    const std::string& of = card.law(m).stress_fidelity;
+    if (!of.empty() && of != fidelity) c.law(m) = level->second.law(m);
+  }
   return c;
 }
 
@@ -147,6 +158,28 @@ LifeLaw read_law(const Reader& modes, const std::string& name) {
   return law;
 }
 
+// "levels": {"beam": {"radial_crack": {...}, "separation": {...}}, ...}; a law's stated level must
+// be its key's (absent: the key's).
+std::map<std::string, LevelLaws> read_levels(const Reader& card) {
+  Reader levels(card.at("levels"), card.source(), "levels", {"beam", "elastic", "complete"});
+  std::map<std::string, LevelLaws> out;
+  for (const char* level : {"beam", "elastic", "complete"}) {
+    if (!levels.has(level)) continue;
+    Reader modes(levels.at(level), card.source(), levels.key(level), {"radial_crack", "separation"});
+    LevelLaws laws{read_law(modes, "radial_crack"), read_law(modes, "separation")};
+    for (Mode m : {Mode::radial_crack, Mode::separation}) {
+      std::string& of = laws.law(m).stress_fidelity;
+      if (!of.empty() && of != level)
+        throw core::InputError("stress_fidelity '" + of + "' under levels." + level + " (a level's constants are "
+                               "for its own stresses)", card.source(), 0, 0,
+                               modes.key(std::string(to_string(m)) + ".stress_fidelity"));
+      of = level;
+    }
+    out.emplace(level, laws);
+  }
+  return out;
+}
+
 }  // namespace
 
 json card_to_json(const FatigueCard& c) {
@@ -157,6 +190,8 @@ json card_to_json(const FatigueCard& c) {
             {"modes", {{"radial_crack", law_json(c.radial_crack)},
                        {"separation", law_json(c.separation)}}},
             {"provenance", c.provenance}};
+  for (const auto& [level, laws] : c.levels)
+    j["levels"][level] = {{"radial_crack", law_json(laws.radial_crack)}, {"separation", law_json(laws.separation)}};
   if (c.cord_break) {
     const CordBreakLaw& k = *c.cord_break;
     j["cord_break"] = {{"a", k.a}, {"b_per_MPa", k.b_per_MPa}, {"ultimate_MPa", k.ultimate_MPa},
@@ -167,7 +202,7 @@ json card_to_json(const FatigueCard& c) {
 
 FatigueCard card_from_json(const json& j, const std::string& source) {
   Reader r(j, source, "",
-           {"schema", "name", "reference_temperature_C", "crack_sweep_deg", "modes", "cord_break",
+           {"schema", "name", "reference_temperature_C", "crack_sweep_deg", "modes", "cord_break", "levels",
             "provenance"});
   const std::string schema = r.text("schema");
   if (schema != FatigueCard::kSchema)
@@ -191,6 +226,7 @@ FatigueCard card_from_json(const json& j, const std::string& source) {
     if (k.has("b_T_per_C")) law.b_T_per_C = k.number("b_T_per_C", -10.0, 10.0);
     c.cord_break = law;
   }
+  if (r.has("levels")) c.levels = read_levels(r);
   if (r.has("provenance")) c.provenance = r.at("provenance");
   return c;
 }

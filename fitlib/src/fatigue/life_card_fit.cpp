@@ -97,6 +97,7 @@ void warn_about(const LifeFitResult& f, const std::vector<ObservedLife>& cases, 
 LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueCard& start, const HeldConstants& held) {
   LifeCardFit out;
   out.card = start;
+  out.card.levels.clear();  // the start card's per-level constants were calibrated to its laws, not to the fitted ones
   nlohmann::json record = nlohmann::json::object();
   bool fitted = false;  // a mode's fit went into the card
   for (Mode mode : {Mode::radial_crack, Mode::separation}) {

@@ -428,6 +428,9 @@ void fatigue_life(const Scene& s, SceneResult& r) {
     life.inputs.push_back(file_input("fatigue", spec.card, constants));
   }
   if (spec.crack_sweep_deg) card.crack_sweep_deg = *spec.crack_sweep_deg;
+  if (card.levels.count(life.plan.fidelity))  // the card's constants for this level's stresses (docs/fatigue.md §4)
+    life.inputs.back().used_for += "; levels." + life.plan.fidelity + " for a mode fitted at another level";
+  card = fatigue::card_at_level(card, life.plan.fidelity);
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });

@@ -124,5 +124,60 @@ TEST(FatigueCard, ErrorsNameFileAndKey) {
   EXPECT_THROW(load_card(fitlib_test::temp_path("missing.json")), core::InputError);
 }
 
+// Constants per stress level (docs/fatigue.md §4 "One life scale for every level"): a run at a level
+// takes that level's constants for every mode fitted at another level, keeps a mode fitted at its
+// own level or stating none, and a card without the level is read as before.
+TEST(FatigueCard, LevelsGiveEachRunTheConstantsOfItsOwnStresses) {
+  FatigueCard c = default_card();
+  c.levels.clear();
+  LifeLaw beam1{50.0, 4.423, 0.02897, "beam"}, beam2{2.5, 11.69, 0.1466, "beam"};
+  c.levels["beam"] = LevelLaws{beam1, beam2};
+  const FatigueCard at_beam = card_at_level(c, "beam");
+  EXPECT_EQ(at_beam.radial_crack.sigma0_MPa, 50.0);
+  EXPECT_EQ(at_beam.separation.sigma0_MPa, 2.5);
+  EXPECT_EQ(at_beam.separation.stress_fidelity, "beam");
+  EXPECT_TRUE(at_beam.levels.empty());
+  EXPECT_EQ(stress_fidelity_warning(at_beam, "beam"), "");
+  EXPECT_EQ(card_at_level(c, "complete").radial_crack.sigma0_MPa, 104.218);  // the modes' own level
+  EXPECT_NE(stress_fidelity_warning(card_at_level(c, "elastic"), "elastic"), "");  // no elastic entry: warned
+  c.separation.stress_fidelity = "";  // a mode that states no level is kept at every level
+  EXPECT_EQ(card_at_level(c, "beam").separation.sigma0_MPa, 4.21028);
+  const std::string path = fitlib_test::temp_path("levels-round.json");
+  save_card(path, c);
+  EXPECT_EQ(card_to_json(load_card(path)), card_to_json(c));
+  nlohmann::json j = card_to_json(c);
+  j["levels"]["beam"]["separation"].erase("stress_fidelity");  // absent: the key's level
+  EXPECT_EQ(card_from_json(j, "c.json").levels.at("beam").separation.stress_fidelity, "beam");
+  j["levels"]["beam"]["separation"]["stress_fidelity"] = "elastic";
+  expect_error(j.dump(), "levels.beam.separation.stress_fidelity");
+  j = card_to_json(c);
+  j["levels"]["fem"] = j["levels"]["beam"];
+  expect_error(j.dump(), "levels.fem");
+  j = card_to_json(c);
+  j["levels"]["beam"]["separation"]["n"] = -1.0;
+  expect_error(j.dump(), "levels.beam.separation.n");
+}
+
+// The bundled card's beam and elastic constants come from scripts/calibrate-levels.sh, whose
+// provenance names the drives, the date, the commit and the fitted stress factors.
+TEST(FatigueCard, BundledCardHoldsTheCalibratedLevelsWithTheirProvenance) {
+  const FatigueCard c = default_card();
+  for (const char* level : {"beam", "elastic"}) {
+    ASSERT_TRUE(c.levels.count(level)) << level;
+    EXPECT_EQ(c.levels.at(level).radial_crack.n, c.radial_crack.n) << "n held: a stress factor per level";
+    EXPECT_EQ(c.levels.at(level).separation.b_per_C, c.separation.b_per_C);
+    const nlohmann::json& p = c.provenance.at("level_calibration").at(level);
+    for (const char* mode : {"radial_crack", "separation"}) {
+      // σ0 of the level = σ0 of the complete level / the stress factor (n and b held)
+      const double factor = p.at("stress_factor").at(mode).get<double>();
+      EXPECT_NEAR(c.levels.at(level).law(*mode_from_string(mode)).sigma0_MPa * factor,
+                  c.law(*mode_from_string(mode)).sigma0_MPa, 1e-9 * c.law(*mode_from_string(mode)).sigma0_MPa);
+    }
+  }
+  const nlohmann::json& p = c.provenance.at("level_calibration");
+  for (const char* key : {"script", "date", "fitlib_commit", "calibration_drives", "held_out_drives"})
+    EXPECT_TRUE(p.contains(key)) << key;
+}
+
 }  // namespace
 }  // namespace fitlib::fatigue

@@ -4,6 +4,7 @@
 // (3.6)/(3.7). A bundled default with Report I's printed constants is datasets/cards/
 // fatigue-fritzson-1988.json; default_card() returns the same values.
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -53,6 +54,16 @@ struct CordBreakLaw {
   double b_T_per_C = 0.1;         // Gerbert's 10 °C halving
 };
 
+// The constants of both modes for the stresses of one level (docs/fatigue.md §4 "One life scale for
+// every level"): the bundled card's beam and elastic entries are fitted by fitcli life-fit to the
+// complete level's lives of a calibration set of drives (scripts/calibrate-levels.sh).
+struct LevelLaws {
+  LifeLaw radial_crack;
+  LifeLaw separation;
+  const LifeLaw& law(Mode m) const { return m == Mode::radial_crack ? radial_crack : separation; }
+  LifeLaw& law(Mode m) { return m == Mode::radial_crack ? radial_crack : separation; }
+};
+
 struct FatigueCard {
   static constexpr const char* kSchema = "fitlib.fatigue-card/1";
   std::string name;
@@ -61,15 +72,25 @@ struct FatigueCard {
   LifeLaw separation{4.21028, 11.69, 0.1466, "complete"};
   double crack_sweep_deg = 25.0;  // mode 1 crack directions ±sweep from radial
   std::optional<CordBreakLaw> cord_break;
+  // Optional (JSON "levels"): constants per stress level for the levels `modes` were not fitted at;
+  // each law's stress_fidelity is its key.
+  std::map<std::string, LevelLaws> levels;
   nlohmann::json provenance = nlohmann::json::object();
 
   const LifeLaw& law(Mode m) const { return m == Mode::radial_crack ? radial_crack : separation; }
   LifeLaw& law(Mode m) { return m == Mode::radial_crack ? radial_crack : separation; }
 };
 
-// Report I's printed constants (docs/fatigue.md §4) at the project's reference temperature,
-// fitted to the complete model's stresses (stress_fidelity "complete").
+// The bundled card datasets/cards/fatigue-fritzson-1988.json (its text built in at configure time):
+// Report I's printed constants (docs/fatigue.md §4) at the project's reference temperature, fitted
+// to the complete model's stresses (stress_fidelity "complete"), and the beam and elastic levels'
+// calibrated constants ("levels").
 FatigueCard default_card();
+
+// The card whose modes are the constants for stresses of `fidelity`: per mode, its own law when
+// that was fitted at `fidelity` (or does not say), else the `levels` entry of `fidelity` when the
+// card has one, else its own law (stress_fidelity_warning then says so). `levels` is emptied.
+FatigueCard card_at_level(const FatigueCard& card, const std::string& fidelity);
 
 // The warning for a life whose stresses come from `fidelity` read against constants fitted at
 // another level ("" when every mode's constants are of that level or do not state theirs).
