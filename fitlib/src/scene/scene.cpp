@@ -494,7 +494,8 @@ TensionTestSpec parse_tension_test(const toml::table& t, const std::string& sour
 
 LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, const std::string& source) {
   Reader lr(t, "life", source);
-  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure", "damage_hold"});
+  lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure", "damage_hold", "uncertainty",
+            "samples", "seed"});
   LifeSpec l;
   if (auto f = lr.string("fidelity")) {
     if (!fatigue::is_stress_fidelity(*f))
@@ -506,6 +507,13 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
   l.crack_sweep_deg = lr.number("crack_sweep_deg", 0.0, 90.0);
   l.diagnose_failure = lr.boolean("diagnose_failure").value_or(false);
   l.damage_hold = lr.boolean("damage_hold").value_or(true);
+  if (auto u = lr.string("uncertainty")) {
+    if (*u != "constants" && *u != "cards")
+      lr.fail("uncertainty", "uncertainty must be \"constants\" or \"cards\", not \"" + *u + "\"");
+    l.uncertainty_cards = *u == "cards";
+  }
+  l.samples = static_cast<int>(lr.count_or("samples", l.samples, 2, 1e5));
+  l.seed = static_cast<std::uint64_t>(lr.count_or("seed", static_cast<double>(l.seed), 0, 9007199254740992.0));
   lr.finish();
   return l;
 }

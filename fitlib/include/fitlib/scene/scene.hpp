@@ -89,6 +89,11 @@ struct LifeSpec {
   // (fit.data_window.damage_driver; model::PointOptions::damage_driver_hold); false = the law at
   // every amplitude.
   bool damage_hold = true;
+  // [life] uncertainty = "cards": B10/B50 also get the 90 % interval of lives run on `samples`
+  // draws of the material cards' parameters from their covariance, seeded (docs/thermal.md §7).
+  bool uncertainty_cards = false;
+  int samples = 100;
+  std::uint64_t seed = 1;
 };
 
 struct Scene {
@@ -107,6 +112,8 @@ struct Scene {
   std::map<std::string, double> extra_geometry_mm;  // cog_pitch_mm, cog_depth_mm, ... (kept)
   std::optional<double> c_N, k1_MPa, EI_Nmm2;        // [belt.stiffness] overrides
   std::map<std::string, std::string> materials;      // role → card path (resolved)
+  // role → parameter values that replace its card's (one draw of [life] uncertainty = "cards")
+  std::map<std::string, std::vector<double>> card_values;
   // [belt.materials] poisson_ratio: a card without a bulk modulus gets K from its instantaneous
   // modulus and this ν, as in eval and export (card/conversion.hpp).
   double material_poisson_ratio = card::kDefaultPoissonRatio;
