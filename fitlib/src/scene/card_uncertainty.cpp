@@ -83,8 +83,8 @@ void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
   // A draw whose run stops (a runaway, a drawn card without a material at T) is counted, not fatal.
   run_indexed_in_threads(n, segment_threads(s), [&](std::size_t k) {
     try {
-      for (const fatigue::ModeLife& m : run_life(draw_scene(s, samplers, k)).life->report.modes)
-        lives[k][m.mode] = m.life_cycles;
+      const SceneResult drawn = run_life(draw_scene(s, samplers, k));  // held: the loop reads into it
+      for (const fatigue::ModeLife& m : drawn.life->report.modes) lives[k][m.mode] = m.life_cycles;
     } catch (const core::InputError& e) {
       failures[k] = e.what();
     } catch (const core::NumericalError& e) {

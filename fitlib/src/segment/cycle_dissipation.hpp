@@ -1,7 +1,7 @@
 #pragma once
 // The energy the rubber dissipates over the last load cycle (docs/thermal.md §1, complete level):
-// the stress work ∮ P : dF per unit reference volume at every integration point (trapezoidal over
-// the converged increments, an element's mean over its points times its reference area), summed
+// the stress work ∮ P : dF = ∮ S : dE per unit reference volume at every integration point
+// (trapezoidal in S : dE over the converged increments, an element's mean over its points times its reference area), summed
 // over the central two pitches, per mm of belt length. The load cycle is periodic by then, so each
 // point's stored energy returns and the work is what its material dissipated — for every model
 // alike (an elastic point gives zero), with no model-specific code (docs/decisions.md
@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <vector>
+
+#include <Eigen/LU>
 
 #include "cycle_observers.hpp"
 
@@ -35,9 +37,8 @@ class CycleDissipation : public IncrementObserver {
         if (area_[e] == 0.0) continue;
         double w = 0.0;
         for (std::size_t g = 0; g < s.points[e].size(); ++g) {
-          const IntegrationPointStress& now = s.points[e][g];
-          const State& was = last_[e][g];
-          w += (0.5 * (was.P + now.piola_MPa).cwiseProduct(now.F - was.F)).sum();
+          const State now = state(s.points[e][g]), &was = last_[e][g];
+          w += (0.5 * (was.S + now.S).cwiseProduct(now.E - was.E)).sum();
         }
         out_[static_cast<int>(frame_.mesh->roles[e])] += share * w / s.points[e].size() * area_[e] * scale_;
       }
@@ -46,14 +47,20 @@ class CycleDissipation : public IncrementObserver {
     last_.resize(s.points.size());
     for (std::size_t e = 0; e < s.points.size(); ++e) {
       last_[e].resize(s.points[e].size());
-      for (std::size_t g = 0; g < s.points[e].size(); ++g) last_[e][g] = {s.points[e][g].piola_MPa, s.points[e][g].F};
+      for (std::size_t g = 0; g < s.points[e].size(); ++g) last_[e][g] = state(s.points[e][g]);
     }
   }
 
  private:
+  // The second Piola–Kirchhoff stress S = F⁻¹ P and the Green–Lagrange strain E = ½ (FᵀF − I):
+  // S : dE = P : dF, and a rigid rotation changes neither, so the trapezoidal rule adds no work
+  // where the segment turns onto a pulley (P : ΔF of a stressed, rotating point does).
   struct State {
-    Eigen::Matrix2d P, F;
+    Eigen::Matrix2d S, E;
   };
+  static State state(const IntegrationPointStress& ip) {
+    return {ip.F.inverse() * ip.piola_MPa, 0.5 * (ip.F.transpose() * ip.F - Eigen::Matrix2d::Identity())};
+  }
   const CycleFrame& frame_;
   std::vector<double> area_;
   double scale_ = 0.0, tau_ = 0.0;

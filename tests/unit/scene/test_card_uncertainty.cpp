@@ -9,6 +9,7 @@
 #include "common/temp_path.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
@@ -106,12 +107,13 @@ TEST(CardUncertainty, ACardWithoutCovarianceOrStandardErrorsIsRefused) {
   } catch (const core::InputError& e) {
     EXPECT_EQ(e.key(), "life.uncertainty") << e.what();
   }
-  const auto parsed = scene::parse_scene("[life]\nuncertainty = \"cards\"\nsamples = 10\nseed = 3\n", "x.toml");
+  const std::string base = fitlib::core::read_file(kSource + "/datasets/drives/ref-0500-medium.toml");
+  const auto parsed = scene::parse_scene(base + "\n[life]\nuncertainty = \"cards\"\nsamples = 10\nseed = 3\n", "x.toml");
   EXPECT_TRUE(parsed.life->uncertainty_cards);
   EXPECT_EQ(parsed.life->samples, 10);
   EXPECT_EQ(parsed.life->seed, 3u);
-  EXPECT_THROW(scene::parse_scene("[life]\nuncertainty = \"card\"\n", "x.toml"), core::InputError);
-  EXPECT_THROW(scene::parse_scene("[life]\nsamples = 1\n", "x.toml"), core::InputError);
+  EXPECT_THROW(scene::parse_scene(base + "\n[life]\nuncertainty = \"card\"\n", "x.toml"), core::InputError);
+  EXPECT_THROW(scene::parse_scene(base + "\n[life]\nsamples = 1\n", "x.toml"), core::InputError);
 }
 
 }  // namespace
