@@ -18,6 +18,8 @@
 // 6. What heat build-up and the life distribution cost per drive against the run without them
 //    (`bench_life heat` prints it alone).
 // 7. The level calibration's held-out drives (bench/life_calibration.hpp; `bench_life calibration`).
+// 8. What [life] uncertainty = "cards" costs per drive against the run without it
+//    (`bench_life uncertainty` prints it alone).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
@@ -597,6 +599,59 @@ void heat_table() {
   std::printf("\n");
 }
 
+// 7. What [life] uncertainty = "cards" costs per drive against the run without it (docs/thermal.md
+// §7): the thesis cards, the bottom card given a covariance of its mean moduli (variance 4e-3 in
+// ln, correlation 0.5; the bundled cards are true values without one), the scatter card of table 6,
+// the default 100 draws at the beam level, 8 at the elastic level on the light drive
+// (`bench_life uncertainty` prints it alone).
+std::string covariance_card_file() {
+  card::Card c = card::load_card(kRoot + "/datasets/cards/material-1-true.json");
+  const double v = 4e-3, r = 0.5 * v;
+  c.fit["covariance"] = {{"parameters", {"G_Im", "C33_Am", "C44_Am"}},
+                         {"coordinates", {"ln", "ln", "ln"}},
+                         {"matrix", {{v, r, r}, {r, v, r}, {r, r, v}}}};
+  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-covariance.json";
+  card::save_card(path, c);
+  return path;
+}
+
+void uncertainty_table() {
+  std::printf("## 7. [life] uncertainty = \"cards\": cost per drive (thesis cards, bottom card with a covariance)\n\n"
+              "| drive | level | draws | without | with | ratio | per draw / run without | B10 (governing) | constants' 90 %% | cards' 90 %% |\n"
+              "|---|---|---|---|---|---|---|---|---|---|\n");
+  const std::string scatter = scatter_card_file(), bottom = covariance_card_file();
+  for (const char* load : kLoads)
+    for (const char* level : {"beam", "elastic"}) {
+      const bool beam = std::string(level) == "beam";
+      if (!beam && std::string(load) != "light") continue;
+      scene::Scene s = life_scene(load, level);
+      s.materials["bottom"] = bottom;
+      s.life->card = scatter;
+      try {
+        scene::SceneResult off, on;
+        const double t_off = best_life_s(s, beam ? 20 : 1, off);
+        s.life->uncertainty_cards = true;
+        s.life->samples = beam ? 100 : 8;
+        const double t_on = best_life_s(s, beam ? 3 : 1, on);
+        std::string b10 = "-", constants = "-", cards = "-";
+        for (const auto& m : on.life->distribution)
+          if (fatigue::to_string(m.mode) == on.life->report.governing) {
+            b10 = core::short_number(m.b10.h) + " h";
+            constants = "[" + core::short_number(m.b10.low_h) + ", " + core::short_number(m.b10.high_h) + "]";
+            cards = "[" + core::short_number(m.b10.cards_low_h) + ", " + core::short_number(m.b10.cards_high_h) + "]";
+          }
+        std::printf("| %s | %s | %d | %.3g s | %.3g s | %.1f | %.2f | %s | %s | %s |\n", load, level, s.life->samples,
+                    t_off, t_on, t_on / t_off, t_on / t_off / s.life->samples, b10.c_str(), constants.c_str(),
+                    cards.c_str());
+      } catch (const std::runtime_error& e) {  // refused (exit 3) or stopped (exit 4)
+        std::printf("| %s | %s | stopped: %s |\n", load, level, e.what());
+      }
+    }
+  std::remove(scatter.c_str());
+  std::remove(bottom.c_str());
+  std::printf("\n");
+}
+
 int main(int argc, char** argv) {
   if (argc >= 6 && std::string(argv[1]) == "probe") {
     Probe p{argv[2], argv[3], argv[4], std::atoi(argv[5])};
@@ -692,6 +747,10 @@ int main(int argc, char** argv) {
     complete_convergence();
     return 0;
   }
+  if (argc > 1 && std::string(argv[1]) == "uncertainty") {  // table 7 only
+    uncertainty_table();
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "heat") {  // table 6 only
     heat_table();
     return 0;
@@ -716,5 +775,6 @@ int main(int argc, char** argv) {
                                   windowed_card_file("material-2"));
   beam_sweep();
   heat_table();
+  uncertainty_table();
   return 0;
 }

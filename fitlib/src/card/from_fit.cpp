@@ -60,6 +60,16 @@ nlohmann::json band_json(const fit::ConfidenceBand& band) {
   return j;
 }
 
+// fit.covariance (docs/formats.md §3): the free parameters' covariance in the fitted coordinates.
+nlohmann::json covariance_json(const fit::FitResult& r) {
+  nlohmann::json names = nlohmann::json::array(), coordinates = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.covariance.index.size(); ++k) {
+    names.push_back(r.parameters[r.covariance.index[k]].name);
+    coordinates.push_back(r.covariance.log[k] ? "ln" : "value");
+  }
+  return {{"parameters", names}, {"coordinates", coordinates}, {"matrix", r.covariance.matrix}};
+}
+
 }  // namespace
 
 FeCost fe_cost(const model::Model& model, const std::vector<double>& values) {
@@ -122,6 +132,7 @@ Card card_from_fit(const fit::FitResult& r, const fit::FitOptions& options,
               {"messages", r.messages}};
   card.fit["quality"] = quality_json(r.quality);
   if (!r.band.points.empty()) card.fit["confidence_band"] = band_json(r.band);
+  if (!r.covariance.index.empty()) card.fit["covariance"] = covariance_json(r);
   const FeCost cost = fe_cost(*r.model, r.values);
   if (cost.terms > 0)
     card.fit["fe_cost"] = {{"terms", cost.terms}, {"state_variables_per_integration_point", cost.state_variables}};

@@ -3,6 +3,7 @@
 
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -73,6 +74,37 @@ std::optional<ModeDistribution> mode_distribution(const ModeLife& m, const LifeL
   return d;
 }
 
+namespace {
+
+// The q-quantile of sorted values, linear between order statistics (Hyndman–Fan type 7).
+double sorted_quantile(const std::vector<double>& x, double q) {
+  const double at = q * static_cast<double>(x.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(at));
+  const std::size_t hi = std::min(lo + 1, x.size() - 1);
+  if (!std::isfinite(x[hi])) return x[hi] > 0.0 && at > static_cast<double>(lo) ? x[hi] : x[lo];
+  return x[lo] + (at - static_cast<double>(lo)) * (x[hi] - x[lo]);
+}
+
+void set_cards_interval(BLife& b, const std::vector<double>& sorted_cycles, double shift) {
+  b.has_cards_interval = !sorted_cycles.empty();
+  if (!b.has_cards_interval) return;
+  const double factor = std::pow(10.0, shift);
+  b.cards_low_cycles = sorted_quantile(sorted_cycles, 0.05) * factor;
+  b.cards_high_cycles = sorted_quantile(sorted_cycles, 0.95) * factor;
+  const double per_h = b.has_hours ? b.cycles / b.h : HUGE_VAL;
+  b.cards_low_h = b.cards_low_cycles / per_h, b.cards_high_h = b.cards_high_cycles / per_h;
+}
+
+}  // namespace
+
+void add_cards_interval(ModeDistribution& d, std::vector<double> draw_cycles, const CardsSampling& sampling) {
+  std::sort(draw_cycles.begin(), draw_cycles.end());
+  d.cards = sampling;
+  d.cards->median_cycles = draw_cycles.empty() ? NAN : sorted_quantile(draw_cycles, 0.5);
+  set_cards_interval(d.b10, draw_cycles, normal_quantile(10.0) * d.sigma_log10);
+  set_cards_interval(d.b50, draw_cycles, 0.0);
+}
+
 std::vector<ModeDistribution> life_distribution(const LifeReport& report, const FatigueCard& card,
                                                 const LifeConditions& conditions) {
   std::vector<ModeDistribution> out;
@@ -94,7 +126,28 @@ std::string b_text(const BLife& b) {
     std::snprintf(buf, sizeof buf, "B%.0f %.4g %s [%.4g, %.4g]", b.percent, x, unit, lo, hi);
   else
     std::snprintf(buf, sizeof buf, "B%.0f %.4g %s", b.percent, x, unit);
-  return buf;
+  std::string out = buf;
+  if (b.has_cards_interval) {
+    std::snprintf(buf, sizeof buf, " cards [%.4g, %.4g]", hours ? b.cards_low_h : b.cards_low_cycles,
+                  hours ? b.cards_high_h : b.cards_high_cycles);
+    out += buf;
+  }
+  return out;
+}
+
+// What the cards' interval rests on: draws, seed, failures and the draws' median life.
+std::string cards_text(const ModeDistribution& d) {
+  const CardsSampling& c = *d.cards;
+  char buf[200];
+  if (c.failed == c.samples)
+    std::snprintf(buf, sizeof buf, "%-13s cards: none of %d draws (seed %llu) ran, so no cards' interval", "", c.samples,
+                  static_cast<unsigned long long>(c.seed));
+  else
+    std::snprintf(buf, sizeof buf, "%-13s cards: %d draws (seed %llu), their median life %.4g cycles against the "
+                  "law's %.4g", "", c.samples, static_cast<unsigned long long>(c.seed), c.median_cycles, d.b50.cycles);
+  std::string out = buf;
+  if (c.failed > 0) out += "; " + std::to_string(c.failed) + " draws did not run (first: " + c.first_failure + ")";
+  return out + "\n";
 }
 
 }  // namespace
@@ -114,8 +167,10 @@ std::string life_distribution_table(const LifeReport& report, const std::vector<
     std::snprintf(head, sizeof head, "%-13s log-normal, s %.3g log10 (%d dof): ", to_string(m.mode), d->sigma_log10,
                   d->dof);
     out += std::string(head) + b_text(d->b10) + ", " + b_text(d->b50) +
-           (d->b10.has_interval ? " (90 % intervals: the constants' covariance)\n"
-                                : " (no interval: the card has no covariance of the constants)\n");
+           (d->b10.has_interval ? " (90 % intervals: the constants' covariance" : " (no interval of the constants: the "
+                                                                                  "card has no covariance of them") +
+           (d->cards ? std::string("; cards: the material cards' covariance") : std::string()) + ")\n";
+    if (d->cards) out += cards_text(*d);
   }
   if (!without.empty())
     out += "distribution: the fatigue card states no scatter of the " + without + " lives (fitcli life-fit "
@@ -134,8 +189,13 @@ nlohmann::json life_distribution_json(const std::vector<ModeDistribution>& dist)
       if (b->has_hours) e["h"] = b->h;
       if (b->has_interval) e["ci90_cycles"] = {b->low_cycles, b->high_cycles};
       if (b->has_interval && b->has_hours) e["ci90_h"] = {b->low_h, b->high_h};
+      if (b->has_cards_interval) e["ci90_cards_cycles"] = {b->cards_low_cycles, b->cards_high_cycles};
+      if (b->has_cards_interval && b->has_hours) e["ci90_cards_h"] = {b->cards_low_h, b->cards_high_h};
       modes[b->percent < 50.0 ? "B10" : "B50"] = e;
     }
+    if (d.cards)
+      modes["cards_sampling"] = {{"draws", d.cards->samples}, {"failed", d.cards->failed}, {"seed", d.cards->seed},
+                                 {"median_cycles", std::isfinite(d.cards->median_cycles) ? json(d.cards->median_cycles) : json(nullptr)}};
     out.push_back(modes);
   }
   return out;

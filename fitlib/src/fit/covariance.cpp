@@ -173,6 +173,20 @@ bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const
   return true;
 }
 
+// Cov_x restricted to the parameters with an interval: what a card carries (fit.covariance).
+ParameterCovariance usable_covariance(const Problem& problem, const Eigen::MatrixXd& cov_x,
+                                      const std::vector<bool>& usable) {
+  ParameterCovariance c;
+  std::vector<int> kept;
+  for (int k = 0; k < static_cast<int>(usable.size()); ++k)
+    if (usable[k]) kept.push_back(k), c.index.push_back(problem.free()[k]), c.log.push_back(problem.is_log(problem.free()[k]));
+  for (int a : kept) {
+    c.matrix.emplace_back();
+    for (int b : kept) c.matrix.back().push_back(cov_x(a, b));
+  }
+  return c;
+}
+
 // The band of E′, E″ and tan δ at 10 frequencies per decade over the data (BandPoint): the
 // gradient of each logarithm in the fitted coordinates x, σ² = gᵀ Cov_x g, interval exp(ln v ± tσ).
 ConfidenceBand confidence_band(const Problem& problem, const Eigen::MatrixXd& cov_x, double t) {
@@ -276,6 +290,7 @@ void assess(const Problem& problem, FitResult& result) {
   }
   report_correlations(problem, cov_x, usable, result);
   result.band = confidence_band(problem, cov_x, t);
+  result.covariance = usable_covariance(problem, cov_x, usable);
 }
 
 }  // namespace fitlib::fit::detail

@@ -85,6 +85,9 @@ static void require_positive(const Scene& s, const char* name, double value, con
 card::Card detail::material_card(const Scene& s, const std::string& role) {
   const std::string& path = s.materials.at(role);
   card::Card c = card::load_card(path);
+  if (const auto drawn = s.card_values.find(role); drawn != s.card_values.end())
+    for (std::size_t i = 0; i < c.parameters.size() && i < drawn->second.size(); ++i)
+      c.parameters[i].value = drawn->second[i];
   card::require_material_at(c, path, s.temperature_C, s.path, "conditions.temperature_C");
   return c;
 }

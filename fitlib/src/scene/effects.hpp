@@ -62,6 +62,8 @@ void heat_buildup(const Scene& scene, SceneResult& r);
 void segment_stresses(const Scene& scene, SceneResult& r);
 void beam_stresses(const Scene& scene, SceneResult& r);
 void fatigue_life(const Scene& scene, SceneResult& r);
+// [life] uncertainty = "cards": B10/B50's interval over lives on draws of the cards (card_uncertainty.cpp).
+void card_uncertainty(const Scene& scene, SceneResult& r, LifeResult& life);
 
 // Runs f, adding the scene file to an InputError a library call raised without one.
 template <typename F>

@@ -101,6 +101,26 @@ belt::HeatSources heat_sources(const Scene& s, const belt::DriveCase& drive, con
   return h;
 }
 
+namespace {
+
+// Segment runs of the complete level's heat balance at most, and when their ratio has settled.
+constexpr int kMaxSegmentRuns = 4;
+constexpr double kSegmentRatioTolerance = 1e-3;
+
+// The segment's own hysteresis (W per belt) at `at`'s temperature on that temperature's drive and
+// load cycle: the complete level's run, without field output.
+double segment_hysteresis_W(const Scene& at, const SceneResult& r, const belt::DriveCase& drive,
+                            const belt::LoadCycle& cycle) {
+  Scene quiet = at;
+  quiet.life_field_at.clear();
+  SceneResult run;
+  run.plan = r.plan, run.drive = drive, run.cycle = cycle;
+  segment_stresses(quiet, run);
+  return *run.segment_hysteresis_W;
+}
+
+}  // namespace
+
 void heat_buildup(const Scene& s, SceneResult& r) {
   Scene at = s;
   std::optional<Stiffness> stiffness;
@@ -108,13 +128,16 @@ void heat_buildup(const Scene& s, SceneResult& r) {
   std::optional<belt::LoadCycle> cycle;
   std::vector<std::string> warnings;
   std::vector<std::string>* collect = nullptr;  // the fixed point's run only
+  double segment_over_layers = 1.0;             // the complete level's segment runs set it
   auto remake = [&](double T) {  // the cards' moduli at T in every stiffness, the load cycle on them
     at.temperature_C = T;
     try {
       stiffness = resolve_stiffness(at);
       drive = make_drive(at, *stiffness);
       cycle = belt::compute_load_cycle(*drive, r.load_cycle_options);
-      return heat_sources(at, *drive, *cycle, collect);
+      belt::HeatSources h = heat_sources(at, *drive, *cycle, collect);
+      h.hysteresis_W *= segment_over_layers;
+      return h;
     } catch (const core::InputError& e) {  // the heat, not the scene, took the belt where its inputs end
       if (T == s.thermal.ambient_C) throw;  // the first iterate: the scene's own inputs at the ambient
       throw core::NumericalError("thermal runaway: the heat balance takes the belt to " + core::short_number(T) +
@@ -123,6 +146,18 @@ void heat_buildup(const Scene& s, SceneResult& r) {
     }
   };
   r.heat = belt::solve_belt_temperature(*r.drive, s.thermal, remake);
+  // The complete level: the segment's dissipation at each fixed point's temperature replaces the
+  // layers' estimate, their ratio carried to the next fixed point (docs/thermal.md §1).
+  const bool complete = r.plan.life && r.plan.life->fidelity == "complete";
+  for (int run = 1; complete && run <= kMaxSegmentRuns; ++run) {
+    const double layers_W = remake(r.heat->temperature_C).hysteresis_W / segment_over_layers;
+    const double ratio = segment_hysteresis_W(at, r, *drive, *cycle) / layers_W;
+    const bool settled = std::abs(ratio - segment_over_layers) <= kSegmentRatioTolerance * ratio;
+    segment_over_layers = ratio;
+    r.heat = belt::solve_belt_temperature(*r.drive, s.thermal, remake);
+    r.heat->segment_over_layers = ratio, r.heat->segment_runs = run;
+    if (settled) break;
+  }
   collect = &warnings;
   remake(r.heat->temperature_C);  // what the stresses and the life see
   r.stiffness = std::move(stiffness), r.drive = std::move(drive), r.cycle = std::move(cycle);

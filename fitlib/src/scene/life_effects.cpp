@@ -390,6 +390,9 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     r.segment_cards_read = card_readings(s, r.plan.life->fidelity, load_frequency_Hz(*r.drive), reached, read_at);
     refuse_beyond_tests(s, r.segment_cards_read);
     r.stresses = scene::segment_point_histories(run);
+    r.segment_hysteresis_W = (run.dissipation_J_mm[0] + run.dissipation_J_mm[1]) *
+                             r.drive->geometry.belt_length_mm * load_frequency_Hz(*r.drive);
+    if (r.heat && r.heat->segment_runs > 0) r.heat->segment_hysteresis_W = *r.segment_hysteresis_W;
     strain_window_warnings(s, reached, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
     r.segment_run = SegmentRun{run.elements, setup.cycle.cycles, setup.cycle.steps_per_cycle,
@@ -435,6 +438,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
   life.distribution = fatigue::life_distribution(life.report, card, *r.life_conditions);
+  card_uncertainty(s, r, life);
   const bool history = r.segment_equilibrium && r.segment_equilibrium->history;
   for (std::string& w : fatigue::life_warnings(life.report, history)) r.warnings.push_back(std::move(w));
   if (std::string w = fatigue::stress_fidelity_warning(card, life.plan.fidelity); !w.empty())

@@ -514,7 +514,7 @@ LifeSpec::BeyondTests parse_beyond_tests(Reader& lr) {
 LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, const std::string& source) {
   Reader lr(t, "life", source);
   lr.allow({"fidelity", "card", "cycles", "crack_sweep_deg", "diagnose_failure", "damage_hold", "beyond_tests",
-            "elastic_amplitude"});
+            "elastic_amplitude", "uncertainty", "samples", "seed"});
   LifeSpec l;
   if (auto f = lr.string("fidelity")) {
     if (!fatigue::is_stress_fidelity(*f))
@@ -531,6 +531,13 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
       lr.fail("elastic_amplitude", "elastic_amplitude must be \"reached\" or \"small\", not \"" + *a + "\"");
     l.elastic_at_reached_amplitude = *a == "reached";
   }
+  if (auto u = lr.string("uncertainty")) {
+    if (*u != "constants" && *u != "cards")
+      lr.fail("uncertainty", "uncertainty must be \"constants\" or \"cards\", not \"" + *u + "\"");
+    l.uncertainty_cards = *u == "cards";
+  }
+  l.samples = static_cast<int>(lr.count_or("samples", l.samples, 2, 1e5));
+  l.seed = static_cast<std::uint64_t>(lr.count_or("seed", static_cast<double>(l.seed), 0, 9007199254740992.0));
   lr.finish();
   return l;
 }

@@ -8,30 +8,34 @@
 
 namespace fitlib::scene {
 
-std::vector<std::string> sweep_rows_in_threads(const Sweep& sweep, const std::vector<std::size_t>& cases,
-                                               int threads) {
-  std::vector<std::string> rows(cases.size());
+void run_indexed_in_threads(std::size_t n, int threads, const std::function<void(std::size_t)>& body) {
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
-  // Dynamic schedule: each thread takes the next case; rows land at their own index.
+  // Dynamic schedule: each thread takes the next index.
   auto work = [&] {
-    for (std::size_t k = next++; k < cases.size(); k = next++) {
+    for (std::size_t k = next++; k < n; k = next++) {
       try {
-        rows[k] = sweep_row(sweep, cases[k]);
+        body(k);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
         if (!failure) failure = std::current_exception();
-        next = cases.size();
+        next = n;
       }
     }
   };
-  const auto n = static_cast<std::size_t>(threads < 1 ? 1 : threads);
+  const auto count = static_cast<std::size_t>(threads < 1 ? 1 : threads);
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < std::min(n, cases.size()); ++t) pool.emplace_back(work);
+  for (std::size_t t = 1; t < std::min(count, n); ++t) pool.emplace_back(work);
   work();
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+std::vector<std::string> sweep_rows_in_threads(const Sweep& sweep, const std::vector<std::size_t>& cases,
+                                               int threads) {
+  std::vector<std::string> rows(cases.size());  // rows land at their own index
+  run_indexed_in_threads(cases.size(), threads, [&](std::size_t k) { rows[k] = sweep_row(sweep, cases[k]); });
   return rows;
 }
 

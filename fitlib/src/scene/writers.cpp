@@ -123,13 +123,20 @@ json heat_json(const belt::BeltTemperature& h) {
   for (const belt::HysteresisLayer& l : h.sources.layers)
     layers.push_back({{"layer", l.name}, {"volume_mm3", l.volume_mm3}, {"loss_modulus_MPa", l.loss_modulus_MPa},
                       {"strain_amplitude", l.strain_amplitude}, {"work_per_cycle_J", belt::hysteresis_work_J(l)}});
-  return {{"belt_temperature_C", h.temperature_C}, {"ambient_C", h.ambient_C}, {"pulley_C", h.paths.pulley_C},
+  json j = {{"belt_temperature_C", h.temperature_C}, {"ambient_C", h.ambient_C}, {"pulley_C", h.paths.pulley_C},
           {"iterations", h.iterations}, {"hysteresis_W", h.sources.hysteresis_W},
           {"friction_W", h.sources.friction_W}, {"friction_to_belt", h.paths.friction_to_belt},
           {"heat_in_W", h.heat_in_W}, {"convection_W", h.convection_W}, {"contact_W", h.contact_W},
           {"convection_W_m2K", h.paths.convection_W_m2K}, {"air_area_m2", h.paths.air_area_m2},
           {"contact_W_m2K", h.paths.contact_W_m2K}, {"contact_area_m2", h.paths.contact_area_m2},
           {"balance_error", h.balance_error}, {"layers", layers}};
+  if (h.segment_runs > 0) {  // the complete level: the segment's own dissipation (docs/thermal.md §1)
+    const double out = h.convection_W + h.contact_W, in = h.segment_hysteresis_W + h.paths.friction_to_belt * h.sources.friction_W;
+    j["segment"] = {{"runs", h.segment_runs}, {"over_layers", h.segment_over_layers},
+                    {"layers_hysteresis_W", h.sources.hysteresis_W / h.segment_over_layers},
+                    {"hysteresis_W", h.segment_hysteresis_W}, {"balance_error", std::abs(in - out) / in}};
+  }
+  return j;
 }
 
 std::string heat_text(const belt::BeltTemperature& h) {
@@ -142,6 +149,11 @@ std::string heat_text(const belt::BeltTemperature& h) {
     << core::format_number(100.0 * h.paths.friction_to_belt, 3) << " %\n  heat out: convection "
     << core::format_number(h.convection_W, 4) << " W (h " << core::format_number(h.paths.convection_W_m2K, 4)
     << " W/m2K), to the pulleys " << core::format_number(h.contact_W, 4) << " W\n";
+  if (h.segment_runs > 0)
+    o << "  hysteresis from the segment's own dissipation: " << core::format_number(h.segment_hysteresis_W, 4)
+      << " W at the fixed point, " << core::format_number(h.segment_over_layers, 4) << " x the beam section's layers' "
+      << core::format_number(h.sources.hysteresis_W / h.segment_over_layers, 4) << " W (" << h.segment_runs
+      << " segment runs)\n";
   return o.str();
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "cycle_dissipation.hpp"
 #include "cycle_observers.hpp"
 #include "cycle_parts.hpp"
 #include "element.hpp"
@@ -252,8 +253,9 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   detail::FieldSnapshots fields(frame, knobs, out.vtk_files);
   check.problem = &p, check.body = p.body_force, check.centre_x_mm = sampling.centre_x;
   check.width_mm = drive.width_mm, check.integration = solver.integration;
+  detail::CycleDissipation dissipation(frame, check.area_mm2, sampling.centre_x, section.cog_pitch_mm, drive.width_mm, out.dissipation_J_mm);
   detail::EquilibriumCheck equilibrium(frame, std::move(check), out);
-  p.observers = {&progress, &points, &equilibrium};
+  p.observers = {&progress, &points, &equilibrium, &dissipation};
   if (!knobs.vtk_prefix.empty()) p.observers.insert(p.observers.begin() + 2, &fields);
 
   SolverKnobs k = solver;

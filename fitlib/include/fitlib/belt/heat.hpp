@@ -24,8 +24,8 @@ struct HysteresisLayer {
 
 // W = π E″ ε_a² per unit volume and cycle (Report V (4.25) times ρc/f), J per cycle of the layer.
 double hysteresis_work_J(const HysteresisLayer& layer);
-// Σ W over the layers times the load frequency (W per belt). The complete level's dissipation
-// integral over the segment (the contract's) is to replace the layers here (docs/thermal.md §1).
+// Σ W over the layers times the load frequency (W per belt). At the complete level the segment's
+// own dissipation scales it (BeltTemperature::segment_over_layers, docs/thermal.md §1).
 double hysteresis_power_W(const std::vector<HysteresisLayer>& layers, double load_frequency_Hz);
 // Report V (4.25): the adiabatic rate of rise π ε_a² E″ f/(c ρ), °C/s.
 double adiabatic_heating_rate_C_s(double loss_modulus_MPa, double strain_amplitude, double frequency_Hz,
@@ -86,6 +86,12 @@ struct BeltTemperature {
   double heat_in_W = 0.0;  // hysteresis + the belt's share of the friction
   double convection_W = 0.0, contact_W = 0.0;  // to the air, to the pulleys
   double balance_error = 0.0;  // |in − out| / in at the fixed point
+  // The complete level (docs/thermal.md §1): the segment's dissipation over the layers' estimate,
+  // carried between the segment runs by the layers' temperature dependence; sources.hysteresis_W
+  // is the layers' estimate times it. 1 and 0 runs at the beam and elastic levels.
+  double segment_over_layers = 1.0;
+  int segment_runs = 0;
+  double segment_hysteresis_W = 0.0;  // the stresses' own segment run at the fixed point's temperature
 };
 
 // The fixed point T = T_pulley/ambient + (heat in at T)/(conductances at T), with `sources(T)` the

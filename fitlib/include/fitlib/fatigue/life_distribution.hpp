@@ -7,6 +7,7 @@
 // and its 90 % interval carries the constants' uncertainty (their covariance C over (ln σ0, n, b))
 // to first order: log10 B_p ± t_0.95 √(gᵀ C g), g = ∂ log10 N/∂(ln σ0, n, b) at the design point.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,19 @@ struct BLife {
   bool has_hours = false;     // the conditions give cycles per hour
   bool has_interval = false;  // the card has the constants' covariance
   double low_cycles = 0.0, high_cycles = 0.0, low_h = 0.0, high_h = 0.0;  // 90 % interval
+  // [life] uncertainty = "cards": the 90 % interval over the lives run on card draws
+  bool has_cards_interval = false;
+  double cards_low_cycles = 0.0, cards_high_cycles = 0.0, cards_low_h = 0.0, cards_high_h = 0.0;
+};
+
+// How the cards' interval was made (docs/thermal.md §7): draws run, draws that failed (their run
+// stopped: a thermal runaway, a drawn card without a material at the temperature), the seed, and
+// the draws' median life against the deterministic one.
+struct CardsSampling {
+  int samples = 0, failed = 0;
+  std::uint64_t seed = 0;
+  std::string first_failure;
+  double median_cycles = 0.0;
 };
 
 struct ModeDistribution {
@@ -32,7 +46,12 @@ struct ModeDistribution {
   int dof = 0;                     // its degrees of freedom
   double constants_sd_log10 = 0.0; // √(gᵀ C g): the law's own uncertainty in log10 N
   BLife b10, b50;
+  std::optional<CardsSampling> cards;
 };
+
+// The cards' 90 % interval of B10 and B50 from the mode's lives on card draws: the 5th and 95th
+// percentiles (linear between order statistics) of N_j 10^(z_p s); an infinite draw stays infinite.
+void add_cards_interval(ModeDistribution& d, std::vector<double> draw_cycles, const CardsSampling& sampling);
 
 // ∂ log10 N/∂(ln σ0, n, b) of (6.31) at one point's peaks and temperature offset dT = T − T_ref.
 std::array<double, 3> log10_life_gradient(const std::vector<double>& peaks_MPa, const LifeLaw& law, double dT);

@@ -136,6 +136,15 @@ struct Identifiability {
   std::vector<Pair> correlated;
 };
 
+// The covariance of the parameters with a standard error (docs/formats.md §3 fit.covariance), in
+// the coordinates the fit moved them in: ln p where `log` (positive parameters), p otherwise. The
+// card carries it so a life can propagate it (docs/thermal.md §7, [life] uncertainty = "cards").
+struct ParameterCovariance {
+  std::vector<int> index;                  // model parameter indices, ascending
+  std::vector<bool> log;                   // per entry: the coordinate is ln p
+  std::vector<std::vector<double>> matrix; // index.size() squared
+};
+
 struct FitResult {
   model::ModelPtr model;
   std::vector<double> values;               // in model order
@@ -148,6 +157,7 @@ struct FitResult {
   AdmissibleWindow admissible;
   QualityVerdict quality;
   ConfidenceBand band;
+  ParameterCovariance covariance;           // empty without standard errors
 };
 
 // Fits `model` to `table`. `start` overrides the model's initial_parameters(summary).

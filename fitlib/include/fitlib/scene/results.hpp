@@ -183,6 +183,9 @@ struct SceneResult {
   std::optional<belt::BeltTemperature> heat;
   std::optional<SegmentEquilibrium> segment_equilibrium;  // the segment levels' check
   std::optional<SegmentRun> segment_run;
+  // The segment's own hysteresis: its rubber's dissipation over the last cycle (segment::CycleResult::
+  // dissipation_J_mm) times the belt length and the load frequency, W per belt (docs/thermal.md §1).
+  std::optional<double> segment_hysteresis_W;
   std::set<std::string> segment_damage_held;  // roles whose card's damage the complete level held
   std::vector<FieldFile> segment_fields;
   std::vector<CardReading> segment_cards_read;

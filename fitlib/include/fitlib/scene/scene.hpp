@@ -96,6 +96,11 @@ struct LifeSpec {
   // Elastic level: read the amplitude-dependent cards at the amplitude the segment reaches (true, the
   // default; [life] elastic_amplitude = "reached") or at the smallest ("small", as before issue 33).
   bool elastic_at_reached_amplitude = true;
+  // [life] uncertainty = "cards": B10/B50 also get the 90 % interval of lives run on `samples`
+  // draws of the material cards' parameters from their covariance, seeded (docs/thermal.md §7).
+  bool uncertainty_cards = false;
+  int samples = 100;
+  std::uint64_t seed = 1;
 };
 const char* to_string(LifeSpec::BeyondTests policy);
 
@@ -115,6 +120,8 @@ struct Scene {
   std::map<std::string, double> extra_geometry_mm;  // cog_pitch_mm, cog_depth_mm, ... (kept)
   std::optional<double> c_N, k1_MPa, EI_Nmm2;        // [belt.stiffness] overrides
   std::map<std::string, std::string> materials;      // role → card path (resolved)
+  // role → parameter values that replace its card's (one draw of [life] uncertainty = "cards")
+  std::map<std::string, std::vector<double>> card_values;
   // [belt.materials] poisson_ratio: a card without a bulk modulus gets K from its instantaneous
   // modulus and this ν, as in eval and export (card/conversion.hpp).
   double material_poisson_ratio = card::kDefaultPoissonRatio;

@@ -157,6 +157,9 @@ struct CycleResult {
   // |Σ B_l dV| of Report I's dead friction over the run (0 without the stick).
   double flank_stick_N_mm4 = 0.0, flank_stick_share = 0.0;
   std::vector<std::string> vtk_files;   // written, in the order of vtk_at_s_mm
+  // The last cycle's stress work ∮ P : dF over the central two pitches per mm of belt length, per
+  // role (bottom, cushion): the energy the rubber dissipates per cycle, J/mm (docs/thermal.md §1).
+  std::array<double, 2> dissipation_J_mm{};
   int increments = 0, newton_iterations = 0, factorizations = 0, cuts = 0, elements = 0, equations = 0;
   bool history = false;  // a role's law carries state (viscoelastic, damage): EquilibriumBounds' looser span share
   bool sheared_ends = false;  // end faces warped and sheared (EndCondition::sheared or given profiles)

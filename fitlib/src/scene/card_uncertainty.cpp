@@ -1,0 +1,107 @@
+// [life] uncertainty = "cards" (docs/thermal.md §7): the material cards' parameter covariance
+// propagated to B10 and B50 by running the scene's life on seeded draws of the cards, on the
+// sweep engine's thread schedule (run_indexed_in_threads), each draw's life stored at its index.
+#include <map>
+
+#include "effects.hpp"
+#include "fitlib/card/covariance.hpp"
+#include "fitlib/core/error.hpp"
+#include "fitlib/scene/sweep.hpp"
+#include "fitlib/scene/sweep_run.hpp"
+
+namespace fitlib::scene::detail {
+namespace {
+
+struct RoleSampler {
+  std::string role;
+  card::CardSampler sampler;
+  std::uint64_t stream;  // the role's own random stream: bottom 1, cushion 2, cord 3
+};
+
+std::vector<RoleSampler> role_samplers(const Scene& s, std::vector<std::string>& warnings) {
+  std::vector<RoleSampler> out;
+  std::uint64_t stream = 0;
+  for (const char* role : {"bottom", "cushion", "cord"}) {
+    ++stream;
+    if (!s.materials.count(role)) continue;
+    const std::string& path = s.materials.at(role);
+    const card::Card c = material_card(s, role);
+    auto cov = card::card_covariance(c, path);
+    if (!cov) continue;
+    if (!cov->correlated)
+      warnings.push_back("card " + path + " (" + role + ") has no fit.covariance: [life] uncertainty = \"cards\" draws "
+                         "its standard errors as independent (their correlations are unknown)");
+    try {
+      out.push_back({role, card::CardSampler(c, std::move(*cov)), stream});
+    } catch (const core::InputError& e) {
+      throw core::InputError(e.detail().empty() ? e.what() : e.detail(), path, 0, 0, "fit.covariance");
+    }
+  }
+  if (out.empty())
+    throw core::InputError("[life] uncertainty = \"cards\" propagates the material cards' parameter covariance, and "
+                           "no card of the scene's [belt.materials] has one (fit.covariance) or standard errors "
+                           "(cards fitted by fitcli fit carry both)",
+                           s.path, 0, 0, "life.uncertainty");
+  return out;
+}
+
+// The draws' cost against the sweep's work cap (the same per-case costs, docs/decisions.md
+// "sweep: work cap in core-hours").
+void check_draws_cost(const Scene& s, const std::string& fidelity) {
+  const double each = fidelity == "beam" ? kSweepCaseCostS.beam
+                      : fidelity == "elastic" ? kSweepCaseCostS.elastic : kSweepCaseCostS.complete;
+  const double core_hours = each * s.life->samples / 3600.0;
+  if (core_hours <= kMaxSweepCoreHours) return;
+  throw core::InputError("[life] samples = " + std::to_string(s.life->samples) + " draws at fidelity " + fidelity +
+                             " take about " + std::to_string(static_cast<int>(core_hours)) +
+                             " core-hours, beyond the work cap of 24: fewer samples or a cheaper fidelity",
+                         s.path, 0, 0, "life.samples");
+}
+
+// Draw k's scene: the cards' values drawn, the life alone, one segment thread (the draws run in
+// parallel themselves).
+Scene draw_scene(const Scene& s, const std::vector<RoleSampler>& samplers, std::size_t k) {
+  Scene d = s;
+  d.life->uncertainty_cards = false;
+  d.outputs = {{"life", true}};
+  d.life_field_at.clear();
+  d.segment_progress = false;
+  d.segment_thread_cap = 1;
+  for (const RoleSampler& r : samplers) d.card_values[r.role] = r.sampler.draw(s.life->seed, r.stream, k);
+  return d;
+}
+
+}  // namespace
+
+void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
+  if (!s.life || !s.life->uncertainty_cards || life.distribution.empty()) return;
+  const std::vector<RoleSampler> samplers = role_samplers(s, r.warnings);
+  check_draws_cost(s, life.plan.fidelity);
+  const auto n = static_cast<std::size_t>(s.life->samples);
+  std::vector<std::map<fatigue::Mode, double>> lives(n);
+  std::vector<std::string> failures(n);
+  // A draw whose run stops (a runaway, a drawn card without a material at T) is counted, not fatal.
+  run_indexed_in_threads(n, segment_threads(s), [&](std::size_t k) {
+    try {
+      const SceneResult drawn = run_life(draw_scene(s, samplers, k));  // held: the loop reads into it
+      for (const fatigue::ModeLife& m : drawn.life->report.modes) lives[k][m.mode] = m.life_cycles;
+    } catch (const core::InputError& e) {
+      failures[k] = e.what();
+    } catch (const core::NumericalError& e) {
+      failures[k] = e.what();
+    }
+  });
+  fatigue::CardsSampling sampling;
+  sampling.samples = s.life->samples;
+  sampling.seed = s.life->seed;
+  for (const std::string& f : failures)
+    if (!f.empty() && sampling.failed++ == 0) sampling.first_failure = f;
+  for (fatigue::ModeDistribution& d : life.distribution) {
+    std::vector<double> cycles;
+    for (const auto& draw : lives)
+      if (const auto m = draw.find(d.mode); m != draw.end()) cycles.push_back(m->second);
+    fatigue::add_cards_interval(d, std::move(cycles), sampling);
+  }
+}
+
+}  // namespace fitlib::scene::detail

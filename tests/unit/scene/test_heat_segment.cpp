@@ -1,0 +1,67 @@
+// The complete level's heat build-up from the segment's own dissipation (docs/thermal.md §1): the
+// balance closes with the segment's source at the fixed point, the elastic level's points dissipate
+// nothing, and the segment's hysteresis against the beam layers' estimate is stated.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "../../../fitlib/src/scene/effects.hpp"
+#include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/scene.hpp"
+#include "fitlib/scene/writers.hpp"
+
+using namespace fitlib;
+
+namespace {
+
+const std::string kSource = FITLIB_SOURCE_DIR;
+
+scene::Scene light(const std::string& fidelity, bool heat) {
+  auto s = scene::load_scene(kSource + "/datasets/drives/ref-0500-light.toml");
+  s.materials["bottom"] = kSource + "/datasets/cards/material-1-true.json";
+  s.materials["cushion"] = kSource + "/datasets/cards/material-2-true.json";
+  s.life = scene::LifeSpec{};
+  s.life->fidelity = fidelity;
+  s.life->cycles = 2;
+  if (heat) s.effects["heat_buildup"] = true, s.ambient_C = 25.0, s.thermal.ambient_C = 25.0;
+  return s;
+}
+
+// Sources = losses at the fixed point with the segment's own hysteresis from the stresses' run at
+// that temperature: the outer iteration stops when the segment's ratio to the layers' estimate
+// changes by less than 1e-3, so the balance closes to about that.
+TEST(HeatSegment, CompleteLevelBalanceClosesWithTheSegmentsOwnDissipation) {
+  const auto s = light("complete", true);
+  const auto r = scene::run_life(s);
+  ASSERT_TRUE(r.heat && r.segment_hysteresis_W);
+  const belt::BeltTemperature& h = *r.heat;
+  EXPECT_GE(h.segment_runs, 2);
+  EXPECT_EQ(h.segment_hysteresis_W, *r.segment_hysteresis_W);
+  const double in = h.segment_hysteresis_W + h.paths.friction_to_belt * h.sources.friction_W;
+  const double out = h.convection_W + h.contact_W;
+  EXPECT_NEAR(out / in, 1.0, 2e-3);
+  EXPECT_NEAR(h.sources.hysteresis_W / h.segment_hysteresis_W, 1.0, 2e-3);
+  EXPECT_GT(h.segment_over_layers, 0.0);
+  const auto j = scene::life_json(s, r, false);
+  EXPECT_TRUE(j["heat_buildup"].contains("segment")) << j["heat_buildup"].dump();
+  std::printf("light, thesis cards, complete: %.4g degC, segment %.4g W = %.4g x the layers' %.4g W, %d segment runs, "
+              "balance %.3g\n", h.temperature_C, h.segment_hysteresis_W, h.segment_over_layers,
+              h.sources.hysteresis_W / h.segment_over_layers, h.segment_runs, std::abs(in - out) / in);
+}
+
+// Isotropic elastic points (the [segment] table's E and nu, no cards) are hyperelastic (Hencky): their
+// stress work over the periodic last cycle is zero but for the trapezoidal rule's error over the
+// cycle's 60 increments (the stored energy swings far more than a rubber's loss angle dissipates).
+// Measured: -0.238 W against the layers' 12.72 W (1.9 %), the same with 2 and 4 cycles (so the
+// cycle is periodic and this is the rule's error: docs/thermal.md §4).
+TEST(HeatSegment, IsotropicElasticPointsDissipateNothing) {
+  auto s = light("elastic", false);
+  s.materials.clear();
+  const auto r = scene::run_life(s);
+  ASSERT_TRUE(r.segment_hysteresis_W);
+  const double layers_W = scene::detail::heat_sources(s, *r.drive, *r.cycle).hysteresis_W;
+  EXPECT_LT(std::abs(*r.segment_hysteresis_W), 0.03 * layers_W) << *r.segment_hysteresis_W << " W";
+}
+
+}  // namespace
