@@ -102,20 +102,6 @@ fit::FitOptions auto_fit_options(const FitCardOptions& o) {
   return fit;
 }
 
-// Rows where `r`'s loss misses the data by more than `factor` (the frequency span; lo > hi: none).
-std::pair<double, double> loss_miss_span(const fit::FitResult& r, const data::DynamicTestTable& table, double factor) {
-  double lo = INFINITY, hi = 0.0;
-  for (const auto& row : table.rows) {
-    if (!(row.loss_MPa > 0.0)) continue;
-    const double loss = r.model->moduli(r.values.data(), row.condition).loss;
-    if (std::max(loss / row.loss_MPa, row.loss_MPa / loss) > factor) {
-      lo = std::min(lo, row.condition.frequency_Hz);
-      hi = std::max(hi, row.condition.frequency_Hz);
-    }
-  }
-  return {lo, hi};
-}
-
 // The default objective of --terms auto by the spectrum, chosen from the data (docs/fitting.md
 // "Default objective"): both moduli count (relative errors, weights 1:1) when one spectrum
 // follows both, i.e. when the verdict of that fit has no warning on the storage modulus (size or
@@ -145,12 +131,14 @@ fit::TermSelection select_with_default_objective(const FitCardOptions& o, const 
                                 "Kramers-Kronig consistent to within the verdict's thresholds; " + s.str());
     return balanced;
   }
-  const auto [lo, hi] = loss_miss_span(first.result, table, 1.5);
   std::ostringstream w;
   w << "default objective: E' leads (relative errors, storage weight " << fit.storage_weight
     << ") because the data are not Kramers-Kronig consistent: " << s.str() << "; E'' is given up: rms log10 "
     << core::format_number(e.rms_log10_loss, 3) << " instead of " << core::format_number(b.rms_log10_loss, 3);
-  if (lo <= hi) w << ", off by more than a factor 1.5 between " << lo << " and " << hi << " Hz";
+  const auto& ranges = first.result.quality.kramers_kronig_ranges_Hz;  // the verdict's (quality.hpp)
+  for (std::size_t k = 0; k < ranges.size(); ++k)
+    w << (k ? ", " : ", off by more than a factor 1.5 between ") << ranges[k].first << " and " << ranges[k].second
+      << " Hz";
   w << " (--storage-weight 1 --loss-weight 1 --residual relative fits both)";
   first.result.quality.warnings.push_back(w.str());
   return first;
