@@ -110,27 +110,43 @@ fit::FitOptions auto_fit_options(const FitCardOptions& o) {
 // E″ is given up. `fit` becomes the options of the selection returned.
 fit::TermSelection select_with_default_objective(const FitCardOptions& o, const nlohmann::json& options,
                                                  const data::DynamicTestTable& table, fit::FitOptions& fit) {
+  const auto make = [&](int n) {
+    nlohmann::json with_terms = options;
+    with_terms["terms"] = n;
+    return model::make_model(o.model, with_terms);
+  };
+  // The choice is made on the smooth spectra; only the one kept is compacted and capped.
+  const fit::TermOptions terms = term_options(o);
+  fit::TermOptions smooth = terms;
+  if (fit::spectrum_applies(make)) smooth.compact.enabled = false, smooth.solver_cap = 0;
+  const auto compact = [&](const fit::FitOptions& f, fit::TermSelection& sel) {
+    if (sel.method == fit::TermMethod::spectrum) fit::compact_spectrum_selection(make, table, f, terms, sel);
+  };
   fit::FitOptions both = fit;
   both.residual = fit::kSpectrumResidual;
   both.storage_weight = both.loss_weight = 1.0;
-  fit::TermSelection balanced = fit::select_terms(o.model, options, table, both, term_options(o));
-  fit::TermSelection first = fit::select_terms(o.model, options, table, fit, term_options(o));
-  const fit::FitMetrics& b = balanced.result.metrics;
-  const fit::FitMetrics& e = first.result.metrics;
+  fit::TermSelection balanced = fit::select_terms(make, table, both, smooth);
+  const fit::FitMetrics b = balanced.result.metrics;
+  const auto on_storage = [](const std::string& w) { return w.find("the storage modulus") != std::string::npos; };
+  const auto& verdict = balanced.result.quality.warnings;
+  if (std::none_of(verdict.begin(), verdict.end(), on_storage)) {
+    fit = both;
+    compact(both, balanced);
+    balanced.messages.push_back("default objective: both moduli count (relative errors, weights 1:1): the data are "
+                                "Kramers-Kronig consistent to within the verdict's thresholds (smooth spectrum: rms "
+                                "log10 storage " + core::format_number(b.rms_log10_storage, 3) + ", loss " +
+                                core::format_number(b.rms_log10_loss, 3) + ")");
+    return balanced;
+  }
+  fit::TermSelection first = fit::select_terms(make, table, fit, smooth);
+  const fit::FitMetrics e = first.result.metrics;
+  compact(fit, first);
   const double cost = e.rms_log10_storage > 0.0 ? b.rms_log10_storage / e.rms_log10_storage : 1.0;
   std::ostringstream s;
   s << "with both moduli counting the storage rms log10 error is " << core::format_number(b.rms_log10_storage, 3)
     << " (x" << core::format_number(cost, 3) << " the E'-first fit's " << core::format_number(e.rms_log10_storage, 3)
     << ", loss " << core::format_number(b.rms_log10_loss, 3) << " against " << core::format_number(e.rms_log10_loss, 3)
     << ")";
-  const auto on_storage = [](const std::string& w) { return w.find("the storage modulus") != std::string::npos; };
-  const auto& verdict = balanced.result.quality.warnings;
-  if (std::none_of(verdict.begin(), verdict.end(), on_storage)) {
-    fit = both;
-    balanced.messages.push_back("default objective: both moduli count (relative errors, weights 1:1): the data are "
-                                "Kramers-Kronig consistent to within the verdict's thresholds; " + s.str());
-    return balanced;
-  }
   std::ostringstream w;
   w << "default objective: E' leads (relative errors, storage weight " << fit.storage_weight
     << ") because the data are not Kramers-Kronig consistent: " << s.str() << "; E'' is given up: rms log10 "

@@ -271,7 +271,7 @@ void assess(const Problem& problem, FitResult& result) {
   const double cost = 0.5 * r.squaredNorm();
   record_solution(problem, cost, result);
   result.identifiability = Identifiability{};
-  if (nf == 0) return;
+  if (nf == 0 || !problem.options().uncertainty) return;
 
   const ScaledSpectrum sp = scaled_spectrum(jac, m, nf);
   result.identifiability.rank = sp.rank;

@@ -54,6 +54,9 @@ struct FitOptions {
   // the posterior of the series moduli under the spectrum's smoothness prior, not the bare
   // least-squares covariance (docs/decisions.md "Confidence band under the smoothness prior").
   double band_smoothness = 0.0;
+  // false: the values, metrics and verdict only, without covariance, intervals, band or the merges
+  // of unidentifiable terms (the term economy's trial fits, whose figures alone are compared).
+  bool uncertainty = true;
 };
 
 // The window a fit's series terms were held in (card "fit.admissible"; export checks it).
