@@ -113,15 +113,22 @@ bool band_block(const nlohmann::json& fit, std::ostringstream& s) {
   return true;
 }
 
-// What the title adds from the card's verdict: where the data are not Kramers–Kronig consistent.
+// What the title adds from the card's verdict: where the data are not Kramers–Kronig consistent,
+// each range of fit.quality.kramers_kronig_inconsistent_Hz (a list of [lo, hi]; older cards hold
+// one pair, their envelope).
 std::string kramers_kronig_note(const nlohmann::json& fit) {
   const auto q = fit.find("quality");
   if (q == fit.end() || !q->contains("kramers_kronig_inconsistent_Hz")) return "";
-  const auto& span = (*q)["kramers_kronig_inconsistent_Hz"];
-  char b[160];
-  std::snprintf(b, sizeof b, "; data Kramers-Kronig inconsistent %.3g to %.3g Hz", span[0].get<double>(),
-                span[1].get<double>());
-  return b;
+  nlohmann::json ranges = (*q)["kramers_kronig_inconsistent_Hz"];
+  if (!ranges.is_array() || ranges.empty()) return "";
+  if (ranges[0].is_number()) ranges = nlohmann::json::array({ranges});
+  std::string note = "; data Kramers-Kronig inconsistent";
+  for (std::size_t k = 0; k < ranges.size(); ++k) {
+    char b[80];
+    std::snprintf(b, sizeof b, "%s %.3g to %.3g Hz", k ? "," : "", ranges[k][0].get<double>(), ranges[k][1].get<double>());
+    note += b;
+  }
+  return note;
 }
 
 // Storage, loss, tan δ, residuals; `mode_letter` E or G; the card's band shaded where it has one.

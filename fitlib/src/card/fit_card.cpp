@@ -102,20 +102,6 @@ fit::FitOptions auto_fit_options(const FitCardOptions& o) {
   return fit;
 }
 
-// Rows where `r`'s loss misses the data by more than `factor` (the frequency span; lo > hi: none).
-std::pair<double, double> loss_miss_span(const fit::FitResult& r, const data::DynamicTestTable& table, double factor) {
-  double lo = INFINITY, hi = 0.0;
-  for (const auto& row : table.rows) {
-    if (!(row.loss_MPa > 0.0)) continue;
-    const double loss = r.model->moduli(r.values.data(), row.condition).loss;
-    if (std::max(loss / row.loss_MPa, row.loss_MPa / loss) > factor) {
-      lo = std::min(lo, row.condition.frequency_Hz);
-      hi = std::max(hi, row.condition.frequency_Hz);
-    }
-  }
-  return {lo, hi};
-}
-
 // The default objective of --terms auto by the spectrum, chosen from the data (docs/fitting.md
 // "Default objective"): both moduli count (relative errors, weights 1:1) when one spectrum
 // follows both, i.e. when the verdict of that fit has no warning on the storage modulus (size or
@@ -124,33 +110,51 @@ std::pair<double, double> loss_miss_span(const fit::FitResult& r, const data::Dy
 // E″ is given up. `fit` becomes the options of the selection returned.
 fit::TermSelection select_with_default_objective(const FitCardOptions& o, const nlohmann::json& options,
                                                  const data::DynamicTestTable& table, fit::FitOptions& fit) {
+  const auto make = [&](int n) {
+    nlohmann::json with_terms = options;
+    with_terms["terms"] = n;
+    return model::make_model(o.model, with_terms);
+  };
+  // The choice is made on the smooth spectra; only the one kept is compacted and capped.
+  const fit::TermOptions terms = term_options(o);
+  fit::TermOptions smooth = terms;
+  if (fit::spectrum_applies(make)) smooth.compact.enabled = false, smooth.solver_cap = 0;
+  const auto compact = [&](const fit::FitOptions& f, fit::TermSelection& sel) {
+    if (sel.method == fit::TermMethod::spectrum) fit::compact_spectrum_selection(make, table, f, terms, sel);
+  };
   fit::FitOptions both = fit;
   both.residual = fit::kSpectrumResidual;
   both.storage_weight = both.loss_weight = 1.0;
-  fit::TermSelection balanced = fit::select_terms(o.model, options, table, both, term_options(o));
-  fit::TermSelection first = fit::select_terms(o.model, options, table, fit, term_options(o));
-  const fit::FitMetrics& b = balanced.result.metrics;
-  const fit::FitMetrics& e = first.result.metrics;
+  fit::TermSelection balanced = fit::select_terms(make, table, both, smooth);
+  const fit::FitMetrics b = balanced.result.metrics;
+  const auto on_storage = [](const std::string& w) { return w.find("the storage modulus") != std::string::npos; };
+  const auto& verdict = balanced.result.quality.warnings;
+  if (std::none_of(verdict.begin(), verdict.end(), on_storage)) {
+    fit = both;
+    compact(both, balanced);
+    balanced.messages.push_back("default objective: both moduli count (relative errors, weights 1:1): the data are "
+                                "Kramers-Kronig consistent to within the verdict's thresholds (smooth spectrum: rms "
+                                "log10 storage " + core::format_number(b.rms_log10_storage, 3) + ", loss " +
+                                core::format_number(b.rms_log10_loss, 3) + ")");
+    return balanced;
+  }
+  fit::TermSelection first = fit::select_terms(make, table, fit, smooth);
+  const fit::FitMetrics e = first.result.metrics;
+  compact(fit, first);
   const double cost = e.rms_log10_storage > 0.0 ? b.rms_log10_storage / e.rms_log10_storage : 1.0;
   std::ostringstream s;
   s << "with both moduli counting the storage rms log10 error is " << core::format_number(b.rms_log10_storage, 3)
     << " (x" << core::format_number(cost, 3) << " the E'-first fit's " << core::format_number(e.rms_log10_storage, 3)
     << ", loss " << core::format_number(b.rms_log10_loss, 3) << " against " << core::format_number(e.rms_log10_loss, 3)
     << ")";
-  const auto on_storage = [](const std::string& w) { return w.find("the storage modulus") != std::string::npos; };
-  const auto& verdict = balanced.result.quality.warnings;
-  if (std::none_of(verdict.begin(), verdict.end(), on_storage)) {
-    fit = both;
-    balanced.messages.push_back("default objective: both moduli count (relative errors, weights 1:1): the data are "
-                                "Kramers-Kronig consistent to within the verdict's thresholds; " + s.str());
-    return balanced;
-  }
-  const auto [lo, hi] = loss_miss_span(first.result, table, 1.5);
   std::ostringstream w;
   w << "default objective: E' leads (relative errors, storage weight " << fit.storage_weight
     << ") because the data are not Kramers-Kronig consistent: " << s.str() << "; E'' is given up: rms log10 "
     << core::format_number(e.rms_log10_loss, 3) << " instead of " << core::format_number(b.rms_log10_loss, 3);
-  if (lo <= hi) w << ", off by more than a factor 1.5 between " << lo << " and " << hi << " Hz";
+  const auto& ranges = first.result.quality.kramers_kronig_ranges_Hz;  // the verdict's (quality.hpp)
+  for (std::size_t k = 0; k < ranges.size(); ++k)
+    w << (k ? ", " : ", off by more than a factor 1.5 between ") << ranges[k].first << " and " << ranges[k].second
+      << " Hz";
   w << " (--storage-weight 1 --loss-weight 1 --residual relative fits both)";
   first.result.quality.warnings.push_back(w.str());
   return first;

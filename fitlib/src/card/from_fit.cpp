@@ -32,8 +32,11 @@ nlohmann::json quality_json(const fit::QualityVerdict& q) {
                        {"mean_rel_error", f.mean_rel_error}, {"max_rel_error", f.max_rel_error},
                        {"max_at_frequency_Hz", f.max_at_frequency_Hz}});
   nlohmann::json j = {{"acceptable", q.acceptable()}, {"warnings", q.warnings}, {"figures", figures}};
-  if (q.kramers_kronig_lo_Hz <= q.kramers_kronig_hi_Hz)
-    j["kramers_kronig_inconsistent_Hz"] = {q.kramers_kronig_lo_Hz, q.kramers_kronig_hi_Hz};
+  if (!q.kramers_kronig_ranges_Hz.empty()) {
+    nlohmann::json ranges = nlohmann::json::array();
+    for (const auto& [lo, hi] : q.kramers_kronig_ranges_Hz) ranges.push_back({lo, hi});
+    j["kramers_kronig_inconsistent_Hz"] = ranges;
+  }
   return j;
 }
 

@@ -187,7 +187,34 @@ ParameterCovariance usable_covariance(const Problem& problem, const Eigen::Matri
   return c;
 }
 
-// The band of E′, E″ and tan δ at 10 frequencies per decade over the data (BandPoint): the
+// The posterior covariance of the fitted coordinates under the smooth spectrum's prior
+// (docs/decisions.md "Confidence band under the smoothness prior"): s² (JᵀJ + λ PᵀP)⁺, P the
+// zero-padded second differences of the free series moduli in τ order, each on the scale the
+// spectrum penalises (its column norm ‖J_k‖, spectrum_system.cpp). The bare covariance gives
+// every term of a dense grid its own variance: the band then spikes at every τ of the grid.
+Eigen::MatrixXd smoothness_prior_covariance(const Problem& problem, const RowMatrix& jac, double s2, double lambda) {
+  const int nf = problem.num_free();
+  const SeriesTerms series = series_terms(problem.specs());
+  std::vector<int> free_of(problem.num_parameters(), -1);
+  for (int k = 0; k < nf; ++k) free_of[problem.free()[k]] = k;
+  std::vector<std::pair<double, int>> terms;  // (τ, free index of its modulus)
+  for (std::size_t t = 0; t < series.moduli.size(); ++t)
+    if (free_of[series.moduli[t]] >= 0)
+      terms.emplace_back(problem.natural()[series.times[t]], free_of[series.moduli[t]]);
+  std::sort(terms.begin(), terms.end());
+  const int n = static_cast<int>(terms.size());
+  Eigen::MatrixXd prior = Eigen::MatrixXd::Zero(n, nf);
+  const double stencil[3] = {1.0, -2.0, 1.0};
+  for (int row = 0; row < n; ++row)  // rows t = −1 … n − 2 of the padded stencil
+    for (int q = 0; q < 3; ++q) {
+      const int term = row - 1 + q;
+      if (term >= 0 && term < n) prior(row, terms[term].second) = stencil[q] * jac.col(terms[term].second).norm();
+    }
+  const Eigen::MatrixXd information = jac.transpose() * jac + lambda * prior.transpose() * prior;
+  return s2 * information.completeOrthogonalDecomposition().pseudoInverse();
+}
+
+// The band of E′, E″ and tan δ at 20 frequencies per decade over the data (BandPoint): the
 // gradient of each logarithm in the fitted coordinates x, σ² = gᵀ Cov_x g, interval exp(ln v ± tσ).
 ConfidenceBand confidence_band(const Problem& problem, const Eigen::MatrixXd& cov_x, double t) {
   ConfidenceBand band;
@@ -198,7 +225,7 @@ ConfidenceBand confidence_band(const Problem& problem, const Eigen::MatrixXd& co
   band.condition = rows.front().condition;
   const int n = problem.num_parameters(), nf = problem.num_free();
   const std::vector<double>& p = problem.natural();
-  const int points = std::max(2, static_cast<int>(std::lround(10.0 * std::log10(hi / lo))) + 1);
+  const int points = std::max(2, static_cast<int>(std::lround(20.0 * std::log10(hi / lo))) + 1);
   Eigen::MatrixXd jac(3, n);
   for (int k = 0; k < points; ++k) {
     model::TestCondition c = band.condition;
@@ -258,7 +285,7 @@ void assess(const Problem& problem, FitResult& result) {
   const double cost = 0.5 * r.squaredNorm();
   record_solution(problem, cost, result);
   result.identifiability = Identifiability{};
-  if (nf == 0) return;
+  if (nf == 0 || !problem.options().uncertainty) return;
 
   const ScaledSpectrum sp = scaled_spectrum(jac, m, nf);
   result.identifiability.rank = sp.rank;
@@ -289,7 +316,9 @@ void assess(const Problem& problem, FitResult& result) {
     if (usable[k]) ++result.metrics.n_active;
   }
   report_correlations(problem, cov_x, usable, result);
-  result.band = confidence_band(problem, cov_x, t);
+  const double lambda = problem.options().band_smoothness;
+  result.band = confidence_band(
+      problem, lambda > 0.0 ? smoothness_prior_covariance(problem, jac, 2.0 * cost / dof, lambda) : cov_x, t);
   result.covariance = usable_covariance(problem, cov_x, usable);
 }
 

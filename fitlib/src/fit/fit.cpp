@@ -502,7 +502,7 @@ void assess_with_merges(Problem& problem, FitResult& result, const BackendRun& r
     detail::assess(problem, result);
   };
   assess_fit();
-  for (int round = 0; round < 6 && merge_unidentifiable_terms(problem, result, run.linear_only);
+  for (int round = 0; round < 6 && problem.options().uncertainty && merge_unidentifiable_terms(problem, result, run.linear_only);
        ++round)
     assess_fit();
   if (run.linear_only)

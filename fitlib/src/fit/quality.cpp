@@ -48,15 +48,52 @@ std::string percent(double x) {
   return s.str();
 }
 
-// Frequencies where storage fits and the loss it implies misses (Kramers–Kronig).
-struct KramersKronigSpan {
-  double lo_Hz = INFINITY, hi_Hz = 0.0, worst_factor = 1.0;
-  void add(double f, double factor) {
-    lo_Hz = std::min(lo_Hz, f);
-    hi_Hz = std::max(hi_Hz, f);
-    worst_factor = std::max(worst_factor, factor);
-  }
+// Kramers–Kronig ranges (docs/decisions.md "Kramers–Kronig inconsistent ranges"): a row is
+// flagged where the storage is fitted (within its mean threshold) and the loss it implies misses
+// by more than kKramersKronigLossFactor, consistent where both are fitted, neutral where the
+// storage is not. A range is a run of at least kKramersKronigRunPoints flagged rows in frequency
+// order, within one temperature/mode group; kKramersKronigGap consecutive consistent rows end it.
+// One noisy loss point is no range, and the rows between two ranges are not inside one.
+constexpr int kKramersKronigRunPoints = 5;
+constexpr int kKramersKronigGap = 2;
+
+enum class KramersKronigState { consistent, flagged, neutral };
+struct KramersKronigRow {
+  double frequency_Hz = 0.0, factor = 1.0;
+  KramersKronigState state = KramersKronigState::neutral;
 };
+struct KramersKronigRange {
+  std::string group;
+  double lo_Hz = 0.0, hi_Hz = 0.0, worst_factor = 1.0;
+};
+// group → its rows (group "" when the data have one temperature and one mode)
+using KramersKronigRows = std::map<std::string, std::vector<KramersKronigRow>>;
+
+std::vector<KramersKronigRange> kramers_kronig_ranges(const KramersKronigRows& groups) {
+  std::vector<KramersKronigRange> out;
+  for (const auto& [group, unsorted] : groups) {
+    std::vector<KramersKronigRow> rows = unsorted;
+    std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.frequency_Hz < b.frequency_Hz; });
+    KramersKronigRange range{group};
+    int flagged = 0, gap = 0;
+    const auto close = [&] {
+      if (flagged >= kKramersKronigRunPoints) out.push_back(range);
+      flagged = gap = 0;
+    };
+    for (const auto& r : rows) {
+      if (r.state == KramersKronigState::flagged) {
+        if (flagged++ == 0) range = {group, r.frequency_Hz, r.frequency_Hz, r.factor};
+        range.hi_Hz = r.frequency_Hz;
+        range.worst_factor = std::max(range.worst_factor, r.factor);
+        gap = 0;
+      } else if (r.state == KramersKronigState::consistent && flagged > 0 && ++gap >= kKramersKronigGap) {
+        close();
+      }
+    }
+    close();
+  }
+  return out;
+}
 
 // (group, component) → errors; group "" = all rows.
 using ErrorGroups = std::map<std::pair<std::string, int>, Accumulator>;
@@ -76,12 +113,12 @@ std::pair<bool, bool> grouping(const std::vector<data::DynamicTestRow>& rows) {
 }
 
 void accumulate_errors(const Problem& problem, const std::vector<double>& p,
-                       const QualityThresholds& th, ErrorGroups& acc, KramersKronigSpan& kk) {
+                       const QualityThresholds& th, ErrorGroups& acc, KramersKronigRows& kk) {
   const auto& rows = problem.table().rows;
   const auto [by_temperature, mixed_modes] = grouping(rows);
   int current = -1;
   model::Moduli<double> m{};
-  std::vector<double> storage_error(rows.size(), 0.0);
+  std::vector<double> storage_error(rows.size(), INFINITY);  // INFINITY: no storage residual
   for (const ResidualEntry& e : problem.entries()) {
     const auto& row = rows[e.row];
     if (e.row != current) {
@@ -99,9 +136,12 @@ void accumulate_errors(const Problem& problem, const std::vector<double>& p,
     if (by_temperature || mixed_modes)
       acc[{group_of(row.condition, by_temperature, mixed_modes), e.component}].add(err, f, signed_err);
     if (e.component == 0) storage_error[e.row] = err;
-    if (e.component == 1 && storage_error[e.row] <= th.storage_mean) {
+    if (e.component == 1) {
       const double factor = std::max(value / e.data, e.data / value);
-      if (factor > kKramersKronigLossFactor) kk.add(f, factor);
+      const auto state = storage_error[e.row] > th.storage_mean ? KramersKronigState::neutral
+                         : factor > kKramersKronigLossFactor    ? KramersKronigState::flagged
+                                                                : KramersKronigState::consistent;
+      kk[group_of(row.condition, by_temperature, mixed_modes)].push_back({f, factor, state});
     }
   }
 }
@@ -131,12 +171,31 @@ ErrorFigures figures_of(const std::pair<std::string, int>& key, const Accumulato
   return fig;
 }
 
+// The ranges in the verdict and one warning naming them.
+void kramers_kronig_warning(const std::vector<KramersKronigRange>& ranges, const QualityThresholds& th,
+                            QualityVerdict& v) {
+  if (ranges.empty()) return;
+  std::ostringstream s;
+  s << "data not Kramers-Kronig consistent ";
+  double worst = 1.0;
+  for (std::size_t k = 0; k < ranges.size(); ++k) {
+    const auto& r = ranges[k];
+    v.kramers_kronig_ranges_Hz.emplace_back(r.lo_Hz, r.hi_Hz);
+    worst = std::max(worst, r.worst_factor);
+    s << (k ? ", " : "") << "between " << r.lo_Hz << " and " << r.hi_Hz << " Hz" << (r.group.empty() ? "" : " (" + r.group + ")");
+  }
+  s << ": the storage modulus is fitted within " << percent(th.storage_mean)
+    << " there, but the loss modulus it implies differs from the measured one by up to a factor " << worst
+    << " (no relaxation spectrum fits both; the weights choose between them)";
+  v.warnings.push_back(s.str());
+}
+
 }  // namespace
 
 QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>& p,
                                const QualityThresholds& th) {
   ErrorGroups acc;
-  KramersKronigSpan kk;
+  KramersKronigRows kk;
   accumulate_errors(problem, p, th, acc, kk);
   QualityVerdict v;
   std::map<int, std::vector<GroupBias>> biased;  // component → its biased groups
@@ -164,20 +223,7 @@ QualityVerdict quality_verdict(const Problem& problem, const std::vector<double>
                          " degC, where eval and scenes refuse the card: " + why);
     break;
   }
-  if (!series_terms(problem.specs()).empty() && kk.hi_Hz > 0.0) {
-    v.kramers_kronig_lo_Hz = kk.lo_Hz;
-    v.kramers_kronig_hi_Hz = kk.hi_Hz;
-    std::ostringstream s;
-    s << "data not Kramers-Kronig consistent ";
-    if (kk.lo_Hz < kk.hi_Hz)
-      s << "between " << kk.lo_Hz << " and " << kk.hi_Hz << " Hz";
-    else
-      s << "at " << kk.hi_Hz << " Hz";
-    s << ": the storage modulus is fitted within " << percent(th.storage_mean)
-      << " there, but the loss modulus it implies differs from the measured one by up to a factor "
-      << kk.worst_factor << " (no relaxation spectrum fits both; the weights choose between them)";
-    v.warnings.push_back(s.str());
-  }
+  if (!series_terms(problem.specs()).empty()) kramers_kronig_warning(kramers_kronig_ranges(kk), th, v);
   return v;
 }
 

@@ -248,6 +248,7 @@ SpectrumFit fit_spectrum(const std::function<model::ModelPtr(int)>& make, const 
   polish.backend = Backend::nnls;
   polish.linear_start = false;
   polish.polish = false;  // polished above, with the penalty
+  polish.band_smoothness = out.lambda;  // the band under the spectrum's smoothness prior
   const detail::SeriesTerms rs = detail::series_terms(reduced->parameters());
   const bool elastic = values[rs.moduli.front()] == 0.0;  // an all-zero spectrum: its one term is removed
   if (elastic) polish.fixed.push_back(reduced->parameters()[rs.moduli.front()].name);  // held at 0, not moved to 1

@@ -62,13 +62,15 @@ bool keeps(const Figures& f, const Figures& ref, const CompactOptions& o) {
 
 // The spectrum's positive terms merged (Ward, term_merge.hpp) to `n`, the moduli re-solved at the
 // merged times (NNLS on the same objective; exact for relative residuals, polished in log space
-// for log10 ones), the times held.
+// for log10 ones), the times held. `trial`: figures only (FitOptions::uncertainty false).
 FitResult merged_fit(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
-                     const FitOptions& options, const FitResult& spectrum, const std::vector<Term>& terms, int n) {
+                     const FitOptions& options, const FitResult& spectrum, const std::vector<Term>& terms, int n,
+                     bool trial) {
   const model::ModelPtr m = make(n);
   const detail::SeriesTerms ms = detail::series_terms(m->parameters());
   std::vector<double> start = detail::start_from_terms(*m, spectrum, detail::merge_to(terms, n));
   FitOptions held = options;
+  held.uncertainty = !trial;
   held.backend = Backend::nnls;
   held.polish = options.residual == ResidualKind::log10;
   for (int i : ms.times) held.fixed.push_back(m->parameters()[i].name);
@@ -91,7 +93,7 @@ FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, cons
   int tried = 0;
   while (lo < hi) {
     const int mid = (lo + hi) / 2;
-    FitResult r = merged_fit(make, table, options, spectrum, terms, mid);
+    FitResult r = merged_fit(make, table, options, spectrum, terms, mid, true);
     ++tried;
     if (keeps(figures_of(r, table), ref, o)) {
       hi = mid;
@@ -101,6 +103,7 @@ FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, cons
     }
   }
   if (!best || hi == full) return spectrum;
+  best = merged_fit(make, table, options, spectrum, terms, hi, false);  // the count kept, assessed
   const Figures f = figures_of(*best, table);
   std::ostringstream msg;
   msg << "term economy: the smooth spectrum's " << full << " terms merged to " << hi << " (" << tried

@@ -61,6 +61,21 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
   sel.spectrum_path = std::move(s.path);
   sel.spectrum_lambda = s.lambda;
   sel.result = std::move(s.result);
+  compact_spectrum_selection(make, table, options, terms, sel);
+  return sel;
+}
+
+const TermRow* row_for(const std::vector<TermRow>& rows, int terms) {
+  for (const auto& r : rows)
+    if (r.terms == terms) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+void compact_spectrum_selection(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
+                                const FitOptions& options, const TermOptions& terms, TermSelection& sel) {
+  const TermRow full = sel.rows.front();
   if (terms.compact.enabled) {
     const core::Stopwatch economy;
     FitResult compact = compact_spectrum(make, table, options, sel.result, terms.compact);
@@ -72,7 +87,7 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
       sel.result = std::move(compact);
     }
   }
-  if (terms.solver_cap <= 0 || sel.chosen <= terms.solver_cap) return sel;
+  if (terms.solver_cap <= 0 || sel.chosen <= terms.solver_cap) return;
   const core::Stopwatch clock;
   FitResult capped = cap_spectrum(make, table, options, sel.result, terms.solver_cap);
   const TermRow cap = row_of(capped, clock.seconds());
@@ -90,16 +105,7 @@ TermSelection spectrum_selection(const std::function<model::ModelPtr(int)>& make
   sel.messages.push_back(msg.str());
   capped.messages.insert(capped.messages.begin(), sel.result.messages.front());
   sel.result = std::move(capped);
-  return sel;
 }
-
-const TermRow* row_for(const std::vector<TermRow>& rows, int terms) {
-  for (const auto& r : rows)
-    if (r.terms == terms) return &r;
-  return nullptr;
-}
-
-}  // namespace
 
 int choose_terms(const std::vector<TermRow>& rows, TermRule rule, double ratio, int cap) {
   double best = std::numeric_limits<double>::infinity();

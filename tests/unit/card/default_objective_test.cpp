@@ -145,5 +145,54 @@ TEST(DefaultObjective, ReadmeTourTableIsNotLowOnLossAndBiasIsCaught) {
   EXPECT_TRUE(any_contains(card::fit_card(table, old).warnings, "biased on the loss modulus"));
 }
 
+
+// Kramers–Kronig ranges (docs/decisions.md "Kramers–Kronig inconsistent ranges"): consistent
+// data of known truth have none, in the verdict and in the card; a loss band multiplied by 2.5
+// over two decades of otherwise consistent data is found there and nowhere else.
+TEST(KramersKronigRanges, ConsistentDataOfKnownTruthHaveNone) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Truth t = smooth_truth(10, 1e-5 / (2.0 * M_PI), seed);
+    const auto f = fit::testing::log_frequencies(1e-4, 1e4, kPerDecade * 8 + 1);
+    const card::FitCardResult r = card::fit_card(fit::testing::synthetic_table(*t.model, t.p, f, 0.01, 200 + seed), auto_options());
+    EXPECT_TRUE(r.result.quality.kramers_kronig_ranges_Hz.empty()) << "seed " << seed;
+    EXPECT_FALSE(r.card.fit["quality"].contains("kramers_kronig_inconsistent_Hz")) << "seed " << seed;
+    EXPECT_FALSE(any_contains(r.warnings, "not Kramers-Kronig consistent")) << "seed " << seed;
+  }
+}
+
+TEST(KramersKronigRanges, InjectedLossBandIsFoundWhereItIs) {
+  const double band_lo = 1.0, band_hi = 100.0;  // Hz: E'' × 2.5 there
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Truth t = smooth_truth(10, 1e-5 / (2.0 * M_PI), seed);
+    const auto f = fit::testing::log_frequencies(1e-4, 1e4, kPerDecade * 8 + 1);
+    auto table = fit::testing::synthetic_table(*t.model, t.p, f, 0.01, 300 + seed);
+    for (auto& row : table.rows)
+      if (row.condition.frequency_Hz >= band_lo && row.condition.frequency_Hz <= band_hi) row.loss_MPa *= 2.5;
+    const card::FitCardResult r = card::fit_card(table, auto_options());
+    const auto& ranges = r.result.quality.kramers_kronig_ranges_Hz;
+    ASSERT_EQ(ranges.size(), 1u) << "seed " << seed;
+    std::printf("seed %d: inconsistent %.3g to %.3g Hz (injected %.3g to %.3g)\n", int(seed), ranges[0].first,
+                ranges[0].second, band_lo, band_hi);
+    EXPECT_GE(ranges[0].first, band_lo / 1.01) << "seed " << seed;
+    EXPECT_LE(ranges[0].second, band_hi * 1.01) << "seed " << seed;
+    EXPECT_GE(std::log10(ranges[0].second / ranges[0].first), 1.5) << "seed " << seed;  // most of the band
+    EXPECT_EQ(r.card.fit["quality"]["kramers_kronig_inconsistent_Hz"].size(), 1u) << "seed " << seed;
+  }
+}
+
+// pyvisco's master: its E'' plateau below the transition is what no spectrum under its E' can
+// hold; above the transition the card's loss is within a factor 1.5 of the data (the range once
+// spanned the whole data, 1e-12 to 1e14 Hz).
+TEST(KramersKronigRanges, PyviscoMasterIsInconsistentBelowTheTransitionOnly) {
+  const auto master = fit::testing::read_pyvisco("datasets/materials/pyvisco-freq-master.csv");
+  const auto ranges = card::fit_card(master, auto_options()).result.quality.kramers_kronig_ranges_Hz;
+  ASSERT_FALSE(ranges.empty());
+  EXPECT_NEAR(std::log10(ranges.front().first), -12.0, 0.01);
+  for (const auto& [lo, hi] : ranges) {
+    std::printf("pyvisco master: inconsistent %.3g to %.3g Hz\n", lo, hi);
+    EXPECT_LT(hi, 10.0);
+  }
+}
+
 }  // namespace
 }  // namespace fitlib

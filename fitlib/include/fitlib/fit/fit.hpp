@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fitlib/data/table.hpp"
@@ -49,6 +50,13 @@ struct FitOptions {
   double relaxed_floor = 0.1;
   // Wall times in the result's messages (staged fits) only when asked: same input, same bytes.
   bool record_timing = false;
+  // The smooth spectrum's penalty weight λ (> 0: set by fit_spectrum): the confidence band is then
+  // the posterior of the series moduli under the spectrum's smoothness prior, not the bare
+  // least-squares covariance (docs/decisions.md "Confidence band under the smoothness prior").
+  double band_smoothness = 0.0;
+  // false: the values, metrics and verdict only, without covariance, intervals, band or the merges
+  // of unidentifiable terms (the term economy's trial fits, whose figures alone are compared).
+  bool uncertainty = true;
 };
 
 // The window a fit's series terms were held in (card "fit.admissible"; export checks it).
@@ -73,9 +81,10 @@ struct ErrorFigures {
 struct QualityVerdict {
   std::vector<ErrorFigures> figures;  // per modulus for all rows, then per temperature/mode group
   std::vector<std::string> warnings;  // one per figure past its threshold, and data warnings
-  // Where the data are not Kramers–Kronig consistent (storage fitted, loss off by > 1.5×);
-  // lo > hi: nowhere found.
-  double kramers_kronig_lo_Hz = 1.0, kramers_kronig_hi_Hz = 0.0;
+  // Where the data are not Kramers–Kronig consistent: runs of rows in frequency order where the
+  // storage is fitted and the loss it implies is off by > 1.5× (docs/decisions.md "Kramers–Kronig
+  // inconsistent ranges"), each (lo, hi) in Hz; empty: nowhere found.
+  std::vector<std::pair<double, double>> kramers_kronig_ranges_Hz;
   bool acceptable() const { return warnings.empty(); }
 };
 
@@ -90,7 +99,7 @@ struct BandPoint {
 };
 struct ConfidenceBand {
   model::TestCondition condition;  // mode and temperature of the band (the first row's)
-  std::vector<BandPoint> points;   // 10 per decade over the data's frequencies; empty: no covariance
+  std::vector<BandPoint> points;   // 20 per decade over the data's frequencies; empty: no covariance
 };
 
 struct ParameterResult {

@@ -78,6 +78,12 @@ TermSelection select_terms(const std::string& kind, const nlohmann::json& model_
                            const data::DynamicTestTable& table, const FitOptions& options,
                            const TermOptions& terms);
 
+// The term economy and the solver cap of `terms` on a spectrum selection made with
+// `terms.compact.enabled` false (select_terms does both itself otherwise): card::fit_card decides
+// the default objective on the smooth spectra and compacts only the one it keeps.
+void compact_spectrum_selection(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
+                                const FitOptions& options, const TermOptions& terms, TermSelection& sel);
+
 // N chosen by `rule` among the usable rows with N ≤ cap (cap ≤ 0: no cap); 0 if none.
 int choose_terms(const std::vector<TermRow>& rows, TermRule rule, double residual_ratio = 1.5,
                  int cap = 0);
