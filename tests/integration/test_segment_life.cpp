@@ -28,7 +28,8 @@ model::MaterialPointPtr iso(double E, double nu) {
 
 scene::SegmentLife reference_life(const std::string& load, int steps_per_cycle,
                                     segment::Integration element = segment::Integration::reduced,
-                                    const segment::MeshKnobs& mesh = scene::life_mesh(), int cycles = 2) {
+                                    const segment::MeshKnobs& mesh = scene::life_mesh(), int cycles = 2,
+                                    bool scan = false) {
   const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-" + load + ".toml");
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
@@ -36,6 +37,7 @@ scene::SegmentLife reference_life(const std::string& load, int steps_per_cycle,
   setup.mesh = mesh;
   setup.cycle.cycles = cycles;
   setup.cycle.steps_per_cycle = steps_per_cycle;
+  setup.cycle.scan_design_regions = scan;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
@@ -513,6 +515,52 @@ TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingThe
   EXPECT_LT(a.run.equilibrium_error, 1e-6);
   for (int k = 0; k < 2; ++k)
     EXPECT_NEAR(a.report.modes[k].life_cycles / b.report.modes[k].life_cycles, 1.0, 5e-3) << k;
+}
+
+}  // namespace fitlib
+
+namespace fitlib {
+
+// Report I §6.4 (L1020–1030) reads the life at the worst element between the cogs and the worst
+// cushion element, not at one point: the life scans every integration point of the design regions
+// and the gap's surface nodes (docs/segment.md "Design points by scanning"). On the medium drive
+// the land centre is not the worst: the root fillet is, at about twice its tensile stress.
+TEST(SegmentLife, ScanFindsARootFilletDesignPointWhereTheLandCentreIsNotTheWorst) {
+  const scene::SegmentLife l = reference_life("medium", 40, segment::Integration::reduced, scene::life_mesh(), 1, true);
+  const segment::CogSection section;
+  const fatigue::ModeLife& radial = l.report.modes[0];
+  ASSERT_EQ(radial.mode, fatigue::Mode::radial_crack);
+  EXPECT_GT(radial.points_evaluated, 200);  // the named points, ~70 elements' points, the surface nodes
+  EXPECT_GE(radial.element, 0) << radial.design_point;
+  const double fillet_start = section.land_half_width_mm - section.root_fillet_mm;
+  EXPECT_GT(std::abs(radial.x_mm), fillet_start) << radial.design_point;
+  EXPECT_LT(std::abs(radial.x_mm), section.land_half_width_mm + section.root_fillet_mm) << radial.design_point;
+  // The named points alone: the gap-bottom centre, a longer life.
+  std::vector<fatigue::PointHistory> named;
+  for (const fatigue::PointHistory& p : scene::segment_point_histories(l.run))
+    if (p.element < 0) named.push_back(p);
+  const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-medium.toml");
+  const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
+  const fatigue::LifeConditions c = scene::segment_conditions(belt::compute_load_cycle(drive), drive, s.temperature_C, l.run);
+  const fatigue::LifeReport centre = fatigue::evaluate_life(named, fatigue::default_card(), c);
+  EXPECT_EQ(centre.modes[0].design_point, "gap_bottom");
+  std::printf("medium, iso, 40 steps: N1 scanned %.4g at %s (x %.3f, y %.3f), gap-bottom centre %.4g; N2 scanned %.4g "
+              "at %s, mid-cushion %.4g\n", radial.life_cycles, radial.design_point.c_str(), radial.x_mm, radial.y_mm,
+              centre.modes[0].life_cycles, l.report.modes[1].life_cycles, l.report.modes[1].design_point.c_str(),
+              centre.modes[1].life_cycles);
+  EXPECT_LT(radial.life_cycles, 0.5 * centre.modes[0].life_cycles);
+  EXPECT_LE(l.report.modes[1].life_cycles, centre.modes[1].life_cycles);
+  // The scan's surface node at the gap centre reads what the named gap-bottom point reads there
+  // (the same interpolation; the traction-free projection only drops σ11, σ12 of about 0.02 MPa).
+  const segment::MonitoredHistory* centre_node = nullptr;
+  for (const segment::MonitoredHistory& m : l.run.scanned)
+    if (m.gauss_point < 0 && std::abs(m.point.x_mm) < 1e-9) centre_node = &m;
+  ASSERT_NE(centre_node, nullptr);
+  const segment::MonitoredHistory& gap = l.run.points[0];
+  ASSERT_EQ(gap.point.name, "gap_bottom");
+  ASSERT_EQ(centre_node->samples.size(), gap.samples.size());
+  for (std::size_t k = 0; k < gap.samples.size(); ++k)
+    EXPECT_NEAR(centre_node->samples[k].s22_MPa, gap.samples[k].s22_MPa, 0.01 + 0.01 * std::abs(gap.samples[k].s22_MPa));
 }
 
 }  // namespace fitlib

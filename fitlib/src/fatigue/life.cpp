@@ -93,6 +93,7 @@ ModeLife point_life(const PointHistory& p, const FatigueCard& card, const LifeCo
   m.design_point = p.name;
   m.x_mm = p.x_mm;
   m.y_mm = p.y_mm;
+  m.element = p.element, m.integration_point = p.integration_point;
   m.effective_stress_MPa = effective_stress_history(cycle, card.crack_sweep_deg);
   const double t_start = c.cycle_time_s > 0.0 ? p.samples.back().t_s - c.cycle_time_s
                                               : cycle.samples.front().t_s;
@@ -187,13 +188,15 @@ LifeReport evaluate_life(const std::vector<PointHistory>& points, const FatigueC
                          const LifeConditions& c) {
   LifeReport report;
   for (Mode mode : {Mode::radial_crack, Mode::separation}) {
-    std::optional<ModeLife> best;
+    std::optional<ModeLife> best;  // the first of equal sums: a named point before a scanned one
+    int candidates = 0;
     for (const PointHistory& p : points) {
       if (mode_of(p.role) != mode) continue;
       ModeLife m = point_life(p, card, c);
+      ++candidates;
       if (!best || m.sum_terms > best->sum_terms) best = std::move(m);
     }
-    if (best) report.modes.push_back(std::move(*best));
+    if (best) best->points_evaluated = candidates, report.modes.push_back(std::move(*best));
   }
   for (const ModeLife& m : report.modes)
     if (m.life_cycles < report.life_cycles) {
@@ -237,10 +240,12 @@ std::string life_table(const LifeReport& r) {
   std::string out;
   char buf[256];
   for (const ModeLife& m : r.modes) {
-    std::snprintf(buf, sizeof buf, "%-13s %-32s design point %s (x %.3g, y %.3g mm), %zu peaks, "
+    char of[64] = "";
+    if (m.points_evaluated > 1) std::snprintf(of, sizeof of, ", worst of %d points", m.points_evaluated);
+    std::snprintf(buf, sizeof buf, "%-13s %-32s design point %s (x %.3g, y %.3g mm%s), %zu peaks, "
                   "sum (s/s0)^n %.4g\n", to_string(m.mode),
                   life_text(m.life_cycles, m.life_h, m.significant_digits).c_str(), m.design_point.c_str(), m.x_mm,
-                  m.y_mm, m.peaks.size(), m.sum_terms);
+                  m.y_mm, of, m.peaks.size(), m.sum_terms);
     out += buf;
     if (!m.beyond_tests.empty()) out += "              beyond the tests: " + m.beyond_tests + "\n";
   }
@@ -266,8 +271,11 @@ nlohmann::json life_to_json(const LifeReport& r, bool effective_stress_history) 
       peaks.push_back({{"t_s", p.t_s}, {"effective_stress_MPa", p.stress_MPa}, {"pulley", p.pulley}});
     for (const ShareDamage& s : m.shares)
       shares.push_back({{"pulley", s.name}, {"damage_per_cycle", s.damage_per_cycle}});
+    json point = {{"name", m.design_point}, {"x_mm", m.x_mm}, {"y_mm", m.y_mm}, {"points_evaluated", m.points_evaluated}};
+    if (m.element >= 0) point["element"] = m.element;
+    if (m.integration_point >= 0) point["integration_point"] = m.integration_point;
     modes.push_back({{"mode", to_string(m.mode)},
-                     {"design_point", {{"name", m.design_point}, {"x_mm", m.x_mm}, {"y_mm", m.y_mm}}},
+                     {"design_point", point},
                      {"sum_terms", m.sum_terms},
                      {"temperature_factor", m.temperature_factor},
                      {"life_cycles", finite_or_null(m.life_cycles)},

@@ -370,6 +370,10 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings, r.segment_damage_held, {});
+    // The design point per mode: the worst of the named points, [segment] points and the scanned
+    // design regions (Report I §6.4; [segment] scan = false: the named points alone).
+    setup.cycle.scan_design_regions = !s.segment || s.segment->scan_design_regions;
+    if (s.segment) setup.extra_points = s.segment->setup.points;
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;

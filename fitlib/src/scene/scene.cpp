@@ -270,7 +270,8 @@ void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
 SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::string& source) {
   Reader r(t, "segment", source);
   std::vector<std::string> keys = {"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends",
-                                   "steps", "integration", "points", "threads", "materials", "frequency_Hz"};
+                                   "steps", "integration", "points", "threads", "materials", "frequency_Hz",
+                                   "scan"};
   keys.insert(keys.end(), kSegmentMeshKeys.begin(), kSegmentMeshKeys.end());
   r.allow(keys);
   SegmentSpec g;
@@ -295,6 +296,7 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, scene, g, source);
   g.frequency_Hz = r.number("frequency_Hz", 0.0, 1e9, true);
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
+  g.scan_design_regions = r.boolean("scan").value_or(true);
   r.finish();
   // Work cap on the mesh these knobs give (bounded by the ranges above, so cheap to build).
   const double elements = segment::build_mesh(sec, g.setup.mesh).element_count();

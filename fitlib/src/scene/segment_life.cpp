@@ -28,15 +28,18 @@ segment::CycleKnobs life_cycle(segment::Fidelity fidelity) {
 
 std::vector<fatigue::PointHistory> segment_point_histories(const segment::CycleResult& run) {
   std::vector<fatigue::PointHistory> out;
-  for (const segment::MonitoredHistory& m : run.points) {
-    fatigue::PointHistory p;
-    p.name = m.point.name;
-    p.role = m.role == segment::Role::bottom ? fatigue::Role::bottom : fatigue::Role::cushion;
-    p.x_mm = m.point.x_mm, p.y_mm = m.point.y_mm;
-    for (const segment::CycleSample& c : m.samples)
-      p.samples.push_back({c.t_s, c.s11_MPa, c.s22_MPa, c.s12_MPa, c.e11, c.e22, c.e12});
-    out.push_back(std::move(p));
-  }
+  for (const auto* histories : {&run.points, &run.scanned})  // named first: they win a tie
+    for (const segment::MonitoredHistory& m : *histories) {
+      const bool scanned = histories == &run.scanned;
+      fatigue::PointHistory p;
+      p.name = m.point.name;
+      p.role = m.role == segment::Role::bottom ? fatigue::Role::bottom : fatigue::Role::cushion;
+      p.x_mm = m.point.x_mm, p.y_mm = m.point.y_mm;
+      if (scanned) p.element = m.at.element, p.integration_point = m.gauss_point;
+      for (const segment::CycleSample& c : m.samples)
+        p.samples.push_back({c.t_s, c.s11_MPa, c.s22_MPa, c.s12_MPa, c.e11, c.e22, c.e12});
+      out.push_back(std::move(p));
+    }
   return out;
 }
 

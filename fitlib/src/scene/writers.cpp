@@ -185,6 +185,18 @@ std::string card_reading_text(const CardReading& c) {
   return o.str();
 }
 
+// stress_history.csv's points: the named ones and, of a design-region scan, the design points
+// (the scan's other hundreds of points are read by the life, not written).
+std::vector<fatigue::PointHistory> written_histories(const LifeResult& l, const std::vector<fatigue::PointHistory>& all) {
+  std::vector<fatigue::PointHistory> out;
+  for (const fatigue::PointHistory& p : all) {
+    const bool design = std::any_of(l.report.modes.begin(), l.report.modes.end(),
+                                    [&p](const fatigue::ModeLife& m) { return m.design_point == p.name; });
+    if (p.element < 0 || design) out.push_back(p);
+  }
+  return out;
+}
+
 json life_summary_json(const LifeResult& l, bool effective_stress_history = false) {
   json j = fatigue::life_to_json(l.report, effective_stress_history);
   j["fidelity"] = l.plan.fidelity;
@@ -388,7 +400,7 @@ std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, con
     csv("load_history.csv", load_history_csv(r), {"pulley", "zone"});
   if (r.accumulation) csv("accumulation.csv", accumulation_csv(*r.accumulation), {});
   if (r.tension_test) csv("tension_test.csv", tension_test_csv(r.tension_test->result), {"phase"});
-  if (r.life && r.stresses) csv("stress_history.csv", fatigue::stress_histories_csv(*r.stresses), {"point", "role"});
+  if (r.life && r.stresses) csv("stress_history.csv", fatigue::stress_histories_csv(written_histories(*r.life, *r.stresses)), {"point", "role"});
   if (r.life) json_file("life.json", life_json(s, r, wall_times));
   json_file("summary.json", summary_json(s, r, wall_times));
   core::prepare_output_dir(dir);

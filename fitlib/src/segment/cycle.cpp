@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "cycle_dissipation.hpp"
@@ -257,6 +258,9 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   detail::EquilibriumCheck equilibrium(frame, std::move(check), out);
   p.observers = {&progress, &points, &equilibrium, &dissipation};
   if (!knobs.vtk_prefix.empty()) p.observers.insert(p.observers.begin() + 2, &fields);
+  std::optional<detail::RegionScan> scan;
+  if (knobs.scan_design_regions)
+    p.observers.push_back(&scan.emplace(frame, straight, K_m, section, mesh_knobs, order, out.scanned));
 
   SolverKnobs k = solver;
   k.schedule = load_schedule(knobs, h, T, straight.half_length_mm);

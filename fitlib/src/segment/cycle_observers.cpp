@@ -8,10 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 namespace fitlib::segment::detail {
-namespace {
 
-// A point's stresses in the cord curve's local frame at angle φ (1 radial, 2 along the belt) and
-// its logarithmic strain in the same frame.
 CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
   const Eigen::Vector2d t(std::cos(phi), -std::sin(phi)), n(std::sin(phi), std::cos(phi));
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(ip.F * ip.F.transpose());
@@ -23,6 +20,8 @@ CycleSample local_sample(const IntegrationPointStress& ip, double phi) {
   c.e11 = n.dot(e * n), c.e22 = t.dot(e * t), c.e12 = n.dot(e * t);
   return c;
 }
+
+namespace {
 
 // The increment's forces along the cord tangent at the middle: the cord line's reactions, the left
 // end face's (without the cord node) and the rubber's section force through x = 0.

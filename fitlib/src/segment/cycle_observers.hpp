@@ -48,7 +48,35 @@ class PointMonitor : public IncrementObserver {
   const CycleFrame& frame_;
   int order_;
   std::vector<MonitoredHistory>& out_;
+  std::vector<Eigen::Vector2d> surface_tangent_;  // per history: the moulded surface's (zero off the surface)
 };
+
+// The design regions' points (CycleKnobs::scan_design_regions): every integration point of the
+// bottom rubber between the central cogs, the gap's surface nodes, and the cushion's mid-depth below
+// each element centre of the central section; each point's stresses and strains in the cord
+// curve's local frame at its unstrained path position (an integration point's own, the others
+// interpolated as a named point's).
+class RegionScan : public IncrementObserver {
+ public:
+  // `straight`: the mesh before wrapping on the mould (curvature K_m).
+  RegionScan(const CycleFrame& frame, const Mesh& straight, double K_m, const CogSection& section,
+             const MeshKnobs& knobs, int gauss_order, std::vector<MonitoredHistory>& out);
+  void converged(double lambda, const StaticSolution& s) override;
+
+ private:
+  void add_bottom_points(const Mesh& straight, const CogSection& section);
+  void add_surface_nodes(const Mesh& straight, const CogSection& section);
+  void add_cushion_points(const Mesh& straight, double K_m, const CogSection& section, const MeshKnobs& knobs);
+
+  const CycleFrame& frame_;
+  int order_;
+  std::vector<MonitoredHistory>& out_;
+  std::vector<Eigen::Vector2d> surface_tangent_;  // per history: the moulded surface's (zero off the surface)
+};
+
+// A point's stresses in the cord curve's local frame at angle φ (1 radial, 2 along the belt) and
+// its logarithmic strain in the same frame.
+CycleSample local_sample(const IntegrationPointStress& ip, double phi);
 
 // The built-in equilibrium check, Σ reactions + ∫ b dV = 0 (the free residual is at the tolerance),
 // and each increment's load totals (CycleResult::loads, span shares; docs/segment.md "Cord-line

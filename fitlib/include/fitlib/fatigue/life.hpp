@@ -38,6 +38,9 @@ struct PointHistory {
   std::string name;
   Role role = Role::bottom;
   double x_mm = 0.0, y_mm = 0.0;  // position in the segment (cord line y = 0, belt below)
+  // A scanned FE point: its element, and the point's index in the element's rule (−1: a surface
+  // node interpolated from its elements); element −1 for a named point.
+  int element = -1, integration_point = -1;
   std::vector<StressSample> samples;  // increasing time
 };
 
@@ -73,6 +76,8 @@ struct ModeLife {
   Mode mode = Mode::radial_crack;
   std::string design_point;
   double x_mm = 0.0, y_mm = 0.0;
+  int element = -1, integration_point = -1;  // the design point's, when a scan found it
+  int points_evaluated = 0;                  // the mode's candidate points
   std::vector<Peak> peaks;
   double sum_terms = 0.0;           // Σ(σ_e,i/σ0)ⁿ at the design point
   double temperature_factor = 1.0;  // 2^(−bΔT)

@@ -76,6 +76,9 @@ struct SegmentSpec {
   // given changes that knob, the others keep the default.
   segment::MeshKnobs life_mesh = scene::life_mesh();
   bool life_mesh_changed = false;  // a mesh key was given
+  // [segment] scan: the life's design points are the worst of the design regions' points beside
+  // the named ones (segment::CycleKnobs::scan_design_regions); false: the named points alone.
+  bool scan_design_regions = true;
 };
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").

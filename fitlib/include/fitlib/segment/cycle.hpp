@@ -79,6 +79,12 @@ struct CycleKnobs {
   // path position of the last cycle: <vtk_prefix>-<k>.vtk. Empty prefix: none.
   std::vector<double> vtk_at_s_mm;
   std::string vtk_prefix;
+  // The design regions' scan (Report I §6.4, L1020–1030; docs/segment.md "Design points by
+  // scanning"): every integration point of the bottom rubber between the central cogs (the gap's
+  // land and root fillets, |x| ≤ land half-width + root fillet), the gap's surface nodes over the
+  // same width, and the cushion's mid-depth below each element centre of the central section,
+  // recorded like the named points into CycleResult::scanned (off: the named points alone).
+  bool scan_design_regions = false;
 };
 
 struct CycleSample {                    // a monitored point at the end of an increment
@@ -94,6 +100,9 @@ struct MonitoredHistory {
   // element's integration points, as `stress_at` does for the static cases.
   PointLocation at;
   Eigen::Vector2d X_mm = Eigen::Vector2d::Zero();
+  // A scanned integration point (CycleKnobs::scan_design_regions): its element's rule index and
+  // the point's own stresses, not interpolated (−1: a named point or a scanned surface node).
+  int gauss_point = -1;
   std::vector<CycleSample> samples;
 };
 
@@ -135,6 +144,7 @@ struct EquilibriumBounds {
 
 struct CycleResult {
   std::vector<MonitoredHistory> points;
+  std::vector<MonitoredHistory> scanned;  // CycleKnobs::scan_design_regions, element by element
   double cycle_time_s = 0.0;
   // Built-in equilibrium check: the largest |Σ reactions + ∫ b dV| over all increments, relative
   // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).
