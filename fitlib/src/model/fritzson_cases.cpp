@@ -70,6 +70,11 @@ CaseLoops run_thesis_case(const MaterialPoint& point, const ThesisCase& c, int s
   return out;
 }
 
+double thesis_case_steps(const ThesisCase& c, int steps_per_cycle) {
+  if (c.ramp_rate_per_s > 0.0) return steps_per_cycle + 1.0 + std::ceil(c.hold_s / 1e-3);
+  return 10.0 * steps_per_cycle + 1.0;
+}
+
 std::string case_loops_csv(const ThesisCase& c, const CaseLoops& loops) {
   std::ostringstream out;
   out << "# Report II case " << c.id << ": " << to_string(c.mode) << " " << c.orientation
