@@ -61,9 +61,7 @@ void run_case(const Args& a, const fitlib::card::Card& card) {
   using namespace fitlib;
   const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*card.model(), card.values());
   const auto& c = model::fritzson::thesis_case(a.case_id);
-  const auto contract = model::make_material_point(*card.model(), card.values());  // its state size
-  model::check_point_work(model::point_work(contract->state_size(), model::fritzson::thesis_case_steps(c, a.steps_per_cycle), c.mode),
-                          "case " + c.id + " of " + contract->describe(), "--steps-per-cycle");
+  model::fritzson::check_thesis_case_work(*card.model(), card.values(), c, a.steps_per_cycle, "--steps-per-cycle");
   write_table(a, model::fritzson::case_loops_csv(c, model::fritzson::run_thesis_case(point, c, a.steps_per_cycle)));
 }
 

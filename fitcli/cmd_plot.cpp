@@ -290,7 +290,7 @@ bool draw_figure(const std::string& png, const std::function<void()>& draw) {
     return true;
   } catch (const FigureError& e) {
     figure_failed() = true;
-    warning(std::string(e.what()) + "; the figure " + png + " was not written, the other outputs were (exit 5)");
+    warning(std::string(e.what()) + "; the figure " + png + " was not written, the run's other outputs are (exit 5)");
     return false;
   }
 }

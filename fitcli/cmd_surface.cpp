@@ -115,6 +115,8 @@ void run_fit(const FitArgs& a) {
                   {"fitlib_version", FITLIB_VERSION},
                   {"command", command_line()}};
   for (const std::string& w : surface::statistics_warnings(s)) warning(w);
+  // The figure first (a scattered axis is a usage error before anything is written); if gnuplot
+  // fails, the surface is still written (exit 5).
   if (!a.plot.empty())
     draw_figure(a.plot, [&] {
       write_png(a.plot, [&](const std::string& tmp) { return surface_plot_script(s, data, tmp); });

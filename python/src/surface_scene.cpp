@@ -288,10 +288,7 @@ void bind_material_point(py::module_& m) {
           require_in("steps_per_cycle", steps_per_cycle, 4, 1e6);  // fitcli's range and work cap
           const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*c.model(), c.values());
           const auto& tc = model::fritzson::thesis_case(id);
-          const auto contract = model::make_material_point(*c.model(), c.values());  // its state size
-          model::check_point_work(model::point_work(contract->state_size(),
-                                                    model::fritzson::thesis_case_steps(tc, steps_per_cycle), tc.mode),
-                                  "case " + tc.id + " of " + contract->describe(), "steps_per_cycle");
+          model::fritzson::check_thesis_case_work(*c.model(), c.values(), tc, steps_per_cycle, "steps_per_cycle");
           const auto loops = model::fritzson::run_thesis_case(point, tc, steps_per_cycle);
           py::dict d;
           d["time_s"] = to_array(loops.time_s), d["displacement"] = to_array(loops.displacement);

@@ -69,7 +69,7 @@ TEST(Figures, GnuplotFailingAfterTheCardLeavesTheCardStandingAndExitsFive) {
       run_with_path(path, "fit --data " + kTable + " --model prony --terms 2 --out " + card + " --plot " + png, "fails");
   EXPECT_EQ(r.exit_code, 5) << r.err;
   EXPECT_NE(r.err.find("gnuplot failed (exit status 1)"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("the figure " + png + " was not written, the other outputs were"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the figure " + png + " was not written, the run's other outputs are"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("card written to " + card), std::string::npos) << r.out;  // the summary is printed
   EXPECT_FALSE(fs::exists(png));
   EXPECT_EQ(files_in(dir), 1u);  // the card, and no temporary PNG left behind
