@@ -54,10 +54,16 @@ install(FILES scripts/fitcli-completion.bash DESTINATION ${CMAKE_INSTALL_DATADIR
   RENAME fitcli)
 find_program(HELP2MAN help2man)
 if(HELP2MAN)
+  # Its SUBCOMMANDS section: every subcommand's own --help (scripts/fitcli-man-subcommands.sh).
+  add_custom_command(OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/fitcli-subcommands.h2m
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fitcli-man-subcommands.sh $<TARGET_FILE:fitcli>
+            ${CMAKE_CURRENT_BINARY_DIR}/fitcli-subcommands.h2m
+    DEPENDS fitcli ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fitcli-man-subcommands.sh VERBATIM)
   add_custom_command(OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1
     COMMAND ${HELP2MAN} --no-info --no-discard-stderr --name "fit elastomer models to dynamic tests, write material cards, run belt scenes"
+            --include ${CMAKE_CURRENT_BINARY_DIR}/fitcli-subcommands.h2m
             --output ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1 $<TARGET_FILE:fitcli>
-    DEPENDS fitcli VERBATIM)
+    DEPENDS fitcli ${CMAKE_CURRENT_BINARY_DIR}/fitcli-subcommands.h2m VERBATIM)
   add_custom_target(fitcli_man ALL DEPENDS ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1)
   install(FILES ${CMAKE_CURRENT_BINARY_DIR}/fitcli.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 else()

@@ -44,10 +44,10 @@ void register_belt(CLI::App& app) {
     fitlib::core::prepare_output_dir(*out_dir);
     const auto result = fitlib::scene::run_scene(scene);
     auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
-    if (!plot->empty() && result.cycle) {
-      write_png(*plot, [&](const std::string& tmp) { return belt_plot_script(scene, *result.cycle, tmp); });
+    if (!plot->empty() && result.cycle && draw_figure(*plot, [&] {
+          write_png(*plot, [&](const std::string& tmp) { return belt_plot_script(scene, *result.cycle, tmp); });
+        }))
       files.push_back(*plot);
-    }
     if (*json) {
       std::cout << fitlib::scene::summary_json(scene, result, *record_timing).dump(2) << "\n";
       return;

@@ -148,7 +148,7 @@ void run_eval(const EvalArgs& a) {
   const auto mode = a.mode.empty() ? card.model()->native_mode() : model::parse_test_mode(a.mode);
   if (!a.time_s.empty()) run_eval_time(a, card, mode);
   else run_eval_frequency(a, card, mode);
-  if (!a.plot.empty()) plot_card(card, data, a.data_format, "", a.plot);
+  if (!a.plot.empty()) draw_figure(a.plot, [&] { plot_card(card, data, a.data_format, "", a.plot); });
 }
 
 }  // namespace

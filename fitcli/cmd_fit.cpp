@@ -196,7 +196,7 @@ void finish(const FitArgs& a, fitlib::card::FitCardResult r, const std::vector<s
   if (!a.out.empty()) emit_with(a.out, [&](const std::string& path) { card::save_card(path, r.card); });
   if (!a.master.shifts_out.empty() && a.master.curve)
     emit(a.master.shifts_out, data::format_shift_factors(fit::shift_factors_of(*a.master.curve)));
-  if (!a.plot.empty()) plot_card(r.card, data, a.format, "", a.plot);
+  if (!a.plot.empty()) draw_figure(a.plot, [&] { plot_card(r.card, data, a.format, "", a.plot); });
   for (const auto& w : r.warnings) warning(w);
 
   if (a.json) {

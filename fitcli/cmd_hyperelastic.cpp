@@ -92,7 +92,7 @@ void run_hyperelastic_fit(const HyperelasticFitArgs& a) {
   const auto paths = input_paths(a.data);
   const auto r = fitlib::card::fit_hyperelastic_card(read_tables(paths), card_options(a));
   if (!a.out.empty()) emit_with(a.out, [&](const std::string& path) { fitlib::card::save_card(path, r.card); });
-  if (!a.plot.empty()) plot_hyperelastic(r.card, paths, "", a.plot);
+  if (!a.plot.empty()) draw_figure(a.plot, [&] { plot_hyperelastic(r.card, paths, "", a.plot); });
   for (const auto& w : r.result.warnings) warning(w);
   if (a.json) {
     std::cout << fitlib::card::card_to_json(r.card).dump(2) << "\n";

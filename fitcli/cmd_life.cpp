@@ -71,7 +71,9 @@ void register_life(CLI::App& app) {
     const auto result = run_with_field_folder(scene, *out_dir);
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
     if (!plot->empty() && result.cycle)
-      write_png(*plot, [&](const std::string& tmp) { return life_plot_script(scene, result, tmp); });
+      draw_figure(*plot, [&] {
+        write_png(*plot, [&](const std::string& tmp) { return life_plot_script(scene, result, tmp); });
+      });
     if (*json) {
       std::cout << fitlib::scene::life_json(scene, result, *record_timing).dump(2) << "\n";
       return;

@@ -142,7 +142,9 @@ void run(const LifeFitArgs& a) {
   if (!a.peaks_out.empty()) emit(a.peaks_out, fitlib::fatigue::observed_lives_csv(cases));
   emit_with(a.out, [&](const std::string& path) { fitlib::fatigue::save_card(path, fit.card); });
   if (!a.plot.empty() && !fit.fits.empty())
-    write_png(a.plot, [&](const std::string& tmp) { return life_fit_script(cases, fit, fit.card.name, tmp); });
+    draw_figure(a.plot, [&] {
+      write_png(a.plot, [&](const std::string& tmp) { return life_fit_script(cases, fit, fit.card.name, tmp); });
+    });
   if (a.json) {
     nlohmann::json j = fitlib::fatigue::card_to_json(fit.card);
     j["warnings"] = fit.warnings;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -251,6 +252,31 @@ std::string gnuplot_quoted(const std::string& text) {
   return q + "'";
 }
 
+namespace {
+
+// Whether the shell popen runs would find gnuplot: an executable file named gnuplot in a folder of
+// PATH (an empty entry is the current folder; no PATH: the shell's default folders).
+bool gnuplot_on_path() {
+  const char* env = std::getenv("PATH");
+  const std::string path = env ? env : "/usr/local/bin:/usr/bin:/bin";
+  for (std::size_t begin = 0;;) {
+    const std::size_t end = path.find(':', begin);
+    const std::string dir = path.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    const std::string exe = (dir.empty() ? std::string(".") : dir) + "/gnuplot";
+    std::error_code ec;
+    if (::access(exe.c_str(), X_OK) == 0 && !std::filesystem::is_directory(exe, ec)) return true;
+    if (end == std::string::npos) return false;
+    begin = end + 1;
+  }
+}
+
+bool& figure_failed() {
+  static bool failed = false;
+  return failed;
+}
+
+}  // namespace
+
 void claim_png(const std::string& option, const std::string& path, const std::string& folder_made_later) {
   namespace fs = std::filesystem;
   if (path == "-") throw fitlib::core::UsageError(option + ": a PNG needs a file (- would be stdout)");
@@ -260,15 +286,30 @@ void claim_png(const std::string& option, const std::string& path, const std::st
   const bool in_made_folder = !folder_made_later.empty() && !fs::exists(folder_made_later) &&
                               normal(fs::path(path).parent_path()) == normal(folder_made_later);
   if (!in_made_folder) fitlib::core::check_output_path(path);
+  if (!gnuplot_on_path())
+    throw FigureError(option + " " + path + ": gnuplot is not on PATH (install the Debian package gnuplot-nox, or "
+                      "leave out " + option + "); nothing was run or written");
 }
 
+bool draw_figure(const std::string& png, const std::function<void()>& draw) {
+  try {
+    draw();
+    return true;
+  } catch (const FigureError& e) {
+    figure_failed() = true;
+    warning(std::string(e.what()) + "; the figure " + png + " was not written, the run's other outputs are (exit 5)");
+    return false;
+  }
+}
+
+bool figure_not_drawn() { return figure_failed(); }
+
 void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script) {
-  using fitlib::core::NumericalError;
   claim_png("plot", out);  // callers claim it before the work; a library caller is checked here
   const std::string tmp = out + ".tmp-" + std::to_string(getpid()) + ".png";
   const std::string script = make_script(tmp);
   FILE* pipe = popen("gnuplot 1>&2", "w");
-  if (!pipe) throw NumericalError("plot: cannot start gnuplot");
+  if (!pipe) throw FigureError("plot: cannot start gnuplot");
   // gnuplot speaks on stderr (stdout may be --json's). A shell that finds no gnuplot exits at
   // once: writing must not kill us with SIGPIPE.
   const auto previous = std::signal(SIGPIPE, SIG_IGN);
@@ -278,8 +319,10 @@ void write_png(const std::string& out, const std::function<std::string(const std
   if (status != 0) {
     std::remove(tmp.c_str());
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-      throw NumericalError("plot: gnuplot not found (install the Debian package gnuplot-nox)");
-    throw NumericalError("plot: gnuplot failed (exit status " + std::to_string(status) + ")");
+      throw FigureError("plot: gnuplot not found (install the Debian package gnuplot-nox)");
+    throw FigureError("plot: gnuplot failed (" +
+                      (WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
+                                         : "wait status " + std::to_string(status)) + ")");
   }
   if (std::rename(tmp.c_str(), out.c_str()) != 0) {
     std::remove(tmp.c_str());

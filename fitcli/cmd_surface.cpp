@@ -115,7 +115,12 @@ void run_fit(const FitArgs& a) {
                   {"fitlib_version", FITLIB_VERSION},
                   {"command", command_line()}};
   for (const std::string& w : surface::statistics_warnings(s)) warning(w);
-  if (!a.plot.empty()) write_png(a.plot, [&](const std::string& tmp) { return surface_plot_script(s, data, tmp); });
+  // The figure first (a scattered axis is a usage error before anything is written); if gnuplot
+  // fails, the surface is still written (exit 5).
+  if (!a.plot.empty())
+    draw_figure(a.plot, [&] {
+      write_png(a.plot, [&](const std::string& tmp) { return surface_plot_script(s, data, tmp); });
+    });
   const std::string document = surface::surface_to_json(s).dump(2) + "\n";
   if (a.out.empty() || a.out == "-") {
     emit("", document);
@@ -252,8 +257,10 @@ void run_grid(const GridArgs& a) {
     // (The grid surface interpolates its points by design: no residual-dof warning, only the range.)
     if (const std::string range = surface::range_warning(s); !range.empty()) warning(range);
     if (!a.plot.empty())
-      write_png(a.plot, [&](const std::string& tmp) {
-        return surface_plot_script(s, surface::grid_samples(grid, a.quantity), tmp);
+      draw_figure(a.plot, [&] {
+        write_png(a.plot, [&](const std::string& tmp) {
+          return surface_plot_script(s, surface::grid_samples(grid, a.quantity), tmp);
+        });
       });
     std::ostringstream text;
     text.precision(4);

@@ -37,6 +37,15 @@ std::string read_stdin() {
 
 std::string stdin_copy() { return scratch_dir().empty() ? std::string() : scratch_dir() + "/stdin"; }
 
+// Two files with one content (a copy) are two tables whose rows count twice: said, not refused.
+void warn_same_bytes(const std::vector<std::string>& files, const std::vector<std::string>& sha256) {
+  for (std::size_t i = 0; i < sha256.size() && i < files.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (sha256[i] == sha256[j])
+        warning(with_stdin_named(files[j]) + " and " + with_stdin_named(files[i]) +
+                " hold the same bytes: their rows count twice (give the file once unless that is meant)");
+}
+
 }  // namespace
 
 std::string scratch_path(const std::string& stem) {
@@ -96,6 +105,7 @@ fitlib::data::DynamicTestTable read_tables(const std::vector<std::string>& paths
     all.source_sha256.insert(all.source_sha256.end(), one.source_sha256.begin(), one.source_sha256.end());
     all.warnings.insert(all.warnings.end(), one.warnings.begin(), one.warnings.end());
   }
+  warn_same_bytes(all.source_files, all.source_sha256);
   return all;
 }
 
@@ -112,6 +122,7 @@ fitlib::data::RelaxationTable read_relaxation_tables(const std::vector<std::stri
     table.source_files.insert(table.source_files.end(), one.source_files.begin(), one.source_files.end());
     table.source_sha256.insert(table.source_sha256.end(), one.source_sha256.begin(), one.source_sha256.end());
   }
+  warn_same_bytes(table.source_files, table.source_sha256);
   return table;
 }
 

@@ -6,6 +6,7 @@
 #include "inputs.hpp"
 #include "output.hpp"
 #include "path_guard.hpp"
+#include "plot.hpp"
 #include "suggest.hpp"
 #include "version_info.hpp"
 
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
     fitcli::refuse_empty_list_items(argc, argv);
     app.parse(argc, argv);
     fitcli::finish_stdout();
+    if (fitcli::figure_not_drawn()) return fitcli::kFigureNotDrawn;  // the other outputs stand
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     if (code != 0) {
@@ -57,6 +59,9 @@ int main(int argc, char** argv) {
       return fitlib::core::exit_code_for(f);
     }
     return 0;
+  } catch (const fitcli::FigureError& e) {  // gnuplot missing before any work, or `fitcli plot`'s only output
+    std::cerr << "fitcli: error: " << e.what() << "\n";
+    return fitcli::kFigureNotDrawn;
   } catch (const std::exception& e) {
     std::cerr << "fitcli: error: " << fitcli::with_stdin_named(e.what()) << "\n";
     return fitlib::core::exit_code_for(e);

@@ -44,6 +44,13 @@ void collect(const CLI::App& app, std::vector<Named>& inputs, std::vector<Named>
 void refuse_colliding_paths(const CLI::App& app) {
   std::vector<Named> inputs, outputs;
   collect(app, inputs, outputs);
+  // One input file given twice to one option (--data d.csv --data ./d.csv): its rows counted twice
+  // in a fit (docs/decisions.md "fitcli: an input file given twice to one option is refused").
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (inputs[i].first == inputs[j].first && fitlib::core::same_file(inputs[i].second, inputs[j].second))
+        throw fitlib::core::UsageError(inputs[i].first + " " + inputs[i].second + " is given twice (also as " +
+                                       inputs[j].second + "): its rows would count twice; give each file once");
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     for (const auto& [option, path] : inputs)
       if (fitlib::core::same_file(outputs[i].second, path))

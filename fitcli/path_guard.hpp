@@ -9,7 +9,8 @@ namespace fitcli {
 // Checks the file options of the subcommand(s) `app` parsed: every output file (--out, --plot,
 // --vtk, --surface-out, --shifts-out, --peaks-out) against every input file (--data, --card,
 // --scene, --sweep, --shifts, ...) and against the other outputs, by inode and resolved path
-// (core::same_file). UsageError naming both options and the file.
+// (core::same_file). UsageError naming both options and the file; also for one input file given
+// twice to one option (its rows would count twice).
 void refuse_colliding_paths(const CLI::App& app);
 
 }  // namespace fitcli

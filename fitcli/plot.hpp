@@ -2,6 +2,7 @@
 // The figure of fitcli plot (data against a card, PNG via gnuplot), also written by fit --plot
 // and eval --plot; write_png, the gnuplot runner every figure goes through.
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,14 +37,31 @@ std::string surface_plot_script(const fitlib::surface::Surface& surface, const f
 // user's name keeps its _ ^ { }.
 std::string gnuplot_quoted(const std::string& text);
 
+// A figure gnuplot cannot draw: exit 5 (README "Exit codes", docs/decisions.md "fitcli: a figure
+// gnuplot cannot draw is exit 5"). gnuplot missing from PATH is found by claim_png, before any
+// work (nothing written); gnuplot failing while it draws comes after the run's other outputs,
+// which stand (draw_figure).
+class FigureError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+constexpr int kFigureNotDrawn = 5;
+
 // Declares the PNG output of `option` before the work: UsageError for `-` (a figure cannot go to
-// stdout) or a quote in the name, InputError for a path that cannot be written. A PNG whose folder
-// is `folder_made_later` (the command's --out-dir, made by the run) is not checked for its folder.
+// stdout) or a quote in the name, InputError for a path that cannot be written, FigureError when
+// no gnuplot is on PATH. A PNG whose folder is `folder_made_later` (the command's --out-dir, made
+// by the run) is not checked for its folder.
 void claim_png(const std::string& option, const std::string& path, const std::string& folder_made_later = "");
 
 // The PNG at `out` from the gnuplot script `make_script(tmp)` returns, which must write the PNG to
 // `tmp` (pngcairo): gnuplot runs on it, then tmp is renamed to out. UsageError for `-` or a quote
-// in the name; NumericalError when gnuplot is missing or fails (nothing written).
+// in the name; FigureError when gnuplot is missing or fails (no PNG written).
 void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script);
+
+// A --plot figure beside a run's other outputs: runs `draw` (which writes `png`); a FigureError
+// becomes a warning naming the PNG, the run goes on to write its other outputs, and fitcli then
+// exits 5 (figure_not_drawn). Returns whether the PNG was written.
+bool draw_figure(const std::string& png, const std::function<void()>& draw);
+bool figure_not_drawn();
 
 }  // namespace fitcli

@@ -245,9 +245,15 @@ void bind_material_point(py::module_& m) {
         [](const MaterialPoint& p, const py::object& time_s, const py::sequence& components, const py::object& T) {
           model::DriveProgram program;
           program.time_s = to_vector(time_s);
-          require_in("len(time_s)", static_cast<double>(program.time_s.size()), 1, model::kMaxPointSteps);
           if (components.size() != 6) throw core::UsageError("drive needs 6 components (None = traction-free)");
-          for (int i = 0; i < 6; ++i) program.components[i] = control(components[i]);
+          bool stress_controlled = false;
+          for (int i = 0; i < 6; ++i) {
+            program.components[i] = control(components[i]);
+            stress_controlled |= program.components[i].imposed == model::DriveControl::Imposed::stress;
+          }
+          model::check_point_work(model::point_work(p.state_size(), static_cast<double>(program.time_s.size()),
+                                                    stress_controlled),
+                                  p.describe(), "len(time_s)");
           if (!T.is_none()) program.temperature_C = to_vector(T);
           return drive_dict(model::drive(p, program));
         },
@@ -263,12 +269,10 @@ void bind_material_point(py::module_& m) {
           if (!std::isnan(T)) require_in("temperature_C", T, -273.15, 1000.0);
           require_in("cycles", cycles, 1, 1e6);
           require_in("steps_per_cycle", steps_per_cycle, 4, 1e6);
-          if (static_cast<double>(cycles) * steps_per_cycle > model::kMaxPointSteps)
-            throw core::UsageError("cycles x steps_per_cycle = " + core::format_number(double(cycles) * steps_per_cycle) +
-                                   " steps, above the work cap " + core::format_number(model::kMaxPointSteps) +
-                                   " (about 5 s of a Prony point; docs/reliability.md)");
           model::TestCondition c;
           c.mode = model::parse_test_mode(mode), c.orientation = orientation, c.temperature_C = T;
+          model::check_point_work(model::point_work(p.state_size(), double(cycles) * steps_per_cycle, c.mode),
+                                  p.describe(), "cycles x steps_per_cycle");
           const auto h = model::fritzson::cyclic_history(amplitude, mean_strain, frequency_Hz, cycles, steps_per_cycle);
           const auto r = model::drive(p, model::test_program(c, h));
           auto d = drive_dict(r);
@@ -281,9 +285,11 @@ void bind_material_point(py::module_& m) {
         "fitcli material-point: ε(t) = mean − a cos 2πft in the test's program");
   m.def("fritzson_thesis_case",
         [](const card::Card& c, const std::string& id, int steps_per_cycle) {
-          require_in("steps_per_cycle", steps_per_cycle, 4, model::kMaxCaseStepsPerCycle);  // fitcli's work cap
+          require_in("steps_per_cycle", steps_per_cycle, 4, 1e6);  // fitcli's range and work cap
           const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*c.model(), c.values());
-          const auto loops = model::fritzson::run_thesis_case(point, model::fritzson::thesis_case(id), steps_per_cycle);
+          const auto& tc = model::fritzson::thesis_case(id);
+          model::fritzson::check_thesis_case_work(*c.model(), c.values(), tc, steps_per_cycle, "steps_per_cycle");
+          const auto loops = model::fritzson::run_thesis_case(point, tc, steps_per_cycle);
           py::dict d;
           d["time_s"] = to_array(loops.time_s), d["displacement"] = to_array(loops.displacement);
           d["strain"] = to_array(loops.strain), d["stress_MPa"] = to_array(loops.stress_MPa);

@@ -63,7 +63,19 @@ def test_material_point_arguments_have_the_cli_ranges_and_work_cap():
     point = fitlib.make_material_point(card.model(), card.values(), bulk_modulus_MPa=2000.0)
     raises(fitlib.UsageError, lambda: fitlib.drive_test(point, steps_per_cycle=-5), "steps_per_cycle")
     raises(fitlib.UsageError, lambda: fitlib.drive_test(point, cycles=0), "cycles")
-    raises(fitlib.UsageError, lambda: fitlib.drive_test(point, cycles=100000, steps_per_cycle=100), "work cap")
+    raises(fitlib.InputError, lambda: fitlib.drive_test(point, cycles=100000, steps_per_cycle=100), "work cap",
+           "cycles x steps_per_cycle", "s estimated")
+    raises(fitlib.InputError, lambda: fitlib.drive(point, np.arange(2e6), [("strain", np.zeros(2000000))] + [None] * 5),
+           "work cap", "len(time_s)")
+    # By cost, not steps: 5e5 steps of a uniaxial test are within the cap for the Prony card's point
+    # (it runs) and above it for a fractional Zener point (1548 state values, about 10 s estimated).
+    long = fitlib.drive_test(point, mode="uniaxial", cycles=500, steps_per_cycle=1000)
+    assert len(long["time_s"]) == 500 * 1000 + 1 and np.all(np.isfinite(long["stress_MPa"]))
+    zener = fitlib.make_material_point(fitlib.make_model("fractional-zener"),
+                                       fitlib.make_model("fractional-zener").default_parameters(),
+                                       bulk_modulus_MPa=2000.0)
+    raises(fitlib.InputError, lambda: fitlib.drive_test(zener, mode="uniaxial", cycles=500, steps_per_cycle=1000),
+           "work cap", "1548 state values")
     raises(fitlib.UsageError, lambda: fitlib.drive_test(point, amplitude=1e9), "amplitude")
     raises(fitlib.UsageError, lambda: fitlib.drive_test(point, frequency_Hz=0.0), "frequency_Hz")
     raises(fitlib.UsageError, lambda: fitlib.drive_test(point, temperature_C=-300.0), "temperature_C")
@@ -72,6 +84,8 @@ def test_material_point_arguments_have_the_cli_ranges_and_work_cap():
     fritzson = fitlib.load_card(FRITZSON)
     raises(fitlib.UsageError, lambda: fitlib.fritzson_thesis_case(fritzson, "7.1", steps_per_cycle=10**9),
            "steps_per_cycle")
+    raises(fitlib.InputError, lambda: fitlib.fritzson_thesis_case(fritzson, "7.1", steps_per_cycle=200000),
+           "work cap", "steps_per_cycle")
 
 
 def test_grid_and_sweep_are_capped_before_work():

@@ -88,14 +88,14 @@ TEST(InputsCli, PlotWritesTheSamePngTwice) {
   EXPECT_EQ(png, slurp(b));
 }
 
-TEST(InputsCli, PlotWithoutGnuplotExitsFour) {
+TEST(InputsCli, PlotWithoutGnuplotExitsFive) {  // README "Exit codes"
   const std::string cmd = "PATH=/nonexistent " + std::string(FITCLI_EXE) + " plot --data " +
                           material("synthetic-prony-wlf.csv") + " --card " +
                           source_path("datasets/cards/synthetic-prony-wlf-true.json") + " --out " + unique("x.png") +
                           " 2>" + unique("err.txt");
   const int status = std::system(cmd.c_str());
-  EXPECT_EQ(WEXITSTATUS(status), 4);
-  EXPECT_NE(slurp(unique("err.txt")).find("gnuplot not found"), std::string::npos);
+  EXPECT_EQ(WEXITSTATUS(status), 5);
+  EXPECT_NE(slurp(unique("err.txt")).find("gnuplot is not on PATH"), std::string::npos);
 }
 
 }  // namespace

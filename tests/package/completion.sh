@@ -26,5 +26,15 @@ echo "completion: subcommands, options and nested subcommands"
 if command -v help2man >/dev/null; then
   grep -q '^\.TH FITCLI' "$3" && grep -qF 'material\-point' "$3" && grep -qF '\-\-version' "$3" \
     || { echo "man page $3 lacks its title or subcommands"; exit 1; }
-  echo "man page: $(wc -l <"$3") lines"
+  # A subsection per subcommand and nested subcommand, each with its own options.
+  subs=$("$fitcli" --help | awk '/^Subcommands:/ {on = 1; next} on && /^  [a-z]/ {print $1}')
+  for sub in $subs "surface fit" "surface eval" "surface grid"; do
+    grep -qF ".SS \"fitcli ${sub//-/\\-}\"" "$3" || { echo "man page $3 has no section for '$sub'"; exit 1; }
+  done
+  [ "$(grep -c '^\.SS "fitcli ' "$3")" -ge 18 ] || { echo "man page $3: fewer than 18 subcommand sections"; exit 1; }
+  sed -n '/^\.SS "fitcli eval"/,/^\.SS/p' "$3" | grep -qF '\-\-frequency\-hz' ||
+    { echo "man page $3: the eval section lacks --frequency-hz"; exit 1; }
+  sed -n '/^\.SS "fitcli surface grid"/,/^\.SS/p' "$3" | grep -qF '\-\-surface\-out' ||
+    { echo "man page $3: the surface grid section lacks --surface-out"; exit 1; }
+  echo "man page: $(wc -l <"$3") lines, $(grep -c '^\.SS "fitcli ' "$3") subcommand sections"
 fi

@@ -8,6 +8,8 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/units.hpp"
+#include "fitlib/model/material_point.hpp"
+#include "fitlib/model/work_caps.hpp"
 
 namespace fitlib::model::fritzson {
 
@@ -68,6 +70,15 @@ CaseLoops run_thesis_case(const MaterialPoint& point, const ThesisCase& c, int s
   for (size_t k = 0; k < r.stress.size(); ++k)
     out.nominal_MPa.push_back(uniaxial ? r.stress[k] / (1.0 + out.displacement[k]) : r.stress[k]);
   return out;
+}
+
+void check_thesis_case_work(const Model& model, const std::vector<double>& p, const ThesisCase& c,
+                            int steps_per_cycle, const std::string& key) {
+  // The rows of run_thesis_case: the ramp's rise and its 1 ms hold steps, or 10 cycles.
+  const double steps = c.ramp_rate_per_s > 0.0 ? steps_per_cycle + 1.0 + std::ceil(c.hold_s / 1e-3)
+                                               : 10.0 * steps_per_cycle + 1.0;
+  const std::size_t state = make_material_point(model, p)->state_size();  // the thesis point's, as the contract's
+  check_point_work(point_work(state, steps, c.mode), "case " + c.id + " of a " + model.kind() + " card", key);
 }
 
 std::string case_loops_csv(const ThesisCase& c, const CaseLoops& loops) {

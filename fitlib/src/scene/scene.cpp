@@ -18,6 +18,7 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/fatigue/card.hpp"
+#include "fitlib/segment/solver.hpp"
 
 namespace fitlib::scene {
 
@@ -245,8 +246,27 @@ void parse_segment_materials(const toml::table& mt, const Scene& scene, SegmentS
   mr.finish();
 }
 
+// A user point must lie in the mesh its stresses are read from: located here, before the FE runs,
+// so the refusal names the scene file, line and key (segment::locate knows neither).
+void require_point_in_mesh(const Reader& r, const segment::Mesh& mesh, const segment::NamedPoint& p, std::size_t i,
+                           const toml::source_region& where) {
+  try {
+    segment::locate(mesh, Eigen::Vector2d(p.x_mm, p.y_mm));
+  } catch (const InputError&) {
+    Eigen::Vector2d lo = mesh.X.front(), hi = mesh.X.front();
+    for (const Eigen::Vector2d& x : mesh.X) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    lo.array() += 0.0, hi.array() += 0.0;  // -0 (the cord line) printed as 0
+    r.fail("points[" + std::to_string(i) + "]",
+           "point '" + p.name + "' (" + core::format_number(p.x_mm) + ", " + core::format_number(p.y_mm) +
+               ") mm is outside the segment mesh (x from " + core::format_number(lo.x()) + " to " +
+               core::format_number(hi.x()) + " mm, y from " + core::format_number(lo.y()) + " to " +
+               core::format_number(hi.y()) + " mm, y = 0 the cord line; the cog profile bounds it below)",
+           where);
+  }
+}
+
 // [segment] points = [{name, x_mm, y_mm}, ...]: the user's named points.
-void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
+void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g, const segment::Mesh& mesh,
                           const std::string& source) {
   const toml::array* a = pts.as_array();
   if (!a) r.fail("points", "expects an array of {name, x_mm, y_mm}");
@@ -261,6 +281,7 @@ void parse_segment_points(Reader& r, const toml::node& pts, SegmentSpec& g,
     if (!x || !y) pr.fail("x_mm", "a point needs x_mm and y_mm", pn.source());
     p.x_mm = *x, p.y_mm = *y;
     pr.finish();
+    require_point_in_mesh(r, mesh, p, i, pn.source());
     g.setup.points.push_back(p);
     ++i;
   }
@@ -295,11 +316,13 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   g.life_mesh_changed = std::any_of(kSegmentMeshKeys.begin(), kSegmentMeshKeys.end(), [&](const std::string& k) { return r.has(k); });
   if (const toml::table* mt = r.table("materials")) parse_segment_materials(*mt, scene, g, source);
   g.frequency_Hz = r.number("frequency_Hz", 0.0, 1e9, true);
-  if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, source);
+  // The mesh these knobs give (bounded by the ranges above, so cheap to build): the points must lie
+  // in it, and it sets the work cap.
+  const segment::Mesh mesh = segment::build_mesh(sec, g.setup.mesh);
+  if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, mesh, source);
   g.scan_design_regions = r.boolean("scan").value_or(true);
   r.finish();
-  // Work cap on the mesh these knobs give (bounded by the ranges above, so cheap to build).
-  const double elements = segment::build_mesh(sec, g.setup.mesh).element_count();
+  const double elements = mesh.element_count();
   if (elements * g.setup.solver.steps > kMaxSegmentWork)
     r.fail(r.has("steps") ? "steps" : "fine_size_mm",
            std::to_string(static_cast<long>(elements)) + " elements x " + std::to_string(g.setup.solver.steps) +

@@ -42,6 +42,11 @@ struct CaseLoops {
 // cases, the ramp uses the same count over its rise and 1 ms steps in the hold.
 CaseLoops run_thesis_case(const MaterialPoint& point, const ThesisCase& c,
                           int steps_per_cycle = 200);
+// The work cap of run_thesis_case (model/work_caps.hpp), before it runs: its time steps (rows) and
+// the cost of the card's point; core::InputError naming `key` (the option or argument that sets
+// steps_per_cycle) when above the cap.
+void check_thesis_case_work(const Model& model, const std::vector<double>& p, const ThesisCase& c,
+                            int steps_per_cycle, const std::string& key);
 
 // time_s,displacement,strain,stress_MPa,nominal_stress_MPa,damage_driver_I,_A1,_A2 (+ comments).
 std::string case_loops_csv(const ThesisCase& c, const CaseLoops& loops);
