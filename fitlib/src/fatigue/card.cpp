@@ -44,7 +44,13 @@ FatigueCard card_at_level(const FatigueCard& card, const std::string& fidelity) 
   if (level == card.levels.end()) return c;
   for (Mode m : {Mode::radial_crack, Mode::separation}) {
     const std::string& of = card.law(m).stress_fidelity;
-    if (!of.empty() && of != fidelity) c.law(m) = level->second.law(m);
+    if (of.empty() || of == fidelity) continue;
+    // A level's law is the mode's with n and b held and σ0 calibrated (scripts/calibrate-levels.sh):
+    // where it states no scatter or covariance it keeps the mode's, the belts' scatter about the law.
+    LifeLaw law = level->second.law(m);
+    if (!law.scatter) law.scatter = card.law(m).scatter;
+    if (!law.covariance) law.covariance = card.law(m).covariance;
+    c.law(m) = law;
   }
   return c;
 }

@@ -370,9 +370,9 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     check_segment_work(s, setup);
     setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings, r.segment_damage_held, {});
-    // The design point per mode: the worst of the named points, [segment] points and the scanned
-    // design regions (Report I §6.4; [segment] scan = false: the named points alone).
-    setup.cycle.scan_design_regions = !s.segment || s.segment->scan_design_regions;
+    // The design point per mode: the worst of the named points, [segment] points and, with [segment]
+    // scan = true, the scanned design regions (Report I §6.4).
+    setup.cycle.scan_design_regions = s.segment && s.segment->scan_design_regions;
     if (s.segment) setup.extra_points = s.segment->setup.points;
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
@@ -388,7 +388,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     const std::string remedy = damage_hold_remedy(s, r.segment_damage_held);
     segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, remedy);
     std::map<std::string, ReachedAmplitude> read_at;  // the elastic level's amplitudes, by role
-    if (r.plan.life->fidelity == "elastic" && (!s.life || s.life->elastic_at_reached_amplitude))
+    if (r.plan.life->fidelity == "elastic" && s.life && s.life->elastic_at_reached_amplitude)
       run = read_cards_where_driven(s, r, setup, std::move(run), remedy, read_at);
     const std::map<std::string, ReachedAmplitude> reached = reached_amplitudes(run);
     r.segment_cards_read = card_readings(s, r.plan.life->fidelity, load_frequency_Hz(*r.drive), reached, read_at);

@@ -320,7 +320,7 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   // in it, and it sets the work cap.
   const segment::Mesh mesh = segment::build_mesh(sec, g.setup.mesh);
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, mesh, source);
-  g.scan_design_regions = r.boolean("scan").value_or(true);
+  g.scan_design_regions = r.boolean("scan").value_or(false);
   r.finish();
   const double elements = mesh.element_count();
   if (elements * g.setup.solver.steps > kMaxSegmentWork)

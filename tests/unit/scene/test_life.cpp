@@ -626,10 +626,20 @@ void windowed_thesis_cards(scene::Scene& s, const std::string& tag) {
 // it"): on the medium reference drive the elastic level read at the reached amplitude comes closer to
 // the complete level's radial-crack life than the small-amplitude reading; the iteration converges
 // within its tolerance, the table and life.json say where each card was read.
+// The rule reads the amplitude at the named points, and the comparison is made there ([segment]
+// scan = false, the default): with the scanned design points (the root fillet) the reached-amplitude reading moves
+// N1 away from the complete level's on this drive (elastic/complete 2.12 small, 2.75 reached; 2026-12-02),
+// which issue 33 keeps open.
 TEST(SceneLife, ElasticLevelReadsTheCardsAtTheAmplitudeTheSegmentDrivesThem) {
   auto s = with_cards_elastic("medium");
   windowed_thesis_cards(s, "amplitude");
   s.life->cycles = 2;
+  s.segment = scene::SegmentSpec{};
+  s.segment->scan_design_regions = false;
+  fatigue::FatigueCard constants = fatigue::default_card();  // one law at both levels: no calibrated levels
+  constants.levels.clear();
+  s.life->card = fitlib_test::temp_path("complete-constants.json");
+  fatigue::save_card(s.life->card, constants);
   auto n1 = [](const scene::SceneResult& r) { return r.life->report.modes.at(0).life_cycles; };
   s.life->elastic_at_reached_amplitude = false;
   const scene::SceneResult small = scene::run_scene(s);

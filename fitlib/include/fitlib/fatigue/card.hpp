@@ -89,7 +89,8 @@ FatigueCard default_card();
 
 // The card whose modes are the constants for stresses of `fidelity`: per mode, its own law when
 // that was fitted at `fidelity` (or does not say), else the `levels` entry of `fidelity` when the
-// card has one, else its own law (stress_fidelity_warning then says so). `levels` is emptied.
+// card has one (keeping the mode's scatter and covariance where the entry states none), else its
+// own law (stress_fidelity_warning then says so). `levels` is emptied.
 FatigueCard card_at_level(const FatigueCard& card, const std::string& fidelity);
 
 // The warning for a life whose stresses come from `fidelity` read against constants fitted at

@@ -76,9 +76,10 @@ struct SegmentSpec {
   // given changes that knob, the others keep the default.
   segment::MeshKnobs life_mesh = scene::life_mesh();
   bool life_mesh_changed = false;  // a mesh key was given
-  // [segment] scan: the life's design points are the worst of the design regions' points beside
-  // the named ones (segment::CycleKnobs::scan_design_regions); false: the named points alone.
-  bool scan_design_regions = true;
+  // [segment] scan = true: the life's design points are the worst of the design regions' points
+  // beside the named ones (segment::CycleKnobs::scan_design_regions); false (the default until the
+  // fatigue card's constants are read where they were fitted, docs/decisions.md): the named points.
+  bool scan_design_regions = false;
 };
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").
@@ -96,9 +97,11 @@ struct LifeSpec {
   // true | false` is the older spelling of hold | extrapolate.
   enum class BeyondTests { hold, extrapolate, refuse };
   BeyondTests beyond_tests = BeyondTests::hold;
-  // Elastic level: read the amplitude-dependent cards at the amplitude the segment reaches (true, the
-  // default; [life] elastic_amplitude = "reached") or at the smallest ("small", as before issue 33).
-  bool elastic_at_reached_amplitude = true;
+  // Elastic level: read the amplitude-dependent cards at the amplitude the segment reaches (true,
+  // opt-in, [life] elastic_amplitude = "reached") or at the smallest ("small", the default: one secant
+  // per role folds the heavy drive, docs/decisions.md "Elastic level: each card read at the amplitude
+  // the segment drives it").
+  bool elastic_at_reached_amplitude = false;
   // [life] uncertainty = "cards": B10/B50 also get the 90 % interval of lives run on `samples`
   // draws of the material cards' parameters from their covariance, seeded (docs/thermal.md §7).
   bool uncertainty_cards = false;
