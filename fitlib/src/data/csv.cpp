@@ -140,6 +140,12 @@ const CsvLine* next_content_line(const std::vector<CsvLine>& lines, std::size_t&
   return next < lines.size() ? &lines[next++] : nullptr;
 }
 
+const CsvLine& header_line(const std::vector<CsvLine>& lines, std::size_t& next, const std::string& file_name) {
+  const CsvLine* header = next_content_line(lines, next);
+  if (!header) throw core::InputError("no header row (empty file)", file_name, 1);
+  return *header;
+}
+
 std::vector<std::string> first_content_fields(const std::string& bytes) {
   try {
     const auto lines = split_csv_lines(bytes, "");

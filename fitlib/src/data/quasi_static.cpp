@@ -153,9 +153,8 @@ QuasiStaticTable parse_quasi_static_table(const std::string& bytes, const std::s
   table.source_sha256.push_back(core::sha256_hex(bytes));
   const auto lines = split_csv_lines(bytes, file);
   std::size_t next = 0;
-  const CsvLine* header = next_content_line(lines, next);
-  if (!header) throw core::InputError("no header row (empty file)", file, 1);
-  const Columns c = layout(split_csv_fields(header->text, file, header->number), header->number, file);
+  const CsvLine& header = header_line(lines, next, file);
+  const Columns c = layout(split_csv_fields(header.text, file, header.number), header.number, file);
   for (const CsvLine* line = next_content_line(lines, next); line; line = next_content_line(lines, next)) {
     const auto f = split_csv_fields(line->text, file, line->number);
     if (static_cast<int>(f.size()) != c.count)
@@ -163,7 +162,7 @@ QuasiStaticTable parse_quasi_static_table(const std::string& bytes, const std::s
                              file, line->number, std::min(static_cast<int>(f.size()), c.count) + 1);
     table.rows.push_back(parse_row(f, c, file, line->number));
   }
-  if (table.rows.empty()) throw core::InputError("no data rows after the header", file, header->number);
+  if (table.rows.empty()) throw core::InputError("no data rows after the header", file, header.number);
   return table;
 }
 

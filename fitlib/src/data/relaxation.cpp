@@ -77,8 +77,7 @@ RelaxationTable parse_relaxation_table(const std::string& bytes, const std::stri
   table.source_sha256.push_back(core::sha256_hex(bytes));
   const auto lines = split_csv_lines(bytes, file);
   std::size_t next = 0;
-  const CsvLine* names = next_content_line(lines, next);
-  if (!names) throw core::InputError("no header row (empty file)", file, 1);
+  const CsvLine* names = &header_line(lines, next, file);
   const CsvLine* units = next_content_line(lines, next);
   if (!units) throw core::InputError("pyvisco file needs a units row after the header", file, names->number + 1);
   const Columns c = layout(split_csv_fields(names->text, file, names->number), names->number,

@@ -16,12 +16,8 @@ ShiftFactorTable parse_shift_factors(const std::string& bytes, const std::string
   table.source_file = file_name;
   const auto lines = split_csv_lines(bytes, file_name);
   std::size_t next = 0;
-  const auto content = [&]() -> const CsvLine* {
-    while (next < lines.size() && is_blank_or_comment(lines[next].text)) ++next;
-    return next < lines.size() ? &lines[next++] : nullptr;
-  };
-  const CsvLine* names = content();
-  if (!names) throw core::InputError("no header row (empty file)", file_name, 1);
+  const auto content = [&] { return next_content_line(lines, next); };
+  const CsvLine* names = &header_line(lines, next, file_name);
   const auto header = split_csv_fields(names->text, file_name, names->number);
   if (header.size() != 2 || header[0] != "T" || header[1] != "log_aT")
     throw core::InputError("expected the pyvisco shift-factor header 'T,log_aT'", file_name,

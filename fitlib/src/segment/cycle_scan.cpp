@@ -11,13 +11,15 @@
 namespace fitlib::segment::detail {
 namespace {
 
-// Report I monitors the elements between the cogs and every cushion element (L1020–1030): here the
-// bottom rubber over the gap's land and root fillets, where a radial crack starts.
-bool between_the_central_cogs(const Mesh& straight, int e, const CogSection& section) {
+double centroid_x(const Mesh& straight, int e) {
   double x = 0.0;
   for (int a = 0; a < 4; ++a) x += 0.25 * straight.X[straight.elements[e][a]].x();
-  return straight.roles[e] == Role::bottom && std::abs(x) <= section.land_half_width_mm + section.root_fillet_mm;
+  return x;
 }
+
+// Report I monitors the elements between the cogs and every cushion element (L1020–1030): here the
+// bottom rubber over the gap's land and root fillets, where a radial crack starts.
+double gap_half_width_mm(const CogSection& section) { return section.land_half_width_mm + section.root_fillet_mm; }
 
 }  // namespace
 
@@ -35,7 +37,7 @@ void RegionScan::add_bottom_points(const Mesh& straight, const CogSection& secti
   const int nodes = straight.nodes_per_element;
   double N[8], dxi[8], deta[8];
   for (int e = 0; e < straight.element_count(); ++e) {
-    if (!between_the_central_cogs(straight, e, section)) continue;
+    if (straight.roles[e] != Role::bottom || std::abs(centroid_x(straight, e)) > gap_half_width_mm(section)) continue;
     for (std::size_t g = 0; g < rule.size(); ++g) {
       shape(nodes, rule[g].xi, rule[g].eta, N, dxi, deta);
       Eigen::Vector2d X = Eigen::Vector2d::Zero();  // on the straight mesh: the path position's frame
@@ -58,7 +60,7 @@ void RegionScan::add_surface_nodes(const Mesh& straight, const CogSection& secti
   std::vector<int> surface;
   for (const Edge& edge : straight.bottom_edges)
     for (int node : edge.nodes)
-      if (node >= 0 && std::abs(straight.X[node].x()) <= section.land_half_width_mm + section.root_fillet_mm &&
+      if (node >= 0 && std::abs(straight.X[node].x()) <= gap_half_width_mm(section) &&
           std::find(surface.begin(), surface.end(), node) == surface.end())
         surface.push_back(node);
   std::sort(surface.begin(), surface.end(), [&straight](int a, int b) { return straight.X[a].x() < straight.X[b].x(); });
@@ -67,7 +69,7 @@ void RegionScan::add_surface_nodes(const Mesh& straight, const CogSection& secti
     const int node = surface[k];
     // The moulded surface's tangent, from the neighbouring surface nodes (one-sided at the ends).
     const int before = surface[k == 0 ? 0 : k - 1], after = surface[std::min(k + 1, surface.size() - 1)];
-    surface_tangent_.resize(out_.size(), Eigen::Vector2d::Zero());
+    surface_tangent_.resize(out_.size(), Eigen::Vector2d::Zero());  // zero: not a surface point
     surface_tangent_.push_back((moulded.X[after] - moulded.X[before]).normalized());
     MonitoredHistory mh;
     mh.point = {"surface-n" + std::to_string(node), straight.X[node].x(), straight.X[node].y()};
@@ -87,10 +89,9 @@ void RegionScan::add_cushion_points(const Mesh& straight, double K_m, const CogS
   Mesh points = straight;  // carried into the moulded reference as the nodes are (PointMonitor)
   points.X.clear();
   for (int e = 0; e < straight.element_count(); ++e) {
-    if (straight.roles[e] != Role::cushion) continue;
-    double x = 0.0;
-    for (int a = 0; a < 4; ++a) x += 0.25 * straight.X[straight.elements[e][a]].x();
-    if (std::abs(x) <= 0.5 * knobs.central_pitches * section.cog_pitch_mm) points.X.emplace_back(x, -0.5 * section.cushion_mm);
+    const double x = centroid_x(straight, e);
+    if (straight.roles[e] == Role::cushion && std::abs(x) <= 0.5 * knobs.central_pitches * section.cog_pitch_mm)
+      points.X.emplace_back(x, -0.5 * section.cushion_mm);
   }
   std::sort(points.X.begin(), points.X.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() < b.x(); });
   points.X.erase(std::unique(points.X.begin(), points.X.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

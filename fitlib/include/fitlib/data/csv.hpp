@@ -25,6 +25,10 @@ bool is_blank_or_comment(const std::string& text);
 // The next line with data at or after `next` (which moves past it); null at the end.
 const CsvLine* next_content_line(const std::vector<CsvLine>& lines, std::size_t& next);
 
+// The first line with data at or after `next` (which moves past it): a file's header row;
+// InputError "no header row (empty file)" at line 1 when there is none.
+const CsvLine& header_line(const std::vector<CsvLine>& lines, std::size_t& next, const std::string& file_name);
+
 // The fields of the first line with data of `bytes`; empty when there is none or it does not
 // split (for the readers' looks_like_* sniffers).
 std::vector<std::string> first_content_fields(const std::string& bytes);
