@@ -24,6 +24,10 @@ double hysteresis_power_W(const std::vector<HysteresisLayer>& layers, double loa
   return w * load_frequency_Hz;
 }
 
+double loss_modulus_of_storage_MPa(double storage_MPa, double loss_angle_deg) {
+  return storage_MPa * std::tan(loss_angle_deg * kPi / 180.0);
+}
+
 double adiabatic_heating_rate_C_s(double loss_modulus_MPa, double strain_amplitude, double frequency_Hz,
                                   double specific_heat_J_kgC, double density_kg_m3) {
   return kPi * strain_amplitude * strain_amplitude * loss_modulus_MPa * 1e6 * frequency_Hz /

@@ -85,14 +85,50 @@ double sorted_quantile(const std::vector<double>& x, double q) {
   return x[lo] + (at - static_cast<double>(lo)) * (x[hi] - x[lo]);
 }
 
+// Cycles per hour of a B life (∞ where hours are not known: 0 h).
+double per_hour(const BLife& b) { return b.has_hours ? b.cycles / b.h : HUGE_VAL; }
+
 void set_cards_interval(BLife& b, const std::vector<double>& sorted_cycles, double shift) {
   b.has_cards_interval = !sorted_cycles.empty();
   if (!b.has_cards_interval) return;
   const double factor = std::pow(10.0, shift);
   b.cards_low_cycles = sorted_quantile(sorted_cycles, 0.05) * factor;
   b.cards_high_cycles = sorted_quantile(sorted_cycles, 0.95) * factor;
-  const double per_h = b.has_hours ? b.cycles / b.h : HUGE_VAL;
+  const double per_h = per_hour(b);
   b.cards_low_h = b.cards_low_cycles / per_h, b.cards_high_h = b.cards_high_cycles / per_h;
+}
+
+// The constants' error in units of its standard deviation: Student t with the scatter's degrees of
+// freedom, as the constants' own interval (b_life), the normal without; the lower tail by symmetry.
+double constants_cdf(double u, int dof) {
+  return dof > 0 ? boost::math::cdf(boost::math::students_t(dof), u) : boost::math::cdf(boost::math::normal(), u);
+}
+double constants_quantile(double p, int dof) {
+  if (p < 0.5) return -constants_quantile(1.0 - p, dof);
+  return dof > 0 ? boost::math::quantile(boost::math::students_t(dof), p) : normal_quantile(100.0 * p);
+}
+
+// The q-quantile of F(x) = (1/J) Σ_j F_T((x − y_j)/sd) over the draws' sorted log10 lives y (+∞
+// for an unbounded draw, which adds no mass below any x). Bisection inside the bracket where every
+// finite term is at most q (x = y_min + sd Q(q)) and at least q J/J_finite; +∞ when the finite
+// draws' mass cannot reach q.
+double combined_quantile(const std::vector<double>& y, double sd, int dof, double q) {
+  std::size_t finite = 0;
+  while (finite < y.size() && std::isfinite(y[finite])) ++finite;
+  const double reach = finite ? q * static_cast<double>(y.size()) / static_cast<double>(finite) : HUGE_VAL;
+  if (reach >= 1.0) return HUGE_VAL;
+  auto cdf = [&](double x) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < finite; ++j) sum += constants_cdf((x - y[j]) / sd, dof);
+    return sum / static_cast<double>(y.size());
+  };
+  double lo = y.front() + sd * constants_quantile(q, dof), hi = y[finite - 1] + sd * constants_quantile(reach, dof);
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    (cdf(mid) < q ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 }  // namespace
@@ -103,6 +139,25 @@ void add_cards_interval(ModeDistribution& d, std::vector<double> draw_cycles, co
   d.cards->median_cycles = draw_cycles.empty() ? NAN : sorted_quantile(draw_cycles, 0.5);
   set_cards_interval(d.b10, draw_cycles, normal_quantile(10.0) * d.sigma_log10);
   set_cards_interval(d.b50, draw_cycles, 0.0);
+}
+
+void add_combined_interval(ModeDistribution& d, const std::vector<double>& draw_cycles) {
+  if (draw_cycles.empty()) return;
+  std::vector<double> y;
+  for (double n : draw_cycles) y.push_back(std::log10(n));
+  std::sort(y.begin(), y.end());
+  const double sd = d.constants_sd_log10;
+  for (auto [b, shift] : {std::pair{&d.b10, normal_quantile(10.0) * d.sigma_log10}, std::pair{&d.b50, 0.0}}) {
+    b->has_combined_interval = true;
+    if (!(sd > 0.0)) {  // no constants' covariance: the cards' interval alone
+      b->combined_low_cycles = b->cards_low_cycles, b->combined_high_cycles = b->cards_high_cycles;
+    } else {
+      b->combined_low_cycles = std::pow(10.0, combined_quantile(y, sd, d.dof, 0.05) + shift);
+      b->combined_high_cycles = std::pow(10.0, combined_quantile(y, sd, d.dof, 0.95) + shift);
+    }
+    const double per_h = per_hour(*b);
+    b->combined_low_h = b->combined_low_cycles / per_h, b->combined_high_h = b->combined_high_cycles / per_h;
+  }
 }
 
 std::vector<ModeDistribution> life_distribution(const LifeReport& report, const FatigueCard& card,
@@ -130,6 +185,11 @@ std::string b_text(const BLife& b) {
   if (b.has_cards_interval) {
     std::snprintf(buf, sizeof buf, " cards [%.4g, %.4g]", hours ? b.cards_low_h : b.cards_low_cycles,
                   hours ? b.cards_high_h : b.cards_high_cycles);
+    out += buf;
+  }
+  if (b.has_combined_interval) {
+    std::snprintf(buf, sizeof buf, " combined [%.4g, %.4g]", hours ? b.combined_low_h : b.combined_low_cycles,
+                  hours ? b.combined_high_h : b.combined_high_cycles);
     out += buf;
   }
   return out;
@@ -169,7 +229,9 @@ std::string life_distribution_table(const LifeReport& report, const std::vector<
     out += std::string(head) + b_text(d->b10) + ", " + b_text(d->b50) +
            (d->b10.has_interval ? " (90 % intervals: the constants' covariance" : " (no interval of the constants: the "
                                                                                   "card has no covariance of them") +
-           (d->cards ? std::string("; cards: the material cards' covariance") : std::string()) + ")\n";
+           (d->cards ? std::string("; cards: the material cards' covariance") : std::string()) +
+           (d->b50.has_combined_interval ? std::string("; combined: both as one distribution") : std::string()) +
+           ")\n";
     if (d->cards) out += cards_text(*d);
   }
   if (!without.empty())
@@ -191,6 +253,8 @@ nlohmann::json life_distribution_json(const std::vector<ModeDistribution>& dist)
       if (b->has_interval && b->has_hours) e["ci90_h"] = {b->low_h, b->high_h};
       if (b->has_cards_interval) e["ci90_cards_cycles"] = {b->cards_low_cycles, b->cards_high_cycles};
       if (b->has_cards_interval && b->has_hours) e["ci90_cards_h"] = {b->cards_low_h, b->cards_high_h};
+      if (b->has_combined_interval) e["ci90_combined_cycles"] = {b->combined_low_cycles, b->combined_high_cycles};
+      if (b->has_combined_interval && b->has_hours) e["ci90_combined_h"] = {b->combined_low_h, b->combined_high_h};
       modes[b->percent < 50.0 ? "B10" : "B50"] = e;
     }
     if (d.cards)

@@ -1,6 +1,7 @@
-// [life] uncertainty = "cards" (docs/thermal.md §7): the material cards' parameter covariance
-// propagated to B10 and B50 by running the scene's life on seeded draws of the cards, on the
-// sweep engine's thread schedule (run_indexed_in_threads), each draw's life stored at its index.
+// [life] uncertainty = "cards" or "constants+cards" (docs/thermal.md §7): the material cards'
+// parameter covariance propagated to B10 and B50 by running the scene's life on seeded draws of the
+// cards, on the sweep engine's thread schedule (run_indexed_in_threads), each draw's life stored at
+// its index; with "constants+cards" the draws also make the combined interval.
 #include <map>
 
 #include "effects.hpp"
@@ -62,7 +63,7 @@ void check_draws_cost(const Scene& s, const std::string& fidelity) {
 // parallel themselves).
 Scene draw_scene(const Scene& s, const std::vector<RoleSampler>& samplers, std::size_t k) {
   Scene d = s;
-  d.life->uncertainty_cards = false;
+  d.life->uncertainty_cards = d.life->uncertainty_combined = false;
   d.outputs = {{"life", true}};
   d.life_field_at.clear();
   d.segment_progress = false;
@@ -100,7 +101,8 @@ void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
     std::vector<double> cycles;
     for (const auto& draw : lives)
       if (const auto m = draw.find(d.mode); m != draw.end()) cycles.push_back(m->second);
-    fatigue::add_cards_interval(d, std::move(cycles), sampling);
+    fatigue::add_cards_interval(d, cycles, sampling);
+    if (s.life->uncertainty_combined) fatigue::add_combined_interval(d, cycles);
   }
 }
 

@@ -12,15 +12,13 @@
 namespace fitlib::scene::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Storage and loss modulus of a [belt.materials] role at `at` (uniaxial 22 for the bottom rubber,
 // shear for the cushion); without a card E′ = `fallback_MPa` and E″ = E′ tan δ ([thermal] loss_angle_deg).
 // `warnings` (the fixed point's run only) gets the card's data-window warnings at the layer's amplitude.
 std::array<double, 2> layer_moduli(const Scene& s, const std::string& role, model::TestCondition at,
                                    double fallback_MPa, std::vector<std::string>* warnings) {
   if (!s.materials.count(role))
-    return {fallback_MPa, fallback_MPa * std::tan(s.thermal.loss_angle_deg * kPi / 180.0)};
+    return {fallback_MPa, belt::loss_modulus_of_storage_MPa(fallback_MPa, s.thermal.loss_angle_deg)};
   const card::Card c = material_card(s, role);
   if (warnings) card_window_warnings(s, role, c, at, *warnings);
   try {

@@ -557,9 +557,11 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
     l.elastic_at_reached_amplitude = *a == "reached";
   }
   if (auto u = lr.string("uncertainty")) {
-    if (*u != "constants" && *u != "cards")
-      lr.fail("uncertainty", "uncertainty must be \"constants\" or \"cards\", not \"" + *u + "\"");
-    l.uncertainty_cards = *u == "cards";
+    if (*u != "constants" && *u != "cards" && *u != "constants+cards")
+      lr.fail("uncertainty", "uncertainty must be \"constants\", \"cards\" or \"constants+cards\", not \"" + *u +
+                                 "\"");
+    l.uncertainty_combined = *u == "constants+cards";
+    l.uncertainty_cards = *u == "cards" || l.uncertainty_combined;
   }
   l.samples = static_cast<int>(lr.count_or("samples", l.samples, 2, 1e5));
   l.seed = static_cast<std::uint64_t>(lr.count_or("seed", static_cast<double>(l.seed), 0, 9007199254740992.0));

@@ -2,6 +2,7 @@
 // card, and the B10/B50 lives with their 90 % interval.
 #include <gtest/gtest.h>
 
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
@@ -122,6 +123,76 @@ TEST(LifeDistribution, CardKeepsScatterAndCovarianceAndTheBundledCardStillReads)
   j = card_to_json(c);
   j["modes"]["separation"]["scatter"]["distribution"] = "weibull";
   EXPECT_THROW(card_from_json(j, "mem"), core::InputError);
+}
+
+// [life] uncertainty = "constants+cards" (docs/thermal.md §7): the draws' lives convolved with the
+// constants' t. Draws all at the law's life give the constants' interval; a law without covariance gives
+// the cards' interval.
+TEST(LifeDistribution, CombinedIntervalWithOneSourceOffIsTheOtherSourcesInterval) {
+  const LifeLaw law = law_with_scatter(0.3, 1.0);
+  const ModeLife m = mode_life(law, {1.5, 0.9, 1.1}, 10.0);
+  auto d = *mode_distribution(m, law, 90.0, 80.0, 3600.0);
+  add_cards_interval(d, std::vector<double>(20, m.life_cycles), {});
+  add_combined_interval(d, std::vector<double>(20, m.life_cycles));
+  for (const BLife* b : {&d.b10, &d.b50}) {
+    ASSERT_TRUE(b->has_combined_interval);
+    EXPECT_NEAR(b->combined_low_cycles / b->low_cycles, 1.0, 1e-12);
+    EXPECT_NEAR(b->combined_high_cycles / b->high_cycles, 1.0, 1e-12);
+    EXPECT_NEAR(b->combined_low_h / b->low_h, 1.0, 1e-12);
+    EXPECT_NEAR(b->combined_high_h / b->high_h, 1.0, 1e-12);
+  }
+  LifeLaw none = law;
+  none.covariance.reset();
+  auto c = *mode_distribution(m, none, 90.0, 80.0, 3600.0);
+  const std::vector<double> draws{0.6e7, 1.1e7, 0.9e7, 2.0e7, 1.4e7, 0.8e7};
+  add_cards_interval(c, draws, {});
+  add_combined_interval(c, draws);
+  for (const BLife* b : {&c.b10, &c.b50}) {
+    EXPECT_EQ(b->combined_low_cycles, b->cards_low_cycles);
+    EXPECT_EQ(b->combined_high_cycles, b->cards_high_cycles);
+    EXPECT_EQ(b->combined_high_h, b->cards_high_h);
+  }
+}
+
+// Normal constants' error (no dof) and draws at the normal's quantiles: the variances add, so the
+// combined 90 % interval of log10 life is ±1.6449 √(s_cards² + s_constants²) about the law's life.
+TEST(LifeDistribution, CombinedIntervalAddsTheVariancesOfNormalSources) {
+  LifeLaw law = law_with_scatter(0.3, 1.0);
+  law.scatter->dof = 0;
+  const ModeLife m = mode_life(law, {1.5, 0.9, 1.1}, 10.0);
+  for (double ratio : {1.0, 2.0}) {
+    auto d = *mode_distribution(m, law, 90.0, 80.0, 3600.0);
+    const double sc = d.constants_sd_log10, sy = ratio * sc;
+    ASSERT_GT(sc, 0.01);
+    std::vector<double> draws;
+    const int J = 4000;
+    for (int j = 0; j < J; ++j)
+      draws.push_back(m.life_cycles *
+                      std::pow(10.0, sy * boost::math::quantile(boost::math::normal(), (j + 0.5) / J)));
+    add_cards_interval(d, draws, {});
+    add_combined_interval(d, draws);
+    const double z95 = 1.6448536269514722, half = z95 * std::sqrt(sy * sy + sc * sc);
+    for (const BLife* b : {&d.b10, &d.b50}) {
+      EXPECT_NEAR(std::log10(b->combined_high_cycles / b->cycles), half, 2e-3 * half) << ratio;
+      EXPECT_NEAR(std::log10(b->cycles / b->combined_low_cycles), half, 2e-3 * half) << ratio;
+      EXPECT_NEAR(std::log10(b->high_cycles / b->cycles), z95 * sc, 1e-9);  // the constants' alone
+    }
+  }
+}
+
+// Unbounded draws add no mass below any life: with 9 of 10 unbounded the 95th percentile is unbounded.
+TEST(LifeDistribution, CombinedIntervalOfUnboundedDraws) {
+  const LifeLaw law = law_with_scatter(0.3, 1.0);
+  const ModeLife m = mode_life(law, {1.5, 0.9, 1.1}, 10.0);
+  auto d = *mode_distribution(m, law, 90.0, 80.0, 3600.0);
+  std::vector<double> draws(10, HUGE_VAL);
+  draws[3] = m.life_cycles;
+  add_cards_interval(d, draws, {});
+  add_combined_interval(d, draws);
+  EXPECT_TRUE(std::isinf(d.b50.combined_high_cycles));
+  EXPECT_TRUE(std::isfinite(d.b50.combined_low_cycles));
+  // 0.1 F_T((x − log10 N)/sd) = 0.05: the 5th percentile is the one finite draw's median, N itself.
+  EXPECT_NEAR(d.b50.combined_low_cycles / m.life_cycles, 1.0, 1e-9);
 }
 
 }  // namespace

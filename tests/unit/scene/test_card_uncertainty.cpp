@@ -116,4 +116,36 @@ TEST(CardUncertainty, ACardWithoutCovarianceOrStandardErrorsIsRefused) {
   EXPECT_THROW(scene::parse_scene(base + "\n[life]\nsamples = 1\n", "x.toml"), core::InputError);
 }
 
+// [life] uncertainty = "constants+cards": the same draws make a third interval, both sources as one
+// distribution, wider than either alone; the cards' interval is the "cards" run's; same bytes for any
+// thread count. The radial crack's law has no covariance: its combined interval is the cards'.
+TEST(CardUncertainty, ConstantsPlusCardsIsOneWiderIntervalAndByteReproducible) {
+  auto s = drive(bottom_card(4e-3, "combined.json"));
+  auto cards_only = s;
+  s.life->uncertainty_combined = true;
+  auto one = s;
+  one.segment_thread_cap = 1;
+  const auto a = scene::run_life(s), b = scene::run_life(one), c = scene::run_life(cards_only);
+  const std::string ja = scene::life_json(s, a, false).dump(2);
+  EXPECT_EQ(ja, scene::life_json(one, b, false).dump(2));
+  EXPECT_NE(ja.find("ci90_combined_h"), std::string::npos) << ja;
+  EXPECT_NE(scene::life_text(s, a).find(" combined ["), std::string::npos);
+  ASSERT_EQ(a.life->distribution.size(), 2u);
+  const auto& crack = a.life->distribution[0];
+  EXPECT_EQ(crack.b10.combined_low_cycles, crack.b10.cards_low_cycles);
+  const auto& sep = a.life->distribution[1];
+  EXPECT_EQ(sep.b50.cards_low_cycles, c.life->distribution[1].b50.cards_low_cycles);
+  EXPECT_FALSE(c.life->distribution[1].b50.has_combined_interval);
+  for (const fatigue::BLife* x : {&sep.b10, &sep.b50}) {
+    const double combined = std::log10(x->combined_high_cycles / x->combined_low_cycles);
+    EXPECT_GT(combined, log_width(*x));
+    EXPECT_GT(combined, std::log10(x->high_cycles / x->low_cycles));
+    EXPECT_LT(x->combined_low_cycles, x->cycles);
+    EXPECT_GT(x->combined_high_cycles, x->cycles);
+  }
+  const std::string base = fitlib::core::read_file(kSource + "/datasets/drives/ref-0500-medium.toml");
+  const auto parsed = scene::parse_scene(base + "\n[life]\nuncertainty = \"constants+cards\"\n", "x.toml");
+  EXPECT_TRUE(parsed.life->uncertainty_cards && parsed.life->uncertainty_combined);
+}
+
 }  // namespace

@@ -27,6 +27,9 @@ double hysteresis_work_J(const HysteresisLayer& layer);
 // Σ W over the layers times the load frequency (W per belt). At the complete level the segment's
 // own dissipation scales it (BeltTemperature::segment_over_layers, docs/thermal.md §1).
 double hysteresis_power_W(const std::vector<HysteresisLayer>& layers, double load_frequency_Hz);
+// E″ of a loss angle δ: E′ tan δ from the storage modulus E′ (= |E*| sin δ from the absolute one);
+// the layers' modulus where the scene has no card (docs/decisions.md "Report V's 0.28 °C/s").
+double loss_modulus_of_storage_MPa(double storage_MPa, double loss_angle_deg);
 // Report V (4.25): the adiabatic rate of rise π ε_a² E″ f/(c ρ), °C/s.
 double adiabatic_heating_rate_C_s(double loss_modulus_MPa, double strain_amplitude, double frequency_Hz,
                                   double specific_heat_J_kgC, double density_kg_m3);

@@ -28,6 +28,9 @@ struct BLife {
   // [life] uncertainty = "cards": the 90 % interval over the lives run on card draws
   bool has_cards_interval = false;
   double cards_low_cycles = 0.0, cards_high_cycles = 0.0, cards_low_h = 0.0, cards_high_h = 0.0;
+  // [life] uncertainty = "constants+cards": the 90 % interval of both sources as one distribution
+  bool has_combined_interval = false;
+  double combined_low_cycles = 0.0, combined_high_cycles = 0.0, combined_low_h = 0.0, combined_high_h = 0.0;
 };
 
 // How the cards' interval was made (docs/thermal.md §7): draws run, draws that failed (their run
@@ -52,6 +55,15 @@ struct ModeDistribution {
 // The cards' 90 % interval of B10 and B50 from the mode's lives on card draws: the 5th and 95th
 // percentiles (linear between order statistics) of N_j 10^(z_p s); an infinite draw stays infinite.
 void add_cards_interval(ModeDistribution& d, std::vector<double> draw_cycles, const CardsSampling& sampling);
+
+// Both sources as one distribution (docs/thermal.md §7): log10 life = a draw's log10 N_j plus the
+// constants' error sd·T (T Student t with the scatter's dof, as the constants' interval), so its
+// distribution is the draws' empirical one convolved with the constants' scaled t:
+//   F(x) = (1/J) Σ_j F_T((x − log10 N_j)/sd);
+// the 90 % interval of B_p is its 5th and 95th percentiles times 10^(z_p s). Draws all equal give
+// the constants' interval; sd = 0 (no covariance of the constants) gives the cards' interval.
+// Call after add_cards_interval with the same draws.
+void add_combined_interval(ModeDistribution& d, const std::vector<double>& draw_cycles);
 
 // ∂ log10 N/∂(ln σ0, n, b) of (6.31) at one point's peaks and temperature offset dT = T − T_ref.
 std::array<double, 3> log10_life_gradient(const std::vector<double>& peaks_MPa, const LifeLaw& law, double dT);

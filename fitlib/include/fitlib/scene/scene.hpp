@@ -105,6 +105,9 @@ struct LifeSpec {
   // [life] uncertainty = "cards": B10/B50 also get the 90 % interval of lives run on `samples`
   // draws of the material cards' parameters from their covariance, seeded (docs/thermal.md §7).
   bool uncertainty_cards = false;
+  // [life] uncertainty = "constants+cards": the draws as above, and a third interval of both sources
+  // as one distribution (the draws convolved with the constants' t; docs/thermal.md §7).
+  bool uncertainty_combined = false;
   int samples = 100;
   std::uint64_t seed = 1;
 };
