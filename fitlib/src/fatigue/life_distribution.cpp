@@ -243,6 +243,10 @@ std::string life_distribution_table(const LifeReport& report, const std::vector<
 nlohmann::json life_distribution_json(const std::vector<ModeDistribution>& dist) {
   using nlohmann::json;
   json out = json::array();
+  // An interval's end beyond every drawn life (unbounded draws) is null, as an unbounded life is.
+  auto range = [](double lo, double hi) {
+    return json::array({std::isfinite(lo) ? json(lo) : json(nullptr), std::isfinite(hi) ? json(hi) : json(nullptr)});
+  };
   for (const ModeDistribution& d : dist) {
     json modes = {{"mode", to_string(d.mode)}, {"distribution", "lognormal"}, {"sigma_log10", d.sigma_log10},
                   {"dof", d.dof}, {"constants_sd_log10", d.constants_sd_log10}};
@@ -251,10 +255,10 @@ nlohmann::json life_distribution_json(const std::vector<ModeDistribution>& dist)
       if (b->has_hours) e["h"] = b->h;
       if (b->has_interval) e["ci90_cycles"] = {b->low_cycles, b->high_cycles};
       if (b->has_interval && b->has_hours) e["ci90_h"] = {b->low_h, b->high_h};
-      if (b->has_cards_interval) e["ci90_cards_cycles"] = {b->cards_low_cycles, b->cards_high_cycles};
-      if (b->has_cards_interval && b->has_hours) e["ci90_cards_h"] = {b->cards_low_h, b->cards_high_h};
-      if (b->has_combined_interval) e["ci90_combined_cycles"] = {b->combined_low_cycles, b->combined_high_cycles};
-      if (b->has_combined_interval && b->has_hours) e["ci90_combined_h"] = {b->combined_low_h, b->combined_high_h};
+      if (b->has_cards_interval) e["ci90_cards_cycles"] = range(b->cards_low_cycles, b->cards_high_cycles);
+      if (b->has_cards_interval && b->has_hours) e["ci90_cards_h"] = range(b->cards_low_h, b->cards_high_h);
+      if (b->has_combined_interval) e["ci90_combined_cycles"] = range(b->combined_low_cycles, b->combined_high_cycles);
+      if (b->has_combined_interval && b->has_hours) e["ci90_combined_h"] = range(b->combined_low_h, b->combined_high_h);
       modes[b->percent < 50.0 ? "B10" : "B50"] = e;
     }
     if (d.cards)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/finite_output.hpp"
 #include "fitlib/core/rng.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/life_distribution.hpp"
@@ -193,6 +194,11 @@ TEST(LifeDistribution, CombinedIntervalOfUnboundedDraws) {
   EXPECT_TRUE(std::isfinite(d.b50.combined_low_cycles));
   // 0.1 F_T((x − log10 N)/sd) = 0.05: the 5th percentile is the one finite draw's median, N itself.
   EXPECT_NEAR(d.b50.combined_low_cycles / m.life_cycles, 1.0, 1e-9);
+  // life.json writes the unbounded end as null (an unbounded life's spelling), so the file stays finite.
+  const auto j = life_distribution_json({d});
+  EXPECT_TRUE(j[0]["B50"]["ci90_combined_cycles"][1].is_null());
+  EXPECT_TRUE(j[0]["B50"]["ci90_cards_h"][1].is_null());
+  EXPECT_NO_THROW(core::require_finite_json(j, "life.json"));
 }
 
 }  // namespace
