@@ -25,7 +25,8 @@
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
-// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: life or
+// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (LOAD: light | medium | heavy | severe, or a drive
+// file of datasets/drives with its .toml; MESH: life or
 // coarse (the life's default, both levels) | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: the solver's);
@@ -90,8 +91,15 @@ namespace {
 const std::string kRoot = FITLIB_SOURCE_DIR;
 const char* kLoads[] = {"light", "medium", "heavy", "severe"};
 
+// A reference drive's file (light, medium, heavy, severe), or any drive file of datasets/drives
+// named with its .toml (the probe's LOAD, e.g. acc-0500-base.toml).
+std::string drive_file(const std::string& load) {
+  const bool file = load.size() > 5 && load.compare(load.size() - 5, 5, ".toml") == 0;
+  return kRoot + "/datasets/drives/" + (file ? load : "ref-0500-" + load + ".toml");
+}
+
 scene::Scene reference(const std::string& load) {
-  auto s = scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + load + ".toml");
+  auto s = scene::load_scene(drive_file(load));
   s.materials["bottom"] = kRoot + "/datasets/cards/material-1-true.json";
   s.materials["cushion"] = kRoot + "/datasets/cards/material-2-true.json";
   return s;
@@ -256,7 +264,7 @@ double thread_cpu_s() {
 
 // "iso": the bare drive file (Report I's E 20/8 MPa, ν 0.49 are set by run_probe); else the cards.
 scene::Scene probe_scene(const Probe& pr) {
-  return pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
+  return pr.fidelity == "iso" ? scene::load_scene(drive_file(pr.load))
                               : reference(pr.load);
 }
 
