@@ -20,10 +20,13 @@
 // 7. The level calibration's held-out drives (bench/life_calibration.hpp; `bench_life calibration`).
 // 8. What [life] uncertainty = "cards" costs per drive against the run without it
 //    (`bench_life uncertainty` prints it alone).
+// 9. What the design-point scan ([segment] scan = true) costs per drive and where it puts the design
+//    point (`bench_life scan` prints it alone).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
-// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (MESH: life or
+// [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (LOAD: light | medium | heavy | severe, or a drive
+// file of datasets/drives with its .toml; MESH: life or
 // coarse (the life's default, both levels) | medium | fine;
 // `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
 // `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: the solver's);
@@ -88,8 +91,15 @@ namespace {
 const std::string kRoot = FITLIB_SOURCE_DIR;
 const char* kLoads[] = {"light", "medium", "heavy", "severe"};
 
+// A reference drive's file (light, medium, heavy, severe), or any drive file of datasets/drives
+// named with its .toml (the probe's LOAD, e.g. acc-0500-base.toml).
+std::string drive_file(const std::string& load) {
+  const bool file = load.size() > 5 && load.compare(load.size() - 5, 5, ".toml") == 0;
+  return kRoot + "/datasets/drives/" + (file ? load : "ref-0500-" + load + ".toml");
+}
+
 scene::Scene reference(const std::string& load) {
-  auto s = scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + load + ".toml");
+  auto s = scene::load_scene(drive_file(load));
   s.materials["bottom"] = kRoot + "/datasets/cards/material-1-true.json";
   s.materials["cushion"] = kRoot + "/datasets/cards/material-2-true.json";
   return s;
@@ -254,7 +264,7 @@ double thread_cpu_s() {
 
 // "iso": the bare drive file (Report I's E 20/8 MPa, ν 0.49 are set by run_probe); else the cards.
 scene::Scene probe_scene(const Probe& pr) {
-  return pr.fidelity == "iso" ? scene::load_scene(kRoot + "/datasets/drives/ref-0500-" + pr.load + ".toml")
+  return pr.fidelity == "iso" ? scene::load_scene(drive_file(pr.load))
                               : reference(pr.load);
 }
 
@@ -652,6 +662,56 @@ void uncertainty_table() {
   std::printf("\n");
 }
 
+// 9. The design-point scan's cost ([segment] scan = true, docs/segment.md "Design points by scanning"):
+// each reference drive at the elastic level and the complete level with the damage held, with and
+// without the scan; the candidates it evaluates per mode and where the governing mode's design point
+// lands (`bench_life scan` prints it alone).
+scene::Scene scanning(scene::Scene s) {
+  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-scan.toml";
+  if (FILE* f = std::fopen(path.c_str(), "w")) {
+    std::fprintf(f, "[segment]\nscan = true\n");
+    std::fclose(f);
+  }
+  s.segment = scene::load_scene(path).segment;  // the user's route: the [segment] table's defaults
+  std::remove(path.c_str());
+  return s;
+}
+
+std::string mode_lives(const fatigue::LifeReport& r) {
+  std::string out;
+  for (const fatigue::ModeLife& m : r.modes)
+    out += (out.empty() ? "" : " / ") + core::short_number(m.life_cycles) + " (" +
+           std::to_string(m.points_evaluated) + ")";
+  return out;
+}
+
+void scan_table() {
+  std::printf("## 9. The design-point scan: cost per drive ([segment] scan = true; 2 cycles)\n\n"
+              "| drive | level | named points (wall) | with the scan (wall) | ratio (CPU ratio) | N1 / N2 named (points) | N1 / N2 scanned (points) | "
+              "governing design point (scanned) |\n|---|---|---|---|---|---|---|---|\n");
+  for (const char* load : {"light", "medium", "heavy"})
+    for (const char* level : {"elastic", "complete held"}) {
+      const scene::Scene s = life_scene(load, level);
+      try {
+        scene::SceneResult off, on;
+        const std::clock_t c0 = std::clock();
+        const double t_off = best_life_s(s, 1, off);
+        const std::clock_t c1 = std::clock();
+        const double t_on = best_life_s(scanning(s), 1, on);
+        const double cpu_ratio = static_cast<double>(std::clock() - c1) / static_cast<double>(c1 - c0);
+        std::string at = "-";
+        for (const fatigue::ModeLife& m : on.life->report.modes)
+          if (fatigue::to_string(m.mode) == on.life->report.governing)
+            at = m.design_point + " (" + core::short_number(m.x_mm) + ", " + core::short_number(m.y_mm) + ") mm";
+        std::printf("| %s | %s | %.3g s | %.3g s | %.2f (CPU %.2f) | %s | %s | %s |\n", load, level, t_off, t_on, t_on / t_off, cpu_ratio,
+                    mode_lives(off.life->report).c_str(), mode_lives(on.life->report).c_str(), at.c_str());
+      } catch (const std::runtime_error& e) {  // refused (exit 3) or stopped (exit 4)
+        std::printf("| %s | %s | stopped: %s |\n", load, level, e.what());
+      }
+    }
+  std::printf("\n");
+}
+
 int main(int argc, char** argv) {
   if (argc >= 6 && std::string(argv[1]) == "probe") {
     Probe p{argv[2], argv[3], argv[4], std::atoi(argv[5])};
@@ -751,6 +811,10 @@ int main(int argc, char** argv) {
     uncertainty_table();
     return 0;
   }
+  if (argc > 1 && std::string(argv[1]) == "scan") {  // table 9 only
+    scan_table();
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "heat") {  // table 6 only
     heat_table();
     return 0;
@@ -776,5 +840,6 @@ int main(int argc, char** argv) {
   beam_sweep();
   heat_table();
   uncertainty_table();
+  if (!quick) scan_table();
   return 0;
 }
