@@ -1,8 +1,8 @@
 #pragma once
 // Private: a material point that can compute only the tangent's in-plane columns 0, 1, 5 (ε11,
 // ε22, γ12), all plane strain reads (model::first_piola's in-plane path, the segment FE). Fritzson's
-// point differentiates by forward-mode AD: a Jet of four lanes (three seeded: two SSE packets)
-// instead of six (three packets) cuts that work by a third (docs/segment.md "Cost (reference)").
+// point differentiates by forward-mode AD: a Jet of four lanes (three seeded) is two SSE packets
+// per derivative vector against the six-lane Jet's three (docs/segment.md "Cost (reference)").
 // A point without it gives the full tangent.
 #include "fitlib/model/material_point.hpp"
 
