@@ -22,6 +22,8 @@
 //    (`bench_life uncertainty` prints it alone).
 // 9. What the design-point scan ([segment] scan = true) costs per drive and where it puts the design
 //    point (`bench_life scan` prints it alone).
+// 10. The segment levels' cost per reference drive against a baseline binary in the same run
+//    (`bench_life cost [BASELINE_FITCLI] [runs=N]` prints it alone; docs/segment.md "Cost (reference)").
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
@@ -69,7 +71,16 @@
 #include <string>
 #include <vector>
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "drive_sweep.hpp"
 #include "life_calibration.hpp"
@@ -712,7 +723,98 @@ void scan_table() {
   std::printf("\n");
 }
 
+// 10. The segment levels' cost per reference drive (docs/segment.md "Cost (reference)"): wall and
+// CPU time (user + sys, every thread) of this build's `fitcli life` (next to bench_life) at the
+// complete (damage held) and the elastic level, best of `runs`, against a baseline `fitcli` binary
+// (e.g. main's before a change) on the same scene file, the two alternating; the largest relative
+// difference of the modes' lives and whether life.json has the same bytes.
+double cpu_s(int who) {
+  rusage u{};
+  ::getrusage(who, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// The reference drive's scene `s` (life_scene: its cards and [life] fidelity and cycles), as a file
+// a `fitcli` binary reads.
+std::string reference_scene_file(const std::string& load, const scene::Scene& s) {
+  std::ifstream in(kRoot + "/datasets/drives/ref-0500-" + load + ".toml");
+  std::ostringstream text;
+  for (std::string line; std::getline(in, line);) {
+    text << line << "\n";
+    if (line == "[belt]")
+      text << "materials = { bottom = \"" << s.materials.at("bottom") << "\", cushion = \"" << s.materials.at("cushion")
+           << "\" }\n";
+  }
+  text << "\n[life]\nfidelity = \"" << s.life->fidelity.value_or("") << "\"\ncycles = " << s.life->cycles << "\n";
+  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-" + load + "-" + s.life->fidelity.value_or("") + ".toml";
+  std::ofstream(path) << text.str();
+  return path;
+}
+
+struct ChildRun {
+  double wall_s = HUGE_VAL, cpu_s = HUGE_VAL;
+  std::string life_json;  // its bytes
+  nlohmann::json life;
+};
+
+// `binary` life on `scene_file` into `out`: the best wall and CPU time so far, and its life.json.
+void run_child(const std::string& binary, const std::string& scene_file, const std::string& out, ChildRun& run) {
+  const std::string command = binary + " life -q --scene " + scene_file + " --out-dir " + out + " > /dev/null 2>&1";
+  const double c0 = cpu_s(RUSAGE_CHILDREN);
+  const core::Stopwatch w;
+  const bool ok = std::system(command.c_str()) == 0;
+  run.wall_s = std::min(run.wall_s, ok ? w.seconds() : NAN), run.cpu_s = std::min(run.cpu_s, cpu_s(RUSAGE_CHILDREN) - c0);
+  std::ifstream in(out + "/life.json");
+  run.life_json.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  run.life = nlohmann::json::parse(run.life_json, nullptr, false);
+}
+
+void cost_table(const std::string& baseline, int runs) {
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "fitcli";
+  std::printf("## 10. The segment levels' cost per reference drive (fitcli life, 2 cycles, best of %d; CPU = user + sys "
+              "of every thread)\n\nthis build: %s; baseline: %s\n\n| drive | level | increments | iterations | wall | "
+              "CPU | baseline wall | baseline CPU | wall ratio | CPU ratio | lives' largest relative difference | "
+              "life.json |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n", runs, self.c_str(),
+              baseline.empty() ? "none" : baseline.c_str());
+  const std::string out = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-out";
+  for (const char* level : {"complete held", "elastic"})  // (the complete level passes every drive with the hold)
+    for (const char* load : {"light", "medium", "heavy"}) {
+      const std::string file = reference_scene_file(load, life_scene(load, level));
+      ChildRun mine, theirs;
+      for (int k = 0; k < runs; ++k) {  // alternating, so both see the same machine
+        run_child(self, file, out + "-this", mine);
+        if (!baseline.empty()) run_child(baseline, file, out + "-baseline", theirs);
+      }
+      double difference = baseline.empty() ? NAN : 0.0;
+      for (std::size_t m = 0; !baseline.empty() && m < 2; ++m) {
+        const auto life = [m](const ChildRun& r) { return r.life.is_discarded() ? double(NAN) : r.life["modes"][m].value("life_cycles", double(NAN)); };
+        difference = std::max(difference, std::abs(life(mine) - life(theirs)) / std::abs(life(theirs)));
+      }
+      const auto count = [&](const char* key) { return mine.life.is_discarded() ? 0 : mine.life["segment_run"].value(key, 0); };
+      std::printf("| %s | %s | %d | %d | %.3g s | %.3g s | %.3g s | %.3g s | %.2f | %.2f | %.2g | %s |\n", load, level,
+                  count("increments"), count("newton_iterations"), mine.wall_s, mine.cpu_s, theirs.wall_s, theirs.cpu_s,
+                  mine.wall_s / theirs.wall_s, mine.cpu_s / theirs.cpu_s, difference,
+                  baseline.empty() ? "-" : mine.life_json == theirs.life_json ? "same bytes" : "differs");
+      std::fflush(stdout);
+      std::remove(file.c_str());
+    }
+  std::filesystem::remove_all(out + "-this");
+  std::filesystem::remove_all(out + "-baseline");
+  std::printf("\n");
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "cost") {  // table 10 only: bench_life cost [BASELINE_FITCLI] [runs=N]
+    std::string baseline;
+    int runs = 3;
+    for (int k = 2; k < argc; ++k) {
+      const std::string a = argv[k];
+      if (a.rfind("runs=", 0) == 0) runs = std::max(1, std::atoi(a.c_str() + 5));
+      else baseline = a;
+    }
+    cost_table(baseline, runs);
+    return 0;
+  }
   if (argc >= 6 && std::string(argv[1]) == "probe") {
     Probe p{argv[2], argv[3], argv[4], std::atoi(argv[5])};
     for (int k = 6; k < argc; ++k) {

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "fitlib/core/error.hpp"
+#include "in_plane_point.hpp"
 
 namespace fitlib::model {
 namespace {
@@ -95,24 +96,38 @@ FirstPiolaResult plane_first_piola(const MaterialPoint& point, const double* sta
 
   FirstPiolaResult out;
   Matrix6 D;
-  out.stress_unrotated = point.update(state_n, strain, dt_s, temperature_C, state_next, tangent ? &D : nullptr);
+  const auto* in_plane = tangent ? dynamic_cast<const InPlaneTangent*>(&point) : nullptr;  // only columns 0, 1, 5 are read
+  out.stress_unrotated = in_plane ? in_plane->update_in_plane(state_n, strain, dt_s, temperature_C, state_next, D)
+                                  : point.update(state_n, strain, dt_s, temperature_C, state_next, tangent ? &D : nullptr);
   const Eigen::Matrix3d tau = from_voigt(out.stress_unrotated), W = padded(W2, 1.0);
-  const Eigen::Matrix3d tau_W = tau * W, W_tau = W * tau, S = W * tau_W;
+  const Eigen::Matrix3d S = W * (tau * W);
   out.P = F * S;
   out.dP_dF.setZero();
   if (!tangent) return out;
 
   Eigen::Matrix2d theta_log, theta_w;
   divided_differences(s.c, theta_log, theta_w);
+  // dS = dW τ W + W dτ W + W τ dW by blocks (W = diag(W2, 1), dW = diag(dW2, 0), F = diag(F2, 1);
+  // t = τ(0:1, 2)): the same products as on the padded 3 × 3 matrices without their zeros.
+  const Eigen::Matrix2d tau2 = tau.topLeftCorner<2, 2>(), W2_tau2 = W2 * tau2, tau2_W2 = tau2 * W2;
+  const Eigen::Vector2d t = tau.block<2, 1>(0, 2);
   for (int k = 0; k < 2; ++k)
     for (int L = 0; L < 2; ++L) {
       const Eigen::Vector2d a = s.Q.transpose() * F2.row(k).transpose(), b = s.Q.row(L).transpose();
       const Eigen::Matrix2d M = a * b.transpose() + b * a.transpose();
       const Eigen::Matrix2d dlnU2 = s.Q * theta_log.cwiseProduct(M) * s.Q.transpose();
-      const Eigen::Matrix3d dW = padded(s.Q * theta_w.cwiseProduct(M) * s.Q.transpose(), 0.0);
+      const Eigen::Matrix2d dW2 = s.Q * theta_w.cwiseProduct(M) * s.Q.transpose();
       const Vector6 dtau_v = D.col(0) * dlnU2(0, 0) + D.col(1) * dlnU2(1, 1) + D.col(5) * (2.0 * dlnU2(0, 1));
-      const Eigen::Matrix3d dS = dW * tau_W + W * from_voigt(dtau_v) * W + W_tau * dW;
-      Eigen::Matrix3d dP = F * dS;
+      const Eigen::Matrix3d dtau = from_voigt(dtau_v);
+      const Eigen::Matrix2d dtau2 = dtau.topLeftCorner<2, 2>();
+      const Eigen::Vector2d dt = dtau.block<2, 1>(0, 2);
+      Eigen::Matrix3d dS;
+      dS.topLeftCorner<2, 2>() = dW2 * tau2_W2 + W2 * dtau2 * W2 + W2_tau2 * dW2;
+      dS.block<2, 1>(0, 2) = dW2 * t + W2 * dt;
+      dS.block<1, 2>(2, 0) = dt.transpose() * W2 + t.transpose() * dW2;
+      dS(2, 2) = dtau(2, 2);
+      Eigen::Matrix3d dP = dS;
+      dP.topRows<2>() = F2 * dS.topRows<2>();
       dP.row(k) += S.row(L);  // dF S with dF = e_k e_Lᵀ
       for (int i = 0; i < 3; ++i)
         for (int J = 0; J < 3; ++J) out.dP_dF(3 * i + J, 3 * k + L) = dP(i, J);

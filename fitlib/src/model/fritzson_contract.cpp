@@ -7,13 +7,14 @@
 #include "fitlib/core/units.hpp"
 #include "fitlib/model/fritzson_point.hpp"
 #include "fritzson_contract.hpp"
+#include "in_plane_point.hpp"
 #include "points.hpp"
 
 namespace fitlib::model::fritzson {
 namespace {
 
 // The integrator of fritzson_point.cpp on the contract's flat state (FlatState, no copies).
-class FritzsonContractPoint final : public model::MaterialPoint {
+class FritzsonContractPoint final : public model::MaterialPoint, public model::InPlaneTangent {
  public:
   FritzsonContractPoint(std::vector<double> p, bool anisotropic, double reference_C, Scheme scheme,
                         DamageUpdate damage_update)
@@ -34,6 +35,10 @@ class FritzsonContractPoint final : public model::MaterialPoint {
   Vector6 update(const double* state_n, const Vector6& strain, double dt_s, double temperature_C,
                  double* state_next, Matrix6* tangent) const override {
     return point_.update_flat(state_n, strain, dt_s, temperature_C, state_next, tangent);
+  }
+  Vector6 update_in_plane(const double* state_n, const Vector6& strain, double dt_s, double temperature_C,
+                          double* state_next, Matrix6& tangent) const override {
+    return update_flat_in_plane(point_, state_n, strain, dt_s, temperature_C, state_next, tangent);
   }
 
   // Virgin material (no damage driver: h1 = 1, h2 = β2), mean strain zero.

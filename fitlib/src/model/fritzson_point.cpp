@@ -12,6 +12,7 @@
 #include "fitlib/core/format.hpp"
 #include "fitlib/model/fritzson.hpp"
 #include "fitlib/core/units.hpp"
+#include "fritzson_contract.hpp"
 
 namespace fitlib::model::fritzson {
 namespace {
@@ -256,6 +257,26 @@ Vector6 MaterialPoint::update_any(const In& state, const Vector6& strain, double
   for (int i = 0; i < 6; ++i) {
     stress[i] = stress_jet[i].a;
     for (int j = 0; j < 6; ++j) (*tangent)(i, j) = stress_jet[i].v[j];
+  }
+  return stress;
+}
+
+Vector6 update_flat_in_plane(const MaterialPoint& point, const double* state, const Vector6& strain, double dt_s,
+                             double temperature_C, double* next, Matrix6& tangent) {
+  // Each derivative is its own lane of the Jet's arithmetic: columns 0, 1, 5 are update_flat's.
+  using Jet4 = ceres::Jet<double, 4>;  // four lanes, the last unseeded: two SSE packets (three lanes vectorise not at all)
+  constexpr int kSeeds[3] = {0, 1, 5};
+  Jet4 strain_jet[6], stress_jet[6];
+  for (int i = 0; i < 6; ++i) strain_jet[i] = Jet4(strain[i]);
+  for (int k = 0; k < 3; ++k) strain_jet[kSeeds[k]].v[k] = 1.0;
+  const FlatState<const double> in(state);
+  FlatState<double> out(next);
+  point.update_impl<Jet4>(in, strain_jet, dt_s, temperature_C, out, stress_jet);
+  Vector6 stress;
+  tangent.setZero();
+  for (int i = 0; i < 6; ++i) {
+    stress[i] = stress_jet[i].a;
+    for (int k = 0; k < 3; ++k) tangent(i, kSeeds[k]) = stress_jet[i].v[k];
   }
   return stress;
 }
