@@ -342,9 +342,20 @@ void law_tables() {
 
 }  // namespace
 
-int main(int, char** argv) {
+int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures appear as they are measured
   std::printf("# bench_prony: Prony fitting speed and accuracy\n\n");
+  // `bench_prony fixed` or `bench_prony auto`: that table alone (each with its own baseline).
+  const std::string only = argc > 1 ? argv[1] : "";
+  if (only == "fixed") {
+    fixed_terms_table();
+    return 0;
+  }
+  if (only == "auto") {
+    const auto master = pyvisco_dataset("pyvisco-freq-master.csv");
+    spectrum_tables(master, ansys_terms(master, kMaterials + "pyvisco-ansys-prony-terms.MPL"), argv[0]);
+    return 0;
+  }
 
   // 1. Fixed-τ NNLS: 200 points, 30 terms, τ held on the model's start grid.
   const auto m30 = model::make_model("prony", {{"terms", 30}});

@@ -70,14 +70,17 @@ FitResult cap_spectrum(const std::function<model::ModelPtr(int)>& make, const da
                        const FitOptions& options, const FitResult& spectrum, int max_terms);
 
 // Term economy (docs/fitting.md "Term economy"): the fewest terms, merged from the spectrum's
-// positive ones by Ward's criterion with the moduli re-solved at the merged times, whose fit keeps
-// the spectrum's figures: rms log10 E′ and E″ within rms_tolerance, the relaxed modulus within
-// relaxed_tolerance, at most extra_sign_changes more sign changes of d tanδ / d log f.
+// positive ones by Ward's criterion or evenly spaced in ln τ over them (the lower cost), with the
+// moduli re-solved (times and relaxed modulus held), whose fit keeps the spectrum's figures: rms
+// log10 E′ and E″ within rms_tolerance (the issue's 10 %), the relaxed modulus within
+// relaxed_tolerance, and tan δ as smooth: rms log10 of its ratio to the spectrum's tan δ (20 per
+// decade over the data) at most tan_delta_tolerance (docs/decisions.md "Term economy: tan δ as
+// smooth as the spectrum").
 struct CompactOptions {
   bool enabled = true;
-  double rms_tolerance = 0.05;
+  double rms_tolerance = 0.10;
   double relaxed_tolerance = 0.05;
-  int extra_sign_changes = 2;
+  double tan_delta_tolerance = 0.02;  // rms log10 (≈ 5 %)
 };
 FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                            const FitOptions& options, const FitResult& spectrum, const CompactOptions& compact = {});
