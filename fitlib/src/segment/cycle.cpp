@@ -237,13 +237,17 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   const int order = gauss_order(m, solver.integration);
   detail::EquilibriumCheck::Inputs check;
   const detail::ElementSampling sampling = element_extents(m, path_x, order, knobs.body_force_sampling_mm, check.area_mm2);
-  p.body_force = detail::contact_body_forces(sampling, drive, T, frame.curve_at);
+  // The loads (segment/load.hpp), one line each: Report I's contact pressure, friction and radial
+  // inertia (6.6–6.9), the deformation-limited flank (segment/flank.hpp), the end faces' shear.
+  check.body = detail::contact_body_forces(sampling, drive, T, frame.curve_at);
+  p.loads.push_back(dead_body_force(m.element_count(), check.body));
   check.along_belt = knobs.flank_stick_N_mm4 > 0.0 || knobs.flank_slide_floor_mm_s > 0.0;  // a tangential flank law
-  if (knobs.flank_stiffness_N_mm4 > 0.0 || check.along_belt)  // the deformation-limited flank (segment/flank.hpp)
-    p.following_force = flank_contact(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), frame.curve_at,
-                                      knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
-                                      detail::flank_levels(sampling, drive, knobs, T, p.time_s));
-  if (shear) p.nodal_force = detail::end_shear_forces(m.node_count(), straight, path_x, h, T, frame.curve_at, shear);
+  if (knobs.flank_stiffness_N_mm4 > 0.0 || check.along_belt)
+    p.loads.push_back(flank_contact(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), frame.curve_at,
+                                    knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
+                                    detail::flank_levels(sampling, drive, knobs, T, p.time_s)));
+  if (shear) check.nodal = detail::end_shear_forces(m.node_count(), straight, path_x, h, T, frame.curve_at, shear);
+  if (shear) p.loads.push_back(dead_nodal_force(check.nodal));
 
   CycleResult out;
   out.cycle_time_s = period;
@@ -252,7 +256,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   detail::ProgressReport progress(knobs.progress);
   detail::PointMonitor points(frame, straight, K_m, named, order, out.points);
   detail::FieldSnapshots fields(frame, knobs, out.vtk_files);
-  check.problem = &p, check.body = p.body_force, check.centre_x_mm = sampling.centre_x;
+  check.problem = &p, check.centre_x_mm = sampling.centre_x;
   check.width_mm = drive.width_mm, check.integration = solver.integration;
   detail::CycleDissipation dissipation(frame, check.area_mm2, sampling.centre_x, section.cog_pitch_mm, drive.width_mm, out.dissipation_J_mm);
   detail::EquilibriumCheck equilibrium(frame, std::move(check), out);

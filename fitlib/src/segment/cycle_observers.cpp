@@ -82,8 +82,8 @@ void EquilibriumCheck::converged(double lambda, const StaticSolution& s) {
   double scale = 1e-300;  // Σ |nodal reactions| + Σ |element body forces|
   for (int e = 0; e < m.element_count(); ++e)
     applied += forces_[e] * in_.area_mm2[e], scale += (forces_[e] * in_.area_mm2[e]).norm();
-  if (p.nodal_force) {
-    p.nodal_force(lambda, nodal_);
+  if (in_.nodal) {
+    in_.nodal(lambda, nodal_);
     for (const Eigen::Vector2d& f : nodal_) applied += f, scale += f.norm();
   }
   for (const Eigen::Vector2d& f : s.inertia_N_mm) applied -= f, scale += f.norm();  // d'Alembert (SolverKnobs::inertia)

@@ -59,24 +59,45 @@ std::vector<double> breakpoints(const SolverKnobs& knobs) {
   return b;
 }
 
+// The dynamics' inertia load (SolverKnobs::inertia; segment/inertia.hpp), when the problem has a
+// mass and a time; null otherwise.
+std::unique_ptr<detail::BackwardEulerInertia> make_inertia(const StaticProblem& p, const SolverKnobs& knobs) {
+  if (!(knobs.inertia && p.density_t_mm3 > 0.0 && p.time_s)) return nullptr;
+  detail::BackwardEulerInertia::FrameMotion frame;
+  if (p.motion->has_frame())
+    frame = [motion = p.motion](double lambda, std::vector<Eigen::Vector2d>& u) { motion->frame_motion(lambda, u); };
+  return std::make_unique<detail::BackwardEulerInertia>(detail::lumped_masses(*p.mesh, p.density_t_mm3), frame);
+}
+
+// The problem's loads in their order, then the solver's own (the inertia).
+std::vector<Load*> loads_of(const StaticProblem& p, Load* inertia) {
+  std::vector<Load*> loads;
+  for (const LoadPtr& load : p.loads) loads.push_back(load.get());
+  if (inertia) loads.push_back(inertia);
+  return loads;
+}
+
+// LDLᵀ when every law's tangent, the element's and every load's are symmetric.
+bool symmetric_problem(const StaticProblem& p, const SolverKnobs& knobs) {
+  return p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() && symmetric_tangent(knobs.integration) &&
+         std::all_of(p.loads.begin(), p.loads.end(), [](const LoadPtr& load) { return load->symmetric(); });
+}
+
 // One run of solve_static: Newton increments from λ = 0 to 1 with step cuts that grow back.
 class StaticRun {
  public:
   StaticRun(const StaticProblem& p, const SolverKnobs& knobs)
       : p_(p), knobs_(knobs), m_(*p.mesh), d_(number_dofs(p)), angles_(p.constraints.size()),
-        pool_(solver_threads(knobs)),
-        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar, pool_),
+        pool_(solver_threads(knobs)), inertia_(make_inertia(p, knobs)),
+        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar, pool_,
+                   loads_of(p, inertia_.get())),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
-        linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
-                symmetric_tangent(knobs.integration) && (!p.following_force.at || p.following_force.symmetric)),
+        linear_(symmetric_problem(p, knobs)),
         pattern_(linear_.symmetric() || knobs.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
+    assembler_.set_diagonal(&newton_.diagonal());
     out_.equations = d_.equations;
-    if (knobs.inertia && p.density_t_mm3 > 0.0 && p.time_s) {  // dynamics hook (SolverKnobs::inertia)
-      inertia_ = std::make_unique<detail::BackwardEulerInertia>(detail::lumped_masses(m_, p.density_t_mm3), p.frame_motion);
-      assembler_.set_inertia(inertia_.get(), &newton_.diagonal());
-    }
     out_.threads = pool_.threads();
   }
 
@@ -111,7 +132,7 @@ class StaticRun {
   // q with the prescribed components at λ.
   Eigen::VectorXd prescribed_at(double lambda) {
     Eigen::VectorXd qp = q_;
-    p_.prescribe(lambda, values_);
+    p_.motion->values(lambda, values_);
     for (std::size_t c = 0; c < p_.constraints.size(); ++c)
       for (int k = 0; k < 2; ++k)
         if (p_.constraints[c].fixed[k]) qp(2 * p_.constraints[c].node + k) = values_[c][k];
@@ -178,14 +199,16 @@ class StaticRun {
         if (d_.eq[2 * a + k] >= 0) rl(k) = 0.0;
       s.reaction_N_mm[a] = d_.R[a] * rl;
     }
-    s.inertia_N_mm = assembler_.inertia_forces(q_);
-    s.following_N_mm = assembler_.following_forces(q_);
+    s.inertia_N_mm.clear();
+    for (int a = 0; inertia_ && a < nn_; ++a)
+      s.inertia_N_mm.push_back(assembler_.moves(a) ? inertia_->force(a, s.u_mm[a]) : Eigen::Vector2d::Zero());
+    s.following_N_mm = assembler_.point_load_forces(q_);
   }
 
   // Turn the constrained bases to λ = target, keeping the displacements.
   void rotate_bases(double target) {
-    if (!p_.rotate) return;
-    p_.rotate(target, angles_);
+    if (!p_.motion->has_frame()) return;
+    p_.motion->angles(target, angles_);
     for (std::size_t c = 0; c < p_.constraints.size(); ++c) {
       const int n = p_.constraints[c].node;
       const Eigen::Vector2d u = d_.R[n] * q_.segment<2>(2 * n);
@@ -198,7 +221,7 @@ class StaticRun {
   // bases already turned), x the converged position: what the linear predictor leaves out of a
   // finite rotation.
   Eigen::VectorXd rotation_terms(double target) {
-    p_.frame_turn(lambda_, target, turns_);
+    p_.motion->frame_turn(lambda_, target, turns_);
     Eigen::VectorXd extra = Eigen::VectorXd::Zero(2 * nn_);
     for (int a = 0; a < nn_; ++a) {
       const double th = turns_[a].angle_rad;
@@ -224,7 +247,7 @@ class StaticRun {
     const Eigen::VectorXd q_saved = q_;
     const double dt = time_at(target) - time_at(lambda_);
     assembler_.set_step(states_.committed.data(), states_.trial.data(), dt);
-    begin_inertia(target, dt);
+    assembler_.begin(q_, target, dt);
     // Start: the free dofs extrapolated from the last increment (capped at its size, the history
     // turns at transitions); or, first and after a cut, the linear predictor K_fp·Δq_p on a fresh
     // tangent.
@@ -236,7 +259,7 @@ class StaticRun {
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
-    const bool rotated = knobs_.rotated_predictor && p_.frame_turn && !extrapolate;
+    const bool rotated = knobs_.rotated_predictor && p_.motion->has_frame() && !extrapolate;
     Eigen::VectorXd rotation = rotated ? rotation_terms(target) : Eigen::VectorXd();
     // Without terms this small the retake starts where this try did, to within Newton's first
     // correction: measured, such retakes never converged where the try had not (docs/segment.md
@@ -263,7 +286,7 @@ class StaticRun {
       for (IncrementObserver* observer : p_.observers) observer->converged(target, view);
     }
     states_.committed.swap(states_.trial);  // the last assembly was at the converged q
-    assembler_.commit_following(q_);        // prepared at target by that assembly
+    assembler_.commit(q_, target);          // the loads' histories (prepared at target by that assembly)
     velocity_ = q_ - q_saved;
     last_dt_ = dt;
     last_dlambda_ = target - lambda_;
@@ -273,21 +296,7 @@ class StaticRun {
     cuts_in_row_ = 0;
     if (knobs_.growth_iterations <= 0 || last_.iterations <= knobs_.growth_iterations)
       max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after an easy success
-    inertia_pending_ = true;
     return true;
-  }
-
-  // The inertia's history takes the last converged increment's motion when the next one begins (so
-  // the final snapshot still sees the last increment's step), then the step to `target`.
-  void begin_inertia(double target, double dt) {
-    if (!inertia_) return;
-    if (inertia_pending_) {
-      std::vector<Eigen::Vector2d> u(nn_);
-      for (int a = 0; a < nn_; ++a) u[a] = assembler_.u_of(q_, a);
-      inertia_->commit(u);
-      inertia_pending_ = false;
-    }
-    inertia_->begin(target, dt);
   }
 
   const StaticProblem& p_;
@@ -296,6 +305,7 @@ class StaticRun {
   Dofs d_;
   std::vector<double> angles_;
   detail::WorkerPool pool_;
+  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // SolverKnobs::inertia (null: off)
   Assembler assembler_;
   StateBlock states_;
   std::vector<double> scratch_;
@@ -311,9 +321,7 @@ class StaticRun {
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
-  std::vector<StaticProblem::FrameTurn> turns_;
-  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // SolverKnobs::inertia
-  bool inertia_pending_ = false;
+  std::vector<FrameTurn> turns_;
 };
 
 }  // namespace
@@ -324,7 +332,7 @@ int solver_threads(const SolverKnobs& knobs) {
 }
 
 StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
-  if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
+  if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.motion)
     throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
   if (knobs.threads < 0) throw core::UsageError("solve_static: threads must be >= 1, or 0 for the default");
   return StaticRun(p, knobs).run();

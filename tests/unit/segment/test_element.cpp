@@ -60,13 +60,13 @@ StaticSolution expect_patch_exact(Integration integration, const MeshKnobs& k = 
   p.mesh = &m;
   p.laws = {law.get(), law.get()};
   for (int n : boundary_nodes(m)) p.constraints.push_back({n, 0.0, {true, true}});
-  p.prescribe = [&](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([&](double lambda, std::vector<std::array<double, 2>>& v) {
     const Eigen::Matrix2d Fl = Eigen::Matrix2d::Identity() + lambda * (F - Eigen::Matrix2d::Identity());
     for (std::size_t c = 0; c < p.constraints.size(); ++c) {
       const Eigen::Vector2d u = (Fl - Eigen::Matrix2d::Identity()) * m.X[p.constraints[c].node];
       v[c] = {u.x(), u.y()};
     }
-  };
+  });
   SolverKnobs knobs;
   knobs.steps = 2;
   knobs.integration = integration;
@@ -134,12 +134,12 @@ double bending_moment_ratio(int nodes_per_element, Integration integration, doub
       if (side == 0 && mid) anchor = n;
     }
   EXPECT_GE(anchor, 0);
-  p.prescribe = [&](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([&](double lambda, std::vector<std::array<double, 2>>& v) {
     for (std::size_t c = 0; c < p.constraints.size(); ++c) {
       const Eigen::Vector2d& X = m.X[p.constraints[c].node];
       v[c] = {lambda * K * X.x() * (X.y() + 0.5 * h), 0.0};
     }
-  };
+  });
   SolverKnobs knobs;
   knobs.steps = 1;
   knobs.integration = integration;

@@ -3,17 +3,19 @@
 // Newton with the consistent tangent, the Eigen sparse direct solver with the pattern analysed
 // once, a backtracking line search and step cutting. Loads grow with a parameter λ from 0 to 1:
 // prescribed node displacements (in a per-node rotated basis, so a node can slide along a line)
-// and a follower pressure on the bottom edges. A failure throws core::NumericalError naming the
+// and the load objects of segment/load.hpp. A failure throws core::NumericalError naming the
 // step, the element and the residual (exit 4).
 #include <array>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "fitlib/segment/elastic.hpp"
+#include "fitlib/segment/load.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/observer.hpp"
 
@@ -28,9 +30,6 @@ struct NodeConstraint {
   double angle_rad = 0.0;           // local basis: e0 = (cos a, sin a), e1 = (−sin a, cos a)
   std::array<bool, 2> fixed{true, true};  // which local components are prescribed
 };
-// Fills the prescribed local displacement components (mm) of every constraint at load level λ.
-using Prescribe = std::function<void(double lambda, std::vector<std::array<double, 2>>& local_values)>;
-
 struct SolverKnobs {
   int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
   std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
@@ -55,7 +54,7 @@ struct SolverKnobs {
   // converge is retaken from the linear predictor (docs/segment.md §Solver).
   bool extrapolate_start = false;
   // Correct the linear predictor by the second-order part of each node's finite rotation with the
-  // loading (StaticProblem::frame_turn, when the problem has one): a linearised rotation θ strains
+  // loading (PrescribedMotion::frame_turn, when the motion has a frame): a linearised rotation θ strains
   // a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
   bool rotated_predictor = true;
   // Levenberg–Marquardt shift (0 = off): a full Newton step that lowers neither the residual nor
@@ -72,7 +71,7 @@ struct SolverKnobs {
   // §Solver, "Failure diagnosis"). Costs two residual assemblies per equation, once.
   bool diagnose_failure = false;
   // Implicit dynamics (off: quasi-static): the rubber's lumped mass (StaticProblem::density_t_mm3)
-  // on the nodes' motion relative to StaticProblem::frame_motion, backward Euler in
+  // on the nodes' motion relative to PrescribedMotion::frame_motion, backward Euler in
   // StaticProblem::time_s; tangent K + M/Δt². Lets the load path pass a limit point by a dynamic
   // snap (docs/segment.md "Inertia"; segment/inertia.hpp).
   bool inertia = false;
@@ -97,56 +96,20 @@ struct StaticProblem {
   const Mesh* mesh = nullptr;
   std::array<const PlaneStrainLaw*, 2> laws{};  // indexed by Role
   std::vector<NodeConstraint> constraints;
-  Prescribe prescribe;
-  // Optional: the constraints' basis angles at load level λ (a line that turns with the load).
-  std::function<void(double lambda, std::vector<double>& angles_rad)> rotate;
-  double pressure_MPa = 0.0;      // on the bottom edges, scaled by λ
+  std::shared_ptr<const PrescribedMotion> motion;  // the constraints' values at λ (segment/load.hpp)
+  // The loads (segment/load.hpp), each prepared per load level, added after the element loop in
+  // this order and committed after each converged increment (not owned beyond the shared pointer).
+  std::vector<LoadPtr> loads;
   // Time (s) at load level λ for rate-dependent laws; empty = 0 throughout (a static case
   // applied at once: the glassy response of a viscoelastic law). Temperature of every point.
   std::function<double(double lambda)> time_s;
-  // Optional: dead body forces per element (global, N/mm³ of reference volume) at λ.
-  std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
-  // Optional: dead nodal forces per node (global, N per mm of width; zero where none) at λ.
-  std::function<void(double lambda, std::vector<Eigen::Vector2d>& f_N_mm)> nodal_force;
-  // Optional: a body force that follows the deformation, an elastic foundation (the load cycle's
-  // deformation-limited flank, segment/flank.hpp). `at`: at element e's integration point g (the
-  // solver's rule) and its current position x (global, mm), b (global, N/mm³ of reference volume)
-  // and ∂b/∂x (N/mm⁴), false where none acts; when b is the negative gradient of an energy (at the
-  // committed history) ∂b/∂x is symmetric and a symmetric law keeps LDLᵀ. `prepare(λ)` runs
-  // once per load level before its assemblies, on the calling thread; `at` on any of the element
-  // loop's threads, so it must only read. The residual gets −∫ N_a b dV, the tangent
-  // −∫ N_a N_b ∂b/∂x dV. Optional `commit`: after each converged increment, serially, every
-  // integration point's converged position, at the λ `at` was prepared for (a history, e.g. the
-  // flank's stick–slip, segment/flank.hpp); it takes effect at the next `prepare`, so `at` at the
-  // converged λ (the final snapshot) still gives the increment's force. `symmetric` = false: ∂b/∂x
-  // is not symmetric (not a gradient field, e.g. a friction that turns with the motion), so the
-  // solver takes the unsymmetric path (GMRES on the symmetric part's LDLᵀ, or the LU).
-  struct FollowingForce {
-    std::function<void(double lambda)> prepare;
-    std::function<bool(int element, int point, const Eigen::Vector2d& x_mm, Eigen::Vector2d& b_N_mm3,
-                       Eigen::Matrix2d& db_dx_N_mm4)>
-        at;
-    std::function<void(int element, int point, const Eigen::Vector2d& x_mm)> commit;
-    bool symmetric = true;
-  };
-  FollowingForce following_force;
-  // Optional: per node, the turn of the loading's frame from λ_from to λ_to: its angle (rad,
-  // counter-clockwise) and the centre it turns about (global, mm, at λ_from; for the cord curve the
-  // cord point of the node's column). Used by SolverKnobs::rotated_predictor.
-  struct FrameTurn {
-    double angle_rad = 0.0;
-    Eigen::Vector2d centre_mm = Eigen::Vector2d::Zero();
-  };
-  std::function<void(double lambda_from, double lambda_to, std::vector<FrameTurn>& per_node)> frame_turn;
   // Called in order after every converged increment with its stresses, displacements, reactions
   // (not owned; each must outlive the solve).
   std::vector<IncrementObserver*> observers;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
-  // SolverKnobs::inertia: mass density (t/mm³ = 10¹² kg/m³) and, optionally, each node's
-  // displacement (global, mm) at λ when carried rigidly with its column's cord frame; the inertia
-  // acts on the motion relative to it (empty: relative to the reference).
+  // SolverKnobs::inertia: mass density (t/mm³ = 10¹² kg/m³); the inertia acts on the motion relative
+  // to the prescribed motion's frame (PrescribedMotion::frame_motion; without one, the reference).
   double density_t_mm3 = 0.0;
-  std::function<void(double lambda, std::vector<Eigen::Vector2d>& u_mm)> frame_motion;
 };
 
 struct IntegrationPointStress {
@@ -174,7 +137,8 @@ struct StaticSolution {
   // SolverKnobs::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
   // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
   std::vector<Eigen::Vector2d> inertia_N_mm;
-  // StaticProblem::following_force: per element, its ∫ b dV (global, N/mm); empty without one.
+  // The loads acting at the integration points (Load::at_point): per element, their ∫ b dV
+  // (global, N/mm); empty without one.
   std::vector<Eigen::Vector2d> following_N_mm;
   int threads = 1;                // of the element loop
   // Unsymmetric tangents (SolverKnobs::krylov_iterations): GMRES iterations, and the solves that
