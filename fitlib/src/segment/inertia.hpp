@@ -1,11 +1,11 @@
 #pragma once
-// Implicit dynamics of the segment (SolverKnobs::inertia; docs/segment.md "Inertia"): the rubber's
+// Implicit dynamics of the segment (PhysicsOptions::inertia; docs/segment.md "Inertia"): the rubber's
 // lumped mass on the nodes' motion relative to the cord-line frame, integrated by backward Euler.
 // With w = u − u_frame(λ) (u_frame: each node carried rigidly with its column's cord frame,
 // StaticProblem::frame_motion) the inertia force at t_{n+1} is
 //     m a = m (w − w_n − Δt v_n) / Δt²,   v_{n+1} = (w − w_n) / Δt,
 // and its tangent m / Δt² on the diagonal: a small (cut) step is stiffer, not softer. A load
-// (segment/load.hpp) the solver adds after the problem's when SolverKnobs::inertia is on.
+// (segment/load.hpp) the solver adds after the problem's when PhysicsOptions::inertia is on.
 #include <functional>
 #include <vector>
 

@@ -91,7 +91,7 @@ class CordLine final : public PrescribedMotion {
     }
   }
   // Each node carried rigidly with its column's cord frame from the reference (λ = 0): the motion the
-  // segment's inertia is measured against (SolverKnobs::inertia; docs/segment.md "Inertia").
+  // segment's inertia is measured against (PhysicsOptions::inertia; docs/segment.md "Inertia").
   void frame_motion(double lambda, std::vector<Eigen::Vector2d>& u) const override {
     const std::vector<CurvePoint> now = column_frames(curve_at_(lambda), columns_);
     u.resize(columns_.of_node.size());

@@ -44,25 +44,26 @@ using detail::ordered_pattern;
 constexpr double kRetakeRotation_mm = 1e-4;
 
 // Increment targets: the schedule's breakpoints, or `steps` equal increments of λ.
-std::vector<double> breakpoints(const SolverKnobs& knobs) {
-  if (!knobs.schedule.empty()) {
-    for (std::size_t k = 0; k < knobs.schedule.size(); ++k)
-      if (!(knobs.schedule[k] > (k ? knobs.schedule[k - 1] : 0.0)) || knobs.schedule[k] > 1.0)
+std::vector<double> breakpoints(const SteppingOptions& stepping) {
+  const std::vector<double>& schedule = stepping.schedule;
+  if (!schedule.empty()) {
+    for (std::size_t k = 0; k < schedule.size(); ++k)
+      if (!(schedule[k] > (k ? schedule[k - 1] : 0.0)) || schedule[k] > 1.0)
         throw core::UsageError("segment: the load schedule must increase within (0, 1]");
-    std::vector<double> b = knobs.schedule;
+    std::vector<double> b = schedule;
     if (b.back() < 1.0) b.push_back(1.0);
     return b;
   }
   std::vector<double> b;
-  const int n = std::max(1, knobs.steps);
+  const int n = std::max(1, stepping.steps);
   for (int k = 1; k <= n; ++k) b.push_back(static_cast<double>(k) / n);
   return b;
 }
 
-// The dynamics' inertia load (SolverKnobs::inertia; segment/inertia.hpp), when the problem has a
+// The dynamics' inertia load (PhysicsOptions::inertia; segment/inertia.hpp), when the problem has a
 // mass and a time; null otherwise.
 std::unique_ptr<detail::BackwardEulerInertia> make_inertia(const StaticProblem& p, const SolverKnobs& knobs) {
-  if (!(knobs.inertia && p.density_t_mm3 > 0.0 && p.time_s)) return nullptr;
+  if (!(knobs.physics.inertia && p.density_t_mm3 > 0.0 && p.time_s)) return nullptr;
   detail::BackwardEulerInertia::FrameMotion frame;
   if (p.motion->has_frame())
     frame = [motion = p.motion](double lambda, std::vector<Eigen::Vector2d>& u) { motion->frame_motion(lambda, u); };
@@ -79,7 +80,7 @@ std::vector<Load*> loads_of(const StaticProblem& p, Load* inertia) {
 
 // LDLᵀ when every law's tangent, the element's and every load's are symmetric.
 bool symmetric_problem(const StaticProblem& p, const SolverKnobs& knobs) {
-  return p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() && symmetric_tangent(knobs.integration) &&
+  return p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() && symmetric_tangent(knobs.physics.integration) &&
          std::all_of(p.loads.begin(), p.loads.end(), [](const LoadPtr& load) { return load->symmetric(); });
 }
 
@@ -89,12 +90,12 @@ class StaticRun {
   StaticRun(const StaticProblem& p, const SolverKnobs& knobs)
       : p_(p), knobs_(knobs), m_(*p.mesh), d_(number_dofs(p)), angles_(p.constraints.size()),
         pool_(solver_threads(knobs)), inertia_(make_inertia(p, knobs)),
-        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar, pool_,
+        assembler_(p, d_, gauss_order(m_, knobs.physics.integration), knobs.physics.integration == Integration::fbar, pool_,
                    loads_of(p, inertia_.get())),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
         linear_(symmetric_problem(p, knobs)),
-        pattern_(linear_.symmetric() || knobs.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
-        newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
+        pattern_(linear_.symmetric() || knobs.newton.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        newton_(assembler_, pattern_, linear_, d_, knobs.newton, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     assembler_.set_diagonal(&newton_.diagonal());
     out_.equations = d_.equations;
@@ -102,13 +103,13 @@ class StaticRun {
   }
 
   StaticSolution run() {
-    const std::vector<double> targets = breakpoints(knobs_);
+    const std::vector<double> targets = breakpoints(knobs_.stepping);
     std::size_t next = 0;
     while (next < targets.size()) {
       const double target = std::min(targets[next], lambda_ + max_step_);
       if (increment(target)) {
         if (target >= targets[next]) ++next;
-      } else if (++cuts_in_row_ > knobs_.max_cuts) {
+      } else if (++cuts_in_row_ > knobs_.stepping.max_cuts) {
         fail(out_.increments + 1, target, last_.bad_element, last_.residual, last_.iterations);
       } else {
         max_step_ = 0.5 * (target - lambda_);
@@ -146,7 +147,7 @@ class StaticRun {
     msg << ")";
     if (element >= 0) msg << ", element " << element << " inverted or with a non-finite stress";
     msg << ", free residual " << residual << " N/mm after " << iterations << " iterations and "
-        << knobs_.max_cuts << " step cuts";
+        << knobs_.stepping.max_cuts << " step cuts";
     // Where: on the complete level a residual stuck near one node with no inverted element is a fold
     // of the load path there (docs/segment.md "Cost", "Diagnosis at the failing state");
     // `diagnose_failure` says which.
@@ -252,14 +253,14 @@ class StaticRun {
     // turns at transitions); or, first and after a cut, the linear predictor K_fp·Δq_p on a fresh
     // tangent.
     Eigen::VectorXd q_start = prescribed_at(target);
-    const bool extrapolate = (knobs_.extrapolate_start || (knobs_.reuse_tangent && have_factor_)) &&
+    const bool extrapolate = (knobs_.stepping.extrapolate_start || (knobs_.newton.reuse_tangent && have_factor_)) &&
                              cuts_in_row_ == 0 && velocity_.size() == q_.size();
     if (extrapolate) {
       const double ratio = std::min(1.0, (target - lambda_) / last_dlambda_);
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
-    const bool rotated = knobs_.rotated_predictor && p_.motion->has_frame() && !extrapolate;
+    const bool rotated = knobs_.stepping.rotated_predictor && p_.motion->has_frame() && !extrapolate;
     Eigen::VectorXd rotation = rotated ? rotation_terms(target) : Eigen::VectorXd();
     // Without terms this small the retake starts where this try did, to within Newton's first
     // correction: measured, such retakes never converged where the try had not (docs/segment.md
@@ -294,7 +295,7 @@ class StaticRun {
     out_.increments++;
     out_.final_residual = last_.residual;
     cuts_in_row_ = 0;
-    if (knobs_.growth_iterations <= 0 || last_.iterations <= knobs_.growth_iterations)
+    if (knobs_.stepping.growth_iterations <= 0 || last_.iterations <= knobs_.stepping.growth_iterations)
       max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after an easy success
     return true;
   }
@@ -305,7 +306,7 @@ class StaticRun {
   Dofs d_;
   std::vector<double> angles_;
   detail::WorkerPool pool_;
-  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // SolverKnobs::inertia (null: off)
+  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // PhysicsOptions::inertia (null: off)
   Assembler assembler_;
   StateBlock states_;
   std::vector<double> scratch_;

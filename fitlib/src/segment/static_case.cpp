@@ -110,21 +110,21 @@ StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, S
   const NeutralCurve curve = NeutralCurve::uniform(load.curvature_1_mm, load.strain, 1.5 * m.half_length_mm);
   std::vector<NamedPoint> points = standard_points(setup.section);
   points.insert(points.end(), setup.points.begin(), setup.points.end());
-  for (const auto& pt : points) r.stresses.push_back(local_stress(m, s, pt, curve, setup.solver.integration));
+  for (const auto& pt : points) r.stresses.push_back(local_stress(m, s, pt, curve, setup.solver.physics.integration));
   for (int n : m.top_nodes) {
     const Eigen::Vector2d f = s.reaction_N_mm[n], x = m.X[n] + s.u_mm[n];
     r.cord_reaction_N_mm += f;
     r.cord_moment_N += x.y() * f.x() - x.x() * f.y();
   }
-  r.mid_section = section_force(p, s, 0.0, origin, setup.solver.integration);
+  r.mid_section = section_force(p, s, 0.0, origin, setup.solver.physics.integration);
   if (setup.stiffness) {  // small cases from the unloaded state: secants there are the tangents
     SolverKnobs one = setup.solver;
-    one.steps = 1;
+    one.stepping.steps = 1;
     const double eps = 1e-5, K = 1e-6;
     const StaticProblem ps = static_problem(m, laws, {eps, 0.0, 0.0}, setup.ends);
-    r.c_N_per_mm = section_force(ps, solve_static(ps, one), 0.0, origin, one.integration).force_N_mm.x() / eps;
+    r.c_N_per_mm = section_force(ps, solve_static(ps, one), 0.0, origin, one.physics.integration).force_N_mm.x() / eps;
     const StaticProblem pb = static_problem(m, laws, {0.0, K, 0.0}, setup.ends);
-    r.EI_Nmm2_per_mm = section_force(pb, solve_static(pb, one), 0.0, origin, one.integration).moment_N / K;
+    r.EI_Nmm2_per_mm = section_force(pb, solve_static(pb, one), 0.0, origin, one.physics.integration).moment_N / K;
   }
   r.elements = m.element_count();
   r.nodes = m.node_count();

@@ -50,7 +50,7 @@ std::string failure_message(const PlaneStrainLaw& law) {
       v[c] = {m.X[p.constraints[c].node].x() > 0.0 ? lambda * 0.2 * 2.0 * m.half_length_mm : 0.0, 0.0};
   });
   SolverKnobs knobs;
-  knobs.steps = 1, knobs.max_iterations = 2, knobs.max_cuts = 0, knobs.levenberg = 0.0;
+  knobs.stepping.steps = 1, knobs.newton.max_iterations = 2, knobs.stepping.max_cuts = 0, knobs.newton.levenberg = 0.0;
   knobs.diagnose_failure = true;
   try {
     solve_static(p, knobs);

@@ -68,8 +68,8 @@ StaticSolution expect_patch_exact(Integration integration, const MeshKnobs& k = 
     }
   });
   SolverKnobs knobs;
-  knobs.steps = 2;
-  knobs.integration = integration;
+  knobs.stepping.steps = 2;
+  knobs.physics.integration = integration;
   const StaticSolution s = solve_static(p, knobs);
   double worst_u = 0.0, worst_s = 0.0;
   const PointResponse exact = law->respond(F);
@@ -141,8 +141,8 @@ double bending_moment_ratio(int nodes_per_element, Integration integration, doub
     }
   });
   SolverKnobs knobs;
-  knobs.steps = 1;
-  knobs.integration = integration;
+  knobs.stepping.steps = 1;
+  knobs.physics.integration = integration;
   const StaticSolution s = solve_static(p, knobs);
   int mid = -1;
   for (int a = 0; a < m.node_count(); ++a)
@@ -229,11 +229,11 @@ TEST(SegmentElement, FbarTangentIsUnsymmetricAndTheSolverUsesLu) {
 // converged stresses are the same (the start changes, not the equations).
 TEST(SegmentElement, RotatedPredictorSavesIterationsAndKeepsTheSolution) {
   StaticSetup setup;
-  setup.solver.steps = 4;
+  setup.solver.stepping.steps = 4;
   setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5;
   const StaticLoad bend{0.0, 1.0 / 40.0, 0.0};
   const StaticResult rotated = run_static_case(setup, bend);
-  setup.solver.rotated_predictor = false;
+  setup.solver.stepping.rotated_predictor = false;
   const StaticResult linear = run_static_case(setup, bend);
   std::printf("Newton iterations: rotated predictor %d, linear %d\n", rotated.newton_iterations, linear.newton_iterations);
   EXPECT_LT(rotated.newton_iterations, linear.newton_iterations);

@@ -169,7 +169,7 @@ TEST(SegmentFlank, BlockPulledAlongTheBeltSticksSlipsAndUnloadsElastically) {
   });
   p.observers.push_back(&watch);
   SolverKnobs knobs;
-  knobs.steps = 8;
+  knobs.stepping.steps = 8;
   solve_static(p, knobs);
   ASSERT_EQ(pulled.size(), 8u);
   for (const auto& [lambda, r] : pulled) {
@@ -195,7 +195,7 @@ TEST(SegmentFlank, FreeBlockUnderALoadAlongTheBeltSticksAtLoadOverKtAndHasNoEqui
     }));
     p.loads.push_back(stick_contact(m, line, 0.0, k_t, limit));
     SolverKnobs knobs;
-    knobs.steps = 4;
+    knobs.stepping.steps = 4;
     return solve_static(p, knobs);
   };
   const double load = 0.8 * limit;
@@ -306,7 +306,7 @@ TEST(SegmentFlank, BlockUnderALoadAlongTheBeltCreepsAtTheCoulombVelocity) {
                                         l.time_s = lambda * duration, l.slide_floor_mm_s = V0;
                                       }));
     SolverKnobs knobs;
-    knobs.steps = steps;
+    knobs.stepping.steps = steps;
     return solve_static(p, knobs);
   };
   const double load = 0.6 * F, creep = std::hypot(V, V0) * load / std::sqrt(F * F - load * load);
@@ -406,7 +406,7 @@ TEST(SegmentFlank, LayerOnTheFoundationUnderAUniformRadialLoadIsAWinklerSupporte
   }));
   p.loads.push_back(straight_foundation(m, k));
   SolverKnobs knobs;
-  knobs.steps = 2;
+  knobs.stepping.steps = 2;
   const StaticSolution s = solve_static(p, knobs);
   const double alpha = std::sqrt(k / M);
   auto closed_form = [&](double y) { return b0 / k * (1.0 - std::cosh(alpha * (y + kHeight_mm)) / std::cosh(alpha * kHeight_mm)); };

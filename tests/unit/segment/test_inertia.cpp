@@ -1,4 +1,4 @@
-// Implicit dynamics of the segment (SolverKnobs::inertia, segment/inertia.hpp; docs/segment.md
+// Implicit dynamics of the segment (PhysicsOptions::inertia, segment/inertia.hpp; docs/segment.md
 // "Inertia"): lumped masses, and a strip's shear vibration under a sudden load against the closed
 // form of its fundamental mode; a slow load gives the static solution.
 #include <cmath>
@@ -49,8 +49,8 @@ ShearRun shear_run(const Mesh& m, double b_N_mm3, double t_end_s, int steps, boo
   });
   p.observers.push_back(&watch);
   SolverKnobs knobs;
-  knobs.steps = steps;
-  knobs.inertia = inertia;
+  knobs.stepping.steps = steps;
+  knobs.physics.inertia = inertia;
   out.solution = solve_static(p, knobs);
   return out;
 }
