@@ -30,8 +30,8 @@
 // [lagged] [hold] [lm=MU] [diagnose] [fillet=MM] [tip=MM] [set=NAME=VALUE ...]` runs one segment life and prints its counts (LOAD: light | medium | heavy | severe, or a drive
 // file of datasets/drives with its .toml; MESH: life or
 // coarse (the life's default, both levels) | medium | fine;
-// `reuse`: modified Newton, SolverKnobs::reuse_tangent; `extrapolate`: SolverKnobs::extrapolate_start;
-// `stall=`, `grow=`: SolverKnobs::stall_iterations, growth_iterations (default: the solver's);
+// `reuse`: modified Newton, NewtonOptions::reuse_tangent; `extrapolate`: SteppingOptions::extrapolate_start;
+// `stall=`, `grow=`: NewtonOptions::stall_iterations, SteppingOptions::growth_iterations (default: the solver's);
 // `hold`: the cards' damage held at what their tables' tests reached (RoleMaterialOptions::damage_driver_hold);
 // `full`: 3×3 Gauss integration, `fbar`: the F-bar element, `reduced`: CPE8R (default: the
 // setup's); `lagged`: PointOptions::DamageUpdate::lagged; `set=`: a parameter of both cards, e.g.
@@ -49,7 +49,7 @@
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `bodyds=MM`: the body forces' sampling over each element
-// (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: SolverKnobs::inertia
+// (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: PhysicsOptions::inertia
 // (implicit dynamics, docs/segment.md "Inertia"); `flank=K`: the flank foundation's stiffness
 // (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
 // the tangential flank's stick stiffness (CycleKnobs::flank_stick_N_mm4, N/mm⁴; 0 = off;
@@ -59,7 +59,7 @@
 // stress field (VTK) when the middle first reaches each path position of the last cycle,
 // PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
 // default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
-// SolverKnobs::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
+// NewtonOptions::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
 // LU every time). The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
@@ -164,11 +164,11 @@ struct Probe {
   int steps = 60;
   bool reuse = false, extrapolate = false, lagged = false;
   std::string integration{};  // empty: scene::SegmentLifeSetup's default
-  int stall = -1, cuts = segment::SolverKnobs{}.max_cuts;  // stall=N (< 0: the life's at the fidelity)
-  int growth = -1;  // grow=N: SolverKnobs::growth_iterations (< 0: the life's at the fidelity)
-  double tolerance = segment::SolverKnobs{}.tolerance;  // tol=X: Newton's relative residual tolerance
+  int stall = -1, cuts = segment::SolverKnobs{}.stepping.max_cuts;  // stall=N (< 0: the life's at the fidelity)
+  int growth = -1;  // grow=N: SteppingOptions::growth_iterations (< 0: the life's at the fidelity)
+  double tolerance = segment::SolverKnobs{}.newton.tolerance;  // tol=X: Newton's relative residual tolerance
   std::vector<std::pair<std::string, double>> overrides{};  // set=NAME=VALUE: a card parameter, both roles
-  double levenberg = segment::SolverKnobs{}.levenberg;  // lm=μ0 (0: off)
+  double levenberg = segment::SolverKnobs{}.newton.levenberg;  // lm=μ0 (0: off)
   int rows = 0;                                 // rows=N: cushion rows (0: the mesh's)
   double fine_mm = 0.0, coarse_mm = 0.0;        // fine=, coarse=: element sizes (0: the mesh's)
   double central = 0.0, ends = 0.0;             // central=, ends=: section lengths in pitches (0: the mesh's)
@@ -185,10 +185,10 @@ struct Probe {
   std::array<double, 3> dense{0.0, 0.0, 0.0};   // dense=A:B:DS: also every DS mm over [A, B] of the last cycle
   std::array<double, 2> loads{0.0, 0.0};        // loads=A:B: print the load cycle's samples over [A, B] mm first
   int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
-  int krylov = -1;                              // krylov=N: SolverKnobs::krylov_iterations (< 0: the default)
-  double krylov_tolerance = -1.0;               // ktol=X: SolverKnobs::krylov_tolerance (< 0: the default)
+  int krylov = -1;                              // krylov=N: NewtonOptions::krylov_iterations (< 0: the default)
+  double krylov_tolerance = -1.0;               // ktol=X: NewtonOptions::krylov_tolerance (< 0: the default)
   double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
-  bool inertia = false;                         // SolverKnobs::inertia
+  bool inertia = false;                         // PhysicsOptions::inertia
   bool hold = false;                            // hold: the cards' damage held at their tables' tests (windowed_card)
   int cycles = 2;                               // cycles=N
   double flank = -1.0;                          // flank=K: CycleKnobs::flank_stiffness_N_mm4 (< 0: the setup's)
@@ -314,21 +314,21 @@ Outcome run_probe(const Probe& pr) {
   if (pr.end_condition == "free") setup.cycle.ends = segment::EndCondition::free;
   if (pr.end_condition == "sheared") setup.cycle.ends = segment::EndCondition::sheared;
   if (pr.end_condition == "radial") setup.cycle.ends = segment::EndCondition::radial;
-  setup.solver.reuse_tangent = pr.reuse;
-  setup.solver.extrapolate_start = pr.extrapolate;
-  if (!pr.integration.empty()) setup.solver.integration = segment::integration_from_string(pr.integration);
-  if (pr.stall >= 0) setup.solver.stall_iterations = pr.stall;
-  if (pr.growth >= 0) setup.solver.growth_iterations = pr.growth;
-  setup.solver.max_cuts = pr.cuts;
-  setup.solver.levenberg = pr.levenberg;
-  setup.solver.tolerance = pr.tolerance;
+  setup.solver.newton.reuse_tangent = pr.reuse;
+  setup.solver.stepping.extrapolate_start = pr.extrapolate;
+  if (!pr.integration.empty()) setup.solver.physics.integration = segment::integration_from_string(pr.integration);
+  if (pr.stall >= 0) setup.solver.newton.stall_iterations = pr.stall;
+  if (pr.growth >= 0) setup.solver.stepping.growth_iterations = pr.growth;
+  setup.solver.stepping.max_cuts = pr.cuts;
+  setup.solver.newton.levenberg = pr.levenberg;
+  setup.solver.newton.tolerance = pr.tolerance;
   setup.solver.diagnose_failure = pr.diagnose;
-  setup.solver.inertia = pr.inertia;
+  setup.solver.physics.inertia = pr.inertia;
   setup.cycle.cycles = pr.cycles;
   setup.cycle.vtk_prefix = pr.field_prefix, setup.cycle.vtk_at_s_mm = pr.field_at_mm;
   setup.solver.threads = pr.threads;
-  if (pr.krylov >= 0) setup.solver.krylov_iterations = pr.krylov;
-  if (pr.krylov_tolerance > 0.0) setup.solver.krylov_tolerance = pr.krylov_tolerance;
+  if (pr.krylov >= 0) setup.solver.newton.krylov_iterations = pr.krylov;
+  if (pr.krylov_tolerance > 0.0) setup.solver.newton.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.steps_per_cycle = pr.steps;
   if (pr.flank >= 0.0) setup.cycle.flank_stiffness_N_mm4 = pr.flank;
   if (pr.tflank >= 0.0) setup.cycle.flank_stick_N_mm4 = pr.tflank;
@@ -360,7 +360,7 @@ Outcome run_probe(const Probe& pr) {
   Outcome out{scene::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};
   out.wall_s = watch.seconds();
   out.main_cpu_s = thread_cpu_s() - cpu0;
-  out.mesh = setup.mesh, out.integration = setup.solver.integration;
+  out.mesh = setup.mesh, out.integration = setup.solver.physics.integration;
   return out;
 }
 

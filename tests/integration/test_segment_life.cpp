@@ -41,7 +41,7 @@ scene::SegmentLife reference_life(const std::string& load, int steps_per_cycle,
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
-  setup.solver.integration = element;
+  setup.solver.physics.integration = element;
   return scene::segment_life(cycle, drive, setup, fatigue::default_card());
 }
 
@@ -360,7 +360,7 @@ TEST(SegmentLife, CompleteLevelsSeparationLifeIsTheSameOnOneAndThreeCushionRows)
   EXPECT_NEAR(std::log(n1[0] / n1[1]), 0.0, std::log(1.15));
 }
 
-// The Newton step control's knobs (SolverKnobs::stall_iterations, growth_iterations) change the
+// The Newton step control's knobs (NewtonOptions::stall_iterations, SteppingOptions::growth_iterations) change the
 // work, not the answer: a stall after 6 assemblies and cut steps grown back only after increments
 // that converged within 5 leave the complete level's lives within 2 % on the light drive. (They were
 // the complete level's default on the ungraded three-row mesh, −13 % iterations there; on the life
@@ -373,7 +373,7 @@ TEST(SegmentLife, StepControlKnobsChangeTheWorkNotTheLives) {
     return card_life(r);
   };
   segment::SolverKnobs strict;
-  strict.stall_iterations = 6, strict.growth_iterations = 5;
+  strict.newton.stall_iterations = 6, strict.stepping.growth_iterations = 5;
   const scene::SegmentLife defaults = run({}), controlled = run(strict);
   std::printf("light, complete, 1 cycle: %d / %d Newton iterations, %d / %d cuts\n", defaults.run.newton_iterations,
               controlled.run.newton_iterations, defaults.run.cuts, controlled.run.cuts);
@@ -496,7 +496,7 @@ TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
   EXPECT_FALSE(b.run.final_state.symmetric_solver);  // the turn does not
 }
 
-// The Levenberg–Marquardt retake (SolverKnobs::levenberg): at the load cycle's transitions a full
+// The Levenberg–Marquardt retake (NewtonOptions::levenberg): at the load cycle's transitions a full
 // Newton step of the cards' near-incompressible rubber (K 4000 MPa) overshoots; retaking it on the
 // shifted tangent instead of halving and cutting the increment removes the cuts of the medium
 // drive's elastic level (life mesh, rotated predictor, element-mean body forces: 2 → 0). The residual is unchanged,
@@ -505,7 +505,7 @@ TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
 TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingTheLives) {
   CardRun shifted = card_run("medium", 2, segment::Fidelity::elastic);
   CardRun plain = shifted;
-  plain.setup.solver.levenberg = 0.0;
+  plain.setup.solver.newton.levenberg = 0.0;
   const scene::SegmentLife a = card_life(shifted), b = card_life(plain);
   std::printf("medium, elastic level: cuts %d -> %d, iterations %d -> %d (levenberg off -> on)\n", b.run.cuts,
               a.run.cuts, b.run.newton_iterations, a.run.newton_iterations);

@@ -198,11 +198,11 @@ void parse_segment_solver(Reader& r, SegmentSpec& g) {
   if (ends != "radial" && ends != "free") r.fail("ends", "ends must be \"radial\" or \"free\"");
   g.setup.ends = ends == "radial" ? segment::EndCondition::radial : segment::EndCondition::free;
   try {  // the segment module holds the names; the scene adds the file and key
-    g.setup.solver.integration = segment::integration_from_string(r.string("integration").value_or("reduced"));
+    g.setup.solver.physics.integration = segment::integration_from_string(r.string("integration").value_or("reduced"));
   } catch (const core::UsageError& e) {
     r.fail("integration", e.what());
   }
-  g.setup.solver.steps = static_cast<int>(r.count_or("steps", 4, 1, kMaxSegmentSteps));
+  g.setup.solver.stepping.steps = static_cast<int>(r.count_or("steps", 4, 1, kMaxSegmentSteps));
   // The element loop's threads (default min(2, hardware)); the results do not depend on it.
   if (auto t = r.number("threads", 1, kMaxSegmentThreads)) {
     if (*t != std::floor(*t)) r.fail("threads", "threads must be a whole number");
@@ -323,9 +323,9 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   g.scan_design_regions = r.boolean("scan").value_or(false);
   r.finish();
   const double elements = mesh.element_count();
-  if (elements * g.setup.solver.steps > kMaxSegmentWork)
+  if (elements * g.setup.solver.stepping.steps > kMaxSegmentWork)
     r.fail(r.has("steps") ? "steps" : "fine_size_mm",
-           std::to_string(static_cast<long>(elements)) + " elements x " + std::to_string(g.setup.solver.steps) +
+           std::to_string(static_cast<long>(elements)) + " elements x " + std::to_string(g.setup.solver.stepping.steps) +
                " steps exceeds the work cap 2e4 (docs/reliability.md, work caps)");
   return g;
 }

@@ -28,6 +28,51 @@ void Assembler::scatter(const Nodes& nodes, const ElementVector& f, const Elemen
     }
 }
 
+Assembler::Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, WorkerPool& pool,
+                     std::vector<Load*> loads)
+    : p_(p), d_(d), rule_(gauss_rule(order)), f_bar_(f_bar), pool_(pool),
+      buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1), loads_(std::move(loads)) {
+  for (Load* load : loads_)
+    if (load->acts_at_points()) point_loads_.push_back(load);
+  point_weights();
+}
+
+// One assembly's LoadAssembly: a load's contributions in global components, turned into the
+// nodes' local bases and added to the residual and the tangent's slots.
+class Assembler::Pass final : public LoadAssembly {
+ public:
+  Pass(const Assembler& a, const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
+       Pattern* K, Eigen::VectorXd* coupling)
+      : a_(a), q_(q), lambda_(lambda), dq_p_(dq_p), r_(r), K_(K), coupling_(coupling) {}
+  double lambda() const override { return lambda_; }
+  bool tangent() const override { return K_ != nullptr; }
+  int node_count() const override { return a_.p_.mesh->node_count(); }
+  Eigen::Vector2d u(int node) const override { return a_.u_of(q_, node); }
+  bool moves(int node) const override { return a_.moves(node); }
+  void add_element_forces(const std::vector<Eigen::Vector2d>& b) override { a_.add_body_forces(b, r_); }
+  void add_bottom_edge(int edge, LoadVector f, LoadMatrix K) override {
+    const std::vector<int> en = edge_nodes(a_.p_.mesh->bottom_edges[edge]);
+    a_.to_local(en.data(), static_cast<int>(en.size()), f, K_ ? &K : nullptr);
+    a_.scatter(en.data(), f, K_ ? &K : nullptr, dq_p_, r_, K_, K_ ? &K_->edge_slots[edge] : nullptr, coupling_);
+  }
+  void add_node_force(int node, const Eigen::Vector2d& f) override {
+    r_.segment<2>(2 * node) += a_.d_.R[node].transpose() * f;
+  }
+  void add_node_stiffness(int node, double k) override {
+    for (int c = 0; K_ && c < 2; ++c)
+      if (a_.d_.eq[2 * node + c] >= 0) K_->K.valuePtr()[(*a_.diagonal_)[a_.d_.eq[2 * node + c]]] += k;
+  }
+
+ private:
+  const Assembler& a_;
+  const Eigen::VectorXd& q_;
+  double lambda_;
+  const Eigen::VectorXd* dq_p_;
+  Eigen::VectorXd& r_;
+  Pattern* K_;
+  Eigen::VectorXd* coupling_;
+};
+
 // One element's response at q, as run() computes it (the failure diagnosis).
 bool Assembler::element_at(const Eigen::VectorXd& q, int e, ElementVector& f, ElementMatrix* Ke,
                 std::vector<ElementState>* states) const {
@@ -35,7 +80,7 @@ bool Assembler::element_at(const Eigen::VectorXd& q, int e, ElementVector& f, El
   std::vector<Eigen::Vector2d> X, u;
   for (int a = 0; a < m.nodes_per_element; ++a) X.push_back(m.X[m.elements[e][a]]), u.push_back(u_of(q, m.elements[e][a]));
   const bool ok = element_response(X, u, law_of(e), rule_, step_of(e), f, Ke, states, f_bar_);
-  if (ok) add_following(e, X, u, f, Ke);
+  if (ok) add_point_loads(e, X, u, f, Ke);
   return ok;
 }
 
@@ -51,7 +96,10 @@ int Assembler::run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorX
   if (K) std::fill(K->K.valuePtr(), K->K.valuePtr() + K->K.nonZeros(), 0.0);
   if (coupling) coupling->setZero(d_.equations);
   if (states) states->assign(m.element_count(), {});
-  if (p_.following_force.prepare && lambda != following_at_) p_.following_force.prepare(lambda), following_at_ = lambda;
+  if (lambda != prepared_at_) {  // dead loads are functions of λ: evaluated once per λ, not per iteration
+    for (Load* load : loads_) load->prepare(lambda);
+    prepared_at_ = lambda;
+  }
   // One thread: each element computed into one buffer and added at once (the same operations in
   // the same order as with the team, without a pass over all buffers: cache).
   const bool team = pool_.threads() > 1;
@@ -64,29 +112,24 @@ int Assembler::run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorX
     if (states)
       for (const auto& s : b.states) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
   }
-  add_pressure(q, lambda, dq_p, r, K, coupling);
-  if (p_.body_force) add_body_forces(lambda, r);
-  if (p_.nodal_force) {
-    if (lambda != nodal_at_) p_.nodal_force(lambda, nodal_), nodal_at_ = lambda;  // dead: a function of λ
-    for (std::size_t n = 0; n < nodal_.size(); ++n) r.segment<2>(2 * n) -= d_.R[n].transpose() * nodal_[n];
-  }
-  if (inertia_ && inertia_->active()) add_inertia(q, r, K);  // dynamics hook (SolverKnobs::inertia)
+  Pass pass(*this, q, lambda, dq_p, r, K, coupling);
+  for (const Load* load : loads_) load->add(pass);
   return -1;
 }
 
-// Per element, the following force's ∫ b dV at q (global; empty without one), at the λ of the
-// last assembly.
-std::vector<Eigen::Vector2d> Assembler::following_forces(const Eigen::VectorXd& q) const {
+// Per element, the point loads' ∫ b dV at q (global; empty without one), at the λ of the last
+// assembly.
+std::vector<Eigen::Vector2d> Assembler::point_load_forces(const Eigen::VectorXd& q) const {
   const Mesh& m = *p_.mesh;
   std::vector<Eigen::Vector2d> out;
-  if (!p_.following_force.at) return out;
+  if (point_loads_.empty()) return out;
   const int npe = m.nodes_per_element;
   std::vector<Eigen::Vector2d> X(npe), u(npe);
   ElementVector f;
   for (int e = 0; e < m.element_count(); ++e) {
     for (int a = 0; a < npe; ++a) X[a] = m.X[m.elements[e][a]], u[a] = u_of(q, m.elements[e][a]);
     f.setZero(2 * npe);
-    add_following(e, X, u, f, nullptr);
+    add_point_loads(e, X, u, f, nullptr);
     Eigen::Vector2d total = Eigen::Vector2d::Zero();
     for (int a = 0; a < npe; ++a) total -= f.segment<2>(2 * a);
     out.push_back(total);
@@ -94,49 +137,38 @@ std::vector<Eigen::Vector2d> Assembler::following_forces(const Eigen::VectorXd& 
   return out;
 }
 
-// StaticProblem::following_force's commit at every integration point's position at q (serial).
-void Assembler::commit_following(const Eigen::VectorXd& q) const {
-  if (!p_.following_force.commit) return;
+std::vector<Eigen::Vector2d> Assembler::displacements(const Eigen::VectorXd& q) const {
+  std::vector<Eigen::Vector2d> u(p_.mesh->node_count());
+  for (int a = 0; a < p_.mesh->node_count(); ++a) u[a] = u_of(q, a);
+  return u;
+}
+
+std::vector<Eigen::Vector2d> Assembler::point_positions(const Eigen::VectorXd& q) const {
   const Mesh& m = *p_.mesh;
   const int npe = m.nodes_per_element;
+  std::vector<Eigen::Vector2d> out;
   for (int e = 0; e < m.element_count(); ++e)
     for (std::size_t g = 0; g < rule_.size(); ++g) {
       const double* N = shape_.data() + g * npe;
       Eigen::Vector2d x = Eigen::Vector2d::Zero();
       for (int a = 0; a < npe; ++a) x += N[a] * (m.X[m.elements[e][a]] + u_of(q, m.elements[e][a]));
-      p_.following_force.commit(e, static_cast<int>(g), x);
+      out.push_back(x);
     }
+  return out;
 }
 
-// Per node, the inertia force m·a at q (global; empty without inertia).
-std::vector<Eigen::Vector2d> Assembler::inertia_forces(const Eigen::VectorXd& q) const {
-  std::vector<Eigen::Vector2d> f;
-  for (int n = 0; inertia_ && n < p_.mesh->node_count(); ++n)
-    f.push_back(moves(n) ? inertia_->force(n, u_of(q, n)) : Eigen::Vector2d::Zero());
-  return f;
+void Assembler::begin(const Eigen::VectorXd& q, double lambda, double dt_s) const {
+  const std::vector<Eigen::Vector2d> u = displacements(q);
+  for (Load* load : loads_) load->begin({lambda, dt_s, &u});
+}
+
+void Assembler::commit(const Eigen::VectorXd& q, double lambda) const {
+  const std::vector<Eigen::Vector2d> u = displacements(q), x = point_positions(q);
+  for (Load* load : loads_) load->commit({lambda, &u, &x, static_cast<int>(rule_.size())});
 }
 
 // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
 // buffer and element e's trial states).
-void Assembler::add_pressure(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p,
-                             Eigen::VectorXd& r, Pattern* K, Eigen::VectorXd* coupling) const {
-  const double pressure = lambda * p_.pressure_MPa;
-  if (pressure == 0.0) return;
-  const Mesh& m = *p_.mesh;
-  for (std::size_t k = 0; k < m.bottom_edges.size(); ++k) {
-    const std::vector<int> en = edge_nodes(m.bottom_edges[k]);
-    std::vector<Eigen::Vector2d> x;
-    for (int a : en) x.push_back(m.X[a] + u_of(q, a));
-    ElementVector f;
-    ElementMatrix Ke;
-    pressure_load(x, pressure, f, Ke);
-    f = -f;
-    Ke = -Ke;
-    to_local(en.data(), static_cast<int>(en.size()), f, K ? &Ke : nullptr);
-    scatter(en.data(), f, K ? &Ke : nullptr, dq_p, r, K, K ? &K->edge_slots[k] : nullptr, coupling);
-  }
-}
-
 void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, bool states, ElementBuffer& b) const {
   const Mesh& m = *p_.mesh;
   const int npe = m.nodes_per_element;
@@ -145,7 +177,7 @@ void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, bool stat
   for (int a = 0; a < npe; ++a) b.X[a] = m.X[nodes[a]], b.u[a] = u_of(q, nodes[a]);
   b.ok = element_response(b.X, b.u, law_of(e), rule_, step_of(e), b.f, tangent ? &b.K : nullptr,
                                   states ? &b.states : nullptr, f_bar_);
-  if (b.ok) add_following(e, b.X, b.u, b.f, tangent ? &b.K : nullptr);
+  if (b.ok) add_point_loads(e, b.X, b.u, b.f, tangent ? &b.K : nullptr);
   if (b.ok) to_local(nodes, npe, b.f, tangent ? &b.K : nullptr);
 }
 
@@ -164,7 +196,7 @@ void Assembler::to_local(const int* nodes, int n, ElementVector& f, ElementMatri
 }
 
 // The shape functions at the rule's points and each point's reference volume dV (the body
-// forces' and the following force's weights; the shape functions are the same in every element).
+// forces' and the point loads' weights; the shape functions are the same in every element).
 void Assembler::point_weights() {
   const Mesh& m = *p_.mesh;
   const int npe = m.nodes_per_element;
@@ -177,11 +209,11 @@ void Assembler::point_weights() {
     for (const auto& g : rule_) volume_.push_back(reference_jacobian(m, e, g.xi, g.eta) * g.weight);
 }
 
-// StaticProblem::following_force at element e's points (global components): −∫ N_a b dV into the
-// force, −∫ N_a N_b ∂b/∂x dV into the tangent.
-void Assembler::add_following(int e, const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
-                   ElementVector& f, ElementMatrix* K) const {
-  if (!p_.following_force.at) return;
+// The point loads at element e's points (global components): −∫ N_a b dV into the force,
+// −∫ N_a N_b ∂b/∂x dV into the tangent.
+void Assembler::add_point_loads(int e, const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
+                                ElementVector& f, ElementMatrix* K) const {
+  if (point_loads_.empty()) return;
   const int npe = p_.mesh->nodes_per_element;
   Eigen::Vector2d b;
   Eigen::Matrix2d db;
@@ -189,44 +221,29 @@ void Assembler::add_following(int e, const std::vector<Eigen::Vector2d>& X, cons
     const double* N = shape_.data() + g * npe;
     Eigen::Vector2d x = Eigen::Vector2d::Zero();
     for (int a = 0; a < npe; ++a) x += N[a] * (X[a] + u[a]);
-    if (!p_.following_force.at(e, static_cast<int>(g), x, b, db)) continue;
-    const double dV = volume_[e * rule_.size() + g];
-    for (int a = 0; a < npe; ++a) {
-      f.segment<2>(2 * a) -= N[a] * dV * b;
-      for (int c = 0; K && c < npe; ++c) K->block<2, 2>(2 * a, 2 * c) -= N[a] * N[c] * dV * db;
+    for (const Load* load : point_loads_) {
+      if (!load->at_point(e, static_cast<int>(g), x, b, db)) continue;
+      const double dV = volume_[e * rule_.size() + g];
+      for (int a = 0; a < npe; ++a) {
+        f.segment<2>(2 * a) -= N[a] * dV * b;
+        for (int c = 0; K && c < npe; ++c) K->block<2, 2>(2 * a, 2 * c) -= N[a] * N[c] * dV * db;
+      }
     }
   }
 }
 
 // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
 // −∫ N_a b dV (the residual is internal minus external force).
-void Assembler::add_body_forces(double lambda, Eigen::VectorXd& r) const {
+void Assembler::add_body_forces(const std::vector<Eigen::Vector2d>& body, Eigen::VectorXd& r) const {
   const Mesh& m = *p_.mesh;
-  if (lambda != body_at_) {  // dead: a function of λ, asked once per λ (not per Newton iteration)
-    body_.assign(m.element_count(), Eigen::Vector2d::Zero());
-    p_.body_force(lambda, body_);
-    body_at_ = lambda;
-  }
   const int npe = m.nodes_per_element;
   for (int e = 0; e < m.element_count(); ++e) {
-    if (body_[e].isZero(0.0)) continue;
+    if (body[e].isZero(0.0)) continue;
     for (std::size_t g = 0; g < rule_.size(); ++g)
       for (int a = 0; a < npe; ++a) {
         const int n = m.elements[e][a];
-        r.segment<2>(2 * n) -= d_.R[n].transpose() * ((shape_[g * npe + a] * volume_[e * rule_.size() + g]) * body_[e]);
+        r.segment<2>(2 * n) -= d_.R[n].transpose() * ((shape_[g * npe + a] * volume_[e * rule_.size() + g]) * body[e]);
       }
-  }
-}
-
-// m·a of every node with a free component into the residual (a cord-line node follows its frame
-// exactly), m/Δt² onto the diagonal of its free equations (the mass is isotropic, so a node's
-// rotated basis leaves it diagonal and uncoupled from the prescribed components).
-void Assembler::add_inertia(const Eigen::VectorXd& q, Eigen::VectorXd& r, Pattern* K) const {
-  for (int n = 0; n < p_.mesh->node_count(); ++n) {
-    if (!moves(n)) continue;
-    r.segment<2>(2 * n) += d_.R[n].transpose() * inertia_->force(n, u_of(q, n));
-    for (int k = 0; K && k < 2; ++k)
-      if (d_.eq[2 * n + k] >= 0) K->K.valuePtr()[(*diagonal_)[d_.eq[2 * n + k]]] += inertia_->stiffness(n);
   }
 }
 

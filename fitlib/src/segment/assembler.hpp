@@ -1,9 +1,9 @@
 #pragma once
 // The segment's element loop (solver.cpp): each element's internal force and consistent tangent
-// through the material-point contract (element.hpp), the loads of StaticProblem (follower
-// pressure, dead body and nodal forces, the following force, inertia), added into the residual and
-// the tangent's slots in the nodes' local bases. Threaded over elements, bit-identical whatever the
-// thread count.
+// through the material-point contract (element.hpp) and the loads acting at its integration points,
+// then the other loads (segment/load.hpp) through LoadAssembly, added into the residual and the
+// tangent's slots in the nodes' local bases. The one place that loops over elements. Threaded over
+// elements, bit-identical whatever the thread count.
 #include <limits>
 #include <vector>
 
@@ -11,7 +11,6 @@
 
 #include "dofs.hpp"
 #include "element.hpp"
-#include "inertia.hpp"
 #include "worker_pool.hpp"
 #include "fitlib/segment/solver.hpp"
 
@@ -29,11 +28,9 @@ struct ElementBuffer {
 
 class Assembler {
  public:
-  Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool)
-      : p_(p), d_(d), rule_(detail::gauss_rule(order)), f_bar_(f_bar), pool_(pool),
-        buffers_(pool.threads() > 1 ? p.mesh->element_count() : 1) {
-    if (p.body_force || p.following_force.at) point_weights();
-  }
+  // `loads`: the problem's and the solver's own (inertia), in the order they are added.
+  Assembler(const StaticProblem& p, const Dofs& d, int order, bool f_bar, detail::WorkerPool& pool,
+            std::vector<Load*> loads);
 
   std::size_t points_per_element() const { return rule_.size(); }
   // The step the point states are updated over (state_n → state_next).
@@ -41,10 +38,8 @@ class Assembler {
     state_n_ = state_n, state_next_ = state_next, dt_s_ = dt_s;
   }
   void set_offsets(const std::vector<std::size_t>* offset) { offset_ = offset; }
-  // SolverKnobs::inertia (segment/inertia.hpp); `diagonal`: per equation, the slot of K_ii.
-  void set_inertia(const detail::BackwardEulerInertia* inertia, const std::vector<int>* diagonal) {
-    inertia_ = inertia, diagonal_ = diagonal;
-  }
+  // Per equation, the slot of K_ii (LoadAssembly::add_node_stiffness).
+  void set_diagonal(const std::vector<int>* diagonal) { diagonal_ = diagonal; }
 
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
 
@@ -65,15 +60,18 @@ class Assembler {
           Pattern* K, Eigen::VectorXd* coupling,
           std::vector<std::vector<IntegrationPointStress>>* states = nullptr) const;
 
-  // Per element, the following force's ∫ b dV at q (global; empty without one), at the λ of the
-  // last assembly.
-  std::vector<Eigen::Vector2d> following_forces(const Eigen::VectorXd& q) const;
+  // Per element, the point loads' ∫ b dV at q (global; empty without one), at the λ of the last
+  // assembly.
+  std::vector<Eigen::Vector2d> point_load_forces(const Eigen::VectorXd& q) const;
 
-  // StaticProblem::following_force's commit at every integration point's position at q (serial).
-  void commit_following(const Eigen::VectorXd& q) const;
+  // Every load's begin, before an increment's iterations to λ over dt from q (serial).
+  void begin(const Eigen::VectorXd& q, double lambda, double dt_s) const;
+  // Every load's commit at the converged q (serial).
+  void commit(const Eigen::VectorXd& q, double lambda) const;
 
-  // Per node, the inertia force m·a at q (global; empty without inertia).
-  std::vector<Eigen::Vector2d> inertia_forces(const Eigen::VectorXd& q) const;
+  // Per node, the displacement at q (global).
+  std::vector<Eigen::Vector2d> displacements(const Eigen::VectorXd& q) const;
+  bool moves(int n) const { return d_.eq[2 * n] >= 0 || d_.eq[2 * n + 1] >= 0; }
 
  private:
   // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
@@ -84,29 +82,23 @@ class Assembler {
   // a constraint has R = I and is left as it is.
   void to_local(const int* nodes, int n, detail::ElementVector& f, detail::ElementMatrix* K) const;
 
+  class Pass;  // one assembly's LoadAssembly (assembler.cpp)
+
   // The shape functions at the rule's points and each point's reference volume dV (the body
-  // forces' and the following force's weights; the shape functions are the same in every element).
+  // forces' and the point loads' weights; the shape functions are the same in every element).
   void point_weights();
 
-  // StaticProblem::following_force at element e's points (global components): −∫ N_a b dV into the
-  // force, −∫ N_a N_b ∂b/∂x dV into the tangent.
-  void add_following(int e, const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
-                     detail::ElementVector& f, detail::ElementMatrix* K) const;
-
-  // The follower pressure λ p on the bottom edges (StaticProblem::pressure_MPa), with its tangent.
-  void add_pressure(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
-                    Pattern* K, Eigen::VectorXd* coupling) const;
+  // The point loads at element e's points (global components): −∫ N_a b dV into the force,
+  // −∫ N_a N_b ∂b/∂x dV into the tangent.
+  void add_point_loads(int e, const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
+                       detail::ElementVector& f, detail::ElementMatrix* K) const;
 
   // Dead body forces b (N/mm³ of reference volume, per element) as consistent nodal loads
   // −∫ N_a b dV (the residual is internal minus external force).
-  void add_body_forces(double lambda, Eigen::VectorXd& r) const;
+  void add_body_forces(const std::vector<Eigen::Vector2d>& b, Eigen::VectorXd& r) const;
 
-  bool moves(int n) const { return d_.eq[2 * n] >= 0 || d_.eq[2 * n + 1] >= 0; }
-
-  // m·a of every node with a free component into the residual (a cord-line node follows its frame
-  // exactly), m/Δt² onto the diagonal of its free equations (the mass is isotropic, so a node's
-  // rotated basis leaves it diagonal and uncoupled from the prescribed components).
-  void add_inertia(const Eigen::VectorXd& q, Eigen::VectorXd& r, Pattern* K) const;
+  // Every integration point's current position at q (element by element, in the rule's order).
+  std::vector<Eigen::Vector2d> point_positions(const Eigen::VectorXd& q) const;
 
   // Adds an element's (or edge's) local force and tangent: free-free entries into K's slots,
   // free-prescribed ones times the prescribed step into coupling (the predictor).
@@ -124,11 +116,9 @@ class Assembler {
   const double* state_n_ = nullptr;
   double* state_next_ = nullptr;
   double dt_s_ = 0.0;
-  mutable std::vector<Eigen::Vector2d> body_, nodal_;  // the dead loads at body_at_, nodal_at_
-  mutable double body_at_ = std::numeric_limits<double>::quiet_NaN(), nodal_at_ = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Load*> loads_, point_loads_;  // all, and those acting at the integration points
   std::vector<double> shape_, volume_;  // point_weights(): N_a per point of the rule, dV per element and point
-  mutable double following_at_ = std::numeric_limits<double>::quiet_NaN();  // the λ following_force was prepared at
-  const detail::BackwardEulerInertia* inertia_ = nullptr;
+  mutable double prepared_at_ = std::numeric_limits<double>::quiet_NaN();  // the λ the loads were prepared at
   const std::vector<int>* diagonal_ = nullptr;
 };
 

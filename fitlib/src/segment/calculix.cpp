@@ -37,7 +37,7 @@ std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElas
     o << "*SOLID SECTION, ELSET=E" << to_string(role) << ", MATERIAL=M" << to_string(role) << "\n1.\n";
   }
   std::vector<std::array<double, 2>> values(p.constraints.size());
-  p.prescribe(1.0, values);
+  p.motion->values(1.0, values);
   for (std::size_t c = 0; c < p.constraints.size(); ++c) {
     const double a = p.constraints[c].angle_rad;
     if (a == 0.0) continue;
@@ -49,9 +49,12 @@ std::string calculix_deck(const StaticProblem& p, const std::array<IsotropicElas
   for (std::size_t c = 0; c < p.constraints.size(); ++c)
     for (int k = 0; k < 2; ++k)
       if (p.constraints[c].fixed[k]) o << p.constraints[c].node + 1 << ", " << k + 1 << ", " << k + 1 << ", " << num(values[c][k]) << "\n";
-  if (p.pressure_MPa != 0.0) {
+  for (const LoadPtr& load : p.loads) {  // the static cases' one load (the deck knows no other)
+    const auto* pressure = dynamic_cast<const FollowerPressure*>(load.get());
+    if (!pressure) throw core::UsageError("calculix_deck: only the follower pressure is written");
+    if (pressure->pressure_MPa() == 0.0) continue;
     o << "*DLOAD\n";
-    for (const Edge& e : m.bottom_edges) o << e.element + 1 << ", P1, " << num(p.pressure_MPa) << "\n";
+    for (const Edge& e : m.bottom_edges) o << e.element + 1 << ", P1, " << num(pressure->pressure_MPa()) << "\n";
   }
   o << "*EL PRINT, ELSET=EALL\nS\n*END STEP\n";
   return o.str();

@@ -21,6 +21,9 @@
 namespace fitlib::segment {
 namespace {
 
+// Intervals per side of the cord curve (cord_curve; the knob no test or benchmark varied, issue 32).
+constexpr int kCurveIntervals = 24;
+
 double reference_area(const Mesh& m, int e, const std::vector<detail::GaussPoint>& rule) {
   double area = 0.0;
   for (const auto& g : rule) area += reference_jacobian(m, e, g.xi, g.eta) * g.weight;
@@ -205,6 +208,22 @@ void summarise(const StaticSolution& final_state, const Mesh& m, const CycleKnob
 
 }  // namespace
 
+namespace {
+
+// solve_static over the load schedule; a failure's message says where in the cycle it was.
+StaticSolution solve_over_cycle(const StaticProblem& p, const SolverKnobs& solver, std::vector<double> schedule,
+                                const detail::ProgressReport& progress, double T, const belt::LoadHistory& h) {
+  SolverKnobs k = solver;
+  k.stepping.schedule = std::move(schedule);
+  try {
+    return solve_static(p, k);
+  } catch (const core::NumericalError& e) {
+    throw core::NumericalError(where_in_cycle(progress.last_lambda() * T, h) + e.what());
+  }
+}
+
+}  // namespace
+
 // Composed of the cycle's parts (cycle_parts.hpp: reference, cord curve, loads) and observers
 // (cycle_observers.hpp), solved by solve_static over the load schedule.
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
@@ -219,7 +238,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   for (const Eigen::Vector2d& X : straight.X) path_x.push_back(X.x());
   const double reach = 1.5 * straight.half_length_mm;
   const double T = 1.0 + (knobs.positions_mm.empty() ? knobs.cycles : knobs.positions_mm.back() / h.length_mm());
-  const int n = knobs.curve_intervals;
+  const int n = kCurveIntervals;
   const detail::CurvatureIntegral integral(h);
   const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
   const detail::CycleFrame frame{&m, &path_x, &h, T, period, [&h, &integral, K_m, reach, n, T](double lambda) {
@@ -232,18 +251,22 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   StaticProblem p = cord_curve_problem(m, path_x, laws, frame.curve_at, ends, detail::end_shift(straight, h, T, warping));
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
-  p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when SolverKnobs::inertia is on
+  p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when PhysicsOptions::inertia is on
 
-  const int order = gauss_order(m, solver.integration);
+  const int order = gauss_order(m, solver.physics.integration);
   detail::EquilibriumCheck::Inputs check;
   const detail::ElementSampling sampling = element_extents(m, path_x, order, knobs.body_force_sampling_mm, check.area_mm2);
-  p.body_force = detail::contact_body_forces(sampling, drive, T, frame.curve_at);
+  // The loads (segment/load.hpp), one line each: Report I's contact pressure, friction and radial
+  // inertia (6.6–6.9), the deformation-limited flank (segment/flank.hpp), the end faces' shear.
+  check.body = detail::contact_body_forces(sampling, drive, T, frame.curve_at);
+  p.loads.push_back(dead_body_force(m.element_count(), check.body));
   check.along_belt = knobs.flank_stick_N_mm4 > 0.0 || knobs.flank_slide_floor_mm_s > 0.0;  // a tangential flank law
-  if (knobs.flank_stiffness_N_mm4 > 0.0 || check.along_belt)  // the deformation-limited flank (segment/flank.hpp)
-    p.following_force = flank_contact(m, path_x, solver.integration, NeutralCurve::uniform(K_m, 0.0, reach), frame.curve_at,
-                                      knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
-                                      detail::flank_levels(sampling, drive, knobs, T, p.time_s));
-  if (shear) p.nodal_force = detail::end_shear_forces(m.node_count(), straight, path_x, h, T, frame.curve_at, shear);
+  if (knobs.flank_stiffness_N_mm4 > 0.0 || check.along_belt)
+    p.loads.push_back(flank_contact(m, path_x, solver.physics.integration, NeutralCurve::uniform(K_m, 0.0, reach),
+                                    frame.curve_at, knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
+                                    detail::flank_levels(sampling, drive, knobs, T, p.time_s)));
+  if (shear) check.nodal = detail::end_shear_forces(m.node_count(), straight, path_x, h, T, frame.curve_at, shear);
+  if (shear) p.loads.push_back(dead_nodal_force(check.nodal));
 
   CycleResult out;
   out.cycle_time_s = period;
@@ -252,8 +275,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   detail::ProgressReport progress(knobs.progress);
   detail::PointMonitor points(frame, straight, K_m, named, order, out.points);
   detail::FieldSnapshots fields(frame, knobs, out.vtk_files);
-  check.problem = &p, check.body = p.body_force, check.centre_x_mm = sampling.centre_x;
-  check.width_mm = drive.width_mm, check.integration = solver.integration;
+  check.problem = &p, check.centre_x_mm = sampling.centre_x;
+  check.width_mm = drive.width_mm, check.integration = solver.physics.integration;
   detail::CycleDissipation dissipation(frame, check.area_mm2, sampling.centre_x, section.cog_pitch_mm, drive.width_mm, out.dissipation_J_mm);
   detail::EquilibriumCheck equilibrium(frame, std::move(check), out);
   p.observers = {&progress, &points, &equilibrium, &dissipation};
@@ -262,13 +285,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   if (knobs.scan_design_regions)
     p.observers.push_back(&scan.emplace(frame, straight, K_m, section, mesh_knobs, order, out.scanned));
 
-  SolverKnobs k = solver;
-  k.schedule = load_schedule(knobs, h, T, straight.half_length_mm);
-  try {
-    out.final_state = solve_static(p, k);
-  } catch (const core::NumericalError& e) {
-    throw core::NumericalError(where_in_cycle(progress.last_lambda() * T, h) + e.what());
-  }
+  out.final_state = solve_over_cycle(p, solver, load_schedule(knobs, h, T, straight.half_length_mm), progress, T, h);
   const bool history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;
   summarise(out.final_state, m, knobs, history, static_cast<bool>(warping) || static_cast<bool>(shear), out);
   return out;

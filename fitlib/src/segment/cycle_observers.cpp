@@ -34,7 +34,7 @@ void longitudinal_loads(const StaticProblem& p, const StaticSolution& s, const N
     if (node != m.top_nodes.front()) q.left_end_longitudinal_N_mm += s.reaction_N_mm[node].dot(t);
   for (int node : m.top_nodes)
     if (m.X[node].x() < 0.0) q.left_cord_longitudinal_N_mm += s.reaction_N_mm[node].dot(t);
-  for (std::size_t node = 0; node < s.inertia_N_mm.size(); ++node)  // SolverKnobs::inertia
+  for (std::size_t node = 0; node < s.inertia_N_mm.size(); ++node)  // PhysicsOptions::inertia
     if (path_x[node] < 0.0) q.left_inertia_longitudinal_N_mm += s.inertia_N_mm[node].dot(t);
   q.rubber_section_N_mm = section_force(p, s, 0.0, Eigen::Vector2d::Zero(), integration).force_N_mm.dot(t);
 }
@@ -82,11 +82,11 @@ void EquilibriumCheck::converged(double lambda, const StaticSolution& s) {
   double scale = 1e-300;  // Σ |nodal reactions| + Σ |element body forces|
   for (int e = 0; e < m.element_count(); ++e)
     applied += forces_[e] * in_.area_mm2[e], scale += (forces_[e] * in_.area_mm2[e]).norm();
-  if (p.nodal_force) {
-    p.nodal_force(lambda, nodal_);
+  if (in_.nodal) {
+    in_.nodal(lambda, nodal_);
     for (const Eigen::Vector2d& f : nodal_) applied += f, scale += f.norm();
   }
-  for (const Eigen::Vector2d& f : s.inertia_N_mm) applied -= f, scale += f.norm();  // d'Alembert (SolverKnobs::inertia)
+  for (const Eigen::Vector2d& f : s.inertia_N_mm) applied -= f, scale += f.norm();  // d'Alembert (PhysicsOptions::inertia)
   for (const Eigen::Vector2d& f : s.following_N_mm) applied += f, scale += f.norm();  // the flank foundation
   for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r, scale += r.norm();
   for (int node : m.top_nodes) cord += s.reaction_N_mm[node];

@@ -84,8 +84,9 @@ CycleSample local_sample(const IntegrationPointStress& ip, double phi);
 class EquilibriumCheck : public IncrementObserver {
  public:
   struct Inputs {
-    const StaticProblem* problem = nullptr;  // its nodal forces and the section force
+    const StaticProblem* problem = nullptr;  // its section force
     LoadAt body;                             // the contact body forces per element
+    LoadAt nodal;                            // the end faces' nodal forces (empty: none)
     std::vector<double> area_mm2;            // per element, reference
     std::vector<double> centre_x_mm;         // per element, unstrained path position
     bool along_belt = false;                 // a tangential flank law (its longitudinal totals)

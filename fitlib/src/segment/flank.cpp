@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "element.hpp"
 
@@ -57,45 +58,57 @@ FlankSlidePoint flank_slide_point(const Eigen::Vector2d& u_dot, const Eigen::Vec
 
 namespace {
 
-// What the flank keeps: per element and integration point (rule order) the path position, the
-// reference depth and the committed slip; at the prepared λ the cord curve, its interval starts,
-// the levels per element, each point's expected foot and (stick, turn) its column's cord point and
-// tangent.
-struct FlankState {
-  int points = 0;  // per element
-  bool stick = false, slide = false, history = false;  // history: either; frames at every λ, offsets committed
-  std::vector<double> path_x, reference_depth, slip;
-  std::vector<double> committed_offset, next_offset;  // along the cord from the column's cord point
-  std::vector<double> next_slip;
-  double committed_time_s = 0.0, next_time_s = 0.0, dt_s = 0.0;
-  bool pending = false;  // committed into next_*, taken at the next prepare
-  std::function<NeutralCurve(double)> curve_at;
-  std::function<void(double, FlankLevels&)> levels_at;
-  std::optional<NeutralCurve> curve;
-  CurveStarts starts;
-  FlankLevels levels;
-  std::vector<double> s_hint;
-  std::vector<Eigen::Vector2d> cord, tangent;
+// The flank as a load acting at the integration points. It keeps per element and integration
+// point (rule order) the path position, the reference depth and the committed slip; at the
+// prepared λ the cord curve, its interval starts, the levels per element, each point's expected
+// foot and (stick, turn) its column's cord point and tangent.
+class FlankContact final : public Load {
+ public:
+  FlankContact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
+               const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at, bool stick,
+               bool slide, std::function<void(double, FlankLevels&)> levels);
+  void prepare(double lambda) override;
+  bool acts_at_points() const override { return true; }
+  bool at_point(int e, int g, const Eigen::Vector2d& x, Eigen::Vector2d& b, Eigen::Matrix2d& db) const override;
+  void commit(const ConvergedLoads& state) override;
+  bool symmetric() const override { return !slide_; }  // the sliding friction turns with the motion
 
-  bool radial(int e) const { return levels.radial_N_mm4[e] > 0.0; }
-  bool sticks(int e) const { return levels.stick_N_mm4[e] > 0.0 && levels.stick_limit_N_mm3[e] > 0.0; }
-  bool slides(int e) const { return levels.slide_mm_s[e] > 0.0 && dt_s > 0.0 && !levels.friction_lr_N_mm3[e].isZero(0.0); }
-  double offset(std::size_t i, const Eigen::Vector2d& x) const { return tangent[i].dot(x - cord[i]); }
-  Eigen::Vector2d normal(std::size_t i) const { return {-tangent[i].y(), tangent[i].x()}; }  // (sin φ, cos φ)
+ private:
+  // The offsets start from the reference's on the curve at λ = 0 (no motion before the first commit).
+  void start_offsets(const std::vector<Eigen::Vector2d>& reference);
+  // Each point's expected foot on the prepared curve and (history) its column's cord frame.
+  void place_feet();
+
+  bool radial(int e) const { return levels_.radial_N_mm4[e] > 0.0; }
+  bool sticks(int e) const { return levels_.stick_N_mm4[e] > 0.0 && levels_.stick_limit_N_mm3[e] > 0.0; }
+  bool slides(int e) const { return levels_.slide_mm_s[e] > 0.0 && dt_s_ > 0.0 && !levels_.friction_lr_N_mm3[e].isZero(0.0); }
+  double offset(std::size_t i, const Eigen::Vector2d& x) const { return tangent_[i].dot(x - cord_[i]); }
+  Eigen::Vector2d normal(std::size_t i) const { return {-tangent_[i].y(), tangent_[i].x()}; }  // (sin φ, cos φ)
+
+  int points_ = 0;  // per element
+  bool stick_ = false, slide_ = false, history_ = false;  // history: either; frames at every λ, offsets committed
+  std::vector<double> path_x_, reference_depth_, slip_;
+  std::vector<double> committed_offset_, next_offset_;  // along the cord from the column's cord point
+  std::vector<double> next_slip_;
+  double committed_time_s_ = 0.0, next_time_s_ = 0.0, dt_s_ = 0.0;
+  bool pending_ = false;  // committed into next_*, taken at the next prepare
+  std::function<NeutralCurve(double)> curve_at_;
+  std::function<void(double, FlankLevels&)> levels_at_;
+  std::optional<NeutralCurve> curve_;
+  CurveStarts starts_;
+  FlankLevels levels_;
+  std::vector<double> s_hint_;
+  std::vector<Eigen::Vector2d> cord_, tangent_;
 };
 
-}  // namespace
-
-StaticProblem::FollowingForce flank_contact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
-                                            const NeutralCurve& reference_curve,
-                                            std::function<NeutralCurve(double)> curve_at, bool stick, bool slide,
-                                            std::function<void(double, FlankLevels&)> levels) {
-  auto st = std::make_shared<FlankState>();
-  const bool history = stick || slide;
+FlankContact::FlankContact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
+                           const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at,
+                           bool stick, bool slide, std::function<void(double, FlankLevels&)> levels)
+    : stick_(stick), slide_(slide), history_(stick || slide), curve_at_(std::move(curve_at)),
+      levels_at_(std::move(levels)) {
   const auto rule = detail::gauss_rule(gauss_order(m, integration));
   const int npe = m.nodes_per_element;
-  st->points = static_cast<int>(rule.size());
-  st->stick = stick, st->slide = slide, st->history = history;
+  points_ = static_cast<int>(rule.size());
   double N[8], dxi[8], deta[8];
   std::vector<Eigen::Vector2d> reference;  // each point's reference position
   for (int e = 0; e < m.element_count(); ++e)
@@ -104,99 +117,113 @@ StaticProblem::FollowingForce flank_contact(const Mesh& m, const std::vector<dou
       Eigen::Vector2d X = Eigen::Vector2d::Zero();
       double x = 0.0;
       for (int a = 0; a < npe; ++a) X += N[a] * m.X[m.elements[e][a]], x += N[a] * path_x_mm[m.elements[e][a]];
-      st->path_x.push_back(x);
-      st->reference_depth.push_back(reference_curve.coordinates(X.x(), X.y()).h_mm);
+      path_x_.push_back(x);
+      reference_depth_.push_back(reference_curve.coordinates(X.x(), X.y()).h_mm);
       reference.push_back(X);
     }
-  st->curve_at = std::move(curve_at);
-  st->levels_at = std::move(levels);
-  const std::size_t n = st->path_x.size(), elements = static_cast<std::size_t>(m.element_count());
-  for (auto* v : {&st->levels.radial_N_mm4, &st->levels.stick_N_mm4, &st->levels.stick_limit_N_mm3, &st->levels.slide_mm_s})
+  const std::size_t elements = static_cast<std::size_t>(m.element_count());
+  for (auto* v : {&levels_.radial_N_mm4, &levels_.stick_N_mm4, &levels_.stick_limit_N_mm3, &levels_.slide_mm_s})
     v->assign(elements, 0.0);
-  st->levels.friction_lr_N_mm3.assign(elements, Eigen::Vector2d::Zero());
-  st->s_hint.assign(n, 0.0);
-  if (history) {
-    st->cord.assign(n, Eigen::Vector2d::Zero()), st->tangent.assign(n, Eigen::Vector2d::Zero());
-    // The offsets start from the reference's on the curve at λ = 0 (no motion before the first commit).
-    const NeutralCurve start = st->curve_at(0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const CurvePoint c = start.at(start.s_from_unstrained(st->path_x[i]));
-      const Eigen::Vector2d t(std::cos(c.phi_rad), -std::sin(c.phi_rad));
-      st->committed_offset.push_back(t.dot(reference[i] - Eigen::Vector2d(c.x_mm, c.y_mm)));
-      st->slip.push_back(st->committed_offset.back());
-    }
-    st->next_offset = st->committed_offset, st->next_slip = st->slip;
-  }
-  StaticProblem::FollowingForce f;
-  f.symmetric = !slide;
-  f.prepare = [st](double lambda) {
-    if (st->pending) {  // the commit takes effect at the next level (a snapshot at the committed one sees the step's force)
-      st->committed_offset.swap(st->next_offset), st->slip.swap(st->next_slip);
-      st->committed_time_s = st->next_time_s, st->pending = false;
-    }
-    st->levels_at(lambda, st->levels);
-    st->dt_s = st->levels.time_s - st->committed_time_s;
-    const auto& k = st->levels.radial_N_mm4;
-    const bool radial = std::any_of(k.begin(), k.end(), [](double v) { return v > 0.0; });
-    if (!radial && !st->history) return;
-    st->curve.emplace(st->curve_at(lambda));
-    if (radial) st->starts = st->curve->starts();
-    for (std::size_t e = 0; e < k.size(); ++e)
-      for (int g = 0; g < st->points; ++g) {
-        const std::size_t i = e * st->points + g;
-        if (!st->radial(static_cast<int>(e)) && !st->history) continue;
-        const double s = st->curve->s_from_unstrained(st->path_x[i]);
-        if (st->radial(static_cast<int>(e))) st->s_hint[i] = s;
-        if (!st->history) continue;
-        const CurvePoint c = st->curve->at(s);  // the column's cord point: the foot the stick holds to
-        st->cord[i] = {c.x_mm, c.y_mm}, st->tangent[i] = {std::cos(c.phi_rad), -std::sin(c.phi_rad)};
-      }
-  };
-  f.at = [st](int e, int g, const Eigen::Vector2d& x, Eigen::Vector2d& b, Eigen::Matrix2d& db) {
-    const bool radial = st->radial(e), sticks = st->stick && st->sticks(e), slides = st->slide && st->slides(e);
-    if (!radial && !sticks && !slides) return false;
-    const std::size_t i = static_cast<std::size_t>(e) * st->points + g;
-    if (radial) {
-      const FlankFoundationPoint p = flank_foundation_point(st->curve->coordinates(x.x(), x.y(), st->starts, st->s_hint[i]),
-                                                            st->reference_depth[i], st->levels.radial_N_mm4[e]);
-      b = p.b_N_mm3, db = p.db_dx_N_mm4;
-    } else {
-      b.setZero(), db.setZero();
-    }
-    if (sticks) {  // B_t t with ∂w/∂x = t (the frame is fixed at λ)
-      const FlankStickPoint p = flank_stick_point(st->offset(i, x), st->slip[i], st->levels.stick_N_mm4[e],
-                                                  st->levels.stick_limit_N_mm3[e]);
-      b += p.B_t_N_mm3 * st->tangent[i];
-      db += p.dB_dw_N_mm4 * st->tangent[i] * st->tangent[i].transpose();
-    }
-    if (slides) {  // u̇ = ((w − w_n) / Δt, 0): only the motion along the belt is beyond Report I's sliding
-      Eigen::Matrix2d Q;
-      Q.col(0) = st->tangent[i], Q.col(1) = st->normal(i);
-      const FlankSlidePoint p = flank_slide_point(Eigen::Vector2d((st->offset(i, x) - st->committed_offset[i]) / st->dt_s, 0.0),
-                                                  st->levels.friction_lr_N_mm3[e], st->levels.slide_mm_s[e],
-                                                  st->levels.slide_floor_mm_s);
-      b += Q * p.b_lr_N_mm3;
-      db += Q * p.db_dv_lr.col(0) * st->tangent[i].transpose() / st->dt_s;  // ∂u̇/∂x = (tᵀ/Δt, 0): unsymmetric
-    }
-    return true;
-  };
-  if (history)
-    f.commit = [st](int e, int g, const Eigen::Vector2d& x) {
-      const std::size_t i = static_cast<std::size_t>(e) * st->points + g;
-      st->next_offset[i] = st->offset(i, x);
-      st->next_time_s = st->levels.time_s;
-      st->next_slip[i] = flank_stick_point(st->offset(i, x), st->slip[i], st->stick && st->sticks(e) ? st->levels.stick_N_mm4[e] : 0.0,
-                                           st->levels.stick_limit_N_mm3[e])
-                             .slip_after_mm;
-      st->pending = true;
-    };
-  return f;
+  levels_.friction_lr_N_mm3.assign(elements, Eigen::Vector2d::Zero());
+  s_hint_.assign(path_x_.size(), 0.0);
+  if (history_) start_offsets(reference);
 }
 
-StaticProblem::FollowingForce flank_foundation(const Mesh& m, const std::vector<double>& path_x_mm,
-                                               Integration integration, const NeutralCurve& reference_curve,
-                                               std::function<NeutralCurve(double)> curve_at,
-                                               std::function<void(double, std::vector<double>&)> stiffness) {
+void FlankContact::start_offsets(const std::vector<Eigen::Vector2d>& reference) {
+  const std::size_t n = path_x_.size();
+  cord_.assign(n, Eigen::Vector2d::Zero()), tangent_.assign(n, Eigen::Vector2d::Zero());
+  const NeutralCurve start = curve_at_(0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const CurvePoint c = start.at(start.s_from_unstrained(path_x_[i]));
+    const Eigen::Vector2d t(std::cos(c.phi_rad), -std::sin(c.phi_rad));
+    committed_offset_.push_back(t.dot(reference[i] - Eigen::Vector2d(c.x_mm, c.y_mm)));
+    slip_.push_back(committed_offset_.back());
+  }
+  next_offset_ = committed_offset_, next_slip_ = slip_;
+}
+
+void FlankContact::prepare(double lambda) {
+  if (pending_) {  // the commit takes effect at the next level (a snapshot at the committed one sees the step's force)
+    committed_offset_.swap(next_offset_), slip_.swap(next_slip_);
+    committed_time_s_ = next_time_s_, pending_ = false;
+  }
+  levels_at_(lambda, levels_);
+  dt_s_ = levels_.time_s - committed_time_s_;
+  const auto& k = levels_.radial_N_mm4;
+  const bool any_radial = std::any_of(k.begin(), k.end(), [](double v) { return v > 0.0; });
+  if (!any_radial && !history_) return;
+  curve_.emplace(curve_at_(lambda));
+  if (any_radial) starts_ = curve_->starts();
+  place_feet();
+}
+
+void FlankContact::place_feet() {
+  for (std::size_t e = 0; e < levels_.radial_N_mm4.size(); ++e)
+    for (int g = 0; g < points_; ++g) {
+      const std::size_t i = e * points_ + g;
+      if (!radial(static_cast<int>(e)) && !history_) continue;
+      const double s = curve_->s_from_unstrained(path_x_[i]);
+      if (radial(static_cast<int>(e))) s_hint_[i] = s;
+      if (!history_) continue;
+      const CurvePoint c = curve_->at(s);  // the column's cord point: the foot the stick holds to
+      cord_[i] = {c.x_mm, c.y_mm}, tangent_[i] = {std::cos(c.phi_rad), -std::sin(c.phi_rad)};
+    }
+}
+
+bool FlankContact::at_point(int e, int g, const Eigen::Vector2d& x, Eigen::Vector2d& b, Eigen::Matrix2d& db) const {
+  const bool on_radial = radial(e), on_stick = stick_ && sticks(e), on_slide = slide_ && slides(e);
+  if (!on_radial && !on_stick && !on_slide) return false;
+  const std::size_t i = static_cast<std::size_t>(e) * points_ + g;
+  if (on_radial) {
+    const FlankFoundationPoint p = flank_foundation_point(curve_->coordinates(x.x(), x.y(), starts_, s_hint_[i]),
+                                                          reference_depth_[i], levels_.radial_N_mm4[e]);
+    b = p.b_N_mm3, db = p.db_dx_N_mm4;
+  } else {
+    b.setZero(), db.setZero();
+  }
+  if (on_stick) {  // B_t t with ∂w/∂x = t (the frame is fixed at λ)
+    const FlankStickPoint p = flank_stick_point(offset(i, x), slip_[i], levels_.stick_N_mm4[e], levels_.stick_limit_N_mm3[e]);
+    b += p.B_t_N_mm3 * tangent_[i];
+    db += p.dB_dw_N_mm4 * tangent_[i] * tangent_[i].transpose();
+  }
+  if (on_slide) {  // u̇ = ((w − w_n) / Δt, 0): only the motion along the belt is beyond Report I's sliding
+    Eigen::Matrix2d Q;
+    Q.col(0) = tangent_[i], Q.col(1) = normal(i);
+    const FlankSlidePoint p = flank_slide_point(Eigen::Vector2d((offset(i, x) - committed_offset_[i]) / dt_s_, 0.0),
+                                                levels_.friction_lr_N_mm3[e], levels_.slide_mm_s[e],
+                                                levels_.slide_floor_mm_s);
+    b += Q * p.b_lr_N_mm3;
+    db += Q * p.db_dv_lr.col(0) * tangent_[i].transpose() / dt_s_;  // ∂u̇/∂x = (tᵀ/Δt, 0): unsymmetric
+  }
+  return true;
+}
+
+void FlankContact::commit(const ConvergedLoads& state) {
+  if (!history_) return;
+  const std::vector<Eigen::Vector2d>& x = *state.point_x_mm;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const int e = static_cast<int>(i / points_);
+    next_offset_[i] = offset(i, x[i]);
+    next_time_s_ = levels_.time_s;
+    next_slip_[i] = flank_stick_point(offset(i, x[i]), slip_[i], stick_ && sticks(e) ? levels_.stick_N_mm4[e] : 0.0,
+                                      levels_.stick_limit_N_mm3[e])
+                        .slip_after_mm;
+    pending_ = true;
+  }
+}
+
+}  // namespace
+
+LoadPtr flank_contact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
+                      const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at, bool stick,
+                      bool slide, std::function<void(double, FlankLevels&)> levels) {
+  return std::make_shared<FlankContact>(m, path_x_mm, integration, reference_curve, std::move(curve_at), stick, slide,
+                                        std::move(levels));
+}
+
+LoadPtr flank_foundation(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
+                         const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at,
+                         std::function<void(double, std::vector<double>&)> stiffness) {
   return flank_contact(m, path_x_mm, integration, reference_curve, std::move(curve_at), false, false,
                        [stiffness = std::move(stiffness)](double lambda, FlankLevels& levels) {
                          stiffness(lambda, levels.radial_N_mm4);

@@ -30,9 +30,19 @@ BackwardEulerInertia::BackwardEulerInertia(std::vector<double> mass_t_mm, FrameM
     : mass_(std::move(mass_t_mm)), frame_(std::move(frame)),
       frame_u_(mass_.size(), Eigen::Vector2d::Zero()), w_n_(frame_u_), v_n_(frame_u_) {}
 
-void BackwardEulerInertia::begin(double lambda, double dt_s) {
-  dt_s_ = dt_s;
-  if (frame_) frame_(lambda, frame_u_);
+void BackwardEulerInertia::begin(const LoadStep& step) {
+  if (pending_) take_history(*step.u_mm), pending_ = false;
+  dt_s_ = step.dt_s;
+  if (frame_) frame_(step.lambda, frame_u_);
+}
+
+void BackwardEulerInertia::add(LoadAssembly& to) const {
+  if (!active()) return;
+  for (int n = 0; n < to.node_count(); ++n) {
+    if (!to.moves(n)) continue;
+    to.add_node_force(n, force(n, to.u(n)));
+    to.add_node_stiffness(n, stiffness(n));
+  }
 }
 
 Eigen::Vector2d BackwardEulerInertia::force(int a, const Eigen::Vector2d& u) const {
@@ -41,7 +51,7 @@ Eigen::Vector2d BackwardEulerInertia::force(int a, const Eigen::Vector2d& u) con
   return mass_[a] * (w - w_n_[a] - dt_s_ * v_n_[a]) / (dt_s_ * dt_s_);
 }
 
-void BackwardEulerInertia::commit(const std::vector<Eigen::Vector2d>& u) {
+void BackwardEulerInertia::take_history(const std::vector<Eigen::Vector2d>& u) {
   for (std::size_t a = 0; a < u.size(); ++a) {
     const Eigen::Vector2d w = u[a] - frame_u_[a];
     v_n_[a] = active() ? Eigen::Vector2d((w - w_n_[a]) / dt_s_) : Eigen::Vector2d::Zero();

@@ -43,7 +43,7 @@ class Newton {
   // A shift scaled below this is dropped (the iteration is back in Newton's basin).
   static constexpr double kNegligibleShift = 1e-9;
 
-  Newton(const Assembler& a, Pattern& K, LinearSolver& linear, const Dofs& d, const SolverKnobs& knobs,
+  Newton(const Assembler& a, Pattern& K, LinearSolver& linear, const Dofs& d, const NewtonOptions& knobs,
          Eigen::VectorXd& q)
       : a_(a), K_(K), linear_(linear), d_(d), knobs_(knobs), q_(q), diagonal_(diagonal_slots(K.K)) {}
 
@@ -93,7 +93,7 @@ class Newton {
   Pattern& K_;
   LinearSolver& linear_;
   const Dofs& d_;
-  const SolverKnobs& knobs_;
+  const NewtonOptions& knobs_;
   Eigen::VectorXd& q_;
   Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values

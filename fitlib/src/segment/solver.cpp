@@ -44,19 +44,44 @@ using detail::ordered_pattern;
 constexpr double kRetakeRotation_mm = 1e-4;
 
 // Increment targets: the schedule's breakpoints, or `steps` equal increments of λ.
-std::vector<double> breakpoints(const SolverKnobs& knobs) {
-  if (!knobs.schedule.empty()) {
-    for (std::size_t k = 0; k < knobs.schedule.size(); ++k)
-      if (!(knobs.schedule[k] > (k ? knobs.schedule[k - 1] : 0.0)) || knobs.schedule[k] > 1.0)
+std::vector<double> breakpoints(const SteppingOptions& stepping) {
+  const std::vector<double>& schedule = stepping.schedule;
+  if (!schedule.empty()) {
+    for (std::size_t k = 0; k < schedule.size(); ++k)
+      if (!(schedule[k] > (k ? schedule[k - 1] : 0.0)) || schedule[k] > 1.0)
         throw core::UsageError("segment: the load schedule must increase within (0, 1]");
-    std::vector<double> b = knobs.schedule;
+    std::vector<double> b = schedule;
     if (b.back() < 1.0) b.push_back(1.0);
     return b;
   }
   std::vector<double> b;
-  const int n = std::max(1, knobs.steps);
+  const int n = std::max(1, stepping.steps);
   for (int k = 1; k <= n; ++k) b.push_back(static_cast<double>(k) / n);
   return b;
+}
+
+// The dynamics' inertia load (PhysicsOptions::inertia; segment/inertia.hpp), when the problem has a
+// mass and a time; null otherwise.
+std::unique_ptr<detail::BackwardEulerInertia> make_inertia(const StaticProblem& p, const SolverKnobs& knobs) {
+  if (!(knobs.physics.inertia && p.density_t_mm3 > 0.0 && p.time_s)) return nullptr;
+  detail::BackwardEulerInertia::FrameMotion frame;
+  if (p.motion->has_frame())
+    frame = [motion = p.motion](double lambda, std::vector<Eigen::Vector2d>& u) { motion->frame_motion(lambda, u); };
+  return std::make_unique<detail::BackwardEulerInertia>(detail::lumped_masses(*p.mesh, p.density_t_mm3), frame);
+}
+
+// The problem's loads in their order, then the solver's own (the inertia).
+std::vector<Load*> loads_of(const StaticProblem& p, Load* inertia) {
+  std::vector<Load*> loads;
+  for (const LoadPtr& load : p.loads) loads.push_back(load.get());
+  if (inertia) loads.push_back(inertia);
+  return loads;
+}
+
+// LDLᵀ when every law's tangent, the element's and every load's are symmetric.
+bool symmetric_problem(const StaticProblem& p, const SolverKnobs& knobs) {
+  return p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() && symmetric_tangent(knobs.physics.integration) &&
+         std::all_of(p.loads.begin(), p.loads.end(), [](const LoadPtr& load) { return load->symmetric(); });
 }
 
 // One run of solve_static: Newton increments from λ = 0 to 1 with step cuts that grow back.
@@ -64,30 +89,27 @@ class StaticRun {
  public:
   StaticRun(const StaticProblem& p, const SolverKnobs& knobs)
       : p_(p), knobs_(knobs), m_(*p.mesh), d_(number_dofs(p)), angles_(p.constraints.size()),
-        pool_(solver_threads(knobs)),
-        assembler_(p, d_, gauss_order(m_, knobs.integration), knobs.integration == Integration::fbar, pool_),
+        pool_(solver_threads(knobs)), inertia_(make_inertia(p, knobs)),
+        assembler_(p, d_, gauss_order(m_, knobs.physics.integration), knobs.physics.integration == Integration::fbar, pool_,
+                   loads_of(p, inertia_.get())),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
-        linear_(p.pressure_MPa == 0.0 && p.laws[0]->symmetric_tangent() && p.laws[1]->symmetric_tangent() &&
-                symmetric_tangent(knobs.integration) && (!p.following_force.at || p.following_force.symmetric)),
-        pattern_(linear_.symmetric() || knobs.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
-        newton_(assembler_, pattern_, linear_, d_, knobs, q_), values_(p.constraints.size()) {
+        linear_(symmetric_problem(p, knobs)),
+        pattern_(linear_.symmetric() || knobs.newton.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
+        newton_(assembler_, pattern_, linear_, d_, knobs.newton, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
+    assembler_.set_diagonal(&newton_.diagonal());
     out_.equations = d_.equations;
-    if (knobs.inertia && p.density_t_mm3 > 0.0 && p.time_s) {  // dynamics hook (SolverKnobs::inertia)
-      inertia_ = std::make_unique<detail::BackwardEulerInertia>(detail::lumped_masses(m_, p.density_t_mm3), p.frame_motion);
-      assembler_.set_inertia(inertia_.get(), &newton_.diagonal());
-    }
     out_.threads = pool_.threads();
   }
 
   StaticSolution run() {
-    const std::vector<double> targets = breakpoints(knobs_);
+    const std::vector<double> targets = breakpoints(knobs_.stepping);
     std::size_t next = 0;
     while (next < targets.size()) {
       const double target = std::min(targets[next], lambda_ + max_step_);
       if (increment(target)) {
         if (target >= targets[next]) ++next;
-      } else if (++cuts_in_row_ > knobs_.max_cuts) {
+      } else if (++cuts_in_row_ > knobs_.stepping.max_cuts) {
         fail(out_.increments + 1, target, last_.bad_element, last_.residual, last_.iterations);
       } else {
         max_step_ = 0.5 * (target - lambda_);
@@ -111,7 +133,7 @@ class StaticRun {
   // q with the prescribed components at λ.
   Eigen::VectorXd prescribed_at(double lambda) {
     Eigen::VectorXd qp = q_;
-    p_.prescribe(lambda, values_);
+    p_.motion->values(lambda, values_);
     for (std::size_t c = 0; c < p_.constraints.size(); ++c)
       for (int k = 0; k < 2; ++k)
         if (p_.constraints[c].fixed[k]) qp(2 * p_.constraints[c].node + k) = values_[c][k];
@@ -125,7 +147,7 @@ class StaticRun {
     msg << ")";
     if (element >= 0) msg << ", element " << element << " inverted or with a non-finite stress";
     msg << ", free residual " << residual << " N/mm after " << iterations << " iterations and "
-        << knobs_.max_cuts << " step cuts";
+        << knobs_.stepping.max_cuts << " step cuts";
     // Where: on the complete level a residual stuck near one node with no inverted element is a fold
     // of the load path there (docs/segment.md "Cost", "Diagnosis at the failing state");
     // `diagnose_failure` says which.
@@ -178,14 +200,16 @@ class StaticRun {
         if (d_.eq[2 * a + k] >= 0) rl(k) = 0.0;
       s.reaction_N_mm[a] = d_.R[a] * rl;
     }
-    s.inertia_N_mm = assembler_.inertia_forces(q_);
-    s.following_N_mm = assembler_.following_forces(q_);
+    s.inertia_N_mm.clear();
+    for (int a = 0; inertia_ && a < nn_; ++a)
+      s.inertia_N_mm.push_back(assembler_.moves(a) ? inertia_->force(a, s.u_mm[a]) : Eigen::Vector2d::Zero());
+    s.following_N_mm = assembler_.point_load_forces(q_);
   }
 
   // Turn the constrained bases to λ = target, keeping the displacements.
   void rotate_bases(double target) {
-    if (!p_.rotate) return;
-    p_.rotate(target, angles_);
+    if (!p_.motion->has_frame()) return;
+    p_.motion->angles(target, angles_);
     for (std::size_t c = 0; c < p_.constraints.size(); ++c) {
       const int n = p_.constraints[c].node;
       const Eigen::Vector2d u = d_.R[n] * q_.segment<2>(2 * n);
@@ -198,7 +222,7 @@ class StaticRun {
   // bases already turned), x the converged position: what the linear predictor leaves out of a
   // finite rotation.
   Eigen::VectorXd rotation_terms(double target) {
-    p_.frame_turn(lambda_, target, turns_);
+    p_.motion->frame_turn(lambda_, target, turns_);
     Eigen::VectorXd extra = Eigen::VectorXd::Zero(2 * nn_);
     for (int a = 0; a < nn_; ++a) {
       const double th = turns_[a].angle_rad;
@@ -224,19 +248,19 @@ class StaticRun {
     const Eigen::VectorXd q_saved = q_;
     const double dt = time_at(target) - time_at(lambda_);
     assembler_.set_step(states_.committed.data(), states_.trial.data(), dt);
-    begin_inertia(target, dt);
+    assembler_.begin(q_, target, dt);
     // Start: the free dofs extrapolated from the last increment (capped at its size, the history
     // turns at transitions); or, first and after a cut, the linear predictor K_fp·Δq_p on a fresh
     // tangent.
     Eigen::VectorXd q_start = prescribed_at(target);
-    const bool extrapolate = (knobs_.extrapolate_start || (knobs_.reuse_tangent && have_factor_)) &&
+    const bool extrapolate = (knobs_.stepping.extrapolate_start || (knobs_.newton.reuse_tangent && have_factor_)) &&
                              cuts_in_row_ == 0 && velocity_.size() == q_.size();
     if (extrapolate) {
       const double ratio = std::min(1.0, (target - lambda_) / last_dlambda_);
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
-    const bool rotated = knobs_.rotated_predictor && p_.frame_turn && !extrapolate;
+    const bool rotated = knobs_.stepping.rotated_predictor && p_.motion->has_frame() && !extrapolate;
     Eigen::VectorXd rotation = rotated ? rotation_terms(target) : Eigen::VectorXd();
     // Without terms this small the retake starts where this try did, to within Newton's first
     // correction: measured, such retakes never converged where the try had not (docs/segment.md
@@ -263,7 +287,7 @@ class StaticRun {
       for (IncrementObserver* observer : p_.observers) observer->converged(target, view);
     }
     states_.committed.swap(states_.trial);  // the last assembly was at the converged q
-    assembler_.commit_following(q_);        // prepared at target by that assembly
+    assembler_.commit(q_, target);          // the loads' histories (prepared at target by that assembly)
     velocity_ = q_ - q_saved;
     last_dt_ = dt;
     last_dlambda_ = target - lambda_;
@@ -271,23 +295,9 @@ class StaticRun {
     out_.increments++;
     out_.final_residual = last_.residual;
     cuts_in_row_ = 0;
-    if (knobs_.growth_iterations <= 0 || last_.iterations <= knobs_.growth_iterations)
+    if (knobs_.stepping.growth_iterations <= 0 || last_.iterations <= knobs_.stepping.growth_iterations)
       max_step_ = std::min(2.0, 2.0 * max_step_);  // a cut step grows back after an easy success
-    inertia_pending_ = true;
     return true;
-  }
-
-  // The inertia's history takes the last converged increment's motion when the next one begins (so
-  // the final snapshot still sees the last increment's step), then the step to `target`.
-  void begin_inertia(double target, double dt) {
-    if (!inertia_) return;
-    if (inertia_pending_) {
-      std::vector<Eigen::Vector2d> u(nn_);
-      for (int a = 0; a < nn_; ++a) u[a] = assembler_.u_of(q_, a);
-      inertia_->commit(u);
-      inertia_pending_ = false;
-    }
-    inertia_->begin(target, dt);
   }
 
   const StaticProblem& p_;
@@ -296,6 +306,7 @@ class StaticRun {
   Dofs d_;
   std::vector<double> angles_;
   detail::WorkerPool pool_;
+  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // PhysicsOptions::inertia (null: off)
   Assembler assembler_;
   StateBlock states_;
   std::vector<double> scratch_;
@@ -311,9 +322,7 @@ class StaticRun {
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
-  std::vector<StaticProblem::FrameTurn> turns_;
-  std::unique_ptr<detail::BackwardEulerInertia> inertia_;  // SolverKnobs::inertia
-  bool inertia_pending_ = false;
+  std::vector<FrameTurn> turns_;
 };
 
 }  // namespace
@@ -324,7 +333,7 @@ int solver_threads(const SolverKnobs& knobs) {
 }
 
 StaticSolution solve_static(const StaticProblem& p, const SolverKnobs& knobs) {
-  if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.prescribe)
+  if (!p.mesh || !p.laws[0] || !p.laws[1] || !p.motion)
     throw core::UsageError("solve_static: mesh, both laws and the prescribed displacements are required");
   if (knobs.threads < 0) throw core::UsageError("solve_static: threads must be >= 1, or 0 for the default");
   return StaticRun(p, knobs).run();

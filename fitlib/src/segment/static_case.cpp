@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/segment/curve.hpp"
@@ -16,68 +15,6 @@ namespace fitlib::segment {
 std::vector<NamedPoint> standard_points(const CogSection& s) {
   return {{"gap_bottom", 0.0, s.bottom_y_mm(0.0)}, {"mid_cushion", 0.0, -0.5 * s.cushion_mm}};
 }
-
-namespace {
-
-// The mesh's columns: the distinct unstrained path positions and each node's column. A column's
-// nodes share one cord frame, so the frames are computed once per column.
-struct Columns {
-  std::vector<double> x_mm;
-  std::vector<int> of_node;
-};
-
-Columns columns_of(const std::vector<double>& path_x_mm) {
-  Columns c{path_x_mm, {}};
-  std::sort(c.x_mm.begin(), c.x_mm.end());
-  c.x_mm.erase(std::unique(c.x_mm.begin(), c.x_mm.end()), c.x_mm.end());
-  for (double x : path_x_mm)
-    c.of_node.push_back(static_cast<int>(std::lower_bound(c.x_mm.begin(), c.x_mm.end(), x) - c.x_mm.begin()));
-  return c;
-}
-
-// The cord curve's point and tangent angle at each column.
-std::vector<CurvePoint> column_frames(const NeutralCurve& curve, const Columns& columns) {
-  std::vector<CurvePoint> at;
-  for (double x : columns.x_mm) at.push_back(curve.at(curve.s_from_unstrained(x)));
-  return at;
-}
-
-// Each node turns with the cord's frame at its unstrained path position, as a plane section of a
-// beam does.
-std::function<void(double, double, std::vector<StaticProblem::FrameTurn>&)> cord_frame_turn(
-    const std::vector<double>& path_x_mm, std::function<NeutralCurve(double lambda)> curve_at) {
-  const Columns columns = columns_of(path_x_mm);
-  return [columns, curve_at](double from, double to, std::vector<StaticProblem::FrameTurn>& turns) {
-    const std::vector<CurvePoint> a = column_frames(curve_at(from), columns), b = column_frames(curve_at(to), columns);
-    turns.resize(columns.of_node.size());
-    for (std::size_t n = 0; n < turns.size(); ++n) {
-      const CurvePoint &pa = a[columns.of_node[n]], &pb = b[columns.of_node[n]];
-      turns[n] = {pa.phi_rad - pb.phi_rad, {pa.x_mm, pa.y_mm}};  // φ turns clockwise
-    }
-  };
-}
-
-// Each node carried rigidly with its column's cord frame from the reference (λ = 0): the motion the
-// segment's inertia is measured against (SolverKnobs::inertia; docs/segment.md "Inertia").
-std::function<void(double, std::vector<Eigen::Vector2d>&)> cord_frame_motion(
-    const Mesh& m, const std::vector<double>& path_x_mm, std::function<NeutralCurve(double lambda)> curve_at) {
-  const Columns columns = columns_of(path_x_mm);
-  const std::vector<CurvePoint> reference = column_frames(curve_at(0.0), columns);
-  const Mesh* mesh = &m;
-  return [mesh, columns, curve_at, reference](double lambda, std::vector<Eigen::Vector2d>& u) {
-    const std::vector<CurvePoint> now = column_frames(curve_at(lambda), columns);
-    u.resize(columns.of_node.size());
-    for (std::size_t n = 0; n < u.size(); ++n) {
-      const CurvePoint &c = now[columns.of_node[n]], &c0 = reference[columns.of_node[n]];
-      const double th = c0.phi_rad - c.phi_rad;  // φ turns clockwise
-      const Eigen::Vector2d r = mesh->X[n] - Eigen::Vector2d(c0.x_mm, c0.y_mm);
-      const Eigen::Vector2d x = Eigen::Vector2d(c.x_mm, c.y_mm) + Eigen::Rotation2Dd(th).toRotationMatrix() * r;
-      u[n] = x - mesh->X[n];
-    }
-  };
-}
-
-}  // namespace
 
 StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_x_mm,
                                  const std::array<const PlaneStrainLaw*, 2>& laws,
@@ -92,35 +29,11 @@ StaticProblem cord_curve_problem(const Mesh& m, const std::vector<double>& path_
     for (const auto* side : {&m.left_nodes, &m.right_nodes})
       for (int n : *side)
         if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, {true, false}});
-  // Bases at full load (the CalculiX deck uses them); the solver turns them with λ (rotate).
+  // Bases at full load (the CalculiX deck uses them); the solver turns them with λ (PrescribedMotion::angles).
   const NeutralCurve full = curve_at(1.0);
   for (std::size_t c = n_top; c < p.constraints.size(); ++c)
     p.constraints[c].angle_rad = -full.at(full.s_from_unstrained(path_x_mm[p.constraints[c].node])).phi_rad;  // e0 = tangent
-  const Mesh* mesh = &m;
-  const std::vector<NodeConstraint> constraints = p.constraints;
-  p.prescribe = [mesh, constraints, n_top, curve_at, path_x_mm, end_shift_mm](double lambda,
-                                                                              std::vector<std::array<double, 2>>& v) {
-    const NeutralCurve curve = curve_at(lambda);
-    for (std::size_t c = 0; c < constraints.size(); ++c) {
-      const int node = constraints[c].node;
-      const Eigen::Vector2d& X = mesh->X[node];
-      const CurvePoint q = curve.at(curve.s_from_unstrained(path_x_mm[node]));
-      if (c < n_top) {
-        v[c] = {q.x_mm - X.x(), q.y_mm - X.y()};
-      } else {  // stay on the radial line through the cord point: (x − q)·t = 0
-        const Eigen::Vector2d t(std::cos(q.phi_rad), -std::sin(q.phi_rad));
-        const Eigen::Vector2d r = Eigen::Vector2d(q.x_mm, q.y_mm) - X;
-        v[c] = {r.dot(t) + (end_shift_mm ? end_shift_mm(node, lambda) : 0.0), 0.0};
-      }
-    }
-  };
-  p.frame_turn = cord_frame_turn(path_x_mm, curve_at);
-  p.frame_motion = cord_frame_motion(m, path_x_mm, curve_at);
-  p.rotate = [constraints, n_top, curve_at, path_x_mm](double lambda, std::vector<double>& angles) {
-    const NeutralCurve curve = curve_at(lambda);
-    for (std::size_t c = n_top; c < angles.size(); ++c)
-      angles[c] = -curve.at(curve.s_from_unstrained(path_x_mm[constraints[c].node])).phi_rad;
-  };
+  p.motion = cord_line(m, p.constraints, n_top, path_x_mm, std::move(curve_at), std::move(end_shift_mm));
   return p;
 }
 
@@ -132,7 +45,7 @@ StaticProblem static_problem(const Mesh& m, const std::array<const PlaneStrainLa
   StaticProblem p = cord_curve_problem(m, path_x, laws, [load, L](double lambda) {
     return NeutralCurve::uniform(lambda * load.curvature_1_mm, lambda * load.strain, 1.5 * L);
   }, ends);
-  p.pressure_MPa = load.pressure_MPa;
+  if (load.pressure_MPa != 0.0) p.loads.push_back(std::make_shared<FollowerPressure>(m, load.pressure_MPa));
   return p;
 }
 
@@ -197,21 +110,21 @@ StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, S
   const NeutralCurve curve = NeutralCurve::uniform(load.curvature_1_mm, load.strain, 1.5 * m.half_length_mm);
   std::vector<NamedPoint> points = standard_points(setup.section);
   points.insert(points.end(), setup.points.begin(), setup.points.end());
-  for (const auto& pt : points) r.stresses.push_back(local_stress(m, s, pt, curve, setup.solver.integration));
+  for (const auto& pt : points) r.stresses.push_back(local_stress(m, s, pt, curve, setup.solver.physics.integration));
   for (int n : m.top_nodes) {
     const Eigen::Vector2d f = s.reaction_N_mm[n], x = m.X[n] + s.u_mm[n];
     r.cord_reaction_N_mm += f;
     r.cord_moment_N += x.y() * f.x() - x.x() * f.y();
   }
-  r.mid_section = section_force(p, s, 0.0, origin, setup.solver.integration);
+  r.mid_section = section_force(p, s, 0.0, origin, setup.solver.physics.integration);
   if (setup.stiffness) {  // small cases from the unloaded state: secants there are the tangents
     SolverKnobs one = setup.solver;
-    one.steps = 1;
+    one.stepping.steps = 1;
     const double eps = 1e-5, K = 1e-6;
     const StaticProblem ps = static_problem(m, laws, {eps, 0.0, 0.0}, setup.ends);
-    r.c_N_per_mm = section_force(ps, solve_static(ps, one), 0.0, origin, one.integration).force_N_mm.x() / eps;
+    r.c_N_per_mm = section_force(ps, solve_static(ps, one), 0.0, origin, one.physics.integration).force_N_mm.x() / eps;
     const StaticProblem pb = static_problem(m, laws, {0.0, K, 0.0}, setup.ends);
-    r.EI_Nmm2_per_mm = section_force(pb, solve_static(pb, one), 0.0, origin, one.integration).moment_N / K;
+    r.EI_Nmm2_per_mm = section_force(pb, solve_static(pb, one), 0.0, origin, one.physics.integration).moment_N / K;
   }
   r.elements = m.element_count();
   r.nodes = m.node_count();

@@ -400,7 +400,7 @@ TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
     return std::any_of(w.begin(), w.end(), [&](const std::string& x) { return x.rfind(text, 0) == 0; });
   };
   for (const double tolerance : {1e-9, 1e-3}) {
-    setup.solver.tolerance = tolerance, setup.solver.stall_tolerance = std::max(tolerance, 1e-5);
+    setup.solver.newton.tolerance = tolerance, setup.solver.newton.stall_tolerance = std::max(tolerance, 1e-5);
     const scene::SegmentEquilibrium check = scene::segment_equilibrium(scene::segment_run(cycle, drive, setup));
     const bool loose = tolerance > 1e-6;
     EXPECT_EQ(check.within_bounds(), !loose) << "tolerance " << tolerance << ": error " << check.equilibrium_error;

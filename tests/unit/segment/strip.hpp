@@ -32,9 +32,9 @@ inline StaticProblem held_strip(const Mesh& m, const PlaneStrainLaw& law, std::a
   for (const auto* side : {&m.left_nodes, &m.right_nodes})
     for (int n : *side)
       if (n != m.top_nodes.front() && n != m.top_nodes.back()) p.constraints.push_back({n, 0.0, end_held});
-  p.prescribe = [](double, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([](double, std::vector<std::array<double, 2>>& v) {
     for (auto& x : v) x = {0.0, 0.0};
-  };
+  });
   return p;
 }
 

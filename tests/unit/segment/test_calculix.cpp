@@ -30,7 +30,7 @@ StaticSetup oracle_setup(ElasticLaw law) {
   setup.materials = {IsotropicElastic{20.0, 0.4995}, IsotropicElastic{8.0, 0.4995}};
   setup.mesh.fine_size_mm = 0.6;
   setup.mesh.coarse_size_mm = 2.0;
-  setup.solver.steps = 4;
+  setup.solver.stepping.steps = 4;
   setup.stiffness = false;
   return setup;
 }
@@ -59,7 +59,7 @@ void compare_with_calculix(const std::string& name, const StaticLoad& load, Elas
   std::vector<StaticSolution> ours(elements.size());
   Mesh mesh;
   for (std::size_t k = 0; k < elements.size(); ++k) {
-    setup.solver.integration = elements[k];
+    setup.solver.physics.integration = elements[k];
     run_static_case(setup, load, &ours[k], &mesh);
   }
   Mesh ccx_mesh;
@@ -129,7 +129,7 @@ TEST(SegmentCalculix, CushionStressOfBothElementsWithOneCushionRowAgreesWithCalc
   Mesh mesh;
   const std::array<Integration, 2> elements{Integration::reduced, Integration::fbar};
   for (int k = 0; k < 2; ++k) {
-    setup.solver.integration = elements[k];
+    setup.solver.physics.integration = elements[k];
     run_static_case(setup, load, &ours[k], &mesh);
   }
   for (double x : {0.9, 1.5, 2.1}) {

@@ -206,10 +206,10 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
   auto run = [&](int iterations, double tolerance) {
     Fixture f;
     f.knobs.cycles = 1;
-    f.solver.krylov_iterations = iterations, f.solver.krylov_tolerance = tolerance;
+    f.solver.newton.krylov_iterations = iterations, f.solver.newton.krylov_tolerance = tolerance;
     return f.run(visco, visco);
   };
-  const CycleResult lu = run(0, 1e-8), gmres = run(SolverKnobs{}.krylov_iterations, SolverKnobs{}.krylov_tolerance),
+  const CycleResult lu = run(0, 1e-8), gmres = run(SolverKnobs{}.newton.krylov_iterations, SolverKnobs{}.newton.krylov_tolerance),
                     fallback = run(1, 1e-300);
   EXPECT_FALSE(gmres.final_state.symmetric_solver);
   EXPECT_EQ(lu.final_state.krylov_iterations, 0);
@@ -232,7 +232,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
   // Modified Newton keeps the LU for its later steps: no GMRES there, and the same solution.
   Fixture modified;
   modified.knobs.cycles = 1;
-  modified.solver.reuse_tangent = true;
+  modified.solver.newton.reuse_tangent = true;
   const CycleResult reused = modified.run(visco, visco);
   EXPECT_EQ(reused.final_state.krylov_iterations, 0);
   const CycleSample &a = point(reused, "gap_bottom").samples.back(), &b = point(lu, "gap_bottom").samples.back();
@@ -246,7 +246,7 @@ TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
   Fixture f(synthetic_cycle());
   f.knobs.cycles = 1;
   f.knobs.manufactured_radius_mm = 0.8;  // tighter than the section is high: elements invert
-  f.solver.max_cuts = 2;
+  f.solver.stepping.max_cuts = 2;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   try {
     f.run(*bottom, *cushion);

@@ -45,12 +45,12 @@ std::string failure_message(const PlaneStrainLaw& law) {
   p.laws = {&law, &law};
   for (int n : m.left_nodes) p.constraints.push_back({n, 0.0, {true, true}});
   for (int n : m.right_nodes) p.constraints.push_back({n, 0.0, {true, false}});
-  p.prescribe = [&](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([&](double lambda, std::vector<std::array<double, 2>>& v) {
     for (std::size_t c = 0; c < p.constraints.size(); ++c)
       v[c] = {m.X[p.constraints[c].node].x() > 0.0 ? lambda * 0.2 * 2.0 * m.half_length_mm : 0.0, 0.0};
-  };
+  });
   SolverKnobs knobs;
-  knobs.steps = 1, knobs.max_iterations = 2, knobs.max_cuts = 0, knobs.levenberg = 0.0;
+  knobs.stepping.steps = 1, knobs.newton.max_iterations = 2, knobs.stepping.max_cuts = 0, knobs.newton.levenberg = 0.0;
   knobs.diagnose_failure = true;
   try {
     solve_static(p, knobs);

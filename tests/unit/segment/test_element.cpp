@@ -60,16 +60,16 @@ StaticSolution expect_patch_exact(Integration integration, const MeshKnobs& k = 
   p.mesh = &m;
   p.laws = {law.get(), law.get()};
   for (int n : boundary_nodes(m)) p.constraints.push_back({n, 0.0, {true, true}});
-  p.prescribe = [&](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([&](double lambda, std::vector<std::array<double, 2>>& v) {
     const Eigen::Matrix2d Fl = Eigen::Matrix2d::Identity() + lambda * (F - Eigen::Matrix2d::Identity());
     for (std::size_t c = 0; c < p.constraints.size(); ++c) {
       const Eigen::Vector2d u = (Fl - Eigen::Matrix2d::Identity()) * m.X[p.constraints[c].node];
       v[c] = {u.x(), u.y()};
     }
-  };
+  });
   SolverKnobs knobs;
-  knobs.steps = 2;
-  knobs.integration = integration;
+  knobs.stepping.steps = 2;
+  knobs.physics.integration = integration;
   const StaticSolution s = solve_static(p, knobs);
   double worst_u = 0.0, worst_s = 0.0;
   const PointResponse exact = law->respond(F);
@@ -134,15 +134,15 @@ double bending_moment_ratio(int nodes_per_element, Integration integration, doub
       if (side == 0 && mid) anchor = n;
     }
   EXPECT_GE(anchor, 0);
-  p.prescribe = [&](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([&](double lambda, std::vector<std::array<double, 2>>& v) {
     for (std::size_t c = 0; c < p.constraints.size(); ++c) {
       const Eigen::Vector2d& X = m.X[p.constraints[c].node];
       v[c] = {lambda * K * X.x() * (X.y() + 0.5 * h), 0.0};
     }
-  };
+  });
   SolverKnobs knobs;
-  knobs.steps = 1;
-  knobs.integration = integration;
+  knobs.stepping.steps = 1;
+  knobs.physics.integration = integration;
   const StaticSolution s = solve_static(p, knobs);
   int mid = -1;
   for (int a = 0; a < m.node_count(); ++a)
@@ -229,11 +229,11 @@ TEST(SegmentElement, FbarTangentIsUnsymmetricAndTheSolverUsesLu) {
 // converged stresses are the same (the start changes, not the equations).
 TEST(SegmentElement, RotatedPredictorSavesIterationsAndKeepsTheSolution) {
   StaticSetup setup;
-  setup.solver.steps = 4;
+  setup.solver.stepping.steps = 4;
   setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5;
   const StaticLoad bend{0.0, 1.0 / 40.0, 0.0};
   const StaticResult rotated = run_static_case(setup, bend);
-  setup.solver.rotated_predictor = false;
+  setup.solver.stepping.rotated_predictor = false;
   const StaticResult linear = run_static_case(setup, bend);
   std::printf("Newton iterations: rotated predictor %d, linear %d\n", rotated.newton_iterations, linear.newton_iterations);
   EXPECT_LT(rotated.newton_iterations, linear.newton_iterations);

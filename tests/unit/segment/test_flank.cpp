@@ -29,7 +29,7 @@ constexpr double kHeight_mm = test::kStripHeight_mm;
 using test::strip;
 
 // The strip's foundation on a straight cord line that stays put, k everywhere.
-StaticProblem::FollowingForce straight_foundation(const Mesh& m, double k) {
+LoadPtr straight_foundation(const Mesh& m, double k) {
   std::vector<double> path_x;
   for (const Eigen::Vector2d& X : m.X) path_x.push_back(X.x());
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
@@ -38,7 +38,7 @@ StaticProblem::FollowingForce straight_foundation(const Mesh& m, double k) {
 }
 
 // The strip's stick (and radial k) on a cord curve that stays put, the same values in every element.
-StaticProblem::FollowingForce stick_contact(const Mesh& m, const NeutralCurve& curve, double k, double k_t, double limit) {
+LoadPtr stick_contact(const Mesh& m, const NeutralCurve& curve, double k, double k_t, double limit) {
   std::vector<double> path_x;
   for (const Eigen::Vector2d& X : m.X) path_x.push_back(X.x());
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
@@ -85,9 +85,8 @@ TEST(SegmentFlank, StickForceAndTangentMatchCentralDifferencesAndTheSlipIsCommit
   const std::vector<double> K_neg{0.02, 0.0, 0.03}, eps_neg{0.01, 0.008, 0.0, 0.02};
   const NeutralCurve curve(3.0, K_pos, eps_pos, K_neg, eps_neg);
   const double k = 0.05, h = 1e-6, wide = 0.1;  // wide: stick within ±0.33 mm of the column
-  StaticProblem::FollowingForce f = stick_contact(m, curve, k, k_t, wide);
-  ASSERT_TRUE(f.commit);
-  f.prepare(1.0);
+  const LoadPtr f = stick_contact(m, curve, k, k_t, wide);
+  f->prepare(1.0);
   const int points = 4;  // reduced rule on the 8-node strip: 2 × 2
   int checked = 0, slipped = 0;
   for (int e = 0; e < m.element_count(); e += 3)
@@ -100,19 +99,19 @@ TEST(SegmentFlank, StickForceAndTangentMatchCentralDifferencesAndTheSlipIsCommit
       const Eigen::Vector2d x = Eigen::Vector2d(c.x_mm, c.y_mm) - (1.0 + 0.4 * g) * n + 0.1 * (e % 7 - 3) * Eigen::Vector2d(1.0, 0.3);
       Eigen::Vector2d b, b_plus, b_minus;
       Eigen::Matrix2d db, unused;
-      ASSERT_TRUE(f.at(e, g, x, b, db));
+      ASSERT_TRUE(f->at_point(e, g, x, b, db));
       EXPECT_NEAR((db - db.transpose()).norm(), 0.0, 1e-15);  // a gradient field at the committed slip
       for (int j = 0; j < 2; ++j) {
         const Eigen::Vector2d step = Eigen::Vector2d::Unit(j) * h;
-        f.at(e, g, x + step, b_plus, unused), f.at(e, g, x - step, b_minus, unused);
+        f->at_point(e, g, x + step, b_plus, unused), f->at_point(e, g, x - step, b_minus, unused);
         EXPECT_LT(((b_plus - b_minus) / (2.0 * h) - db.col(j)).norm(), 1e-7 * k_t) << "element " << e << " point " << g;
       }
       // Without the radial part the force is along the column's tangent, −k_t w or ∓limit.
       Eigen::Vector2d radial_b;
       Eigen::Matrix2d radial_db;
-      StaticProblem::FollowingForce radial = stick_contact(m, curve, k, 0.0, wide);
-      radial.prepare(1.0);
-      radial.at(e, g, x, radial_b, radial_db);
+      const LoadPtr radial = stick_contact(m, curve, k, 0.0, wide);
+      radial->prepare(1.0);
+      radial->at_point(e, g, x, radial_b, radial_db);
       const double along = (b - radial_b).norm();
       EXPECT_TRUE(std::abs(along - wide) < 1e-15 || along < wide) << along;
       slipped += std::abs(along - wide) < 1e-15;
@@ -126,24 +125,25 @@ TEST(SegmentFlank, StickForceAndTangentMatchCentralDifferencesAndTheSlipIsCommit
   const int e = 0, g = 0;
   Eigen::Vector2d b0, b1, b2;
   Eigen::Matrix2d db0;
-  StaticProblem::FollowingForce only = stick_contact(m, curve, 0.0, k_t, limit);
-  only.prepare(1.0);
+  const LoadPtr only = stick_contact(m, curve, 0.0, k_t, limit);
+  only->prepare(1.0);
   double X = 0.0;
   for (int a = 0; a < 4; ++a) X += 0.25 * m.X[m.elements[e][a]].x();
   const CurvePoint c = curve.at(curve.s_from_unstrained(X));
   const Eigen::Vector2d t(std::cos(c.phi_rad), -std::sin(c.phi_rad));
-  only.at(e, g, Eigen::Vector2d(c.x_mm, c.y_mm), b0, db0);  // the offset of this point from its own column
+  only->at_point(e, g, Eigen::Vector2d(c.x_mm, c.y_mm), b0, db0);  // the offset of this point from its own column
   const double w0 = -b0.dot(t) / k_t;  // it sticks there (|w0| < limit / k_t: within the element)
   const Eigen::Vector2d x_slip = Eigen::Vector2d(c.x_mm, c.y_mm) + (3.0 * limit / k_t - w0) * t;  // w = 3 limit / k_t
-  only.at(e, g, x_slip, b1, db0);
+  only->at_point(e, g, x_slip, b1, db0);
   EXPECT_NEAR(b1.dot(t), -limit, 1e-15);
   EXPECT_EQ(db0.norm(), 0.0);
-  only.commit(e, g, x_slip);
-  only.prepare(1.0);  // the commit takes effect at the next level
-  only.at(e, g, x_slip, b1, db0);
+  const std::vector<Eigen::Vector2d> at_slip(m.element_count() * points, x_slip);  // point (e, g) among them
+  only->commit({1.0, nullptr, &at_slip, points});
+  only->prepare(1.0);  // the commit takes effect at the next level
+  only->at_point(e, g, x_slip, b1, db0);
   EXPECT_NEAR(b1.dot(t), -limit, 1e-15);  // the commit keeps the force
   EXPECT_NEAR(db0.norm(), k_t, 1e-12);    // and now sticks there
-  only.at(e, g, x_slip - 0.5 * limit / k_t * t, b2, db0);
+  only->at_point(e, g, x_slip - 0.5 * limit / k_t * t, b2, db0);
   EXPECT_NEAR(b2.dot(t), -0.5 * limit, 1e-15);  // elastic unloading from the slipped state
 }
 
@@ -156,11 +156,11 @@ TEST(SegmentFlank, BlockPulledAlongTheBeltSticksSlipsAndUnloadsElastically) {
   const double k_t = 0.3, limit = 0.02, U_s = limit / k_t, volume = kHeight_mm * 2.0 * m.half_length_mm;
   StaticProblem p = block_along_the_belt(m, *law, true);
   auto U = [U_s](double lambda) { return lambda <= 0.5 ? 4.0 * U_s * lambda : 2.0 * U_s - 4.0 * U_s * (lambda - 0.5); };
-  p.prescribe = [&U](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([&U](double lambda, std::vector<std::array<double, 2>>& v) {
     for (auto& x : v) x = {U(lambda), 0.0};
-  };
+  });
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
-  p.following_force = stick_contact(m, line, 0.0, k_t, limit);
+  p.loads.push_back(stick_contact(m, line, 0.0, k_t, limit));
   std::vector<std::pair<double, double>> pulled;  // λ, Σ reactions along x
   CallbackObserver watch([&](double lambda, const StaticSolution& s) {
     double r = 0.0;
@@ -169,7 +169,7 @@ TEST(SegmentFlank, BlockPulledAlongTheBeltSticksSlipsAndUnloadsElastically) {
   });
   p.observers.push_back(&watch);
   SolverKnobs knobs;
-  knobs.steps = 8;
+  knobs.stepping.steps = 8;
   solve_static(p, knobs);
   ASSERT_EQ(pulled.size(), 8u);
   for (const auto& [lambda, r] : pulled) {
@@ -187,15 +187,15 @@ TEST(SegmentFlank, FreeBlockUnderALoadAlongTheBeltSticksAtLoadOverKtAndHasNoEqui
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
   auto run = [&](double load) {
     StaticProblem p = block_along_the_belt(m, *law, false);
-    p.prescribe = [](double, std::vector<std::array<double, 2>>& v) {
+    p.motion = prescribed([](double, std::vector<std::array<double, 2>>& v) {
       for (auto& x : v) x = {0.0, 0.0};
-    };
-    p.body_force = [&m, load](double lambda, std::vector<Eigen::Vector2d>& b) {
+    });
+    p.loads.push_back(dead_body_force(m.element_count(), [&m, load](double lambda, std::vector<Eigen::Vector2d>& b) {
       b.assign(m.element_count(), Eigen::Vector2d(lambda * load, 0.0));
-    };
-    p.following_force = stick_contact(m, line, 0.0, k_t, limit);
+    }));
+    p.loads.push_back(stick_contact(m, line, 0.0, k_t, limit));
     SolverKnobs knobs;
-    knobs.steps = 4;
+    knobs.stepping.steps = 4;
     return solve_static(p, knobs);
   };
   const double load = 0.8 * limit;
@@ -240,7 +240,7 @@ TEST(SegmentFlank, SlidingFrictionTurnsWithTheRelativeVelocityAndMatchesCentralD
   for (const Eigen::Vector2d& X : m.X) path_x.push_back(X.x());
   const NeutralCurve curve(3.0, {0.02, 0.035, 0.0}, {0.01, 0.012, 0.02, 0.015}, {0.02, 0.0, 0.03}, {0.01, 0.008, 0.0, 0.02});
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
-  StaticProblem::FollowingForce f = flank_contact(m, path_x, Integration::reduced, line, [curve](double) { return curve; },
+  const LoadPtr f = flank_contact(m, path_x, Integration::reduced, line, [curve](double) { return curve; },
                                                   true, true, [&](double, FlankLevels& l) {
                                                     l.radial_N_mm4.assign(m.element_count(), 0.05);
                                                     l.stick_N_mm4.assign(m.element_count(), 0.3);
@@ -249,8 +249,8 @@ TEST(SegmentFlank, SlidingFrictionTurnsWithTheRelativeVelocityAndMatchesCentralD
                                                     l.friction_lr_N_mm3.assign(m.element_count(), Eigen::Vector2d(-0.08, 0.11));
                                                     l.slide_floor_mm_s = 5.0, l.time_s = 0.004;
                                                   });
-  EXPECT_FALSE(f.symmetric);
-  f.prepare(1.0);
+  EXPECT_FALSE(f->symmetric());
+  f->prepare(1.0);
   double asymmetry = 0.0;
   for (int e = 0; e < m.element_count(); e += 5)
     for (int g = 0; g < 4; ++g) {
@@ -260,10 +260,10 @@ TEST(SegmentFlank, SlidingFrictionTurnsWithTheRelativeVelocityAndMatchesCentralD
       const Eigen::Vector2d x = Eigen::Vector2d(c.x_mm, c.y_mm) - (0.8 + 0.5 * g) * Eigen::Vector2d(std::sin(c.phi_rad), std::cos(c.phi_rad));
       Eigen::Vector2d b, bp, bm;
       Eigen::Matrix2d db, unused;
-      ASSERT_TRUE(f.at(e, g, x, b, db));
+      ASSERT_TRUE(f->at_point(e, g, x, b, db));
       for (int j = 0; j < 2; ++j) {
         const Eigen::Vector2d step = Eigen::Vector2d::Unit(j) * 1e-7;
-        f.at(e, g, x + step, bp, unused), f.at(e, g, x - step, bm, unused);
+        f->at_point(e, g, x + step, bp, unused), f->at_point(e, g, x - step, bm, unused);
         EXPECT_LT(((bp - bm) / 2e-7 - db.col(j)).norm(), 1e-6 * db.norm()) << "element " << e << " point " << g;
       }
       asymmetry = std::max(asymmetry, (db - db.transpose()).norm() / db.norm());
@@ -293,20 +293,20 @@ TEST(SegmentFlank, BlockUnderALoadAlongTheBeltCreepsAtTheCoulombVelocity) {
     p.mesh = &m;
     p.laws = {law.get(), law.get()};
     for (int n = 0; n < m.node_count(); ++n) p.constraints.push_back({n, 0.0, {false, true}});
-    p.prescribe = [](double, std::vector<std::array<double, 2>>& v) {
+    p.motion = prescribed([](double, std::vector<std::array<double, 2>>& v) {
       for (auto& x : v) x = {0.0, 0.0};
-    };
+    });
     p.time_s = [duration](double lambda) { return lambda * duration; };
-    p.body_force = [&m, load](double, std::vector<Eigen::Vector2d>& b) { b.assign(m.element_count(), Eigen::Vector2d(load, 0.0)); };
-    p.following_force = flank_contact(m, path_x, Integration::reduced, line, [line](double) { return line; }, false, true,
+    p.loads.push_back(dead_body_force(m.element_count(), [&m, load](double, std::vector<Eigen::Vector2d>& b) { b.assign(m.element_count(), Eigen::Vector2d(load, 0.0)); }));
+    p.loads.push_back(flank_contact(m, path_x, Integration::reduced, line, [line](double) { return line; }, false, true,
                                       [&](double lambda, FlankLevels& l) {
                                         for (auto* v : {&l.radial_N_mm4, &l.stick_N_mm4, &l.stick_limit_N_mm3}) v->assign(m.element_count(), 0.0);
                                         l.slide_mm_s.assign(m.element_count(), V);
                                         l.friction_lr_N_mm3.assign(m.element_count(), Eigen::Vector2d(0.0, -F));
                                         l.time_s = lambda * duration, l.slide_floor_mm_s = V0;
-                                      });
+                                      }));
     SolverKnobs knobs;
-    knobs.steps = steps;
+    knobs.stepping.steps = steps;
     return solve_static(p, knobs);
   };
   const double load = 0.6 * F, creep = std::hypot(V, V0) * load / std::sqrt(F * F - load * load);
@@ -376,10 +376,10 @@ TEST(SegmentFlank, BlockMovedUniformlyDeeperCarriesKTimesTheDepthChangeTimesItsV
   // Every node's radial component prescribed, the cord line's both (the others free along x, where
   // neither the stress-free block nor the foundation pushes).
   for (int n = 0; n < m.node_count(); ++n) p.constraints.push_back({n, 0.0, {m.X[n].y() == 0.0, true}});
-  p.prescribe = [delta](double lambda, std::vector<std::array<double, 2>>& v) {
+  p.motion = prescribed([delta](double lambda, std::vector<std::array<double, 2>>& v) {
     for (auto& x : v) x = {0.0, -lambda * delta};
-  };
-  p.following_force = straight_foundation(m, k);
+  });
+  p.loads.push_back(straight_foundation(m, k));
   const StaticSolution s = solve_static(p, SolverKnobs{});
   Eigen::Vector2d reactions = Eigen::Vector2d::Zero(), foundation = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& r : s.reaction_N_mm) reactions += r;
@@ -401,12 +401,12 @@ TEST(SegmentFlank, LayerOnTheFoundationUnderAUniformRadialLoadIsAWinklerSupporte
   const double k = M / (kHeight_mm * kHeight_mm), b0 = 1e-4 * M / kHeight_mm;  // αH = 1, strains ~ 10⁻⁴
   const auto law = make_elastic(ElasticLaw::hencky, E, nu);
   StaticProblem p = test::held_strip(m, *law, {true, false});
-  p.body_force = [&m, b0](double lambda, std::vector<Eigen::Vector2d>& b) {
+  p.loads.push_back(dead_body_force(m.element_count(), [&m, b0](double lambda, std::vector<Eigen::Vector2d>& b) {
     b.assign(m.element_count(), Eigen::Vector2d(0.0, lambda * b0));
-  };
-  p.following_force = straight_foundation(m, k);
+  }));
+  p.loads.push_back(straight_foundation(m, k));
   SolverKnobs knobs;
-  knobs.steps = 2;
+  knobs.stepping.steps = 2;
   const StaticSolution s = solve_static(p, knobs);
   const double alpha = std::sqrt(k / M);
   auto closed_form = [&](double y) { return b0 / k * (1.0 - std::cosh(alpha * (y + kHeight_mm)) / std::cosh(alpha * kHeight_mm)); };

@@ -1,4 +1,4 @@
-// Implicit dynamics of the segment (SolverKnobs::inertia, segment/inertia.hpp; docs/segment.md
+// Implicit dynamics of the segment (PhysicsOptions::inertia, segment/inertia.hpp; docs/segment.md
 // "Inertia"): lumped masses, and a strip's shear vibration under a sudden load against the closed
 // form of its fundamental mode; a slow load gives the static solution.
 #include <cmath>
@@ -34,9 +34,9 @@ struct ShearRun {
 ShearRun shear_run(const Mesh& m, double b_N_mm3, double t_end_s, int steps, bool ramp, bool inertia) {
   const auto law = make_elastic(ElasticLaw::hencky, kE_MPa, kNu);
   StaticProblem p = test::held_strip(m, *law, {false, true});
-  p.body_force = [&](double lambda, std::vector<Eigen::Vector2d>& b) {
+  p.loads.push_back(dead_body_force(m.element_count(), [&](double lambda, std::vector<Eigen::Vector2d>& b) {
     b.assign(m.element_count(), Eigen::Vector2d(ramp ? lambda * b_N_mm3 : b_N_mm3, 0.0));
-  };
+  }));
   p.time_s = [t_end_s](double lambda) { return lambda * t_end_s; };
   p.density_t_mm3 = kRho_t_mm3;
   int bottom = 0;  // the bottom node at x = 0
@@ -49,8 +49,8 @@ ShearRun shear_run(const Mesh& m, double b_N_mm3, double t_end_s, int steps, boo
   });
   p.observers.push_back(&watch);
   SolverKnobs knobs;
-  knobs.steps = steps;
-  knobs.inertia = inertia;
+  knobs.stepping.steps = steps;
+  knobs.physics.inertia = inertia;
   out.solution = solve_static(p, knobs);
   return out;
 }
@@ -132,7 +132,7 @@ TEST(SegmentInertia, SlowLoadGivesTheStaticSolution) {
 }
 
 TEST(SegmentInertia, CordFramesCarryABentStripsNodesAsItsSolutionDoes) {
-  // The motion the inertia is measured against (StaticProblem::frame_motion): each node carried
+  // The motion the inertia is measured against (PrescribedMotion::frame_motion): each node carried
   // with its column's cord point and tangent. On a static bend to R = 40 mm it is the prescribed
   // motion on the cord line and, below it, the FE solution up to the section's own strain (plane
   // sections stay plane); turned the wrong way it would be off by twice the turn.
@@ -141,7 +141,7 @@ TEST(SegmentInertia, CordFramesCarryABentStripsNodesAsItsSolutionDoes) {
   const StaticProblem p = static_problem(m, {law.get(), law.get()}, {0.0, 1.0 / 40.0, 0.0}, EndCondition::radial);
   const StaticSolution s = solve_static(p, SolverKnobs{});
   std::vector<Eigen::Vector2d> frame;
-  p.frame_motion(1.0, frame);
+  p.motion->frame_motion(1.0, frame);
   double worst = 0.0, worst_reversed = 0.0;
   for (int n = 0; n < m.node_count(); ++n) {
     const double th = -m.X[n].x() / 40.0;  // the cord tangent's turn at the column (clockwise)

@@ -39,7 +39,6 @@ struct CycleKnobs {
   int bend_steps = 4;                   // increments of step 1
   double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
-  int curve_intervals = 24;             // intervals per side of the cord curve
   // Each element's contact body force is the mean of 6.6–6.9 over its path extent, sampled every
   // `body_force_sampling_mm` (0 = at its centre only): the force then moves continuously in time
   // when a pulley's exit passes, instead of switching an element at a time (docs/segment.md
@@ -116,7 +115,7 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   // reactions and the belt force").
   double belt_force_N_mm = 0.0, cord_longitudinal_N_mm = 0.0, left_cord_longitudinal_N_mm = 0.0;
   double left_end_longitudinal_N_mm = 0.0, rubber_section_N_mm = 0.0;
-  double left_inertia_longitudinal_N_mm = 0.0;  // Σ m·a of the left half's nodes (SolverKnobs::inertia)
+  double left_inertia_longitudinal_N_mm = 0.0;  // Σ m·a of the left half's nodes (PhysicsOptions::inertia)
   // Radial totals (along the cord curve's outward normal at each element's centre) of Report I's
   // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CycleKnobs::flank_stiffness_N_mm4;
   // both 0 when the foundation is off: they feed flank_shares only).

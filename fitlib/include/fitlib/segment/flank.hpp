@@ -26,6 +26,7 @@
 #include <Eigen/Core>
 
 #include "fitlib/segment/curve.hpp"
+#include "fitlib/segment/load.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/solver.hpp"
 
@@ -88,24 +89,22 @@ struct FlankLevels {
   double time_s = 0.0;
 };
 
-// The radial foundation and the stick together as the solver's following force
-// (StaticProblem::following_force), with a commit for the slip. `stick`, `slide`: whether the stick
+// The radial foundation, the stick and the sliding friction's direction together as one load acting
+// at the integration points (segment/load.hpp), with a commit for the slip. `stick`, `slide`: whether the stick
 // or the sliding friction's direction is on at all (the frames are then prepared at every λ and
 // each point's offset committed, so a point starts from its offset where they begin; `slide` makes
 // the tangent unsymmetric); `levels(λ, levels)`: the per-element values at λ.
-StaticProblem::FollowingForce flank_contact(const Mesh& reference, const std::vector<double>& path_x_mm,
-                                            Integration integration, const NeutralCurve& reference_curve,
-                                            std::function<NeutralCurve(double lambda)> curve_at, bool stick, bool slide,
-                                            std::function<void(double lambda, FlankLevels& levels)> levels);
+LoadPtr flank_contact(const Mesh& reference, const std::vector<double>& path_x_mm, Integration integration,
+                      const NeutralCurve& reference_curve, std::function<NeutralCurve(double lambda)> curve_at,
+                      bool stick, bool slide, std::function<void(double lambda, FlankLevels& levels)> levels);
 
-// The foundation over a mesh as the solver's following force (StaticProblem::following_force).
+// The foundation over a mesh as a load acting at the integration points (segment/load.hpp).
 // `reference`: the solver's mesh; `path_x_mm`: each node's unstrained path position along the cord
 // (its x in the straight section); `reference_curve`: the cord curve of the reference, against
 // which h_ref is measured (the mould circle); `curve_at(λ)`: the cord curve at λ; `stiffness(λ, k)`:
 // k per element at λ (0: none; the load cycle's: k where p > 0).
-StaticProblem::FollowingForce flank_foundation(const Mesh& reference, const std::vector<double>& path_x_mm,
-                                               Integration integration, const NeutralCurve& reference_curve,
-                                               std::function<NeutralCurve(double lambda)> curve_at,
-                                               std::function<void(double lambda, std::vector<double>& k_N_mm4)> stiffness);
+LoadPtr flank_foundation(const Mesh& reference, const std::vector<double>& path_x_mm, Integration integration,
+                         const NeutralCurve& reference_curve, std::function<NeutralCurve(double lambda)> curve_at,
+                         std::function<void(double lambda, std::vector<double>& k_N_mm4)> stiffness);
 
 }  // namespace fitlib::segment

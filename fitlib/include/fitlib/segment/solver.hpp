@@ -3,17 +3,19 @@
 // Newton with the consistent tangent, the Eigen sparse direct solver with the pattern analysed
 // once, a backtracking line search and step cutting. Loads grow with a parameter λ from 0 to 1:
 // prescribed node displacements (in a per-node rotated basis, so a node can slide along a line)
-// and a follower pressure on the bottom edges. A failure throws core::NumericalError naming the
+// and the load objects of segment/load.hpp. A failure throws core::NumericalError naming the
 // step, the element and the residual (exit 4).
 #include <array>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "fitlib/segment/elastic.hpp"
+#include "fitlib/segment/load.hpp"
 #include "fitlib/segment/mesh.hpp"
 #include "fitlib/segment/observer.hpp"
 
@@ -28,36 +30,19 @@ struct NodeConstraint {
   double angle_rad = 0.0;           // local basis: e0 = (cos a, sin a), e1 = (−sin a, cos a)
   std::array<bool, 2> fixed{true, true};  // which local components are prescribed
 };
-// Fills the prescribed local displacement components (mm) of every constraint at load level λ.
-using Prescribe = std::function<void(double lambda, std::vector<std::array<double, 2>>& local_values)>;
-
-struct SolverKnobs {
-  int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
-  std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
+// Newton's iterations within one load increment (newton.hpp: the step policy and its named
+// constants; docs/segment.md §Solver).
+struct NewtonOptions {
   int max_iterations = 30;        // assemblies per increment (Newton iterations and halvings)
   int stall_iterations = 8;       // assemblies without a new lowest residual before a cut
   // A stalled iterate is accepted below this (a point law whose tangent is not exactly consistent,
   // e.g. Fritzson's damage, converges only linearly near round-off; docs/segment.md §Solver).
   double stall_tolerance = 1e-5;
-  int max_cuts = 6;               // halvings of an increment before giving up
-  // A cut step doubles back only after an increment that converged within this many assemblies
-  // (0: after any), as Abaqus grows its increment only after easy ones: one that needed more lies
-  // near where the cut was, and a doubled step there fails again (docs/segment.md §Cost).
-  int growth_iterations = 0;
   double tolerance = 1e-9;        // residual / (reaction norm + 1 N/mm)
-  Integration integration = Integration::reduced;
   // Modified Newton: keep a factorisation while the residual contracts by Newton::kReuseContraction
   // per iteration, and start each increment from the last one's extrapolated motion. Off by
   // default: slower on the load cycle, whose transitions need fresh tangents (docs/segment.md §Cost).
   bool reuse_tangent = false;
-  // Start each increment (after a converged one, not after a cut) from the last increment's
-  // displacement extrapolated linearly in λ (time), capped at its size; a start that does not
-  // converge is retaken from the linear predictor (docs/segment.md §Solver).
-  bool extrapolate_start = false;
-  // Correct the linear predictor by the second-order part of each node's finite rotation with the
-  // loading (StaticProblem::frame_turn, when the problem has one): a linearised rotation θ strains
-  // a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
-  bool rotated_predictor = true;
   // Levenberg–Marquardt shift (0 = off): a full Newton step that lowers neither the residual nor
   // the energy measure is retaken from its start on K + μ·diag|K|, μ from this value and ×10 per
   // failed retake, then scaled by each step's residual ratio; the line search halves only beyond
@@ -66,20 +51,6 @@ struct SolverKnobs {
   // rubber at the load cycle's transitions; the shift is dropped once the residual is below the
   // retaken step's start (docs/segment.md §Solver, "Levenberg–Marquardt retake").
   double levenberg = 3e-3;
-  // On failure, check the assembled tangent against central differences of the residual (per
-  // element and per integration point) and scan the residual along Newton's direction at the
-  // failing increment's best iterate; the findings go into the exit-4 message (docs/segment.md
-  // §Solver, "Failure diagnosis"). Costs two residual assemblies per equation, once.
-  bool diagnose_failure = false;
-  // Implicit dynamics (off: quasi-static): the rubber's lumped mass (StaticProblem::density_t_mm3)
-  // on the nodes' motion relative to StaticProblem::frame_motion, backward Euler in
-  // StaticProblem::time_s; tangent K + M/Δt². Lets the load path pass a limit point by a dynamic
-  // snap (docs/segment.md "Inertia"; segment/inertia.hpp).
-  bool inertia = false;
-  // Threads of the element loop (0: min(2, the hardware's)). Each element's response is computed
-  // into its own buffer and the buffers are added in element order, so the result is bit-identical
-  // whatever the count (docs/segment.md §Solver, "Threads").
-  int threads = 0;
   // Unsymmetric tangents (the complete level, F-bar, follower pressure): GMRES preconditioned with
   // the LDLᵀ of the tangent's symmetric part, up to this many iterations to a preconditioned
   // residual below krylov_tolerance of its start; UMFPACK's LU only when that fails (0: the LU
@@ -87,6 +58,50 @@ struct SolverKnobs {
   // stay those of the exact solve (docs/segment.md §Solver).
   int krylov_iterations = 10;
   double krylov_tolerance = 1e-8;
+};
+
+// Load stepping over λ from 0 to 1 (solver.cpp): the increments, their cuts and where each starts.
+struct SteppingOptions {
+  int steps = 4;                  // equal load increments of λ (when `schedule` is empty)
+  std::vector<double> schedule;   // increasing λ breakpoints in (0, 1]; 1 is appended
+  int max_cuts = 6;               // halvings of an increment before giving up
+  // A cut step doubles back only after an increment that converged within this many assemblies
+  // (0: after any), as Abaqus grows its increment only after easy ones: one that needed more lies
+  // near where the cut was, and a doubled step there fails again (docs/segment.md §Cost).
+  int growth_iterations = 0;
+  // Start each increment (after a converged one, not after a cut) from the last increment's
+  // displacement extrapolated linearly in λ (time), capped at its size; a start that does not
+  // converge is retaken from the linear predictor (docs/segment.md §Solver).
+  bool extrapolate_start = false;
+  // Correct the linear predictor by the second-order part of each node's finite rotation with the
+  // loading (PrescribedMotion::frame_turn, when the motion has a frame): a linearised rotation θ
+  // strains a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
+  bool rotated_predictor = true;
+};
+
+// What the solve models beyond the problem's laws and loads.
+struct PhysicsOptions {
+  Integration integration = Integration::reduced;
+  // Implicit dynamics (off: quasi-static): the rubber's lumped mass (StaticProblem::density_t_mm3)
+  // on the nodes' motion relative to PrescribedMotion::frame_motion, backward Euler in
+  // StaticProblem::time_s; tangent K + M/Δt². Lets the load path pass a limit point by a dynamic
+  // snap (docs/segment.md "Inertia"; segment/inertia.hpp).
+  bool inertia = false;
+};
+
+struct SolverKnobs {
+  NewtonOptions newton;
+  SteppingOptions stepping;
+  PhysicsOptions physics;
+  // Threads of the element loop (0: min(2, the hardware's)). Each element's response is computed
+  // into its own buffer and the buffers are added in element order, so the result is bit-identical
+  // whatever the count (docs/segment.md §Solver, "Threads").
+  int threads = 0;
+  // On failure, check the assembled tangent against central differences of the residual (per
+  // element and per integration point) and scan the residual along Newton's direction at the
+  // failing increment's best iterate; the findings go into the exit-4 message (docs/segment.md
+  // §Solver, "Failure diagnosis"). Costs two residual assemblies per equation, once.
+  bool diagnose_failure = false;
 };
 // The thread count a run with these knobs uses (resolves threads = 0).
 int solver_threads(const SolverKnobs& knobs);
@@ -97,56 +112,20 @@ struct StaticProblem {
   const Mesh* mesh = nullptr;
   std::array<const PlaneStrainLaw*, 2> laws{};  // indexed by Role
   std::vector<NodeConstraint> constraints;
-  Prescribe prescribe;
-  // Optional: the constraints' basis angles at load level λ (a line that turns with the load).
-  std::function<void(double lambda, std::vector<double>& angles_rad)> rotate;
-  double pressure_MPa = 0.0;      // on the bottom edges, scaled by λ
+  std::shared_ptr<const PrescribedMotion> motion;  // the constraints' values at λ (segment/load.hpp)
+  // The loads (segment/load.hpp), each prepared per load level, added after the element loop in
+  // this order and committed after each converged increment (not owned beyond the shared pointer).
+  std::vector<LoadPtr> loads;
   // Time (s) at load level λ for rate-dependent laws; empty = 0 throughout (a static case
   // applied at once: the glassy response of a viscoelastic law). Temperature of every point.
   std::function<double(double lambda)> time_s;
-  // Optional: dead body forces per element (global, N/mm³ of reference volume) at λ.
-  std::function<void(double lambda, std::vector<Eigen::Vector2d>& b_N_mm3)> body_force;
-  // Optional: dead nodal forces per node (global, N per mm of width; zero where none) at λ.
-  std::function<void(double lambda, std::vector<Eigen::Vector2d>& f_N_mm)> nodal_force;
-  // Optional: a body force that follows the deformation, an elastic foundation (the load cycle's
-  // deformation-limited flank, segment/flank.hpp). `at`: at element e's integration point g (the
-  // solver's rule) and its current position x (global, mm), b (global, N/mm³ of reference volume)
-  // and ∂b/∂x (N/mm⁴), false where none acts; when b is the negative gradient of an energy (at the
-  // committed history) ∂b/∂x is symmetric and a symmetric law keeps LDLᵀ. `prepare(λ)` runs
-  // once per load level before its assemblies, on the calling thread; `at` on any of the element
-  // loop's threads, so it must only read. The residual gets −∫ N_a b dV, the tangent
-  // −∫ N_a N_b ∂b/∂x dV. Optional `commit`: after each converged increment, serially, every
-  // integration point's converged position, at the λ `at` was prepared for (a history, e.g. the
-  // flank's stick–slip, segment/flank.hpp); it takes effect at the next `prepare`, so `at` at the
-  // converged λ (the final snapshot) still gives the increment's force. `symmetric` = false: ∂b/∂x
-  // is not symmetric (not a gradient field, e.g. a friction that turns with the motion), so the
-  // solver takes the unsymmetric path (GMRES on the symmetric part's LDLᵀ, or the LU).
-  struct FollowingForce {
-    std::function<void(double lambda)> prepare;
-    std::function<bool(int element, int point, const Eigen::Vector2d& x_mm, Eigen::Vector2d& b_N_mm3,
-                       Eigen::Matrix2d& db_dx_N_mm4)>
-        at;
-    std::function<void(int element, int point, const Eigen::Vector2d& x_mm)> commit;
-    bool symmetric = true;
-  };
-  FollowingForce following_force;
-  // Optional: per node, the turn of the loading's frame from λ_from to λ_to: its angle (rad,
-  // counter-clockwise) and the centre it turns about (global, mm, at λ_from; for the cord curve the
-  // cord point of the node's column). Used by SolverKnobs::rotated_predictor.
-  struct FrameTurn {
-    double angle_rad = 0.0;
-    Eigen::Vector2d centre_mm = Eigen::Vector2d::Zero();
-  };
-  std::function<void(double lambda_from, double lambda_to, std::vector<FrameTurn>& per_node)> frame_turn;
   // Called in order after every converged increment with its stresses, displacements, reactions
   // (not owned; each must outlive the solve).
   std::vector<IncrementObserver*> observers;
   double temperature_C = std::numeric_limits<double>::quiet_NaN();  // NaN = the cards' reference
-  // SolverKnobs::inertia: mass density (t/mm³ = 10¹² kg/m³) and, optionally, each node's
-  // displacement (global, mm) at λ when carried rigidly with its column's cord frame; the inertia
-  // acts on the motion relative to it (empty: relative to the reference).
+  // PhysicsOptions::inertia: mass density (t/mm³ = 10¹² kg/m³); the inertia acts on the motion relative
+  // to the prescribed motion's frame (PrescribedMotion::frame_motion; without one, the reference).
   double density_t_mm3 = 0.0;
-  std::function<void(double lambda, std::vector<Eigen::Vector2d>& u_mm)> frame_motion;
 };
 
 struct IntegrationPointStress {
@@ -171,13 +150,14 @@ struct StaticSolution {
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run; 2 when GMRES fell back to the LU)
   bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
-  // SolverKnobs::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
+  // PhysicsOptions::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
   // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
   std::vector<Eigen::Vector2d> inertia_N_mm;
-  // StaticProblem::following_force: per element, its ∫ b dV (global, N/mm); empty without one.
+  // The loads acting at the integration points (Load::at_point): per element, their ∫ b dV
+  // (global, N/mm); empty without one.
   std::vector<Eigen::Vector2d> following_N_mm;
   int threads = 1;                // of the element loop
-  // Unsymmetric tangents (SolverKnobs::krylov_iterations): GMRES iterations, and the solves that
+  // Unsymmetric tangents (NewtonOptions::krylov_iterations): GMRES iterations, and the solves that
   // did not converge and went to the LU (`factorizations` counts either factorisation once per tangent).
   int krylov_iterations = 0, krylov_fallbacks = 0;
 };

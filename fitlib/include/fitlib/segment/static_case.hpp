@@ -7,6 +7,7 @@
 // mid-length and the section stiffnesses c and EI of the rubber about the cord line.
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,12 @@ StaticProblem cord_curve_problem(const Mesh& mesh, const std::vector<double>& pa
                                  const std::array<const PlaneStrainLaw*, 2>& laws,
                                  std::function<NeutralCurve(double lambda)> curve_at, EndCondition ends,
                                  EndShift end_shift_mm = {});
+// Its prescribed motion (prescribed_motion.cpp): constraints [0, n_top) the cord-line nodes on the
+// curve, the rest end-face nodes on its normal through their column's cord point.
+std::shared_ptr<const PrescribedMotion> cord_line(const Mesh& mesh, std::vector<NodeConstraint> constraints,
+                                                  std::size_t n_top, std::vector<double> path_x_mm,
+                                                  std::function<NeutralCurve(double lambda)> curve_at,
+                                                  EndShift end_shift_mm);
 
 // The problem of a load case on a mesh (constraints from the curve); laws must outlive it.
 StaticProblem static_problem(const Mesh& mesh, const std::array<const PlaneStrainLaw*, 2>& laws,
