@@ -231,10 +231,10 @@ TEST(ObservedLives, TheFittedLawIsOfItsCasesStressLevel) {
   const std::string text = "case,failure_mode,temperature_C,observed_cycles,peaks_MPa,stress_fidelity\n"
                            "A,separation,90,1e6,1.0,elastic\nB,separation,90,1e5,1.3,elastic\n";
   const auto cases = parse_observed_lives(text, "lives.csv");
-  EXPECT_EQ(parse_observed_lives(observed_lives_csv(cases), "again.csv")[1].stress_fidelity, "elastic");
+  EXPECT_EQ(parse_observed_lives(observed_lives_csv(cases), "again.csv")[1].stress_fidelity, core::Fidelity::elastic);
   const LifeCardFit fit = fit_life_card(cases, default_card());
-  EXPECT_EQ(fit.card.separation.stress_fidelity, "elastic");
-  EXPECT_EQ(fit.card.radial_crack.stress_fidelity, "complete");  // the start's, kept
+  EXPECT_EQ(fit.card.separation.stress_fidelity, core::Fidelity::elastic);
+  EXPECT_EQ(fit.card.radial_crack.stress_fidelity, core::Fidelity::complete);  // the start's, kept
   EXPECT_TRUE(std::any_of(fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
     return w.find("radial_crack constants are of complete-level stresses, its separation constants of "
                   "elastic-level ones") != std::string::npos;
@@ -242,7 +242,7 @@ TEST(ObservedLives, TheFittedLawIsOfItsCasesStressLevel) {
   // Without the column the level is not stated, and no column is written back.
   const auto unstated = parse_observed_lives("case,failure_mode,temperature_C,observed_cycles,peaks_MPa\n"
                                              "A,separation,90,1e6,1.0\nB,separation,90,1e5,1.3\n", "plain.csv");
-  EXPECT_EQ(fit_life_card(unstated, default_card()).card.separation.stress_fidelity, "");
+  EXPECT_EQ(fit_life_card(unstated, default_card()).card.separation.stress_fidelity, std::nullopt);
   EXPECT_EQ(observed_lives_csv(unstated).find("stress_fidelity"), std::string::npos);
 }
 

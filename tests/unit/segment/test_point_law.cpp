@@ -222,7 +222,7 @@ TEST(SegmentPointLaw, OnlyElasticPointsIsotropicInThePlaneSayTheirTangentIsSymme
                                       1.2, 1.0, 0.1, 0.008, 2.5, 0.35, 0.6, -2.0, 0.5, 0.5, 0.006, 0.008};
   const model::ModelPtr fritzson = model::make_model("fritzson", {{"reference_C", 23.0}});
   model::PointOptions elastic;
-  elastic.fidelity = model::PointOptions::Fidelity::elastic;
+  elastic.fidelity = core::Fidelity::elastic;
   elastic.frequency_Hz = 10.0;
   const auto fritzson_elastic = model::make_material_point(*fritzson, material1, elastic);
   auto asymmetry = [](const model::MaterialPointPtr& p) {
