@@ -29,7 +29,7 @@ class ContractLaw final : public PlaneStrainLaw {
 struct RoleMaterialOptions {
   // The segment's levels (core::Fidelity; issue 11 item 5): `elastic` — the card's elastic
   // equivalent (storage stiffness) at the scene's temperature and load frequency; `complete` — the
-  // card's full model. `beam` has no segment (role_point refuses it).
+  // card's full model. `beam` has no material point (make_material_point refuses it).
   core::Fidelity fidelity = core::Fidelity::complete;
   double temperature_C = 20.0;   // elastic fidelity: where the storage stiffness is taken
   double frequency_Hz = 10.0;    // elastic fidelity: the load cycle's frequency
