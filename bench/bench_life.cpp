@@ -139,7 +139,7 @@ scene::Scene life_scene(const std::string& load, const std::string& level) {
   scene::Scene s = reference(load);
   s.outputs = {{"life", true}};
   s.life = scene::LifeSpec{};
-  s.life->fidelity = level == "complete held" ? "complete" : level;
+  s.life->fidelity = core::fidelity_from_string(level == "complete held" ? "complete" : level, "level");
   if (level == "complete held") {
     static const std::string bottom = windowed_card_file("material-1"), cushion = windowed_card_file("material-2");
     s.materials["bottom"] = bottom, s.materials["cushion"] = cushion;
@@ -336,7 +336,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
-  o.fidelity = pr.fidelity == "complete" ? segment::Fidelity::complete : segment::Fidelity::elastic;
+  o.fidelity = pr.fidelity == "complete" ? core::Fidelity::complete : core::Fidelity::elastic;
   o.temperature_C = s.temperature_C;
   o.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
   if (pr.lagged) o.damage_update = model::PointOptions::DamageUpdate::lagged;

@@ -30,7 +30,7 @@ inline LevelRun run_level(const std::string& drive_file, const std::string& leve
   if (level != "beam") {
     s.materials["bottom"] = bottom, s.materials["cushion"] = cushion;
     s.life = scene::LifeSpec{};
-    s.life->fidelity = level, s.life->cycles = 2;
+    s.life->fidelity = core::fidelity_from_string(level, "level"), s.life->cycles = 2;
   }
   LevelRun out;
   try {

@@ -54,8 +54,9 @@ std::string fit_table(const fitlib::fatigue::LifeCardFit& r) {
       continue;
     }
     for (const auto& c : f.constants) t << std::setw(28) << with_interval(c);
-    const std::string& level = r.card.law(f.mode).stress_fidelity;
-    t << std::setw(11) << sig4(f.rms_log10_error) << (level.empty() ? "not stated" : level + " level") << "\n";
+    const auto& level = r.card.law(f.mode).stress_fidelity;
+    t << std::setw(11) << sig4(f.rms_log10_error)
+      << (level ? std::string(fitlib::core::to_string(*level)) + " level" : "not stated") << "\n";
     if (!f.note.empty()) t << "  note: " << f.note << "\n";
     if (const auto& sc = r.card.law(f.mode).scatter)  // docs/fatigue.md §9
       t << "  scatter: log-normal about the law, s " << sig4(sc->sigma_log10) << " log10 (" << sc->dof

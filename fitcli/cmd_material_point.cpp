@@ -79,8 +79,8 @@ void run_cyclic(const Args& a, const fitlib::card::Card& card) {
   c.strain_amplitude = a.amplitude;
   WindowCheck("material-point", a.card, card, {a.temperature_C}, a.allow_extrapolation).beyond(c);
   model::PointOptions options;
-  options.fidelity = a.fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
-                                             : model::PointOptions::Fidelity::viscoelastic;
+  options.fidelity = a.fidelity == "elastic" ? core::Fidelity::elastic
+                                             : core::Fidelity::complete;
   options.frequency_Hz = a.frequency_Hz;
   options.temperature_C = a.temperature_C;
   options.bulk_modulus_MPa = a.bulk_modulus_MPa;

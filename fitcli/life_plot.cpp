@@ -106,7 +106,7 @@ std::string life_plot_script(const fitlib::scene::Scene& scene, const fitlib::sc
   const std::string governing = report.governing == "none" ? "no significant peak"
                                                             : report.governing + ", " + cycles_text(report.life_cycles, digits);
   // The level in the title: an elastic and a complete figure of one drive are read side by side.
-  load_cycle_panel(s, cycle, panels, scene_title(scene) + ", " + r.life->plan.fidelity + " level: governing " + governing);
+  load_cycle_panel(s, cycle, panels, scene_title(scene) + ", " + fitlib::core::to_string(r.life->plan.fidelity) + " level: governing " + governing);
   s << "unset y2tics\nunset y2label\nset ytics mirror\nunset key\nset yrange [0:*]\n";
   for (std::size_t k = 0; k < report.modes.size(); ++k) {
     const auto& m = report.modes[k];

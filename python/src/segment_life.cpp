@@ -42,7 +42,7 @@ py::object life_dict(const scene::SceneResult& r) {
   if (!r.life) return py::none();
   const auto& report = r.life->report;
   py::dict d;
-  d["fidelity"] = r.life->plan.fidelity, d["reason"] = r.life->plan.reason;
+  d["fidelity"] = core::to_string(r.life->plan.fidelity), d["reason"] = r.life->plan.reason;
   d["governing"] = report.governing, d["life_cycles"] = report.life_cycles, d["life_h"] = report.life_h;
   py::dict modes;
   for (const auto& m : report.modes) modes[py::str(fatigue::to_string(m.mode))] = mode_life_dict(m);

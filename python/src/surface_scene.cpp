@@ -230,8 +230,8 @@ void bind_material_point(py::module_& m) {
           if (fidelity != "viscoelastic" && fidelity != "elastic")
             throw core::UsageError("fidelity must be viscoelastic or elastic, not '" + fidelity + "'");
           model::PointOptions o;
-          o.fidelity = fidelity == "elastic" ? model::PointOptions::Fidelity::elastic
-                                             : model::PointOptions::Fidelity::viscoelastic;
+          o.fidelity = fidelity == "elastic" ? core::Fidelity::elastic
+                                             : core::Fidelity::complete;
           o.frequency_Hz = frequency_Hz, o.temperature_C = temperature_C, o.bulk_modulus_MPa = bulk_modulus_MPa;
           if (!damage_driver_hold.is_none()) o.damage_driver_hold = to_vector(damage_driver_hold);
           return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values), o));

@@ -230,7 +230,7 @@ struct CardRun {
   scene::SegmentLifeSetup setup;
 };
 
-CardRun card_run(const std::string& load, int cycles, segment::Fidelity fidelity, double c_d = 0.0,
+CardRun card_run(const std::string& load, int cycles, core::Fidelity fidelity, double c_d = 0.0,
                  model::PointOptions::DamageUpdate damage = model::PointOptions::DamageUpdate::implicit) {
   const std::string root = FITLIB_SOURCE_DIR;
   scene::Scene s = scene::load_scene(root + "/datasets/drives/ref-0500-" + load + ".toml");
@@ -285,8 +285,8 @@ double cycle_difference(const segment::CycleResult& run, double length_mm) {
 // σ22 differs between the cycles at the same path position, while the elastic level repeats its
 // cycle (docs/segment.md §Cost, "Complete level").
 TEST(SegmentLife, CompleteLevelOnTheLightDriveDiffersBetweenCycleOneAndTwoWhileTheElasticLevelRepeats) {
-  const CardRun complete = card_run("light", 2, segment::Fidelity::complete);
-  const CardRun elastic = card_run("light", 2, segment::Fidelity::elastic);
+  const CardRun complete = card_run("light", 2, core::Fidelity::complete);
+  const CardRun elastic = card_run("light", 2, core::Fidelity::elastic);
   const scene::SegmentLife c = card_life(complete), e = card_life(elastic);
   for (const auto* l : {&c, &e}) {
     EXPECT_LT(l->run.equilibrium_error, 1e-6);
@@ -310,12 +310,12 @@ TEST(SegmentLife, CompleteLevelOnTheLightDriveDiffersBetweenCycleOneAndTwoWhileT
 // increments at the load fronts; no peak is under-resolved now.
 TEST(SegmentLife, CompleteLevelsLivesOnTheLightDriveSettleWithTheStepCount) {
   const auto lives = [](int steps) {
-    CardRun r = card_run("light", 1, segment::Fidelity::complete);
+    CardRun r = card_run("light", 1, core::Fidelity::complete);
     if (steps > 0) r.setup.cycle.steps_per_cycle = steps;
     return card_life(r).report;
   };
-  EXPECT_EQ(scene::life_cycle(segment::Fidelity::complete).steps_per_cycle, 120);
-  EXPECT_EQ(scene::life_cycle(segment::Fidelity::elastic).steps_per_cycle, 60);
+  EXPECT_EQ(scene::life_cycle(core::Fidelity::complete).steps_per_cycle, 120);
+  EXPECT_EQ(scene::life_cycle(core::Fidelity::elastic).steps_per_cycle, 60);
   const fatigue::LifeReport planned = lives(0), fine = lives(240);
   for (int k = 0; k < 2; ++k) {
     const fatigue::ModeLife &a = planned.modes[k], &b = fine.modes[k];
@@ -334,7 +334,7 @@ TEST(SegmentLife, CompleteLevelsLivesOnTheLightDriveSettleWithTheStepCount) {
 // N2 within 15 % of three rows', and radial crack governs on both.
 TEST(SegmentLife, CompleteLevelsSeparationLifeIsTheSameOnOneAndThreeCushionRows) {
   const auto run = [](int cushion_rows) {
-    CardRun r = card_run("light", 1, segment::Fidelity::complete);
+    CardRun r = card_run("light", 1, core::Fidelity::complete);
     r.setup.mesh.cushion_rows = cushion_rows;
     return card_life(r);
   };
@@ -368,7 +368,7 @@ TEST(SegmentLife, CompleteLevelsSeparationLifeIsTheSameOnOneAndThreeCushionRows)
 // stress is averaged over the elements that share it".)
 TEST(SegmentLife, StepControlKnobsChangeTheWorkNotTheLives) {
   const auto run = [](const segment::SolverKnobs& knobs) {
-    CardRun r = card_run("light", 1, segment::Fidelity::complete);
+    CardRun r = card_run("light", 1, core::Fidelity::complete);
     r.setup.solver = knobs;
     return card_life(r);
   };
@@ -395,12 +395,12 @@ TEST(SegmentLife, CompleteLevelFailsAtTheMediumDrivesExitWithEitherDamageUpdateA
     run.setup.mesh.gap_size_mm = 0.0, run.setup.mesh.row_growth = 1.0;
     return run;
   };
-  const scene::SegmentLife slow = card_life(ungraded(card_run("medium", 1, segment::Fidelity::complete, 1e-3)));
+  const scene::SegmentLife slow = card_life(ungraded(card_run("medium", 1, core::Fidelity::complete, 1e-3)));
   EXPECT_LT(slow.run.equilibrium_error, 1e-6);
   for (const auto& m : slow.report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
   for (Update update : {Update::implicit, Update::lagged}) {
     try {
-      card_life(ungraded(card_run("medium", 1, segment::Fidelity::complete, 0.0, update)));
+      card_life(ungraded(card_run("medium", 1, core::Fidelity::complete, 0.0, update)));
       ADD_FAILURE() << "the thesis cards now pass the medium drive: update docs/segment.md and this test";
     } catch (const core::NumericalError& e) {
       const std::string what = e.what();
@@ -420,7 +420,7 @@ TEST(SegmentLife, CompleteLevelFailsAtTheMediumDrivesExitWithEitherDamageUpdateA
 namespace {
 
 double derived_flank_stiffness(const std::string& load, const CardRun& run) {
-  const CardRun elastic = card_run(load, 1, segment::Fidelity::elastic);
+  const CardRun elastic = card_run(load, 1, core::Fidelity::elastic);
   const segment::ContractLaw bottom(elastic.setup.materials[0]);
   return segment::flank_stiffness_N_mm4(segment::axial_modulus_MPa(bottom), run.drive.belt.wedge_half_angle_rad,
                                         run.drive.belt.width_mm);
@@ -429,7 +429,7 @@ double derived_flank_stiffness(const std::string& load, const CardRun& run) {
 }  // namespace
 
 TEST(SegmentLife, FlankFoundationLetsTheCompleteLevelPassTheMediumDrivesFold) {
-  CardRun run = card_run("medium", 2, segment::Fidelity::complete);
+  CardRun run = card_run("medium", 2, core::Fidelity::complete);
   run.setup.cycle.flank_stiffness_N_mm4 = derived_flank_stiffness("medium", run);
   EXPECT_NEAR(run.setup.cycle.flank_stiffness_N_mm4, 0.0452, 5e-4);
   const scene::SegmentLife life = card_life(run);
@@ -447,7 +447,7 @@ TEST(SegmentLife, FlankFoundationLetsTheCompleteLevelPassTheMediumDrivesFold) {
 // of cycle 1 without it) is gone, but the cog's tip corner folds at the driver's exit (≈ 733 mm),
 // a mostly tangential mode the radial foundation hardly stiffens (docs/segment.md "Flank foundation").
 TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesNotRemoveIt) {
-  CardRun run = card_run("heavy", 1, segment::Fidelity::complete);
+  CardRun run = card_run("heavy", 1, core::Fidelity::complete);
   run.setup.cycle.flank_stiffness_N_mm4 = derived_flank_stiffness("heavy", run);
   try {
     card_life(run);
@@ -468,7 +468,7 @@ TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesN
 // 10⁵ mm/s (far above the sliding speeds: nearly Report I's) within 1 % (0.0 %, +0.1 %), on the
 // unsymmetric path (GMRES) at the elastic level. Both balance.
 TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
-  const CardRun base = card_run("light", 2, segment::Fidelity::elastic);
+  const CardRun base = card_run("light", 2, core::Fidelity::elastic);
   const scene::SegmentLife off = card_life(base);
   const segment::ContractLaw bottom(base.setup.materials[0]);
   CardRun stick = base, slide = base;
@@ -503,7 +503,7 @@ TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
 // so the lives are Newton's: they differ only by the increments the cuts add. Off (0), the same run
 // cuts (docs/segment.md §Cost).
 TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingTheLives) {
-  CardRun shifted = card_run("medium", 2, segment::Fidelity::elastic);
+  CardRun shifted = card_run("medium", 2, core::Fidelity::elastic);
   CardRun plain = shifted;
   plain.setup.solver.newton.levenberg = 0.0;
   const scene::SegmentLife a = card_life(shifted), b = card_life(plain);

@@ -17,10 +17,6 @@ const char* to_string(Mode mode) {
   return mode == Mode::radial_crack ? "radial_crack" : "separation";
 }
 
-bool is_stress_fidelity(const std::string& text) {
-  return text == "beam" || text == "elastic" || text == "complete";
-}
-
 std::optional<Mode> mode_from_string(const std::string& text) {
   if (text == "radial_crack") return Mode::radial_crack;
   if (text == "separation") return Mode::separation;
@@ -37,14 +33,14 @@ FatigueCard default_card() {
   return card;
 }
 
-FatigueCard card_at_level(const FatigueCard& card, const std::string& fidelity) {
+FatigueCard card_at_level(const FatigueCard& card, core::Fidelity fidelity) {
   FatigueCard c = card;
   c.levels.clear();
   const auto level = card.levels.find(fidelity);
   if (level == card.levels.end()) return c;
   for (Mode m : {Mode::radial_crack, Mode::separation}) {
-    const std::string& of = card.law(m).stress_fidelity;
-    if (of.empty() || of == fidelity) continue;
+    const std::optional<core::Fidelity>& of = card.law(m).stress_fidelity;
+    if (!of || *of == fidelity) continue;
     // A level's law is the mode's with n and b held and σ0 calibrated (scripts/calibrate-levels.sh):
     // where it states no scatter or covariance it keeps the mode's, the belts' scatter about the law.
     LifeLaw law = level->second.law(m);
@@ -59,7 +55,7 @@ namespace {
 
 json law_json(const LifeLaw& l) {
   json j = {{"sigma0_MPa", l.sigma0_MPa}, {"n", l.n}, {"b_per_C", l.b_per_C}};
-  if (!l.stress_fidelity.empty()) j["stress_fidelity"] = l.stress_fidelity;
+  if (l.stress_fidelity) j["stress_fidelity"] = core::to_string(*l.stress_fidelity);
   if (l.scatter)
     j["scatter"] = {{"distribution", l.scatter->distribution}, {"sigma_log10", l.scatter->sigma_log10},
                     {"dof", l.scatter->dof}};
@@ -152,13 +148,10 @@ LifeLaw read_law(const Reader& modes, const std::string& name) {
   Reader r(modes.at(name), modes.source(), modes.key(name),
            {"sigma0_MPa", "n", "b_per_C", "stress_fidelity", "scatter", "covariance"});
   LifeLaw law{r.number("sigma0_MPa", 0.0, kHuge, true), r.number("n", 0.0, 1000.0, true),
-              r.number("b_per_C", -10.0, 10.0), ""};
-  if (r.has("stress_fidelity")) {
-    law.stress_fidelity = r.text("stress_fidelity");
-    if (!is_stress_fidelity(law.stress_fidelity))
-      throw core::InputError("'" + law.stress_fidelity + "' is not a stress level (beam, elastic or complete)",
-                             modes.source(), 0, 0, r.key("stress_fidelity"));
-  }
+              r.number("b_per_C", -10.0, 10.0), std::nullopt};
+  if (r.has("stress_fidelity"))
+    law.stress_fidelity =
+        core::fidelity_from_string(r.text("stress_fidelity"), r.key("stress_fidelity"), modes.source());
   if (r.has("scatter")) law.scatter = read_scatter(r);
   if (r.has("covariance")) law.covariance = read_covariance(r);
   return law;
@@ -166,22 +159,23 @@ LifeLaw read_law(const Reader& modes, const std::string& name) {
 
 // "levels": {"beam": {"radial_crack": {...}, "separation": {...}}, ...}; a law's stated level must
 // be its key's (absent: the key's).
-std::map<std::string, LevelLaws> read_levels(const Reader& card) {
+std::map<core::Fidelity, LevelLaws> read_levels(const Reader& card) {
   Reader levels(card.at("levels"), card.source(), "levels", {"beam", "elastic", "complete"});
-  std::map<std::string, LevelLaws> out;
-  for (const char* level : {"beam", "elastic", "complete"}) {
+  std::map<core::Fidelity, LevelLaws> out;
+  for (core::Fidelity fidelity : {core::Fidelity::beam, core::Fidelity::elastic, core::Fidelity::complete}) {
+    const char* level = core::to_string(fidelity);
     if (!levels.has(level)) continue;
     Reader modes(levels.at(level), card.source(), levels.key(level), {"radial_crack", "separation"});
     LevelLaws laws{read_law(modes, "radial_crack"), read_law(modes, "separation")};
     for (Mode m : {Mode::radial_crack, Mode::separation}) {
-      std::string& of = laws.law(m).stress_fidelity;
-      if (!of.empty() && of != level)
-        throw core::InputError("stress_fidelity '" + of + "' under levels." + level + " (a level's constants are "
-                               "for its own stresses)", card.source(), 0, 0,
-                               modes.key(std::string(to_string(m)) + ".stress_fidelity"));
-      of = level;
+      std::optional<core::Fidelity>& of = laws.law(m).stress_fidelity;
+      if (of && *of != fidelity)
+        throw core::InputError(std::string("stress_fidelity '") + core::to_string(*of) + "' under levels." + level +
+                                   " (a level's constants are for its own stresses)",
+                               card.source(), 0, 0, modes.key(std::string(to_string(m)) + ".stress_fidelity"));
+      of = fidelity;
     }
-    out.emplace(level, laws);
+    out.emplace(fidelity, laws);
   }
   return out;
 }
@@ -197,7 +191,7 @@ json card_to_json(const FatigueCard& c) {
                        {"separation", law_json(c.separation)}}},
             {"provenance", c.provenance}};
   for (const auto& [level, laws] : c.levels)
-    j["levels"][level] = {{"radial_crack", law_json(laws.radial_crack)}, {"separation", law_json(laws.separation)}};
+    j["levels"][core::to_string(level)] = {{"radial_crack", law_json(laws.radial_crack)}, {"separation", law_json(laws.separation)}};
   if (c.cord_break) {
     const CordBreakLaw& k = *c.cord_break;
     j["cord_break"] = {{"a", k.a}, {"b_per_MPa", k.b_per_MPa}, {"ultimate_MPa", k.ultimate_MPa},
@@ -241,17 +235,18 @@ FatigueCard load_card(const std::string& path) {
   return card_from_json(core::parse_json(core::read_file(path), path), path);
 }
 
-std::string stress_fidelity_warning(const FatigueCard& card, const std::string& fidelity) {
+std::string stress_fidelity_warning(const FatigueCard& card, core::Fidelity fidelity) {
   std::string modes, levels;
   for (Mode m : {Mode::radial_crack, Mode::separation}) {
-    const std::string& of = card.law(m).stress_fidelity;
-    if (of.empty() || of == fidelity) continue;
+    const std::optional<core::Fidelity>& of = card.law(m).stress_fidelity;
+    if (!of || *of == fidelity) continue;
     modes += (modes.empty() ? "" : " and ") + std::string(to_string(m));
-    if (levels.find(of) == std::string::npos) levels += (levels.empty() ? "" : " and ") + of;
+    if (levels.find(core::to_string(*of)) == std::string::npos)
+      levels += (levels.empty() ? "" : " and ") + std::string(core::to_string(*of));
   }
   if (modes.empty()) return "";
   return "the fatigue card's " + modes + " constants were fitted to " + levels + "-level stresses, and this run's "
-         "stresses are the " + fidelity + " level's: the levels' lives of one drive differ by up to 1000x (docs/fatigue.md §4), "
+         "stresses are the " + core::to_string(fidelity) + " level's: the levels' lives of one drive differ by up to 1000x (docs/fatigue.md §4), "
          "so the life is off the constants' scale; fit the constants to life tests run at this level (fitcli "
          "life-fit) or run the level they were fitted at ([life] fidelity)";
 }

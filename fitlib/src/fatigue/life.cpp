@@ -11,8 +11,6 @@
 
 namespace fitlib::fatigue {
 
-const char* to_string(Role role) { return role == Role::bottom ? "bottom" : "cushion"; }
-
 double sum_terms(const std::vector<double>& peaks, const LifeLaw& law) {
   double s = 0.0;
   for (double p : peaks) s += std::pow(p / law.sigma0_MPa, law.n);

@@ -142,11 +142,12 @@ LifeCardFit fit_life_card(const std::vector<ObservedLife>& cases, const FatigueC
     for (const LifeFitResult& f : out.fits) why += std::string(why.empty() ? "" : "; ") + to_string(f.mode) + ": " + f.rejected;
     throw core::NumericalError("fatigue: no failure mode could be fitted (" + why + ")");
   }
-  const std::string& crack = out.card.radial_crack.stress_fidelity;
-  const std::string& separation = out.card.separation.stress_fidelity;
-  if (!crack.empty() && !separation.empty() && crack != separation)
-    out.warnings.push_back("the card's radial_crack constants are of " + crack + "-level stresses, its separation "
-                           "constants of " + separation + "-level ones: a life at either level reads one mode off "
+  const std::optional<core::Fidelity>& crack = out.card.radial_crack.stress_fidelity;
+  const std::optional<core::Fidelity>& separation = out.card.separation.stress_fidelity;
+  if (crack && separation && *crack != *separation)
+    out.warnings.push_back(std::string("the card's radial_crack constants are of ") + core::to_string(*crack) +
+                           "-level stresses, its separation constants of " + core::to_string(*separation) +
+                           "-level ones: a life at either level reads one mode off "
                            "its constants' scale (fitcli life warns which)");
   out.card.provenance = {{"start_card", start.name}, {"life_fit", record}};
   return out;

@@ -84,12 +84,9 @@ ObservedLife read_life_row(const std::vector<std::string>& f, const Columns& col
   row.observed_cycles = col.count("observed_cycles") ? number("observed_cycles")
                                                      : number("observed_h") * number("cycles_per_h");
   row.point_peaks_MPa.push_back(parse_peaks(field("peaks_MPa"), file, line, col.at("peaks_MPa") + 1));
-  if (col.count("stress_fidelity")) {
-    row.stress_fidelity = field("stress_fidelity");
-    if (!row.stress_fidelity.empty() && !is_stress_fidelity(row.stress_fidelity))
-      throw core::InputError("stress_fidelity '" + row.stress_fidelity + "' is not beam, elastic or complete", file,
-                             line, col.at("stress_fidelity") + 1, "stress_fidelity");
-  }
+  if (col.count("stress_fidelity") && !field("stress_fidelity").empty())
+    row.stress_fidelity = core::fidelity_from_string(field("stress_fidelity"), "stress_fidelity", file, line,
+                                                     col.at("stress_fidelity") + 1);
   if (col.count("runout")) {
     const std::string& r = field("runout");
     if (r != "" && r != "0" && r != "1")
@@ -143,7 +140,9 @@ std::vector<ObservedLife> parse_observed_lives(const std::string& text, const st
 }
 
 void check_one_stress_fidelity(const std::vector<ObservedLife>& cases, const std::string& source) {
-  auto at = [](const std::string& level) { return level.empty() ? std::string("no stated level") : "the " + level + " level"; };
+  auto at = [](const std::optional<core::Fidelity>& level) {
+    return level ? "the " + std::string(core::to_string(*level)) + " level" : std::string("no stated level");
+  };
   for (std::size_t k = 0; k < cases.size(); ++k)
     for (std::size_t j = 0; j < k; ++j)
       if (cases[j].mode == cases[k].mode && cases[j].stress_fidelity != cases[k].stress_fidelity)
@@ -188,7 +187,7 @@ ObservedLife observed_life(const std::string& name, Mode mode, double observed_c
 
 std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
   bool levels = false, runouts = false;  // the columns only when a case states its level / is a runout
-  for (const ObservedLife& c : cases) levels = levels || !c.stress_fidelity.empty(), runouts = runouts || c.runout;
+  for (const ObservedLife& c : cases) levels = levels || c.stress_fidelity.has_value(), runouts = runouts || c.runout;
   std::string out = std::string("case,failure_mode,temperature_C,observed_cycles,point,peaks_MPa") +
                     (levels ? ",stress_fidelity" : "") + (runouts ? ",runout" : "") + "\n";
   for (const ObservedLife& c : cases)
@@ -198,7 +197,7 @@ std::string observed_lives_csv(const std::vector<ObservedLife>& cases) {
         peaks += (peaks.empty() ? "" : ";") + data::format_exact(p);
       out += data::quote_csv_field(c.name) + "," + to_string(c.mode) + "," +
              data::format_exact(c.temperature_C) + "," + data::format_exact(c.observed_cycles) +
-             ",p" + std::to_string(k + 1) + "," + peaks + (levels ? "," + c.stress_fidelity : "") +
+             ",p" + std::to_string(k + 1) + "," + peaks + (levels ? "," + std::string(c.stress_fidelity ? core::to_string(*c.stress_fidelity) : "") : "") +
              (runouts ? (c.runout ? ",1" : ",0") : "") + "\n";
     }
   return out;

@@ -15,12 +15,6 @@ const std::vector<std::string> kColumns = {"point", "role", "x_mm", "y_mm", "t_s
                                            "s22_MPa", "s12_MPa", "e11", "e22", "e12"};
 constexpr std::size_t kStressColumns = 8;  // the strains are optional
 
-Role parse_role(const std::string& text, const std::string& file, int line, int column) {
-  if (text == "bottom") return Role::bottom;
-  if (text == "cushion") return Role::cushion;
-  throw core::InputError("role '" + text + "' is not bottom or cushion", file, line, column, "role");
-}
-
 }  // namespace
 
 std::vector<PointHistory> parse_stress_histories(const std::string& text, const std::string& file) {
@@ -47,7 +41,7 @@ std::vector<PointHistory> parse_stress_histories(const std::string& text, const 
       return data::parse_csv_number(f[k], kColumns[k], file, l.number, k + 1);
     };
     auto strain = [&](int k) { return k < int(columns) && !f[k].empty() ? number(k) : NAN; };
-    const Role role = parse_role(f[1], file, l.number, 2);
+    const Role role = core::material_role_from_string(f[1], "role", file, l.number, 2);
     const double x = number(2), y = number(3);
     const StressSample s{number(4), number(5), number(6), number(7), strain(8), strain(9), strain(10)};
     auto [it, added] = index.emplace(f[0], out.size());

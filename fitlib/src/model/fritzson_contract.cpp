@@ -85,7 +85,7 @@ model::MaterialPointPtr make_contract_point(std::vector<double> p, bool anisotro
       std::move(p), anisotropic, reference_C,
       options.fritzson_exponential ? Scheme::exponential : Scheme::backward_euler, options.damage_update);
   point->hold_damage_beyond(options.damage_driver_hold);
-  if (options.fidelity != PointOptions::Fidelity::elastic) return point;
+  if (options.fidelity != core::Fidelity::elastic) return point;
   if (!options.strain_amplitude)
     return points::elastic_equivalent(*point, options.frequency_Hz, options.temperature_C);
   // The elastic equivalent at an amplitude: the storage stiffness of the steady cycle whose damage

@@ -81,7 +81,7 @@ MaterialPointPtr hyperelastic_point(std::shared_ptr<const Model> model, std::vec
     throw core::UsageError(model->kind() + ": an incompressible card's point needs a bulk modulus "
                            "(PointOptions::bulk_modulus_MPa, or a compressible card with D1)");
   auto point = std::make_shared<HyperelasticPoint>(model, std::move(values), options.bulk_modulus_MPa);
-  if (options.fidelity == PointOptions::Fidelity::elastic)
+  if (options.fidelity == core::Fidelity::elastic)
     return points::elastic_equivalent(*point, options.frequency_Hz, options.temperature_C);
   return point;
 }

@@ -380,7 +380,7 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     if (!(K > 0.0))
       throw core::UsageError(name + ": a material point needs a bulk modulus K > 0 (fit with "
                              "--bulk-modulus, or give the point's bulk modulus)");
-    if (options.fidelity == PointOptions::Fidelity::elastic) {
+    if (options.fidelity == core::Fidelity::elastic) {
       TestCondition c;
       c.mode = o_.mode;
       c.frequency_Hz = options.frequency_Hz;

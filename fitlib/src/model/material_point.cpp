@@ -100,6 +100,8 @@ MaterialPointPtr make_material_point(const Model& model, const std::vector<doubl
                            std::to_string(model.size()) + " parameters, got " +
                            std::to_string(values.size()));
   require_finite_parameters(model, values);  // a NaN would reach every stress of the point
+  if (options.fidelity == core::Fidelity::beam)
+    throw core::UsageError("material point: the beam level has none (elastic or complete)");
   return model.material_point(values.data(), options);
 }
 

@@ -26,7 +26,7 @@ MaterialPointPtr series_point(std::shared_ptr<const Model> model, std::vector<do
   auto temperature = [model, values](double T) { return model->temperature_factors(values.data(), T); };
   const auto point = points::linear_viscoelastic_point(std::move(shear), MaxwellSeries{K, {}, {}},
                                                        std::move(temperature), name);
-  if (options.fidelity == PointOptions::Fidelity::elastic)
+  if (options.fidelity == core::Fidelity::elastic)
     return points::elastic_equivalent(*point, options.frequency_Hz, options.temperature_C);
   return point;
 }

@@ -173,11 +173,11 @@ class ViscoHyperelasticModel final : public Model {
   }
   std::shared_ptr<const MaterialPoint> material_point(const double* p, const PointOptions& options) const override {
     PointOptions o = options;
-    o.fidelity = PointOptions::Fidelity::viscoelastic;
+    o.fidelity = core::Fidelity::complete;
     const auto point = std::make_shared<ViscoHyperelasticPoint>(base_->material_point(p, o), prony(p),
                                                                 "visco-hyperelastic (" + base_->kind() + ", " +
                                                                     std::to_string(terms_) + " Prony terms)");
-    if (options.fidelity == PointOptions::Fidelity::elastic)
+    if (options.fidelity == core::Fidelity::elastic)
       return points::elastic_equivalent(*point, options.frequency_Hz, options.temperature_C);
     return point;
   }

@@ -57,7 +57,7 @@ std::map<std::string, ReachedAmplitude> reached_amplitudes(const segment::CycleR
   std::map<std::string, ReachedAmplitude> by_role;
   for (const segment::MonitoredHistory& m : run.points)
     if (!m.samples.empty())
-      point_amplitude(m, run.cycle_time_s, by_role[m.role == segment::Role::bottom ? "bottom" : "cushion"]);
+      point_amplitude(m, run.cycle_time_s, by_role[core::to_string(m.role)]);
   return by_role;
 }
 
@@ -67,7 +67,7 @@ model::Vector6 voigt_amplitude(const ReachedAmplitude& a) {
   return v;
 }
 
-std::vector<CardReading> card_readings(const Scene& s, const std::string& fidelity, double frequency_Hz,
+std::vector<CardReading> card_readings(const Scene& s, core::Fidelity fidelity, double frequency_Hz,
                                        const std::map<std::string, ReachedAmplitude>& reached,
                                        const std::map<std::string, ReachedAmplitude>& read_at) {
   std::vector<CardReading> out;
@@ -75,7 +75,7 @@ std::vector<CardReading> card_readings(const Scene& s, const std::string& fideli
     if (!s.materials.count(role) || !reached.count(role)) continue;
     CardReading c;
     c.role = role, c.card = s.materials.at(role), c.temperature_C = s.temperature_C;
-    if (fidelity == "elastic") c.frequency_Hz = frequency_Hz;
+    if (fidelity == core::Fidelity::elastic) c.frequency_Hz = frequency_Hz;
     if (auto it = read_at.find(role); it != read_at.end())
       c.read_at = it->second.components, c.read_amplitude = it->second.strain_amplitude;
     c.reached_amplitude = reached.at(role).strain_amplitude;

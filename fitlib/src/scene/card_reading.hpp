@@ -27,7 +27,7 @@ model::Vector6 voigt_amplitude(const ReachedAmplitude& amplitude);
 
 // What the run read of each role's card: its conditions, the amplitude it was read at (`read_at`,
 // the elastic iteration's; none: small amplitude or the complete level) and the one it reached.
-std::vector<CardReading> card_readings(const Scene& scene, const std::string& fidelity, double frequency_Hz,
+std::vector<CardReading> card_readings(const Scene& scene, core::Fidelity fidelity, double frequency_Hz,
                                        const std::map<std::string, ReachedAmplitude>& reached,
                                        const std::map<std::string, ReachedAmplitude>& read_at);
 // "cushion read at 13x its largest tested amplitude (0.58 against 0.045)", or empty within the tests.

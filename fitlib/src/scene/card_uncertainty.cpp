@@ -48,12 +48,13 @@ std::vector<RoleSampler> role_samplers(const Scene& s, std::vector<std::string>&
 
 // The draws' cost against the sweep's work cap (the same per-case costs, docs/decisions.md
 // "sweep: work cap in core-hours").
-void check_draws_cost(const Scene& s, const std::string& fidelity) {
-  const double each = fidelity == "beam" ? kSweepCaseCostS.beam
-                      : fidelity == "elastic" ? kSweepCaseCostS.elastic : kSweepCaseCostS.complete;
+void check_draws_cost(const Scene& s, core::Fidelity fidelity) {
+  const double each = fidelity == core::Fidelity::beam      ? kSweepCaseCostS.beam
+                      : fidelity == core::Fidelity::elastic ? kSweepCaseCostS.elastic
+                                                            : kSweepCaseCostS.complete;
   const double core_hours = each * s.life->samples / 3600.0;
   if (core_hours <= kMaxSweepCoreHours) return;
-  throw core::InputError("[life] samples = " + std::to_string(s.life->samples) + " draws at fidelity " + fidelity +
+  throw core::InputError("[life] samples = " + std::to_string(s.life->samples) + " draws at fidelity " + core::to_string(fidelity) +
                              " take about " + std::to_string(static_cast<int>(core_hours)) +
                              " core-hours, beyond the work cap of 24: fewer samples or a cheaper fidelity",
                          s.path, 0, 0, "life.samples");

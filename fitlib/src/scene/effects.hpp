@@ -20,7 +20,8 @@ card::Card material_card(const Scene& scene, const std::string& role);
 void card_window_warnings(const Scene& scene, const std::string& role, const card::Card& card,
                           const model::TestCondition& at, std::vector<std::string>& warnings);
 
-// The segment's material roles in segment::Role order.
+// The segment's material roles by core::MaterialRole, named as core::to_string names them (the
+// keys of Scene::materials).
 inline constexpr const char* kSegmentRoles[2] = {"bottom", "cushion"};
 // The load frequency of a belt element: one load cycle per belt revolution, f = v / L.
 inline double load_frequency_Hz(const belt::DriveCase& drive) {

@@ -146,7 +146,7 @@ void heat_buildup(const Scene& s, SceneResult& r) {
   r.heat = belt::solve_belt_temperature(*r.drive, s.thermal, remake);
   // The complete level: the segment's dissipation at each fixed point's temperature replaces the
   // layers' estimate, their ratio carried to the next fixed point (docs/thermal.md §1).
-  const bool complete = r.plan.life && r.plan.life->fidelity == "complete";
+  const bool complete = r.plan.life && r.plan.life->fidelity == core::Fidelity::complete;
   for (int run = 1; complete && run <= kMaxSegmentRuns; ++run) {
     const double layers_W = remake(r.heat->temperature_C).hysteresis_W / segment_over_layers;
     const double ratio = segment_hysteresis_W(at, r, *drive, *cycle) / layers_W;

@@ -41,16 +41,16 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
   }
   // The segment levels make the bottom and cushion rubber's material points from their cards
   // (segment_materials below).
-  const std::string& fidelity = r.plan.life->fidelity;
-  if (fidelity != "beam" && (role == "bottom" || role == "cushion"))
+  const core::Fidelity fidelity = r.plan.life->fidelity;
+  if (fidelity != core::Fidelity::beam && (role == "bottom" || role == "cushion"))
     use += std::string(use.empty() ? "" : ", ") +
-           (fidelity == "elastic" ? std::string("segment FE material (storage stiffness at the scene's temperature and load "
+           (fidelity == core::Fidelity::elastic ? std::string("segment FE material (storage stiffness at the scene's temperature and load "
                                                 "frequency") +
                                         (r.amplitude_iteration ? ", at the strain amplitude the segment reached" : "") +
                                         (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")"
                                   : std::string("segment FE material (the card's full model") +
                                         (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")");
-  if (use.empty()) use = "not read at fidelity " + fidelity;
+  if (use.empty()) use = std::string("not read at fidelity ") + core::to_string(fidelity);
   return use;
 }
 
@@ -109,7 +109,7 @@ std::vector<double> damage_hold(const Scene& s, const card::Card& c) {
 model::MaterialPointPtr elastic_point_at(const model::Model& m, const std::vector<double>& values,
                                          const segment::RoleMaterialOptions& o, const model::Vector6& amplitude) {
   model::PointOptions po;
-  po.fidelity = model::PointOptions::Fidelity::elastic;
+  po.fidelity = core::Fidelity::elastic;
   po.temperature_C = o.temperature_C, po.frequency_Hz = o.frequency_Hz, po.bulk_modulus_MPa = o.bulk_modulus_MPa;
   po.damage_driver_hold = o.damage_driver_hold;
   po.strain_amplitude = amplitude;
@@ -127,14 +127,14 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
   model::TestCondition at;
   at.temperature_C = options.temperature_C, at.frequency_Hz = options.frequency_Hz;
   model::TestCondition seen = at;  // the complete level's points see the temperature, not one frequency
-  if (options.fidelity == segment::Fidelity::complete) seen.frequency_Hz = NAN;
+  if (options.fidelity == core::Fidelity::complete) seen.frequency_Hz = NAN;
   card_window_warnings(s, role, c, seen, warnings);
-  if (model->amplitude_dependent() && (options.fidelity == segment::Fidelity::complete || amplitude))
+  if (model->amplitude_dependent() && (options.fidelity == core::Fidelity::complete || amplitude))
     options.damage_driver_hold = damage_hold(s, c);
   if (damage_held) *damage_held = !options.damage_driver_hold.empty();
   try {  // what the card cannot give (a uniaxial card at the complete level, ...) is the scene's input
     options.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
-    if (amplitude && options.fidelity == segment::Fidelity::elastic)
+    if (amplitude && options.fidelity == core::Fidelity::elastic)
       return elastic_point_at(*model, values, options, *amplitude);
     return segment::role_point(*model, values, options);
   } catch (const core::UsageError& e) {
@@ -146,13 +146,13 @@ model::MaterialPointPtr card_point(const Scene& s, const std::string& role, segm
 // the level's fidelity (card_point), or, below the complete level, the [segment] table's E and nu
 // when the scene gives no card for the role; `held` gets the roles whose card's damage is held.
 std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const belt::DriveCase& drive,
-                                                         const std::string& fidelity, std::vector<std::string>& warnings,
+                                                         core::Fidelity fidelity, std::vector<std::string>& warnings,
                                                          std::set<std::string>& held,
                                                          const std::map<std::string, model::Vector6>& amplitudes) {
   std::array<model::MaterialPointPtr, 2> points;
   const auto& roles = kSegmentRoles;
   segment::RoleMaterialOptions options;
-  options.fidelity = segment::fidelity_from_string(fidelity);
+  options.fidelity = fidelity;
   options.temperature_C = s.temperature_C;
   options.frequency_Hz = load_frequency_Hz(drive);
   for (int k = 0; k < 2; ++k) {
@@ -163,7 +163,7 @@ std::array<model::MaterialPointPtr, 2> segment_materials(const Scene& s, const b
                              a == amplitudes.end() ? std::nullopt : std::optional<model::Vector6>(a->second));
       if (damage_held) held.insert(roles[k]);
     } else {
-      if (options.fidelity == segment::Fidelity::complete)  // it would run isotropic elasticity under its name
+      if (options.fidelity == core::Fidelity::complete)  // it would run isotropic elasticity under its name
         throw core::InputError(std::string("[life] fidelity = \"complete\" runs the full card models, and the scene "
                                            "names no ") + roles[k] + " card: give one in [belt.materials], or ask "
                                            "for \"elastic\" (the [segment] table's isotropic E and nu)",
@@ -204,7 +204,7 @@ std::string damage_hold_remedy(const Scene& s, const std::set<std::string>& held
 
 // The segment run; a numerical failure says what the user can do.
 segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
-                                 const scene::SegmentLifeSetup& setup, const std::string& fidelity,
+                                 const scene::SegmentLifeSetup& setup, core::Fidelity fidelity,
                                  const std::string& hold_remedy) {
   try {
     return scene::segment_run(cycle, drive, setup);
@@ -214,7 +214,7 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
                                      : "; [life] diagnose_failure = true adds the evidence (the stiffness's lowest "
                                        "eigenvalues, a tangent check)";
     // A 40 mm driver (side pressure 4.3 MPa) folds the elastic level's land the same way.
-    if (fidelity != "complete")
+    if (fidelity != core::Fidelity::complete)
       throw core::NumericalError(std::string(e.what()) +
                                  ". Where the side pressure is high (a small pulley, a heavy load) the segment's land "
                                  "can fold under Report I's dead contact loads (docs/segment.md \"Diagnosis at the "
@@ -328,7 +328,7 @@ segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, sce
     std::map<std::string, model::Vector6> amplitudes;
     for (const std::string& role : roles)
       if (reached.count(role)) read_at[role] = reached.at(role), amplitudes[role] = voigt_amplitude(reached.at(role));
-    const auto points = segment_materials(s, *r.drive, "elastic", r.warnings, r.segment_damage_held, amplitudes);
+    const auto points = segment_materials(s, *r.drive, core::Fidelity::elastic, r.warnings, r.segment_damage_held, amplitudes);
     // Cards held at their tests' drivers give the same stiffness at every amplitude beyond them: the
     // rerun would repeat the last run, so the amplitudes it read are (to 1e-6) those it reached.
     if (same_stiffness(points, setup.materials)) {
@@ -337,7 +337,7 @@ segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, sce
     }
     setup.materials = points;
     try {
-      run = run_segment(*r.cycle, *r.drive, setup, "elastic", remedy);
+      run = run_segment(*r.cycle, *r.drive, setup, core::Fidelity::elastic, remedy);
     } catch (const core::NumericalError& e) {
       std::string read;
       for (const auto& [role, a] : read_at) read += (read.empty() ? "" : ", ") + role + " " + core::format_number(a.strain_amplitude, 3);
@@ -363,7 +363,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.section = cog_section(s);
     setup.mesh = s.segment ? s.segment->life_mesh : scene::life_mesh();
     setup.solver = s.segment ? s.segment->setup.solver : segment::SolverKnobs{};
-    setup.cycle = scene::life_cycle(segment::fidelity_from_string(r.plan.life->fidelity));
+    setup.cycle = scene::life_cycle(r.plan.life->fidelity);
     setup.solver.threads = segment_threads(s);
     setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
@@ -379,7 +379,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
     std::optional<core::Progress> progress;  // in per cent of the run (the bend and the cycles)
     if (s.segment_progress) {
-      progress.emplace("life: segment (" + r.plan.life->fidelity + ")", 100);
+      progress.emplace(std::string("life: segment (") + core::to_string(r.plan.life->fidelity) + ")", 100);
       setup.cycle.progress = [&progress, shown = std::size_t{0}](double done) mutable {
         const auto now = static_cast<std::size_t>(100.0 * std::clamp(done, 0.0, 1.0));
         if (now > shown) progress->advance(now - shown), shown = now;
@@ -388,7 +388,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     const std::string remedy = damage_hold_remedy(s, r.segment_damage_held);
     segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, remedy);
     std::map<std::string, ReachedAmplitude> read_at;  // the elastic level's amplitudes, by role
-    if (r.plan.life->fidelity == "elastic" && s.life && s.life->elastic_at_reached_amplitude)
+    if (r.plan.life->fidelity == core::Fidelity::elastic && s.life && s.life->elastic_at_reached_amplitude)
       run = read_cards_where_driven(s, r, setup, std::move(run), remedy, read_at);
     const std::map<std::string, ReachedAmplitude> reached = reached_amplitudes(run);
     r.segment_cards_read = card_readings(s, r.plan.life->fidelity, load_frequency_Hz(*r.drive), reached, read_at);
@@ -436,7 +436,8 @@ void fatigue_life(const Scene& s, SceneResult& r) {
   }
   if (spec.crack_sweep_deg) card.crack_sweep_deg = *spec.crack_sweep_deg;
   if (card.levels.count(life.plan.fidelity))  // the card's constants for this level's stresses (docs/fatigue.md §4)
-    life.inputs.back().used_for += "; levels." + life.plan.fidelity + " for a mode fitted at another level";
+    life.inputs.back().used_for += std::string("; levels.") + core::to_string(life.plan.fidelity) +
+                                   " for a mode fitted at another level";
   card = fatigue::card_at_level(card, life.plan.fidelity);
   for (const char* role : {"bottom", "cushion", "cord"})
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
@@ -478,7 +479,7 @@ double field_at_mm(const std::string& at) {
 void check_life_fields(const Scene& s) {
   if (s.life_field_at.empty()) return;
   const LifePlan plan = choose_life_plan(s);
-  if (plan.fidelity == "beam")
+  if (plan.fidelity == core::Fidelity::beam)
     throw core::UsageError("life fields (fitcli life --field-at) need the segment FE ([life] fidelity = \"elastic\" or "
                            "\"complete\"); this scene runs the beam level (" + plan.reason + ")");
   for (const std::string& at : s.life_field_at) field_at_mm(at);
@@ -515,17 +516,18 @@ std::vector<std::string> SegmentEquilibrium::warnings() const {
 }
 
 LifePlan choose_life_plan(const Scene& s) {
-  if (s.life && s.life->fidelity) return {*s.life->fidelity, "[life] fidelity = " + *s.life->fidelity};
+  if (s.life && s.life->fidelity)
+    return {*s.life->fidelity, std::string("[life] fidelity = ") + core::to_string(*s.life->fidelity)};
   const bool cards = s.materials.count("bottom") && s.materials.count("cushion");
   if (!cards && !s.segment)
-    return {"beam", "default: the scene gives neither bottom and cushion cards nor a [segment] table"};
+    return {core::Fidelity::beam, "default: the scene gives neither bottom and cushion cards nor a [segment] table"};
   const std::string why = cards ? "the scene gives bottom and cushion cards, so the segment FE runs with the cards' "
                                    "elastic equivalents"
                                  : "the scene has a [segment] table, so the segment FE runs with its elastic materials";
   // The elastic level takes about 1 s (0.97-1.05 s CPU per drive with the thesis cards, 2 cycles,
   // graded life mesh); the complete level is asked for: it stops on the medium and heavy reference
   // drives (docs/segment.md "Cost").
-  return {"elastic", "default: " + why + " (about 1 s a segment run; cards with tested damage drivers are read at "
+  return {core::Fidelity::elastic, "default: " + why + " (about 1 s a segment run; cards with tested damage drivers are read at "
                      "the strain amplitude the segment reaches, in two or more runs); "
                      "[life] fidelity = \"complete\" runs the full card models (about 5 s on the light drive; "
                      "with the damage model's cards the load path folds on the medium and heavy reference drives: "

@@ -103,7 +103,7 @@ std::vector<Effect> make_registry() {
                  nullptr, {}, timed(detail::segment_stresses)});
   reg.push_back({"fatigue", "life", kOneRun, {"life"}, "",
                  [](const Scene& s) {
-                   return std::vector<std::string>{choose_life_plan(s).fidelity == "beam" ? "beam_stresses" : "segment_fe"};
+                   return std::vector<std::string>{choose_life_plan(s).fidelity == core::Fidelity::beam ? "beam_stresses" : "segment_fe"};
                  },
                  "", nullptr, {}, timed(detail::fatigue_life)});
   return reg;

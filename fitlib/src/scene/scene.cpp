@@ -542,9 +542,9 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
             "elastic_amplitude", "uncertainty", "samples", "seed"});
   LifeSpec l;
   if (auto f = lr.string("fidelity")) {
-    if (!fatigue::is_stress_fidelity(*f))
-      lr.fail("fidelity", "fidelity must be \"beam\", \"elastic\" or \"complete\", not \"" + *f + "\"");
-    l.fidelity = *f;
+    const toml::source_position at = t.get("fidelity")->source().begin;
+    l.fidelity = core::fidelity_from_string(*f, "life.fidelity", source, static_cast<int>(at.line),
+                                            static_cast<int>(at.column));
   }
   if (auto c = card_file(lr, "card", base)) l.card = *c;
   l.cycles = static_cast<int>(lr.count_or("cycles", l.cycles, 1, 1e4));

@@ -37,7 +37,7 @@ SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path) {
     }
     if (out.frequency_Hz == 0.0) out.frequency_Hz = case_frequency_Hz(scene);
     segment::RoleMaterialOptions options;
-    options.fidelity = segment::Fidelity::elastic;
+    options.fidelity = core::Fidelity::elastic;
     options.temperature_C = scene.temperature_C, options.frequency_Hz = out.frequency_Hz;
     setup.material_points[k] = detail::card_point(scene, roles[k], options, out.warnings);
     out.materials.push_back({roles[k], scene.materials.at(roles[k]), setup.material_points[k]->describe()});

@@ -1,4 +1,4 @@
-// Life from the segment FE (fitlib/fatigue/segment_life.hpp).
+// Life from the segment FE (fitlib/scene/segment_life.hpp).
 #include "fitlib/scene/segment_life.hpp"
 
 #include <chrono>
@@ -19,10 +19,10 @@ segment::MeshKnobs life_mesh() {
   return m;
 }
 
-segment::CycleKnobs life_cycle(segment::Fidelity fidelity) {
+segment::CycleKnobs life_cycle(core::Fidelity fidelity) {
   segment::CycleKnobs c;
   c.ends = segment::EndCondition::sheared;
-  if (fidelity == segment::Fidelity::complete) c.steps_per_cycle = 120;
+  if (fidelity == core::Fidelity::complete) c.steps_per_cycle = 120;
   return c;
 }
 
@@ -33,7 +33,7 @@ std::vector<fatigue::PointHistory> segment_point_histories(const segment::CycleR
       const bool scanned = histories == &run.scanned;
       fatigue::PointHistory p;
       p.name = m.point.name;
-      p.role = m.role == segment::Role::bottom ? fatigue::Role::bottom : fatigue::Role::cushion;
+      p.role = m.role;
       p.x_mm = m.point.x_mm, p.y_mm = m.point.y_mm;
       if (scanned) p.element = m.at.element, p.integration_point = m.gauss_point;
       for (const segment::CycleSample& c : m.samples)

@@ -27,9 +27,10 @@ bool sets_fidelity(const SweepAxis& axis) {
 
 double case_cost_s(const Sweep& sweep, const SweepCase& c, bool life) {
   if (!life) return kSweepCaseCostS.beam;  // the load cycle alone: at most the beam level's cost
-  const std::string level = choose_life_plan(case_scene(sweep, c)).fidelity;
-  return level == "complete" ? kSweepCaseCostS.complete : level == "elastic" ? kSweepCaseCostS.elastic
-                                                                             : kSweepCaseCostS.beam;
+  const core::Fidelity level = choose_life_plan(case_scene(sweep, c)).fidelity;
+  return level == core::Fidelity::complete  ? kSweepCaseCostS.complete
+         : level == core::Fidelity::elastic ? kSweepCaseCostS.elastic
+                                            : kSweepCaseCostS.beam;
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ const std::map<std::string, ColumnSpec>& columns() {
        }}},
       {"centrifugal_tension_N", {"load_history", [](const SceneResult& r) { return number(r.cycle->centrifugal_tension_N); }}},
       {"cycle_time_s", {"load_history", [](const SceneResult& r) { return number(r.cycle->cycle_time_s); }}},
-      {"fidelity", {"life", [](const SceneResult& r) { return r.life->plan.fidelity; }, true}},
+      {"fidelity", {"life", [](const SceneResult& r) { return std::string(core::to_string(r.life->plan.fidelity)); }, true}},
       {"governing_mode", {"life", [](const SceneResult& r) { return r.life->report.governing; }, true}},
       {"life_cycles", {"life", [](const SceneResult& r) { return number(r.life->report.life_cycles); }}},
       {"life_h", {"life", [](const SceneResult& r) { return number(r.life->report.life_h); }}},

@@ -199,7 +199,7 @@ std::vector<fatigue::PointHistory> written_histories(const LifeResult& l, const 
 
 json life_summary_json(const LifeResult& l, bool effective_stress_history = false) {
   json j = fatigue::life_to_json(l.report, effective_stress_history);
-  j["fidelity"] = l.plan.fidelity;
+  j["fidelity"] = core::to_string(l.plan.fidelity);
   j["fidelity_reason"] = l.plan.reason;
   json inputs = json::array();
   for (const auto& f : l.inputs)
@@ -283,7 +283,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
   const LifeResult& l = r.life.value();
   std::ostringstream o;
   o << "scene: " << s.name << " (" << (l.heat ? l.heat->temperature_C : s.temperature_C) << " degC)\n"
-    << "fidelity: " << l.plan.fidelity << " (" << l.plan.reason << ")\n"
+    << "fidelity: " << core::to_string(l.plan.fidelity) << " (" << l.plan.reason << ")\n"
     << (l.heat ? heat_text(*l.heat) : "") << fatigue::life_table(l.report)
     << fatigue::life_distribution_table(l.report, l.distribution);
   if (l.equilibrium) {
@@ -301,7 +301,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
         << " planned steps, " << w->increments << " increments, " << w->newton_iterations << " Newton iterations, "
         << w->cuts << " step cuts\n";
     const bool default_mesh = !s.segment || !s.segment->life_mesh_changed;
-    if (default_mesh && l.plan.fidelity == "complete" && l.damage_held)
+    if (default_mesh && l.plan.fidelity == core::Fidelity::complete && l.damage_held)
       // docs/segment.md "Damage held beyond the tested amplitudes"
       o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
            "central gap, one cushion row, sheared end faces), with the cards' damage held at their tests' drivers, "
@@ -309,7 +309,7 @@ std::string life_text(const Scene& s, const SceneResult& r) {
            "0.6 mm elements with three cushion rows (N1 shorter, on the safe side, where it differs by more than 2 %; [segment] fine_size_mm = "
            "0.6 reads them at about 3 x the time; the heavy drive runs near its fold, where some finer meshes stop) (docs/segment.md "
            "\"Damage held beyond the tested amplitudes\")\n";
-    else if (default_mesh && l.plan.fidelity == "complete")  // docs/fatigue.md "Measured"
+    else if (default_mesh && l.plan.fidelity == core::Fidelity::complete)  // docs/fatigue.md "Measured"
       o << "note: the complete level on the life's default segment (192 elements, 27 mm long, graded at the "
            "central gap, one cushion row, sheared end faces) gives on the light drive N1 0.82 x and N2 0.98 x "
            "those of 0.35 mm elements with three cushion rows (0.6 mm: 0.95 and 0.95 x) (docs/segment.md "

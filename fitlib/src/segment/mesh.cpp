@@ -13,8 +13,6 @@
 
 namespace fitlib::segment {
 
-const char* to_string(Role role) { return role == Role::bottom ? "bottom" : "cushion"; }
-
 namespace {
 
 // Column boundaries: coarse | fine (even count, so a column line falls on the gap centre x = 0) | coarse.

@@ -27,19 +27,10 @@ PointResponse ContractLaw::respond(const Matrix2& F2, const PointStep& step) con
   return out;
 }
 
-Fidelity fidelity_from_string(const std::string& name) {
-  if (name == "elastic") return Fidelity::elastic;
-  if (name == "complete") return Fidelity::complete;
-  throw core::UsageError("unknown segment fidelity '" + name + "' (known: elastic, complete)");
-}
-
-const char* to_string(Fidelity f) { return f == Fidelity::elastic ? "elastic" : "complete"; }
-
 model::MaterialPointPtr role_point(const model::Model& model, const std::vector<double>& values,
                                    const RoleMaterialOptions& o) {
   model::PointOptions po;
-  po.fidelity = o.fidelity == Fidelity::elastic ? model::PointOptions::Fidelity::elastic
-                                                : model::PointOptions::Fidelity::viscoelastic;
+  po.fidelity = o.fidelity;
   po.temperature_C = o.temperature_C;
   po.frequency_Hz = o.frequency_Hz;
   po.bulk_modulus_MPa = o.bulk_modulus_MPa;

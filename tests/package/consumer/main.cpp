@@ -17,6 +17,6 @@ int main(int argc, char** argv) {
   const auto m = card.model()->moduli(values.data(), c);
   const auto life = fitlib::scene::run_life(fitlib::scene::load_scene(data + "/datasets/drives/ref-0500-light.toml"));
   std::printf("%s %.6g %.6g; life %s %.4g cycles (%s)\n", card.model_kind.c_str(), m.storage, m.loss,
-              life.life->report.governing.c_str(), life.life->report.life_cycles, life.life->plan.fidelity.c_str());
+              life.life->report.governing.c_str(), life.life->report.life_cycles, fitlib::core::to_string(life.life->plan.fidelity));
   return m.storage > 0 && m.loss > 0 && life.life->report.life_cycles > 0 ? 0 : 1;
 }

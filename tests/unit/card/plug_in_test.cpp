@@ -195,7 +195,7 @@ TEST_F(PlugIn, TheMaterialPointRelaxesAsTheModel) {
 
 TEST_F(PlugIn, TheElasticFidelityIsTheStorageModulus) {
   model::PointOptions options;
-  options.fidelity = model::PointOptions::Fidelity::elastic;
+  options.fidelity = core::Fidelity::elastic;
   options.frequency_Hz = 3.0;
   const auto point = model::make_material_point(*card_.model(), card_.values(), options);
   model::TestCondition c;

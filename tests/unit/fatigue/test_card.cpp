@@ -40,22 +40,22 @@ TEST(FatigueCard, BundledCardIsTheDefault) {
 // model's; a card may leave it unstated; the warning names the modes and levels that differ.
 TEST(FatigueCard, EachModeStatesTheStressLevelItsConstantsWereFittedTo) {
   FatigueCard c = default_card();
-  EXPECT_EQ(c.radial_crack.stress_fidelity, "complete");
-  EXPECT_EQ(c.separation.stress_fidelity, "complete");
-  EXPECT_EQ(stress_fidelity_warning(c, "complete"), "");
-  EXPECT_EQ(stress_fidelity_warning(c, "beam").rfind("the fatigue card's radial_crack and separation constants "
+  EXPECT_EQ(c.radial_crack.stress_fidelity, core::Fidelity::complete);
+  EXPECT_EQ(c.separation.stress_fidelity, core::Fidelity::complete);
+  EXPECT_EQ(stress_fidelity_warning(c, core::Fidelity::complete), "");
+  EXPECT_EQ(stress_fidelity_warning(c, core::Fidelity::beam).rfind("the fatigue card's radial_crack and separation constants "
                                                      "were fitted to complete-level stresses, and this run's "
                                                      "stresses are the beam level's", 0), 0u);
-  c.radial_crack.stress_fidelity = "elastic";
-  c.separation.stress_fidelity = "";
-  EXPECT_EQ(stress_fidelity_warning(c, "elastic"), "");
-  EXPECT_EQ(stress_fidelity_warning(c, "beam").rfind("the fatigue card's radial_crack constants were fitted to "
+  c.radial_crack.stress_fidelity = core::Fidelity::elastic;
+  c.separation.stress_fidelity = std::nullopt;
+  EXPECT_EQ(stress_fidelity_warning(c, core::Fidelity::elastic), "");
+  EXPECT_EQ(stress_fidelity_warning(c, core::Fidelity::beam).rfind("the fatigue card's radial_crack constants were fitted to "
                                                      "elastic-level stresses", 0), 0u);
-  c.separation.stress_fidelity = "complete";
-  EXPECT_NE(stress_fidelity_warning(c, "beam").find("radial_crack and separation constants were fitted to "
+  c.separation.stress_fidelity = core::Fidelity::complete;
+  EXPECT_NE(stress_fidelity_warning(c, core::Fidelity::beam).find("radial_crack and separation constants were fitted to "
                                                     "elastic and complete-level stresses"), std::string::npos);
   const std::string path = fitlib_test::temp_path("levels.json");
-  c.separation.stress_fidelity = "";
+  c.separation.stress_fidelity = std::nullopt;
   save_card(path, c);
   EXPECT_EQ(card_to_json(load_card(path)), card_to_json(c));
   EXPECT_FALSE(card_to_json(c)["modes"]["separation"].contains("stress_fidelity"));
@@ -130,24 +130,24 @@ TEST(FatigueCard, ErrorsNameFileAndKey) {
 TEST(FatigueCard, LevelsGiveEachRunTheConstantsOfItsOwnStresses) {
   FatigueCard c = default_card();
   c.levels.clear();
-  LifeLaw beam1{50.0, 4.423, 0.02897, "beam"}, beam2{2.5, 11.69, 0.1466, "beam"};
-  c.levels["beam"] = LevelLaws{beam1, beam2};
-  const FatigueCard at_beam = card_at_level(c, "beam");
+  LifeLaw beam1{50.0, 4.423, 0.02897, core::Fidelity::beam}, beam2{2.5, 11.69, 0.1466, core::Fidelity::beam};
+  c.levels[core::Fidelity::beam] = LevelLaws{beam1, beam2};
+  const FatigueCard at_beam = card_at_level(c, core::Fidelity::beam);
   EXPECT_EQ(at_beam.radial_crack.sigma0_MPa, 50.0);
   EXPECT_EQ(at_beam.separation.sigma0_MPa, 2.5);
-  EXPECT_EQ(at_beam.separation.stress_fidelity, "beam");
+  EXPECT_EQ(at_beam.separation.stress_fidelity, core::Fidelity::beam);
   EXPECT_TRUE(at_beam.levels.empty());
-  EXPECT_EQ(stress_fidelity_warning(at_beam, "beam"), "");
-  EXPECT_EQ(card_at_level(c, "complete").radial_crack.sigma0_MPa, 104.218);  // the modes' own level
-  EXPECT_NE(stress_fidelity_warning(card_at_level(c, "elastic"), "elastic"), "");  // no elastic entry: warned
-  c.separation.stress_fidelity = "";  // a mode that states no level is kept at every level
-  EXPECT_EQ(card_at_level(c, "beam").separation.sigma0_MPa, 4.21028);
+  EXPECT_EQ(stress_fidelity_warning(at_beam, core::Fidelity::beam), "");
+  EXPECT_EQ(card_at_level(c, core::Fidelity::complete).radial_crack.sigma0_MPa, 104.218);  // the modes' own level
+  EXPECT_NE(stress_fidelity_warning(card_at_level(c, core::Fidelity::elastic), core::Fidelity::elastic), "");  // no elastic entry: warned
+  c.separation.stress_fidelity = std::nullopt;  // a mode that states no level is kept at every level
+  EXPECT_EQ(card_at_level(c, core::Fidelity::beam).separation.sigma0_MPa, 4.21028);
   const std::string path = fitlib_test::temp_path("levels-round.json");
   save_card(path, c);
   EXPECT_EQ(card_to_json(load_card(path)), card_to_json(c));
   nlohmann::json j = card_to_json(c);
   j["levels"]["beam"]["separation"].erase("stress_fidelity");  // absent: the key's level
-  EXPECT_EQ(card_from_json(j, "c.json").levels.at("beam").separation.stress_fidelity, "beam");
+  EXPECT_EQ(card_from_json(j, "c.json").levels.at(core::Fidelity::beam).separation.stress_fidelity, core::Fidelity::beam);
   j["levels"]["beam"]["separation"]["stress_fidelity"] = "elastic";
   expect_error(j.dump(), "levels.beam.separation.stress_fidelity");
   j = card_to_json(c);
@@ -162,15 +162,16 @@ TEST(FatigueCard, LevelsGiveEachRunTheConstantsOfItsOwnStresses) {
 // provenance names the drives, the date, the commit and the fitted stress factors.
 TEST(FatigueCard, BundledCardHoldsTheCalibratedLevelsWithTheirProvenance) {
   const FatigueCard c = default_card();
-  for (const char* level : {"beam", "elastic"}) {
-    ASSERT_TRUE(c.levels.count(level)) << level;
-    EXPECT_EQ(c.levels.at(level).radial_crack.n, c.radial_crack.n) << "n held: a stress factor per level";
-    EXPECT_EQ(c.levels.at(level).separation.b_per_C, c.separation.b_per_C);
+  for (const core::Fidelity fidelity : {core::Fidelity::beam, core::Fidelity::elastic}) {
+    const char* level = core::to_string(fidelity);
+    ASSERT_TRUE(c.levels.count(fidelity)) << level;
+    EXPECT_EQ(c.levels.at(fidelity).radial_crack.n, c.radial_crack.n) << "n held: a stress factor per level";
+    EXPECT_EQ(c.levels.at(fidelity).separation.b_per_C, c.separation.b_per_C);
     const nlohmann::json& p = c.provenance.at("level_calibration").at(level);
     for (const char* mode : {"radial_crack", "separation"}) {
       // σ0 of the level = σ0 of the complete level / the stress factor (n and b held)
       const double factor = p.at("stress_factor").at(mode).get<double>();
-      EXPECT_NEAR(c.levels.at(level).law(*mode_from_string(mode)).sigma0_MPa * factor,
+      EXPECT_NEAR(c.levels.at(fidelity).law(*mode_from_string(mode)).sigma0_MPa * factor,
                   c.law(*mode_from_string(mode)).sigma0_MPa, 1e-9 * c.law(*mode_from_string(mode)).sigma0_MPa);
     }
   }

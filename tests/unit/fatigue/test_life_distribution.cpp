@@ -26,7 +26,7 @@ ModeLife mode_life(const LifeLaw& law, const std::vector<double>& peaks, double 
 }
 
 LifeLaw law_with_scatter(double sigma, double cov_scale) {
-  LifeLaw law{4.21028, 11.69, 0.1466, "", LifeScatter{"lognormal", sigma, 8}, std::nullopt};
+  LifeLaw law{4.21028, 11.69, 0.1466, std::nullopt, LifeScatter{"lognormal", sigma, 8}, std::nullopt};
   LawCovariance c{};
   c[0][0] = 4e-4 * cov_scale, c[1][1] = 0.25 * cov_scale, c[2][2] = 1e-4 * cov_scale;
   c[0][1] = c[1][0] = 5e-3 * cov_scale;
@@ -66,10 +66,10 @@ TEST(LifeDistribution, IntervalWidensWhenTheConstantsCovarianceGrows) {
 // The gradient against central differences of log10 N from sum_terms (an independent path).
 TEST(LifeDistribution, GradientMatchesFiniteDifferencesOfTheLaw) {
   const std::vector<double> peaks{1.5, 0.9, 1.1, 0.4};
-  const LifeLaw law{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw law{4.21028, 11.69, 0.1466, std::nullopt};
   const double dT = 12.0;
   auto log10N = [&](double ln_s0, double n, double b) {
-    const LifeLaw l{std::exp(ln_s0), n, b, ""};
+    const LifeLaw l{std::exp(ln_s0), n, b, std::nullopt};
     return std::log10(std::pow(2.0, -b * dT) / sum_terms(peaks, l));
   };
   const auto g = log10_life_gradient(peaks, law, dT);
@@ -82,7 +82,7 @@ TEST(LifeDistribution, GradientMatchesFiniteDifferencesOfTheLaw) {
 // life-fit's scatter estimates the noise of synthetic lives of known truth, and its covariance's
 // diagonal is the square of the intervals' standard errors.
 TEST(LifeDistribution, LifeFitWritesTheScatterAndCovarianceItEstimated) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, std::nullopt};
   core::Rng rng(17);
   std::vector<ObservedLife> cases;
   for (int k = 0; k < 60; ++k) {
@@ -94,7 +94,7 @@ TEST(LifeDistribution, LifeFitWritesTheScatterAndCovarianceItEstimated) {
     cases.push_back(c);
   }
   LifeFitOptions o;
-  o.start = LifeLaw{8.0, 6.0, 0.05, ""};
+  o.start = LifeLaw{8.0, 6.0, 0.05, std::nullopt};
   const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
   ASSERT_TRUE(r.law.scatter && r.law.covariance);
   EXPECT_EQ(r.law.scatter->dof, 57);

@@ -39,13 +39,13 @@ std::vector<ObservedLife> synthetic(Mode mode, const LifeLaw& truth, int count, 
 }
 
 TEST(LifeFit, RecoversKnownConstantsFromExactLives) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, std::nullopt};
   auto cases = synthetic(Mode::separation, truth, 12, 0.0, 5);
   // Cases of the other mode are ignored by this mode's fit.
-  auto other = synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, ""}, 5, 0.0, 6);
+  auto other = synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, std::nullopt}, 5, 0.0, 6);
   cases.insert(cases.end(), other.begin(), other.end());
   LifeFitOptions o;
-  o.start = LifeLaw{8.0, 6.0, 0.05, ""};
+  o.start = LifeLaw{8.0, 6.0, 0.05, std::nullopt};
   const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
   EXPECT_EQ(r.cases, 12);
   EXPECT_NEAR(r.law.sigma0_MPa / truth.sigma0_MPa, 1.0, 1e-7);
@@ -59,13 +59,13 @@ TEST(LifeFit, RecoversKnownConstantsFromExactLives) {
 // life pulls the law towards it (its prediction rises) and is named as violated; a mode with
 // runouts only keeps the start law, and the runouts that refute it are a warning.
 TEST(LifeFit, RunoutsBoundTheLifeFromBelowOnly) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, std::nullopt};
   std::vector<ObservedLife> cases = synthetic(Mode::separation, truth, 12, 0.0, 5);
   auto runouts = synthetic(Mode::separation, truth, 6, 0.0, 8);
   for (ObservedLife& r : runouts) r.runout = true, r.name = "runout-" + r.name, r.observed_cycles /= 3.0;
   cases.insert(cases.end(), runouts.begin(), runouts.end());
   LifeFitOptions o;
-  o.start = LifeLaw{8.0, 6.0, 0.05, ""};
+  o.start = LifeLaw{8.0, 6.0, 0.05, std::nullopt};
   const LifeFitResult kept = fit_life_law(cases, Mode::separation, o);
   EXPECT_EQ(kept.cases, 12);
   EXPECT_EQ(kept.runouts, 6);
@@ -97,7 +97,7 @@ TEST(LifeFit, RunoutsBoundTheLifeFromBelowOnly) {
     EXPECT_EQ(e.key(), "failure_mode");
     EXPECT_NE(std::string(e.what()).find("no life test failed (6 runout case(s))"), std::string::npos) << e.what();
   }
-  only.push_back(synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, ""}, 3, 0.0, 6)[0]);
+  only.push_back(synthetic(Mode::radial_crack, LifeLaw{104.218, 4.423, 0.02897, std::nullopt}, 3, 0.0, 6)[0]);
   only.front().observed_cycles = 1e30;
   const LifeCardFit start_kept = fit_life_card(only, default_card(), HeldConstants{true, true});
   EXPECT_EQ(start_kept.card.separation.n, default_card().separation.n);
@@ -110,7 +110,7 @@ TEST(LifeFit, RunoutsBoundTheLifeFromBelowOnly) {
 // Property over 10 seeds: exact failures plus runouts stopped at random fractions (0.05–1) of the
 // truth's lives fit back to the truth exactly, whatever the mix; the runouts are counted, none violated.
 TEST(LifeFit, RunoutsBeforeTheTruthsLivesNeverMoveAnExactFit) {
-  const LifeLaw truth{104.218, 4.423, 0.02897, ""};
+  const LifeLaw truth{104.218, 4.423, 0.02897, std::nullopt};
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     core::Rng rng(100 + seed);
     auto cases = synthetic(Mode::radial_crack, truth, 6 + static_cast<int>(seed), 0.0, seed);
@@ -118,7 +118,7 @@ TEST(LifeFit, RunoutsBeforeTheTruthsLivesNeverMoveAnExactFit) {
     for (ObservedLife& r : runouts) r.runout = true, r.observed_cycles *= rng.uniform(0.05, 1.0);
     cases.insert(cases.end(), runouts.begin(), runouts.end());
     LifeFitOptions o;
-    o.start = LifeLaw{50.0, 3.0, 0.0, ""};
+    o.start = LifeLaw{50.0, 3.0, 0.0, std::nullopt};
     const LifeFitResult r = fit_life_law(cases, Mode::radial_crack, o);
     EXPECT_EQ(r.runouts, static_cast<int>(runouts.size())) << seed;
     EXPECT_NEAR(r.law.n / truth.n, 1.0, 1e-6) << seed;
@@ -128,10 +128,10 @@ TEST(LifeFit, RunoutsBeforeTheTruthsLivesNeverMoveAnExactFit) {
 }
 
 TEST(LifeFit, IntervalsCoverTheTruthWithScatter) {
-  const LifeLaw truth{104.218, 4.423, 0.02897, ""};
+  const LifeLaw truth{104.218, 4.423, 0.02897, std::nullopt};
   const auto cases = synthetic(Mode::radial_crack, truth, 30, 0.15, 17);
   LifeFitOptions o;
-  o.start = LifeLaw{50.0, 3.0, 0.0, ""};
+  o.start = LifeLaw{50.0, 3.0, 0.0, std::nullopt};
   const LifeFitResult r = fit_life_law(cases, Mode::radial_crack, o);
   ASSERT_EQ(r.constants.size(), 3u);
   const double t[3] = {truth.sigma0_MPa, truth.n, truth.b_per_C};
@@ -146,10 +146,10 @@ TEST(LifeFit, IntervalsCoverTheTruthWithScatter) {
 }
 
 TEST(LifeFit, OneTemperatureHoldsB) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, std::nullopt};
   const auto cases = synthetic(Mode::separation, truth, 8, 0.0, 9, false);
   LifeFitOptions o;
-  o.start = LifeLaw{6.0, 9.0, 0.1466, ""};
+  o.start = LifeLaw{6.0, 9.0, 0.1466, std::nullopt};
   const LifeFitResult r = fit_life_law(cases, Mode::separation, o);
   EXPECT_TRUE(r.constants[2].fixed);
   EXPECT_NE(r.note.find("one temperature"), std::string::npos);
@@ -231,10 +231,10 @@ TEST(ObservedLives, TheFittedLawIsOfItsCasesStressLevel) {
   const std::string text = "case,failure_mode,temperature_C,observed_cycles,peaks_MPa,stress_fidelity\n"
                            "A,separation,90,1e6,1.0,elastic\nB,separation,90,1e5,1.3,elastic\n";
   const auto cases = parse_observed_lives(text, "lives.csv");
-  EXPECT_EQ(parse_observed_lives(observed_lives_csv(cases), "again.csv")[1].stress_fidelity, "elastic");
+  EXPECT_EQ(parse_observed_lives(observed_lives_csv(cases), "again.csv")[1].stress_fidelity, core::Fidelity::elastic);
   const LifeCardFit fit = fit_life_card(cases, default_card());
-  EXPECT_EQ(fit.card.separation.stress_fidelity, "elastic");
-  EXPECT_EQ(fit.card.radial_crack.stress_fidelity, "complete");  // the start's, kept
+  EXPECT_EQ(fit.card.separation.stress_fidelity, core::Fidelity::elastic);
+  EXPECT_EQ(fit.card.radial_crack.stress_fidelity, core::Fidelity::complete);  // the start's, kept
   EXPECT_TRUE(std::any_of(fit.warnings.begin(), fit.warnings.end(), [](const std::string& w) {
     return w.find("radial_crack constants are of complete-level stresses, its separation constants of "
                   "elastic-level ones") != std::string::npos;
@@ -242,7 +242,7 @@ TEST(ObservedLives, TheFittedLawIsOfItsCasesStressLevel) {
   // Without the column the level is not stated, and no column is written back.
   const auto unstated = parse_observed_lives("case,failure_mode,temperature_C,observed_cycles,peaks_MPa\n"
                                              "A,separation,90,1e6,1.0\nB,separation,90,1e5,1.3\n", "plain.csv");
-  EXPECT_EQ(fit_life_card(unstated, default_card()).card.separation.stress_fidelity, "");
+  EXPECT_EQ(fit_life_card(unstated, default_card()).card.separation.stress_fidelity, std::nullopt);
   EXPECT_EQ(observed_lives_csv(unstated).find("stress_fidelity"), std::string::npos);
 }
 
@@ -305,7 +305,7 @@ TEST(ObservedLives, CsvRoundTripAndFitFromHistories) {
     EXPECT_EQ(back[k].observed_cycles, cases[k].observed_cycles);
   }
   LifeFitOptions o;
-  o.start = LifeLaw{60.0, 3.0, 0.01, ""};
+  o.start = LifeLaw{60.0, 3.0, 0.01, std::nullopt};
   const LifeFitResult r = fit_life_law(back, Mode::radial_crack, o);
   EXPECT_NEAR(r.law.sigma0_MPa / 104.218, 1.0, 1e-6);
   EXPECT_NEAR(r.law.n / 4.423, 1.0, 1e-6);
@@ -321,9 +321,9 @@ namespace {
 // The card: fitted modes replace the start's law, a mode without cases keeps it and says so;
 // lives scattering by more than a factor 3.2 and an undetermined σ0 are warnings.
 TEST(LifeCardFit, ReplacesFittedModesKeepsOthersAndWarnsAboutPoorFits) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, std::nullopt};
   FatigueCard start = default_card();
-  start.separation = LifeLaw{6.0, 8.0, 0.1, ""};
+  start.separation = LifeLaw{6.0, 8.0, 0.1, std::nullopt};
   const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, truth, 12, 0.0, 5), start);
   ASSERT_EQ(exact.fits.size(), 1u);
   EXPECT_NEAR(exact.card.separation.n / truth.n, 1.0, 1e-7);
@@ -369,7 +369,7 @@ TEST(LifeCardFit, AFitWithNAtItsBoundKeepsTheStartLawAndNoFitAtAllIsAnError) {
   EXPECT_TRUE(said);
   EXPECT_THROW(fit_life_card(rising, start), core::NumericalError);
   // Lives scattered by a factor 10 over 60–120 °C hide the temperature's effect: b's interval reaches zero.
-  const LifeCardFit noisy = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466, ""}, 5, 1.0, 3), start);
+  const LifeCardFit noisy = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466, std::nullopt}, 5, 1.0, 3), start);
   ASSERT_TRUE(noisy.fits[0].constants[2].has_interval);
   EXPECT_LE(noisy.fits[0].constants[2].ci95_low, 0.0);
   said = false;
@@ -391,16 +391,16 @@ TEST(LifeCardFit, AFitWithNAtItsBoundKeepsTheStartLawAndNoFitAtAllIsAnError) {
   said = false;
   for (const std::string& w : weak.warnings) said = said || w.find("separation: n's 95 % interval") != std::string::npos;
   EXPECT_TRUE(said);
-  const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466, ""}, 5, 0.0, 3), start);
+  const LifeCardFit exact = fit_life_card(synthetic(Mode::separation, LifeLaw{4.21028, 11.69, 0.1466, std::nullopt}, 5, 0.0, 3), start);
   for (const std::string& w : exact.warnings) EXPECT_EQ(w.find("n's 95 % interval"), std::string::npos) << w;
 }
 
 // No more free constants than cases: one case fits σ0 alone (n, b held), two fit σ0 and n; either
 // passes through its cases exactly, which is a warning, not a result to trust. --fix-n holds n.
 TEST(LifeCardFit, FewCasesHoldConstantsAndAnExactFitIsAWarning) {
-  const LifeLaw truth{4.21028, 11.69, 0.1466, ""};
+  const LifeLaw truth{4.21028, 11.69, 0.1466, std::nullopt};
   FatigueCard start = default_card();
-  start.separation = LifeLaw{6.0, 8.0, 0.1, ""};
+  start.separation = LifeLaw{6.0, 8.0, 0.1, std::nullopt};
   const auto cases = synthetic(Mode::separation, truth, 4, 0.0, 5);
   auto warned_exact = [](const LifeCardFit& f) {
     for (const std::string& w : f.warnings)

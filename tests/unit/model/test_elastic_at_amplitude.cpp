@@ -27,7 +27,7 @@ Matrix6 stiffness_of(const MaterialPoint& point) {
 
 PointOptions elastic_at(double f_Hz, double T_C, std::optional<Vector6> amplitude) {
   PointOptions o;
-  o.fidelity = PointOptions::Fidelity::elastic;
+  o.fidelity = fitlib::core::Fidelity::elastic;
   o.frequency_Hz = f_Hz, o.temperature_C = T_C, o.strain_amplitude = amplitude;
   return o;
 }

@@ -45,7 +45,7 @@ std::vector<double> card_values(const std::string& relative) {
 
 PointOptions elastic_at(double f, double T) {
   PointOptions o;
-  o.fidelity = PointOptions::Fidelity::elastic;
+  o.fidelity = fitlib::core::Fidelity::elastic;
   o.frequency_Hz = f;
   o.temperature_C = T;
   return o;
@@ -212,7 +212,7 @@ TEST_P(PointContract, RelaxationAndCreepMatchTheModel) {
   for (int i = 0; i < 6; ++i) relax.components[i].imposed = DriveControl::Imposed::strain;
   relax.components[k].values.assign(times.size(), gamma0);
   const DriveResult r = drive(*point_, relax);
-  const bool elastic = GetParam().point.fidelity == PointOptions::Fidelity::elastic;
+  const bool elastic = GetParam().point.fidelity == fitlib::core::Fidelity::elastic;
   c.frequency_Hz = GetParam().point.frequency_Hz;
   for (size_t n = 0; n < times.size(); n += 100) {
     // The elastic equivalent holds the storage modulus at its frequency.

@@ -107,7 +107,7 @@ TEST(PointParts, ElasticFidelityHoldsTheCardsModuliAtFrequencyAndTemperature) {
                                           {"vertical_shift", true}, {"reference_C", 23.0}});
   const std::vector<double> p{1.0, 2.0, 0.1, 300.0, 8.0, 120.0};
   PointOptions o;
-  o.fidelity = PointOptions::Fidelity::elastic;
+  o.fidelity = fitlib::core::Fidelity::elastic;
   o.frequency_Hz = 5.0;
   o.temperature_C = 60.0;
   const auto point = make_material_point(*model, p, o);

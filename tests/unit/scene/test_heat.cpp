@@ -45,7 +45,7 @@ TEST(SceneHeat, OffGivesTodaysLivesBitForBit) {
     o.effects = scene::make_plan(absent).load_cycle;
     const auto cycle = belt::compute_load_cycle(d, o);
     const auto direct = fatigue::beam_life(cycle, d, fatigue::default_beam_section(d, 80.0),
-                                           fatigue::card_at_level(fatigue::default_card(), "beam"), 80.0);
+                                           fatigue::card_at_level(fatigue::default_card(), core::Fidelity::beam), 80.0);
     for (std::size_t k = 0; k < direct.modes.size(); ++k)
       EXPECT_EQ(a.life->report.modes[k].life_cycles, direct.modes[k].life_cycles) << load;
   }
@@ -132,7 +132,7 @@ TEST(SceneHeat, ThesisCardsSettleOnTheMediumDriveAndRunAwayOnTheHeavyOne) {
     s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
     s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
     s.life = scene::LifeSpec{};
-    s.life->fidelity = "beam";
+    s.life->fidelity = core::Fidelity::beam;
     return s;
   };
   const auto medium = scene::run_life(cards("medium"));

@@ -22,7 +22,7 @@ scene::Scene light(const std::string& fidelity, bool heat) {
   s.materials["bottom"] = kSource + "/datasets/cards/material-1-true.json";
   s.materials["cushion"] = kSource + "/datasets/cards/material-2-true.json";
   s.life = scene::LifeSpec{};
-  s.life->fidelity = fidelity;
+  s.life->fidelity = core::fidelity_from_string(fidelity, "fidelity");
   s.life->cycles = 2;
   if (heat) s.effects["heat_buildup"] = true, s.ambient_C = 25.0, s.thermal.ambient_C = 25.0;
   return s;

@@ -33,7 +33,7 @@ scene::Scene drive_at(const std::string& drive, const std::string& level, int cy
   s.materials["bottom"] = kCards + "material-1-true.json";
   s.materials["cushion"] = kCards + "material-2-true.json";
   s.life = scene::LifeSpec{};
-  s.life->fidelity = level, s.life->cycles = cycles;
+  s.life->fidelity = core::fidelity_from_string(level, "level"), s.life->cycles = cycles;
   return s;
 }
 
@@ -108,7 +108,7 @@ TEST(LevelCalibration, TheToursBeamRunReadsTheBeamLevelsConstants) {
   s.life->card = path;
   const scene::SceneResult uncalibrated = scene::run_scene(s);
   EXPECT_TRUE(off_scale(uncalibrated));
-  const fatigue::FatigueCard beam = fatigue::card_at_level(fatigue::default_card(), "beam");
+  const fatigue::FatigueCard beam = fatigue::card_at_level(fatigue::default_card(), core::Fidelity::beam);
   // n held: the life scales by the stress factor to the power n, exactly
   const double f2 = fatigue::default_card().separation.sigma0_MPa / beam.separation.sigma0_MPa;
   EXPECT_NEAR(r.life->report.modes[1].life_cycles / uncalibrated.life->report.modes[1].life_cycles,

@@ -44,7 +44,7 @@ scene::Scene with_cards_elastic(const std::string& load) {
   s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
   s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
   s.life = scene::LifeSpec{};
-  s.life->fidelity = "elastic";
+  s.life->fidelity = core::Fidelity::elastic;
   return s;
 }
 
@@ -75,7 +75,7 @@ TEST(SceneLife, EqualsTheFatigueModulesBeamLifeOnEveryReferenceDrive) {
     const auto r = scene::run_scene(s);
     ASSERT_TRUE(r.life.has_value()) << load;
     // the planner reads the card's beam-level constants (docs/fatigue.md §4 "One life scale for every level")
-    const auto expected = beam_route(s, fatigue::card_at_level(fatigue::default_card(), "beam"));
+    const auto expected = beam_route(s, fatigue::card_at_level(fatigue::default_card(), core::Fidelity::beam));
     ASSERT_EQ(r.life->report.modes.size(), expected.modes.size());
     for (std::size_t m = 0; m < expected.modes.size(); ++m) {
       EXPECT_EQ(r.life->report.modes[m].life_cycles, expected.modes[m].life_cycles) << load;
@@ -93,7 +93,7 @@ TEST(SceneLife, HeavyDriveMatchesTheFiguresInDocsFatigue) {
   // σ0 scale each life by (σ0_beam/σ0)^n: N1 4.68e9, N2 8.54e8 (1.38e4 h), separation governs.
   const auto r = scene::run_scene(with_life("heavy"));
   const fatigue::FatigueCard card = fatigue::default_card();
-  const fatigue::FatigueCard beam = fatigue::card_at_level(card, "beam");
+  const fatigue::FatigueCard beam = fatigue::card_at_level(card, core::Fidelity::beam);
   const double k1 = std::pow(beam.radial_crack.sigma0_MPa / card.radial_crack.sigma0_MPa, card.radial_crack.n);
   const double k2 = std::pow(beam.separation.sigma0_MPa / card.separation.sigma0_MPa, card.separation.n);
   EXPECT_NEAR(r.life->report.modes[0].life_cycles / (6.68e9 * k1), 1.0, 0.005);
@@ -104,20 +104,20 @@ TEST(SceneLife, HeavyDriveMatchesTheFiguresInDocsFatigue) {
 TEST(SceneLife, DefaultFidelityIsTheFinestLevelTheSceneFeedsAndTheBuildHas) {
   auto s = with_life("heavy");
   auto plan = scene::choose_life_plan(s);
-  EXPECT_EQ(plan.fidelity, "beam");
+  EXPECT_EQ(plan.fidelity, core::Fidelity::beam);
   EXPECT_NE(plan.reason.find("neither"), std::string::npos) << plan.reason;
   s.materials = {{"bottom", "b.json"}, {"cushion", "c.json"}};
   plan = scene::choose_life_plan(s);
-  EXPECT_EQ(plan.fidelity, "elastic");  // the complete level is asked for (it stops on medium and heavy)
+  EXPECT_EQ(plan.fidelity, core::Fidelity::elastic);  // the complete level is asked for (it stops on medium and heavy)
   EXPECT_NE(plan.reason.find("bottom and cushion cards"), std::string::npos) << plan.reason;
   EXPECT_NE(plan.reason.find("fidelity = \"complete\""), std::string::npos) << plan.reason;
   s.materials.clear();
   s.segment = scene::SegmentSpec{};
-  EXPECT_EQ(scene::choose_life_plan(s).fidelity, "elastic");
+  EXPECT_EQ(scene::choose_life_plan(s).fidelity, core::Fidelity::elastic);
   EXPECT_NE(scene::choose_life_plan(s).reason.find("[segment] table"), std::string::npos);
   s.life = scene::LifeSpec{};
-  s.life->fidelity = "elastic";
-  EXPECT_EQ(scene::choose_life_plan(s).fidelity, "elastic");
+  s.life->fidelity = core::Fidelity::elastic;
+  EXPECT_EQ(scene::choose_life_plan(s).fidelity, core::Fidelity::elastic);
   EXPECT_EQ(scene::choose_life_plan(s).reason, "[life] fidelity = elastic");
 }
 
@@ -138,7 +138,7 @@ TEST(SceneLife, LifeTableIsValidatedAndNamesTheKey) {
   const auto s = scene::parse_scene(base + "\n[life]\nfidelity = \"beam\"\ncard = \"../cards/x.json\"\ncycles = 5\n",
                                     (folder / "drives" / "scene.toml").string());
   ASSERT_TRUE(s.life.has_value());
-  EXPECT_EQ(*s.life->fidelity, "beam");
+  EXPECT_EQ(*s.life->fidelity, core::Fidelity::beam);
   EXPECT_EQ(s.life->card, (folder / "cards" / "x.json").string());  // relative to the scene's folder
   EXPECT_EQ(s.life->cycles, 5);
 }
@@ -187,7 +187,7 @@ TEST(SceneLife, CardAndSweepFromTheSceneWithTheCardsSha256) {
   s.life->card = kBundledCard;
   s.life->crack_sweep_deg.reset();
   EXPECT_EQ(scene::run_scene(s).life->report.life_cycles,
-            beam_route(s, fatigue::card_at_level(fatigue::default_card(), "beam")).life_cycles);
+            beam_route(s, fatigue::card_at_level(fatigue::default_card(), core::Fidelity::beam)).life_cycles);
 }
 
 TEST(SceneLife, LifeJsonWithoutWallTimesIsByteIdenticalAndFinite) {
@@ -224,7 +224,7 @@ TEST(SceneLife, InputsSayTheSegmentLevelReadsTheBottomAndCushionCards) {
   // The beam level does not read the cushion card.
   // (The document is held by a name: a range-for over `life_json(...)["inputs"]` iterated a member of
   // a destroyed temporary, ASan heap-use-after-free.)
-  s.life->fidelity = "beam";
+  s.life->fidelity = core::Fidelity::beam;
   const auto beam = scene::life_json(s, scene::run_scene(s), false);
   for (const auto& in : beam["inputs"]) {
     if (in["role"] == "cushion") {
@@ -267,11 +267,11 @@ TEST(SceneLife, SegmentLevelCountsOnlyTheLastSimulatedCycle) {
 // cycle: radial crack governs, N2 far beyond N1.
 TEST(SceneLife, CompleteLevelRunsTheLifesMeshAndItsNoteSaysHowAccurateItIs) {
   auto s = with_cards_elastic("light");
-  s.life->fidelity = "complete";
+  s.life->fidelity = core::Fidelity::complete;
   s.life->cycles = 1;
   const auto r = scene::run_scene(s);
   ASSERT_TRUE(r.life.has_value());
-  EXPECT_EQ(r.life->plan.fidelity, "complete");
+  EXPECT_EQ(r.life->plan.fidelity, core::Fidelity::complete);
   EXPECT_EQ(r.life->report.governing, "radial_crack");
   EXPECT_GT(r.life->report.modes[1].life_cycles, 30.0 * r.life->report.modes[0].life_cycles);
   const std::string t = scene::life_text(s, r);
@@ -287,7 +287,7 @@ TEST(SceneLife, CompleteLevelWithoutACardForARoleIsRefusedNamingTheRole) {
   for (const char* missing : {"bottom", "cushion"}) {
     auto s = with_cards_elastic("light");
     s.materials.erase(missing);
-    s.life->fidelity = "complete";
+    s.life->fidelity = core::Fidelity::complete;
     s.life->cycles = 1;
     try {
       scene::run_scene(s);
@@ -299,12 +299,12 @@ TEST(SceneLife, CompleteLevelWithoutACardForARoleIsRefusedNamingTheRole) {
   }
   auto s = with_life("light");
   s.life = scene::LifeSpec{};
-  s.life->fidelity = "elastic";
+  s.life->fidelity = core::Fidelity::elastic;
   s.life->cycles = 1;
   s.segment = scene::SegmentSpec{};
   const auto r = scene::run_scene(s);
   ASSERT_TRUE(r.life.has_value());
-  EXPECT_EQ(r.life->plan.fidelity, "elastic");
+  EXPECT_EQ(r.life->plan.fidelity, core::Fidelity::elastic);
 }
 
 // The segment levels' work (docs/reliability.md §4): elements × (bend steps + cycles × steps per
@@ -353,7 +353,7 @@ TEST(SceneLife, SegmentWorkBeyondTheCapIsRefusedAtOnceNamingSceneAndKeys) {
   EXPECT_NE(m.find("x 192 elements of the life's default mesh = 139008 element-increments"), std::string::npos) << m;
   const auto r = scene::run_scene(scene_with("cycles = 3\n"));
   ASSERT_TRUE(r.life.has_value());
-  EXPECT_EQ(r.life->plan.fidelity, "elastic");
+  EXPECT_EQ(r.life->plan.fidelity, core::Fidelity::elastic);
 }
 
 // The life table's WARNING line (docs/fatigue.md §8): a segment run with a deliberately loose Newton
@@ -646,7 +646,7 @@ TEST(SceneLife, ElasticLevelReadsTheCardsAtTheAmplitudeTheSegmentDrivesThem) {
   EXPECT_FALSE(small.life->amplitude_iteration.has_value());
   s.life->elastic_at_reached_amplitude = true;
   const scene::SceneResult reached = scene::run_scene(s);
-  s.life->fidelity = "complete";
+  s.life->fidelity = core::Fidelity::complete;
   const scene::SceneResult complete = scene::run_scene(s);
   const double before = n1(small) / n1(complete), after = n1(reached) / n1(complete);
   std::printf("medium drive N1 elastic/complete: small amplitude %.3g, reached amplitude %.3g\n", before, after);
@@ -665,7 +665,7 @@ TEST(SceneLife, ElasticLevelReadsTheCardsAtTheAmplitudeTheSegmentDrivesThem) {
   for (const char* part : {"card read: bottom ", "card read: cushion ", "strain amplitude ", "cards read at the amplitude "
                            "the segment reached, ", "beyond the tests: [life] beyond_tests = \"hold\""})
     EXPECT_NE(table.find(part), std::string::npos) << part << " in " << table;
-  s.life->fidelity = "elastic";
+  s.life->fidelity = core::Fidelity::elastic;
   const auto j = scene::life_json(s, reached, false);
   EXPECT_EQ(j["amplitude_iteration"]["runs"], it->runs);
   EXPECT_EQ(j["cards_read"][0]["role"], "bottom");

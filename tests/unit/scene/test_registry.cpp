@@ -29,7 +29,7 @@ TEST(Registry, EachEffectOnceWithItsNeedsEarlierAndEveryKeyServed) {
   auto beam = scene::load_scene(kData + "minimal.toml");
   auto segment = beam;
   segment.life = scene::LifeSpec{};
-  segment.life->fidelity = "elastic";
+  segment.life->fidelity = core::Fidelity::elastic;
   for (const auto& e : reg) {
     EXPECT_TRUE(seen.insert(e.name).second) << "declared twice: " << e.name;
     EXPECT_FALSE(e.produces.empty()) << e.name;
@@ -59,7 +59,7 @@ TEST(Registry, StatusComesFromTheRegistryNotTheReasonText) {
   // A life at a segment level: the segment FE and fatigue run on the load cycle, the beam level not.
   s.outputs = {{"life", true}};
   s.life = scene::LifeSpec{};
-  s.life->fidelity = "elastic";
+  s.life->fidelity = core::Fidelity::elastic;
   p = scene::make_plan(s);
   EXPECT_EQ(report(p, "segment_fe").status, scene::EffectStatus::run);
   EXPECT_EQ(report(p, "fatigue").status, scene::EffectStatus::run);
@@ -68,7 +68,7 @@ TEST(Registry, StatusComesFromTheRegistryNotTheReasonText) {
   EXPECT_TRUE(p.unavailable_outputs.empty());
   // The same scene at the beam level: load cycle, beam stresses and fatigue run, and nothing else
   // beyond stiffness and drive.
-  s.life->fidelity = "beam";
+  s.life->fidelity = core::Fidelity::beam;
   s.effects.clear();
   p = scene::make_plan(s);
   for (const auto& e : p.effects) {

@@ -183,7 +183,7 @@ TEST(Planner, FullSceneRunsEveryAvailableEffectWithLifeAtTheBeamLevel) {
   }
   EXPECT_TRUE(r.plan.unavailable_outputs.empty());
   ASSERT_TRUE(r.life.has_value());
-  EXPECT_EQ(r.life->plan.fidelity, "beam");
+  EXPECT_EQ(r.life->plan.fidelity, core::Fidelity::beam);
   auto fe = std::find_if(r.plan.effects.begin(), r.plan.effects.end(), [](const auto& e) { return e.name == "segment_fe"; });
   ASSERT_NE(fe, r.plan.effects.end());
   EXPECT_FALSE(fe->ran);

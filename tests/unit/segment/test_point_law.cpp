@@ -226,7 +226,7 @@ TEST(SegmentPointLaw, HenckyContractPointAgreesWithStVenantKirchhoffAtSmallStrai
 TEST(SegmentPointLaw, OnlyElasticPointsIsotropicInThePlaneSayTheirTangentIsSymmetric) {
   const auto iso = point_of("elastic-iso", nlohmann::json::object(), {20.0, 0.49});
   model::PointOptions elastic;
-  elastic.fidelity = model::PointOptions::Fidelity::elastic;
+  elastic.fidelity = core::Fidelity::elastic;
   elastic.frequency_Hz = 10.0;
   const auto fritzson_elastic = fritzson(elastic);
   auto asymmetry = [](const model::MaterialPointPtr& p) {

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fitlib/core/fidelity.hpp"
+
 namespace fitlib::fatigue {
 
 enum class Mode { radial_crack = 1, separation = 2 };
@@ -35,14 +37,13 @@ struct LifeLaw {
   double sigma0_MPa = 1.0;
   double n = 1.0;
   double b_per_C = 0.0;
-  // The level of the stresses the constants were fitted to ([life] fidelity: "beam", "elastic",
-  // "complete"; "" = not stated). The levels' stresses differ by orders of magnitude in σⁿ, so
-  // constants read at another level give a life off their scale (docs/fatigue.md §4).
-  std::string stress_fidelity;
+  // The level of the stresses the constants were fitted to ([life] fidelity; absent = not stated).
+  // The levels' stresses differ by orders of magnitude in σⁿ, so constants read at another level
+  // give a life off their scale (docs/fatigue.md §4).
+  std::optional<core::Fidelity> stress_fidelity;
   std::optional<LifeScatter> scatter = std::nullopt;  // optional in the card (docs/fatigue.md §4)
   std::optional<LawCovariance> covariance = std::nullopt;  // optional in the card
 };
-bool is_stress_fidelity(const std::string& text);  // "beam", "elastic" or "complete"
 
 // Gerbert's cord break: σ_A = σ_a/(1 − σ_m/σ_U) (3.6), N = 10^(a − b σ_A) 2^(−b_T ΔT) (3.7),
 // with σ = F/A_cord from the belt force over the cycle.
@@ -68,13 +69,13 @@ struct FatigueCard {
   static constexpr const char* kSchema = "fitlib.fatigue-card/1";
   std::string name;
   double reference_temperature_C = 80.0;  // T_ref of ΔT in (6.31) ([UNCLEAR], docs/decisions.md)
-  LifeLaw radial_crack{104.218, 4.423, 0.02897, "complete"};
-  LifeLaw separation{4.21028, 11.69, 0.1466, "complete"};
+  LifeLaw radial_crack{104.218, 4.423, 0.02897, core::Fidelity::complete};
+  LifeLaw separation{4.21028, 11.69, 0.1466, core::Fidelity::complete};
   double crack_sweep_deg = 25.0;  // mode 1 crack directions ±sweep from radial
   std::optional<CordBreakLaw> cord_break;
   // Optional (JSON "levels"): constants per stress level for the levels `modes` were not fitted at;
   // each law's stress_fidelity is its key.
-  std::map<std::string, LevelLaws> levels;
+  std::map<core::Fidelity, LevelLaws> levels;
   nlohmann::json provenance = nlohmann::json::object();
 
   const LifeLaw& law(Mode m) const { return m == Mode::radial_crack ? radial_crack : separation; }
@@ -91,11 +92,11 @@ FatigueCard default_card();
 // that was fitted at `fidelity` (or does not say), else the `levels` entry of `fidelity` when the
 // card has one (keeping the mode's scatter and covariance where the entry states none), else its
 // own law (stress_fidelity_warning then says so). `levels` is emptied.
-FatigueCard card_at_level(const FatigueCard& card, const std::string& fidelity);
+FatigueCard card_at_level(const FatigueCard& card, core::Fidelity fidelity);
 
 // The warning for a life whose stresses come from `fidelity` read against constants fitted at
 // another level ("" when every mode's constants are of that level or do not state theirs).
-std::string stress_fidelity_warning(const FatigueCard& card, const std::string& fidelity);
+std::string stress_fidelity_warning(const FatigueCard& card, core::Fidelity fidelity);
 
 nlohmann::json card_to_json(const FatigueCard& card);
 // InputError naming `source` and the key path (e.g. modes.separation.n) for a missing key, a

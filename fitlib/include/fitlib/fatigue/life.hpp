@@ -14,15 +14,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fitlib/core/material_role.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/peaks.hpp"
 
 namespace fitlib::fatigue {
 
-// Material role of a monitored point: `bottom` points are checked for radial cracks (mode 1),
-// `cushion` points for separation (mode 2).
-enum class Role { bottom, cushion };
-const char* to_string(Role role);
+// Material role of a monitored point (core::MaterialRole, the segment's): `bottom` points are
+// checked for radial cracks (mode 1), `cushion` points for separation (mode 2).
+using Role = core::MaterialRole;
 
 struct StressSample {
   double t_s = 0.0;

@@ -23,7 +23,7 @@ struct ObservedLife {
   double observed_cycles = 0.0;
   // Significant peaks (MPa) of each monitored point of that mode, e.g. from evaluate_life.
   std::vector<std::vector<double>> point_peaks_MPa;
-  std::string stress_fidelity;  // the level the peaks were computed at (LifeLaw::stress_fidelity; "" = not stated)
+  std::optional<core::Fidelity> stress_fidelity;  // the level of the peaks (LifeLaw::stress_fidelity; absent: not stated)
   // A runout: the test stopped at observed_cycles without failing; `mode` names the mode whose
   // points the peaks are of (a runout test gives one case per mode).
   bool runout = false;

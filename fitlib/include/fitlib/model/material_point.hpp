@@ -35,6 +35,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "fitlib/core/fidelity.hpp"
 #include "fitlib/model/model.hpp"
 
 namespace fitlib::model {
@@ -45,11 +46,11 @@ using ComplexMatrix6 = Eigen::Matrix<std::complex<double>, 6, 6>;
 
 // How a card becomes a point.
 struct PointOptions {
-  // viscoelastic: the model's own time-domain update (every model);
-  // elastic: the elastic equivalent at `frequency_Hz` and `temperature_C` — the real part of the
-  //   small-amplitude complex stiffness (storage moduli), the "elastic" fidelity of the segment.
-  enum class Fidelity { viscoelastic, elastic };
-  Fidelity fidelity = Fidelity::viscoelastic;
+  // The life's levels (core::Fidelity): complete — the model's own time-domain update (every
+  //   model; `fitcli material-point --fidelity viscoelastic`); elastic — the elastic equivalent at
+  //   `frequency_Hz` and `temperature_C`, the real part of the small-amplitude complex stiffness
+  //   (storage moduli). beam has no material point (make_material_point refuses it).
+  core::Fidelity fidelity = core::Fidelity::complete;
   double frequency_Hz = 1.0;                                          // elastic fidelity only
   double temperature_C = std::numeric_limits<double>::quiet_NaN();    // NaN = card reference
   // Elastic fidelity: the amplitude ε̂ of a steady strain oscillation about its mean, ε(t) = ε_mean +

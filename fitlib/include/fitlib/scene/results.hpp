@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitlib/belt/drive.hpp"
+#include "fitlib/core/fidelity.hpp"
 #include "fitlib/belt/heat.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/belt/viscoelastic.hpp"
@@ -37,7 +38,7 @@ struct EffectReport {
 
 // The life the planner will compute: the fidelity level and why it was chosen.
 struct LifePlan {
-  std::string fidelity;  // beam | elastic | complete
+  core::Fidelity fidelity = core::Fidelity::beam;
   std::string reason;    // "[life] fidelity = beam" or the default rule's words
 };
 

@@ -12,6 +12,7 @@
 #include "fitlib/belt/heat.hpp"
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/card/conversion.hpp"
+#include "fitlib/core/fidelity.hpp"
 #include "fitlib/scene/segment_life.hpp"
 #include "fitlib/segment/static_case.hpp"
 
@@ -84,7 +85,7 @@ struct SegmentSpec {
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").
 struct LifeSpec {
-  std::optional<std::string> fidelity;    // beam | elastic | complete; absent: the planner's default
+  std::optional<core::Fidelity> fidelity;  // absent: the planner's default
   std::string card;                       // fatigue card path (resolved); empty: the bundled default
   int cycles = 3;                         // load cycles the segment levels run (beam: one exact cycle)
   std::optional<double> crack_sweep_deg;  // overrides the card's mode-1 sweep

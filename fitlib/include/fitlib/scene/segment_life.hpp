@@ -33,14 +33,14 @@ segment::MeshKnobs life_mesh();
 // damage), and 120 planned steps read its lives within 2.5 % of 240 (60: N1 +14 %) at less work
 // than 60 with dense increments at the load fronts (docs/decisions.md "Segment life: the complete
 // level takes 120 steps per cycle and no load fronts").
-segment::CycleKnobs life_cycle(segment::Fidelity fidelity = segment::Fidelity::elastic);
+segment::CycleKnobs life_cycle(core::Fidelity fidelity = core::Fidelity::elastic);
 
 struct SegmentLifeSetup {
   segment::CogSection section;
   segment::MeshKnobs mesh = life_mesh();
   segment::SolverKnobs solver;
   segment::CycleKnobs cycle = life_cycle();
-  std::array<model::MaterialPointPtr, 2> materials;  // by segment::Role: bottom, cushion
+  std::array<model::MaterialPointPtr, 2> materials;  // by core::MaterialRole: bottom, cushion
   std::vector<segment::NamedPoint> extra_points;
   double temperature_C = 20.0;
   fatigue::PeakOptions peaks;

@@ -11,12 +11,12 @@
 
 #include <Eigen/Core>
 
+#include "fitlib/core/material_role.hpp"
 #include "fitlib/segment/section.hpp"
 
 namespace fitlib::segment {
 
-enum class Role { bottom = 0, cushion = 1 };
-const char* to_string(Role role);
+using Role = core::MaterialRole;  // an element's rubber: bottom (0) or cushion (1); core::to_string
 
 struct MeshKnobs {
   double central_pitches = 2.0;   // fine central section length, in cog pitches

@@ -5,6 +5,7 @@
 // segment's fidelity.
 #include <vector>
 
+#include "fitlib/core/fidelity.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/segment/elastic.hpp"
 
@@ -25,14 +26,11 @@ class ContractLaw final : public PlaneStrainLaw {
   model::MaterialPointPtr point_;
 };
 
-// Fidelities of the segment (issue 11 item 5): `elastic` — the card's elastic equivalent (storage
-// stiffness) at the scene's temperature and load frequency; `complete` — the card's full model.
-enum class Fidelity { elastic, complete };
-Fidelity fidelity_from_string(const std::string& name);  // "elastic" | "complete"
-const char* to_string(Fidelity fidelity);
-
 struct RoleMaterialOptions {
-  Fidelity fidelity = Fidelity::complete;
+  // The segment's levels (core::Fidelity; issue 11 item 5): `elastic` — the card's elastic
+  // equivalent (storage stiffness) at the scene's temperature and load frequency; `complete` — the
+  // card's full model. `beam` has no material point (make_material_point refuses it).
+  core::Fidelity fidelity = core::Fidelity::complete;
   double temperature_C = 20.0;   // elastic fidelity: where the storage stiffness is taken
   double frequency_Hz = 10.0;    // elastic fidelity: the load cycle's frequency
   double bulk_modulus_MPa = std::numeric_limits<double>::quiet_NaN();  // for shear cards without K
