@@ -10,6 +10,7 @@
 #include "fitlib/core/units.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "path_guard.hpp"
 
 namespace fitcli {
 
@@ -51,6 +52,7 @@ void register_accumulate(CLI::App& app) {
     scene::AccumulationSpec spec;
     if (!a->scene.empty()) {
       sc = load_scene_input(a->scene);
+      refuse_outputs_on_scene_cards(sc, {{"--out", a->out}});
       if (sc.accumulation) spec = *sc.accumulation;
     }
     if (!a->card.empty()) {

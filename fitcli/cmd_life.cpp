@@ -11,6 +11,7 @@
 #include "fitlib/scene/scene.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
+#include "path_guard.hpp"
 #include "plot.hpp"
 
 namespace fitcli {
@@ -61,6 +62,7 @@ void register_life(CLI::App& app) {
       throw fitlib::core::UsageError("life writes a folder: use --out-dir " + *misspelt_out +
                                      " (--out names a file in every subcommand, docs/cli.md)");
     auto scene = load_scene_input(*scene_path);
+    refuse_outputs_on_scene_cards(scene, {{"--plot", *plot}});
     scene.segment_progress = !quiet();  // shown only when stderr is a terminal
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     if (!field_at->empty()) {

@@ -50,8 +50,8 @@ void run(const SweepArgs& a) {
     std::cerr << "sweep: stopped after " << a.stop_after << " cases (--stop-after); run again to resume\n";
     return;
   }
-  if (a.json) std::cout << fitlib::scene::sweep_json(sweep, result.table).dump(2) << "\n";
-  else if (!to_file) std::cout << result.table;
+  if (a.json) emit("-", fitlib::scene::sweep_json(sweep, result.table).dump(2) + "\n");
+  else if (!to_file) emit("-", result.table);
   if (to_file && !quiet())
     std::cerr << "wrote " << a.out << " (" << sweep.case_count << " cases, " << result.resumed << " read back)\n";
 }

@@ -178,10 +178,18 @@ void claim_output(const std::string& option, const std::string& path, bool json)
   }
 }
 
+namespace {
+bool& stdout_was_closed() {  // fd 1 closed at start: a write fails on /dev/full, but says so
+  static bool closed = false;
+  return closed;
+}
+}  // namespace
+
 void guard_standard_streams() {
   const char* devices[] = {"/dev/null", "/dev/full", "/dev/full"};
   for (int fd = 0; fd <= 2; ++fd) {
     if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    if (fd == 1) stdout_was_closed() = true;
     const int opened = ::open(devices[fd], fd == 0 ? O_RDONLY : O_WRONLY);
     if (opened >= 0 && opened != fd) {  // lower fds were open: move it to its place
       ::dup2(opened, fd);
@@ -196,8 +204,10 @@ int& stdout_errno() {  // the reason of the first failed write of stdout
   return error;
 }
 void flush_stdout() {
-  errno = 0;
-  std::cout.flush();
+  if (std::cout) {  // else the write that failed set errno just now: keep it
+    errno = 0;
+    std::cout.flush();
+  }
   if (!std::cout && stdout_errno() == 0) stdout_errno() = errno;
 }
 }  // namespace
@@ -208,7 +218,9 @@ void finish_stdout() {
   int error = stdout_errno() != 0 ? stdout_errno() : errno;
   if (std::fclose(stdout) != 0 && !failed) error = errno;
   else if (!failed) return;
-  const std::string why = error != 0 ? std::string(" (") + std::strerror(error) + ")" : std::string();
+  const std::string why = stdout_was_closed() ? std::string(" (stdout is closed)")
+                          : error != 0        ? std::string(" (") + std::strerror(error) + ")"
+                                              : std::string();
   throw fitlib::core::InputError("cannot write the output" + why + ": the results are lost", "stdout");
 }
 

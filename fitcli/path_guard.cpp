@@ -63,4 +63,17 @@ void refuse_colliding_paths(const CLI::App& app) {
   }
 }
 
+void refuse_outputs_on_scene_cards(const fitlib::scene::Scene& scene, const std::vector<Named>& outputs) {
+  std::vector<Named> cards;  // scene key, path
+  for (const auto& [role, path] : scene.materials) cards.emplace_back("belt.materials." + role, path);
+  if (scene.life && !scene.life->card.empty()) cards.emplace_back("life.card", scene.life->card);
+  for (const auto& [option, path] : outputs) {
+    if (path.empty() || path == "-") continue;
+    for (const auto& [key, card] : cards)
+      if (fitlib::core::same_file(path, card))
+        throw fitlib::core::UsageError(option + " " + path + " is the card the scene names at " + key + " (" + card +
+                                       "): the run would replace its own input; write elsewhere");
+  }
+}
+
 }  // namespace fitcli

@@ -2,12 +2,14 @@
 // pyvisco shift files) and relaxation data (E(t) tables, fits, M(t)/J(t) of a card). A thin layer
 // over fit/master_curve.hpp, fit/shift_laws.hpp, fit/relaxation.hpp and data/*.hpp
 // (docs/python.md).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "bindings.hpp"
 #include "fitlib/card/card.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/data/relaxation.hpp"
 #include "fitlib/data/shift_factors.hpp"
@@ -43,6 +45,10 @@ data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::o
     require_in("temperature_C", T[i], -273.15, 1000.0);
     require_in("log10_aT", a[i], -1e3, 1e3);
   }
+  auto sorted = T;  // as the shift file's reader: two shifts at one temperature are refused
+  std::sort(sorted.begin(), sorted.end());
+  if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+    throw core::UsageError("temperature_C " + core::format_number(*twice) + " is listed twice");
   data::ShiftFactorTable table;
   table.reference_C = reference_C;
   for (std::size_t i = 0; i < T.size(); ++i) table.factors.push_back({T[i], a[i]});

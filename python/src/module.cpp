@@ -235,6 +235,11 @@ data::DynamicTestTable read_table(const py::object& paths, const std::string& fo
   const auto o = read_options(format, mode, skip_bad_rows, allow_unknown_columns);
   const auto files = py::isinstance<py::str>(paths) ? std::vector<std::string>{paths.cast<std::string>()}
                                                     : paths.cast<std::vector<std::string>>();
+  for (std::size_t i = 0; i < files.size(); ++i)  // as fitcli --data (fitcli/path_guard.cpp)
+    for (std::size_t j = 0; j < i; ++j)
+      if (core::same_file(files[i], files[j]))
+        throw core::UsageError("paths: " + files[i] + " is given twice (also as " + files[j] +
+                               "): its rows would count twice; give each file once");
   data::DynamicTestTable all;
   for (const auto& path : files) {
     auto one = read_one(path, format, o);

@@ -139,6 +139,19 @@ def test_tables_build_from_numpy_arrays_with_the_readers_checks():
     raises(ValueError, lambda: fitlib.Table(f, [2.0, 3.0], [0.2, 0.3, 0.4]))  # shapes that do not broadcast
 
 
+def test_one_temperature_twice_and_one_file_twice_are_refused_as_by_the_cli():
+    # the shift file's reader refuses a temperature listed twice; the arrays did not, and a law
+    # "fitted" to shifts at one temperature came back as numbers (fit_wlf C1 0, C2 0.01 K)
+    raises(fitlib.UsageError, lambda: fitlib.ShiftFactorTable([20, 20], [0, 1]), "20 is listed twice")
+    raises(fitlib.UsageError, lambda: fitlib.fit_wlf([20, 20, 20], [0, 1, 2], 20.0), "listed twice")
+    raises(fitlib.UsageError, lambda: fitlib.fit_arrhenius([30, 30], [0, 1], 20.0), "listed twice")
+    # fitcli --data d.csv --data ./d.csv is exit 2: its rows would count twice
+    table = os.path.join(ROOT, "datasets", "materials", "material-1.csv")
+    dotted = os.path.join(ROOT, "datasets", ".", "materials", "material-1.csv")
+    raises(fitlib.UsageError, lambda: fitlib.read_table([table, dotted]), "given twice")
+    assert len(fitlib.read_table([table])) > 0
+
+
 def test_every_public_name_has_a_docstring():
     missing = []
     for name in sorted(n for n in dir(fitlib) if not n.startswith("_")):

@@ -47,7 +47,7 @@ TEST(Outputs, StdoutThatCannotBeWrittenExitsThree) {
     EXPECT_EQ(exit_of(fitcli + " " + args + " >/dev/full 2>" + err), 3) << args;
     EXPECT_NE(slurp(err).find("stdout: cannot write the output"), std::string::npos) << slurp(err);
     EXPECT_EQ(exit_of(fitcli + " " + args + " >&- 2>" + err), 3) << args;  // a closed stdout
-    EXPECT_NE(slurp(err).find("stdout: cannot write the output"), std::string::npos) << slurp(err);
+    EXPECT_NE(slurp(err).find("stdout: cannot write the output (stdout is closed)"), std::string::npos) << slurp(err);
   }
   // A closed stdout no longer lends fd 1 to the card being written: the card is the card.
   const std::string card = temp_file("closed_stdout_card.json");
@@ -147,6 +147,69 @@ TEST(Outputs, TwoSweepsOnOneOutputTheSecondIsRefused) {
   const auto again = run_fitcli("sweep --sweep " + kSweep + " --out " + out + " --threads 1 --quiet");
   EXPECT_EQ(again.exit_code, 0) << again.err;
   EXPECT_TRUE(fs::exists(out));
+}
+
+// A card that a sweep's scene names (not an axis) is one of its inputs too: changed between a stop
+// and the resume, the unfinished file is refused (its rows were computed with the old card); and
+// the result file may not replace it.
+TEST(Outputs, ASweepResumeRefusesRowsOfACardItsSceneNamesThatChanged) {
+  const std::string card = copy_of(source_path("datasets/cards/material-1-true.json"), "scene_card.json");
+  const std::string scene = temp_file("scene_with_card.toml"), sweep = temp_file("sweep_scene_card.toml");
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml"))
+                       << "\n[belt.materials]\nbottom = \"scene_card.json\"\n";
+  std::ofstream(sweep) << "scenes = [\"scene_with_card.toml\"]\n[set]\n\"life.fidelity\" = \"beam\"\n"
+                       << "[[axis]]\nkey = \"drive.torque_Nm\"\nvalues = [5, 10, 15, 20]\n"
+                       << "[outputs]\ncolumns = [\"life_h\"]\n";
+  const std::string out = temp_file("sweep_scene_card.csv");
+  ASSERT_EQ(run_fitcli("sweep --sweep " + sweep + " --out " + out + " --threads 1 --quiet --stop-after 2").exit_code, 0);
+  ASSERT_TRUE(fs::exists(out + ".partial"));
+  fs::copy_file(source_path("datasets/cards/material-2-true.json"), card, fs::copy_options::overwrite_existing);
+  auto r = run_fitcli("sweep --sweep " + sweep + " --out " + out + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(out + ".partial:1:1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("other input files"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  const std::string card_bytes = slurp(card);
+  r = run_fitcli("sweep --sweep " + sweep + " --out " + card + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("which the sweep reads"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(card), card_bytes);
+  EXPECT_FALSE(fs::exists(card + ".partial"));
+}
+
+// The cards a scene names are inputs too: a figure, VTK or table written over one is refused
+// before any work (`life --scene s.toml --plot card.json` replaced the bottom card with the PNG).
+TEST(Outputs, AnOutputOnACardTheSceneNamesIsRefusedBeforeAnyWork) {
+  const std::string card = copy_of(source_path("datasets/cards/material-2-true.json"), "named_card.json");
+  const std::string fatigue = copy_of(source_path("datasets/cards/fatigue-fritzson-1988.json"), "named_fatigue.json");
+  const std::string scene = temp_file("scene_names_cards.toml"), segment = temp_file("segment_names_cards.toml");
+  const std::string cards = "\n[belt.materials]\nbottom = \"named_card.json\"\n";
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-heavy.toml")) << cards
+                       << "\n[life]\ncard = \"named_fatigue.json\"\n";
+  std::string segment_text = slurp(source_path("tests/data/bad/scene/life_segment_ok.toml"));
+  const std::string own_bottom = "bottom = {E_MPa = 20, nu = 0.49}\n";  // the segment reads the card instead
+  ASSERT_NE(segment_text.find(own_bottom), std::string::npos);
+  segment_text.erase(segment_text.find(own_bottom), own_bottom.size());
+  std::ofstream(segment) << segment_text << cards;
+  const std::string card_bytes = slurp(card), fatigue_bytes = slurp(fatigue);
+  struct Case {
+    std::string args, message;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"belt --scene " + scene + " --out-dir " + temp_file("b") + " --plot " + card, "belt.materials.bottom"},
+           {"life --scene " + scene + " --out-dir " + temp_file("l") + " --plot " + card, "belt.materials.bottom"},
+           {"life --scene " + scene + " --out-dir " + temp_file("l") + " --plot " + fatigue, "life.card"},
+           {"segment --scene " + segment + " --vtk " + card, "belt.materials.bottom"},
+           {"accumulate --scene " + scene + " --out " + card, "belt.materials.bottom"},
+       }) {
+    const auto r = run_fitcli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find("is the card the scene names at " + c.message), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(slurp(card), card_bytes);
+  EXPECT_EQ(slurp(fatigue), fatigue_bytes);
+  EXPECT_FALSE(fs::exists(temp_file("b")));
+  EXPECT_FALSE(fs::exists(temp_file("l")));
 }
 
 // 10^6 cases at the beam level (0.675 ms each: 0.19 core-hours) run; the same grid at the elastic

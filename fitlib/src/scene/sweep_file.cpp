@@ -160,13 +160,45 @@ void check_case_count(const toml::table& root, Sweep& s, const std::string& sour
   s.case_count = static_cast<std::size_t>(count);
 }
 
-// Files the sweep names feed the hash, so a resumed table never mixes two inputs.
+// The scene keys that name a card file, read from the scene's folder (scene.cpp card_file).
+const char* const kCardKeys[] = {"belt.materials.bottom", "belt.materials.cushion", "belt.materials.cord",
+                                 "life.card"};
+
+// The cards the cases can read: each scene's own (after [set]) or, for a key an axis sets, each of
+// the axis's values; resolved against the scene's folder, each once, in the order first met.
+std::vector<std::string> card_files(const Sweep& s) {
+  std::vector<std::string> files;
+  auto add = [&](const std::filesystem::path& base, const std::string& value) {
+    const std::filesystem::path f(value);
+    const std::string path = (f.is_absolute() ? f : base / f).lexically_normal().string();
+    if (std::find(files.begin(), files.end(), path) == files.end()) files.push_back(path);
+  };
+  for (std::size_t i = 0; i < s.scenes.size(); ++i) {
+    toml::table root = parse_scene_toml(s.scene_texts[i], s.scenes[i]);
+    for (const auto& f : s.fixed) set_key_path(root, f.key, f.values[0]);
+    const auto base = std::filesystem::path(s.scenes[i]).parent_path();
+    for (const char* key : kCardKeys) {
+      const auto axis = std::find_if(s.axes.begin(), s.axes.end(), [&](const SweepAxis& a) { return a.key == key; });
+      if (axis == s.axes.end()) {
+        if (auto p = root.at_path(key).value<std::string>()) add(base, *p);
+        continue;
+      }
+      for (const auto& v : axis->values)
+        if (const auto* p = std::get_if<std::string>(&v)) add(base, *p);
+    }
+  }
+  return files;
+}
+
+// The sweep file, its scenes and the cards they name feed the hash, so a resumed table never mixes
+// two inputs. A card's bytes only, no path (the hash is the same wherever the sweep runs); a
+// missing card counts too (a case refused for it must not resume once it exists).
 void hash_inputs(Sweep& s, const std::string& text) {
   std::string hashes = core::sha256_hex(text);
   for (const auto& f : s.scene_texts) hashes += core::sha256_hex(f);
-  for (const auto& a : s.axes)
-    if (a.key.rfind("belt.materials.", 0) == 0)
-      for (const auto& v : a.values) hashes += core::sha256_hex(core::read_file(std::get<std::string>(v)));
+  s.card_files = card_files(s);
+  for (const auto& f : s.card_files)
+    hashes += std::filesystem::is_regular_file(f) ? core::sha256_hex(core::read_file(f)) : "missing";
   s.sha256 = core::sha256_hex(hashes);
 }
 
@@ -188,8 +220,8 @@ Sweep parse_sweep(const std::string& text, const std::string& source) {
   parse_columns(root, s, source);
   check_case_count(root, s, source);
   for (const auto& f : s.scenes) s.scene_texts.push_back(core::read_file(f));
+  validate_sweep_values(s, root);  // first: the [set] keys then fit every scene (card_hashes)
   hash_inputs(s, text);
-  validate_sweep_values(s, root);
   check_sweep_cost(s);
   return s;
 }

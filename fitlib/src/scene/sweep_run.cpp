@@ -100,10 +100,7 @@ class ProgressLine {
 void refuse_output_on_input(const Sweep& sweep, const std::string& out) {
   std::vector<std::string> inputs = sweep.scenes;
   inputs.push_back(sweep.path);
-  for (const auto& a : sweep.axes)
-    for (const auto& v : a.values)
-      if (const auto* path = std::get_if<std::string>(&v); path && a.key.rfind("belt.materials.", 0) == 0)
-        inputs.push_back(*path);
+  inputs.insert(inputs.end(), sweep.card_files.begin(), sweep.card_files.end());
   for (const auto& in : inputs)
     for (const std::string& written : {out, out + ".partial"})
       if (core::same_file(written, in))

@@ -53,6 +53,7 @@ struct Sweep {
   std::vector<SweepAxis> fixed;         // [set]: one value each, applied to every case
   std::vector<SweepAxis> axes;          // [[axis]], in file order (the last varies fastest)
   std::vector<std::string> columns;     // [outputs] columns
+  std::vector<std::string> card_files;  // every card a case can read (its scene's or an axis's)
   std::string sha256;                   // of the sweep file and of every file it names
   std::size_t case_count = 0;
 };
