@@ -745,8 +745,9 @@ std::string reference_scene_file(const std::string& load, const scene::Scene& s)
       text << "materials = { bottom = \"" << s.materials.at("bottom") << "\", cushion = \"" << s.materials.at("cushion")
            << "\" }\n";
   }
-  text << "\n[life]\nfidelity = \"" << s.life->fidelity.value_or("") << "\"\ncycles = " << s.life->cycles << "\n";
-  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-" + load + "-" + s.life->fidelity.value_or("") + ".toml";
+  const std::string level = core::to_string(s.life->fidelity.value_or(core::Fidelity::beam));
+  text << "\n[life]\nfidelity = \"" << level << "\"\ncycles = " << s.life->cycles << "\n";
+  const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-" + load + "-" + level + ".toml";
   std::ofstream(path) << text.str();
   return path;
 }
