@@ -524,14 +524,14 @@ LifePlan choose_life_plan(const Scene& s) {
   const std::string why = cards ? "the scene gives bottom and cushion cards, so the segment FE runs with the cards' "
                                    "elastic equivalents"
                                  : "the scene has a [segment] table, so the segment FE runs with its elastic materials";
-  // The elastic level takes about 1 s (0.97-1.05 s CPU per drive with the thesis cards, 2 cycles,
-  // graded life mesh); the complete level is asked for: it stops on the medium and heavy reference
-  // drives (docs/segment.md "Cost").
-  return {core::Fidelity::elastic, "default: " + why + " (about 1 s a segment run; cards with tested damage drivers are read at "
-                     "the strain amplitude the segment reaches, in two or more runs); "
-                     "[life] fidelity = \"complete\" runs the full card models (about 5 s on the light drive; "
-                     "with the damage model's cards the load path folds on the medium and heavy reference drives: "
-                     "docs/segment.md), \"beam\" the layered "
+  // The elastic level takes about 1 s CPU per drive (thesis cards, 2 cycles, life mesh); the complete
+  // level 3-4 s with the damage held (docs/segment.md "Cost (reference)"), and it stops at the fold on
+  // 9 of the 13 bundled accelerated drives (docs/segment.md "Known limits").
+  return {core::Fidelity::elastic, "default: " + why + " (about 1 s a segment run; the cards are read at their smallest "
+                     "tested amplitude and the lives with the level's calibrated constants, [life] elastic_amplitude "
+                     "= \"reached\" reads them at the amplitude the segment reaches); "
+                     "[life] fidelity = \"complete\" runs the full card models (3-4 s a drive; the load path folds on "
+                     "most accelerated-test drives: docs/segment.md \"Known limits\"), \"beam\" the layered "
                      "section (milliseconds)"};
 }
 
