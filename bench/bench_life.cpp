@@ -88,6 +88,7 @@
 #include "fitlib/card/data_window.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/scene/segment_life.hpp"
@@ -677,13 +678,10 @@ void uncertainty_table() {
 // each reference drive at the elastic level and the complete level with the damage held, with and
 // without the scan; the candidates it evaluates per mode and where the governing mode's design point
 // lands (`bench_life scan` prints it alone).
-scene::Scene scanning(scene::Scene s) {
+scene::Scene scanning(const std::string& load, scene::Scene s) {
   const std::string path = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-scan.toml";
-  if (FILE* f = std::fopen(path.c_str(), "w")) {
-    std::fprintf(f, "[segment]\nscan = true\n");
-    std::fclose(f);
-  }
-  s.segment = scene::load_scene(path).segment;  // the user's route: the [segment] table's defaults
+  std::ofstream(path) << core::read_file(drive_file(load)) << "\n[segment]\nscan = true\n";
+  s.segment = scene::load_scene(path).segment;  // the user's route: the drive's file with [segment] scan = true
   std::remove(path.c_str());
   return s;
 }
@@ -708,7 +706,7 @@ void scan_table() {
         const std::clock_t c0 = std::clock();
         const double t_off = best_life_s(s, 1, off);
         const std::clock_t c1 = std::clock();
-        const double t_on = best_life_s(scanning(s), 1, on);
+        const double t_on = best_life_s(scanning(load, s), 1, on);
         const double cpu_ratio = static_cast<double>(std::clock() - c1) / static_cast<double>(c1 - c0);
         std::string at = "-";
         for (const fatigue::ModeLife& m : on.life->report.modes)
@@ -737,7 +735,7 @@ double cpu_s(int who) {
 // The reference drive's scene `s` (life_scene: its cards and [life] fidelity and cycles), as a file
 // a `fitcli` binary reads.
 std::string reference_scene_file(const std::string& load, const scene::Scene& s) {
-  std::ifstream in(kRoot + "/datasets/drives/ref-0500-" + load + ".toml");
+  std::ifstream in(drive_file(load));
   std::ostringstream text;
   for (std::string line; std::getline(in, line);) {
     text << line << "\n";

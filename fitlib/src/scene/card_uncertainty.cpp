@@ -22,7 +22,7 @@ struct RoleSampler {
 std::vector<RoleSampler> role_samplers(const Scene& s, std::vector<std::string>& warnings) {
   std::vector<RoleSampler> out;
   std::uint64_t stream = 0;
-  for (const char* role : {"bottom", "cushion", "cord"}) {
+  for (const char* role : kCardRoles) {
     ++stream;
     if (!s.materials.count(role)) continue;
     const std::string& path = s.materials.at(role);

@@ -439,7 +439,7 @@ void fatigue_life(const Scene& s, SceneResult& r) {
     life.inputs.back().used_for += std::string("; levels.") + core::to_string(life.plan.fidelity) +
                                    " for a mode fitted at another level";
   card = fatigue::card_at_level(card, life.plan.fidelity);
-  for (const char* role : {"bottom", "cushion", "cord"})
+  for (const char* role : kCardRoles)
     if (s.materials.count(role)) life.inputs.push_back(file_input(role, s.materials.at(role), card_use(s, r, role)));
   life.report = in_scene(s, [&] { return fatigue::evaluate_life(*r.stresses, card, *r.life_conditions); });
   life.distribution = fatigue::life_distribution(life.report, card, *r.life_conditions);

@@ -445,7 +445,7 @@ void parse_belt(Scene& s, Reader& top, const std::filesystem::path& base, const 
   if (const toml::table* mt = br.table("materials")) {
     Reader mr(*mt, "belt.materials", source);
     mr.allow({"bottom", "cushion", "cord", "poisson_ratio"});
-    for (const char* role : {"bottom", "cushion", "cord"})
+    for (const char* role : kCardRoles)
       if (auto p = card_file(mr, role, base)) s.materials[role] = *p;
     s.material_poisson_ratio = mr.number_or("poisson_ratio", s.material_poisson_ratio, 0.0, 0.5);
     if (!(s.material_poisson_ratio < 0.5))  // K = 2G0(1 + ν)/(3(1 − 2ν)) is then infinite

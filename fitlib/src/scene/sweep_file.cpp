@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <set>
 
 #include <boost/algorithm/string/join.hpp>
@@ -103,7 +104,7 @@ void parse_axes(const toml::table& root, Sweep& s, const std::string& source) {
     if (key) axis.key = key->get();
     if (card) {
       const std::string role = card->get();
-      if (role != "bottom" && role != "cushion" && role != "cord")
+      if (std::find(std::begin(kCardRoles), std::end(kCardRoles), role) == std::end(kCardRoles))
         fail(source, card, at + ".card", "card role must be \"bottom\", \"cushion\" or \"cord\"");
       axis.key = "belt.materials." + role;
     }
@@ -161,13 +162,18 @@ void check_case_count(const toml::table& root, Sweep& s, const std::string& sour
 }
 
 // The scene keys that name a card file, read from the scene's folder (scene.cpp card_file).
-const char* const kCardKeys[] = {"belt.materials.bottom", "belt.materials.cushion", "belt.materials.cord",
-                                 "life.card"};
+std::vector<std::string> card_keys() {
+  std::vector<std::string> keys;
+  for (const char* role : kCardRoles) keys.push_back(std::string("belt.materials.") + role);
+  keys.push_back("life.card");
+  return keys;
+}
 
 // The cards the cases can read: each scene's own (after [set]) or, for a key an axis sets, each of
 // the axis's values; resolved against the scene's folder, each once, in the order first met.
 std::vector<std::string> card_files(const Sweep& s) {
   std::vector<std::string> files;
+  const std::vector<std::string> keys = card_keys();
   auto add = [&](const std::filesystem::path& base, const std::string& value) {
     const std::filesystem::path f(value);
     const std::string path = (f.is_absolute() ? f : base / f).lexically_normal().string();
@@ -177,7 +183,7 @@ std::vector<std::string> card_files(const Sweep& s) {
     toml::table root = parse_scene_toml(s.scene_texts[i], s.scenes[i]);
     for (const auto& f : s.fixed) set_key_path(root, f.key, f.values[0]);
     const auto base = std::filesystem::path(s.scenes[i]).parent_path();
-    for (const char* key : kCardKeys) {
+    for (const std::string& key : keys) {
       const auto axis = std::find_if(s.axes.begin(), s.axes.end(), [&](const SweepAxis& a) { return a.key == key; });
       if (axis == s.axes.end()) {
         if (auto p = root.at_path(key).value<std::string>()) add(base, *p);

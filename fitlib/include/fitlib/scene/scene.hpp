@@ -114,6 +114,9 @@ struct LifeSpec {
 };
 const char* to_string(LifeSpec::BeyondTests policy);
 
+// The card roles of [belt.materials] (the keys of Scene::materials), in the order the scene reads them.
+inline constexpr const char* kCardRoles[3] = {"bottom", "cushion", "cord"};
+
 struct Scene {
   std::string name;
   std::string path;  // file it came from (errors, relative card paths)
@@ -129,7 +132,7 @@ struct Scene {
   double cord_area_mm2 = 5.0, bending_inertia_mm4 = 834.0;
   std::map<std::string, double> extra_geometry_mm;  // cog_pitch_mm, cog_depth_mm, ... (kept)
   std::optional<double> c_N, k1_MPa, EI_Nmm2;        // [belt.stiffness] overrides
-  std::map<std::string, std::string> materials;      // role → card path (resolved)
+  std::map<std::string, std::string> materials;      // role → card path (resolved); roles kCardRoles
   // role → parameter values that replace its card's (one draw of [life] uncertainty = "cards")
   std::map<std::string, std::vector<double>> card_values;
   // [belt.materials] poisson_ratio: a card without a bulk modulus gets K from its instantaneous
