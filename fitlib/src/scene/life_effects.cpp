@@ -213,20 +213,18 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
                                      ? ""
                                      : "; [life] diagnose_failure = true adds the evidence (the stiffness's lowest "
                                        "eigenvalues, a tangent check)";
-    // A 40 mm driver (side pressure 4.3 MPa) folds the elastic level's land the same way.
+    // The cause, at every level (docs/segment.md "The accelerated regime's fold"): a stability limit
+    // of the section under dead loads that scales with the rubber's shear modulus.
+    const std::string cause =
+        ". The load path folds: under Report I's dead contact loads the section has a stability limit "
+        "proportional to its rubber's shear modulus (the base accelerated drive at the complete level runs with "
+        "elastic cards of E 4 / 2 MPa and folds at 2 / 1 MPa, whatever the law), so it folds where the side "
+        "pressure is high (a small pulley, a heavy load) or the rubber soft (hot, or damaged: a card's damage law "
+        "read far beyond its tests) (docs/segment.md \"The accelerated regime's fold\")" + evidence;
     if (fidelity != core::Fidelity::complete)
-      throw core::NumericalError(std::string(e.what()) +
-                                 ". Where the side pressure is high (a small pulley, a heavy load) the segment's land "
-                                 "can fold under Report I's dead contact loads (docs/segment.md \"Diagnosis at the "
-                                 "failing state\")" + evidence +
+      throw core::NumericalError(std::string(e.what()) + cause +
                                  "; [life] fidelity = \"beam\" gives the layered section's life without the FE");
-    throw core::NumericalError(std::string(e.what()) +
-                               ". The complete level stops like this on the medium and heavy reference drives with "
-                               "the thesis cards when their damage law is read far beyond the tested amplitudes: the "
-                               "load path folds where the damaged rubber of a gap's land (a cog's tip corner on one-row "
-                               "meshes) cannot carry Report I's dead contact loads further (docs/segment.md \"Diagnosis "
-                               "at the failing state\", \"Damage held beyond the tested amplitudes\")" + evidence +
-                               hold_remedy +
+    throw core::NumericalError(std::string(e.what()) + cause + hold_remedy +
                                "; [life] fidelity = \"elastic\" runs the segment with the cards' elastic equivalents");
   }
 }

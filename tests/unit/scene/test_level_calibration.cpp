@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -140,5 +141,37 @@ TEST(AcceleratedDrives, DISABLED_CompleteLevelCompletesEveryDriveWithTheLawAtEve
     EXPECT_NO_THROW(r = scene::run_scene(s)) << d;
     if (r.life)
       for (const auto& m : r.life->report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles)) << d;
+  }
+}
+
+// What the accelerated regime's fold is (docs/segment.md "The accelerated regime's fold"): a
+// stability limit of the section under Report I's dead contact loads that scales with the rubber's
+// shear modulus, not a property of a card's law or damage. The base accelerated drive at the
+// complete level with isotropic elastic cards (the contract's Hencky point, ν 0.49): E 4 / 2 MPa
+// (bottom / cushion) runs the load cycle; E 2 / 1 MPa stops at the driven pulley's exit, at a
+// side pressure below the largest the stiffer section carried. (A neo-Hooke card of the same
+// moduli stops there too, 287.8 against 276.5 mm: measured, not tested, 21 s.)
+TEST(AcceleratedDrives, CompleteLevelsFoldIsAStabilityLimitThatScalesWithTheModulus) {
+  auto run = [](double bottom_E_MPa) {
+    scene::Scene s = drive_at("acc-0500-base", "complete", 1);
+    for (const char* role : {"bottom", "cushion"}) {
+      const double E = std::string(role) == "bottom" ? bottom_E_MPa : 0.5 * bottom_E_MPa;
+      const std::string card = fitlib_test::temp_path(std::string("iso-") + role + "-" + std::to_string(E) + ".json");
+      std::ofstream(card) << nlohmann::json{{"schema", "fitlib.card/1"}, {"model", "elastic-iso"}, {"name", role},
+                                            {"parameters", {{{"name", "E"}, {"value", E}}, {{"name", "nu"}, {"value", 0.49}}}},
+                                            {"temperature", {{"law", "none"}}}}.dump();
+      s.materials[role] = card;
+    }
+    return s;
+  };
+  const scene::SceneResult stiff = scene::run_scene(run(4.0));
+  for (const auto& m : stiff.life->report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles));
+  try {
+    scene::run_scene(run(2.0));
+    ADD_FAILURE() << "the E 2 / 1 MPa section ran the accelerated load cycle";
+  } catch (const core::NumericalError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("failed in cycle 1 after path position 27"), std::string::npos) << what;  // 276.5 mm
+    EXPECT_NE(what.find("a stability limit proportional to its rubber's shear modulus"), std::string::npos) << what;
   }
 }
