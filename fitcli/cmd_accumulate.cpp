@@ -6,6 +6,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
+#include "fitlib/scene/output_paths.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/core/units.hpp"
 #include "inputs.hpp"
@@ -52,7 +53,7 @@ void register_accumulate(CLI::App& app) {
     scene::AccumulationSpec spec;
     if (!a->scene.empty()) {
       sc = load_scene_input(a->scene);
-      refuse_outputs_on_scene_cards(sc, {{"--out", a->out}});
+      fitlib::scene::refuse_outputs_on_inputs(sc, {{"--out", a->out}});
       if (sc.accumulation) spec = *sc.accumulation;
     }
     if (!a->card.empty()) {

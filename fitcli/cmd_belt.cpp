@@ -41,7 +41,7 @@ void register_belt(CLI::App& app) {
                                      *out_dir + "': use --out-dir DIR (docs/cli.md)");
     if (cmd->count("--out") > 0) note("belt --out DIR is deprecated: use --out-dir DIR (docs/cli.md)");
     const auto scene = load_scene_input(*scene_path);
-    refuse_outputs_on_scene_cards(scene, {{"--plot", *plot}});
+    refuse_out_dir_collisions(scene, *out_dir, {{"--plot", *plot}});
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);
     fitlib::core::prepare_output_dir(*out_dir);
     const auto result = fitlib::scene::run_scene(scene);

@@ -62,14 +62,14 @@ void register_life(CLI::App& app) {
       throw fitlib::core::UsageError("life writes a folder: use --out-dir " + *misspelt_out +
                                      " (--out names a file in every subcommand, docs/cli.md)");
     auto scene = load_scene_input(*scene_path);
-    refuse_outputs_on_scene_cards(scene, {{"--plot", *plot}});
     scene.segment_progress = !quiet();  // shown only when stderr is a terminal
-    if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     if (!field_at->empty()) {
       scene.life_field_at = *field_at;
       scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();
       fitlib::scene::check_life_fields(scene);  // exit 2 before any folder is made
     }
+    refuse_out_dir_collisions(scene, *out_dir, {{"--plot", *plot}});  // the field files too
+    if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     const auto result = run_with_field_folder(scene, *out_dir);
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
     if (!plot->empty() && result.cycle)

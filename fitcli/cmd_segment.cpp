@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
+#include "fitlib/scene/output_paths.hpp"
 #include "fitlib/scene/segment_case.hpp"
 #include "inputs.hpp"
 #include "output.hpp"
@@ -26,7 +27,7 @@ void register_segment(CLI::App& app) {
   cmd->callback([=] {
     if (*vtk == "-") throw fitlib::core::UsageError("segment --vtk needs a file (- is not supported)");
     const auto scene = load_scene_input(*scene_path);
-    refuse_outputs_on_scene_cards(scene, {{"--vtk", *vtk}});
+    fitlib::scene::refuse_outputs_on_inputs(scene, {{"--vtk", *vtk}});
     const auto c = fitlib::scene::run_segment_case(scene, *vtk);
     const auto& r = c.result;
     const auto j = fitlib::scene::segment_json(scene, c);

@@ -1,5 +1,6 @@
 #include "path_guard.hpp"
 
+#include <filesystem>
 #include <set>
 #include <string>
 #include <utility>
@@ -7,19 +8,22 @@
 
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/core/output_folder.hpp"
+#include "fitlib/scene/output_paths.hpp"
 
 namespace fitcli {
 namespace {
 
-// The options that name files, by role. A sweep's --out also writes FILE.partial (docs/sweep.md).
+// The options that name files, by role. A sweep's --out also writes FILE.partial and FILE.lock
+// (docs/sweep.md), which collect() adds as outputs of their own.
 const std::set<std::string>& output_options() {
   static const std::set<std::string> names = {"--out", "--plot", "--vtk", "--surface-out", "--shifts-out", "--peaks-out"};
   return names;
 }
 const std::set<std::string>& input_options() {
-  static const std::set<std::string> names = {"--data",   "--card",     "--scene",     "--sweep",
-                                              "--shifts", "--schedule", "--observed",  "--start",
-                                              "--signals", "--specimen", "--surface", "--constraints"};
+  static const std::set<std::string> names = {"--data",     "--card",     "--scene",   "--sweep",       "--shifts",
+                                              "--schedule", "--observed", "--start",   "--signals",     "--specimen",
+                                              "--surface",  "--points",   "--constraints"};
   return names;
 }
 
@@ -34,6 +38,8 @@ void collect(const CLI::App& app, std::vector<Named>& inputs, std::vector<Named>
     for (const std::string& path : o->results()) {
       if (path.empty() || path == "-") continue;
       (in ? inputs : outputs).emplace_back(name, path);
+      if (out && name == "--out" && app.get_name() == "sweep")  // its unfinished rows and its lock
+        for (const char* suffix : {".partial", ".lock"}) outputs.emplace_back("--out's file", path + suffix);
     }
   }
   for (const CLI::App* sub : app.get_subcommands()) collect(*sub, inputs, outputs);
@@ -63,17 +69,20 @@ void refuse_colliding_paths(const CLI::App& app) {
   }
 }
 
-void refuse_outputs_on_scene_cards(const fitlib::scene::Scene& scene, const std::vector<Named>& outputs) {
-  std::vector<Named> cards;  // scene key, path
-  for (const auto& [role, path] : scene.materials) cards.emplace_back("belt.materials." + role, path);
-  if (scene.life && !scene.life->card.empty()) cards.emplace_back("life.card", scene.life->card);
-  for (const auto& [option, path] : outputs) {
-    if (path.empty() || path == "-") continue;
-    for (const auto& [key, card] : cards)
-      if (fitlib::core::same_file(path, card))
-        throw fitlib::core::UsageError(option + " " + path + " is the card the scene names at " + key + " (" + card +
-                                       "): the run would replace its own input; write elsewhere");
-  }
+void refuse_out_dir_collisions(const fitlib::scene::Scene& scene, const std::string& dir,
+                               const std::vector<Named>& outputs) {
+  const std::vector<std::string> files = fitlib::scene::folder_outputs(scene, dir);
+  std::vector<Named> written = {{"--out-dir", dir}};
+  for (const std::string& f : files) written.emplace_back("--out-dir's file", f);
+  written.insert(written.end(), outputs.begin(), outputs.end());
+  fitlib::scene::refuse_outputs_on_inputs(scene, written);
+  for (const auto& [option, path] : outputs)
+    for (const std::string& f : files)
+      if (fitlib::core::same_file(path, f))
+        throw fitlib::core::UsageError(option + " " + path + " is the file " +
+                                       std::filesystem::path(f).filename().string() + " that --out-dir " + dir +
+                                       " receives: one output would replace the other");
+  fitlib::core::check_output_dir(dir);
 }
 
 }  // namespace fitcli

@@ -19,11 +19,15 @@ namespace fitcli {
 // twice to one option (its rows would count twice).
 void refuse_colliding_paths(const CLI::App& app);
 
-// The cards a scene names ([belt.materials] roles, [life] card) are inputs too: `life --scene
-// s.toml --plot card.json` replaced the scene's bottom card with the figure. Each output (option,
-// path; empty and "-" skipped) against them: UsageError naming the option, the scene key and the
-// file, before any work.
-void refuse_outputs_on_scene_cards(const fitlib::scene::Scene& scene,
-                                   const std::vector<std::pair<std::string, std::string>>& outputs);
+// The cards a scene names are inputs too (`life --scene s.toml --plot card.json` replaced the
+// scene's bottom card): the subcommands that read a scene check their outputs with
+// fitlib::scene::refuse_outputs_on_inputs (scene/output_paths.hpp).
+
+// `belt` and `life` write several files into --out-dir DIR (scene::folder_outputs): the folder and
+// each of its files against the scene file and its cards, each of `outputs` (--plot) against the
+// folder's files (UsageError, exit 2), then the folder checked writable (InputError, exit 3). Before
+// any work and before the folder is made.
+void refuse_out_dir_collisions(const fitlib::scene::Scene& scene, const std::string& dir,
+                               const std::vector<std::pair<std::string, std::string>>& outputs);
 
 }  // namespace fitcli

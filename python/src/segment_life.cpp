@@ -10,6 +10,7 @@
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/life_fit.hpp"
 #include "fitlib/scene/life_tests.hpp"
+#include "fitlib/scene/output_paths.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/segment_case.hpp"
@@ -94,6 +95,11 @@ py::dict segment_dict(const segment::StaticResult& r) {
 py::dict run_segment(scene::Scene s, const py::object& strain, const py::object& curvature, const py::object& pressure,
                      const std::string& vtk_path) {
   if (!s.segment) throw core::InputError("the scene has no [segment] table", s.path, 0, 0, "segment");
+  // As fitcli segment --vtk: a file (not stdout), never the scene or a card it names (UsageError),
+  // in a folder that exists and can be written (InputError, checked by run_segment_case before
+  // the FE), written through a temporary and a rename.
+  if (vtk_path == "-") throw core::UsageError("vtk_path needs a file (- would be stdout)");
+  scene::refuse_outputs_on_inputs(s, {{"vtk_path", vtk_path}});
   if (!strain.is_none()) s.segment->load.strain = strain.cast<double>();
   if (!curvature.is_none()) s.segment->load.curvature_1_mm = curvature.cast<double>();
   if (!pressure.is_none()) s.segment->load.pressure_MPa = pressure.cast<double>();
@@ -142,7 +148,9 @@ void bind_segment_life(py::module_& m) {
   m.def("segment_case", &run_segment, py::arg("scene"), py::arg("strain") = py::none(),
         py::arg("curvature_1_mm") = py::none(), py::arg("pressure_MPa") = py::none(), py::arg("vtk_path") = "",
         "fitcli segment: the scene's static [segment] case (load overridable); stresses at the points as arrays, "
-        "'summary' the --json document");
+        "'summary' the --json document. vtk_path (fitcli's --vtk): the mesh with displacements and cell stresses, "
+        "written through a temporary and a rename; UsageError when it is '-', the scene file or a card the scene "
+        "names, InputError when its folder is missing or not writable (both before the FE runs)");
   m.def("run_life", &scene::run_life, py::arg("scene"),
         "fitcli life: runs the scene with the life asked for; SceneResult.life holds it");
   m.def("run_life", [](const std::string& path) { return scene::run_life(scene::load_scene(path)); },

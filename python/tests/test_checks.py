@@ -9,7 +9,9 @@ Environment: PYTHONPATH = <build>/python, FITLIB_ROOT = the source tree.
 import math
 import os
 import re
+import shutil
 import sys
+import tempfile
 import time
 import traceback
 import warnings
@@ -23,6 +25,8 @@ CARD = os.path.join(ROOT, "tests", "data", "bad", "card", "ok.json")          # 
 WINDOW_CARD = os.path.join(ROOT, "tests", "data", "bad", "card", "window_23_60.json")
 FRITZSON = os.path.join(ROOT, "datasets", "cards", "material-2-true.json")
 SWEEP = os.path.join(ROOT, "tests", "data", "sweep", "small.toml")
+SEGMENT = os.path.join(ROOT, "datasets", "segment", "bend-40mm.toml")
+WORK = os.path.join(tempfile.gettempdir(), f"fitlib-python-checks-{os.getpid()}")  # this process's own
 
 
 def raises(error, call, *words):
@@ -152,6 +156,47 @@ def test_one_temperature_twice_and_one_file_twice_are_refused_as_by_the_cli():
     assert len(fitlib.read_table([table])) > 0
 
 
+def test_segment_vtk_path_is_checked_as_fitcli_segment_vtk():
+    # segment_case(vtk_path=...) wrote over whatever it was given, after the FE: the scene file, a
+    # card the scene names, stdout's "-"; a missing folder failed only after the run
+    work = os.path.join(WORK, "segment")
+    os.makedirs(work)
+    card = os.path.join(work, "card.json")
+    shutil.copy(FRITZSON, card)
+    scene_path = os.path.join(work, "bend.toml")
+    with open(SEGMENT) as f:
+        text = f.read()
+    own_bottom = "bottom = {E_MPa = 20, nu = 0.4995}\n"
+    assert own_bottom in text
+    with open(scene_path, "w") as f:  # the bottom from a card, the cushion from [segment.materials]
+        f.write(text.replace(own_bottom, "").replace("[segment]\n", '[belt.materials]\nbottom = "card.json"\n[segment]\n', 1))
+    scene = fitlib.load_scene(scene_path)
+    before = {p: open(p, "rb").read() for p in (card, scene_path)}
+    os.link(card, os.path.join(work, "card-hard.json"))
+    os.symlink(scene_path, os.path.join(work, "scene-link.toml"))
+    raises(fitlib.UsageError, lambda: fitlib.segment_case(scene, vtk_path="-"), "vtk_path", "stdout")
+    for path in (card, os.path.join(work, ".", "card.json"), os.path.join(work, "card-hard.json")):
+        raises(fitlib.UsageError, lambda: fitlib.segment_case(scene, vtk_path=path), "vtk_path",
+               "belt.materials.bottom", "its own input")
+    for path in (scene_path, os.path.join(work, "scene-link.toml")):
+        raises(fitlib.UsageError, lambda: fitlib.segment_case(scene, vtk_path=path), "scene file", "its own input")
+    e = raises(fitlib.InputError, lambda: fitlib.segment_case(scene, vtk_path=os.path.join(work, "no-dir", "s.vtk")),
+               "output folder does not exist")
+    assert e.file.endswith(os.path.join("no-dir", "s.vtk")), e.file
+    raises(fitlib.InputError, lambda: fitlib.segment_case(scene, vtk_path=work), "is a folder")
+    assert {p: open(p, "rb").read() for p in (card, scene_path)} == before
+    # a good path: an old file there is replaced whole, through a temporary that does not stay
+    out = os.path.join(work, "s.vtk")
+    with open(out, "w") as f:
+        f.write("old\n" * 100000)
+    plain = fitlib.segment_case(fitlib.load_scene(SEGMENT), vtk_path=out)
+    with open(out) as f:
+        vtk = f.read()
+    assert vtk.startswith("# vtk DataFile") and "old" not in vtk, vtk[:80]
+    assert f"CELLS {plain['elements']} " in vtk
+    assert sorted(os.listdir(work)) == ["bend.toml", "card-hard.json", "card.json", "s.vtk", "scene-link.toml"]
+
+
 def test_every_public_name_has_a_docstring():
     missing = []
     for name in sorted(n for n in dir(fitlib) if not n.startswith("_")):
@@ -171,6 +216,7 @@ def test_every_public_name_has_a_docstring():
 def main():
     tests = [(n, f) for n, f in sorted(globals().items()) if n.startswith("test_")]
     failed = 0
+    os.makedirs(WORK)
     for name, test in tests:
         try:
             test()
@@ -178,6 +224,7 @@ def main():
         except Exception:  # noqa: BLE001
             failed += 1
             print(f"FAIL {name}\n{traceback.format_exc()}")
+    shutil.rmtree(WORK, ignore_errors=True)
     print(f"{len(tests) - failed} passed, {failed} failed")
     return 1 if failed else 0
 

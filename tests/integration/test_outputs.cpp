@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -210,6 +211,91 @@ TEST(Outputs, AnOutputOnACardTheSceneNamesIsRefusedBeforeAnyWork) {
   EXPECT_EQ(slurp(fatigue), fatigue_bytes);
   EXPECT_FALSE(fs::exists(temp_file("b")));
   EXPECT_FALSE(fs::exists(temp_file("l")));
+}
+
+// belt and life write several files into --out-dir (load_history.csv, summary.json, life.json, …):
+// each is an output like --out. A card the scene names, the scene file or the fatigue card lying at
+// one of those names (by any spelling of the folder: "/./", a symbolic link; or a hard link of the
+// file) was replaced by the run's table with exit 0; a --plot on one of them lost one of the two.
+// Now exit 2 before any work, naming the file and where it is read; the inputs stay as they were.
+TEST(Outputs, AnOutDirWhoseFilesAreInputsIsRefusedBeforeAnyWork) {
+  const std::string heavy = slurp(source_path("datasets/drives/ref-0500-heavy.toml"));
+  const auto folder = [](const std::string& name) {
+    const std::string d = temp_file(name);
+    fs::create_directories(d);
+    return d;
+  };
+  // A card at DIR/summary.json, a fatigue card at DIR/life.json, the scene outside DIR.
+  const std::string cards = folder("outdir_cards");
+  const std::string card = cards + "/summary.json", fatigue = cards + "/life.json";
+  fs::copy_file(source_path("datasets/cards/material-2-true.json"), card);
+  fs::copy_file(source_path("datasets/cards/fatigue-fritzson-1988.json"), fatigue);
+  const std::string scene = temp_file("outdir_scene.toml");
+  std::ofstream(scene) << heavy << "\n[belt.materials]\nbottom = \"outdir_cards/summary.json\"\n";
+  const std::string life_scene = temp_file("outdir_life_scene.toml");
+  std::ofstream(life_scene) << heavy << "\n[life]\ncard = \"outdir_cards/life.json\"\n";
+  fs::create_directory_symlink(cards, temp_file("outdir_cards_link"));
+  // The scene file itself at DIR/load_history.csv, and a hard link of it at DIR2/summary.json.
+  const std::string own = folder("outdir_own"), linked = folder("outdir_linked");
+  const std::string own_scene = own + "/load_history.csv";
+  std::ofstream(own_scene) << heavy;
+  fs::create_hard_link(own_scene, linked + "/summary.json");
+  // A scene whose --field-at files land on its own name (DIR/field-0.vtk).
+  const std::string fields = folder("outdir_fields");
+  fs::copy_file(source_path("tests/data/bad/scene/life_segment_ok.toml"), fields + "/field-0.vtk");
+  const std::string empty = temp_file("outdir_empty");  // not made: nothing lies there
+  const std::string not_folder = copy_of(kCard, "outdir_is_a_file");
+  std::map<std::string, std::string> before;
+  for (const std::string& f : {card, fatigue, own_scene, fields + "/field-0.vtk"}) before[f] = slurp(f);
+  struct Case {
+    std::string args, message;
+    int exit_code = 2;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"belt --scene " + scene + " --out-dir " + cards, "summary.json is the card the scene names at belt.materials.bottom"},
+           {"life --scene " + scene + " --out-dir " + cards + "/.", "is the card the scene names at belt.materials.bottom"},
+           {"life --scene " + scene + " --out-dir " + temp_file("outdir_cards_link"), "belt.materials.bottom"},
+           {"life --scene " + life_scene + " --out-dir " + cards, "life.json is the card the scene names at life.card"},
+           {"belt --scene " + own_scene + " --out-dir " + own, "load_history.csv is the scene file the run reads"},
+           {"life --scene " + own_scene + " --out-dir " + linked, "summary.json is the scene file the run reads"},
+           {"life --scene " + fields + "/field-0.vtk --field-at entrance --out-dir " + fields, "field-0.vtk is the scene file"},
+           {"belt --scene " + scene + " --out-dir " + scene, "--out-dir " + scene + " is the scene file the run reads"},
+           {"life --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + empty + " --plot " +
+                empty + "/life.json", "is the file life.json that --out-dir " + empty + " receives"},
+           {"belt --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + empty + " --plot " +
+                empty + "/./summary.json", "is the file summary.json that --out-dir"},
+           {"life --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + not_folder,
+            "output folder is a file, not a folder", 3},
+           {"life --scene " + source_path("datasets/drives/ref-0500-heavy.toml") + " --out-dir " + not_folder + "/sub",
+            "cannot create output folder", 3},
+       }) {
+    const auto r = run_fitcli(c.args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
+  }
+  for (const auto& [path, bytes] : before) EXPECT_EQ(slurp(path), bytes) << path;
+  for (const std::string& d : {cards, own, linked, fields}) {
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(d)) ++files;
+    EXPECT_EQ(files, d == cards ? 2u : 1u) << d << ": the refused run wrote into it";
+  }
+  EXPECT_FALSE(fs::exists(empty));
+  EXPECT_EQ(slurp(not_folder), slurp(kCard));
+}
+
+// A sweep writes FILE.partial and FILE.lock beside --out FILE (and removes the lock when done): a
+// sweep file at either name was appended to, or deleted with the lock.
+TEST(Outputs, ASweepFileAtItsOutputsPartialOrLockIsRefused) {
+  for (const std::string suffix : {".partial", ".lock"}) {
+    const std::string out = temp_file("sweep_own" + suffix.substr(1) + ".csv");
+    const std::string sweep = copy_of(kSweep, "sweep_own" + suffix.substr(1) + ".csv" + suffix);
+    const std::string text = slurp(kSweep);
+    const auto r = run_fitcli("sweep --sweep " + sweep + " --out " + out + " --threads 1 --quiet");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--out's file " + out + suffix + " is the file --sweep reads"), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(sweep), text);
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 // 10^6 cases at the beam level (0.675 ms each: 0.19 core-hours) run; the same grid at the elastic

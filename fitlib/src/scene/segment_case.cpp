@@ -3,6 +3,7 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/finite_output.hpp"
 #include "fitlib/core/format.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "effects.hpp"
 
@@ -24,6 +25,7 @@ double case_frequency_Hz(const Scene& scene) {
 
 SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path) {
   if (!scene.segment) throw core::InputError("the scene has no [segment] table", scene.path, 0, 0, "segment");
+  if (!vtk_path.empty()) core::check_output_path(vtk_path);  // before the FE, not after it
   SegmentCase out;
   segment::StaticSetup setup = scene.segment->setup;
   out.temperature_C = scene.temperature_C;

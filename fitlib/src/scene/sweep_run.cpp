@@ -95,14 +95,14 @@ class ProgressLine {
   std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now(), shown_ = t0_;
 };
 
-// The result file (and its .partial) may be none of the files the sweep reads: the sweep file,
+// The result file (and its .partial and .lock) may be none of the files the sweep reads: the sweep file,
 // its scenes and cards (fitcli refuses --out = --sweep too; the scenes are named inside).
 void refuse_output_on_input(const Sweep& sweep, const std::string& out) {
   std::vector<std::string> inputs = sweep.scenes;
   inputs.push_back(sweep.path);
   inputs.insert(inputs.end(), sweep.card_files.begin(), sweep.card_files.end());
   for (const auto& in : inputs)
-    for (const std::string& written : {out, out + ".partial"})
+    for (const std::string& written : {out, out + ".partial", out + ".lock"})  // the lock's holder removes it
       if (core::same_file(written, in))
         throw core::InputError("the result file would replace " + in + ", which the sweep reads; write elsewhere",
                                written);

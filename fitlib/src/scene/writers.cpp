@@ -14,6 +14,7 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/units.hpp"
 #include "fitlib/segment/cycle.hpp"
+#include "fitlib/scene/output_paths.hpp"
 
 namespace fitlib::scene {
 namespace {
@@ -395,14 +396,16 @@ std::vector<std::string> write_outputs(const Scene& s, const SceneResult& r, con
     core::require_finite_json(j, name);
     files.emplace_back(name, j.dump(2) + "\n");
   };
+  namespace f = folder_file;  // the names folder_outputs lists (output_paths.hpp)
   const auto history = s.outputs.find("load_history");
   if (r.cycle && history != s.outputs.end() && history->second)
-    csv("load_history.csv", load_history_csv(r), {"pulley", "zone"});
-  if (r.accumulation) csv("accumulation.csv", accumulation_csv(*r.accumulation), {});
-  if (r.tension_test) csv("tension_test.csv", tension_test_csv(r.tension_test->result), {"phase"});
-  if (r.life && r.stresses) csv("stress_history.csv", fatigue::stress_histories_csv(written_histories(*r.life, *r.stresses)), {"point", "role"});
-  if (r.life) json_file("life.json", life_json(s, r, wall_times));
-  json_file("summary.json", summary_json(s, r, wall_times));
+    csv(f::load_history, load_history_csv(r), {"pulley", "zone"});
+  if (r.accumulation) csv(f::accumulation, accumulation_csv(*r.accumulation), {});
+  if (r.tension_test) csv(f::tension_test, tension_test_csv(r.tension_test->result), {"phase"});
+  if (r.life && r.stresses)
+    csv(f::stress_history, fatigue::stress_histories_csv(written_histories(*r.life, *r.stresses)), {"point", "role"});
+  if (r.life) json_file(f::life, life_json(s, r, wall_times));
+  json_file(f::summary, summary_json(s, r, wall_times));
   core::prepare_output_dir(dir);
   std::vector<std::string> written;
   for (const auto& [name, text] : files) {

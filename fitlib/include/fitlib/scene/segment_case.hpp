@@ -27,6 +27,9 @@ struct SegmentCase {
 // The roles with a [belt.materials] card take its elastic equivalent (segment::role_point at the
 // elastic fidelity), the others [segment.materials]; a card needs a load frequency: [segment]
 // frequency_Hz, else the drive's (InputError at segment.frequency_Hz when the scene has neither).
+// A `vtk_path` is checked writable (core::check_output_path) before the FE runs and written
+// through a temporary and a rename; callers refuse one that is an input
+// (scene::refuse_outputs_on_inputs, under their own name for it).
 SegmentCase run_segment_case(const Scene& scene, const std::string& vtk_path = {});
 nlohmann::json segment_json(const Scene& scene, const SegmentCase& c);
 
