@@ -77,6 +77,7 @@ struct FitArgs {
   bool bulk_modulus = false, skip_bad_rows = false, json = false, record_timing = false;
   int max_terms = 0, term_search_max = 0;
   fitlib::fit::FitOptions fit;
+  fitlib::fit::FixedTermOptions fixed_terms;  // --terms N (--polish-iterations)
   std::string command_line;
   MasterCurveArgs master;  // --master-curve
   HyperelasticFitArgs hyper;  // a hyperelastic --model: quasi-static tables (hyperelastic.hpp)
@@ -97,6 +98,7 @@ fitlib::card::FitCardOptions fit_card_options(const FitArgs& a) {
   o.fit.record_timing = a.record_timing;
   o.fit.residual = fit::parse_residual_kind(a.residual);
   o.term.max_terms = a.term_search_max;
+  o.fixed_terms = a.fixed_terms;
   o.term.rule = fit::parse_term_rule(a.term_rule);
   o.term.method = fit::parse_term_method(a.term_method);
   o.term.spectrum.lambda = a.smoothness;
@@ -307,6 +309,10 @@ void register_fit(CLI::App& app) {
   cmd->add_option("--max-terms", a->max_terms,
                   "Solver cap on terms, reporting its cost; export limits: " + export_formats_text())
       ->check(number_in(1, fitlib::model::kMaxSeriesTerms));
+  cmd->add_option("--polish-iterations", a->fixed_terms.polish_iterations,
+                  "--terms N below 2 terms per decade of data: iteration budget of the free-time polish (kept only when "
+                  "it lowers the cost by 1 %)")
+      ->capture_default_str()->check(number_in(1, 100000));
   cmd->add_option("--term-search-max", a->term_search_max, "Largest N tried by --terms auto (0: from the data)")
       ->check(number_in(0, fitlib::model::kMaxSeriesTerms));
   cmd->add_option("--term-rule", a->term_rule, "Rule that picks N for --terms auto: bic | aic | ratio")

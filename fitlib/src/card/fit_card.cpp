@@ -212,55 +212,6 @@ FitCardResult read_back_checked(const FitCardOptions& o, Run run) {
   }
 }
 
-// The grid alone where it is as dense as the smooth spectrum's (2 per decade): free times do not
-// pay there; sparser grids are refined with free times (a 6-term truth over 6 decades needs them).
-constexpr double kGridPerDecade = 2.0;
-constexpr double kPolishPays = 0.02;  // rms log10 (≈ 5 %) above which the log-space polish runs
-
-// --terms N of a series model with linear moduli and no temperature law of its own (fitcli's
-// default backend): the moduli by NNLS on the model's log-spaced τ grid over the data (then
-// polished in log space only where that pays), and the free-τ fit from there only where it pays:
-// fewer than kGridPerDecade terms per decade of data (docs/fitting.md "Fixed term counts"); the
-// lower cost is kept. Nothing when the model or the options are others.
-std::optional<fit::FitResult> fixed_grid_fit(const model::ModelPtr& m, const data::DynamicTestTable& table,
-                                             const fit::FitOptions& options, int terms) {
-  const auto make = [&](int) { return m; };
-  // Fewer residuals than twice the free-time fit's parameters: the old path, whose verdict says
-  // when the data cannot determine the card.
-  const std::size_t residuals = 2 * table.rows.size();
-  if (options.backend != fit::Backend::automatic || !fit::spectrum_applies(make) ||
-      m->temperature_law_info().law != model::ShiftLaw::none || !options.fixed.empty() ||
-      residuals < 2 * (2 * static_cast<std::size_t>(terms) + 1))
-    return std::nullopt;
-  fit::FitOptions grid = options;
-  grid.backend = fit::Backend::nnls;
-  grid.polish = false;
-  fit::FitResult fixed = fit::fit(m, table, grid);
-  // The linear solve is the log10 objective to first order: the log-space polish pays only where
-  // the errors are large enough for the second order to matter (rms log10 above kPolishPays).
-  const fit::FitMetrics& lm = fixed.metrics;
-  if (options.residual == fit::ResidualKind::log10 && std::max(lm.rms_log10_storage, lm.rms_log10_loss) > kPolishPays) {
-    grid.polish = true;
-    fixed = fit::fit(m, table, grid);
-  }
-  const auto s = fit::summarize(table);
-  const double decades = std::log10(s.omega_max_rad_s / s.omega_min_rad_s);
-  if (terms >= kGridPerDecade * decades) {
-    fixed.messages.push_back("--terms " + std::to_string(terms) + ": moduli by NNLS on the log-spaced time grid (" +
-                             core::format_number(terms / std::max(decades, 1e-9), 3) +
-                             " terms per decade of the data: free times would not pay)");
-    return fixed;
-  }
-  fit::FitResult free = fit::fit(m, table, options, &fixed.values);
-  const bool keep_free = free.metrics.cost < fixed.metrics.cost;
-  fit::FitResult& kept = keep_free ? free : fixed;
-  kept.messages.push_back("--terms " + std::to_string(terms) + ": NNLS on the log-spaced time grid (cost " +
-                          core::format_number(fixed.metrics.cost, 6) + "), then free times (cost " +
-                          core::format_number(free.metrics.cost, 6) + "): " + (keep_free ? "free" : "grid") +
-                          " kept (fewer than 2 terms per decade of the data)");
-  return std::move(kept);
-}
-
 }  // namespace
 
 fit::MasterCurve refine_master_curve(const data::DynamicTestTable& raw, fit::MasterCurve curve,
@@ -305,10 +256,15 @@ FitCardResult fit_card_unchecked(const data::DynamicTestTable& table, const FitC
   }
   if (!has_terms) return finish(o, fit::fit(model::make_model(o.model, options), table, fit), table, std::nullopt);
   const int terms = fixed_terms(o);
-  options["terms"] = terms;
-  const model::ModelPtr m = model::make_model(o.model, options);
-  std::optional<fit::FitResult> grid = fixed_grid_fit(m, table, fit, terms);
-  return finish(o, grid ? std::move(*grid) : fit::fit(m, table, fit), table, std::nullopt);
+  const auto make = [&](int n) {
+    nlohmann::json with_terms = options;
+    with_terms["terms"] = n;
+    return model::make_model(o.model, with_terms);
+  };
+  // --terms N of a series model with linear moduli (fitcli's default backend): the log grid, free
+  // times only where they pay (fit/fixed_terms.hpp, docs/fitting.md "Fixed term counts").
+  std::optional<fit::FitResult> fast = fit::fit_fixed_terms(make, table, fit, terms, o.fixed_terms);
+  return finish(o, fast ? std::move(*fast) : fit::fit(make(terms), table, fit), table, std::nullopt);
 }
 
 FitCardResult fit_relaxation_card_unchecked(const data::RelaxationTable& table, const FitCardOptions& o) {

@@ -7,7 +7,6 @@
 
 #include "admissible.hpp"
 #include "backends.hpp"
-#include "varpro.hpp"
 #include "quality.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
@@ -116,12 +115,6 @@ bool has_free_linear(const Problem& problem) {
   for (int i : all_free(problem))
     if (problem.specs()[i].linear) return true;
   return false;
-}
-
-// Series models of two or more terms with free times and moduli: the moduli are projected out.
-bool wants_variable_projection(const Problem& problem) {
-  return detail::series_terms(problem.specs()).times.size() > 1 && has_free_linear(problem) &&
-         has_free_nonlinear(problem);
 }
 
 // Linear solve with the non-linear parameters held; then (polish) the positive linear
@@ -477,11 +470,6 @@ BackendRun run_backend(Problem& problem, FitResult& result, const FitOptions& op
     case Backend::automatic:
       run.used = has_free_linear(problem) ? "nnls+ceres" : "ceres";
       linear_start(problem, result);
-      if (options.variable_projection && wants_variable_projection(problem)) {
-        problem.set_free(all_free(problem));
-        note(result, "", detail::run_varpro(problem, problem.options().max_iterations));
-        run.used += "+varpro";
-      }
       if (options.global) {
         nlopt_stage(problem, result, options.multistart, options.max_iterations);
         run.used += "+nlopt";

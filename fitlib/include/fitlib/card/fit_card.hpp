@@ -11,6 +11,7 @@
 #include "fitlib/card/from_fit.hpp"
 #include "fitlib/data/relaxation.hpp"
 #include "fitlib/fit/fit.hpp"
+#include "fitlib/fit/fixed_terms.hpp"
 #include "fitlib/fit/master_curve.hpp"
 #include "fitlib/fit/terms.hpp"
 
@@ -32,6 +33,7 @@ struct FitCardOptions {
   nlohmann::json model_options = nlohmann::json::object();
   fit::FitOptions fit;
   fit::TermOptions term;  // --terms auto (its solver_cap is max_terms)
+  fit::FixedTermOptions fixed_terms;  // --terms N of a series model (fit/fixed_terms.hpp)
   // The user chose the residual or the weights: --terms auto by the spectrum keeps them instead
   // of its own objective (fit::kSpectrumResidual, fit::kSpectrumStorageWeight).
   bool objective_given = false;

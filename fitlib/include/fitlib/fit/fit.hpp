@@ -39,10 +39,6 @@ struct FitOptions {
   bool linear_start = true;
   // automatic backend: always run the NLopt multistart before Ceres (non-convex models).
   bool global = false;
-  // automatic backend, series models of ≥ 2 terms: the time constants first by variable projection
-  // (moduli re-solved by NNLS at every step; docs/fitting.md "Free time constants by variable
-  // projection"), then Ceres from there. card::fit_card turns it on for --terms N.
-  bool variable_projection = false;
   // staged backend: schedule file (.json or .toml, see fit/staged.hpp); empty = default schedule.
   std::string schedule_path;
   // Admissible terms of series models (docs/fitting.md "Admissible terms"): relaxation times in
