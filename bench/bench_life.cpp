@@ -703,14 +703,35 @@ scene::Scene heat_scene(const std::string& load, const std::string& level) {
   return s;
 }
 
-// Half the range of σ12 over the cycle, the largest over the `role` points.
-double shear_half_range(const std::vector<fatigue::PointHistory>& points, fatigue::Role role) {
+// Half the range of σ12 over the last `period_s` of the history, the largest over the `role` points.
+double shear_half_range(const std::vector<fatigue::PointHistory>& points, fatigue::Role role, double period_s) {
   double best = 0.0;
   for (const fatigue::PointHistory& p : points) {
-    if (p.role != role) continue;
+    if (p.role != role || p.samples.empty()) continue;
     double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (const fatigue::StressSample& q : p.samples) lo = std::min(lo, q.s12_MPa), hi = std::max(hi, q.s12_MPa);
+    for (const fatigue::StressSample& q : p.samples)
+      if (q.t_s >= p.samples.back().t_s - period_s - 1e-12) lo = std::min(lo, q.s12_MPa), hi = std::max(hi, q.s12_MPa);
     if (hi > lo) best = std::max(best, 0.5 * (hi - lo));
+  }
+  return best;
+}
+
+// √2 × the rms of σ12 about its mean over the last `period_s` of the history (trapezoidal in time):
+// the amplitude of the sinusoid that dissipates what the history does in a linear viscoelastic
+// solid of frequency-flat G″ (Parseval); the largest over the `role` points.
+double shear_rms_amplitude(const std::vector<fatigue::PointHistory>& points, fatigue::Role role, double period_s) {
+  double best = 0.0;
+  for (const fatigue::PointHistory& p : points) {
+    if (p.role != role || p.samples.size() < 2) continue;
+    const double t0 = p.samples.back().t_s - period_s;
+    double T = 0.0, m = 0.0, m2 = 0.0;
+    for (std::size_t k = 1; k < p.samples.size(); ++k) {
+      const auto &a = p.samples[k - 1], &b = p.samples[k];
+      if (a.t_s < t0 - 1e-12) continue;
+      const double dt = b.t_s - a.t_s;
+      T += dt, m += 0.5 * dt * (a.s12_MPa + b.s12_MPa), m2 += 0.5 * dt * (a.s12_MPa * a.s12_MPa + b.s12_MPa * b.s12_MPa);
+    }
+    if (T > 0.0) best = std::max(best, std::sqrt(2.0 * std::max(0.0, m2 / T - (m / T) * (m / T))));
   }
   return best;
 }
@@ -728,7 +749,7 @@ std::array<double, 2> cushion_shear(const scene::Scene& s, const belt::DriveCase
 void heat_level_table(bool temperatures) {
   std::printf("## 11. The heat source per level against the complete level's dissipation (windowed thesis cards, "
               "the drive's temperature)\n\n"
-              "| drive | T | complete: bottom / cushion | beam and elastic layers: bottom (land + cogs) / cushion "
+              "| drive | T | complete: bottom / cushion | beam and elastic layers: bottom (stretch + shear) / cushion "
               "(stretch + shear) | cushion shear gamma_a | layers / complete: bottom, cushion, total |%s\n"
               "|---|---|---|---|---|---|%s\n",
               temperatures ? " belt temperature (heat build-up, 25 degC): beam and elastic / complete (runs) |" : "",
@@ -740,18 +761,27 @@ void heat_level_table(bool temperatures) {
       const scene::SceneResult r = scene::run_life(s);
       const belt::HeatSources h = scene::heat_sources_of_run(s, r);
       const double f = r.drive->belt_speed_mm_s / r.drive->geometry.belt_length_mm;  // one cycle per revolution
-      double layer_W[4] = {};
-      for (std::size_t k = 0; k < h.layers.size() && k < 4; ++k) layer_W[k] = belt::hysteresis_work_J(h.layers[k]) * f;
+      // The layers' W by name: bottom stretch (land, cogs), bottom shear (land, cogs), cushion stretch, shear.
+      auto layer = [&](const std::string& name) -> const belt::HysteresisLayer& {
+        for (const auto& l : h.layers)
+          if (l.name == name) return l;
+        throw std::logic_error("no heat layer " + name);
+      };
+      const char* names[6] = {"bottom rubber, land", "bottom rubber, cogs", "bottom rubber, land shear",
+                              "bottom rubber, cogs shear", "cushion, stretch", "cushion, shear"};
+      double W[6];
+      for (int k = 0; k < 6; ++k) W[k] = belt::hysteresis_work_J(layer(names[k])) * f;
+      const double layer_W[4] = {W[0] + W[1], W[2] + W[3], W[4], W[5]};  // stretch, shear of the bottom; the cushion's
       const double bottom = layer_W[0] + layer_W[1], cushion = layer_W[2] + layer_W[3];
       const auto& c = r.segment_hysteresis_roles_W;
       // The cushion's shear: τ_a of the beam's mid-cushion point (B_l h) and of the complete level's
       // cushion points; the γ_a whose π G″ γ_a² (G″ at that γ_a) makes the complete level's cushion
       // dissipation less the stretch layer's; the card's |G*| at the layer's γ_a and at its tests' largest.
       const fatigue::BeamSection sec = fatigue::default_beam_section(*r.drive, s.temperature_C);
-      const double tau_beam = shear_half_range(fatigue::beam_stress_histories(*r.cycle, *r.drive, sec), fatigue::Role::cushion);
-      const double tau_complete = shear_half_range(*r.stresses, fatigue::Role::cushion);
-      const belt::HysteresisLayer& shear = h.layers[3];
-      const double target_J = (c[1] - layer_W[2]) / f;
+      const double tau_beam = shear_half_range(fatigue::beam_stress_histories(*r.cycle, *r.drive, sec), fatigue::Role::cushion, 1.0 / f);
+      const double tau_complete = shear_half_range(*r.stresses, fatigue::Role::cushion, 1.0 / f);
+      const belt::HysteresisLayer& shear = layer("cushion, shear");
+      const double target_J = (c[1] - layer_W[2]) / f * 1e3;  // N mm per cycle
       double gamma_needed = NAN;
       if (target_J > 0.0) {
         double g = shear.strain_amplitude;
@@ -762,6 +792,12 @@ void heat_level_table(bool temperatures) {
       const double tested = window.strain_amplitude_range() ? window.strain_amplitude_range()->second : NAN;
       const double G_layer = cushion_shear(s, *r.drive, shear.strain_amplitude)[0];
       const double G_tested = cushion_shear(s, *r.drive, tested)[0];
+      const double period = 1.0 / f;
+      const double rms_beam = shear_rms_amplitude(fatigue::beam_stress_histories(*r.cycle, *r.drive, sec), fatigue::Role::cushion, period);
+      const double rms_complete = shear_rms_amplitude(*r.stresses, fatigue::Role::cushion, period);
+      char rms_line[300];
+      std::snprintf(rms_line, sizeof rms_line, "  rms amplitude sqrt(2 var) of tau: beam %.4g, complete %.4g; rms_beam/|G*| tested %.4g\n",
+                    rms_beam, rms_complete, rms_beam / G_tested);
       char line[600];
       std::snprintf(line, sizeof line, "- %s: tau_a beam %.4g, complete %.4g (ratio %.3f) MPa; gamma_a layer %.4g (|G*| %.4g MPa), needed %.4g "
                   "(|G*| %.4g); tests' largest %.4g (|G*| %.4g, tau_beam/|G*| %.4g, tau_complete/|G*| %.4g)\n",
@@ -769,6 +805,7 @@ void heat_level_table(bool temperatures) {
                   std::isnan(gamma_needed) ? NAN : cushion_shear(s, *r.drive, gamma_needed)[0], tested, G_tested,
                   tau_beam / G_tested, tau_complete / G_tested);
       notes += line;
+      notes += rms_line;
       std::string temps;
       if (temperatures) {
         auto belt_T = [&](const std::string& level, std::string* runs) {
@@ -788,7 +825,7 @@ void heat_level_table(bool temperatures) {
       }
       std::printf("| %s | %.0f degC | %.3g / %.3g W | %.3g (%.3g + %.3g) / %.3g (%.3g + %.3g) W | %.3g | %.2f, %.2f, %.2f |%s\n",
                   load, s.temperature_C, c[0], c[1], bottom, layer_W[0], layer_W[1], cushion, layer_W[2], layer_W[3],
-                  h.layers.size() > 3 ? h.layers[3].strain_amplitude : 0.0, bottom / c[0], cushion / c[1],
+                  shear.strain_amplitude, bottom / c[0], cushion / c[1],
                   (bottom + cushion) / (c[0] + c[1]), temps.c_str());
     } catch (const std::runtime_error& e) {
       std::printf("| %s | stopped: %s |\n", load, e.what());
