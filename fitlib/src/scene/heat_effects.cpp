@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 
 #include "effects.hpp"
 #include "fitlib/belt/heat.hpp"
@@ -12,45 +13,62 @@
 namespace fitlib::scene::detail {
 namespace {
 
-// Storage and loss modulus of a [belt.materials] role at `at` (uniaxial 22 for the bottom rubber,
-// shear for the cushion); without a card E′ = `fallback_MPa` and E″ = E′ tan δ ([thermal] loss_angle_deg).
-// `warnings` (the fixed point's run only) gets the card's data-window warnings at the layer's amplitude.
-std::array<double, 2> layer_moduli(const Scene& s, const std::string& role, model::TestCondition at,
-                                   double fallback_MPa, std::vector<std::string>* warnings) {
-  if (!s.materials.count(role))
-    return {fallback_MPa, belt::loss_modulus_of_storage_MPa(fallback_MPa, s.thermal.loss_angle_deg)};
-  const card::Card c = material_card(s, role);
-  if (warnings) card_window_warnings(s, role, c, at, *warnings);
+// The scene's cards of the heat layers' roles, each read from its file once per set of layers.
+struct LayerCard {
+  card::Card card;
+  model::ModelPtr model;
+};
+using LayerCards = std::map<std::string, LayerCard>;
+
+LayerCards layer_cards(const Scene& s) {
+  LayerCards out;
+  for (const char* role : {"bottom", "cushion"})
+    if (s.materials.count(role)) {
+      card::Card c = material_card(s, role);
+      model::ModelPtr m = c.model();
+      out.emplace(role, LayerCard{std::move(c), std::move(m)});
+    }
+  return out;
+}
+
+// Storage and loss modulus of a role's card at `at`.
+model::Moduli<double> card_moduli(const Scene& s, const std::string& role, const LayerCard& c,
+                                  const model::TestCondition& at) {
   try {
-    const auto m = card::moduli_in_mode(*c.model(), c.values(), at, s.material_poisson_ratio);
-    return {m.storage, m.loss};
+    return card::moduli_in_mode(*c.model, c.card.values(), at, s.material_poisson_ratio);
   } catch (const std::exception& e) {
     throw core::InputError(std::string("card cannot give the loss modulus the heat build-up needs: ") + e.what(), {},
                            0, 0, "belt.materials." + role);
   }
 }
 
-// The shear strain amplitude of a stress amplitude τ_a read stress-controlled on the cushion's card:
+// Storage and loss modulus of a [belt.materials] role at `at` (uniaxial 22 for the bottom rubber,
+// shear for the cushion); without a card E′ = `fallback_MPa` and E″ = E′ tan δ ([thermal] loss_angle_deg).
+// `warnings` (the fixed point's run only) gets the card's data-window warnings at the layer's amplitude.
+std::array<double, 2> layer_moduli(const Scene& s, const LayerCards& cards, const std::string& role,
+                                   model::TestCondition at, double fallback_MPa, std::vector<std::string>* warnings) {
+  const auto c = cards.find(role);
+  if (c == cards.end()) return {fallback_MPa, belt::loss_modulus_of_storage_MPa(fallback_MPa, s.thermal.loss_angle_deg)};
+  if (warnings) card_window_warnings(s, role, c->second.card, at, *warnings);
+  const auto m = card_moduli(s, role, c->second, at);
+  return {m.storage, m.loss};
+}
+
+// The shear strain amplitude of a stress amplitude τ_a read stress-controlled on a role's card:
 // the fixed point γ = τ_a/|G*(γ)|, iterated from γ = τ_a/G_section. A filled rubber's |G*| falls
 // with the amplitude, so τ_a/|G*(γ)| rises with γ and the iterates move monotonically to the fixed
 // point next to the start (the amplitude reached loading from small ones); without a card |G*| is
 // the section's G with G″ = G tan δ, one step. A few card evaluations; at most 100.
-double stress_controlled_shear(const Scene& s, const std::string& role, model::TestCondition at, double tau_a,
-                               double G_section_MPa) {
+double stress_controlled_shear(const Scene& s, const LayerCards& cards, const std::string& role,
+                               model::TestCondition at, double tau_a, double G_section_MPa) {
   if (!(tau_a > 0.0)) return 0.0;
-  if (!s.materials.count(role))
+  const auto c = cards.find(role);
+  if (c == cards.end())
     return tau_a / std::hypot(G_section_MPa, belt::loss_modulus_of_storage_MPa(G_section_MPa, s.thermal.loss_angle_deg));
-  const card::Card c = material_card(s, role);  // read once for the iteration
   double gamma = tau_a / G_section_MPa;
   for (int k = 0; k < 100; ++k) {
     at.strain_amplitude = gamma;
-    model::Moduli<double> m;
-    try {
-      m = card::moduli_in_mode(*c.model(), c.values(), at, s.material_poisson_ratio);
-    } catch (const std::exception& e) {
-      throw core::InputError(std::string("card cannot give the loss modulus the heat build-up needs: ") + e.what(), {},
-                             0, 0, "belt.materials." + role);
-    }
+    const auto m = card_moduli(s, role, c->second, at);
     const double next = tau_a / std::hypot(m.storage, m.loss);
     const bool settled = std::abs(next - gamma) <= 1e-9 * next;
     gamma = next;
@@ -90,10 +108,11 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
   model::TestCondition at;
   at.temperature_C = s.temperature_C, at.frequency_Hz = load_frequency_Hz(drive);
   std::vector<belt::HysteresisLayer> layers;
+  const LayerCards cards = layer_cards(s);
   auto add = [&](const char* name, const std::string& role, model::TestMode mode, const char* orientation,
                  double volume_mm3, double amplitude, double fallback_MPa) {
     at.mode = mode, at.orientation = orientation, at.strain_amplitude = amplitude;
-    layers.push_back({name, volume_mm3, layer_moduli(s, role, at, fallback_MPa, warnings)[1], amplitude});
+    layers.push_back({name, volume_mm3, layer_moduli(s, cards, role, at, fallback_MPa, warnings)[1], amplitude});
   };
   const double land = sec.land_depth_mm - sec.cushion_mm, cogs = sec.cog_depth_mm;
   const double ms_land = mean_square_amplitude(cycle, drive, K_m, sec.cushion_mm, sec.land_depth_mm);
@@ -123,9 +142,9 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
     double work = 0.0, square = 0.0;  // means of G″ γ² and γ²
     for (int k = 0; k < 3; ++k) {
       const double d = 0.5 * (d0 + d1) + 0.5 * (d1 - d0) * x[k];
-      const double gamma = stress_controlled_shear(s, "bottom", q, tau_a * below_mm(d) / h_mid, G);
+      const double gamma = stress_controlled_shear(s, cards, "bottom", q, tau_a * below_mm(d) / h_mid, G);
       q.strain_amplitude = gamma;
-      work += 0.5 * w[k] * layer_moduli(s, "bottom", q, G, warnings)[1] * gamma * gamma;
+      work += 0.5 * w[k] * layer_moduli(s, cards, "bottom", q, G, warnings)[1] * gamma * gamma;
       square += 0.5 * w[k] * gamma * gamma;
     }
     layers.push_back({name, volume_mm3, square > 0.0 ? work / square : 0.0, std::sqrt(square)});
@@ -138,7 +157,7 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
       std::sqrt(mean_square_amplitude(cycle, drive, K_m, 0.0, sec.cushion_mm)), sec.cushion_modulus_MPa);
   at.mode = model::TestMode::shear, at.orientation = "";
   add("cushion, shear", "cushion", model::TestMode::shear, "", B * sec.cushion_mm * L,
-      stress_controlled_shear(s, "cushion", at, tau_a, sec.cushion_modulus_MPa / 3.0), sec.cushion_modulus_MPa / 3.0);
+      stress_controlled_shear(s, cards, "cushion", at, tau_a, sec.cushion_modulus_MPa / 3.0), sec.cushion_modulus_MPa / 3.0);
   return layers;
 }
 
