@@ -18,12 +18,14 @@
 // 6. What heat build-up and the life distribution cost per drive against the run without them
 //    (`bench_life heat` prints it alone).
 // 7. The level calibration's held-out drives (bench/life_calibration.hpp; `bench_life calibration`).
-// 8. What [life] uncertainty = "cards" costs per drive against the run without it
-//    (`bench_life uncertainty` prints it alone).
+// 8. What [life] uncertainty = "cards" and "constants+cards" cost per drive against the run without
+//    them, per draw and in total (`bench_life uncertainty` prints it alone).
 // 9. What the design-point scan ([segment] scan = true) costs per drive and where it puts the design
 //    point (`bench_life scan` prints it alone).
 // 10. The segment levels' cost per reference drive against a baseline binary in the same run
 //    (`bench_life cost [BASELINE_FITCLI] [runs=N]` prints it alone; docs/segment.md "Cost (reference)").
+// 11. The heat source per level against the complete level's dissipation (`bench_life heatlevels
+//    [temperatures]` prints it alone; not in the default run: minutes per drive).
 // `bench_life quick` leaves out the complete level (minutes per drive); `bench_life levels` prints
 // table 1 only, complete rows included.
 // `bench_life probe LOAD FIDELITY MESH STEPS [reuse] [extrapolate] [stall=N] [grow=N] [cuts=N] [tol=X] [full|fbar|reduced]
@@ -85,11 +87,13 @@
 #include "drive_sweep.hpp"
 #include "life_calibration.hpp"
 #include "fitlib/card/card.hpp"
+#include "fitlib/card/conversion.hpp"
 #include "fitlib/card/data_window.hpp"
 #include "fitlib/data/table.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/core/timer.hpp"
+#include "fitlib/fatigue/beam_section.hpp"
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/scene/segment_life.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -621,7 +625,7 @@ void heat_table() {
   std::printf("\n");
 }
 
-// 7. What [life] uncertainty = "cards" costs per drive against the run without it (docs/thermal.md
+// 7. What [life] uncertainty = "cards" and "constants+cards" cost per drive against the run without them (docs/thermal.md
 // §7): the thesis cards, the bottom card given a covariance of its mean moduli (variance 4e-3 in
 // ln, correlation 0.5; the bundled cards are true values without one), the scatter card of table 6,
 // the default 100 draws at the beam level, 8 at the elastic level on the light drive
@@ -638,9 +642,11 @@ std::string covariance_card_file() {
 }
 
 void uncertainty_table() {
-  std::printf("## 7. [life] uncertainty = \"cards\": cost per drive (thesis cards, bottom card with a covariance)\n\n"
-              "| drive | level | draws | without | with | ratio | per draw / run without | B10 (governing) | constants' 90 %% | cards' 90 %% |\n"
-              "|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("## 7. [life] uncertainty = \"cards\" and \"constants+cards\": cost per drive (thesis cards, bottom card with a "
+              "covariance)\n\n"
+              "| drive | level | draws | without | cards | ratio | per draw / run without | constants+cards | ratio | "
+              "per draw | per draw / run without | B10 (governing) | constants' 90 %% | cards' 90 %% | combined 90 %% |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const std::string scatter = scatter_card_file(), bottom = covariance_card_file();
   for (const char* load : kLoads)
     for (const char* level : {"beam", "elastic"}) {
@@ -650,21 +656,27 @@ void uncertainty_table() {
       s.materials["bottom"] = bottom;
       s.life->card = scatter;
       try {
-        scene::SceneResult off, on;
+        scene::SceneResult off, on, both;
         const double t_off = best_life_s(s, beam ? 20 : 1, off);
         s.life->uncertainty_cards = true;
         s.life->samples = beam ? 100 : 8;
         const double t_on = best_life_s(s, beam ? 3 : 1, on);
-        std::string b10 = "-", constants = "-", cards = "-";
-        for (const auto& m : on.life->distribution)
-          if (fatigue::to_string(m.mode) == on.life->report.governing) {
+        s.life->uncertainty_combined = true;  // "constants+cards": the same draws and the combined interval
+        const double t_both = best_life_s(s, beam ? 3 : 1, both);
+        std::string b10 = "-", constants = "-", cards = "-", combined = "-";
+        auto range = [](double lo, double hi) { return "[" + core::short_number(lo) + ", " + core::short_number(hi) + "]"; };
+        for (const auto& m : both.life->distribution)
+          if (fatigue::to_string(m.mode) == both.life->report.governing) {
             b10 = core::short_number(m.b10.h) + " h";
-            constants = "[" + core::short_number(m.b10.low_h) + ", " + core::short_number(m.b10.high_h) + "]";
-            cards = "[" + core::short_number(m.b10.cards_low_h) + ", " + core::short_number(m.b10.cards_high_h) + "]";
+            constants = range(m.b10.low_h, m.b10.high_h);
+            cards = range(m.b10.cards_low_h, m.b10.cards_high_h);
+            combined = range(m.b10.combined_low_h, m.b10.combined_high_h);
           }
-        std::printf("| %s | %s | %d | %.3g s | %.3g s | %.1f | %.2f | %s | %s | %s |\n", load, level, s.life->samples,
-                    t_off, t_on, t_on / t_off, t_on / t_off / s.life->samples, b10.c_str(), constants.c_str(),
-                    cards.c_str());
+        const double n = s.life->samples;
+        std::printf("| %s | %s | %d | %.3g s | %.3g s | %.1f | %.2f | %.3g s | %.1f | %.3g ms | %.2f | %s | %s | %s | %s |\n",
+                    load, level, s.life->samples, t_off, t_on, t_on / t_off, t_on / t_off / n, t_both, t_both / t_off,
+                    1e3 * t_both / n, t_both / t_off / n, b10.c_str(), constants.c_str(), cards.c_str(),
+                    combined.c_str());
       } catch (const std::runtime_error& e) {  // refused (exit 3) or stopped (exit 4)
         std::printf("| %s | %s | stopped: %s |\n", load, level, e.what());
       }
@@ -672,6 +684,155 @@ void uncertainty_table() {
   std::remove(scatter.c_str());
   std::remove(bottom.c_str());
   std::printf("\n");
+}
+
+// 11. The heat source per level against the complete level's own dissipation (docs/thermal.md §1,
+// docs/decisions.md "Heat: the beam and elastic levels' cushion shear"): every drive that passes the
+// complete level with the cards' damage held (the level calibration's, scripts/calibrate-levels.sh),
+// the windowed thesis cards at every level, each drive's own temperature. Per drive: the segment's
+// dissipation per role (the complete level), the beam section's layers (the beam and elastic levels'
+// source) and their ratio; with `temperatures`, the belt temperature with heat build-up (ambient
+// 25 degC) at the beam level (the elastic level reads the same layers: the same temperature) and at
+// the complete level (`bench_life heatlevels [temperatures]` prints it alone).
+const char* kHeatDrives[] = {"light", "medium", "heavy", "acc-0500-pulley-120.toml", "acc-0500-slack-300.toml",
+                             "acc-0500-tension-700.toml", "acc-0500-torque-15.toml"};
+
+scene::Scene heat_scene(const std::string& load, const std::string& level) {
+  scene::Scene s = life_scene(load, "complete held");  // the windowed cards
+  s.life->fidelity = core::fidelity_from_string(level, "level");
+  return s;
+}
+
+// Half the range of σ12 over the last `period_s` of the history, the largest over the `role` points.
+double shear_half_range(const std::vector<fatigue::PointHistory>& points, fatigue::Role role, double period_s) {
+  double best = 0.0;
+  for (const fatigue::PointHistory& p : points) {
+    if (p.role != role || p.samples.empty()) continue;
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const fatigue::StressSample& q : p.samples)
+      if (q.t_s >= p.samples.back().t_s - period_s - 1e-12) lo = std::min(lo, q.s12_MPa), hi = std::max(hi, q.s12_MPa);
+    if (hi > lo) best = std::max(best, 0.5 * (hi - lo));
+  }
+  return best;
+}
+
+// √2 × the rms of σ12 about its mean over the last `period_s` of the history (trapezoidal in time):
+// the amplitude of the sinusoid that dissipates what the history does in a linear viscoelastic
+// solid of frequency-flat G″ (Parseval); the largest over the `role` points.
+double shear_rms_amplitude(const std::vector<fatigue::PointHistory>& points, fatigue::Role role, double period_s) {
+  double best = 0.0;
+  for (const fatigue::PointHistory& p : points) {
+    if (p.role != role || p.samples.size() < 2) continue;
+    const double t0 = p.samples.back().t_s - period_s;
+    double T = 0.0, m = 0.0, m2 = 0.0;
+    for (std::size_t k = 1; k < p.samples.size(); ++k) {
+      const auto &a = p.samples[k - 1], &b = p.samples[k];
+      if (a.t_s < t0 - 1e-12) continue;
+      const double dt = b.t_s - a.t_s;
+      T += dt, m += 0.5 * dt * (a.s12_MPa + b.s12_MPa), m2 += 0.5 * dt * (a.s12_MPa * a.s12_MPa + b.s12_MPa * b.s12_MPa);
+    }
+    if (T > 0.0) best = std::max(best, std::sqrt(2.0 * std::max(0.0, m2 / T - (m / T) * (m / T))));
+  }
+  return best;
+}
+
+// The cushion card's shear |G*| and G″ at the scene's temperature and load frequency, amplitude `gamma`.
+std::array<double, 2> cushion_shear(const scene::Scene& s, const belt::DriveCase& drive, double gamma) {
+  const card::Card c = card::load_card(s.materials.at("cushion"));
+  model::TestCondition at;
+  at.temperature_C = s.temperature_C, at.frequency_Hz = drive.belt_speed_mm_s / drive.geometry.belt_length_mm;
+  at.mode = model::TestMode::shear, at.strain_amplitude = gamma;
+  const auto m = card::moduli_in_mode(*c.model(), c.values(), at, s.material_poisson_ratio);
+  return {std::hypot(m.storage, m.loss), m.loss};
+}
+
+void heat_level_table(bool temperatures) {
+  std::printf("## 11. The heat source per level against the complete level's dissipation (windowed thesis cards, "
+              "the drive's temperature)\n\n"
+              "| drive | T | complete: bottom / cushion | beam and elastic layers: bottom (stretch + shear) / cushion "
+              "(stretch + shear) | cushion shear gamma_a | layers / complete: bottom, cushion, total |%s\n"
+              "|---|---|---|---|---|---|%s\n",
+              temperatures ? " belt temperature (heat build-up, 25 degC): beam and elastic / complete (runs) |" : "",
+              temperatures ? "---|" : "");
+  std::string notes;  // the cushion's shear per drive, below the table
+  for (const char* load : kHeatDrives) {
+    const scene::Scene s = heat_scene(load, "complete");
+    try {
+      const scene::SceneResult r = scene::run_life(s);
+      const belt::HeatSources h = scene::heat_sources_of_run(s, r);
+      const double f = r.drive->belt_speed_mm_s / r.drive->geometry.belt_length_mm;  // one cycle per revolution
+      // The layers' W by name: bottom stretch (land, cogs), bottom shear (land, cogs), cushion stretch, shear.
+      auto layer = [&](const std::string& name) -> const belt::HysteresisLayer& {
+        for (const auto& l : h.layers)
+          if (l.name == name) return l;
+        throw std::logic_error("no heat layer " + name);
+      };
+      const char* names[6] = {"bottom rubber, land", "bottom rubber, cogs", "bottom rubber, land shear",
+                              "bottom rubber, cogs shear", "cushion, stretch", "cushion, shear"};
+      double W[6];
+      for (int k = 0; k < 6; ++k) W[k] = belt::hysteresis_work_J(layer(names[k])) * f;
+      const double layer_W[4] = {W[0] + W[1], W[2] + W[3], W[4], W[5]};  // stretch, shear of the bottom; the cushion's
+      const double bottom = layer_W[0] + layer_W[1], cushion = layer_W[2] + layer_W[3];
+      const auto& c = r.segment_hysteresis_roles_W;
+      // The cushion's shear: τ_a of the beam's mid-cushion point (B_l h) and of the complete level's
+      // cushion points; the γ_a whose π G″ γ_a² (G″ at that γ_a) makes the complete level's cushion
+      // dissipation less the stretch layer's; the card's |G*| at the layer's γ_a and at its tests' largest.
+      const fatigue::BeamSection sec = fatigue::default_beam_section(*r.drive, s.temperature_C);
+      const double tau_beam = shear_half_range(fatigue::beam_stress_histories(*r.cycle, *r.drive, sec), fatigue::Role::cushion, 1.0 / f);
+      const double tau_complete = shear_half_range(*r.stresses, fatigue::Role::cushion, 1.0 / f);
+      const belt::HysteresisLayer& shear = layer("cushion, shear");
+      const double target_J = (c[1] - layer_W[2]) / f * 1e3;  // N mm per cycle
+      double gamma_needed = NAN;
+      if (target_J > 0.0) {
+        double g = shear.strain_amplitude;
+        for (int it = 0; it < 50; ++it) g = std::sqrt(target_J / (M_PI * cushion_shear(s, *r.drive, g)[1] * shear.volume_mm3));
+        gamma_needed = g;
+      }
+      const card::DataWindow window(card::load_card(s.materials.at("cushion")));
+      const double tested = window.strain_amplitude_range() ? window.strain_amplitude_range()->second : NAN;
+      const double G_layer = cushion_shear(s, *r.drive, shear.strain_amplitude)[0];
+      const double G_tested = cushion_shear(s, *r.drive, tested)[0];
+      const double period = 1.0 / f;
+      const double rms_beam = shear_rms_amplitude(fatigue::beam_stress_histories(*r.cycle, *r.drive, sec), fatigue::Role::cushion, period);
+      const double rms_complete = shear_rms_amplitude(*r.stresses, fatigue::Role::cushion, period);
+      char rms_line[300];
+      std::snprintf(rms_line, sizeof rms_line, "  rms amplitude sqrt(2 var) of tau: beam %.4g, complete %.4g; rms_beam/|G*| tested %.4g\n",
+                    rms_beam, rms_complete, rms_beam / G_tested);
+      char line[600];
+      std::snprintf(line, sizeof line, "- %s: tau_a beam %.4g, complete %.4g (ratio %.3f) MPa; gamma_a layer %.4g (|G*| %.4g MPa), needed %.4g "
+                  "(|G*| %.4g); tests' largest %.4g (|G*| %.4g, tau_beam/|G*| %.4g, tau_complete/|G*| %.4g)\n",
+                  load, tau_beam, tau_complete, tau_complete / tau_beam, shear.strain_amplitude, G_layer, gamma_needed,
+                  std::isnan(gamma_needed) ? NAN : cushion_shear(s, *r.drive, gamma_needed)[0], tested, G_tested,
+                  tau_beam / G_tested, tau_complete / G_tested);
+      notes += line;
+      notes += rms_line;
+      std::string temps;
+      if (temperatures) {
+        auto belt_T = [&](const std::string& level, std::string* runs) {
+          scene::Scene t = heat_scene(load, level);
+          t.effects["heat_buildup"] = true, t.ambient_C = 25.0, t.thermal.ambient_C = 25.0;
+          try {
+            const scene::SceneResult q = scene::run_life(t);
+            if (runs) *runs = std::to_string(q.heat->segment_runs);
+            return core::short_number(q.heat->temperature_C) + " degC";
+          } catch (const std::runtime_error& e) {
+            return std::string("stopped: ") + e.what();
+          }
+        };
+        std::string runs = "-";
+        const std::string beam = belt_T("beam", nullptr), complete = belt_T("complete", &runs);
+        temps = " " + beam + " / " + complete + " (" + runs + ") |";
+      }
+      std::printf("| %s | %.0f degC | %.3g / %.3g W | %.3g (%.3g + %.3g) / %.3g (%.3g + %.3g) W | %.3g | %.2f, %.2f, %.2f |%s\n",
+                  load, s.temperature_C, c[0], c[1], bottom, layer_W[0], layer_W[1], cushion, layer_W[2], layer_W[3],
+                  shear.strain_amplitude, bottom / c[0], cushion / c[1],
+                  (bottom + cushion) / (c[0] + c[1]), temps.c_str());
+    } catch (const std::runtime_error& e) {
+      std::printf("| %s | stopped: %s |\n", load, e.what());
+    }
+    std::fflush(stdout);
+  }
+  std::printf("\nThe cushion's shear:\n%s\n", notes.c_str());
 }
 
 // 9. The design-point scan's cost ([segment] scan = true, docs/segment.md "Design points by scanning"):
@@ -914,6 +1075,10 @@ int main(int argc, char** argv) {
   }
   if (argc > 1 && std::string(argv[1]) == "scan") {  // table 9 only
     scan_table();
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "heatlevels") {  // table 11 only
+    heat_level_table(argc > 2 && std::string(argv[2]) == "temperatures");
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "heat") {  // table 6 only

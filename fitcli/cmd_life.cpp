@@ -1,10 +1,15 @@
 // fitcli life: a scene's fatigue life — life per mode in cycles and hours, governing mode,
 // design points, the effects that ran and the cost of each (the table always shows wall times;
 // life.json and summary.json in DIR only with --record-timing, so that files stay byte-identical).
+// Under mpirun the [life] uncertainty = "cards" draws run across the ranks (docs/sweep.md "MPI"),
+// and rank 0 alone writes.
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 #include "commands.hpp"
+#include "mpi_program.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/io.hpp"
 #include "fitlib/scene/planner.hpp"
@@ -13,6 +18,9 @@
 #include "output.hpp"
 #include "path_guard.hpp"
 #include "plot.hpp"
+#ifdef FITLIB_HAVE_MPI
+#include "fitlib/mpi/sweep_mpi.hpp"
+#endif
 
 namespace fitcli {
 namespace {
@@ -58,11 +66,30 @@ void register_life(CLI::App& app) {
   cmd->add_flag("--record-timing", *record_timing,
                 "Store each effect's wall time in life.json and summary.json (breaks byte-identity)");
   cmd->callback([=] {
+    become_mpi_program_under_mpirun("life");  // [life] uncertainty's draws across the ranks
     if (cmd->count("--out") > 0)
       throw fitlib::core::UsageError("life writes a folder: use --out-dir " + *misspelt_out +
                                      " (--out names a file in every subcommand, docs/cli.md)");
+#ifdef FITLIB_HAVE_MPI
+    const bool under_mpi = fitlib::mpi::launched_by_mpirun();
+    if (under_mpi && *scene_path == "-")  // mpirun gives stdin to rank 0 alone
+      throw fitlib::core::UsageError("--scene - under mpirun: give the scene as a file (every rank reads it)");
+#endif
     auto scene = load_scene_input(*scene_path);
     scene.segment_progress = !quiet();  // shown only when stderr is a terminal
+    bool writer = true;  // the one process that writes (rank 0 under mpirun)
+#ifdef FITLIB_HAVE_MPI
+    std::optional<fitlib::mpi::Session> session;  // joins after the scene is read: a bad scene fails on every rank alike
+    if (under_mpi) {
+      session.emplace();  // one thread per rank, as in the sweep: mpirun places the ranks on cores
+      scene.draw_executor = std::make_shared<fitlib::mpi::MpiIndexedExecutor>(*session, 1);
+      scene.segment_thread_cap = 1;
+      writer = session->rank() == 0;
+      if (!writer) scene.segment_progress = false, field_at->clear();
+      if (writer && verbose())
+        std::cerr << "life: " << session->size() << " MPI ranks ([life] uncertainty's card draws run across them)\n";
+    }
+#endif
     if (!field_at->empty()) {
       scene.life_field_at = *field_at;
       scene.life_field_prefix = (std::filesystem::path(*out_dir) / "field").string();
@@ -71,6 +98,7 @@ void register_life(CLI::App& app) {
     refuse_out_dir_collisions(scene, *out_dir, {{"--plot", *plot}});  // the field files too
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
     const auto result = run_with_field_folder(scene, *out_dir);
+    if (!writer) return;
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
     if (!plot->empty() && result.cycle)
       draw_figure(*plot, [&] {

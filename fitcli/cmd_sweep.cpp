@@ -13,15 +13,7 @@
 #ifdef FITLIB_HAVE_MPI
 #include "fitlib/mpi/sweep_mpi.hpp"
 #endif
-#ifdef FITCLI_MPI_PROGRAM
-#include <unistd.h>
-
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
-#include <string>
-#include <vector>
-#endif
+#include "mpi_program.hpp"
 
 namespace fitcli {
 namespace {
@@ -33,38 +25,8 @@ struct SweepArgs {
   std::size_t stop_after = 0;
 };
 
-#ifdef FITCLI_MPI_PROGRAM
-// fitcli is built without Open MPI (its start-up is ≈ 3 ms of every process): launched by mpirun
-// for a sweep it becomes FITCLI_MPI_PROGRAM, next to it, with the same arguments.
-void run_under_mpi_program() {
-  bool by_mpirun = false;
-  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"}) by_mpirun |= std::getenv(v) != nullptr;
-  if (!by_mpirun) return;
-  std::string self(4096, '\0');
-  const ssize_t n = readlink("/proc/self/exe", self.data(), self.size() - 1);
-  if (n <= 0) throw fitlib::core::UsageError("sweep under mpirun: cannot find fitcli's own folder for " FITCLI_MPI_PROGRAM);
-  self.resize(static_cast<std::size_t>(n));
-  const std::string program = self.substr(0, self.rfind('/') + 1) + FITCLI_MPI_PROGRAM;
-  std::ifstream in("/proc/self/cmdline", std::ios::binary);
-  const std::string line((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::vector<std::string> words;
-  for (std::size_t at = 0; at < line.size();) {
-    const std::size_t end = line.find('\0', at);
-    words.push_back(line.substr(at, end - at));
-    at = end == std::string::npos ? line.size() : end + 1;
-  }
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  execv(program.c_str(), argv.data());
-  throw fitlib::core::UsageError("sweep under mpirun: cannot run " + program + " (fitcli was built with MPI in it)");
-}
-#endif
-
 void run(const SweepArgs& a) {
-#ifdef FITCLI_MPI_PROGRAM
-  run_under_mpi_program();
-#endif
+  become_mpi_program_under_mpirun("sweep");
   const bool to_file = a.out != "-";
   fitlib::scene::SweepRunOptions options;
   options.out_path = to_file ? a.out : "";

@@ -5,7 +5,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
+#include "fitlib/card/card.hpp"
+#include "fitlib/fatigue/card.hpp"
 #include "integration/cli_runner.hpp"
 
 namespace {
@@ -48,5 +51,43 @@ TEST(SweepMpi, TwoRanksResumeAThreadedPartialFile) {
   ASSERT_EQ(run(mpiexec(2, "sweep --sweep " + sweep + " --out " + out), log), 0) << slurp(log);
   EXPECT_NE(slurp(log).find("5 read back"), std::string::npos) << slurp(log);
   EXPECT_EQ(slurp(out), slurp(whole));
+}
+// [life] uncertainty = "constants+cards" (docs/thermal.md §7) under mpiexec: the card draws run
+// across 2 ranks (draw k on rank k mod 2) and rank 0 writes life.json and summary.json, the same
+// bytes as the threaded run of the same seed. The bottom card is the thesis card with a covariance
+// of its mean moduli (ln, variance 4e-3, correlation 0.5), the fatigue card Report I's constants
+// with a scatter and a covariance: 30 draws at the beam level.
+TEST(SweepMpi, LifeCardDrawsOnTwoRanksWriteTheThreadedBytes) {
+  ASSERT_TRUE(std::filesystem::exists(FITLIB_MPIEXEC)) << FITLIB_MPIEXEC << " missing: install openmpi-bin";
+  const std::string tag = std::to_string(getpid());
+  fitlib::card::Card bottom = fitlib::card::load_card(source_path("datasets/cards/material-1-true.json"));
+  const double v = 4e-3, r = 0.5 * v;
+  bottom.fit["covariance"] = {{"parameters", {"G_Im", "C33_Am", "C44_Am"}},
+                              {"coordinates", {"ln", "ln", "ln"}},
+                              {"matrix", {{v, r, r}, {r, v, r}, {r, r, v}}}};
+  const std::string bottom_path = temp_file("draws-bottom-" + tag + ".json");
+  fitlib::card::save_card(bottom_path, bottom);
+  fitlib::fatigue::FatigueCard law = fitlib::fatigue::default_card();
+  law.radial_crack.scatter = fitlib::fatigue::LifeScatter{"lognormal", 0.3, 12};
+  law.separation.scatter = fitlib::fatigue::LifeScatter{"lognormal", 0.25, 10};
+  law.separation.covariance = fitlib::fatigue::LawCovariance{{{1e-3, 0.0, 0.0}, {0.0, 0.04, 0.0}, {0.0, 0.0, 1e-5}}};
+  const std::string law_path = temp_file("draws-law-" + tag + ".json");
+  fitlib::fatigue::save_card(law_path, law);
+  const std::string scene = temp_file("draws-" + tag + ".toml");
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml")) << "\n[belt.materials]\nbottom = \""
+                       << bottom_path << "\"\n\n[life]\nfidelity = \"beam\"\ncard = \"" << law_path
+                       << "\"\nuncertainty = \"constants+cards\"\nsamples = 30\nseed = 5\n";
+  const std::string threaded = temp_file("draws-threaded-" + tag), mpi = temp_file("draws-mpi-" + tag);
+  const auto t = run_fitcli("life --scene " + scene + " --out-dir " + threaded + " --quiet");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const std::string log = temp_file("draws-mpi-" + tag + ".log");
+  ASSERT_EQ(run(mpiexec(2, "life --scene " + scene + " --out-dir " + mpi + " --verbose"), log), 0) << slurp(log);
+  EXPECT_NE(slurp(log).find("life: 2 MPI ranks"), std::string::npos) << slurp(log);
+  const std::string json = slurp(threaded + "/life.json");
+  EXPECT_NE(json.find("ci90_combined_h"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"draws\": 30"), std::string::npos) << json;
+  EXPECT_EQ(slurp(mpi + "/life.json"), json);
+  EXPECT_EQ(slurp(mpi + "/summary.json"), slurp(threaded + "/summary.json"));
+  EXPECT_NE(slurp(log).find("combined ["), std::string::npos) << slurp(log);  // rank 0 printed the table
 }
 #endif  // FITLIB_MPIEXEC

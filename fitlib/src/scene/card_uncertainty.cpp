@@ -1,8 +1,13 @@
 // [life] uncertainty = "cards" or "constants+cards" (docs/thermal.md §7): the material cards'
 // parameter covariance propagated to B10 and B50 by running the scene's life on seeded draws of the
-// cards, on the sweep engine's thread schedule (run_indexed_in_threads), each draw's life stored at
-// its index; with "constants+cards" the draws also make the combined interval.
+// cards, on the sweep engine's schedule (an IndexedExecutor: this process's threads, or the MPI
+// ranks under mpirun), each draw's life stored at its index as an exact text; with
+// "constants+cards" the draws also make the combined interval.
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <map>
+#include <stdexcept>
 
 #include "effects.hpp"
 #include "fitlib/card/covariance.hpp"
@@ -69,8 +74,41 @@ Scene draw_scene(const Scene& s, const std::vector<RoleSampler>& samplers, std::
   d.life_field_at.clear();
   d.segment_progress = false;
   d.segment_thread_cap = 1;
+  d.draw_executor = nullptr;
   for (const RoleSampler& r : samplers) d.card_values[r.role] = r.sampler.draw(s.life->seed, r.stream, k);
   return d;
+}
+
+// A draw's outcome as a text (what crosses between MPI ranks): "!" and the reason it stopped, or
+// per mode "<mode> <16 hex digits of the life's bits>;" — exact, so every executor gives the same
+// lives to the bit.
+std::string draw_text(const std::map<fatigue::Mode, double>& lives) {
+  std::string out;
+  for (const auto& [mode, cycles] : lives) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &cycles, sizeof bits);
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%d %016llx;", static_cast<int>(mode), static_cast<unsigned long long>(bits));
+    out += buf;
+  }
+  return out;
+}
+
+std::map<fatigue::Mode, double> draw_lives(const std::string& text) {
+  std::map<fatigue::Mode, double> lives;
+  for (std::size_t at = 0; at < text.size();) {
+    int mode = 0;
+    unsigned long long bits = 0;
+    int used = 0;
+    if (std::sscanf(text.c_str() + at, "%d %16llx;%n", &mode, &bits, &used) != 2 || used == 0)
+      throw std::logic_error("card draws: unreadable draw text '" + text + "'");
+    double cycles = 0.0;
+    const std::uint64_t b = bits;
+    std::memcpy(&cycles, &b, sizeof cycles);
+    lives[static_cast<fatigue::Mode>(mode)] = cycles;
+    at += static_cast<std::size_t>(used);
+  }
+  return lives;
 }
 
 }  // namespace
@@ -80,19 +118,27 @@ void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
   const std::vector<RoleSampler> samplers = role_samplers(s, r.warnings);
   check_draws_cost(s, life.plan.fidelity);
   const auto n = static_cast<std::size_t>(s.life->samples);
-  std::vector<std::map<fatigue::Mode, double>> lives(n);
-  std::vector<std::string> failures(n);
   // A draw whose run stops (a runaway, a drawn card without a material at T) is counted, not fatal.
-  run_indexed_in_threads(n, segment_threads(s), [&](std::size_t k) {
+  auto draw = [&](std::size_t k) -> std::string {
     try {
       const SceneResult drawn = run_life(draw_scene(s, samplers, k));  // held: the loop reads into it
-      for (const fatigue::ModeLife& m : drawn.life->report.modes) lives[k][m.mode] = m.life_cycles;
+      std::map<fatigue::Mode, double> lives;
+      for (const fatigue::ModeLife& m : drawn.life->report.modes) lives[m.mode] = m.life_cycles;
+      return draw_text(lives);
     } catch (const core::InputError& e) {
-      failures[k] = e.what();
+      return std::string("!") + e.what();
     } catch (const core::NumericalError& e) {
-      failures[k] = e.what();
+      return std::string("!") + e.what();
     }
-  });
+  };
+  ThreadIndexedExecutor threads;
+  IndexedExecutor& executor = s.draw_executor ? *s.draw_executor : threads;
+  const std::vector<std::string> texts = executor.texts(n, segment_threads(s), draw);
+  std::vector<std::map<fatigue::Mode, double>> lives(n);
+  std::vector<std::string> failures(n);
+  for (std::size_t k = 0; k < n; ++k)
+    if (!texts[k].empty() && texts[k][0] == '!') failures[k] = texts[k].size() > 1 ? texts[k].substr(1) : "stopped";
+    else lives[k] = draw_lives(texts[k]);
   fatigue::CardsSampling sampling;
   sampling.samples = s.life->samples;
   sampling.seed = s.life->seed;

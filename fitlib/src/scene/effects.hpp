@@ -57,6 +57,10 @@ EffectChange effect_change(const belt::LoadCycle& with, const belt::LoadCycle& w
 belt::HeatSources heat_sources(const Scene& scene, const belt::DriveCase& drive, const belt::LoadCycle& cycle,
                                std::vector<std::string>* warnings = nullptr);
 void heat_buildup(const Scene& scene, SceneResult& r);
+// √2 × the rms of σ12 about its mean over one period of a periodic history (trapezoidal in time,
+// closed back to the first sample): the cushion's shear amplitude the heat source reads, the
+// sinusoid's that dissipates as much in a linear viscoelastic solid of frequency-flat G″.
+double equivalent_amplitude(const std::vector<fatigue::StressSample>& history, double period_s);
 
 // Life (life_effects.cpp).
 // Why this build cannot run the segment levels (elastic, complete); nullopt once it can.

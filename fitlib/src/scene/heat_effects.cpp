@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 
 #include "effects.hpp"
 #include "fitlib/belt/heat.hpp"
@@ -12,22 +13,68 @@
 namespace fitlib::scene::detail {
 namespace {
 
-// Storage and loss modulus of a [belt.materials] role at `at` (uniaxial 22 for the bottom rubber,
-// shear for the cushion); without a card E′ = `fallback_MPa` and E″ = E′ tan δ ([thermal] loss_angle_deg).
-// `warnings` (the fixed point's run only) gets the card's data-window warnings at the layer's amplitude.
-std::array<double, 2> layer_moduli(const Scene& s, const std::string& role, model::TestCondition at,
-                                   double fallback_MPa, std::vector<std::string>* warnings) {
-  if (!s.materials.count(role))
-    return {fallback_MPa, belt::loss_modulus_of_storage_MPa(fallback_MPa, s.thermal.loss_angle_deg)};
-  const card::Card c = material_card(s, role);
-  if (warnings) card_window_warnings(s, role, c, at, *warnings);
+// The scene's cards of the heat layers' roles, each read from its file once per set of layers.
+struct LayerCard {
+  card::Card card;
+  model::ModelPtr model;
+};
+using LayerCards = std::map<std::string, LayerCard>;
+
+LayerCards layer_cards(const Scene& s) {
+  LayerCards out;
+  for (const char* role : {"bottom", "cushion"})
+    if (s.materials.count(role)) {
+      card::Card c = material_card(s, role);
+      model::ModelPtr m = c.model();
+      out.emplace(role, LayerCard{std::move(c), std::move(m)});
+    }
+  return out;
+}
+
+// Storage and loss modulus of a role's card at `at`.
+model::Moduli<double> card_moduli(const Scene& s, const std::string& role, const LayerCard& c,
+                                  const model::TestCondition& at) {
   try {
-    const auto m = card::moduli_in_mode(*c.model(), c.values(), at, s.material_poisson_ratio);
-    return {m.storage, m.loss};
+    return card::moduli_in_mode(*c.model, c.card.values(), at, s.material_poisson_ratio);
   } catch (const std::exception& e) {
     throw core::InputError(std::string("card cannot give the loss modulus the heat build-up needs: ") + e.what(), {},
                            0, 0, "belt.materials." + role);
   }
+}
+
+// Storage and loss modulus of a [belt.materials] role at `at` (uniaxial 22 for the bottom rubber,
+// shear for the cushion); without a card E′ = `fallback_MPa` and E″ = E′ tan δ ([thermal] loss_angle_deg).
+// `warnings` (the fixed point's run only) gets the card's data-window warnings at the layer's amplitude.
+std::array<double, 2> layer_moduli(const Scene& s, const LayerCards& cards, const std::string& role,
+                                   model::TestCondition at, double fallback_MPa, std::vector<std::string>* warnings) {
+  const auto c = cards.find(role);
+  if (c == cards.end()) return {fallback_MPa, belt::loss_modulus_of_storage_MPa(fallback_MPa, s.thermal.loss_angle_deg)};
+  if (warnings) card_window_warnings(s, role, c->second.card, at, *warnings);
+  const auto m = card_moduli(s, role, c->second, at);
+  return {m.storage, m.loss};
+}
+
+// The shear strain amplitude of a stress amplitude τ_a read stress-controlled on a role's card:
+// the fixed point γ = τ_a/|G*(γ)|, iterated from γ = τ_a/G_section. A filled rubber's |G*| falls
+// with the amplitude, so τ_a/|G*(γ)| rises with γ and the iterates move monotonically to the fixed
+// point next to the start (the amplitude reached loading from small ones); without a card |G*| is
+// the section's G with G″ = G tan δ, one step. A few card evaluations; at most 100.
+double stress_controlled_shear(const Scene& s, const LayerCards& cards, const std::string& role,
+                               model::TestCondition at, double tau_a, double G_section_MPa) {
+  if (!(tau_a > 0.0)) return 0.0;
+  const auto c = cards.find(role);
+  if (c == cards.end())
+    return tau_a / std::hypot(G_section_MPa, belt::loss_modulus_of_storage_MPa(G_section_MPa, s.thermal.loss_angle_deg));
+  double gamma = tau_a / G_section_MPa;
+  for (int k = 0; k < 100; ++k) {
+    at.strain_amplitude = gamma;
+    const auto m = card_moduli(s, role, c->second, at);
+    const double next = tau_a / std::hypot(m.storage, m.loss);
+    const bool settled = std::abs(next - gamma) <= 1e-9 * next;
+    gamma = next;
+    if (settled) break;
+  }
+  return gamma;
 }
 
 // ε22(d) of the beam level, (1 + F/c)(1 − K d)/(1 − K_m d) − 1, and its amplitude over the cycle.
@@ -61,10 +108,11 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
   model::TestCondition at;
   at.temperature_C = s.temperature_C, at.frequency_Hz = load_frequency_Hz(drive);
   std::vector<belt::HysteresisLayer> layers;
+  const LayerCards cards = layer_cards(s);
   auto add = [&](const char* name, const std::string& role, model::TestMode mode, const char* orientation,
                  double volume_mm3, double amplitude, double fallback_MPa) {
     at.mode = mode, at.orientation = orientation, at.strain_amplitude = amplitude;
-    layers.push_back({name, volume_mm3, layer_moduli(s, role, at, fallback_MPa, warnings)[1], amplitude});
+    layers.push_back({name, volume_mm3, layer_moduli(s, cards, role, at, fallback_MPa, warnings)[1], amplitude});
   };
   const double land = sec.land_depth_mm - sec.cushion_mm, cogs = sec.cog_depth_mm;
   const double ms_land = mean_square_amplitude(cycle, drive, K_m, sec.cushion_mm, sec.land_depth_mm);
@@ -73,22 +121,65 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
       sec.bottom_modulus_MPa);
   add("bottom rubber, cogs", "bottom", model::TestMode::uniaxial, "22", B * sec.cog_fill * cogs * L,
       std::sqrt(ms_cogs), sec.bottom_modulus_MPa);
+  // The friction shear: γ_a = τ_a/|G*| read stress-controlled, τ_a the equivalent amplitude of the beam
+  // level's mid-cushion history (√2 rms about the mean: the friction shear is a pulse over the sliding
+  // arcs, not a sinusoid of half its range; docs/decisions.md "Heat: the beam and elastic levels'
+  // friction shear by its rms amplitude").
+  double tau_a = 0.0, h_mid = 0.0;
+  const double period_s = cycle.cycle_time_s;  // one load cycle: the belt length at its speed
+  for (const fatigue::PointHistory& p : fatigue::beam_stress_histories(cycle, drive, sec))
+    if (p.role == fatigue::Role::cushion) tau_a = std::max(tau_a, equivalent_amplitude(p.samples, period_s));
+  h_mid = sec.land_depth_mm - 0.5 * sec.cushion_mm + sec.cog_fill * sec.cog_depth_mm;
+  // The bottom rubber below the cushion is sheared by the same body force: σ12(d) = B_l h(d), h the
+  // rubber below depth d (land: land − d + fill · cogs; in a cog: land + cogs − d), so τ_a(d) =
+  // τ_a h(d)/h_mid. Per region one layer whose E″ ε_a² is the 3-point Gauss–Legendre mean over depth
+  // of G″(γ(d)) γ(d)², each γ(d) read stress-controlled on the bottom card (shear 12).
+  auto bottom_shear = [&](const char* name, double volume_mm3, double d0, double d1, auto below_mm) {
+    static const double x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+    model::TestCondition q = at;
+    q.mode = model::TestMode::shear, q.orientation = "12";
+    const double G = sec.bottom_modulus_MPa / 3.0;
+    double work = 0.0, square = 0.0;  // means of G″ γ² and γ²
+    for (int k = 0; k < 3; ++k) {
+      const double d = 0.5 * (d0 + d1) + 0.5 * (d1 - d0) * x[k];
+      const double gamma = stress_controlled_shear(s, cards, "bottom", q, tau_a * below_mm(d) / h_mid, G);
+      q.strain_amplitude = gamma;
+      work += 0.5 * w[k] * layer_moduli(s, cards, "bottom", q, G, warnings)[1] * gamma * gamma;
+      square += 0.5 * w[k] * gamma * gamma;
+    }
+    layers.push_back({name, volume_mm3, square > 0.0 ? work / square : 0.0, std::sqrt(square)});
+  };
+  bottom_shear("bottom rubber, land shear", B * land * L, sec.cushion_mm, sec.land_depth_mm,
+               [&](double d) { return sec.land_depth_mm - d + sec.cog_fill * cogs; });
+  bottom_shear("bottom rubber, cogs shear", B * sec.cog_fill * cogs * L, sec.land_depth_mm, sec.land_depth_mm + cogs,
+               [&](double d) { return sec.land_depth_mm + cogs - d; });
   add("cushion, stretch", "cushion", model::TestMode::uniaxial, "22", B * sec.cushion_mm * L,
       std::sqrt(mean_square_amplitude(cycle, drive, K_m, 0.0, sec.cushion_mm)), sec.cushion_modulus_MPa);
-  // The cushion's shear: γ_a = τ_a/|G*| from the friction shear of the beam level's mid-cushion point.
-  double tau_lo = HUGE_VAL, tau_hi = -HUGE_VAL;
-  for (const fatigue::PointHistory& p : fatigue::beam_stress_histories(cycle, drive, sec))
-    if (p.role == fatigue::Role::cushion)
-      for (const fatigue::StressSample& q : p.samples) tau_lo = std::min(tau_lo, q.s12_MPa), tau_hi = std::max(tau_hi, q.s12_MPa);
-  const double tau_a = tau_hi > tau_lo ? 0.5 * (tau_hi - tau_lo) : 0.0;
-  at.mode = model::TestMode::shear, at.orientation = "", at.strain_amplitude = tau_a / (sec.cushion_modulus_MPa / 3.0);
-  const auto G = layer_moduli(s, "cushion", at, sec.cushion_modulus_MPa / 3.0, nullptr);
-  add("cushion, shear", "cushion", model::TestMode::shear, "", B * sec.cushion_mm * L, tau_a / std::hypot(G[0], G[1]),
-      sec.cushion_modulus_MPa / 3.0);
+  at.mode = model::TestMode::shear, at.orientation = "";
+  add("cushion, shear", "cushion", model::TestMode::shear, "", B * sec.cushion_mm * L,
+      stress_controlled_shear(s, cards, "cushion", at, tau_a, sec.cushion_modulus_MPa / 3.0), sec.cushion_modulus_MPa / 3.0);
   return layers;
 }
 
 }  // namespace
+
+// √2 × the rms about its mean of a periodic history x(t) over one period (trapezoidal in t, closed
+// from the last sample back to the first one period on): the amplitude of the sinusoid that
+// dissipates as much per cycle as the history in a linear viscoelastic solid whose loss modulus does
+// not change with frequency (Parseval: W = π Σ_n G″(n f) x_n², Σ_n x_n² = 2 var x). A sinusoid gives
+// its amplitude; a pulse of height h over a share φ of the cycle h √(2 φ (1 − φ)), not h/2.
+double equivalent_amplitude(const std::vector<fatigue::StressSample>& q, double period_s) {
+  if (q.size() < 2 || !(period_s > 0.0)) return 0.0;
+  double sum = 0.0, sum2 = 0.0;
+  auto add = [&](double a, double b, double dt) {
+    sum += 0.5 * dt * (a + b), sum2 += 0.5 * dt * (a * a + b * b);
+  };
+  for (std::size_t k = 1; k < q.size(); ++k) add(q[k - 1].s12_MPa, q[k].s12_MPa, q[k].t_s - q[k - 1].t_s);
+  const double closing = period_s - (q.back().t_s - q.front().t_s);
+  if (closing > 0.0) add(q.back().s12_MPa, q.front().s12_MPa, closing);
+  const double mean = sum / period_s;
+  return std::sqrt(2.0 * std::max(0.0, sum2 / period_s - mean * mean));
+}
 
 belt::HeatSources heat_sources(const Scene& s, const belt::DriveCase& drive, const belt::LoadCycle& cycle,
                                std::vector<std::string>* warnings) {

@@ -392,8 +392,10 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     r.segment_cards_read = card_readings(s, r.plan.life->fidelity, load_frequency_Hz(*r.drive), reached, read_at);
     refuse_beyond_tests(s, r.segment_cards_read);
     r.stresses = scene::segment_point_histories(run);
-    r.segment_hysteresis_W = (run.dissipation_J_mm[0] + run.dissipation_J_mm[1]) *
-                             r.drive->geometry.belt_length_mm * load_frequency_Hz(*r.drive);
+    for (int role = 0; role < 2; ++role)
+      r.segment_hysteresis_roles_W[role] =
+          run.dissipation_J_mm[role] * r.drive->geometry.belt_length_mm * load_frequency_Hz(*r.drive);
+    r.segment_hysteresis_W = r.segment_hysteresis_roles_W[0] + r.segment_hysteresis_roles_W[1];
     if (r.heat && r.heat->segment_runs > 0) r.heat->segment_hysteresis_W = *r.segment_hysteresis_W;
     strain_window_warnings(s, reached, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);

@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 
 #include <boost/algorithm/string/join.hpp>
 
+#include "effects.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/scene/registry.hpp"
@@ -135,6 +137,13 @@ SceneResult run_life(Scene s) {
   for (const auto& e : r.plan.effects)
     if (e.name == "fatigue") why = e.reason;
   throw core::InputError("the life cannot be computed: " + why, s.path, 0, 0, "life.fidelity");
+}
+
+belt::HeatSources heat_sources_of_run(const Scene& s, const SceneResult& r) {
+  if (!r.drive || !r.cycle) throw std::logic_error("heat_sources_of_run: the run has no drive and load cycle");
+  Scene at = s;
+  if (r.heat) at.temperature_C = r.heat->temperature_C;
+  return detail::heat_sources(at, *r.drive, *r.cycle, nullptr);
 }
 
 SceneResult run_scene(const Scene& s, const belt::LoadCycleOptions& options) {

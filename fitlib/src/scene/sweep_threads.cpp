@@ -32,6 +32,13 @@ void run_indexed_in_threads(std::size_t n, int threads, const std::function<void
   if (failure) std::rethrow_exception(failure);
 }
 
+std::vector<std::string> ThreadIndexedExecutor::texts(std::size_t n, int threads,
+                                                     const std::function<std::string(std::size_t)>& work) {
+  std::vector<std::string> out(n);
+  run_indexed_in_threads(n, threads, [&](std::size_t k) { out[k] = work(k); });
+  return out;
+}
+
 std::vector<std::string> sweep_rows_in_threads(const Sweep& sweep, const std::vector<std::size_t>& cases,
                                                int threads) {
   std::vector<std::string> rows(cases.size());  // rows land at their own index

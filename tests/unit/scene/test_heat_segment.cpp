@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "../../../fitlib/src/scene/effects.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/scene.hpp"
 #include "fitlib/scene/writers.hpp"
@@ -53,15 +52,18 @@ TEST(HeatSegment, CompleteLevelBalanceClosesWithTheSegmentsOwnDissipation) {
 // Isotropic elastic points (the [segment] table's E and nu, no cards) are hyperelastic (Hencky): their
 // stress work over the periodic last cycle is zero but for the trapezoidal rule's error over the
 // cycle's 60 increments (the stored energy swings far more than a rubber's loss angle dissipates).
-// Measured: -0.238 W against the layers' 12.72 W (1.9 %), the same with 2 and 4 cycles (so the
-// cycle is periodic and this is the rule's error: docs/thermal.md §4).
+// Measured: -0.238 W, the same with 2 and 4 cycles (so the cycle is periodic and this is the rule's
+// error: docs/thermal.md §4), against the 9.0 W the complete level's rubber dissipates on this drive
+// with the windowed thesis cards at 80 degC (bench_life heatlevels, table 11: 7.12 + 1.90 W): 2.6 %.
+// (It was checked against the beam layers' 12.72 W before their cushion shear read its rms amplitude;
+// the bound is the complete level's own heat now, which the layers do not set.)
 TEST(HeatSegment, IsotropicElasticPointsDissipateNothing) {
   auto s = light("elastic", false);
   s.materials.clear();
   const auto r = scene::run_life(s);
   ASSERT_TRUE(r.segment_hysteresis_W);
-  const double layers_W = scene::detail::heat_sources(s, *r.drive, *r.cycle).hysteresis_W;
-  EXPECT_LT(std::abs(*r.segment_hysteresis_W), 0.03 * layers_W) << *r.segment_hysteresis_W << " W";
+  const double complete_W = 9.0;
+  EXPECT_LT(std::abs(*r.segment_hysteresis_W), 0.03 * complete_W) << *r.segment_hysteresis_W << " W";
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #pragma once
-// Sweeps across MPI ranks (docs/sweep.md "MPI"): built only when CMake finds MPI (FITLIB_MPI).
-// Case i of a chunk runs on rank i mod N (with that rank's threads); rank 0 gathers the rows and
-// writes them in case order, so the table does not depend on N.
+// Sweeps and the life's card draws across MPI ranks (docs/sweep.md "MPI"): built only when CMake
+// finds MPI (FITLIB_MPI). Case (draw) i runs on rank i mod N (with that rank's threads); rank 0
+// gathers the sweep's rows and writes them in case order, every rank gathers the draws' lives, so
+// neither depends on N.
+#include "fitlib/scene/indexed_run.hpp"
 #include "fitlib/scene/sweep_run.hpp"
 
 namespace fitlib::mpi {
@@ -31,6 +33,19 @@ class MpiExecutor : public scene::SweepExecutor {
   int workers() const override { return size_ * threads_; }
   std::size_t share(std::size_t writer_value) override;
   std::vector<std::string> rows(const scene::Sweep& sweep, std::size_t begin, std::size_t end) override;
+
+ private:
+  int rank_, size_, threads_;
+};
+
+// The card draws of [life] uncertainty = "cards" (Scene::draw_executor) across the ranks: draw k on
+// rank k mod N with `threads` threads; every rank gets every draw's text, so every rank computes the
+// same intervals (fitcli life writes on rank 0 only).
+class MpiIndexedExecutor : public scene::IndexedExecutor {
+ public:
+  MpiIndexedExecutor(const Session& session, int threads);
+  std::vector<std::string> texts(std::size_t n, int threads,
+                                 const std::function<std::string(std::size_t)>& work) override;
 
  private:
   int rank_, size_, threads_;

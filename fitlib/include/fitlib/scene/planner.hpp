@@ -41,6 +41,11 @@ SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options 
 // InputError at key life.fidelity, with the planner's reason, when no life comes out.
 SceneResult run_life(Scene scene);
 
+// The heat sources of a run at the scene's temperature (docs/thermal.md §1): the beam section's
+// hysteresis layers and the friction on the run's drive and load cycle, as the heat balance reads
+// them at that temperature (without the complete level's segment scaling).
+belt::HeatSources heat_sources_of_run(const Scene& scene, const SceneResult& r);
+
 // Belt stiffnesses c, k1, EI at the scene's temperature: [belt.stiffness] overrides first, then
 // material cards (cord → c, bottom → E33 for k1 and E22 for EI), then the Fritzson laws of the
 // 0.500 in belt with the project's E0/E1 (belt/stiffness.hpp). `source` says which per quantity.

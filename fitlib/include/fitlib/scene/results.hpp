@@ -187,6 +187,7 @@ struct SceneResult {
   // The segment's own hysteresis: its rubber's dissipation over the last cycle (segment::CycleResult::
   // dissipation_J_mm) times the belt length and the load frequency, W per belt (docs/thermal.md §1).
   std::optional<double> segment_hysteresis_W;
+  std::array<double, 2> segment_hysteresis_roles_W{};  // its bottom and cushion rubbers' shares
   std::set<std::string> segment_damage_held;  // roles whose card's damage the complete level held
   std::vector<FieldFile> segment_fields;
   std::vector<CardReading> segment_cards_read;

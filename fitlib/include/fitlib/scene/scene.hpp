@@ -4,6 +4,7 @@
 // outside its range or impossible geometry is a core::InputError naming the file, line, column
 // and key path.
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "fitlib/belt/load_cycle.hpp"
 #include "fitlib/card/conversion.hpp"
 #include "fitlib/core/fidelity.hpp"
+#include "fitlib/scene/indexed_run.hpp"
 #include "fitlib/scene/segment_life.hpp"
 #include "fitlib/segment/static_case.hpp"
 
@@ -161,6 +163,10 @@ struct Scene {
   // > 0: the segment's element loop runs on at most this many threads (a sweep sets 1: it runs
   // its cases in parallel itself); the results do not depend on it.
   int segment_thread_cap = 0;
+  // Where [life] uncertainty = "cards" runs its draws: null, this process's threads
+  // (segment_threads); set, that executor (fitcli life under mpirun: the draws across the ranks,
+  // fitlib/mpi/sweep_mpi.hpp). The results do not depend on it.
+  std::shared_ptr<IndexedExecutor> draw_executor;
   // The segment run's progress (share of the load cycles done) on stderr when it is a terminal
   // (fitcli life without --quiet); never in the outputs.
   bool segment_progress = false;

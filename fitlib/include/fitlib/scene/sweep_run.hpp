@@ -12,14 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fitlib/scene/indexed_run.hpp"
 #include "fitlib/scene/sweep.hpp"
 
 namespace fitlib::scene {
-
-// Runs work(k) for every k in [0, n) on `threads` threads, each taking the next index as it frees
-// up (the sweep's schedule); the first exception stops the rest and is rethrown. A result stored
-// at its own index is the same for any number of threads.
-void run_indexed_in_threads(std::size_t n, int threads, const std::function<void(std::size_t)>& work);
 
 // Rows of the cases `cases` (in that order), computed by `threads` threads taking cases as they
 // free up. An error other than a case's own bad input or solver failure is rethrown.
