@@ -404,8 +404,9 @@ std::vector<model::MaterialPointPtr> element_points(const Scene& s, const belt::
 // the amplitude its own mean strain reached in the last run's last cycle (the measure of a role's
 // points: ReachedAmplitude) and the segment rerun, until no element's amplitude differs by more than
 // kTolerance of its role's largest element amplitude between the run that read it and the run it gave.
-// Where a run's change is larger than the last one's, the next reading moves only part of the way
-// (relaxation halved, down to kLeastRelaxation). NumericalError after kMaxRuns runs. `read_at`
+// Where a run's change is larger than the last one's, or a rerun folds (NumericalError), the next
+// reading moves only part of the way from the last one that passed (relaxation halved, down to
+// kLeastRelaxation; a fold there is the level's NumericalError). NumericalError after kMaxRuns runs. `read_at`
 // gets each role's most strained element's reading, `read_range` its elements' smallest and largest.
 segment::CycleResult read_cards_per_element(const Scene& s, SceneResult& r, scene::SegmentLifeSetup& setup,
                                             segment::CycleResult run, const std::string& remedy,
@@ -447,22 +448,32 @@ segment::CycleResult read_cards_per_element(const Scene& s, SceneResult& r, scen
                                  "runs the cards' full models (docs/decisions.md \"Elastic level: one secant per element\")");
     if (change > last_change) it.relaxation = std::max(kLeastRelaxation, 0.5 * it.relaxation);
     last_change = change;
-    const double w = it.relaxation;
-    for (std::size_t e = 0; e < read.size(); ++e) {
-      ReachedAmplitude& a = read[e];
-      const ReachedAmplitude& b = reached[e];
-      a.strain_amplitude += w * (b.strain_amplitude - a.strain_amplitude);
-      a.deviatoric_norm += w * (b.deviatoric_norm - a.deviatoric_norm);
-      for (int k = 0; k < 3; ++k) a.components[k] += w * (b.components[k] - a.components[k]);
-    }
-    setup.element_materials = element_points(s, *r.drive, run, roles, read);
-    try {
-      run = run_segment(*r.cycle, *r.drive, setup, core::Fidelity::elastic, remedy);
-    } catch (const core::NumericalError& e) {
-      throw core::NumericalError(std::string(e.what()) + ". This was run " + std::to_string(it.runs + 1) +
-                                 " of the elastic level's reading of each element's card at the amplitude it reached; "
-                                 "[life] elastic_amplitude = \"small\" reads the cards at their small-amplitude "
-                                 "stiffness, fidelity = \"complete\" runs their full models");
+    const std::vector<ReachedAmplitude> last_read = read;  // what the last run that passed read
+    for (;;) {  // a rerun that folds is retried with the reading moved a smaller step from the last one
+      const double w = it.relaxation;
+      for (std::size_t e = 0; e < read.size(); ++e) {
+        ReachedAmplitude& a = read[e];
+        const ReachedAmplitude &b = reached[e], &from = last_read[e];
+        a.strain_amplitude = from.strain_amplitude + w * (b.strain_amplitude - from.strain_amplitude);
+        a.deviatoric_norm = from.deviatoric_norm + w * (b.deviatoric_norm - from.deviatoric_norm);
+        for (int k = 0; k < 3; ++k) a.components[k] = from.components[k] + w * (b.components[k] - from.components[k]);
+      }
+      setup.element_materials = element_points(s, *r.drive, run, roles, read);
+      try {
+        segment::CycleResult next = run_segment(*r.cycle, *r.drive, setup, core::Fidelity::elastic, remedy);
+        run = std::move(next);
+        break;
+      } catch (const core::NumericalError& e) {
+        ++it.runs;
+        if (w <= kLeastRelaxation || it.runs == kMaxRuns)
+          throw core::NumericalError(std::string(e.what()) + ". This was run " + std::to_string(it.runs) +
+                                     " of the elastic level's reading of each element's card at the amplitude it "
+                                     "reached (relaxation " + core::format_number(w, 2) + "); [life] elastic_amplitude "
+                                     "= \"small\" reads the cards at their small-amplitude stiffness, fidelity = "
+                                     "\"complete\" runs their full models");
+        it.relaxation = std::max(kLeastRelaxation, 0.5 * w);
+        ++it.folded;  // a run that folded: no change to report
+      }
     }
     ++it.runs;
   }
@@ -663,12 +674,12 @@ LifePlan choose_life_plan(const Scene& s) {
   const std::string why = cards ? "the scene gives bottom and cushion cards, so the segment FE runs with the cards' "
                                    "elastic equivalents"
                                  : "the scene has a [segment] table, so the segment FE runs with its elastic materials";
-  // The elastic level takes about 1 s CPU per drive (thesis cards, 2 cycles, life mesh); the complete
+  // The elastic level takes about 1 s CPU per segment run (thesis cards, 2 cycles, life mesh); the complete
   // level 3-4 s with the damage held (docs/segment.md "Cost (reference)"), and it stops at the fold on
   // 9 of the 13 bundled accelerated drives (docs/segment.md "Known limits").
   return {core::Fidelity::elastic, "default: " + why + " (about 1 s a segment run; the cards are read at their smallest "
                      "tested amplitude and the lives with the level's calibrated constants, [life] elastic_amplitude "
-                     "= \"reached\" reads them at the amplitude the segment reaches); "
+                     "= \"element\" reads each element's card at the amplitude it reaches, iterated, 3-7 runs); "
                      "[life] fidelity = \"complete\" runs the full card models (3-4 s a drive; the load path folds on "
                      "most accelerated-test drives: docs/segment.md \"Known limits\"), \"beam\" the layered "
                      "section (milliseconds)"};

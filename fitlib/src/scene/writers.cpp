@@ -235,7 +235,7 @@ json life_summary_json(const LifeResult& l, bool effective_stress_history = fals
   }
   if (const std::optional<AmplitudeIteration>& a = l.amplitude_iteration)
     j["amplitude_iteration"] = {{"runs", a->runs}, {"tolerance", a->tolerance}, {"changes", a->changes},
-                                {"per", a->per}, {"relaxation", a->relaxation}};
+                                {"per", a->per}, {"relaxation", a->relaxation}, {"folded_runs", a->folded}};
   if (!l.fields.empty()) {  // full-field stress files (VTK) by name, so the bytes do not depend on the folder
     json fields = json::array();
     for (const FieldFile& f : l.fields)
@@ -337,7 +337,8 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       << (a->per == "element" ? " by each element" : "") << ", " << a->runs << " runs, last change "
       << core::format_number(100.0 * a->changes.back(), 2) << " % (tolerance " << core::format_number(100.0 * a->tolerance, 2)
       << " %" << (a->per == "element" ? " of the role's largest element amplitude" : "")
-      << (a->relaxation < 1.0 ? ", relaxed to " + core::format_number(a->relaxation, 2) : std::string()) << ")\n";
+      << (a->relaxation < 1.0 ? ", relaxed to " + core::format_number(a->relaxation, 2) : std::string())
+      << (a->folded ? ", " + std::to_string(a->folded) + " folded and retried" : std::string()) << ")\n";
   if (!l.cards_read.empty()) o << "beyond the tests: [life] beyond_tests = \"" << l.beyond_tests << "\"\n";
   for (const std::string& w : r.warnings) o << "WARNING: " << w << "\n";
   for (const FieldFile& f : l.fields)

@@ -711,3 +711,39 @@ TEST(SceneLife, AUniformlyStrainedBlockReadsEachElementAtItsRolesAmplitude) {
     EXPECT_NEAR(per_element[e].components[2], 0.0, 1e-15) << e;
   }
 }
+
+// Issue 33 item 4 (docs/decisions.md "Elastic level: one secant per element"): on the heavy reference
+// drive one secant per role (that of the role's most strained point) softens the whole role and the
+// land folds under the driver's side pressure; each element read at its own amplitude softens only
+// the strained elements (the bottom's elements are read over a range of amplitudes; the
+// cushion's all strain 0.8-1.2, measured 2026-12-02) and the run settles within its tolerance, with
+// finite lives.
+TEST(SceneLife, PerElementReadingDoesNotFoldWherePerRoleReadingFolds) {
+  auto s = with_cards_elastic("heavy");
+  windowed_thesis_cards(s, "per-element");
+  s.life->cycles = 2;
+  s.life->elastic_amplitude = scene::LifeSpec::ElasticAmplitude::role;
+  EXPECT_THROW(scene::run_scene(s), core::NumericalError);
+  s.life->elastic_amplitude = scene::LifeSpec::ElasticAmplitude::element;
+  const scene::SceneResult r = scene::run_scene(s);
+  const auto& it = r.life->amplitude_iteration;
+  ASSERT_TRUE(it.has_value());
+  EXPECT_EQ(it->per, "element");
+  EXPECT_GE(it->runs, 3);
+  EXPECT_LE(it->changes.back(), it->tolerance);
+  ASSERT_EQ(r.life->cards_read.size(), 2u);
+  for (const scene::CardReading& c : r.life->cards_read) {
+    ASSERT_TRUE(c.read_range.has_value()) << c.role;
+    EXPECT_GT(c.elements_read, 0) << c.role;
+    EXPECT_LT((*c.read_range)[0], (*c.read_range)[1]) << c.role;  // not one amplitude for the role
+    if (c.role == "bottom") EXPECT_LT((*c.read_range)[0], 0.5 * (*c.read_range)[1]);
+    EXPECT_EQ(*c.read_amplitude, (*c.read_range)[1]) << c.role;
+  }
+  for (const auto& m : r.life->report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
+  const std::string table = scene::life_text(s, r);
+  EXPECT_NE(table.find("elements at its own strain amplitude"), std::string::npos) << table;
+  EXPECT_NE(table.find("reached by each element"), std::string::npos) << table;
+  const auto j = scene::life_json(s, r, false);
+  EXPECT_EQ(j["amplitude_iteration"]["per"], "element");
+  EXPECT_TRUE(j["cards_read"][1].contains("read_per_element"));
+}

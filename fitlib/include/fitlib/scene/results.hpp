@@ -157,6 +157,7 @@ struct AmplitudeIteration {
   // amplitude), the reading of each rerun relaxed by `relaxation` (1: none).
   std::string per = "role";
   double relaxation = 1.0;
+  int folded = 0;  // "element": reruns that folded and were retried with a smaller step (counted in runs)
 };
 
 struct LifeResult {

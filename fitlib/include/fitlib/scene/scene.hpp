@@ -101,8 +101,9 @@ struct LifeSpec {
   // Elastic level: where the amplitude-dependent cards are read (docs/decisions.md "Elastic level:
   // each card read at the amplitude the segment drives it", "Elastic level: one secant per element"):
   // small — their small-amplitude stiffness; role ("reached") — one secant per role at the amplitude
-  // its most strained monitored point reached; element — each element's own secant at the amplitude
-  // it reached, iterated to consistency.
+  // its most strained monitored point reached (it folds the heavy drive); element — each element's
+  // own secant at the amplitude it reached, iterated to consistency (opt-in: it folds two accelerated
+  // drives the complete level passes; docs/decisions.md "Elastic level: one secant per element").
   enum class ElasticAmplitude { small, role, element };
   ElasticAmplitude elastic_amplitude = ElasticAmplitude::small;
   // [life] uncertainty = "cards": B10/B50 also get the 90 % interval of lives run on `samples`
