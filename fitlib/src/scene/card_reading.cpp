@@ -61,6 +61,13 @@ std::map<std::string, ReachedAmplitude> reached_amplitudes(const segment::CycleR
   return by_role;
 }
 
+std::vector<ReachedAmplitude> element_amplitudes(const segment::CycleResult& run) {
+  std::vector<ReachedAmplitude> out(run.element_means.size());
+  for (std::size_t e = 0; e < run.element_means.size(); ++e)
+    if (!run.element_means[e].samples.empty()) point_amplitude(run.element_means[e], run.cycle_time_s, out[e]);
+  return out;
+}
+
 model::Vector6 voigt_amplitude(const ReachedAmplitude& a) {
   model::Vector6 v = model::Vector6::Zero();
   v[0] = a.components[0], v[1] = a.components[1], v[5] = a.components[2];

@@ -27,6 +27,11 @@ namespace fitlib::scene {
 namespace detail {
 namespace {
 
+// Where the elastic level reads the amplitude-dependent cards ([life] elastic_amplitude).
+LifeSpec::ElasticAmplitude elastic_reading(const Scene& s) {
+  return s.life ? s.life->elastic_amplitude : LifeSpec{}.elastic_amplitude;
+}
+
 // What the life took from a material card, read off the stiffness sources.
 std::string card_use(const Scene& s, const SceneResult& r, const std::string& role) {
   const std::string path = s.materials.at(role);
@@ -46,7 +51,9 @@ std::string card_use(const Scene& s, const SceneResult& r, const std::string& ro
     use += std::string(use.empty() ? "" : ", ") +
            (fidelity == core::Fidelity::elastic ? std::string("segment FE material (storage stiffness at the scene's temperature and load "
                                                 "frequency") +
-                                        (r.amplitude_iteration ? ", at the strain amplitude the segment reached" : "") +
+                                        (!r.amplitude_iteration ? ""
+                                         : r.amplitude_iteration->per == "element" ? ", each element at the strain amplitude it reached"
+                                                                                   : ", at the strain amplitude the segment reached") +
                                         (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")"
                                   : std::string("segment FE material (the card's full model") +
                                         (r.segment_damage_held.count(role) ? ", damage held at its tests' drivers" : "") + ")");
@@ -275,18 +282,11 @@ bool same_stiffness(const std::array<model::MaterialPointPtr, 2>& a, const std::
   return true;
 }
 
-// The elastic level's iteration (docs/decisions.md "Elastic level: each card read at the amplitude
-// the segment drives it"): each amplitude-dependent card is re-read at the strain amplitude the last
-// run reached and the segment rerun, until no role's amplitude changes by more than kTolerance
-// (relative) between the run that read it and the run it gave; NumericalError after kMaxRuns runs.
-segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, scene::SegmentLifeSetup& setup,
-                                             segment::CycleResult run, const std::string& remedy,
-                                             std::map<std::string, ReachedAmplitude>& read_at) {
-  constexpr double kTolerance = 0.02;
-  constexpr int kMaxRuns = 8;
-  // The roles whose card softens with the amplitude. Under "hold" a damage card whose window names no
-  // drivers (a card written by hand, as the bundled thesis cards) has nothing to hold at: it keeps the
-  // small-amplitude stiffness, and a warning says so.
+// The roles whose card softens with the amplitude, which the elastic level reads where the segment
+// drives them. Under "hold" a damage card whose window names no drivers (a card written by hand, as the
+// bundled thesis cards) has nothing to hold at: it keeps the small-amplitude stiffness, and a warning
+// says so.
+std::set<std::string> amplitude_roles(const Scene& s, SceneResult& r) {
   const bool extrapolate = s.life && s.life->beyond_tests == LifeSpec::BeyondTests::extrapolate;
   std::set<std::string> roles;
   for (const char* role : kSegmentRoles) {
@@ -300,6 +300,19 @@ segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, sce
                            "(fit.data_window.damage_driver; fitcli fit writes them) to hold the damage law at, and "
                            "[life] beyond_tests = \"extrapolate\" reads the law at the amplitude the segment reaches");
   }
+  return roles;
+}
+
+// The elastic level's iteration (docs/decisions.md "Elastic level: each card read at the amplitude
+// the segment drives it"): each amplitude-dependent card is re-read at the strain amplitude the last
+// run reached and the segment rerun, until no role's amplitude changes by more than kTolerance
+// (relative) between the run that read it and the run it gave; NumericalError after kMaxRuns runs.
+segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, scene::SegmentLifeSetup& setup,
+                                             segment::CycleResult run, const std::string& remedy,
+                                             std::map<std::string, ReachedAmplitude>& read_at) {
+  constexpr double kTolerance = 0.02;
+  constexpr int kMaxRuns = 8;
+  const std::set<std::string> roles = amplitude_roles(s, r);
   if (roles.empty()) return run;
   AmplitudeIteration it{1, kTolerance, {}};
   for (;;) {
@@ -352,6 +365,129 @@ segment::CycleResult read_cards_where_driven(const Scene& s, SceneResult& r, sce
   return run;
 }
 
+// Each element of an amplitude-dependent role read at its own amplitude (`read`, in mesh order): the
+// card's elastic equivalent there (null for the other roles' elements, which keep their role's point).
+// One card load per role; elements read at the same amplitude share a point.
+std::vector<model::MaterialPointPtr> element_points(const Scene& s, const belt::DriveCase& drive,
+                                                    const segment::CycleResult& run, const std::set<std::string>& roles,
+                                                    const std::vector<ReachedAmplitude>& read) {
+  std::vector<model::MaterialPointPtr> points(run.element_means.size());
+  for (const std::string& role : roles) {
+    const card::Card c = material_card(s, role);
+    const model::ModelPtr model = c.model();
+    const std::vector<double> values = c.values();
+    segment::RoleMaterialOptions o;
+    o.fidelity = core::Fidelity::elastic, o.temperature_C = s.temperature_C, o.frequency_Hz = load_frequency_Hz(drive);
+    o.damage_driver_hold = damage_hold(s, c);
+    model::TestCondition at;
+    at.temperature_C = o.temperature_C, at.frequency_Hz = o.frequency_Hz;
+    std::map<std::array<double, 3>, model::MaterialPointPtr> shared;
+    try {
+      o.bulk_modulus_MPa = card::point_bulk_modulus_MPa(*model, values, at, s.material_poisson_ratio);
+      for (std::size_t e = 0; e < points.size(); ++e) {
+        if (core::to_string(run.element_means[e].role) != role) continue;
+        model::MaterialPointPtr& p = shared[read[e].components];
+        if (!p) p = elastic_point_at(*model, values, o, voigt_amplitude(read[e]));
+        points[e] = p;
+      }
+    } catch (const core::UsageError& e) {
+      throw core::InputError("card " + s.materials.at(role) + ": " + e.what(), s.path, 0, 0, "belt.materials." + role);
+    }
+  }
+  return points;
+}
+
+// The elastic level with one secant per element (docs/decisions.md "Elastic level: one secant per
+// element"): from the small-amplitude run, each element of an amplitude-dependent role is read at
+// the amplitude its own mean strain reached in the last run's last cycle (the measure of a role's
+// points: ReachedAmplitude) and the segment rerun, until no element's amplitude differs by more than
+// kTolerance of its role's largest element amplitude between the run that read it and the run it gave.
+// Where a run's change is larger than the last one's, or a rerun folds (NumericalError), the next
+// reading moves only part of the way from the last one that passed (relaxation halved, down to
+// kLeastRelaxation; a fold there is the level's NumericalError). NumericalError after kMaxRuns runs. `read_at`
+// gets each role's most strained element's reading, `read_range` its elements' smallest and largest.
+segment::CycleResult read_cards_per_element(const Scene& s, SceneResult& r, scene::SegmentLifeSetup& setup,
+                                            segment::CycleResult run, const std::string& remedy,
+                                            std::map<std::string, ReachedAmplitude>& read_at,
+                                            std::map<std::string, std::array<double, 2>>& read_range) {
+  constexpr double kTolerance = 0.02;
+  constexpr int kMaxRuns = 10;
+  constexpr double kLeastRelaxation = 0.25;
+  const std::set<std::string> roles = amplitude_roles(s, r);
+  if (roles.empty()) return run;
+  AmplitudeIteration it{1, kTolerance, {}, "element", 1.0};
+  std::vector<ReachedAmplitude> read(run.element_means.size());  // zero: the small-amplitude reading of the first run
+  double last_change = HUGE_VAL;
+  for (;;) {
+    const std::vector<ReachedAmplitude> reached = element_amplitudes(run);
+    double change = 0.0;
+    std::string worst;
+    for (const std::string& role : roles) {
+      double largest = 0.0;
+      for (std::size_t e = 0; e < reached.size(); ++e)
+        if (core::to_string(run.element_means[e].role) == role) largest = std::max(largest, reached[e].strain_amplitude);
+      for (std::size_t e = 0; e < reached.size(); ++e) {
+        if (core::to_string(run.element_means[e].role) != role || !(largest > 0.0)) continue;
+        const double c = std::abs(reached[e].strain_amplitude - read[e].strain_amplitude) / largest;
+        if (c >= change)
+          change = c, worst = role + " element " + std::to_string(e) + " read at " +
+                              core::format_number(read[e].strain_amplitude, 4) + ", reached " +
+                              core::format_number(reached[e].strain_amplitude, 4) + " (role's largest " +
+                              core::format_number(largest, 4) + ")";
+      }
+    }
+    it.changes.push_back(change);
+    if (change <= kTolerance) break;
+    if (it.runs == kMaxRuns)
+      throw core::NumericalError("the elastic level's cards did not settle at the amplitudes the segment's elements "
+                                 "reach: after " + std::to_string(kMaxRuns) + " runs the " + worst + " (change " +
+                                 core::format_number(100.0 * change, 3) + " % of the role's largest, tolerance " +
+                                 core::format_number(100.0 * kTolerance, 3) + " %); [life] fidelity = \"complete\" "
+                                 "runs the cards' full models (docs/decisions.md \"Elastic level: one secant per element\")");
+    if (change > last_change) it.relaxation = std::max(kLeastRelaxation, 0.5 * it.relaxation);
+    last_change = change;
+    const std::vector<ReachedAmplitude> last_read = read;  // what the last run that passed read
+    for (;;) {  // a rerun that folds is retried with the reading moved a smaller step from the last one
+      const double w = it.relaxation;
+      for (std::size_t e = 0; e < read.size(); ++e) {
+        ReachedAmplitude& a = read[e];
+        const ReachedAmplitude &b = reached[e], &from = last_read[e];
+        a.strain_amplitude = from.strain_amplitude + w * (b.strain_amplitude - from.strain_amplitude);
+        a.deviatoric_norm = from.deviatoric_norm + w * (b.deviatoric_norm - from.deviatoric_norm);
+        for (int k = 0; k < 3; ++k) a.components[k] = from.components[k] + w * (b.components[k] - from.components[k]);
+      }
+      setup.element_materials = element_points(s, *r.drive, run, roles, read);
+      try {
+        segment::CycleResult next = run_segment(*r.cycle, *r.drive, setup, core::Fidelity::elastic, remedy);
+        run = std::move(next);
+        break;
+      } catch (const core::NumericalError& e) {
+        ++it.runs;
+        if (w <= kLeastRelaxation || it.runs == kMaxRuns)
+          throw core::NumericalError(std::string(e.what()) + ". This was run " + std::to_string(it.runs) +
+                                     " of the elastic level's reading of each element's card at the amplitude it "
+                                     "reached (relaxation " + core::format_number(w, 2) + "); [life] elastic_amplitude "
+                                     "= \"small\" reads the cards at their small-amplitude stiffness, fidelity = "
+                                     "\"complete\" runs their full models");
+        it.relaxation = std::max(kLeastRelaxation, 0.5 * w);
+        ++it.folded;  // a run that folded: no change to report
+      }
+    }
+    ++it.runs;
+  }
+  for (const std::string& role : roles) {  // what each role's elements were read at, by the run that gave the lives
+    std::array<double, 2> range{HUGE_VAL, 0.0};
+    for (std::size_t e = 0; e < read.size(); ++e) {
+      if (core::to_string(run.element_means[e].role) != role) continue;
+      range = {std::min(range[0], read[e].strain_amplitude), std::max(range[1], read[e].strain_amplitude)};
+      if (!read_at.count(role) || read[e].strain_amplitude > read_at[role].strain_amplitude) read_at[role] = read[e];
+    }
+    if (read_at.count(role)) read_range[role] = range;
+  }
+  r.amplitude_iteration = it;
+  return run;
+}
+
 }  // namespace
 
 void segment_stresses(const Scene& s, SceneResult& r) {
@@ -371,6 +507,8 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     // The design point per mode: the worst of the named points, [segment] points and, with [segment]
     // scan = true, the scanned design regions (Report I §6.4).
     setup.cycle.scan_design_regions = s.segment && s.segment->scan_design_regions;
+    setup.cycle.record_elements = r.plan.life->fidelity == core::Fidelity::elastic &&
+                                  elastic_reading(s) == LifeSpec::ElasticAmplitude::element;
     if (s.segment) setup.extra_points = s.segment->setup.points;
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
@@ -386,10 +524,22 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     const std::string remedy = damage_hold_remedy(s, r.segment_damage_held);
     segment::CycleResult run = run_segment(*r.cycle, *r.drive, setup, r.plan.life->fidelity, remedy);
     std::map<std::string, ReachedAmplitude> read_at;  // the elastic level's amplitudes, by role
-    if (r.plan.life->fidelity == core::Fidelity::elastic && s.life && s.life->elastic_at_reached_amplitude)
+    std::map<std::string, std::array<double, 2>> read_range;  // per element: by role, the smallest and largest
+    using A = LifeSpec::ElasticAmplitude;
+    const A reading = elastic_reading(s);
+    if (r.plan.life->fidelity == core::Fidelity::elastic && reading == A::role)
       run = read_cards_where_driven(s, r, setup, std::move(run), remedy, read_at);
+    if (r.plan.life->fidelity == core::Fidelity::elastic && reading == A::element)
+      run = read_cards_per_element(s, r, setup, std::move(run), remedy, read_at, read_range);
     const std::map<std::string, ReachedAmplitude> reached = reached_amplitudes(run);
     r.segment_cards_read = card_readings(s, r.plan.life->fidelity, load_frequency_Hz(*r.drive), reached, read_at);
+    for (CardReading& c : r.segment_cards_read)
+      if (read_range.count(c.role)) {
+        c.read_range = read_range.at(c.role);
+        c.elements_read = static_cast<int>(std::count_if(run.element_means.begin(), run.element_means.end(), [&c](const segment::MonitoredHistory& m) {
+          return core::to_string(m.role) == c.role;
+        }));
+      }
     refuse_beyond_tests(s, r.segment_cards_read);
     r.stresses = scene::segment_point_histories(run);
     for (int role = 0; role < 2; ++role)
@@ -524,12 +674,12 @@ LifePlan choose_life_plan(const Scene& s) {
   const std::string why = cards ? "the scene gives bottom and cushion cards, so the segment FE runs with the cards' "
                                    "elastic equivalents"
                                  : "the scene has a [segment] table, so the segment FE runs with its elastic materials";
-  // The elastic level takes about 1 s CPU per drive (thesis cards, 2 cycles, life mesh); the complete
+  // The elastic level takes about 1 s CPU per segment run (thesis cards, 2 cycles, life mesh); the complete
   // level 3-4 s with the damage held (docs/segment.md "Cost (reference)"), and it stops at the fold on
   // 9 of the 13 bundled accelerated drives (docs/segment.md "Known limits").
   return {core::Fidelity::elastic, "default: " + why + " (about 1 s a segment run; the cards are read at their smallest "
                      "tested amplitude and the lives with the level's calibrated constants, [life] elastic_amplitude "
-                     "= \"reached\" reads them at the amplitude the segment reaches); "
+                     "= \"element\" reads each element's card at the amplitude it reaches, iterated, 3-7 runs); "
                      "[life] fidelity = \"complete\" runs the full card models (3-4 s a drive; the load path folds on "
                      "most accelerated-test drives: docs/segment.md \"Known limits\"), \"beam\" the layered "
                      "section (milliseconds)"};

@@ -552,9 +552,13 @@ LifeSpec parse_life(const toml::table& t, const std::filesystem::path& base, con
   l.diagnose_failure = lr.boolean("diagnose_failure").value_or(false);
   l.beyond_tests = parse_beyond_tests(lr);
   if (auto a = lr.string("elastic_amplitude")) {
-    if (*a != "reached" && *a != "small")
-      lr.fail("elastic_amplitude", "elastic_amplitude must be \"reached\" or \"small\", not \"" + *a + "\"");
-    l.elastic_at_reached_amplitude = *a == "reached";
+    using A = LifeSpec::ElasticAmplitude;
+    if (*a == "small") l.elastic_amplitude = A::small;
+    else if (*a == "reached") l.elastic_amplitude = A::role;
+    else if (*a == "element") l.elastic_amplitude = A::element;
+    else
+      lr.fail("elastic_amplitude", "elastic_amplitude must be \"element\", \"reached\" or \"small\", not \"" + *a +
+                                       "\"");
   }
   if (auto u = lr.string("uncertainty")) {
     if (*u != "constants" && *u != "cards" && *u != "constants+cards")

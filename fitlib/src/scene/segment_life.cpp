@@ -63,8 +63,15 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
   d.temperature_C = setup.temperature_C;
   d.friction = drive.friction;
   const segment::ContractLaw bottom(setup.materials[0]), cushion(setup.materials[1]);
-  return segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, setup.cycle,
-                            setup.extra_points);
+  if (setup.element_materials.empty())
+    return segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, setup.cycle,
+                              setup.extra_points);
+  std::vector<segment::ContractLaw> own;  // one per element with its own point
+  own.reserve(setup.element_materials.size());
+  segment::CycleKnobs knobs = setup.cycle;
+  for (const model::MaterialPointPtr& point : setup.element_materials)
+    knobs.element_laws.push_back(point ? &own.emplace_back(point) : nullptr);
+  return segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, knobs, setup.extra_points);
 }
 
 fatigue::LifeConditions segment_conditions(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double temperature_C,

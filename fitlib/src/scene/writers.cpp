@@ -165,6 +165,9 @@ json card_reading_json(const CardReading& c) {
             {"reached_strain_amplitude", c.reached_amplitude},
             {"largest_tested_strain_amplitude", c.largest_tested_amplitude ? json(*c.largest_tested_amplitude) : json(nullptr)}};
   if (c.read_at) j["read_at_components"] = {{"e11", (*c.read_at)[0]}, {"e22", (*c.read_at)[1]}, {"g12", (*c.read_at)[2]}};
+  if (c.read_range)  // [life] elastic_amplitude = "element"
+    j["read_per_element"] = {{"elements", c.elements_read}, {"smallest_strain_amplitude", (*c.read_range)[0]},
+                             {"largest_strain_amplitude", (*c.read_range)[1]}};
   if (const std::optional<double> f = c.beyond_tests_factor()) j["beyond_tests_factor"] = *f;
   return j;
 }
@@ -174,7 +177,12 @@ std::string card_reading_text(const CardReading& c) {
   std::ostringstream o;
   o << "card read: " << c.role << " " << c.card << " at " << core::format_number(c.temperature_C, 4) << " degC";
   if (c.frequency_Hz) o << ", " << core::format_number(*c.frequency_Hz, 4) << " Hz";
-  if (c.read_at)
+  if (c.read_range)
+    o << ", each of its " << c.elements_read << " elements at its own strain amplitude, "
+      << core::format_number((*c.read_range)[0], 3) << " to " << core::format_number((*c.read_range)[1], 3)
+      << " (the largest: e11 " << core::format_number((*c.read_at)[0], 3) << ", e22 "
+      << core::format_number((*c.read_at)[1], 3) << ", g12 " << core::format_number((*c.read_at)[2], 3) << ")";
+  else if (c.read_at)
     o << ", strain amplitude " << core::format_number(*c.read_amplitude, 3) << " (e11 "
       << core::format_number((*c.read_at)[0], 3) << ", e22 " << core::format_number((*c.read_at)[1], 3) << ", g12 "
       << core::format_number((*c.read_at)[2], 3) << ")";
@@ -227,7 +235,8 @@ json life_summary_json(const LifeResult& l, bool effective_stress_history = fals
     j["beyond_tests"] = l.beyond_tests;
   }
   if (const std::optional<AmplitudeIteration>& a = l.amplitude_iteration)
-    j["amplitude_iteration"] = {{"runs", a->runs}, {"tolerance", a->tolerance}, {"changes", a->changes}};
+    j["amplitude_iteration"] = {{"runs", a->runs}, {"tolerance", a->tolerance}, {"changes", a->changes},
+                                {"per", a->per}, {"relaxation", a->relaxation}, {"folded_runs", a->folded}};
   if (!l.fields.empty()) {  // full-field stress files (VTK) by name, so the bytes do not depend on the folder
     json fields = json::array();
     for (const FieldFile& f : l.fields)
@@ -325,9 +334,12 @@ std::string life_text(const Scene& s, const SceneResult& r) {
   }
   for (const CardReading& c : l.cards_read) o << card_reading_text(c);
   if (const std::optional<AmplitudeIteration>& a = l.amplitude_iteration)
-    o << "elastic level: cards read at the amplitude the segment reached, " << a->runs << " runs, last change "
+    o << "elastic level: cards read at the amplitude the segment reached"
+      << (a->per == "element" ? " by each element" : "") << ", " << a->runs << " runs, last change "
       << core::format_number(100.0 * a->changes.back(), 2) << " % (tolerance " << core::format_number(100.0 * a->tolerance, 2)
-      << " %)\n";
+      << " %" << (a->per == "element" ? " of the role's largest element amplitude" : "")
+      << (a->relaxation < 1.0 ? ", relaxed to " + core::format_number(a->relaxation, 2) : std::string())
+      << (a->folded ? ", " + std::to_string(a->folded) + " folded and retried" : std::string()) << ")\n";
   if (!l.cards_read.empty()) o << "beyond the tests: [life] beyond_tests = \"" << l.beyond_tests << "\"\n";
   for (const std::string& w : r.warnings) o << "WARNING: " << w << "\n";
   for (const FieldFile& f : l.fields)

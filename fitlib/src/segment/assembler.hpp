@@ -46,7 +46,7 @@ class Assembler {
   // One element's response at q, as run() computes it (the failure diagnosis).
   bool element_at(const Eigen::VectorXd& q, int e, detail::ElementVector& f, detail::ElementMatrix* Ke,
                   std::vector<detail::ElementState>* states = nullptr) const;
-  const PlaneStrainLaw& law_of(int e) const { return *p_.laws[static_cast<int>(p_.mesh->roles[e])]; }
+  const PlaneStrainLaw& law_of(int e) const { return p_.law_of(e); }
   detail::ElementStep step_of(int e) const {
     const std::size_t at = (*offset_)[e];
     return {state_n_ + at, state_next_ + at, dt_s_, p_.temperature_C};

@@ -210,6 +210,22 @@ void summarise(const StaticSolution& final_state, const Mesh& m, const CycleKnob
 
 namespace {
 
+// CycleKnobs::element_laws checked against the mesh and the role laws (StaticProblem::element_laws).
+std::vector<const PlaneStrainLaw*> element_laws(const Mesh& m, const std::array<const PlaneStrainLaw*, 2>& laws,
+                                                const std::vector<const PlaneStrainLaw*>& given) {
+  if (given.empty()) return given;
+  if (static_cast<int>(given.size()) != m.element_count())
+    throw core::UsageError("segment cycle: element_laws has " + std::to_string(given.size()) + " laws for " +
+                           std::to_string(m.element_count()) + " elements");
+  for (int e = 0; e < m.element_count(); ++e) {
+    const PlaneStrainLaw* law = given[e];
+    if (law && (law->state_size() != 0 || law->symmetric_tangent() != laws[static_cast<int>(m.roles[e])]->symmetric_tangent()))
+      throw core::UsageError("segment cycle: element " + std::to_string(e) + "'s law carries history or another "
+                             "tangent symmetry than its role's");
+  }
+  return given;
+}
+
 // solve_static over the load schedule; a failure's message says where in the cycle it was.
 StaticSolution solve_over_cycle(const StaticProblem& p, const SolverKnobs& solver, std::vector<double> schedule,
                                 const detail::ProgressReport& progress, double T, const belt::LoadHistory& h) {
@@ -249,6 +265,7 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     detail::long_belt_ends(section, straight, laws, drive, warping, shear);
   const EndCondition ends = knobs.ends == EndCondition::free ? EndCondition::free : EndCondition::radial;
   StaticProblem p = cord_curve_problem(m, path_x, laws, frame.curve_at, ends, detail::end_shift(straight, h, T, warping));
+  p.element_laws = element_laws(m, laws, knobs.element_laws);
   p.time_s = [T, period](double lambda) { return lambda * T * period; };
   p.temperature_C = drive.temperature_C;
   p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when PhysicsOptions::inertia is on
@@ -284,6 +301,8 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   std::optional<detail::RegionScan> scan;
   if (knobs.scan_design_regions)
     p.observers.push_back(&scan.emplace(frame, straight, K_m, section, mesh_knobs, order, out.scanned));
+  std::optional<detail::ElementMeans> element_means;
+  if (knobs.record_elements) p.observers.push_back(&element_means.emplace(frame, straight, out.element_means));
 
   out.final_state = solve_over_cycle(p, solver, load_schedule(knobs, h, T, straight.half_length_mm), progress, T, h);
   const bool history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;

@@ -70,6 +70,37 @@ void PointMonitor::converged(double lambda, const StaticSolution& s) {
   }
 }
 
+ElementMeans::ElementMeans(const CycleFrame& frame, const Mesh& straight, std::vector<MonitoredHistory>& out)
+    : frame_(frame), out_(out) {
+  for (int e = 0; e < straight.element_count(); ++e) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (int a = 0; a < 4; ++a) centre += 0.25 * straight.X[straight.elements[e][a]];
+    MonitoredHistory mh;
+    mh.point = {"e" + std::to_string(e), centre.x(), centre.y()};
+    mh.role = straight.roles[e];
+    mh.at.element = e;
+    out_.push_back(std::move(mh));
+  }
+}
+
+void ElementMeans::converged(double lambda, const StaticSolution& s) {
+  const double tau = frame_.tau(lambda);
+  const NeutralCurve& curve = frame_.curve(lambda);
+  for (MonitoredHistory& mh : out_) {
+    const std::vector<IntegrationPointStress>& points = s.points[mh.at.element];
+    const double phi = curve.at(curve.s_from_unstrained(mh.point.x_mm)).phi_rad, w = 1.0 / points.size();
+    CycleSample c;
+    for (const IntegrationPointStress& ip : points) {
+      const CycleSample p = local_sample(ip, phi);
+      c.s11_MPa += w * p.s11_MPa, c.s22_MPa += w * p.s22_MPa, c.s12_MPa += w * p.s12_MPa, c.s33_MPa += w * p.s33_MPa;
+      c.e11 += w * p.e11, c.e22 += w * p.e22, c.e12 += w * p.e12;
+    }
+    c.t_s = tau * frame_.period_s;
+    c.s_mm = frame_.s_mm(tau);
+    mh.samples.push_back(c);
+  }
+}
+
 EquilibriumCheck::EquilibriumCheck(const CycleFrame& frame, Inputs inputs, CycleResult& out)
     : frame_(frame), in_(std::move(inputs)), out_(out) {}
 

@@ -74,6 +74,19 @@ class RegionScan : public IncrementObserver {
   std::vector<Eigen::Vector2d> surface_tangent_;  // per history: the moulded surface's (zero off the surface)
 };
 
+// Each element's mean over its integration points (CycleKnobs::record_elements): stresses and
+// logarithmic strains in the cord curve's local frame at the element centre's unstrained path position.
+class ElementMeans : public IncrementObserver {
+ public:
+  // `straight`: the mesh before wrapping on the mould (the centres' path positions).
+  ElementMeans(const CycleFrame& frame, const Mesh& straight, std::vector<MonitoredHistory>& out);
+  void converged(double lambda, const StaticSolution& s) override;
+
+ private:
+  const CycleFrame& frame_;
+  std::vector<MonitoredHistory>& out_;
+};
+
 // A point's stresses in the cord curve's local frame at angle φ (1 radial, 2 along the belt) and
 // its logarithmic strain in the same frame.
 CycleSample local_sample(const IntegrationPointStress& ip, double phi);

@@ -29,7 +29,7 @@ StateBlock initial_states(const StaticProblem& p, std::size_t points_per_element
   const Mesh& m = *p.mesh;
   StateBlock b;
   for (int e = 0; e < m.element_count(); ++e) {
-    const PlaneStrainLaw& law = *p.laws[static_cast<int>(m.roles[e])];
+    const PlaneStrainLaw& law = p.law_of(e);
     b.offset.push_back(b.committed.size());
     const std::vector<double> virgin = law.initial_state();
     for (std::size_t q = 0; q < points_per_element; ++q) b.committed.insert(b.committed.end(), virgin.begin(), virgin.end());

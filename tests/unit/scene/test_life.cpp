@@ -25,6 +25,7 @@
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/writers.hpp"
 #include "fitlib/scene/scene.hpp"
+#include "../../../fitlib/src/scene/card_reading.hpp"
 
 using namespace fitlib;
 
@@ -641,10 +642,10 @@ TEST(SceneLife, ElasticLevelReadsTheCardsAtTheAmplitudeTheSegmentDrivesThem) {
   s.life->card = fitlib_test::temp_path("complete-constants.json");
   fatigue::save_card(s.life->card, constants);
   auto n1 = [](const scene::SceneResult& r) { return r.life->report.modes.at(0).life_cycles; };
-  s.life->elastic_at_reached_amplitude = false;
+  s.life->elastic_amplitude = scene::LifeSpec::ElasticAmplitude::small;
   const scene::SceneResult small = scene::run_scene(s);
   EXPECT_FALSE(small.life->amplitude_iteration.has_value());
-  s.life->elastic_at_reached_amplitude = true;
+  s.life->elastic_amplitude = scene::LifeSpec::ElasticAmplitude::role;
   const scene::SceneResult reached = scene::run_scene(s);
   s.life->fidelity = core::Fidelity::complete;
   const scene::SceneResult complete = scene::run_scene(s);
@@ -670,4 +671,79 @@ TEST(SceneLife, ElasticLevelReadsTheCardsAtTheAmplitudeTheSegmentDrivesThem) {
   EXPECT_EQ(j["amplitude_iteration"]["runs"], it->runs);
   EXPECT_EQ(j["cards_read"][0]["role"], "bottom");
   EXPECT_TRUE(j["cards_read"][0]["read_at_components"].contains("e22"));
+}
+
+// Issue 33 item 4 (docs/decisions.md "Elastic level: one secant per element"): a block strained
+// uniformly — every element and every monitored point of a role carries the same history — reads each
+// element at its role's amplitude: the per-element measure is the per-role one, and both are the
+// closed form of e11 = a cos ωt, e22 = −b cos ωt, 2 e12 = g sin ωt: half ranges a, b, g, the largest
+// the scalar; the pair of instants furthest apart deviatorically (t = 0 and half a period: deviatoric
+// norm 0.0356 against the quarter periods' 0.0283) gives the components (a, −b, 0).
+TEST(SceneLife, AUniformlyStrainedBlockReadsEachElementAtItsRolesAmplitude) {
+  const double a = 0.03, b = 0.02, g = 0.04;  // bottom; the cushion gets twice the amplitudes
+  segment::CycleResult run;
+  run.cycle_time_s = 1.0;
+  auto history = [&](segment::Role role, double scale) {
+    segment::MonitoredHistory m;
+    m.role = role;
+    for (int k = 0; k <= 120; ++k) {  // two cycles, 60 samples each (cos and sin hit ±1 on samples)
+      segment::CycleSample c;
+      const double wt = 2.0 * M_PI * k / 60.0;
+      c.t_s = k / 60.0;
+      c.e11 = scale * a * std::cos(wt), c.e22 = -scale * b * std::cos(wt), c.e12 = 0.5 * scale * g * std::sin(wt);
+      m.samples.push_back(c);
+    }
+    return m;
+  };
+  run.points = {history(segment::Role::bottom, 1.0), history(segment::Role::cushion, 2.0)};
+  for (int e = 0; e < 6; ++e) run.element_means.push_back(history(e < 4 ? segment::Role::bottom : segment::Role::cushion, e < 4 ? 1.0 : 2.0));
+  const auto per_role = scene::detail::reached_amplitudes(run);
+  const auto per_element = scene::detail::element_amplitudes(run);
+  ASSERT_EQ(per_element.size(), 6u);
+  for (int e = 0; e < 6; ++e) {
+    const double scale = e < 4 ? 1.0 : 2.0;
+    const scene::detail::ReachedAmplitude& role = per_role.at(e < 4 ? "bottom" : "cushion");
+    EXPECT_EQ(per_element[e].strain_amplitude, role.strain_amplitude) << e;
+    EXPECT_EQ(per_element[e].components, role.components) << e;
+    EXPECT_NEAR(per_element[e].strain_amplitude, scale * g, 1e-15) << e;
+    EXPECT_NEAR(std::abs(per_element[e].components[0]), scale * a, 1e-15) << e;
+    EXPECT_NEAR(std::abs(per_element[e].components[1]), scale * b, 1e-15) << e;
+    EXPECT_NEAR(per_element[e].components[2], 0.0, 1e-15) << e;
+  }
+}
+
+// Issue 33 item 4 (docs/decisions.md "Elastic level: one secant per element"): on the heavy reference
+// drive one secant per role (that of the role's most strained point) softens the whole role and the
+// land folds under the driver's side pressure; each element read at its own amplitude softens only
+// the strained elements (the bottom's elements are read over a range of amplitudes; the
+// cushion's all strain 0.8-1.2, measured 2026-12-02) and the run settles within its tolerance, with
+// finite lives.
+TEST(SceneLife, PerElementReadingDoesNotFoldWherePerRoleReadingFolds) {
+  auto s = with_cards_elastic("heavy");
+  windowed_thesis_cards(s, "per-element");
+  s.life->cycles = 2;
+  s.life->elastic_amplitude = scene::LifeSpec::ElasticAmplitude::role;
+  EXPECT_THROW(scene::run_scene(s), core::NumericalError);
+  s.life->elastic_amplitude = scene::LifeSpec::ElasticAmplitude::element;
+  const scene::SceneResult r = scene::run_scene(s);
+  const auto& it = r.life->amplitude_iteration;
+  ASSERT_TRUE(it.has_value());
+  EXPECT_EQ(it->per, "element");
+  EXPECT_GE(it->runs, 3);
+  EXPECT_LE(it->changes.back(), it->tolerance);
+  ASSERT_EQ(r.life->cards_read.size(), 2u);
+  for (const scene::CardReading& c : r.life->cards_read) {
+    ASSERT_TRUE(c.read_range.has_value()) << c.role;
+    EXPECT_GT(c.elements_read, 0) << c.role;
+    EXPECT_LT((*c.read_range)[0], (*c.read_range)[1]) << c.role;  // not one amplitude for the role
+    if (c.role == "bottom") EXPECT_LT((*c.read_range)[0], 0.5 * (*c.read_range)[1]);
+    EXPECT_EQ(*c.read_amplitude, (*c.read_range)[1]) << c.role;
+  }
+  for (const auto& m : r.life->report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
+  const std::string table = scene::life_text(s, r);
+  EXPECT_NE(table.find("elements at its own strain amplitude"), std::string::npos) << table;
+  EXPECT_NE(table.find("reached by each element"), std::string::npos) << table;
+  const auto j = scene::life_json(s, r, false);
+  EXPECT_EQ(j["amplitude_iteration"]["per"], "element");
+  EXPECT_TRUE(j["cards_read"][1].contains("read_per_element"));
 }

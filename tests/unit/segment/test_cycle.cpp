@@ -596,3 +596,43 @@ TEST(SegmentCycle, ContactForceLeavesTheElementsGraduallyWhereTheContactEnds) {
   EXPECT_LT(mean_step, 0.3 * centre_step);
   EXPECT_NEAR(mean_total / centre_total, 1.0, 0.05);
 }
+
+// Per-element laws (CycleKnobs::element_laws; docs/segment.md "One secant per element"): a law given
+// to every bottom element replaces the role's law there and nowhere else, so a run with a soft role law
+// and the stiff law on each bottom element is bit-identical to the run with the stiff role law; each
+// element's recorded mean (CycleKnobs::record_elements) has the trace e11 + e22 = ln det F averaged
+// over its integration points (the logarithmic strain's trace in any frame).
+TEST(SegmentCycle, ElementLawsReplaceTheRolesLawElementByElementAndTheElementMeansAreRecorded) {
+  Fixture f;
+  f.knobs.cycles = 1;
+  f.knobs.record_elements = true;
+  const auto stiff = hencky(20.0, 0.49), soft = hencky(5.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult role = f.run(*stiff, *cushion);
+  ASSERT_EQ(static_cast<int>(role.element_means.size()), role.elements);
+  const CycleResult soft_role = f.run(*soft, *cushion);
+  for (const MonitoredHistory& e : role.element_means) {
+    f.knobs.element_laws.push_back(e.role == Role::bottom ? stiff.get() : nullptr);
+    ASSERT_EQ(e.samples.size(), static_cast<std::size_t>(role.increments));
+  }
+  const CycleResult element = f.run(*soft, *cushion);
+  ASSERT_EQ(element.points.size(), role.points.size());
+  for (std::size_t k = 0; k < role.points.size(); ++k)
+    for (std::size_t i = 0; i < role.points[k].samples.size(); ++i) {
+      const CycleSample &a = role.points[k].samples[i], &b = element.points[k].samples[i];
+      ASSERT_EQ(a.s11_MPa, b.s11_MPa) << role.points[k].point.name << " " << i;
+      ASSERT_EQ(a.s22_MPa, b.s22_MPa);
+      ASSERT_EQ(a.e12, b.e12);
+    }
+  EXPECT_EQ(element.final_state.state, role.final_state.state);
+  // The soft role law does change the run (the replacement is not a no-op).
+  EXPECT_NE(point(soft_role, "gap_bottom").samples.back().e22, point(role, "gap_bottom").samples.back().e22);
+  for (std::size_t e = 0; e < role.element_means.size(); ++e) {
+    double trace = 0.0;
+    for (const IntegrationPointStress& ip : role.final_state.points[e]) trace += std::log(ip.F.determinant());
+    trace /= role.final_state.points[e].size();
+    const CycleSample& last = role.element_means[e].samples.back();
+    ASSERT_NEAR(last.e11 + last.e22, trace, 1e-12) << e;
+  }
+  f.knobs.element_laws.pop_back();  // one law short of the mesh
+  EXPECT_THROW(f.run(*soft, *cushion), core::UsageError);
+}

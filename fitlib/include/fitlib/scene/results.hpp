@@ -135,6 +135,10 @@ struct CardReading {
   // its largest component; unset: the small-amplitude stiffness (or the complete level).
   std::optional<std::array<double, 3>> read_at;
   std::optional<double> read_amplitude;
+  // Read per element ([life] elastic_amplitude = "element"): the smallest and largest amplitude its
+  // elements were read at (read_at, read_amplitude: the largest's) and how many elements.
+  std::optional<std::array<double, 2>> read_range;
+  int elements_read = 0;
   double reached_amplitude = 0.0;  // half the range of e11, e22, 2 e12 over the last cycle, largest point
   std::optional<double> largest_tested_amplitude;  // the card's fit.data_window.strain_amplitude[1]
   // reached / largest tested, when above 1: the card was read beyond its tests.
@@ -148,6 +152,12 @@ struct AmplitudeIteration {
   int runs = 0;
   double tolerance = 0.0;
   std::vector<double> changes;
+  // "role": one amplitude per role (its largest monitored point's; a change is relative to it);
+  // "element": one per element (a change is an element's, relative to its role's largest element
+  // amplitude), the reading of each rerun relaxed by `relaxation` (1: none).
+  std::string per = "role";
+  double relaxation = 1.0;
+  int folded = 0;  // "element": reruns that folded and were retried with a smaller step (counted in runs)
 };
 
 struct LifeResult {

@@ -100,11 +100,14 @@ struct LifeSpec {
   // true | false` is the older spelling of hold | extrapolate.
   enum class BeyondTests { hold, extrapolate, refuse };
   BeyondTests beyond_tests = BeyondTests::hold;
-  // Elastic level: read the amplitude-dependent cards at the amplitude the segment reaches (true,
-  // opt-in, [life] elastic_amplitude = "reached") or at the smallest ("small", the default: one secant
-  // per role folds the heavy drive, docs/decisions.md "Elastic level: each card read at the amplitude
-  // the segment drives it").
-  bool elastic_at_reached_amplitude = false;
+  // Elastic level: where the amplitude-dependent cards are read (docs/decisions.md "Elastic level:
+  // each card read at the amplitude the segment drives it", "Elastic level: one secant per element"):
+  // small — their small-amplitude stiffness; role ("reached") — one secant per role at the amplitude
+  // its most strained monitored point reached (it folds the heavy drive); element — each element's
+  // own secant at the amplitude it reached, iterated to consistency (opt-in: it folds two accelerated
+  // drives the complete level passes; docs/decisions.md "Elastic level: one secant per element").
+  enum class ElasticAmplitude { small, role, element };
+  ElasticAmplitude elastic_amplitude = ElasticAmplitude::small;
   // [life] uncertainty = "cards": B10/B50 also get the 90 % interval of lives run on `samples`
   // draws of the material cards' parameters from their covariance, seeded (docs/thermal.md §7).
   bool uncertainty_cards = false;

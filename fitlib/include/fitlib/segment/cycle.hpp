@@ -84,6 +84,15 @@ struct CycleKnobs {
   // same width, and the cushion's mid-depth below each element centre of the central section,
   // recorded like the named points into CycleResult::scanned (off: the named points alone).
   bool scan_design_regions = false;
+  // Optional, per element of build_mesh's mesh (empty: none): a law replacing laws[role] for that
+  // element (nullptr: the role's; StaticProblem::element_laws). Each must carry no history and give
+  // its role law's symmetric_tangent() (UsageError otherwise).
+  std::vector<const PlaneStrainLaw*> element_laws;
+  // Each element's mean over its integration points (stresses and logarithmic strains in the cord
+  // curve's local frame at its centre's path position), recorded like a named point into
+  // CycleResult::element_means (named "e<k>", at its centre): the strain each element reached, which the
+  // elastic level reads its cards at (docs/segment.md "One secant per element").
+  bool record_elements = false;
 };
 
 struct CycleSample {                    // a monitored point at the end of an increment
@@ -144,6 +153,7 @@ struct EquilibriumBounds {
 struct CycleResult {
   std::vector<MonitoredHistory> points;
   std::vector<MonitoredHistory> scanned;  // CycleKnobs::scan_design_regions, element by element
+  std::vector<MonitoredHistory> element_means;  // CycleKnobs::record_elements: one per element, in mesh order
   double cycle_time_s = 0.0;
   // Built-in equilibrium check: the largest |Σ reactions + ∫ b dV| over all increments, relative
   // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).

@@ -126,6 +126,15 @@ struct StaticProblem {
   // PhysicsOptions::inertia: mass density (t/mm³ = 10¹² kg/m³); the inertia acts on the motion relative
   // to the prescribed motion's frame (PrescribedMotion::frame_motion; without one, the reference).
   double density_t_mm3 = 0.0;
+  // Optional, per element of `mesh` (empty: none): a law that replaces laws[role] for that element
+  // (nullptr: the role's). The elastic level reads each element's card at its own strain amplitude
+  // this way (docs/segment.md "One secant per element"). Each must give the same symmetric_tangent()
+  // as its role's law (the solver chooses its factorisation by the role laws).
+  std::vector<const PlaneStrainLaw*> element_laws;
+  const PlaneStrainLaw& law_of(int element) const {
+    if (!element_laws.empty() && element_laws[static_cast<std::size_t>(element)]) return *element_laws[static_cast<std::size_t>(element)];
+    return *laws[static_cast<int>(mesh->roles[static_cast<std::size_t>(element)])];
+  }
 };
 
 struct IntegrationPointStress {
