@@ -326,3 +326,26 @@ TEST(Outputs, SweepWorkCapCountsCostNotCases) {
 }
 
 }  // namespace
+
+// life-fit's outputs against the files its life tests read: each test's scene and the cards that
+// scene names (here its [life] card) — refused before any scene runs, the files unchanged.
+TEST(Outputs, LifeFitRefusesAnOutputOnATestsSceneOrItsCard) {
+  const std::string fatigue = copy_of(source_path("datasets/cards/fatigue-fritzson-1988.json"), "lf_fatigue.json");
+  const std::string scene = temp_file("lf_scene.toml");
+  std::ofstream(scene) << slurp(source_path("datasets/drives/ref-0500-medium.toml")) << "\n[life]\nfidelity = \"beam\"\ncard = \""
+                       << fs::path(fatigue).filename().string() << "\"\n";
+  const std::string tests = temp_file("lf_tests.csv");
+  std::ofstream(tests) << "case,scene,failure_mode,observed_h\nA," << fs::path(scene).filename().string()
+                       << ",separation,20\n";
+  const std::string scene_bytes = slurp(scene), fatigue_bytes = slurp(fatigue);
+  for (const std::string& out : {scene, fatigue}) {
+    const auto r = run_fitcli("life-fit --observed " + tests + " --out " + out);
+    EXPECT_EQ(r.exit_code, 2) << out << "\n" << r.err;
+    EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
+    const auto p = run_fitcli("life-fit --observed " + tests + " --out " + temp_file("lf_ok.json") + " --peaks-out " + out);
+    EXPECT_EQ(p.exit_code, 2) << out << "\n" << p.err;
+  }
+  EXPECT_EQ(slurp(scene), scene_bytes);
+  EXPECT_EQ(slurp(fatigue), fatigue_bytes);
+  EXPECT_FALSE(fs::exists(temp_file("lf_ok.json")));
+}

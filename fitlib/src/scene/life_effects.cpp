@@ -488,6 +488,20 @@ segment::CycleResult read_cards_per_element(const Scene& s, SceneResult& r, scen
   return run;
 }
 
+// [segment] keys that only `fitcli segment`'s static case reads: the life's run has its own load
+// (the load cycle), increments (the cycle's schedule), end faces (sheared) and material points
+// (the cards', or the contract's Hencky point for [segment.materials]), so it names what it left.
+void static_case_keys_warning(const std::vector<std::string>& keys, std::vector<std::string>& warnings) {
+  if (keys.empty()) return;
+  std::string list;
+  for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
+  warnings.push_back("[segment] " + list + (keys.size() == 1 ? " configures" : " configure") +
+                     " only `fitcli segment`'s static case and " + (keys.size() == 1 ? "is" : "are") +
+                     " not applied by the life: its segment runs the load cycle with its own increments, sheared end "
+                     "faces and the material points of the cards (a role without one: the contract's Hencky point "
+                     "with [segment.materials] E and nu; docs/segment.md \"Static load cases\")");
+}
+
 }  // namespace
 
 void segment_stresses(const Scene& s, SceneResult& r) {
@@ -510,6 +524,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.record_elements = r.plan.life->fidelity == core::Fidelity::elastic &&
                                   elastic_reading(s) == LifeSpec::ElasticAmplitude::element;
     if (s.segment) setup.extra_points = s.segment->setup.points;
+    if (s.segment) static_case_keys_warning(s.segment->static_case_keys, r.warnings);
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;

@@ -321,6 +321,8 @@ SegmentSpec parse_segment(const Scene& scene, const toml::table& t, const std::s
   const segment::Mesh mesh = segment::build_mesh(sec, g.setup.mesh);
   if (const toml::node* pts = r.node("points")) parse_segment_points(r, *pts, g, mesh, source);
   g.scan_design_regions = r.boolean("scan").value_or(false);
+  for (const char* k : {"strain", "curvature_1_mm", "radius_mm", "pressure_MPa", "law", "ends", "steps"})
+    if (r.has(k)) g.static_case_keys.emplace_back(k);
   r.finish();
   const double elements = mesh.element_count();
   if (elements * g.setup.solver.stepping.steps > kMaxSegmentWork)

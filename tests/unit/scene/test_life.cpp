@@ -747,3 +747,32 @@ TEST(SceneLife, PerElementReadingDoesNotFoldWherePerRoleReadingFolds) {
   EXPECT_EQ(j["amplitude_iteration"]["per"], "element");
   EXPECT_TRUE(j["cards_read"][1].contains("read_per_element"));
 }
+
+// A life scene's [segment] keys that configure only `fitcli segment`'s static case (here the law and
+// the equal steps) are named in the life's warnings as not applied, and the lives are those of the
+// scene without them (docs/decisions.md "Life: the static case's [segment] keys").
+TEST(SceneLife, StaticCaseSegmentKeysAreNamedAsNotAppliedAndChangeNoLife) {
+  const std::string base = core::read_file(kDrives + "ref-0500-light.toml");
+  auto run = [&](const std::string& segment_keys) {
+    scene::Scene s = scene::parse_scene(base + "\n[segment]\n" + segment_keys, "static-keys.toml");
+    s.outputs["life"] = true;
+    s.materials["bottom"] = FITLIB_SOURCE_DIR "/datasets/cards/material-1-true.json";
+    s.materials["cushion"] = FITLIB_SOURCE_DIR "/datasets/cards/material-2-true.json";
+    s.life = scene::LifeSpec{};
+    s.life->fidelity = core::Fidelity::elastic;
+    s.life->cycles = 1;
+    return scene::run_scene(s);
+  };
+  auto names_keys = [](const scene::SceneResult& r) {
+    return std::count_if(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+      return w.find("[segment] law, steps configure only `fitcli segment`'s static case") != std::string::npos;
+    });
+  };
+  const scene::SceneResult plain = run("threads = 2\n");
+  const scene::SceneResult given = run("threads = 2\nlaw = \"neo-hookean\"\nsteps = 8\n");
+  EXPECT_EQ(names_keys(plain), 0);
+  EXPECT_EQ(names_keys(given), 1);
+  ASSERT_TRUE(plain.life && given.life);
+  for (std::size_t k = 0; k < plain.life->report.modes.size(); ++k)
+    EXPECT_EQ(plain.life->report.modes[k].life_cycles, given.life->report.modes[k].life_cycles) << "mode " << k;
+}

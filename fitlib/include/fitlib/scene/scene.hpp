@@ -83,6 +83,10 @@ struct SegmentSpec {
   // beside the named ones (segment::CycleKnobs::scan_design_regions); false (the default until the
   // fatigue card's constants are read where they were fitted, docs/decisions.md): the named points.
   bool scan_design_regions = false;
+  // The keys given that configure only `fitcli segment`'s static case (load, law, end condition,
+  // equal steps): a life run does not apply them and says so (docs/decisions.md "Life: the static
+  // case's [segment] keys").
+  std::vector<std::string> static_case_keys;
 };
 
 // Life request ([life], with [outputs] life = true; docs/fatigue.md "Life of a scene").
