@@ -11,6 +11,7 @@
 #include "cycle_dissipation.hpp"
 #include "cycle_observers.hpp"
 #include "cycle_parts.hpp"
+#include "cycle_repeat.hpp"
 #include "element.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
@@ -247,6 +248,13 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
                       const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
   check_cycle_inputs(drive, knobs);
   const belt::LoadHistory& h = *drive.history;
+  if (detail::repeats_first_cycle(laws, knobs, solver)) {  // the later cycles repeat the first
+    CycleKnobs one = knobs;
+    one.cycles = 1;
+    CycleResult out = run_cycle(section, mesh_knobs, solver, laws, drive, one, extra_points);
+    detail::repeat_first_cycle(out, knobs.cycles, h.length_mm());
+    return out;
+  }
   const Mesh straight = build_mesh(section, mesh_knobs);
   const double K_m = knobs.manufactured_radius_mm > 0.0 ? 1.0 / knobs.manufactured_radius_mm : 0.0;
   const Mesh m = detail::wrapped(straight, K_m);
