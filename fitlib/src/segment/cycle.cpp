@@ -11,6 +11,7 @@
 #include "cycle_dissipation.hpp"
 #include "cycle_observers.hpp"
 #include "cycle_parts.hpp"
+#include "cycle_repeat.hpp"
 #include "element.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
@@ -240,12 +241,13 @@ StaticSolution solve_over_cycle(const StaticProblem& p, const SolverKnobs& solve
 
 }  // namespace
 
-// Composed of the cycle's parts (cycle_parts.hpp: reference, cord curve, loads) and observers
-// (cycle_observers.hpp), solved by solve_static over the load schedule.
-CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
-                      const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
-                      const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
-  check_cycle_inputs(drive, knobs);
+namespace {
+
+// Every increment of the run solved: composed of the cycle's parts (cycle_parts.hpp: reference,
+// cord curve, loads) and observers (cycle_observers.hpp), solved by solve_static over the load schedule.
+CycleResult solve_cycles(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
+                         const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                         const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
   const belt::LoadHistory& h = *drive.history;
   const Mesh straight = build_mesh(section, mesh_knobs);
   const double K_m = knobs.manufactured_radius_mm > 0.0 ? 1.0 / knobs.manufactured_radius_mm : 0.0;
@@ -307,6 +309,22 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
   out.final_state = solve_over_cycle(p, solver, load_schedule(knobs, h, T, straight.half_length_mm), progress, T, h);
   const bool history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;
   summarise(out.final_state, m, knobs, history, static_cast<bool>(warping) || static_cast<bool>(shear), out);
+  return out;
+}
+
+}  // namespace
+
+// A run without history solves the bend and one cycle, copied to the later ones (cycle_repeat.hpp).
+CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
+                      const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                      const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
+  check_cycle_inputs(drive, knobs);
+  if (!detail::repeats_first_cycle(laws, knobs, solver))
+    return solve_cycles(section, mesh_knobs, solver, laws, drive, knobs, extra_points);
+  CycleKnobs one = knobs;
+  one.cycles = 1;
+  CycleResult out = solve_cycles(section, mesh_knobs, solver, laws, drive, one, extra_points);
+  detail::repeat_first_cycle(out, knobs.cycles, drive.history->length_mm());
   return out;
 }
 

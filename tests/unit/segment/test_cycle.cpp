@@ -89,6 +89,7 @@ const CycleSample& at(const MonitoredHistory& h, int c, double s, double L = 400
 
 TEST(SegmentCycle, ElasticBeltFollowsTheCycleInEquilibriumAndRepeatsItself) {
   Fixture f;
+  f.knobs.repeat_history_free_cycle = false;  // both cycles solved: the repetition is the physics'
   std::vector<double> progress;  // the share of the run done, after each converged increment
   f.knobs.progress = [&](double done) { progress.push_back(done); };
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
@@ -332,6 +333,35 @@ TEST(SegmentCycle, SymmetricSolverAgreesWithLuAndAnalysesThePatternOnce) {
     size = std::max(size, std::abs(lu.points[0].samples[k].s22_MPa));
   }
   EXPECT_LT(diff, 1e-7 * size);
+}
+
+// A history-free run solves the bend and one cycle and copies it to the later cycles
+// (CycleKnobs::repeat_history_free_cycle): against every cycle solved, the same samples' times and
+// path positions, stresses to the Newton tolerance, the same load totals, and half the increments.
+TEST(SegmentCycle, AHistoryFreeRunsCopiedCyclesEqualTheSolvedOnes) {
+  Fixture f;
+  f.knobs.cycles = 3;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult copied = f.run(*bottom, *cushion);
+  f.knobs.repeat_history_free_cycle = false;
+  const CycleResult solved = f.run(*bottom, *cushion);
+  EXPECT_LT(copied.increments, 0.5 * solved.increments);
+  ASSERT_EQ(copied.loads.size(), solved.loads.size());
+  for (std::size_t i = 0; i < solved.loads.size(); ++i) {
+    EXPECT_NEAR(copied.loads[i].s_mm, solved.loads[i].s_mm, 1e-9) << i;
+    EXPECT_NEAR(copied.loads[i].belt_force_N_mm, solved.loads[i].belt_force_N_mm, 1e-9) << i;
+  }
+  ASSERT_EQ(copied.points.size(), solved.points.size());
+  for (std::size_t k = 0; k < solved.points.size(); ++k) {
+    const auto &a = copied.points[k].samples, &b = solved.points[k].samples;
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      EXPECT_NEAR(a[i].t_s, b[i].t_s, 1e-12) << i;
+      EXPECT_NEAR(a[i].s22_MPa, b[i].s22_MPa, 1e-7 * (1.0 + std::abs(b[i].s22_MPa))) << i;
+      EXPECT_NEAR(a[i].s11_MPa, b[i].s11_MPa, 1e-7 * (1.0 + std::abs(b[i].s11_MPa))) << i;
+    }
+  }
+  EXPECT_NEAR(copied.equilibrium_error, solved.equilibrium_error, 1e-9);
 }
 
 TEST(SegmentCycle, ZeroSpeedIsRefusedWithAReason) {

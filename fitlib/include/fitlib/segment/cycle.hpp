@@ -93,6 +93,12 @@ struct CycleKnobs {
   // CycleResult::element_means (named "e<k>", at its centre): the strain each element reached, which the
   // elastic level reads its cards at (docs/segment.md "One secant per element").
   bool record_elements = false;
+  // A run whose points and loads carry no history (no state in any law, no inertia, no tangential
+  // flank) starts every load cycle from the same state, so cycle 2 onwards repeat cycle 1 to the
+  // Newton tolerance: solve the bend and one cycle, and copy its samples and load totals to the
+  // later cycles, shifted by the period (docs/segment.md "Cost (reference)"; off: solve every cycle).
+  // The run's increment and iteration counts are then those solved.
+  bool repeat_history_free_cycle = true;
 };
 
 struct CycleSample {                    // a monitored point at the end of an increment
