@@ -233,7 +233,8 @@ struct CardRun {
 CardRun card_run(const std::string& load, int cycles, core::Fidelity fidelity, double c_d = 0.0,
                  model::PointOptions::DamageUpdate damage = model::PointOptions::DamageUpdate::implicit) {
   const std::string root = FITLIB_SOURCE_DIR;
-  scene::Scene s = scene::load_scene(root + "/datasets/drives/ref-0500-" + load + ".toml");
+  const bool file = load.rfind("acc-", 0) == 0;  // a bundled accelerated drive by its file's name
+  scene::Scene s = scene::load_scene(root + "/datasets/drives/" + (file ? load : "ref-0500-" + load) + ".toml");
   s.materials["bottom"] = root + "/datasets/cards/material-1-true.json";
   s.materials["cushion"] = root + "/datasets/cards/material-2-true.json";
   CardRun run{scene::make_drive(s, scene::resolve_stiffness(s)), {}, {}};
@@ -458,6 +459,24 @@ TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesN
     EXPECT_NE(what.find("failed in cycle 1 after path position 73"), std::string::npos) << what;
     EXPECT_NE(what.find("largest residual at node"), std::string::npos) << what;
     EXPECT_EQ(what.find("inverted"), std::string::npos) << what;
+  }
+}
+
+// Issue 33 item 2, step 1 (docs/segment.md "The accelerated regime's fold"): the radial foundation
+// and the stick together, at ten times their derived values (k 0.452, k_t 2.86 N/mm⁴; derived 0.0452,
+// 0.286 from thesis card 1), do not carry the base accelerated drive's complete level through its
+// fold (damage law at every amplitude: the cards as they are): it still stops in cycle 1 near the
+// driver's exit, at 285.8 mm against the 277.6 mm of Report I's dead loads alone (measured 2026-12-02).
+TEST(SegmentLife, BothFlankKnobsAtTenTimesTheirDerivedValuesDoNotCarryTheAcceleratedBaseDrive) {
+  CardRun run = card_run("acc-0500-base", 1, core::Fidelity::complete);
+  run.setup.cycle.flank_stiffness_N_mm4 = 0.452, run.setup.cycle.flank_stick_N_mm4 = 2.86;
+  try {
+    card_life(run);
+    ADD_FAILURE() << "the flank knobs now carry acc-0500-base: update docs/segment.md and this test";
+  } catch (const core::NumericalError& e) {
+    const std::string what = e.what();
+    std::printf("acc-0500-base, complete, k 0.452, k_t 2.86: %.200s\n", what.c_str());
+    EXPECT_NE(what.find("failed in cycle 1 after path position 28"), std::string::npos) << what;  // 285.8 mm
   }
 }
 
