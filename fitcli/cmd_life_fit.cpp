@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
-#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -18,8 +17,6 @@
 #include "fitlib/core/io.hpp"
 #include "fitlib/fatigue/life_fit.hpp"
 #include "fitlib/scene/life_tests.hpp"
-#include "fitlib/scene/output_paths.hpp"
-#include "fitlib/scene/scene.hpp"
 #include "output.hpp"
 #include "plot.hpp"
 
@@ -125,31 +122,13 @@ std::string life_fit_script(const std::vector<fitlib::fatigue::ObservedLife>& ca
   return s.str();
 }
 
-// The scenes a life-test list names, and their cards, are inputs too: `--out cards/bottom.json`
-// would replace a card the tests' scenes read (docs/reliability.md §4b). Before any scene runs.
-void refuse_outputs_on_test_scenes(const std::string& text, const std::string& source,
-                                   const std::vector<fitlib::scene::NamedPath>& outputs) {
-  if (!fitlib::scene::names_scenes(text, source)) return;
-  std::set<std::string> seen;
-  for (const fitlib::scene::LifeTest& t : fitlib::scene::parse_life_tests(text, source))
-    if (seen.insert(t.scene_path).second) {
-      fitlib::scene::Scene scene;
-      try {
-        scene = fitlib::scene::load_scene(t.scene_path);
-      } catch (const fitlib::core::InputError&) {
-        continue;  // a scene its row's keys complete; the run names what is wrong
-      }
-      fitlib::scene::refuse_outputs_on_inputs(scene, outputs);
-    }
-}
-
 void run(const LifeFitArgs& a) {
   claim_output("--out", a.out, a.json);
   if (!a.peaks_out.empty()) claim_output("--peaks-out", a.peaks_out, a.json);
   if (!a.plot.empty()) claim_png("--plot", a.plot);
   const std::string text = fitlib::core::read_file(input_path(a.observed));
   const std::string source = a.observed == "-" ? "stdin" : a.observed;  // stdin: scenes from the current folder
-  refuse_outputs_on_test_scenes(text, source, {{"--out", a.out}, {"--peaks-out", a.peaks_out}, {"--plot", a.plot}});
+  fitlib::scene::refuse_outputs_on_test_scenes(text, source, {{"--out", a.out}, {"--peaks-out", a.peaks_out}, {"--plot", a.plot}});
   // Progress: every test with --verbose; otherwise once the runs have taken 2 s (segment levels).
   const auto begin = std::chrono::steady_clock::now();
   fitlib::scene::LifeTestsFit tests = fitlib::scene::fit_life_tests(

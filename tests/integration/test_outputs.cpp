@@ -325,8 +325,6 @@ TEST(Outputs, SweepWorkCapCountsCostNotCases) {
   }
 }
 
-}  // namespace
-
 // life-fit's outputs against the files its life tests read: each test's scene and the cards that
 // scene names (here its [life] card) — refused before any scene runs, the files unchanged.
 TEST(Outputs, LifeFitRefusesAnOutputOnATestsSceneOrItsCard) {
@@ -349,3 +347,5 @@ TEST(Outputs, LifeFitRefusesAnOutputOnATestsSceneOrItsCard) {
   EXPECT_EQ(slurp(fatigue), fatigue_bytes);
   EXPECT_FALSE(fs::exists(temp_file("lf_ok.json")));
 }
+
+}  // namespace

@@ -523,8 +523,10 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.cycle.scan_design_regions = s.segment && s.segment->scan_design_regions;
     setup.cycle.record_elements = r.plan.life->fidelity == core::Fidelity::elastic &&
                                   elastic_reading(s) == LifeSpec::ElasticAmplitude::element;
-    if (s.segment) setup.extra_points = s.segment->setup.points;
-    if (s.segment) static_case_keys_warning(s.segment->static_case_keys, r.warnings);
+    if (s.segment) {
+      setup.extra_points = s.segment->setup.points;
+      static_case_keys_warning(s.segment->static_case_keys, r.warnings);
+    }
     setup.temperature_C = s.temperature_C;
     for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
     setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;

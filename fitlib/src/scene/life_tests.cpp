@@ -114,6 +114,16 @@ Scene test_scene(const LifeTest& t, const std::string& source) {
   return s;
 }
 
+// What an error of test `t` is prefixed with.
+std::string test_place(const LifeTest& t) { return "life test '" + t.name + "' (scene " + t.scene_path + "): "; }
+
+// Within a handler of `e`, an error of test `t`'s scene or run: rethrown at the CSV's line with the
+// test and its scene in front, or as it is when it already names the CSV.
+[[noreturn]] void rethrow_at_test_line(const core::InputError& e, const LifeTest& t, const std::string& source) {
+  if (e.file() == source) throw;
+  throw core::InputError(test_place(t) + e.what(), source, t.line, 0, e.key());
+}
+
 }  // namespace
 
 bool names_scenes(const std::string& csv_text, const std::string& source) {
@@ -140,6 +150,18 @@ std::vector<LifeTest> parse_life_tests(const std::string& text, const std::strin
   return out;
 }
 
+void refuse_outputs_on_test_scenes(const std::string& csv_text, const std::string& source,
+                                   const std::vector<NamedPath>& outputs) {
+  if (!names_scenes(csv_text, source)) return;
+  for (const LifeTest& t : parse_life_tests(csv_text, source)) {
+    try {
+      refuse_outputs_on_inputs(test_scene(t, source), outputs);
+    } catch (const core::InputError& e) {
+      rethrow_at_test_line(e, t, source);
+    }
+  }
+}
+
 std::vector<fatigue::ObservedLife> observe_life_tests(const std::vector<LifeTest>& tests, const std::string& source,
                                                      const fatigue::FatigueCard& card,
                                                      const LifeTestProgress& progress) {
@@ -147,7 +169,6 @@ std::vector<fatigue::ObservedLife> observe_life_tests(const std::vector<LifeTest
   for (std::size_t k = 0; k < tests.size(); ++k) {
     const LifeTest& t = tests[k];
     if (progress) progress(t, k + 1, tests.size());
-    const std::string where = "life test '" + t.name + "' (scene " + t.scene_path + "): ";
     try {
       const Scene s = test_scene(t, source);
       const SceneResult r = run_scene(s);
@@ -166,10 +187,9 @@ std::vector<fatigue::ObservedLife> observe_life_tests(const std::vector<LifeTest
       for (std::size_t k = first; k < out.size(); ++k)
         out[k].line = t.line, out[k].stress_fidelity = r.plan.life->fidelity, out[k].runout = t.runout;
     } catch (const core::InputError& e) {
-      if (e.file() == source) throw;  // already names the CSV's line
-      throw core::InputError(where + e.what(), source, t.line, 0, e.key());
+      rethrow_at_test_line(e, t, source);
     } catch (const core::NumericalError& e) {
-      throw core::NumericalError(source + ":" + std::to_string(t.line) + ": " + where + e.what());
+      throw core::NumericalError(source + ":" + std::to_string(t.line) + ": " + test_place(t) + e.what());
     }
   }
   fatigue::check_one_stress_fidelity(out, source);

@@ -13,6 +13,7 @@
 
 #include "fitlib/fatigue/card.hpp"
 #include "fitlib/fatigue/life_fit.hpp"
+#include "fitlib/scene/output_paths.hpp"
 #include "fitlib/scene/sweep.hpp"
 
 namespace fitlib::scene {
@@ -33,6 +34,12 @@ bool names_scenes(const std::string& csv_text, const std::string& source);
 
 // InputError naming source, line, column and key for anything malformed.
 std::vector<LifeTest> parse_life_tests(const std::string& csv_text, const std::string& source);
+
+// The files a life-test list's scenes read (each scene with its row's keys set, and the cards it
+// names) are inputs too: UsageError (refuse_outputs_on_inputs) for an output among them, before any
+// scene runs (`life-fit --out` over a tests' card had replaced it). Nothing for stored peaks.
+void refuse_outputs_on_test_scenes(const std::string& csv_text, const std::string& source,
+                                   const std::vector<NamedPath>& outputs);
 
 // Called before each test runs: (test, 1-based index, count).
 using LifeTestProgress = std::function<void(const LifeTest&, std::size_t, std::size_t)>;
