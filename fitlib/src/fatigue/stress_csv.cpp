@@ -45,7 +45,11 @@ std::vector<PointHistory> parse_stress_histories(const std::string& text, const 
     const double x = number(2), y = number(3);
     const StressSample s{number(4), number(5), number(6), number(7), strain(8), strain(9), strain(10)};
     auto [it, added] = index.emplace(f[0], out.size());
-    if (added) out.push_back({f[0], role, x, y, {}});
+    if (added) {  // a named point: the file does not say which FE element it came from
+      PointHistory q;
+      q.name = f[0], q.role = role, q.x_mm = x, q.y_mm = y;
+      out.push_back(std::move(q));
+    }
     PointHistory& p = out[it->second];
     if (p.role != role || p.x_mm != x || p.y_mm != y)
       throw core::InputError("point '" + f[0] + "' changes its role or position", file, l.number,

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "fitlib/core/error.hpp"
@@ -53,6 +54,9 @@ TEST(BeamSection, StretchAndBendOfTheLayersInClosedForm) {
   const double e_cushion = 1.02 * (1.0 - 0.25 / 60.0) / (1.0 - 0.004 * 0.25) - 1.0;
   EXPECT_EQ(h[0].role, Role::bottom);
   EXPECT_DOUBLE_EQ(h[0].y_mm, -4.1);
+  // Named points, not scanned FE points (life.json names no element for them).
+  EXPECT_EQ(h[0].element, -1);
+  EXPECT_EQ(h[1].element, -1);
   EXPECT_NEAR(h[0].samples[0].s22_MPa, 1.7 * Eg * e_gap, 1e-12);
   EXPECT_NEAR(h[1].samples[0].s22_MPa, Ec * e_cushion, 1e-12);
   EXPECT_EQ(h[0].samples[0].s11_MPa, 0.0);
@@ -81,6 +85,68 @@ TEST(BeamSection, PressureFrictionAndInertiaAsBodyForces) {
   const double e = (1.0 - K * 0.25) - 1.0;
   EXPECT_NEAR(h[1].samples[0].s22_MPa,
               30.0 / (1.0 - 0.45 * 0.45) * e + 0.45 / 0.55 * (-Br * height), 1e-12);
+}
+
+// A cycle of samples every `step` mm along a 1000 mm path, F and K from functions of s.
+template <class Force, class Curvature>
+belt::LoadCycle path_cycle(double step, Force F, Curvature K) {
+  belt::LoadCycle c;
+  c.cycle_length_mm = 1000.0;
+  for (double s = 0.0; s < 1000.0 - 1e-9; s += step) {
+    belt::LoadSample x;
+    x.s_mm = s, x.F_N = F(s), x.K_1_mm = K(s);
+    c.samples.push_back(x);
+  }
+  return c;
+}
+
+TEST(BeamSection, ABendThatChangesAlongThePathShearsTheCushionAsJourawskisBeam) {
+  // K rises linearly from 0 to 1/40 mm⁻¹ over s = 300…400 (a sheave's entrance), F = 800 N, no
+  // pressure. In the ramp, farther than half a pitch from its ends, the pitch-mean of ∂ε22/∂s is
+  // −(1 + ε) K′ d exactly (K_m = 0), so σ12 = ∫ from the point to the free bottom of
+  // E/(1 − ν²) (−(1 + ε) K′ d) w dd, w = 1 in the land and the cog fill in the cogs.
+  const double K1 = 1.0 / 40.0, slope = K1 / 100.0, eps = 800.0 / 40000.0;
+  auto K = [&](double s) { return s < 300.0 ? 0.0 : s > 400.0 ? K1 : slope * (s - 300.0); };
+  const auto h = beam_stress_histories(path_cycle(0.5, [](double) { return 800.0; }, K), drive(), section());
+  const double nu2 = 1.0 - 0.45 * 0.45, c = 0.5, d = 0.25, land = 4.1, cogs = 2.5, fill = 0.51;
+  auto moment = [](double a, double b) { return 0.5 * (b * b - a * a); };  // ∫ d dd
+  const double tau = -(1.0 + eps) * slope *
+                     (30.0 / nu2 * moment(d, c) + 12.0 / nu2 * (moment(c, land) + fill * moment(land, land + cogs)));
+  const std::size_t in_ramp = 700;  // s = 350 mm
+  ASSERT_DOUBLE_EQ(h[1].samples[in_ramp].t_s, 350.0 / 10000.0);
+  EXPECT_NEAR(h[1].samples[in_ramp].s12_MPa, tau, 1e-12 * std::abs(tau));
+  // The gap bottom is the free surface: no shear; a straight span and the uniform wrap: none.
+  EXPECT_EQ(h[0].samples[in_ramp].s12_MPa, 0.0);
+  EXPECT_EQ(h[1].samples[400].s12_MPa, 0.0);  // s = 200
+  EXPECT_NEAR(h[1].samples[1000].s12_MPa, 0.0, 1e-15);  // s = 500
+  // pitch 0: the point beam of §5a, which carries no bending shear.
+  BeamSection point = section();
+  point.pitch_mm = 0.0;
+  const auto p = beam_stress_histories(path_cycle(0.5, [](double) { return 800.0; }, K), drive(), point);
+  EXPECT_EQ(p[1].samples[in_ramp].s12_MPa, 0.0);
+}
+
+TEST(BeamSection, BodyForcesAreTheirMeanOverOneCogPitch) {
+  // A pressure spike narrower than the pitch: triangle of height p0 and half-width a = 2 mm at
+  // s = 0 (it wraps round the path's end), μ_used = 0.5 at γ = 90° (B_l = −μ q cos β_s, β_s = 0).
+  // At the spike the cushion carries the pitch's mean, p0 a/pitch, not the peak; a pitch away none.
+  const double p0 = 3.0, a = 2.0, pitch = 9.0, B = 11.0, beta = 0.3, height = 4.1 - 0.25 + 0.51 * 2.5;
+  belt::LoadCycle c = path_cycle(0.5, [](double) { return 0.0; }, [](double) { return 0.0; });
+  for (belt::LoadSample& x : c.samples) {
+    const double r = std::min(x.s_mm, 1000.0 - x.s_mm);
+    x.p_MPa = std::max(0.0, p0 * (1.0 - r / a));
+    x.gamma_rad = 1.5707963267948966, x.friction_used = 0.5;
+  }
+  const auto h = beam_stress_histories(c, drive(), section());
+  const double Bl_peak = -0.5 * p0 * (2.0 / B) / std::cos(beta);
+  EXPECT_NEAR(h[1].samples[0].s12_MPa, Bl_peak * a / pitch * height, 1e-12);
+  EXPECT_NEAR(h[1].samples[1999].s12_MPa, h[1].samples[1].s12_MPa, 1e-12);  // s = 999.5 and 0.5
+  EXPECT_EQ(h[1].samples[20].s12_MPa, 0.0);  // s = 10 mm: the spike is out of its pitch
+  BeamSection point = section();
+  point.pitch_mm = 0.0;
+  EXPECT_NEAR(beam_stress_histories(c, drive(), point)[1].samples[0].s12_MPa, Bl_peak * height, 1e-12);
+  point.pitch_mm = -1.0;
+  EXPECT_THROW(beam_stress_histories(c, drive(), point), core::InputError);
 }
 
 TEST(BeamSection, DefaultsFollowTheDrivesBendingStiffnessAndLength) {
@@ -116,7 +182,8 @@ TEST(BeamSection, RefusesAStandingBeltAndBadSections) {
 TEST(BeamSection, LifeOfASyntheticCycleMatchesTheHandSum) {
   // Span (straight, tension) → pulley (bent) → span: at the gap bottom σ22 = E'ε22 goes
   // + → − → +; σ_e is σ22 in tension and |τ| at ±25° in compression. The cushion sees no
-  // pressure, so separation is unbounded.
+  // pressure and, in the point beam (pitch 0), no shear from the bend's steps, so separation is
+  // unbounded.
   belt::LoadCycle c;
   const double F = 400.0;
   for (int i = 0; i < 30; ++i) {
@@ -128,6 +195,7 @@ TEST(BeamSection, LifeOfASyntheticCycleMatchesTheHandSum) {
   }
   c.cycle_length_mm = 300.0;
   BeamSection s = section();
+  s.pitch_mm = 0.0;
   const FatigueCard card = default_card();
   const LifeReport r = beam_life(c, drive(), s, card, card.reference_temperature_C);
   const double Eg = 12.0 / (1.0 - 0.45 * 0.45);

@@ -62,15 +62,16 @@ std::vector<std::string> accelerated_drives() {
 // The held-out drives (not among the calibration's): each level's governing life against the
 // complete level's, as the calibration recorded it (scripts/calibrate-levels.sh runs the complete
 // level; bench_life calibration recomputes all three). Goals of issue 33: beam within x3, elastic
-// within x1.5, the same governing mode. The beam level misses x3 on acc-0500-torque-15 (measured
-// 2026-12-01: 0.14x, docs/fatigue.md §4): its bound here is what it reaches, x10.
+// within x1.5, the same governing mode. The beam level reached only 0.14x on acc-0500-torque-15 until
+// its body forces were read over one cog pitch with the bend's shear (2026-12-02: 0.38x; docs/decisions.md
+// "Beam level: the body forces over one cog pitch, and the bend's shear").
 TEST(LevelCalibration, HeldOutDrivesLiveWithinEachLevelsFactorOfTheCompleteLevelInTheSameMode) {
   const nlohmann::json& held = calibration().at("held_out_drives");
   ASSERT_EQ(held.size(), 2u);
   for (const auto& [drive, complete] : held.items()) {
     ASSERT_TRUE(complete.is_object()) << drive << ": the complete level did not complete in the calibration";
     const double life = std::min(complete.at("N1").get<double>(), complete.at("N2").get<double>());
-    for (const auto& [level, factor] : {std::pair<const char*, double>{"beam", 10.0}, {"elastic", 1.5}}) {
+    for (const auto& [level, factor] : {std::pair<const char*, double>{"beam", 3.0}, {"elastic", 1.5}}) {
       const scene::SceneResult r = scene::run_scene(drive_at(drive, level));
       const double ratio = r.life->report.life_cycles / life;
       EXPECT_LT(ratio, factor) << drive << " " << level;
@@ -96,7 +97,7 @@ TEST(LevelCalibration, LightDriveCracksRadiallyAndHeavyDriveSeparatesAtEveryLeve
 
 // The README's tour (fitcli life --scene datasets/drives/ref-0500-heavy.toml: the beam level, no
 // cards) reads the beam level's constants: no off-scale warning, and the life it would have had with
-// Report I's complete-level constants is 1.4e4 x shorter than with the calibrated ones.
+// Report I's complete-level constants is 2.6e3 x shorter than with the calibrated ones.
 TEST(LevelCalibration, TheToursBeamRunReadsTheBeamLevelsConstants) {
   const scene::SceneResult r = scene::run_scene(drive_at("ref-0500-heavy", "beam"));
   EXPECT_FALSE(off_scale(r));

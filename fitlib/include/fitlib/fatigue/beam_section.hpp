@@ -7,7 +7,10 @@
 //                                                        free bottom, B_r, B_l of (6.6)–(6.7))
 //   σ22 = k_t E/(1 − ν²) ε22 + ν/(1 − ν) σ11           (plane strain, σ33 from ε33 = 0)
 // with h the loaded height below the point: to the free land surface for the gap centre line
-// (σ11 = σ12 = 0 at the gap bottom), plus the pitch-averaged cogs for cushion points.
+// (σ11 = σ12 = 0 at the gap bottom), plus the pitch-averaged cogs for cushion points. As the
+// geometry, the body forces B_r, B_l are the mean over one cog pitch centred on the point (a
+// cushion point carries the flank forces its pitch gathers, not the value at one path position;
+// docs/decisions.md "Beam level: the body forces over one cog pitch").
 #include <string>
 #include <vector>
 
@@ -22,6 +25,7 @@ struct BeamSection {
   double land_depth_mm = 4.1;  // cord line to the gap bottom
   double cog_depth_mm = 2.5;
   double cog_fill = 0.51;      // share of the pitch the cogs fill (§5a: pitch 9, gap 3.5–5.3 mm)
+  double pitch_mm = 9.0;       // cog pitch: the path length the body forces are averaged over (0: none)
   // Layer moduli at the drive's temperature and load frequency (MPa) and Poisson's ratio.
   double bottom_modulus_MPa = 10.0;
   double cushion_modulus_MPa = 10.0;
@@ -40,8 +44,8 @@ struct BeamSection {
 BeamSection default_beam_section(const belt::DriveCase& drive, double temperature_C);
 
 // Stress histories of the monitored points over one load cycle (time = s/V).
-// InputError for a non-positive belt speed, depths outside their layer, moduli ≤ 0 or
-// ν outside (−1, 0.5).
+// InputError for a non-positive belt speed, depths outside their layer, moduli ≤ 0,
+// ν outside (−1, 0.5) or a negative pitch.
 std::vector<PointHistory> beam_stress_histories(const belt::LoadCycle& cycle,
                                                 const belt::DriveCase& drive,
                                                 const BeamSection& section);
