@@ -145,8 +145,9 @@ std::optional<std::vector<RoleSampler>> due_samplers(const Scene& s, core::Fidel
   return samplers;
 }
 
-// What a process that shares the writer's draws must join: its executor, and whether (how many)
-// draws the writer's card_uncertainty runs. The fidelity is the plan's (run_life asks for the life).
+// Whether the writer's card_uncertainty runs draws, from the scene alone, so that every process
+// sharing them decides alike: their samplers, or nullopt. The fidelity is the plan's with the life
+// asked for, as run_life asks for it.
 std::optional<std::vector<RoleSampler>> due_samplers(const Scene& s) {
   Scene life = s;
   life.outputs["life"] = true;

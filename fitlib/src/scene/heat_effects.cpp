@@ -80,8 +80,9 @@ double stress_controlled_shear(const Scene& s, const LayerCards& cards, const st
 // ε22(d) of the beam level, (1 + F/c)(1 − K d)/(1 − K_m d) − 1, and its equivalent amplitude over
 // the cycle: √2 × its rms about the mean (periodic_amplitude), as the friction shear's. The bending
 // strain is a pulse too (compressed over each wrap arc, near the mould's over the spans), and the
-// sinusoid of half its range dissipates 0.6× what it does (docs/decisions.md "Heat: the bottom
-// rubber's stretch by its rms amplitude, at the plane-strain modulus").
+// sinusoid of half its range dissipates 0.60–0.74× what it does at 1–6 mm on the medium drive
+// (docs/decisions.md "Heat: the bottom rubber's stretch by its rms amplitude, at the plane-strain
+// modulus").
 double stretch_amplitude(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double K_m, double d_mm) {
   std::vector<double> t, e;
   t.reserve(cycle.samples.size()), e.reserve(cycle.samples.size());
