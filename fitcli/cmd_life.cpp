@@ -1,8 +1,8 @@
 // fitcli life: a scene's fatigue life — life per mode in cycles and hours, governing mode,
 // design points, the effects that ran and the cost of each (the table always shows wall times;
 // life.json and summary.json in DIR only with --record-timing, so that files stay byte-identical).
-// Under mpirun the [life] uncertainty = "cards" draws run across the ranks (docs/sweep.md "MPI"),
-// and rank 0 alone writes.
+// Under mpirun the [life] uncertainty = "cards" draws run across the ranks (docs/sweep.md "MPI"):
+// rank 0 alone runs the deterministic life and writes, the others only their share of the draws.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -26,13 +26,15 @@ namespace fitcli {
 namespace {
 
 // The segment run writes the fields into DIR, so it must exist before the run; a folder made here
-// is removed again when the run fails (e.g. a --field-at position beyond the load cycle).
-fitlib::scene::SceneResult run_with_field_folder(const fitlib::scene::Scene& scene, const std::string& out_dir) {
-  if (scene.life_field_at.empty()) return fitlib::scene::run_life(scene);
+// is removed again when the run fails (e.g. a --field-at position beyond the load cycle). A process
+// that does not write (an MPI rank but 0) runs only its share of the card draws: nullopt.
+std::optional<fitlib::scene::SceneResult> run_with_field_folder(const fitlib::scene::Scene& scene, bool writer,
+                                                                const std::string& out_dir) {
+  if (scene.life_field_at.empty()) return fitlib::scene::run_life_sharing_draws(scene, writer);
   const bool existed = std::filesystem::exists(out_dir);
   fitlib::core::prepare_output_dir(out_dir);
   try {
-    return fitlib::scene::run_life(scene);
+    return fitlib::scene::run_life_sharing_draws(scene, writer);
   } catch (...) {
     std::error_code ec;
     if (!existed) std::filesystem::remove_all(out_dir, ec);
@@ -97,8 +99,9 @@ void register_life(CLI::App& app) {
     }
     refuse_out_dir_collisions(scene, *out_dir, {{"--plot", *plot}});  // the field files too
     if (!plot->empty()) claim_png("--plot", *plot, *out_dir);  // e.g. --plot DIR/life.png
-    const auto result = run_with_field_folder(scene, *out_dir);
+    const auto run = run_with_field_folder(scene, writer, *out_dir);
     if (!writer) return;
+    const fitlib::scene::SceneResult& result = *run;
     const auto files = fitlib::scene::write_outputs(scene, result, *out_dir, *record_timing);
     if (!plot->empty() && result.cycle)
       draw_figure(*plot, [&] {

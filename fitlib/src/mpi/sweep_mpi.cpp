@@ -5,8 +5,10 @@
 
 #include <mpi.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
 
 namespace fitlib::mpi {
 
@@ -25,6 +27,18 @@ Session::Session() {
 Session::~Session() { MPI_Finalize(); }
 
 namespace {
+
+// Waits for `request` without spinning: a rank that finished its share early (under the life's card
+// draws every rank but 0, which also runs the deterministic life) sleeps in 1 ms steps instead of
+// polling at full speed in a blocking collective, so the time it waits costs no CPU
+// (docs/decisions.md "Card draws under MPI: rank 0 alone runs the deterministic life").
+void wait_idle(MPI_Request& request) {
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
 
 std::size_t broadcast(std::size_t writer_value) {
   unsigned long long v = writer_value;
@@ -59,8 +73,10 @@ std::vector<std::string> gather_texts(int rank, int size, int threads, std::size
   int length = static_cast<int>(mine.size());
   std::vector<int> lengths(size), offsets(size);
   const bool receives = to_all || rank == 0;
-  if (to_all) MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  else MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Request request;  // the lengths arrive when the slowest rank is done: waited for idle
+  if (to_all) MPI_Iallgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+  else MPI_Igather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait_idle(request);
   std::string all;
   if (receives) {
     for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + lengths[r - 1];

@@ -7,11 +7,14 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "effects.hpp"
 #include "fitlib/card/covariance.hpp"
 #include "fitlib/core/error.hpp"
+#include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/sweep.hpp"
 #include "fitlib/scene/sweep_run.hpp"
 
@@ -111,14 +114,10 @@ std::map<fatigue::Mode, double> draw_lives(const std::string& text) {
   return lives;
 }
 
-}  // namespace
-
-void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
-  if (!s.life || !s.life->uncertainty_cards || life.distribution.empty()) return;
-  const std::vector<RoleSampler> samplers = role_samplers(s, r.warnings);
-  check_draws_cost(s, life.plan.fidelity);
-  const auto n = static_cast<std::size_t>(s.life->samples);
-  // A draw whose run stops (a runaway, a drawn card without a material at T) is counted, not fatal.
+// The draws' texts (draw_text) on the scene's executor: draw k runs the scene's life on draw k of
+// the cards. A draw whose run stops (a runaway, a drawn card without a material at T) is counted,
+// not fatal.
+std::vector<std::string> draw_texts(const Scene& s, const std::vector<RoleSampler>& samplers, std::size_t n) {
   auto draw = [&](std::size_t k) -> std::string {
     try {
       const SceneResult drawn = run_life(draw_scene(s, samplers, k));  // held: the loop reads into it
@@ -133,7 +132,63 @@ void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
   };
   ThreadIndexedExecutor threads;
   IndexedExecutor& executor = s.draw_executor ? *s.draw_executor : threads;
-  const std::vector<std::string> texts = executor.texts(n, segment_threads(s), draw);
+  return executor.texts(n, segment_threads(s), draw);
+}
+
+// The scene's draws (their samplers) when [life] uncertainty asks for them, checked as
+// card_uncertainty checks them (InputError: no card with a covariance, beyond the work cap).
+std::optional<std::vector<RoleSampler>> due_samplers(const Scene& s, core::Fidelity fidelity,
+                                                     std::vector<std::string>& warnings) {
+  if (!s.life || !s.life->uncertainty_cards) return std::nullopt;
+  std::vector<RoleSampler> samplers = role_samplers(s, warnings);
+  check_draws_cost(s, fidelity);
+  return samplers;
+}
+
+// Whether the writer's card_uncertainty runs draws, from the scene alone, so that every process
+// sharing them decides alike: their samplers, or nullopt. The fidelity is the plan's with the life
+// asked for, as run_life asks for it.
+std::optional<std::vector<RoleSampler>> due_samplers(const Scene& s) {
+  Scene life = s;
+  life.outputs["life"] = true;
+  std::vector<std::string> warnings;
+  return due_samplers(s, make_plan(life).life->fidelity, warnings);
+}
+
+// The writer's executor, remembering whether the writer's life joined the draws.
+class JoinedOnce : public IndexedExecutor {
+ public:
+  explicit JoinedOnce(std::shared_ptr<IndexedExecutor> shared) : shared_(std::move(shared)) {}
+  std::vector<std::string> texts(std::size_t n, int threads, const std::function<std::string(std::size_t)>& work) override {
+    joined_ = true;
+    return shared_->texts(n, threads, work);
+  }
+  // The writer's life did not reach its draws (it stopped before them, or its fatigue card gives
+  // no distribution): join the other processes' gather with empty draws of its own, so that none
+  // waits for it; nothing here may throw over the writer's own outcome.
+  void join_if_due(const Scene& s) noexcept {
+    if (joined_) return;
+    joined_ = true;
+    try {
+      if (const auto samplers = due_samplers(s))
+        shared_->texts(static_cast<std::size_t>(s.life->samples), 1, [](std::size_t) { return std::string("!"); });
+    } catch (...) {  // the others refused the same draws, or one failed: they are not waiting
+    }
+  }
+
+ private:
+  std::shared_ptr<IndexedExecutor> shared_;
+  bool joined_ = false;
+};
+
+}  // namespace
+
+void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
+  if (life.distribution.empty()) return;
+  const auto samplers = due_samplers(s, life.plan.fidelity, r.warnings);
+  if (!samplers) return;
+  const auto n = static_cast<std::size_t>(s.life->samples);
+  const std::vector<std::string> texts = draw_texts(s, *samplers, n);
   std::vector<std::map<fatigue::Mode, double>> lives(n);
   std::vector<std::string> failures(n);
   for (std::size_t k = 0; k < n; ++k)
@@ -154,3 +209,27 @@ void card_uncertainty(const Scene& s, SceneResult& r, LifeResult& life) {
 }
 
 }  // namespace fitlib::scene::detail
+
+namespace fitlib::scene {
+
+std::optional<SceneResult> run_life_sharing_draws(const Scene& s, bool writes) {
+  if (!s.draw_executor) return run_life(s);
+  if (!writes) {  // only this process's share of the draws: the writer alone needs the deterministic life
+    if (const auto samplers = detail::due_samplers(s))
+      detail::draw_texts(s, *samplers, static_cast<std::size_t>(s.life->samples));
+    return std::nullopt;
+  }
+  Scene writer = s;
+  const auto once = std::make_shared<detail::JoinedOnce>(s.draw_executor);
+  writer.draw_executor = once;
+  try {
+    SceneResult r = run_life(writer);
+    once->join_if_due(s);
+    return r;
+  } catch (...) {
+    once->join_if_due(s);
+    throw;
+  }
+}
+
+}  // namespace fitlib::scene

@@ -61,6 +61,8 @@ void heat_buildup(const Scene& scene, SceneResult& r);
 // closed back to the first sample): the cushion's shear amplitude the heat source reads, the
 // sinusoid's that dissipates as much in a linear viscoelastic solid of frequency-flat G″.
 double equivalent_amplitude(const std::vector<fatigue::StressSample>& history, double period_s);
+// The same of any periodic history x(t_s) (the stretch layers' ε22(d, t)).
+double periodic_amplitude(const std::vector<double>& t_s, const std::vector<double>& x, double period_s);
 
 // Life (life_effects.cpp).
 // Why this build cannot run the segment levels (elastic, complete); nullopt once it can.

@@ -77,14 +77,20 @@ double stress_controlled_shear(const Scene& s, const LayerCards& cards, const st
   return gamma;
 }
 
-// ε22(d) of the beam level, (1 + F/c)(1 − K d)/(1 − K_m d) − 1, and its amplitude over the cycle.
+// ε22(d) of the beam level, (1 + F/c)(1 − K d)/(1 − K_m d) − 1, and its equivalent amplitude over
+// the cycle: √2 × its rms about the mean (periodic_amplitude), as the friction shear's. The bending
+// strain is a pulse too (compressed over each wrap arc, near the mould's over the spans), and the
+// sinusoid of half its range dissipates 0.60–0.74× what it does at 1–6 mm on the medium drive
+// (docs/decisions.md "Heat: the bottom rubber's stretch by its rms amplitude, at the plane-strain
+// modulus").
 double stretch_amplitude(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double K_m, double d_mm) {
-  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  std::vector<double> t, e;
+  t.reserve(cycle.samples.size()), e.reserve(cycle.samples.size());
   for (const belt::LoadSample& q : cycle.samples) {
-    const double e = (1.0 + q.F_N / drive.belt.c_N) * (1.0 - q.K_1_mm * d_mm) / (1.0 - K_m * d_mm) - 1.0;
-    lo = std::min(lo, e), hi = std::max(hi, e);
+    t.push_back(q.t_s);
+    e.push_back((1.0 + q.F_N / drive.belt.c_N) * (1.0 - q.K_1_mm * d_mm) / (1.0 - K_m * d_mm) - 1.0);
   }
-  return 0.5 * (hi - lo);
+  return periodic_amplitude(t, e, cycle.cycle_time_s);
 }
 
 // ∫ ε_a(d)² over [d0, d1] by 3-point Gauss–Legendre (ε_a is nearly linear in d: exact to O(h⁶)).
@@ -109,18 +115,22 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
   at.temperature_C = s.temperature_C, at.frequency_Hz = load_frequency_Hz(drive);
   std::vector<belt::HysteresisLayer> layers;
   const LayerCards cards = layer_cards(s);
+  // `plane`: the along-belt stretch of the wide section (ε33 = 0), whose stress per strain is the
+  // plane-strain modulus E/(1 − ν²), as the beam level's σ22 (docs/fatigue.md §5) and the segment's
+  // plane-strain points: its loss modulus E″/(1 − ν²) (4/3 E″ for a nearly incompressible rubber).
+  const double plane = 1.0 / (1.0 - sec.poisson * sec.poisson);
   auto add = [&](const char* name, const std::string& role, model::TestMode mode, const char* orientation,
-                 double volume_mm3, double amplitude, double fallback_MPa) {
+                 double volume_mm3, double amplitude, double fallback_MPa, double factor) {
     at.mode = mode, at.orientation = orientation, at.strain_amplitude = amplitude;
-    layers.push_back({name, volume_mm3, layer_moduli(s, cards, role, at, fallback_MPa, warnings)[1], amplitude});
+    layers.push_back({name, volume_mm3, factor * layer_moduli(s, cards, role, at, fallback_MPa, warnings)[1], amplitude});
   };
   const double land = sec.land_depth_mm - sec.cushion_mm, cogs = sec.cog_depth_mm;
   const double ms_land = mean_square_amplitude(cycle, drive, K_m, sec.cushion_mm, sec.land_depth_mm);
   const double ms_cogs = mean_square_amplitude(cycle, drive, K_m, sec.land_depth_mm, sec.land_depth_mm + cogs);
   add("bottom rubber, land", "bottom", model::TestMode::uniaxial, "22", B * land * L, std::sqrt(ms_land),
-      sec.bottom_modulus_MPa);
+      sec.bottom_modulus_MPa, plane);
   add("bottom rubber, cogs", "bottom", model::TestMode::uniaxial, "22", B * sec.cog_fill * cogs * L,
-      std::sqrt(ms_cogs), sec.bottom_modulus_MPa);
+      std::sqrt(ms_cogs), sec.bottom_modulus_MPa, plane);
   // The friction shear: γ_a = τ_a/|G*| read stress-controlled, τ_a the equivalent amplitude of the beam
   // level's mid-cushion history (√2 rms about the mean: the friction shear is a pulse over the sliding
   // arcs, not a sinusoid of half its range; docs/decisions.md "Heat: the beam and elastic levels'
@@ -154,10 +164,11 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
   bottom_shear("bottom rubber, cogs shear", B * sec.cog_fill * cogs * L, sec.land_depth_mm, sec.land_depth_mm + cogs,
                [&](double d) { return sec.land_depth_mm + cogs - d; });
   add("cushion, stretch", "cushion", model::TestMode::uniaxial, "22", B * sec.cushion_mm * L,
-      std::sqrt(mean_square_amplitude(cycle, drive, K_m, 0.0, sec.cushion_mm)), sec.cushion_modulus_MPa);
+      std::sqrt(mean_square_amplitude(cycle, drive, K_m, 0.0, sec.cushion_mm)), sec.cushion_modulus_MPa, plane);
   at.mode = model::TestMode::shear, at.orientation = "";
   add("cushion, shear", "cushion", model::TestMode::shear, "", B * sec.cushion_mm * L,
-      stress_controlled_shear(s, cards, "cushion", at, tau_a, sec.cushion_modulus_MPa / 3.0), sec.cushion_modulus_MPa / 3.0);
+      stress_controlled_shear(s, cards, "cushion", at, tau_a, sec.cushion_modulus_MPa / 3.0), sec.cushion_modulus_MPa / 3.0,
+      1.0);
   return layers;
 }
 
@@ -168,17 +179,23 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
 // dissipates as much per cycle as the history in a linear viscoelastic solid whose loss modulus does
 // not change with frequency (Parseval: W = π Σ_n G″(n f) x_n², Σ_n x_n² = 2 var x). A sinusoid gives
 // its amplitude; a pulse of height h over a share φ of the cycle h √(2 φ (1 − φ)), not h/2.
-double equivalent_amplitude(const std::vector<fatigue::StressSample>& q, double period_s) {
-  if (q.size() < 2 || !(period_s > 0.0)) return 0.0;
+double periodic_amplitude(const std::vector<double>& t_s, const std::vector<double>& x, double period_s) {
+  if (t_s.size() < 2 || !(period_s > 0.0)) return 0.0;
   double sum = 0.0, sum2 = 0.0;
   auto add = [&](double a, double b, double dt) {
     sum += 0.5 * dt * (a + b), sum2 += 0.5 * dt * (a * a + b * b);
   };
-  for (std::size_t k = 1; k < q.size(); ++k) add(q[k - 1].s12_MPa, q[k].s12_MPa, q[k].t_s - q[k - 1].t_s);
-  const double closing = period_s - (q.back().t_s - q.front().t_s);
-  if (closing > 0.0) add(q.back().s12_MPa, q.front().s12_MPa, closing);
+  for (std::size_t k = 1; k < t_s.size(); ++k) add(x[k - 1], x[k], t_s[k] - t_s[k - 1]);
+  const double closing = period_s - (t_s.back() - t_s.front());
+  if (closing > 0.0) add(x.back(), x.front(), closing);
   const double mean = sum / period_s;
   return std::sqrt(2.0 * std::max(0.0, sum2 / period_s - mean * mean));
+}
+
+double equivalent_amplitude(const std::vector<fatigue::StressSample>& q, double period_s) {
+  std::vector<double> t, x;
+  for (const fatigue::StressSample& p : q) t.push_back(p.t_s), x.push_back(p.s12_MPa);
+  return periodic_amplitude(t, x, period_s);
 }
 
 belt::HeatSources heat_sources(const Scene& s, const belt::DriveCase& drive, const belt::LoadCycle& cycle,

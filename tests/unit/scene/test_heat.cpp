@@ -125,6 +125,19 @@ TEST(SceneHeat, SceneKeysAndErrors) {
   }
 }
 
+// The medium drive without cards at its temperature: its drive, load cycle and beam section.
+struct MediumBeam {
+  scene::Scene scene = ::drive("medium", false);
+  belt::DriveCase drive_case = scene::make_drive(scene, scene::resolve_stiffness(scene));
+  belt::LoadCycle cycle = belt::compute_load_cycle(drive_case, options());
+  fatigue::BeamSection section = fatigue::default_beam_section(drive_case, scene.temperature_C);
+  belt::LoadCycleOptions options() const {
+    belt::LoadCycleOptions o;
+    o.effects = scene::make_plan(scene).load_cycle;
+    return o;
+  }
+};
+
 // The cushion's shear amplitude the heat source reads (docs/thermal.md §1): √2 × the rms of σ12 about
 // its mean over the cycle. Known answers: a sinusoid gives its amplitude whatever its mean and phase;
 // a pulse of height h over a share φ of the period gives h √(2 φ (1 − φ)) (not h/2, the half range);
@@ -148,12 +161,11 @@ TEST(SceneHeat, CushionShearAmplitudeIsTheRmsOfItsHistory) {
   EXPECT_NEAR(scene::detail::equivalent_amplitude(sine, T), 0.0, 1e-7);
   // Without cards the layer reads G = E/3 and G″ = G tan 8°: γ_a = τ_a/|G*| with τ_a of the beam
   // level's own mid-cushion history.
-  const auto s = drive("medium", false);
-  const auto d = scene::make_drive(s, scene::resolve_stiffness(s));
-  belt::LoadCycleOptions o;
-  o.effects = scene::make_plan(s).load_cycle;
-  const auto cycle = belt::compute_load_cycle(d, o);
-  const auto sec = fatigue::default_beam_section(d, s.temperature_C);
+  const MediumBeam m;
+  const auto &s = m.scene;
+  const auto &d = m.drive_case;
+  const auto &cycle = m.cycle;
+  const auto &sec = m.section;
   double tau = 0.0, half_range = 0.0;
   for (const auto& p : fatigue::beam_stress_histories(cycle, d, sec))
     if (p.role == fatigue::Role::cushion) {
@@ -167,6 +179,49 @@ TEST(SceneHeat, CushionShearAmplitudeIsTheRmsOfItsHistory) {
   ASSERT_EQ(h.layers.back().name, "cushion, shear");
   EXPECT_NEAR(h.layers.back().strain_amplitude, tau / std::hypot(G, G * std::tan(8.0 * M_PI / 180.0)), 1e-12);
   EXPECT_LT(tau, 0.5 * half_range);  // the friction shear is a pulse over the sliding arcs
+}
+
+// The stretch layers without cards (docs/thermal.md §1): the land's amplitude is the rms over its
+// depth (3-point Gauss) of √2 × the rms about the mean of the beam level's ε22(d, t) over the cycle,
+// computed here from the load cycle's samples with the trapezoidal rule in time (closing interval
+// included), and its loss modulus is the plane-strain one, E′ tan 8° / (1 − ν²). A square pulse's
+// rms amplitude exceeds its half range where it lasts for a large share of the cycle: the bending of
+// the medium drive's wrap arcs reads above the half range at the gap bottom's depths.
+TEST(SceneHeat, StretchLayersReadTheRmsAmplitudeAtThePlaneStrainModulus) {
+  const MediumBeam m;
+  const auto &s = m.scene;
+  const auto &d = m.drive_case;
+  const auto &cycle = m.cycle;
+  const auto &sec = m.section;
+  const double K_m = sec.manufactured_curvature_1_mm;
+  auto amplitude = [&](double depth_mm, double* half_range) {  // √2 rms(ε22 − mean) and half the range
+    double area = 0.0, sum = 0.0, sum2 = 0.0, lo = HUGE_VAL, hi = -HUGE_VAL;
+    const std::size_t n = cycle.samples.size();
+    auto e = [&](std::size_t k) {
+      const auto& q = cycle.samples[k % n];
+      return (1.0 + q.F_N / d.belt.c_N) * (1.0 - q.K_1_mm * depth_mm) / (1.0 - K_m * depth_mm) - 1.0;
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t1 = k + 1 < n ? cycle.samples[k + 1].t_s : cycle.samples[0].t_s + cycle.cycle_time_s;
+      const double dt = t1 - cycle.samples[k].t_s, a = e(k), b = e(k + 1);
+      area += dt, sum += 0.5 * dt * (a + b), sum2 += 0.5 * dt * (a * a + b * b);
+      lo = std::min(lo, a), hi = std::max(hi, a);
+    }
+    if (half_range) *half_range = 0.5 * (hi - lo);
+    return std::sqrt(2.0 * (sum2 / area - (sum / area) * (sum / area)));
+  };
+  const double d0 = sec.cushion_mm, d1 = sec.land_depth_mm;
+  const double x[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  double mean_square = 0.0;
+  for (int k = 0; k < 3; ++k) mean_square += 0.5 * w[k] * std::pow(amplitude(0.5 * (d0 + d1) + 0.5 * (d1 - d0) * x[k], nullptr), 2);
+  const belt::HeatSources h = scene::detail::heat_sources(s, d, cycle);
+  ASSERT_EQ(h.layers.front().name, "bottom rubber, land");
+  EXPECT_NEAR(h.layers.front().strain_amplitude / std::sqrt(mean_square), 1.0, 1e-12);
+  const double plane = 1.0 / (1.0 - sec.poisson * sec.poisson);
+  EXPECT_NEAR(h.layers.front().loss_modulus_MPa / (sec.bottom_modulus_MPa * std::tan(8.0 * M_PI / 180.0) * plane), 1.0,
+              1e-12);
+  double half = 0.0;
+  EXPECT_GT(amplitude(sec.land_depth_mm, &half), 1.1 * half);  // the wrap arcs' pulse: 1.28x on this drive
 }
 
 // With the thesis cards at the beam level the cushion's shear, read stress-controlled on the hot card

@@ -3,6 +3,7 @@
 // registry.hpp), adds the refinements listed true in [effects], runs only those and reports per
 // effect whether it ran, why, and its cost. An output whose effects this build cannot run is
 // listed in Plan::unavailable_outputs with the reason on its effects (docs/belt.md "Planner").
+#include <optional>
 #include <string>
 
 #include "fitlib/belt/accumulation.hpp"
@@ -40,6 +41,14 @@ SceneResult run_scene(const Scene& scene, const belt::LoadCycleOptions& options 
 // The scene run with the life asked for (fitcli life, a sweep's life columns, Python's run_life):
 // InputError at key life.fidelity, with the planner's reason, when no life comes out.
 SceneResult run_life(Scene scene);
+
+// The life on one of several processes that share [life] uncertainty's card draws
+// (Scene::draw_executor across processes: fitcli life under mpirun). The process that `writes`
+// runs run_life and gets its result; every other one runs only its share of the draws and gets
+// nullopt — it needs no deterministic life (docs/sweep.md "The life's card draws under MPI").
+// The writer joins the draws' gather also when its life stops before them (its error is then
+// rethrown), so no process waits for it. Without a draw executor: run_life.
+std::optional<SceneResult> run_life_sharing_draws(const Scene& scene, bool writes);
 
 // The heat sources of a run at the scene's temperature (docs/thermal.md §1): the beam section's
 // hysteresis layers and the friction on the run's drive and load cycle, as the heat balance reads
