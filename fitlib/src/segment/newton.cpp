@@ -29,7 +29,6 @@ NewtonOutcome Newton::iterate(double lambda, const Eigen::VectorXd& q_start, boo
   q_last_ = q_;
   if (extrapolated) q_ = q_start;
   best_q_.resize(0);
-  predicted_.resize(0);
   kept_ = false;
   for (int it = 0; it < knobs_.max_iterations; ++it) {
     // (A restored start leaves the point states at the rejected iterate's: giving up there
@@ -130,7 +129,6 @@ bool Newton::step(Attempt& at, double res) {
   at.alpha = 1.0;
   move(at.q_prev, at.dq, 1.0);
   if (at.predictor && rotation_.size() == q_.size()) q_ += rotation_;
-  if (at.predictor) predicted_ = q_;
   at.predictor = false;
   at.fresh = !knobs_.reuse_tangent || slow;
   at.o.iterations++;

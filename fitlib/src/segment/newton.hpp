@@ -50,10 +50,8 @@ class Newton {
   // The node carrying the largest free residual component of the last assembly (-1: none).
   int worst_node() const;
   // Added to the predictor's step (local components; empty: none): the second-order part of the
-  // nodes' finite rotation with the loading, and the last increment's correction (solver.cpp).
+  // nodes' finite rotation with the loading.
   void set_rotation(Eigen::VectorXd rotation) { rotation_ = std::move(rotation); }
-  // The iterate the last solve's predictor step reached (empty when it took none).
-  const Eigen::VectorXd& predicted() const { return predicted_; }
   // Per equation, the slot of K_ii in K's values.
   const std::vector<int>& diagonal() const { return diagonal_; }
   // The iterate with the lowest residual of the last solve (empty before one).
@@ -97,7 +95,7 @@ class Newton {
   const Dofs& d_;
   const NewtonOptions& knobs_;
   Eigen::VectorXd& q_;
-  Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_, predicted_;
+  Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
   bool kept_ = false;          // kept_K_ and kept_r_ are the last step's start (keep)
   std::vector<double> kept_K_;

@@ -242,41 +242,6 @@ class StaticRun {
     out_.assemblies += attempt.assemblies;
   }
 
-  // The predictor's additions to try in turn (local components; empty: none): the rotation's
-  // second-order terms with the last increment's correction (SteppingOptions::corrected_predictor),
-  // the rotation's terms alone, then none. Without rotation terms this small the last retake would
-  // start where the one before did, to within Newton's first correction: measured, such retakes
-  // never converged where the try had not (docs/segment.md §Cost, "Retakes that cannot help").
-  std::vector<Eigen::VectorXd> predictor_additions(double target, bool extrapolate) {
-    const bool rotated = knobs_.stepping.rotated_predictor && p_.motion->has_frame() && !extrapolate;
-    Eigen::VectorXd rotation = rotated ? rotation_terms(target) : Eigen::VectorXd();
-    std::vector<Eigen::VectorXd> tries;
-    applied_.resize(0);
-    if (!extrapolate && knobs_.stepping.corrected_predictor && cuts_in_row_ == 0 && correction_.size() == q_.size()) {
-      const double ratio = std::min(1.0, (target - lambda_) / last_dlambda_);
-      tries.push_back(ratio * ratio * correction_);
-      applied_ = tries.back();
-      if (rotation.size()) tries.back() += rotation;
-    }
-    const bool retake = rotated && rotation.norm() > kRetakeRotation_mm;
-    tries.push_back(std::move(rotation));
-    if (retake) tries.emplace_back();
-    return tries;
-  }
-
-  // Newton to `target` from q_start (free dofs: the last converged values, or `extrapolate`d),
-  // retaken from q_saved on each simpler predictor before the increment is cut.
-  void solve_from(double target, const Eigen::VectorXd& q_start, bool extrapolate, const Eigen::VectorXd& q_saved) {
-    std::vector<Eigen::VectorXd> tries = predictor_additions(target, extrapolate);
-    for (std::size_t k = 0; k < tries.size(); ++k) {
-      if (k > 0) tally(last_), q_ = q_saved;
-      newton_.set_rotation(std::move(tries[k]));
-      last_ = newton_.solve(target, q_start, extrapolate && k == 0);
-      if (last_.converged) break;
-      applied_.resize(0);  // (a retake's predictor has no correction)
-    }
-  }
-
   // One increment to `target`: true (states committed) when Newton converged, else q restored.
   bool increment(double target) {
     rotate_bases(target);
@@ -295,7 +260,20 @@ class StaticRun {
       for (int i = 0; i < 2 * nn_; ++i)
         if (d_.eq[i] >= 0) q_start(i) += ratio * velocity_(i);
     }
-    solve_from(target, q_start, extrapolate, q_saved);
+    const bool rotated = knobs_.stepping.rotated_predictor && p_.motion->has_frame() && !extrapolate;
+    Eigen::VectorXd rotation = rotated ? rotation_terms(target) : Eigen::VectorXd();
+    // Without terms this small the retake starts where this try did, to within Newton's first
+    // correction: measured, such retakes never converged where the try had not (docs/segment.md
+    // §Cost, "Retakes that cannot help").
+    const bool retake = rotated && rotation.norm() > kRetakeRotation_mm;
+    newton_.set_rotation(std::move(rotation));
+    last_ = newton_.solve(target, q_start, extrapolate);
+    if (retake && !last_.converged) {  // retaken on the plain linear predictor before a cut
+      tally(last_);
+      q_ = q_saved;
+      newton_.set_rotation(Eigen::VectorXd());
+      last_ = newton_.solve(target, q_start, false);
+    }
     tally(last_);
     have_factor_ = have_factor_ || last_.factorizations > 0;
     if (!last_.converged) {
@@ -311,10 +289,6 @@ class StaticRun {
     states_.committed.swap(states_.trial);  // the last assembly was at the converged q
     assembler_.commit(q_, target);          // the loads' histories (prepared at target by that assembly)
     velocity_ = q_ - q_saved;
-    // The predictor's own error: what Newton corrected, plus the correction the start already had.
-    if (newton_.predicted().size() == q_.size()) correction_ = q_ - newton_.predicted();
-    else correction_.resize(0);
-    if (correction_.size() && applied_.size() == correction_.size()) correction_ += applied_;
     last_dt_ = dt;
     last_dlambda_ = target - lambda_;
     lambda_ = target;
@@ -348,8 +322,6 @@ class StaticRun {
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
-  Eigen::VectorXd correction_;  // its converged q less its linear predictor's (SteppingOptions::corrected_predictor)
-  Eigen::VectorXd applied_;     // the correction this increment's start carries (empty: none)
   std::vector<FrameTurn> turns_;
 };
 

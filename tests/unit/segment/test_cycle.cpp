@@ -243,37 +243,6 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
               double(gmres.final_state.krylov_iterations) / gmres.factorizations, gmres.newton_iterations);
 }
 
-// The corrected predictor (SteppingOptions::corrected_predictor, docs/segment.md §Solver): the last
-// increment's Newton correction added to the linear predictor changes where Newton starts, not the
-// equations — a viscoelastic belt over two cycles reaches the same stresses (within 10⁻⁷ of their
-// scale, the tolerance's reach) with fewer Newton iterations than from the plain linear predictor.
-TEST(SegmentCycle, CorrectedPredictorSavesIterationsAndKeepsTheSolution) {
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
-  auto run = [&](bool corrected) {
-    Fixture f;
-    f.solver.stepping.corrected_predictor = corrected;
-    return f.run(visco, visco);
-  };
-  const CycleResult corrected = run(true), plain = run(false);
-  EXPECT_TRUE(SolverKnobs{}.stepping.corrected_predictor);  // the default
-  EXPECT_EQ(corrected.increments, plain.increments);
-  EXPECT_LT(corrected.newton_iterations, plain.newton_iterations);
-  ASSERT_EQ(corrected.points.size(), plain.points.size());
-  for (std::size_t p = 0; p < plain.points.size(); ++p) {
-    ASSERT_EQ(corrected.points[p].samples.size(), plain.points[p].samples.size());
-    for (std::size_t q = 0; q < plain.points[p].samples.size(); ++q) {
-      const CycleSample &a = corrected.points[p].samples[q], &b = plain.points[p].samples[q];
-      const double scale = 1e-7 * (1.0 + std::abs(b.s22_MPa) + std::abs(b.s11_MPa));
-      ASSERT_NEAR(a.s11_MPa, b.s11_MPa, scale) << plain.points[p].point.name << " " << q;
-      ASSERT_NEAR(a.s22_MPa, b.s22_MPa, scale) << plain.points[p].point.name << " " << q;
-      ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << plain.points[p].point.name << " " << q;
-    }
-  }
-  std::printf("prony, 2 cycles: %d increments, Newton iterations corrected predictor %d, plain %d\n",
-              corrected.increments, corrected.newton_iterations, plain.newton_iterations);
-}
-
 TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
   Fixture f(synthetic_cycle());
   f.knobs.cycles = 1;

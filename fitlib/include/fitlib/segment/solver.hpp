@@ -77,12 +77,6 @@ struct SteppingOptions {
   // loading (PrescribedMotion::frame_turn, when the motion has a frame): a linearised rotation θ
   // strains a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
   bool rotated_predictor = true;
-  // Add to the linear predictor the last converged increment's Newton correction (its converged q
-  // less its predictor's q) scaled by (Δλ / Δλ_last)², Δλ/Δλ_last capped at 1: the linear
-  // predictor's error is second order in the step and changes little from one increment to the
-  // next on a smooth load path, so the start lands nearer Newton's basin. Not after a cut; a start
-  // that does not converge is retaken without it (docs/segment.md §Solver, "Corrected predictor").
-  bool corrected_predictor = true;
 };
 
 // What the solve models beyond the problem's laws and loads.
