@@ -886,7 +886,8 @@ void scan_table() {
 // CPU time (user + sys, every thread) of this build's `fitcli life` (next to bench_life) at the
 // complete (damage held) and the elastic level, best of `runs`, against a baseline `fitcli` binary
 // (e.g. main's before a change) on the same scene file, the two alternating; the largest relative
-// difference of the modes' lives and whether life.json has the same bytes.
+// difference of the modes' lives, whether life.json has the same bytes, and the sha256 of both
+// runs' life.json and stress_history.csv (issue 32 item 6).
 double cpu_s(int who) {
   rusage u{};
   ::getrusage(who, &u);
@@ -915,7 +916,18 @@ struct ChildRun {
   double wall_s = HUGE_VAL, cpu_s = HUGE_VAL;
   std::string life_json;  // its bytes
   nlohmann::json life;
+  std::string life_sha, history_sha;  // sha256 (first 16 hex digits) of life.json and stress_history.csv
 };
+
+// The first 16 hex digits of `path`'s sha256 (sha256sum), "-" when it is absent.
+std::string sha256_16(const std::string& path) {
+  if (!std::filesystem::exists(path)) return "-";
+  FILE* pipe = ::popen(("sha256sum '" + path + "'").c_str(), "r");
+  char digest[17] = {};
+  const bool ok = pipe && std::fread(digest, 1, 16, pipe) == 16;
+  if (pipe) ::pclose(pipe);
+  return ok ? std::string(digest) : "-";
+}
 
 // `binary` life on `scene_file` into `out`: the best wall and CPU time so far, and its life.json.
 void run_child(const std::string& binary, const std::string& scene_file, const std::string& out, ChildRun& run) {
@@ -927,6 +939,7 @@ void run_child(const std::string& binary, const std::string& scene_file, const s
   std::ifstream in(out + "/life.json");
   run.life_json.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   run.life = nlohmann::json::parse(run.life_json, nullptr, false);
+  run.life_sha = sha256_16(out + "/life.json"), run.history_sha = sha256_16(out + "/stress_history.csv");
 }
 
 void cost_table(const std::string& baseline, int runs) {
@@ -934,7 +947,8 @@ void cost_table(const std::string& baseline, int runs) {
   std::printf("## 10. The segment levels' cost per reference drive (fitcli life, 2 cycles, best of %d; CPU = user + sys "
               "of every thread)\n\nthis build: %s; baseline: %s\n\n| drive | level | increments | iterations | wall | "
               "CPU | baseline wall | baseline CPU | wall ratio | CPU ratio | lives' largest relative difference | "
-              "life.json |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n", runs, self.c_str(),
+              "life.json | sha256 life.json, baseline → this | sha256 stress_history.csv, baseline → this |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", runs, self.c_str(),
               baseline.empty() ? "none" : baseline.c_str());
   const std::string out = "/tmp/fitlib-bench-life-" + std::to_string(::getpid()) + "-out";
   for (const char* level : {"complete held", "elastic"})  // (the complete level passes every drive with the hold)
@@ -951,10 +965,11 @@ void cost_table(const std::string& baseline, int runs) {
         difference = std::max(difference, std::abs(life(mine) - life(theirs)) / std::abs(life(theirs)));
       }
       const auto count = [&](const char* key) { return mine.life.is_discarded() ? 0 : mine.life["segment_run"].value(key, 0); };
-      std::printf("| %s | %s | %d | %d | %.3g s | %.3g s | %.3g s | %.3g s | %.2f | %.2f | %.2g | %s |\n", load, level,
-                  count("increments"), count("newton_iterations"), mine.wall_s, mine.cpu_s, theirs.wall_s, theirs.cpu_s,
-                  mine.wall_s / theirs.wall_s, mine.cpu_s / theirs.cpu_s, difference,
-                  baseline.empty() ? "-" : mine.life_json == theirs.life_json ? "same bytes" : "differs");
+      std::printf("| %s | %s | %d | %d | %.3g s | %.3g s | %.3g s | %.3g s | %.2f | %.2f | %.2g | %s | %s → %s | %s → %s |\n",
+                  load, level, count("increments"), count("newton_iterations"), mine.wall_s, mine.cpu_s, theirs.wall_s,
+                  theirs.cpu_s, mine.wall_s / theirs.wall_s, mine.cpu_s / theirs.cpu_s, difference,
+                  baseline.empty() ? "-" : mine.life_json == theirs.life_json ? "same bytes" : "differs",
+                  theirs.life_sha.c_str(), mine.life_sha.c_str(), theirs.history_sha.c_str(), mine.history_sha.c_str());
       std::fflush(stdout);
       std::remove(file.c_str());
     }
