@@ -56,7 +56,9 @@
 // (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
 // the tangential flank's stick stiffness (CycleKnobs::flank_stick_N_mm4, N/mm⁴; 0 = off;
 // docs/segment.md "Tangential flank"); `vflank=V0`: the sliding friction's direction with this floor of
-// the sliding speed (CycleKnobs::flank_slide_floor_mm_s, mm/s; 0 = off); `cycles=N`: load cycles (default 2); `loads=A:B`: print the load
+// the sliding speed (CycleKnobs::flank_slide_floor_mm_s, mm/s; 0 = off); `branch=X`: the branch switch
+// (SteppingOptions::branch_switch: the critical mode's amplitude as a share of the shortest element
+// side; 0 = off); `cycles=N`: load cycles (default 2); `loads=A:B`: print the load
 // cycle's samples over [A, B] mm of path (zone, p, γ, sliding speed, friction used); `field=PREFIX:MM[:MM…]`: the
 // stress field (VTK) when the middle first reaches each path position of the last cycle,
 // PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
@@ -199,6 +201,7 @@ struct Probe {
   double flank = -1.0;                          // flank=K: CycleKnobs::flank_stiffness_N_mm4 (< 0: the setup's)
   double tflank = -1.0;                         // tflank=K: CycleKnobs::flank_stick_N_mm4 (< 0: the setup's)
   double vflank = -1.0;                         // vflank=V0: CycleKnobs::flank_slide_floor_mm_s (< 0: the setup's)
+  double branch = 0.0;                          // branch=X: SteppingOptions::branch_switch (0: off)
   std::string field_prefix{};                   // field=PREFIX:MM[:MM…]
   std::vector<double> field_at_mm{};
 };
@@ -338,6 +341,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.flank >= 0.0) setup.cycle.flank_stiffness_N_mm4 = pr.flank;
   if (pr.tflank >= 0.0) setup.cycle.flank_stick_N_mm4 = pr.tflank;
   if (pr.vflank >= 0.0) setup.cycle.flank_slide_floor_mm_s = pr.vflank;
+  setup.solver.stepping.branch_switch = pr.branch;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
@@ -1029,6 +1033,7 @@ int main(int argc, char** argv) {
       if (a.rfind("flank=", 0) == 0) p.flank = std::atof(a.c_str() + 6);
       if (a.rfind("tflank=", 0) == 0) p.tflank = std::atof(a.c_str() + 7);
       if (a.rfind("vflank=", 0) == 0) p.vflank = std::atof(a.c_str() + 7);
+      if (a.rfind("branch=", 0) == 0) p.branch = std::atof(a.c_str() + 7);
       if (a.rfind("cycles=", 0) == 0) p.cycles = std::atoi(a.c_str() + 7);
       if (a.rfind("field=", 0) == 0) {
         const std::string spec = a.substr(6);
@@ -1055,6 +1060,7 @@ int main(int argc, char** argv) {
     }
     print_probe(p, o);
     std::printf("main thread CPU %.2f s (the wall time on an idle machine, nearly), wall %.2f s\n", o.main_cpu_s, o.wall_s);
+    if (p.branch > 0.0) std::printf("branch switches: %d increments carried\n", o.life.run.final_state.branch_switches);
     std::printf("unsymmetric tangents: %d GMRES iterations, %d fell back to the LU\n",
                 o.life.run.final_state.krylov_iterations, o.life.run.final_state.krylov_fallbacks);
     std::printf("equilibrium %.3g; spans: cord-line reactions <= %.3g of F/B, mid-section balance %.3g\n",

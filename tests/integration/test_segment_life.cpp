@@ -480,6 +480,33 @@ TEST(SegmentLife, BothFlankKnobsAtTenTimesTheirDerivedValuesDoNotCarryTheAcceler
   }
 }
 
+// Issue 33 item 2, candidate 1 (docs/segment.md "The accelerated regime's fold", "Branch switch"):
+// the branch switch (SteppingOptions::branch_switch, the critical mode at 0.01 of the shortest
+// element side) does not carry the base accelerated drive's complete level with the damage law at
+// every amplitude. It is not even tried: at the stop (277.6 mm of cycle 1, the same as without it)
+// the last cut's step is 2·10⁻⁷ of λ and the eigenvalue of K's symmetric part nearest zero at its
+// start is positive (measured +0.0085 N/mm²) and none is negative (the signs of its LDLᵀ), so no
+// bifurcation has been passed there and the tangent is nonsingular (xᵀKx > 0), yet Newton fails on
+// a step that small.
+TEST(SegmentLife, BranchSwitchFindsNoBifurcationAtTheAcceleratedBaseDrivesStop) {
+  CardRun run = card_run("acc-0500-base", 1, core::Fidelity::complete);
+  run.setup.solver.stepping.branch_switch = 0.01;
+  try {
+    card_life(run);
+    ADD_FAILURE() << "the branch switch now carries acc-0500-base: update docs/segment.md and this test";
+  } catch (const core::NumericalError& e) {
+    const std::string what = e.what();
+    std::printf("acc-0500-base, complete, branch switch 0.01: %.1200s\n", what.c_str());
+    EXPECT_NE(what.find("failed in cycle 1 after path position 277.6 mm"), std::string::npos) << what;
+    const std::size_t at = what.find("nearest zero at the increment's start ");
+    ASSERT_NE(at, std::string::npos) << what;
+    const double eigenvalue = std::stod(what.substr(at + std::string("nearest zero at the increment's start ").size()));
+    EXPECT_GT(eigenvalue, 0.0) << what;
+    EXPECT_LT(eigenvalue, 0.1) << what;  // small: the path is near a stability limit
+    EXPECT_NE(what.find("N/mm², 0 negative (not tried: that mode is stable)"), std::string::npos) << what;
+  }
+}
+
 // The tangential flank (segment/flank.hpp; docs/segment.md "Tangential flank") through the load cycle,
 // light drive, elastic level: the stick with the derived k_t = 12 G / B² (G = E'/4 of the bottom
 // card's elastic equivalent, 0.286 N/mm⁴) acts over the driver exit's ramp only and leaves the lives

@@ -154,6 +154,7 @@ Mesh build_mesh(const CogSection& s, const MeshKnobs& k) {
 MeshQuality mesh_quality(const Mesh& m) {
   MeshQuality q;
   q.min_jacobian_ratio = std::numeric_limits<double>::infinity();
+  q.shortest_side_mm = std::numeric_limits<double>::infinity();
   for (int e = 0; e < m.element_count(); ++e) {
     double area = 0.0, worst = std::numeric_limits<double>::infinity();
     for (const detail::GaussPoint& g : detail::gauss_rule(3)) area += g.weight * reference_jacobian(m, e, g.xi, g.eta);
@@ -165,6 +166,7 @@ MeshQuality mesh_quality(const Mesh& m) {
       const double side = (m.X[m.elements[e][(a + 1) % 4]] - m.X[m.elements[e][a]]).norm();
       longest = std::max(longest, side), shortest = std::min(shortest, side);
     }
+    q.shortest_side_mm = std::min(q.shortest_side_mm, shortest);
     if (longest / shortest > q.max_aspect_ratio) q.max_aspect_ratio = longest / shortest, q.worst_aspect_element = e;
   }
   return q;

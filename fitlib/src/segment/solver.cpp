@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "assembler.hpp"
+#include "critical_mode.hpp"
 #include "diagnosis.hpp"
 #include "dofs.hpp"
 #include "inertia.hpp"
@@ -110,8 +111,12 @@ class StaticRun {
       if (increment(target)) {
         if (target >= targets[next]) ++next;
       } else if (++cuts_in_row_ > knobs_.stepping.max_cuts) {
-        fail(out_.increments + 1, target, last_.bad_element, last_.residual, last_.iterations);
+        if (!switch_branch(target))
+          fail(out_.increments + 1, target, last_.bad_element, last_.residual, last_.iterations);
+        if (target >= targets[next]) ++next;
+        max_step_ = uncut_step_;  // on the new branch the increments go on at the step that failed
       } else {
+        if (cuts_in_row_ == 1) uncut_step_ = target - lambda_;
         max_step_ = 0.5 * (target - lambda_);
         out_.cuts++;
       }
@@ -154,6 +159,7 @@ class StaticRun {
     if (const int n = newton_.worst_node(); n >= 0)
       msg << "; largest residual at node " << n << " (reference x " << m_.X[n].x() << ", y " << m_.X[n].y()
           << " mm)";
+    msg << branch_note_;
     if (knobs_.diagnose_failure) msg << diagnose(lambda);
     throw core::NumericalError(msg.str());
   }
@@ -184,6 +190,58 @@ class StaticRun {
     std::string text = detail::diagnose(p, prescribed_at(lambda), "increment start");
     if (newton_.best_iterate().size() == q_.size()) text += detail::diagnose(p, newton_.best_iterate(), "best iterate");
     return text;
+  }
+
+  // SteppingOptions::branch_switch: the failed increment to `target` retaken from its start moved by
+  // ± the critical mode of the tangent there, when that mode's eigenvalue is ≤ 0 (a bifurcation
+  // passed: the fundamental path is unstable and a neighbouring branch may carry the load). True
+  // when a retake converged (committed as any increment); the finding goes into the exit-4 message.
+  bool switch_branch(double target) {
+    if (!(knobs_.stepping.branch_switch > 0.0)) return false;
+    const detail::CriticalMode c = mode_at_start(target);
+    std::ostringstream note;
+    note << "; branch switch (" << out_.branch_switches << " increments carried before this one, step "
+         << target - lambda_ << "): eigenvalue of K's symmetric part nearest zero at the increment's start "
+         << c.eigenvalue << " N/mm², " << c.negative << " negative";
+    if (c.mode.size() == 0 || c.eigenvalue > 0.0) {
+      branch_note_ = note.str() + (c.mode.size() ? " (not tried: that mode is stable)" : " (not found)");
+      return false;
+    }
+    double peak = 0.0;  // the mode's largest nodal displacement
+    for (int a = 0; a < nn_; ++a) {
+      Eigen::Vector2d v = Eigen::Vector2d::Zero();
+      for (int k = 0; k < 2; ++k)
+        if (d_.eq[2 * a + k] >= 0) v(k) = c.mode(d_.eq[2 * a + k]);
+      peak = std::max(peak, v.norm());
+    }
+    const double amplitude_mm = knobs_.stepping.branch_switch * mesh_quality(m_).shortest_side_mm;
+    for (const double sign : {1.0, -1.0}) {
+      kick_ = Eigen::VectorXd::Zero(2 * nn_);
+      for (int i = 0; i < 2 * nn_; ++i)
+        if (d_.eq[i] >= 0) kick_(i) = sign * amplitude_mm / peak * c.mode(d_.eq[i]);
+      const bool carried = increment(target);
+      kick_.resize(0);
+      if (carried) {
+        out_.branch_switches++;
+        return true;
+      }
+      note << (sign > 0 ? "; + the mode (" : ", − the mode (") << amplitude_mm << " mm) residual " << last_.residual
+           << " N/mm";
+    }
+    branch_note_ = note.str() + ": no branch carried the increment";
+    return false;
+  }
+
+  // The tangent's critical mode at the increment's start (the converged q with the prescribed
+  // motion at `target`, the step from the committed states), as `diagnose` reads it.
+  detail::CriticalMode mode_at_start(double target) {
+    rotate_bases(target);
+    const double dt = time_at(target) - time_at(lambda_);
+    assembler_.set_step(states_.committed.data(), scratch_.data(), dt);
+    assembler_.begin(q_, target, dt);
+    Eigen::VectorXd r;
+    if (assembler_.run(prescribed_at(target), target, nullptr, r, &pattern_, nullptr) >= 0) return {};
+    return detail::critical_mode(pattern_.K);
   }
 
   // Stresses, displacements and reactions at the converged q (states from `from` over dt).
@@ -246,6 +304,7 @@ class StaticRun {
   bool increment(double target) {
     rotate_bases(target);
     const Eigen::VectorXd q_saved = q_;
+    if (kick_.size() == q_.size()) q_ += kick_;  // a branch switch's start (switch_branch)
     const double dt = time_at(target) - time_at(lambda_);
     assembler_.set_step(states_.committed.data(), states_.trial.data(), dt);
     assembler_.begin(q_, target, dt);
@@ -318,10 +377,12 @@ class StaticRun {
   std::vector<std::array<double, 2>> values_;
   StaticSolution out_;
   NewtonOutcome last_;
-  double lambda_ = 0.0, max_step_ = 2.0, last_dt_ = 0.0, last_dlambda_ = 0.0;
+  double lambda_ = 0.0, max_step_ = 2.0, uncut_step_ = 2.0, last_dt_ = 0.0, last_dlambda_ = 0.0;
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
+  Eigen::VectorXd kick_;      // added to the next increment's start (switch_branch; empty: none)
+  std::string branch_note_;   // the last branch switch's finding, for the exit-4 message
   std::vector<FrameTurn> turns_;
 };
 

@@ -64,6 +64,7 @@ struct MeshQuality {
   int worst_jacobian_element = -1;
   double max_aspect_ratio = 0.0;
   int worst_aspect_element = -1;
+  double shortest_side_mm = 0.0;  // the shortest corner-to-corner side of any element
 };
 MeshQuality mesh_quality(const Mesh& mesh);
 

@@ -77,6 +77,11 @@ struct SteppingOptions {
   // loading (PrescribedMotion::frame_turn, when the motion has a frame): a linearised rotation θ
   // strains a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
   bool rotated_predictor = true;
+  // Branch switch (0: off): an increment that fails after its last cut, with the lowest eigenvalue
+  // of K's symmetric part at its start ≤ 0 (the path has passed a bifurcation), is retaken from its
+  // start moved by + and then − the critical mode, scaled so that its largest nodal displacement is
+  // this share of the mesh's shortest element side (docs/segment.md §Solver, "Branch switch").
+  double branch_switch = 0.0;
 };
 
 // What the solve models beyond the problem's laws and loads.
@@ -155,6 +160,7 @@ struct StaticSolution {
   // Element loops (residual, with the tangent where one is factorised), failed attempts and line
   // search included: the run's other cost beside the factorisations.
   int assemblies = 0;
+  int branch_switches = 0;  // increments carried by SteppingOptions::branch_switch
   double final_residual = 0.0;
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run; 2 when GMRES fell back to the LU)
