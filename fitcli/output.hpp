@@ -7,8 +7,15 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
+
+// Declared only: CLI11 2.1 is header-only and costs every file that includes it ~8 s of compile
+// CPU (docs/decisions.md "Build: where the test command's compile time goes"); the files that
+// build or read options include <CLI/CLI.hpp> themselves.
+namespace CLI {
+class App;
+class Validator;
+}  // namespace CLI
 
 namespace fitcli {
 
