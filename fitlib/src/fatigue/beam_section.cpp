@@ -52,7 +52,7 @@ void check_section(const BeamSection& s) {
 // Jourawski's shear of a beam whose bending changes along the path (a sheave's entrance and exit):
 // equilibrium along the belt, ∂σ22/∂s + ∂σ12/∂y + B_l = 0 with σ12 = 0 on the free bottom, gives
 // σ12 = ∫ (B_l + ∂σ22/∂s) w dy over the rubber below the point (w = 1 in the land, the cog fill in the
-// cogs; σ22 = E/(1 − ν²) ε22 of each layer). With ∂ε22/∂s above, the ∂σ22/∂s part is
+// cogs; σ22 = E/(1 − ν²) ε22 of each layer). With PitchSample's ∂ε22/∂s (below), the ∂σ22/∂s part is
 // Δε/p · I0 − ΔM/p · I1, I0 = ∫ w E′/(1 − K_m d) dd and I1 = ∫ w E′ d/(1 − K_m d) dd (3-point
 // Gauss–Legendre per layer).
 struct DepthIntegrals {
