@@ -78,7 +78,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include <sys/resource.h>
@@ -923,14 +922,9 @@ struct ChildRun {
   std::string life_sha, history_sha;  // sha256 (first 16 hex digits) of life.json and stress_history.csv
 };
 
-// The first 16 hex digits of `path`'s sha256 (sha256sum), "-" when it is absent.
+// The first 16 hex digits of `path`'s sha256, "-" when it is absent.
 std::string sha256_16(const std::string& path) {
-  if (!std::filesystem::exists(path)) return "-";
-  FILE* pipe = ::popen(("sha256sum '" + path + "'").c_str(), "r");
-  char digest[17] = {};
-  const bool ok = pipe && std::fread(digest, 1, 16, pipe) == 16;
-  if (pipe) ::pclose(pipe);
-  return ok ? std::string(digest) : "-";
+  return std::filesystem::exists(path) ? core::sha256_hex(core::read_file(path)).substr(0, 16) : "-";
 }
 
 // `binary` life on `scene_file` into `out`: the best wall and CPU time so far, and its life.json.
@@ -940,10 +934,11 @@ void run_child(const std::string& binary, const std::string& scene_file, const s
   const core::Stopwatch w;
   const bool ok = std::system(command.c_str()) == 0;
   run.wall_s = std::min(run.wall_s, ok ? w.seconds() : NAN), run.cpu_s = std::min(run.cpu_s, cpu_s(RUSAGE_CHILDREN) - c0);
-  std::ifstream in(out + "/life.json");
-  run.life_json.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  const std::string life_file = out + "/life.json";
+  run.life_json = std::filesystem::exists(life_file) ? core::read_file(life_file) : "";
   run.life = nlohmann::json::parse(run.life_json, nullptr, false);
-  run.life_sha = sha256_16(out + "/life.json"), run.history_sha = sha256_16(out + "/stress_history.csv");
+  run.life_sha = run.life_json.empty() ? "-" : core::sha256_hex(run.life_json).substr(0, 16);
+  run.history_sha = sha256_16(out + "/stress_history.csv");
 }
 
 void cost_table(const std::string& baseline, int runs) {

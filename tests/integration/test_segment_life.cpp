@@ -264,6 +264,18 @@ scene::SegmentLife card_life(const CardRun& r) {
   return scene::segment_life(r.cycle, r.drive, r.setup, fatigue::default_card());
 }
 
+// The message of the run's stop (NumericalError, the fold), or "" with a failure `if_it_runs` when the
+// run completes.
+std::string stop_message(const CardRun& r, const std::string& if_it_runs) {
+  try {
+    card_life(r);
+  } catch (const core::NumericalError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << if_it_runs;
+  return "";
+}
+
 // Largest |σ22(cycle 2) − σ22(cycle 1)| at the gap bottom over the path positions sampled in both
 // cycles, relative to the largest |σ22|.
 double cycle_difference(const segment::CycleResult& run, double length_mm) {
@@ -400,15 +412,12 @@ TEST(SegmentLife, CompleteLevelFailsAtTheMediumDrivesExitWithEitherDamageUpdateA
   EXPECT_LT(slow.run.equilibrium_error, 1e-6);
   for (const auto& m : slow.report.modes) EXPECT_TRUE(std::isfinite(m.life_cycles) && m.life_cycles > 0.0);
   for (Update update : {Update::implicit, Update::lagged}) {
-    try {
-      card_life(ungraded(card_run("medium", 1, core::Fidelity::complete, 0.0, update)));
-      ADD_FAILURE() << "the thesis cards now pass the medium drive: update docs/segment.md and this test";
-    } catch (const core::NumericalError& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("largest residual at node"), std::string::npos) << what;
-      EXPECT_NE(what.find("(lambda 0.90"), std::string::npos) << what;  // τ = 1.81 of 1 + 1 cycles
-      EXPECT_EQ(what.find("inverted"), std::string::npos) << what;
-    }
+    const std::string what = stop_message(ungraded(card_run("medium", 1, core::Fidelity::complete, 0.0, update)),
+                                          "the thesis cards now pass the medium drive: update docs/segment.md and this test");
+    if (what.empty()) continue;
+    EXPECT_NE(what.find("largest residual at node"), std::string::npos) << what;
+    EXPECT_NE(what.find("(lambda 0.90"), std::string::npos) << what;  // τ = 1.81 of 1 + 1 cycles
+    EXPECT_EQ(what.find("inverted"), std::string::npos) << what;
   }
 }
 
@@ -450,16 +459,13 @@ TEST(SegmentLife, FlankFoundationLetsTheCompleteLevelPassTheMediumDrivesFold) {
 TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesNotRemoveIt) {
   CardRun run = card_run("heavy", 1, core::Fidelity::complete);
   run.setup.cycle.flank_stiffness_N_mm4 = derived_flank_stiffness("heavy", run);
-  try {
-    card_life(run);
-    ADD_FAILURE() << "the heavy drive's complete level now passes with the flank foundation: update docs/segment.md";
-  } catch (const core::NumericalError& e) {
-    const std::string what = e.what();
-    std::printf("heavy, complete, flank k %.4g N/mm^4: %.200s\n", run.setup.cycle.flank_stiffness_N_mm4, what.c_str());
-    EXPECT_NE(what.find("failed in cycle 1 after path position 73"), std::string::npos) << what;
-    EXPECT_NE(what.find("largest residual at node"), std::string::npos) << what;
-    EXPECT_EQ(what.find("inverted"), std::string::npos) << what;
-  }
+  const std::string what =
+      stop_message(run, "the heavy drive's complete level now passes with the flank foundation: update docs/segment.md");
+  if (what.empty()) return;
+  std::printf("heavy, complete, flank k %.4g N/mm^4: %.200s\n", run.setup.cycle.flank_stiffness_N_mm4, what.c_str());
+  EXPECT_NE(what.find("failed in cycle 1 after path position 73"), std::string::npos) << what;
+  EXPECT_NE(what.find("largest residual at node"), std::string::npos) << what;
+  EXPECT_EQ(what.find("inverted"), std::string::npos) << what;
 }
 
 // Issue 33 item 2, step 1 (docs/segment.md "The accelerated regime's fold"): the radial foundation
@@ -470,14 +476,10 @@ TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesN
 TEST(SegmentLife, BothFlankKnobsAtTenTimesTheirDerivedValuesDoNotCarryTheAcceleratedBaseDrive) {
   CardRun run = card_run("acc-0500-base", 1, core::Fidelity::complete);
   run.setup.cycle.flank_stiffness_N_mm4 = 0.452, run.setup.cycle.flank_stick_N_mm4 = 2.86;
-  try {
-    card_life(run);
-    ADD_FAILURE() << "the flank knobs now carry acc-0500-base: update docs/segment.md and this test";
-  } catch (const core::NumericalError& e) {
-    const std::string what = e.what();
-    std::printf("acc-0500-base, complete, k 0.452, k_t 2.86: %.200s\n", what.c_str());
-    EXPECT_NE(what.find("failed in cycle 1 after path position 28"), std::string::npos) << what;  // 285.8 mm
-  }
+  const std::string what = stop_message(run, "the flank knobs now carry acc-0500-base: update docs/segment.md and this test");
+  if (what.empty()) return;
+  std::printf("acc-0500-base, complete, k 0.452, k_t 2.86: %.200s\n", what.c_str());
+  EXPECT_NE(what.find("failed in cycle 1 after path position 28"), std::string::npos) << what;  // 285.8 mm
 }
 
 // Issue 33 item 2, candidate 1 (docs/segment.md "The accelerated regime's fold", "Branch switch"):
@@ -491,20 +493,17 @@ TEST(SegmentLife, BothFlankKnobsAtTenTimesTheirDerivedValuesDoNotCarryTheAcceler
 TEST(SegmentLife, BranchSwitchFindsNoBifurcationAtTheAcceleratedBaseDrivesStop) {
   CardRun run = card_run("acc-0500-base", 1, core::Fidelity::complete);
   run.setup.solver.stepping.branch_switch = 0.01;
-  try {
-    card_life(run);
-    ADD_FAILURE() << "the branch switch now carries acc-0500-base: update docs/segment.md and this test";
-  } catch (const core::NumericalError& e) {
-    const std::string what = e.what();
-    std::printf("acc-0500-base, complete, branch switch 0.01: %.1200s\n", what.c_str());
-    EXPECT_NE(what.find("failed in cycle 1 after path position 277.6 mm"), std::string::npos) << what;
-    const std::size_t at = what.find("nearest zero at the increment's start ");
-    ASSERT_NE(at, std::string::npos) << what;
-    const double eigenvalue = std::stod(what.substr(at + std::string("nearest zero at the increment's start ").size()));
-    EXPECT_GT(eigenvalue, 0.0) << what;
-    EXPECT_LT(eigenvalue, 0.1) << what;  // small: the path is near a stability limit
-    EXPECT_NE(what.find("N/mm², 0 negative (not tried: that mode is stable)"), std::string::npos) << what;
-  }
+  const std::string what = stop_message(run, "the branch switch now carries acc-0500-base: update docs/segment.md and this test");
+  if (what.empty()) return;
+  std::printf("acc-0500-base, complete, branch switch 0.01: %.1200s\n", what.c_str());
+  EXPECT_NE(what.find("failed in cycle 1 after path position 277.6 mm"), std::string::npos) << what;
+  const std::string before = "nearest zero at the increment's start ";
+  const std::size_t at = what.find(before);
+  ASSERT_NE(at, std::string::npos) << what;
+  const double eigenvalue = std::stod(what.substr(at + before.size()));
+  EXPECT_GT(eigenvalue, 0.0) << what;
+  EXPECT_LT(eigenvalue, 0.1) << what;  // small: the path is near a stability limit
+  EXPECT_NE(what.find("N/mm², 0 negative (not tried: that mode is stable)"), std::string::npos) << what;
 }
 
 // The tangential flank (segment/flank.hpp; docs/segment.md "Tangential flank") through the load cycle,

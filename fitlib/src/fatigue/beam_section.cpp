@@ -7,9 +7,14 @@
 #include "fitlib/belt/stiffness.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
+#include "fitlib/core/quadrature.hpp"
 #include "fitlib/core/units.hpp"
 
 namespace fitlib::fatigue {
+
+double layer_stretch(double cord_strain, double K_1_mm, double K_m_1_mm, double depth_mm) {
+  return (1.0 + cord_strain) * (1.0 - K_1_mm * depth_mm) / (1.0 - K_m_1_mm * depth_mm) - 1.0;
+}
 
 BeamSection default_beam_section(const belt::DriveCase& drive, double temperature_C) {
   BeamSection s;
@@ -62,13 +67,11 @@ struct DepthIntegrals {
 DepthIntegrals bending_shear_integrals(const BeamSection& s, double depth_mm, bool over_cogs) {
   DepthIntegrals out;
   auto layer = [&](double d0, double d1, double E, double w) {
-    static const double x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, g[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
     if (!(d1 > d0)) return;
-    for (int k = 0; k < 3; ++k) {
-      const double d = 0.5 * (d0 + d1) + 0.5 * (d1 - d0) * x[k];
-      const double weight = 0.5 * (d1 - d0) * g[k] * w * E / (1.0 - s.poisson * s.poisson) /
-                            (1.0 - s.manufactured_curvature_1_mm * d);
-      out.I0 += weight, out.I1 += weight * d;
+    for (const core::QuadraturePoint& q : core::gauss_legendre_3(d0, d1)) {
+      const double weight = q.weight * w * E / (1.0 - s.poisson * s.poisson) /
+                            (1.0 - s.manufactured_curvature_1_mm * q.x);
+      out.I0 += weight, out.I1 += weight * q.x;
     }
   };
   const double land = s.land_depth_mm, below_cushion = std::max(depth_mm, s.cushion_mm);
@@ -166,10 +169,6 @@ class PathSeries {
   double L_;
   std::vector<double> G_;
 };
-
-double layer_stretch(double cord_strain, double K_1_mm, double K_m_1_mm, double depth_mm) {
-  return (1.0 + cord_strain) * (1.0 - K_1_mm * depth_mm) / (1.0 - K_m_1_mm * depth_mm) - 1.0;
-}
 
 // What a point's pitch gathers at one sample: the body forces' mean over the pitch centred on it,
 // and the pitch-mean of ∂ε22/∂s at depth d, (Δε − d ΔM)/(pitch (1 − K_m d)) with ε = F/c, M = (1 + ε) K

@@ -8,6 +8,7 @@
 #include "effects.hpp"
 #include "fitlib/belt/heat.hpp"
 #include "fitlib/card/conversion.hpp"
+#include "fitlib/core/quadrature.hpp"
 #include "fitlib/fatigue/beam_section.hpp"
 
 namespace fitlib::scene::detail {
@@ -88,7 +89,7 @@ double stretch_amplitude(const belt::LoadCycle& cycle, const belt::DriveCase& dr
   t.reserve(cycle.samples.size()), e.reserve(cycle.samples.size());
   for (const belt::LoadSample& q : cycle.samples) {
     t.push_back(q.t_s);
-    e.push_back((1.0 + q.F_N / drive.belt.c_N) * (1.0 - q.K_1_mm * d_mm) / (1.0 - K_m * d_mm) - 1.0);
+    e.push_back(fatigue::layer_stretch(q.F_N / drive.belt.c_N, q.K_1_mm, K_m, d_mm));
   }
   return periodic_amplitude(t, e, cycle.cycle_time_s);
 }
@@ -96,11 +97,10 @@ double stretch_amplitude(const belt::LoadCycle& cycle, const belt::DriveCase& dr
 // ∫ ε_a(d)² over [d0, d1] by 3-point Gauss–Legendre (ε_a is nearly linear in d: exact to O(h⁶)).
 double mean_square_amplitude(const belt::LoadCycle& cycle, const belt::DriveCase& drive, double K_m, double d0,
                              double d1) {
-  static const double x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
   double sum = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double a = stretch_amplitude(cycle, drive, K_m, 0.5 * (d0 + d1) + 0.5 * (d1 - d0) * x[k]);
-    sum += 0.5 * w[k] * a * a;
+  for (const core::QuadraturePoint& q : core::gauss_legendre_3(d0, d1)) {
+    const double a = stretch_amplitude(cycle, drive, K_m, q.x);
+    sum += q.mean_weight * a * a;
   }
   return sum;  // the mean over the interval
 }
@@ -145,17 +145,15 @@ std::vector<belt::HysteresisLayer> beam_layers(const Scene& s, const belt::Drive
   // τ_a h(d)/h_mid. Per region one layer whose E″ ε_a² is the 3-point Gauss–Legendre mean over depth
   // of G″(γ(d)) γ(d)², each γ(d) read stress-controlled on the bottom card (shear 12).
   auto bottom_shear = [&](const char* name, double volume_mm3, double d0, double d1, auto below_mm) {
-    static const double x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
     model::TestCondition q = at;
     q.mode = model::TestMode::shear, q.orientation = "12";
     const double G = sec.bottom_modulus_MPa / 3.0;
     double work = 0.0, square = 0.0;  // means of G″ γ² and γ²
-    for (int k = 0; k < 3; ++k) {
-      const double d = 0.5 * (d0 + d1) + 0.5 * (d1 - d0) * x[k];
-      const double gamma = stress_controlled_shear(s, cards, "bottom", q, tau_a * below_mm(d) / h_mid, G);
+    for (const core::QuadraturePoint& p : core::gauss_legendre_3(d0, d1)) {
+      const double gamma = stress_controlled_shear(s, cards, "bottom", q, tau_a * below_mm(p.x) / h_mid, G);
       q.strain_amplitude = gamma;
-      work += 0.5 * w[k] * layer_moduli(s, cards, "bottom", q, G, warnings)[1] * gamma * gamma;
-      square += 0.5 * w[k] * gamma * gamma;
+      work += p.mean_weight * layer_moduli(s, cards, "bottom", q, G, warnings)[1] * gamma * gamma;
+      square += p.mean_weight * gamma * gamma;
     }
     layers.push_back({name, volume_mm3, square > 0.0 ? work / square : 0.0, std::sqrt(square)});
   };

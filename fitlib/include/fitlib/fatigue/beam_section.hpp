@@ -37,6 +37,10 @@ struct BeamSection {
   std::vector<double> bottom_depths_mm, cushion_depths_mm;
 };
 
+// ε22 of a layer at depth d below the cord line, (1 + ε)(1 − K d)/(1 − K_m d) − 1, with ε = F/c the
+// cord strain, K the curvature and K_m the moulded one (the table above; the heat source's stretch).
+double layer_stretch(double cord_strain, double K_1_mm, double K_m_1_mm, double depth_mm);
+
 // Project defaults for a drive: the §5a geometry, both layers at E = EI/834 mm⁴ with the
 // drive's bending stiffness EI (the bottom card's E22' or the Fritzson law 6.5, as the load
 // cycle used; the law at `temperature_C` if the drive has none), and the belt moulded as a ring
