@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cycle_parts.hpp"
+#include "fitlib/core/quadrature.hpp"
 #include "fitlib/segment/end_faces.hpp"
 
 namespace fitlib::segment::detail {
@@ -20,14 +21,13 @@ struct FaceWeight {
 std::vector<FaceWeight> face_weights(const Mesh& straight, const std::vector<int>& face) {
   std::vector<FaceWeight> out;
   const int step = straight.nodes_per_element == 8 ? 2 : 1;
-  const double xi[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, wt[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   for (std::size_t a = 0; a + step < face.size(); a += step) {
     const double ya = straight.X[face[a]].y(), yb = straight.X[face[a + step]].y(), half = 0.5 * std::abs(ya - yb);
-    for (int g = 0; g < 3; ++g) {
-      const double x = xi[g], depth = -(0.5 * (ya + yb) + 0.5 * x * (yb - ya));
+    for (const core::QuadraturePoint& g : core::gauss_legendre_3(-1.0, 1.0)) {
+      const double x = g.x, depth = -(0.5 * (ya + yb) + 0.5 * x * (yb - ya));
       const double N2[3] = {0.5 * x * (x - 1.0), 1.0 - x * x, 0.5 * x * (x + 1.0)}, N1[2] = {0.5 * (1.0 - x), 0.5 * (1.0 + x)};
       for (int k = 0; k <= step; ++k)
-        out.push_back({face[a + k], depth, (step == 2 ? N2[k] : N1[k]) * wt[g] * half});
+        out.push_back({face[a + k], depth, (step == 2 ? N2[k] : N1[k]) * g.weight * half});
     }
   }
   return out;

@@ -1,6 +1,7 @@
 #pragma once
 // 3-point Gauss–Legendre rule on [a, b] (exact for polynomials of degree ≤ 5): the beam section's
-// integrals over a layer's depth (fatigue/beam_section.cpp, scene/heat_effects.cpp).
+// integrals over a layer's depth (fatigue/beam_section.cpp, scene/heat_effects.cpp) and the segment's
+// end-face tractions (segment/cycle_loads.cpp).
 #include <array>
 
 namespace fitlib::core {
