@@ -324,10 +324,11 @@ void write_png(const std::string& out, const std::function<std::string(const std
                       (WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                          : "wait status " + std::to_string(status)) + ")");
   }
-  if (std::rename(tmp.c_str(), out.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw fitlib::core::InputError("cannot write the plot", out);
-  }
+  // Through core's writer, not a rename of its own: a --plot on a device or FIFO (/dev/full) is
+  // written in place and its write checked; a rename replaced the device by a file (as root).
+  const std::string png = fitlib::core::read_file(tmp);
+  std::remove(tmp.c_str());
+  fitlib::core::write_file_atomically(out, png);
 }
 
 void plot_card(const fitlib::card::Card& card, const std::vector<std::string>& data, const std::string& format,

@@ -12,6 +12,7 @@
 #include "fitlib/data/table.hpp"
 #include "fitlib/model/material_point.hpp"
 #include "fitlib/model/model.hpp"
+#include "fitlib/surface/card_grid.hpp"
 
 namespace fitlib::python {
 
@@ -80,7 +81,10 @@ struct Broadcast {
   std::vector<std::vector<double>> columns;  // one flat column per argument
 };
 
-Broadcast broadcast(const std::vector<py::object>& arguments) {
+// max_points > 0: the work cap of an evaluation (issue 37 audit: card.eval over two broadcast
+// arrays of 10^4 values made 10^8 points and ran on); the cap of card_grid and fitcli surface grid,
+// checked on the broadcast shape before any column is made.
+Broadcast broadcast(const std::vector<py::object>& arguments, double max_points = 0.0) {
   py::list arrays;
   for (const auto& a : arguments) {
     auto array = py::array_t<double, py::array::forcecast>::ensure(a);
@@ -91,6 +95,11 @@ Broadcast broadcast(const std::vector<py::object>& arguments) {
   const py::list out = py::module_::import("numpy").attr("broadcast_arrays")(*arrays);
   Broadcast b;
   const auto first = out[0].cast<py::array>();
+  if (max_points > 0.0 && static_cast<double>(first.size()) > max_points)
+    throw core::InputError("the arguments broadcast to " + core::format_number(static_cast<double>(first.size())) +
+                               " points, above the work cap " + core::format_number(max_points) +
+                               " points (README, work caps; as card_grid); split the call",
+                           "", 0, 0, "points");
   b.shape.assign(first.shape(), first.shape() + first.ndim());
   for (const auto& a : out)
     b.columns.push_back(to_vector(py::module_::import("numpy").attr("ascontiguousarray")(a)));
@@ -126,7 +135,7 @@ std::vector<double> checked_values(const model::Model& m, const py::object& p) {
 py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, const py::object& f,
                        const py::object& T, const py::object& amplitude, const std::string& mode,
                        const std::string& orientation, const ModuliAt& at) {
-  const auto b = broadcast({f, or_nan(T), amplitude});
+  const auto b = broadcast({f, or_nan(T), amplitude}, surface::kMaxCardGridPoints);
   const std::size_t n = b.columns[0].size();
   std::vector<double> storage(n), loss(n), mean(n), tan_delta(n);
   model::TestCondition c;
@@ -159,7 +168,7 @@ namespace {
 template <typename Law>
 py::array_t<double> time_array(const model::Model& m, const py::object& t, const py::object& T,
                                const std::string& mode, const std::string& orientation, Law law) {
-  const auto b = broadcast({t, or_nan(T)});
+  const auto b = broadcast({t, or_nan(T)}, surface::kMaxCardGridPoints);
   model::TestCondition c;
   c.mode = mode_or_native(m, mode);
   c.orientation = orientation;

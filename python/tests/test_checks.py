@@ -96,6 +96,14 @@ def test_grid_and_sweep_are_capped_before_work():
     card = fitlib.load_card(CARD)
     f = np.logspace(-1, 2, 10000)
     raises(fitlib.InputError, lambda: fitlib.card_grid(card, f, np.linspace(20, 30, 1000)), "work cap", "points")
+    # Card.eval broadcasts its arguments: two arrays of 10^4 values are 10^8 points (ran on, 20 s per
+    # 10^8 before the cap); the cap of card_grid, before any point. 10^6 points still run.
+    raises(fitlib.InputError, lambda: card.eval(f[:, None], np.linspace(20, 30, 10000)[None, :]), "work cap", "points")
+    model = card.model()
+    raises(fitlib.InputError, lambda: model.moduli(card.values(), f[:, None], np.ones(1000)[None, :]), "work cap")
+    raises(fitlib.InputError, lambda: model.relaxation_modulus(card.values(), f[:, None], np.ones(1000)[None, :]),
+           "work cap")
+    assert card.eval(np.full(10**6, 1.0))["storage_MPa"].shape == (10**6,)
     raises(fitlib.UsageError, lambda: fitlib.sweep(SWEEP, threads=0), "threads")
     raises(fitlib.UsageError, lambda: fitlib.sweep(SWEEP, threads=-3), "threads")
     raises(fitlib.UsageError, lambda: fitlib.accumulation_map("box", cycle_points=100000, omega_points=100000),

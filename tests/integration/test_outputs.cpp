@@ -2,6 +2,8 @@
 // an error (exit 3), an output that is an input or another output is refused before any work
 // (exit 2), a sweep's output is locked, and each row a sweep resumes is verified.
 #include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -349,3 +351,27 @@ TEST(Outputs, LifeFitRefusesAnOutputOnATestsSceneOrItsCard) {
 }
 
 }  // namespace
+
+// An --out that is a device or FIFO (issue 37 audit: `--out /dev/full` exited 0, and as root the
+// rename replaced /dev/full and the /dev/stdout link by regular files). A FIFO in the test's own
+// folder stands in for the device: eval writes into it and it stays a FIFO; a sweep refuses it
+// (its .partial and .lock would be made beside it), exit 3 naming the file, before any case.
+TEST(Outputs, AnOutputThatIsAFifoIsWrittenInPlaceOrRefusedNeverReplaced) {
+  const std::string fifo = temp_file("out.fifo");
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string bytes = temp_file("fifo_bytes.csv");
+  // fitcli in the background, a reader on the FIFO as another program would be; fitcli's status.
+  const std::string cmd = std::string(FITCLI_EXE) + " eval --card " + kCard + " --frequency-hz 1,10 --out " + fifo +
+                          " & cat " + fifo + " > " + bytes + "; wait $!";
+  const int status = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  const std::string got = slurp(bytes);
+  EXPECT_NE(got.find("frequency_Hz"), std::string::npos) << got;
+  EXPECT_TRUE(std::filesystem::is_fifo(std::filesystem::symlink_status(fifo)));
+  const auto r = run_fitcli("sweep --sweep " + kSweep + " --out " + fifo + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(fifo + ": the result file must be a regular file"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(fifo + ".partial"));
+  EXPECT_TRUE(std::filesystem::is_fifo(std::filesystem::symlink_status(fifo)));
+}

@@ -108,6 +108,16 @@ void refuse_output_on_input(const Sweep& sweep, const std::string& out) {
                                written);
 }
 
+// A device, FIFO or /dev/stdout as the result file: its FILE.partial and FILE.lock would be made
+// beside it (in /dev), and as root the final rename replaced /dev/full by a regular file.
+void refuse_special_output(const std::string& out) {
+  std::error_code ec;
+  const auto st = std::filesystem::status(out, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    throw core::InputError("the result file must be a regular file (its .partial and .lock are made beside it); "
+                           "without --out the table goes to stdout", out);
+}
+
 }  // namespace
 
 std::string sweep_table_head(const Sweep& sweep) {
@@ -122,6 +132,7 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
   std::unique_ptr<core::OutputLock> lock;
   if (to_file) {
     core::check_output_path(opt.out_path);
+    refuse_special_output(opt.out_path);
     refuse_output_on_input(sweep, opt.out_path);
     lock = std::make_unique<core::OutputLock>(opt.out_path);
     std::string kept = partial_head(head);

@@ -15,6 +15,7 @@
 #include "element.hpp"
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/segment/curve.hpp"
 #include "fitlib/segment/end_faces.hpp"
 #include "fitlib/segment/flank.hpp"
@@ -329,10 +330,9 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
 }
 
 void write_cycle_csv(const CycleResult& r, const std::string& path) {
-  const std::string tmp = path + ".tmp";
+  // Rendered whole, then core's writer (the rename here was unchecked, and replaced a device).
   {
-    std::ofstream f(tmp);
-    if (!f) throw core::InputError("cannot write '" + path + "'");
+    std::ostringstream f;
     f.precision(9);
     f << "point,role,x_mm,y_mm,t_s,s_mm,s11_MPa,s22_MPa,s12_MPa,s33_MPa,e11,e22,e12\n";
     for (const MonitoredHistory& mh : r.points)
@@ -343,9 +343,8 @@ void write_cycle_csv(const CycleResult& r, const std::string& path) {
           << c.t_s << ',' << c.s_mm << ',' << c.s11_MPa << ',' << c.s22_MPa << ',' << c.s12_MPa << ','
           << c.s33_MPa << ',' << c.e11 << ',' << c.e22 << ',' << c.e12 << '\n';
       }
-    if (!f) throw core::InputError("cannot write '" + path + "'");
+    core::write_file_atomically(path, f.str());
   }
-  std::rename(tmp.c_str(), path.c_str());
 }
 
 }  // namespace fitlib::segment
