@@ -17,9 +17,10 @@
 //    (~5 min, the reference ~3 of them).
 // 6. What heat build-up and the life distribution cost per drive against the run without them
 //    (`bench_life heat` prints it alone).
-// 7. The level calibration's held-out drives (bench/life_calibration.hpp; `bench_life calibration`).
-// 8. What [life] uncertainty = "cards" and "constants+cards" cost per drive against the run without
+// 7. What [life] uncertainty = "cards" and "constants+cards" cost per drive against the run without
 //    them, per draw and in total (`bench_life uncertainty` prints it alone).
+// 8. The level calibration's held-out drives (bench/life_calibration.hpp; `bench_life calibration`;
+//    its table is headed "Level calibration").
 // 9. What the design-point scan ([segment] scan = true) costs per drive and where it puts the design
 //    point (`bench_life scan` prints it alone).
 // 10. The segment levels' cost per reference drive against a baseline binary in the same run

@@ -282,6 +282,16 @@ TEST(SceneHeat, DistributionWithHeatIsPrintedAndByteReproducible) {
   EXPECT_NE(text.find("B10"), std::string::npos) << text;
   EXPECT_NE(text.find("belt temperature:"), std::string::npos) << text;
   EXPECT_NE(ja.find("\"heat_buildup\""), std::string::npos);
+  // life.json states the belt temperature, each source and loss and the fixed point's iterations (item 2).
+  const auto h = scene::life_json(s, a, false)["heat_buildup"];
+  EXPECT_EQ(h["belt_temperature_C"], a.heat->temperature_C);
+  EXPECT_EQ(h["hysteresis_W"], a.heat->sources.hysteresis_W);
+  EXPECT_EQ(h["friction_W"], a.heat->sources.friction_W);
+  EXPECT_EQ(h["convection_W"], a.heat->convection_W);
+  EXPECT_EQ(h["contact_W"], a.heat->contact_W);
+  EXPECT_EQ(h["iterations"], a.heat->iterations);
+  EXPECT_EQ(h["layers"].size(), a.heat->sources.layers.size());
+  EXPECT_NE(text.find("fixed-point iterations"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -8,9 +8,11 @@
 #include "fitlib/core/error.hpp"
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/io.hpp"
+#include "fitlib/fatigue/card.hpp"
 #include "fitlib/scene/planner.hpp"
 #include "fitlib/scene/sweep.hpp"
 #include "../../../fitlib/src/scene/sweep_case.hpp"
+#include "common/temp_path.hpp"
 
 namespace {
 
@@ -92,6 +94,57 @@ values = [10, 30]
   EXPECT_EQ(fields[5], "ok");
   EXPECT_EQ(fields[6], "");
   EXPECT_NE(fitlib::scene::sweep_row(s, 3), fitlib::scene::sweep_row(s, 2));
+}
+
+// The heat build-up's and the life distribution's columns (docs/sweep.md, issue 34 item 5): each
+// row's belt_temperature_C, heat_W, B10_h and separation_B10_h are the same case's scene run
+// directly (the medium drive edited by hand to the torque), and a scene without heat build-up leaves
+// the heat columns empty but keeps its B10.
+TEST(Sweep, BeltTemperatureAndB10ColumnsAreTheCasesOwnRun) {
+  namespace fatigue = fitlib::fatigue;
+  fatigue::FatigueCard card = fatigue::default_card();
+  card.separation.scatter = fatigue::LifeScatter{"lognormal", 0.25, 10};
+  card.separation.covariance = fatigue::LawCovariance{{{1e-3, 0.0, 0.0}, {0.0, 0.04, 0.0}, {0.0, 0.0, 1e-5}}};
+  card.levels.clear();  // the beam run reads these modes
+  const std::string dir = fitlib_test::temp_dir();
+  fatigue::save_card(dir + "scatter-card.json", card);
+  const std::string medium = fitlib::core::read_file(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-medium.toml");
+  auto edited = [&](bool heat, int torque) {
+    std::string t = medium;
+    auto put = [&](const std::string& what, const std::string& by) {
+      const auto at = t.find(what);
+      EXPECT_NE(at, std::string::npos) << what;
+      t.replace(at, what.size(), by);
+    };
+    put("torque_Nm = 15", "torque_Nm = " + std::to_string(torque));
+    if (heat) put("[conditions]\n", "[conditions]\nambient_C = 25\n"), put("[effects]\n", "[effects]\nheat_buildup = true\n");
+    return t + "\n[life]\nfidelity = \"beam\"\ncard = \"scatter-card.json\"\n";
+  };
+  for (bool heat : {true, false})
+    fitlib::core::write_file_atomically(dir + (heat ? "heat.toml" : "fixed.toml"), edited(heat, 15));
+  const auto s = parse_sweep("scenes = [\"heat.toml\", \"fixed.toml\"]\n[[axis]]\nkey = \"drive.torque_Nm\"\n"
+                             "values = [10, 20]\n[outputs]\ncolumns = [\"belt_temperature_C\", \"heat_W\", \"B10_h\", "
+                             "\"separation_B10_h\"]\n", dir + "heat-sweep.toml");
+  ASSERT_EQ(s.case_count, 4u);
+  std::string hot[2];
+  for (std::size_t i = 0; i < 4; ++i) {
+    const bool heat = i < 2;
+    const int torque = i % 2 == 0 ? 10 : 20;
+    const auto r = fitlib::scene::run_life(fitlib::scene::parse_scene(edited(heat, torque), dir + "direct.toml"));
+    ASSERT_EQ(heat, r.heat.has_value()) << i;
+    const auto fields = fitlib::scene::split_csv_row(fitlib::scene::sweep_row(s, i));
+    ASSERT_EQ(fields.size(), 9u) << i;
+    EXPECT_EQ(fields[7], "ok") << fields[8];
+    EXPECT_EQ(fields[3], heat ? fitlib::core::format_number(r.heat->temperature_C) : "") << i;
+    EXPECT_EQ(fields[4], heat ? fitlib::core::format_number(r.heat->heat_in_W) : "") << i;
+    ASSERT_EQ(r.life->distribution.size(), 1u);  // separation's law alone states a scatter
+    const auto& d = r.life->distribution[0];
+    EXPECT_EQ(fields[6], fitlib::core::format_number(d.b10.h)) << i;
+    EXPECT_EQ(fields[5], r.life->report.governing == "separation" ? fields[6] : "") << i;
+    if (heat) hot[i] = fields[3];
+  }
+  EXPECT_GT(std::stod(hot[1]), std::stod(hot[0]));  // hotter at the larger torque
+  EXPECT_GT(std::stod(hot[0]), 25.0);
 }
 
 TEST(Sweep, CaseTheDriveCannotCarryIsARowNotAFailure) {
