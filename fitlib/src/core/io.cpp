@@ -15,18 +15,8 @@ namespace fitlib::core {
 
 namespace {
 
-// True when `path` (its symbolic links followed) exists and is no regular file or folder: a device
-// such as /dev/full or /dev/null, a FIFO, or /dev/stdout. A rename would replace that node by a
-// regular file (as root, /dev/full became one); it is written in place instead.
-bool is_special_file(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
-}
-
 void write_in_place(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::binary);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw InputError("cannot open for writing", path);
   out.write(content.data(), static_cast<std::streamsize>(content.size()));
   out.flush();
@@ -35,18 +25,21 @@ void write_in_place(const std::string& path, const std::string& content) {
 
 }  // namespace
 
+bool is_special_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+}
+
 void write_file_atomically(const std::string& path, const std::string& content) {
   if (is_special_file(path)) return write_in_place(path, content);
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("cannot open for writing", tmp);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw InputError("write failed (disk full?)", tmp);
-    }
+  try {
+    write_in_place(tmp, content);
+  } catch (const InputError&) {
+    std::remove(tmp.c_str());
+    throw;
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     std::remove(tmp.c_str());

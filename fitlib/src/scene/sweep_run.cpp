@@ -110,10 +110,9 @@ void refuse_output_on_input(const Sweep& sweep, const std::string& out) {
 
 // A device, FIFO or /dev/stdout as the result file: its FILE.partial and FILE.lock would be made
 // beside it (in /dev), and as root the final rename replaced /dev/full by a regular file.
+// (A folder is refused before, by core::check_output_path.)
 void refuse_special_output(const std::string& out) {
-  std::error_code ec;
-  const auto st = std::filesystem::status(out, ec);
-  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+  if (core::is_special_file(out))
     throw core::InputError("the result file must be a regular file (its .partial and .lock are made beside it); "
                            "without --out the table goes to stdout", out);
 }

@@ -331,20 +331,18 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
 
 void write_cycle_csv(const CycleResult& r, const std::string& path) {
   // Rendered whole, then core's writer (the rename here was unchecked, and replaced a device).
-  {
-    std::ostringstream f;
-    f.precision(9);
-    f << "point,role,x_mm,y_mm,t_s,s_mm,s11_MPa,s22_MPa,s12_MPa,s33_MPa,e11,e22,e12\n";
-    for (const MonitoredHistory& mh : r.points)
-      for (const CycleSample& c : mh.samples) {
-        for (double v : {c.s11_MPa, c.s22_MPa, c.s12_MPa, c.s33_MPa, c.e11, c.e22, c.e12})
-          if (!std::isfinite(v)) throw core::NumericalError("segment cycle: non-finite value at '" + mh.point.name + "'");
-        f << mh.point.name << ',' << to_string(mh.role) << ',' << mh.point.x_mm << ',' << mh.point.y_mm << ','
-          << c.t_s << ',' << c.s_mm << ',' << c.s11_MPa << ',' << c.s22_MPa << ',' << c.s12_MPa << ','
-          << c.s33_MPa << ',' << c.e11 << ',' << c.e22 << ',' << c.e12 << '\n';
-      }
-    core::write_file_atomically(path, f.str());
-  }
+  std::ostringstream f;
+  f.precision(9);
+  f << "point,role,x_mm,y_mm,t_s,s_mm,s11_MPa,s22_MPa,s12_MPa,s33_MPa,e11,e22,e12\n";
+  for (const MonitoredHistory& mh : r.points)
+    for (const CycleSample& c : mh.samples) {
+      for (double v : {c.s11_MPa, c.s22_MPa, c.s12_MPa, c.s33_MPa, c.e11, c.e22, c.e12})
+        if (!std::isfinite(v)) throw core::NumericalError("segment cycle: non-finite value at '" + mh.point.name + "'");
+      f << mh.point.name << ',' << to_string(mh.role) << ',' << mh.point.x_mm << ',' << mh.point.y_mm << ','
+        << c.t_s << ',' << c.s_mm << ',' << c.s11_MPa << ',' << c.s22_MPa << ',' << c.s12_MPa << ','
+        << c.s33_MPa << ',' << c.e11 << ',' << c.e22 << ',' << c.e12 << '\n';
+    }
+  core::write_file_atomically(path, f.str());
 }
 
 }  // namespace fitlib::segment

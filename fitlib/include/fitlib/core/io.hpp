@@ -4,8 +4,14 @@
 
 namespace fitlib::core {
 
-// Writes `content` to `path` through a temporary in the same folder and a rename.
+// Writes `content` to `path` through a temporary in the same folder and a rename; a special file
+// (below) is written in place, its write checked.
 void write_file_atomically(const std::string& path, const std::string& content);
+
+// True when `path` (its symbolic links followed) exists and is no regular file or folder: a device
+// such as /dev/full or /dev/null, a FIFO, or /dev/stdout. A rename would replace that node by a
+// regular file (as root, /dev/full became one).
+bool is_special_file(const std::string& path);
 
 // Checks before any work that `path` can be written: its folder exists and is writable and the
 // path is not a folder; InputError naming the path otherwise. Commands with several outputs check
