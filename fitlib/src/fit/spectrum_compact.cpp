@@ -58,6 +58,46 @@ bool keeps(const Figures& f, const Figures& ref, const CompactOptions& o) {
          !(tan_delta_rms(f, ref) > o.tan_delta_tolerance);
 }
 
+// `n` times in ln τ over [lo, hi] at the equal-ripple density (CompactOptions::equal_ripple): a
+// comb Δ decades apart ripples E″ by a(Δ) = 4 exp(−π²/(Δ ln 10)) and E′ by ≈ (2/π) tan δ a(Δ)
+// (relative; the Debye kernels' Fourier series), so the objective's weighted sum of squared
+// ripples, w′ (2/π tan δ)² a² + w″ a², is least for n terms at ρ = ln(w′ (2/π tan δ)² + w″) /
+// (2π²/ln 10) + C terms per decade (C for ∫ρ = n − 1; at least 0.2 per decade), tan δ the
+// spectrum's at ω = 1/τ: denser where tan δ is large, even where the weights make E″ lead.
+std::vector<Term> equal_ripple(const FitResult& spectrum, const FitOptions& options, const data::DynamicTestTable& table,
+                               double lo, double hi, int n) {
+  constexpr int cells = 400;
+  constexpr double floor_per_decade = 0.2;
+  const double decades = (hi - lo) / std::log(10.0), two_k = 2.0 * M_PI * M_PI / std::log(10.0);
+  model::TestCondition c = table.rows.front().condition;
+  std::vector<double> g(cells);
+  for (int k = 0; k < cells; ++k) {
+    c.frequency_Hz = 1.0 / (2.0 * M_PI * std::exp(lo + (hi - lo) * (k + 0.5) / cells));
+    const auto m = spectrum.model->moduli(spectrum.values.data(), c);
+    const double ripple_ratio = 2.0 / M_PI * m.loss / m.storage;
+    g[k] = std::log(options.storage_weight * ripple_ratio * ripple_ratio + options.loss_weight) / two_k;
+  }
+  const auto density = [&](int k, double shift) { return std::max(floor_per_decade, g[k] + shift); };
+  const auto count = [&](double shift) {
+    double sum = 0.0;
+    for (int k = 0; k < cells; ++k) sum += density(k, shift);
+    return sum * decades / cells;
+  };
+  double a = -1e3, b = 1e3;  // count() grows with the shift
+  for (int it = 0; it < 100; ++it) (count(0.5 * (a + b)) < n - 1 ? a : b) = 0.5 * (a + b);
+  std::vector<double> cumulative(cells + 1, 0.0);
+  for (int k = 0; k < cells; ++k) cumulative[k + 1] = cumulative[k] + density(k, 0.5 * (a + b));
+  std::vector<Term> out(n);
+  int k = 0;
+  for (int j = 0; j < n; ++j) {
+    const double target = cumulative[cells] * j / (n - 1);
+    while (k < cells - 1 && cumulative[k + 1] < target) ++k;
+    const double within = std::clamp((target - cumulative[k]) / (cumulative[k + 1] - cumulative[k]), 0.0, 1.0);
+    out[j] = {1.0, lo + (hi - lo) * (k + within) / cells};
+  }
+  return out;
+}
+
 // `n` terms placed two ways over the spectrum's positive terms: merged by Ward's criterion
 // (term_merge.hpp; exact where the spectrum is a few separate peaks) and evenly spaced in ln τ
 // (where it is broad: merges bunch terms where it is large and leave gaps, each a ripple of E″);
@@ -66,7 +106,7 @@ bool keeps(const Figures& f, const Figures& ref, const CompactOptions& o) {
 // cost is kept. `trial`: figures only (FitOptions::uncertainty false).
 FitResult compact_fit(const std::function<model::ModelPtr(int)>& make, const data::DynamicTestTable& table,
                       const FitOptions& options, const FitResult& spectrum, const std::vector<Term>& terms, int n,
-                      bool trial) {
+                      bool trial, const CompactOptions& o) {
   const model::ModelPtr m = make(n);
   std::vector<Term> even(n);
   const double lo = terms.front().log_tau, hi = terms.back().log_tau;
@@ -83,12 +123,18 @@ FitResult compact_fit(const std::function<model::ModelPtr(int)>& make, const dat
   start = detail::start_from_terms(*m, spectrum, even);
   FitResult spaced = fit(m, table, held, &start);
   const bool even_kept = spaced.metrics.cost < merged.metrics.cost;
-  FitResult& r = even_kept ? spaced : merged;
-  for (int i : ms.times)
-    r.parameters[i].reason = even_kept ? "evenly spaced over the smooth spectrum's terms (held)"
-                                       : "merged from the smooth spectrum's terms (held)";
-  if (ms.relaxed >= 0) r.parameters[ms.relaxed].reason = "the smooth spectrum's (held)";
-  return std::move(r);
+  FitResult* r = even_kept ? &spaced : &merged;
+  const char* reason = even_kept ? "evenly spaced over the smooth spectrum's terms (held)"
+                                 : "merged from the smooth spectrum's terms (held)";
+  FitResult rippled;
+  if (o.equal_ripple && n > 1) {
+    start = detail::start_from_terms(*m, spectrum, equal_ripple(spectrum, options, table, lo, hi, n));
+    rippled = fit(m, table, held, &start);
+    if (rippled.metrics.cost < r->metrics.cost) r = &rippled, reason = "at the equal-ripple density over the smooth spectrum's terms (held)";
+  }
+  for (int i : ms.times) r->parameters[i].reason = reason;
+  if (ms.relaxed >= 0) r->parameters[ms.relaxed].reason = "the smooth spectrum's (held)";
+  return std::move(*r);
 }
 
 }  // namespace
@@ -107,7 +153,7 @@ FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, cons
   int tried = 0;
   if (full > 2) {
     ++tried;
-    FitResult first = compact_fit(make, table, options, spectrum, terms, full - 1, true);
+    FitResult first = compact_fit(make, table, options, spectrum, terms, full - 1, true, o);
     if (!keeps(figures_of(first, table), ref, o)) {
       std::ostringstream msg;
       msg << "term economy: the smooth spectrum's " << full << " terms kept (" << full - 1
@@ -122,7 +168,7 @@ FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, cons
   }
   while (lo < hi) {
     const int mid = (lo + hi) / 2;
-    FitResult r = compact_fit(make, table, options, spectrum, terms, mid, true);
+    FitResult r = compact_fit(make, table, options, spectrum, terms, mid, true, o);
     ++tried;
     if (keeps(figures_of(r, table), ref, o)) {
       hi = mid;
@@ -132,7 +178,7 @@ FitResult compact_spectrum(const std::function<model::ModelPtr(int)>& make, cons
     }
   }
   if (!best || hi == full) return spectrum;
-  best = compact_fit(make, table, options, spectrum, terms, hi, false);  // the count kept, assessed
+  best = compact_fit(make, table, options, spectrum, terms, hi, false, o);  // the count kept, assessed
   const Figures f = figures_of(*best, table);
   std::ostringstream msg;
   msg << "term economy: the smooth spectrum's " << full << " terms reduced to " << hi << " (" << tried

@@ -261,3 +261,71 @@ TEST(CompactProbe, PyviscoMasterPlacements) {
 
 }  // namespace
 }  // namespace fitlib
+
+#include "fitlib/card/fit_card.hpp"
+#include "known_truth.hpp"
+namespace fitlib {
+namespace {
+
+card::FitCardOptions auto_options2() {
+  card::FitCardOptions o;
+  o.model = "prony";
+  o.terms = "auto";
+  o.model_options = {{"temperature_law", "none"}, {"reference_C", 23.0}};
+  o.provenance = {"probe", "test", false};
+  return o;
+}
+
+void economy_row(const char* data, const char* variant, const data::DynamicTestTable& table, card::FitCardOptions o,
+                 const card::testing::Truth* truth, const std::vector<double>* f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = card::fit_card(table, o);
+  const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  model::MaxwellSeries s;
+  r.result.model->maxwell_series(r.result.values.data(), &s);
+  int terms = 0;
+  for (double e : s.moduli) terms += e > 0;
+  const Fig g = figs(table, *r.result.model, r.result.values.data(), s.relaxed);
+  std::printf("| %s | %s | %d | %.4f | %.1f %% | %.3f | %.3f | %d |", data, variant, terms, g.s_rms, 100 * g.s_max, g.l_rms,
+              g.ratio, g.sc);
+  if (truth) {
+    const auto h = card::testing::held_out(r.result, *truth, *f);
+    std::printf(" %.5f / %.5f |", h.storage, h.loss);
+  } else {
+    std::printf(" — |");
+  }
+  std::printf(" %.1f |\n", ms);
+}
+
+void economy_variants(const char* data, const data::DynamicTestTable& table, card::FitCardOptions base,
+                      const card::testing::Truth* truth, const std::vector<double>* f) {
+  economy_row(data, "default", table, base, truth, f);
+  card::FitCardOptions o = base;
+  o.term.compact.equal_ripple = true;
+  economy_row(data, "equal-ripple", table, o, truth, f);
+  o.term.compact.tan_delta_tolerance = INFINITY;
+  economy_row(data, "equal-ripple, no tan d check", table, o, truth, f);
+  o.term.compact.equal_ripple = false;
+  economy_row(data, "no tan d check", table, o, truth, f);
+}
+
+TEST(CompactProbe, EconomyVariants) {
+  std::printf("| data | variant | terms | E' rms | max | E'' rms | Einf ratio | sign changes | held-out E'/E'' | ms |\n");
+  const auto master = fit::testing::read_pyvisco("datasets/materials/pyvisco-freq-master.csv");
+  card::FitCardOptions pm = auto_options2();
+  pm.model_options = {{"mode", "uniaxial"}, {"reference_C", -5.0}};
+  economy_variants("pyvisco master", master, pm, nullptr, nullptr);
+  for (int per_decade : {20, 10})
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      const double decades = 8.0 + (seed % 3);
+      const auto t = card::testing::smooth_truth(static_cast<int>(decades) + 2, 1e-5 / (2.0 * M_PI), seed);
+      const auto f = fit::testing::log_frequencies(1e-4, 1e-4 * std::pow(10.0, decades), per_decade * static_cast<int>(decades) + 1);
+      const auto table = fit::testing::synthetic_table(*t.model, t.p, f, 0.01, 100 + seed);
+      char name[64];
+      std::snprintf(name, sizeof name, "truth seed %d, %.0f dec, %d/dec", int(seed), decades, per_decade);
+      economy_variants(name, table, auto_options2(), &t, &f);
+    }
+}
+
+}  // namespace
+}  // namespace fitlib
