@@ -62,8 +62,9 @@ bool keeps(const Figures& f, const Figures& ref, const CompactOptions& o) {
 // comb Δ decades apart ripples E″ by a(Δ) = 4 exp(−π²/(Δ ln 10)) and E′ by ≈ (2/π) tan δ a(Δ)
 // (relative; the Debye kernels' Fourier series), so the objective's weighted sum of squared
 // ripples, w′ (2/π tan δ)² a² + w″ a², is least for n terms at ρ = ln(w′ (2/π tan δ)² + w″) /
-// (2π²/ln 10) + C terms per decade (C for ∫ρ = n − 1; at least 0.2 per decade), tan δ the
-// spectrum's at ω = 1/τ: denser where tan δ is large, even where the weights make E″ lead.
+// (2π²/ln 10) + C terms per decade (C for ∫ρ = n − 1; at least 0.2 per decade, so no stretch of
+// the range goes without a term), tan δ the spectrum's at ω = 1/τ in the first row's condition
+// (as figures_of): denser where tan δ is large, even where the weights make E″ lead.
 std::vector<Term> equal_ripple(const FitResult& spectrum, const FitOptions& options, const data::DynamicTestTable& table,
                                double lo, double hi, int n) {
   constexpr int cells = 400;
@@ -100,7 +101,8 @@ std::vector<Term> equal_ripple(const FitResult& spectrum, const FitOptions& opti
 
 // `n` terms placed two ways over the spectrum's positive terms: merged by Ward's criterion
 // (term_merge.hpp; exact where the spectrum is a few separate peaks) and evenly spaced in ln τ
-// (where it is broad: merges bunch terms where it is large and leave gaps, each a ripple of E″);
+// (where it is broad: merges bunch terms where it is large and leave gaps, each a ripple of E″),
+// and a third way with CompactOptions::equal_ripple (equal_ripple above);
 // at each the moduli re-solved (NNLS on the same objective; exact for relative residuals,
 // polished in log space for log10 ones) with the times and the relaxed modulus held. The lower
 // cost is kept. `trial`: figures only (FitOptions::uncertainty false).
@@ -130,7 +132,10 @@ FitResult compact_fit(const std::function<model::ModelPtr(int)>& make, const dat
   if (o.equal_ripple && n > 1) {
     start = detail::start_from_terms(*m, spectrum, equal_ripple(spectrum, options, table, lo, hi, n));
     rippled = fit(m, table, held, &start);
-    if (rippled.metrics.cost < r->metrics.cost) r = &rippled, reason = "at the equal-ripple density over the smooth spectrum's terms (held)";
+    if (rippled.metrics.cost < r->metrics.cost) {
+      r = &rippled;
+      reason = "at the equal-ripple density over the smooth spectrum's terms (held)";
+    }
   }
   for (int i : ms.times) r->parameters[i].reason = reason;
   if (ms.relaxed >= 0) r->parameters[ms.relaxed].reason = "the smooth spectrum's (held)";
