@@ -284,7 +284,8 @@ struct CycleGeometry {
 // the long belt's profiles or the given ones, returned in warping and shear), the per-element laws,
 // the time, the temperature and the rubber's mass.
 StaticProblem cycle_problem(const CycleGeometry& g, const CogSection& section,
-                            const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive, const CyclePhysics& physics, CyclePhysics::EndProfile& warping,
+                            const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                            const CyclePhysics& physics, CyclePhysics::EndProfile& warping,
                             CyclePhysics::EndProfile& shear) {
   warping = physics.end_warping_mm, shear = physics.end_shear_MPa;
   if (physics.ends == EndCondition::sheared && !warping && !shear)

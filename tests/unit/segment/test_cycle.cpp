@@ -597,7 +597,7 @@ TEST(SegmentCycle, BodyForcesUseTheLoadCyclesFrictionUsedThroughTheDriverExitRam
   EXPECT_NEAR(b1.x(), -before.friction_used * a1 * std::sin(before.gamma_rad), 1e-12);
 }
 
-// Each element's contact body force is its mean over its path extent (CycleKnobs::
+// Each element's contact body force is its mean over its path extent (CyclePhysics::
 // body_force_sampling_mm): where the contact ends at once, the total force on the segment falls
 // smoothly as the end passes, instead of by one element's share whenever an element's centre
 // passes it (the gap bottom's exit hump showed those steps: docs/segment.md).
