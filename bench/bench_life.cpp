@@ -52,12 +52,12 @@
 // monitored histories; `oracle=PATH`: the end faces' shear and warping from a longer run's
 // section=X CSV (X = this segment's half-length; docs/segment.md "End faces"); `dense=A:B:DS`: the
 // planned steps plus one every DS mm of path over [A, B] mm of the last cycle; `bodyds=MM`: the body forces' sampling over each element
-// (CycleKnobs::body_force_sampling_mm, 0 = at the element's centre); `inertia`: PhysicsOptions::inertia
+// (CyclePhysics::body_force_sampling_mm, 0 = at the element's centre); `inertia`: PhysicsOptions::inertia
 // (implicit dynamics, docs/segment.md "Inertia"); `flank=K`: the flank foundation's stiffness
-// (CycleKnobs::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
-// the tangential flank's stick stiffness (CycleKnobs::flank_stick_N_mm4, N/mm⁴; 0 = off;
+// (CyclePhysics::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
+// the tangential flank's stick stiffness (CyclePhysics::flank_stick_N_mm4, N/mm⁴; 0 = off;
 // docs/segment.md "Tangential flank"); `vflank=V0`: the sliding friction's direction with this floor of
-// the sliding speed (CycleKnobs::flank_slide_floor_mm_s, mm/s; 0 = off); `branch=X`: the branch switch
+// the sliding speed (CyclePhysics::flank_slide_floor_mm_s, mm/s; 0 = off); `branch=X`: the branch switch
 // (SteppingOptions::branch_switch: the critical mode's amplitude as a share of the shortest element
 // side; 0 = off); `cycles=N`: load cycles (default 2); `loads=A:B`: print the load
 // cycle's samples over [A, B] mm of path (zone, p, γ, sliding speed, friction used); `field=PREFIX:MM[:MM…]`: the
@@ -194,13 +194,13 @@ struct Probe {
   int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
   int krylov = -1;                              // krylov=N: NewtonOptions::krylov_iterations (< 0: the default)
   double krylov_tolerance = -1.0;               // ktol=X: NewtonOptions::krylov_tolerance (< 0: the default)
-  double body_sampling_mm = -1.0;               // bodyds=MM: CycleKnobs::body_force_sampling_mm (< 0: the default)
+  double body_sampling_mm = -1.0;               // bodyds=MM: CyclePhysics::body_force_sampling_mm (< 0: the default)
   bool inertia = false;                         // PhysicsOptions::inertia
   bool hold = false;                            // hold: the cards' damage held at their tables' tests (windowed_card)
   int cycles = 2;                               // cycles=N
-  double flank = -1.0;                          // flank=K: CycleKnobs::flank_stiffness_N_mm4 (< 0: the setup's)
-  double tflank = -1.0;                         // tflank=K: CycleKnobs::flank_stick_N_mm4 (< 0: the setup's)
-  double vflank = -1.0;                         // vflank=V0: CycleKnobs::flank_slide_floor_mm_s (< 0: the setup's)
+  double flank = -1.0;                          // flank=K: CyclePhysics::flank_stiffness_N_mm4 (< 0: the setup's)
+  double tflank = -1.0;                         // tflank=K: CyclePhysics::flank_stick_N_mm4 (< 0: the setup's)
+  double vflank = -1.0;                         // vflank=V0: CyclePhysics::flank_slide_floor_mm_s (< 0: the setup's)
   double branch = 0.0;                          // branch=X: SteppingOptions::branch_switch (0: off)
   std::string field_prefix{};                   // field=PREFIX:MM[:MM…]
   std::vector<double> field_at_mm{};
@@ -253,11 +253,12 @@ std::vector<double> dense_positions(const belt::LoadCycle& cycle, const belt::Dr
                                     const scene::SegmentLifeSetup& setup, const std::array<double, 3>& dense) {
   const belt::LoadHistory h(cycle, drive.belt, setup.temperature_C);
   const double L = h.length_mm(), half = segment::build_mesh(setup.section, setup.mesh).half_length_mm;
+  const segment::CycleStepping& stepping = setup.cycle.stepping;
   std::vector<double> s;
-  for (int c = 0; c < setup.cycle.cycles; ++c)
-    for (double b : segment::cycle_breakpoints(h, setup.cycle.steps_per_cycle, setup.cycle.change_weight, half))
+  for (int c = 0; c < stepping.cycles; ++c)
+    for (double b : segment::cycle_breakpoints(h, stepping.steps_per_cycle, stepping.change_weight, half))
       s.push_back((c + b) * L);
-  for (double x = dense[0]; x <= dense[1] + 1e-9; x += dense[2]) s.push_back((setup.cycle.cycles - 1) * L + x);
+  for (double x = dense[0]; x <= dense[1] + 1e-9; x += dense[2]) s.push_back((stepping.cycles - 1) * L + x);
   std::sort(s.begin(), s.end());
   std::vector<double> out;
   for (double x : s)
@@ -318,10 +319,11 @@ Outcome run_probe(const Probe& pr) {
     for (double sign : {-1.0, 1.0})
       setup.extra_points.push_back({(sign < 0 ? "left-" : "right-") + std::to_string(k), sign * pr.section_x,
                                     -0.25 - 0.5 * k});
-  if (!pr.oracle.empty()) setup.cycle.end_shear_MPa = oracle_end(pr.oracle, 0), setup.cycle.end_warping_mm = oracle_end(pr.oracle, 1);
-  if (pr.end_condition == "free") setup.cycle.ends = segment::EndCondition::free;
-  if (pr.end_condition == "sheared") setup.cycle.ends = segment::EndCondition::sheared;
-  if (pr.end_condition == "radial") setup.cycle.ends = segment::EndCondition::radial;
+  if (!pr.oracle.empty())
+    setup.cycle.physics.end_shear_MPa = oracle_end(pr.oracle, 0), setup.cycle.physics.end_warping_mm = oracle_end(pr.oracle, 1);
+  if (pr.end_condition == "free") setup.cycle.physics.ends = segment::EndCondition::free;
+  if (pr.end_condition == "sheared") setup.cycle.physics.ends = segment::EndCondition::sheared;
+  if (pr.end_condition == "radial") setup.cycle.physics.ends = segment::EndCondition::radial;
   setup.solver.newton.reuse_tangent = pr.reuse;
   setup.solver.stepping.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.physics.integration = segment::integration_from_string(pr.integration);
@@ -332,18 +334,18 @@ Outcome run_probe(const Probe& pr) {
   setup.solver.newton.tolerance = pr.tolerance;
   setup.solver.diagnose_failure = pr.diagnose;
   setup.solver.physics.inertia = pr.inertia;
-  setup.cycle.cycles = pr.cycles;
-  setup.cycle.vtk_prefix = pr.field_prefix, setup.cycle.vtk_at_s_mm = pr.field_at_mm;
+  setup.cycle.stepping.cycles = pr.cycles;
+  setup.cycle.outputs.vtk_prefix = pr.field_prefix, setup.cycle.outputs.vtk_at_s_mm = pr.field_at_mm;
   setup.solver.threads = pr.threads;
   if (pr.krylov >= 0) setup.solver.newton.krylov_iterations = pr.krylov;
   if (pr.krylov_tolerance > 0.0) setup.solver.newton.krylov_tolerance = pr.krylov_tolerance;
-  setup.cycle.steps_per_cycle = pr.steps;
-  if (pr.flank >= 0.0) setup.cycle.flank_stiffness_N_mm4 = pr.flank;
-  if (pr.tflank >= 0.0) setup.cycle.flank_stick_N_mm4 = pr.tflank;
-  if (pr.vflank >= 0.0) setup.cycle.flank_slide_floor_mm_s = pr.vflank;
+  setup.cycle.stepping.steps_per_cycle = pr.steps;
+  if (pr.flank >= 0.0) setup.cycle.physics.flank_stiffness_N_mm4 = pr.flank;
+  if (pr.tflank >= 0.0) setup.cycle.physics.flank_stick_N_mm4 = pr.tflank;
+  if (pr.vflank >= 0.0) setup.cycle.physics.flank_slide_floor_mm_s = pr.vflank;
   setup.solver.stepping.branch_switch = pr.branch;
-  if (pr.body_sampling_mm >= 0.0) setup.cycle.body_force_sampling_mm = pr.body_sampling_mm;
-  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  if (pr.body_sampling_mm >= 0.0) setup.cycle.physics.body_force_sampling_mm = pr.body_sampling_mm;
+  setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   segment::RoleMaterialOptions o;
   o.fidelity = pr.fidelity == "complete" ? core::Fidelity::complete : core::Fidelity::elastic;
   o.temperature_C = s.temperature_C;
@@ -363,7 +365,7 @@ Outcome run_probe(const Probe& pr) {
     setup.materials[k] = segment::role_point(*c.model(), values, o);
   }
   setup.temperature_C = s.temperature_C;
-  if (pr.dense[2] > 0.0) setup.cycle.positions_mm = dense_positions(cycle, drive, setup, pr.dense);
+  if (pr.dense[2] > 0.0) setup.cycle.stepping.positions_mm = dense_positions(cycle, drive, setup, pr.dense);
   const core::Stopwatch watch;
   const double cpu0 = thread_cpu_s();
   Outcome out{scene::segment_life(cycle, drive, setup, fatigue::default_card()), 0.0};

@@ -66,8 +66,8 @@ void cycle_steps(const char* out_dir) {
     scene::SegmentLifeSetup setup;
     setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5, setup.mesh.central_pitches = 1.0;
     setup.mesh.end_pitches = 1.0, setup.mesh.cushion_rows = 1;
-    setup.cycle.steps_per_cycle = steps[k];
-    setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+    setup.cycle.stepping.steps_per_cycle = steps[k];
+    setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
     setup.temperature_C = s.temperature_C;
     const scene::SegmentLife life = scene::segment_life(cycle, drive, setup, fatigue::default_card());

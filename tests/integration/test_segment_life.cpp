@@ -35,10 +35,10 @@ scene::SegmentLife reference_life(const std::string& load, int steps_per_cycle,
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   scene::SegmentLifeSetup setup;
   setup.mesh = mesh;
-  setup.cycle.cycles = cycles;
-  setup.cycle.steps_per_cycle = steps_per_cycle;
-  setup.cycle.scan_design_regions = scan;
-  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  setup.cycle.stepping.cycles = cycles;
+  setup.cycle.stepping.steps_per_cycle = steps_per_cycle;
+  setup.cycle.outputs.scan_design_regions = scan;
+  setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
   setup.solver.physics.integration = element;
@@ -55,9 +55,9 @@ TEST(SegmentLife, TwoSimulatedCyclesGiveTheLifeOfOne) {
     const scene::Scene s = scene::load_scene(std::string(FITLIB_SOURCE_DIR) + "/datasets/drives/ref-0500-medium.toml");
     const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
     scene::SegmentLifeSetup setup;
-    setup.cycle.cycles = 1;
-    setup.cycle.steps_per_cycle = 40;
-    setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+    setup.cycle.stepping.cycles = 1;
+    setup.cycle.stepping.steps_per_cycle = 40;
+    setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
     setup.temperature_C = s.temperature_C;
     one = scene::segment_life(belt::compute_load_cycle(drive), drive, setup, fatigue::default_card());
@@ -130,11 +130,11 @@ TEST(SegmentLife, CordLineReactionsInTheSpansAreSmallAgainstTheBeltForce) {
   const belt::DriveCase drive = scene::make_drive(s, scene::resolve_stiffness(s));
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   scene::SegmentLifeSetup setup;  // the life's mesh
-  setup.cycle.cycles = 1;
-  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  setup.cycle.stepping.cycles = 1;
+  setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
-  setup.cycle.ends = segment::EndCondition::radial;  // an endless belt's uniform span: no cord reactions
+  setup.cycle.physics.ends = segment::EndCondition::radial;  // an endless belt's uniform span: no cord reactions
   const segment::CycleResult r = scene::segment_run(cycle, drive, setup);
   int spans = 0;
   for (const auto& q : r.loads) {
@@ -166,16 +166,16 @@ TEST(SegmentLife, ShearedEndFacesBringTheShortSegmentsLivesToALongSegments) {
   const belt::LoadCycle cycle = belt::compute_load_cycle(drive);
   auto life = [&](segment::EndCondition ends, double pitches) {
     scene::SegmentLifeSetup setup;
-    setup.cycle.cycles = 1;
-    setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+    setup.cycle.stepping.cycles = 1;
+    setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
     setup.temperature_C = s.temperature_C;
-    setup.cycle.ends = ends;
+    setup.cycle.physics.ends = ends;
     setup.mesh.central_pitches = setup.mesh.end_pitches = pitches;
     return scene::segment_life(cycle, drive, setup, fatigue::default_card());
   };
   const scene::SegmentLifeSetup defaults;
-  EXPECT_EQ(defaults.cycle.ends, segment::EndCondition::sheared);  // the life's default
+  EXPECT_EQ(defaults.cycle.physics.ends, segment::EndCondition::sheared);  // the life's default
   const scene::SegmentLife sheared = life(segment::EndCondition::sheared, 1.0), radial = life(segment::EndCondition::radial, 1.0);
   const scene::SegmentLife longer = life(segment::EndCondition::radial, 3.0);  // 81 mm
   auto ratio = [&](const scene::SegmentLife& a, int mode) {
@@ -200,9 +200,9 @@ TEST(SegmentLife, ReferenceDriveGivesFiniteLivesFromTheSegment) {
   scene::SegmentLifeSetup setup;
   setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5, setup.mesh.central_pitches = 1.0;
   setup.mesh.end_pitches = 1.0, setup.mesh.cushion_rows = 1;
-  setup.cycle.cycles = 2;
-  setup.cycle.steps_per_cycle = 40;
-  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  setup.cycle.stepping.cycles = 2;
+  setup.cycle.stepping.steps_per_cycle = 40;
+  setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   setup.materials = {iso(20.0, 0.49), iso(8.0, 0.49)};
   setup.temperature_C = s.temperature_C;
   const scene::SegmentLife life = scene::segment_life(cycle, drive, setup, fatigue::default_card());
@@ -241,8 +241,8 @@ CardRun card_run(const std::string& load, int cycles, core::Fidelity fidelity, d
   run.cycle = belt::compute_load_cycle(run.drive);
   run.setup.section = scene::cog_section(s);
   run.setup.cycle = scene::life_cycle(fidelity);  // the life's mesh and steps per cycle
-  run.setup.cycle.cycles = cycles;
-  run.setup.cycle.manufactured_radius_mm = run.drive.geometry.belt_length_mm / (2.0 * M_PI);
+  run.setup.cycle.stepping.cycles = cycles;
+  run.setup.cycle.physics.manufactured_radius_mm = run.drive.geometry.belt_length_mm / (2.0 * M_PI);
   run.setup.temperature_C = s.temperature_C;
   segment::RoleMaterialOptions o;
   o.fidelity = fidelity;
@@ -324,11 +324,11 @@ TEST(SegmentLife, CompleteLevelOnTheLightDriveDiffersBetweenCycleOneAndTwoWhileT
 TEST(SegmentLife, CompleteLevelsLivesOnTheLightDriveSettleWithTheStepCount) {
   const auto lives = [](int steps) {
     CardRun r = card_run("light", 1, core::Fidelity::complete);
-    if (steps > 0) r.setup.cycle.steps_per_cycle = steps;
+    if (steps > 0) r.setup.cycle.stepping.steps_per_cycle = steps;
     return card_life(r).report;
   };
-  EXPECT_EQ(scene::life_cycle(core::Fidelity::complete).steps_per_cycle, 120);
-  EXPECT_EQ(scene::life_cycle(core::Fidelity::elastic).steps_per_cycle, 60);
+  EXPECT_EQ(scene::life_cycle(core::Fidelity::complete).stepping.steps_per_cycle, 120);
+  EXPECT_EQ(scene::life_cycle(core::Fidelity::elastic).stepping.steps_per_cycle, 60);
   const fatigue::LifeReport planned = lives(0), fine = lives(240);
   for (int k = 0; k < 2; ++k) {
     const fatigue::ModeLife &a = planned.modes[k], &b = fine.modes[k];
@@ -422,7 +422,7 @@ TEST(SegmentLife, CompleteLevelFailsAtTheMediumDrivesExitWithEitherDamageUpdateA
 }
 
 
-// The deformation-limited flank (CycleKnobs::flank_stiffness_N_mm4, segment/flank.hpp; docs/segment.md
+// The deformation-limited flank (CyclePhysics::flank_stiffness_N_mm4, segment/flank.hpp; docs/segment.md
 // "Flank foundation"), k = 4 E' tan²β / B² from the bottom card's elastic equivalent (E' = 4G,
 // 11.9 MPa: k = 0.045 N/mm⁴). The complete level on the medium drive, which folds at the driver's
 // exit in cycle 2 with Report I's dead loads alone, passes both cycles with it; its radial total
@@ -440,11 +440,11 @@ double derived_flank_stiffness(const std::string& load, const CardRun& run) {
 
 TEST(SegmentLife, FlankFoundationLetsTheCompleteLevelPassTheMediumDrivesFold) {
   CardRun run = card_run("medium", 2, core::Fidelity::complete);
-  run.setup.cycle.flank_stiffness_N_mm4 = derived_flank_stiffness("medium", run);
-  EXPECT_NEAR(run.setup.cycle.flank_stiffness_N_mm4, 0.0452, 5e-4);
+  run.setup.cycle.physics.flank_stiffness_N_mm4 = derived_flank_stiffness("medium", run);
+  EXPECT_NEAR(run.setup.cycle.physics.flank_stiffness_N_mm4, 0.0452, 5e-4);
   const scene::SegmentLife life = card_life(run);
   std::printf("medium, complete, flank k %.4g N/mm^4: N1 %.4g N2 %.4g %s; %d increments, %d cuts; radial share "
-              "largest %.3g, mean %.3g\n", run.setup.cycle.flank_stiffness_N_mm4, life.report.modes[0].life_cycles,
+              "largest %.3g, mean %.3g\n", run.setup.cycle.physics.flank_stiffness_N_mm4, life.report.modes[0].life_cycles,
               life.report.modes[1].life_cycles, life.report.governing.c_str(), life.run.increments, life.run.cuts,
               life.run.flank_radial_share, life.run.flank_radial_mean_share);
   EXPECT_LT(life.run.equilibrium_error, 1e-6);
@@ -458,11 +458,11 @@ TEST(SegmentLife, FlankFoundationLetsTheCompleteLevelPassTheMediumDrivesFold) {
 // a mostly tangential mode the radial foundation hardly stiffens (docs/segment.md "Flank foundation").
 TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesNotRemoveIt) {
   CardRun run = card_run("heavy", 1, core::Fidelity::complete);
-  run.setup.cycle.flank_stiffness_N_mm4 = derived_flank_stiffness("heavy", run);
+  run.setup.cycle.physics.flank_stiffness_N_mm4 = derived_flank_stiffness("heavy", run);
   const std::string what =
       stop_message(run, "the heavy drive's complete level now passes with the flank foundation: update docs/segment.md");
   if (what.empty()) return;
-  std::printf("heavy, complete, flank k %.4g N/mm^4: %.200s\n", run.setup.cycle.flank_stiffness_N_mm4, what.c_str());
+  std::printf("heavy, complete, flank k %.4g N/mm^4: %.200s\n", run.setup.cycle.physics.flank_stiffness_N_mm4, what.c_str());
   EXPECT_NE(what.find("failed in cycle 1 after path position 73"), std::string::npos) << what;
   EXPECT_NE(what.find("largest residual at node"), std::string::npos) << what;
   EXPECT_EQ(what.find("inverted"), std::string::npos) << what;
@@ -475,7 +475,7 @@ TEST(SegmentLife, FlankFoundationMovesTheHeavyDrivesFoldToTheDriversExitButDoesN
 // driver's exit, at 285.8 mm against the 277.6 mm of Report I's dead loads alone (measured 2026-12-02).
 TEST(SegmentLife, BothFlankKnobsAtTenTimesTheirDerivedValuesDoNotCarryTheAcceleratedBaseDrive) {
   CardRun run = card_run("acc-0500-base", 1, core::Fidelity::complete);
-  run.setup.cycle.flank_stiffness_N_mm4 = 0.452, run.setup.cycle.flank_stick_N_mm4 = 2.86;
+  run.setup.cycle.physics.flank_stiffness_N_mm4 = 0.452, run.setup.cycle.physics.flank_stick_N_mm4 = 2.86;
   const std::string what = stop_message(run, "the flank knobs now carry acc-0500-base: update docs/segment.md and this test");
   if (what.empty()) return;
   std::printf("acc-0500-base, complete, k 0.452, k_t 2.86: %.200s\n", what.c_str());
@@ -517,13 +517,13 @@ TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
   const scene::SegmentLife off = card_life(base);
   const segment::ContractLaw bottom(base.setup.materials[0]);
   CardRun stick = base, slide = base;
-  stick.setup.cycle.flank_stick_N_mm4 =
+  stick.setup.cycle.physics.flank_stick_N_mm4 =
       segment::flank_stick_stiffness_N_mm4(segment::axial_modulus_MPa(bottom) / 4.0, base.drive.belt.width_mm);
-  EXPECT_NEAR(stick.setup.cycle.flank_stick_N_mm4, 0.286, 2e-3);
-  slide.setup.cycle.flank_slide_floor_mm_s = 1e5;
+  EXPECT_NEAR(stick.setup.cycle.physics.flank_stick_N_mm4, 0.286, 2e-3);
+  slide.setup.cycle.physics.flank_slide_floor_mm_s = 1e5;
   const scene::SegmentLife a = card_life(stick), b = card_life(slide);
   std::printf("light, elastic: stick k_t %.4g N/mm^4 N1 %.4g N2 %.4g along %.3g; slide floor 1e5 mm/s N1 %.4g N2 %.4g "
-              "along %.3g; off N1 %.4g N2 %.4g\n", stick.setup.cycle.flank_stick_N_mm4, a.report.modes[0].life_cycles,
+              "along %.3g; off N1 %.4g N2 %.4g\n", stick.setup.cycle.physics.flank_stick_N_mm4, a.report.modes[0].life_cycles,
               a.report.modes[1].life_cycles, a.run.flank_stick_share, b.report.modes[0].life_cycles,
               b.report.modes[1].life_cycles, b.run.flank_stick_share, off.report.modes[0].life_cycles,
               off.report.modes[1].life_cycles);
@@ -549,7 +549,7 @@ TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
 // cuts (docs/segment.md §Cost).
 TEST(SegmentLife, LevenbergRetakeRemovesTheElasticLevelsStepCutsWithoutMovingTheLives) {
   CardRun shifted = card_run("medium", 2, core::Fidelity::elastic);
-  shifted.setup.cycle.repeat_history_free_cycle = false;  // both cycles solved: the cuts counted over two
+  shifted.setup.cycle.stepping.repeat_history_free_cycle = false;  // both cycles solved: the cuts counted over two
   CardRun plain = shifted;
   plain.setup.solver.newton.levenberg = 0.0;
   const scene::SegmentLife a = card_life(shifted), b = card_life(plain);

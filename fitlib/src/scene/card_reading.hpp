@@ -22,7 +22,7 @@ struct ReachedAmplitude {
   std::array<double, 3> components{{0.0, 0.0, 0.0}};
 };
 std::map<std::string, ReachedAmplitude> reached_amplitudes(const segment::CycleResult& run);
-// The same measure per element, from its mean over its integration points (segment::CycleKnobs::
+// The same measure per element, from its mean over its integration points (segment::CycleOutputs::
 // record_elements), in mesh order; empty when the run did not record them.
 std::vector<ReachedAmplitude> element_amplitudes(const segment::CycleResult& run);
 // (e11, e22, 0, 0, 0, γ12) of a reached amplitude.

@@ -72,7 +72,7 @@ constexpr double kMaxSegmentLifeWork = 1e5;
 void check_segment_work(const Scene& s, const scene::SegmentLifeSetup& setup) {
   const double work = scene::segment_run_work(setup);
   if (work <= kMaxSegmentLifeWork) return;
-  const auto& c = setup.cycle;
+  const auto& c = setup.cycle.stepping;
   const double elements = work / (c.bend_steps + static_cast<double>(c.cycles) * c.steps_per_cycle);
   const std::string mesh = s.segment && s.segment->life_mesh_changed
                                ? "the life's mesh with the [segment] mesh keys (fine_size_mm, coarse_size_mm, "
@@ -513,27 +513,27 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     setup.solver = s.segment ? s.segment->setup.solver : segment::SolverKnobs{};
     setup.cycle = scene::life_cycle(r.plan.life->fidelity);
     setup.solver.threads = segment_threads(s);
-    setup.cycle.cycles = s.life ? s.life->cycles : setup.cycle.cycles;
+    setup.cycle.stepping.cycles = s.life ? s.life->cycles : setup.cycle.stepping.cycles;
     setup.solver.diagnose_failure = s.life && s.life->diagnose_failure;
     check_segment_work(s, setup);
-    setup.cycle.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
+    setup.cycle.physics.manufactured_radius_mm = r.drive->geometry.belt_length_mm / (2.0 * M_PI);
     setup.materials = segment_materials(s, *r.drive, r.plan.life->fidelity, r.warnings, r.segment_damage_held, {});
     // The design point per mode: the worst of the named points, [segment] points and, with [segment]
     // scan = true, the scanned design regions (Report I §6.4).
-    setup.cycle.scan_design_regions = s.segment && s.segment->scan_design_regions;
-    setup.cycle.record_elements = r.plan.life->fidelity == core::Fidelity::elastic &&
-                                  elastic_reading(s) == LifeSpec::ElasticAmplitude::element;
+    setup.cycle.outputs.scan_design_regions = s.segment && s.segment->scan_design_regions;
+    setup.cycle.outputs.record_elements = r.plan.life->fidelity == core::Fidelity::elastic &&
+                                          elastic_reading(s) == LifeSpec::ElasticAmplitude::element;
     if (s.segment) {
       setup.extra_points = s.segment->setup.points;
       static_case_keys_warning(s.segment->static_case_keys, r.warnings);
     }
     setup.temperature_C = s.temperature_C;
-    for (const std::string& at : s.life_field_at) setup.cycle.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
-    setup.cycle.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
+    for (const std::string& at : s.life_field_at) setup.cycle.outputs.vtk_at_s_mm.push_back(field_position(at, *r.cycle));
+    setup.cycle.outputs.vtk_prefix = s.life_field_at.empty() ? "" : s.life_field_prefix;
     std::optional<core::Progress> progress;  // in per cent of the run (the bend and the cycles)
     if (s.segment_progress) {
       progress.emplace(std::string("life: segment (") + core::to_string(r.plan.life->fidelity) + ")", 100);
-      setup.cycle.progress = [&progress, shown = std::size_t{0}](double done) mutable {
+      setup.cycle.outputs.progress = [&progress, shown = std::size_t{0}](double done) mutable {
         const auto now = static_cast<std::size_t>(100.0 * std::clamp(done, 0.0, 1.0));
         if (now > shown) progress->advance(now - shown), shown = now;
       };
@@ -566,13 +566,13 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     if (r.heat && r.heat->segment_runs > 0) r.heat->segment_hysteresis_W = *r.segment_hysteresis_W;
     strain_window_warnings(s, reached, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
-    r.segment_run = SegmentRun{run.elements, setup.cycle.cycles, setup.cycle.steps_per_cycle,
+    r.segment_run = SegmentRun{run.elements, setup.cycle.stepping.cycles, setup.cycle.stepping.steps_per_cycle,
                                run.increments, run.newton_iterations, run.cuts};
     for (std::string& w : r.segment_equilibrium->warnings()) r.warnings.push_back(std::move(w));
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it
-      const std::string path = setup.cycle.vtk_prefix + "-" + std::to_string(k) + ".vtk";
+      const std::string path = setup.cycle.outputs.vtk_prefix + "-" + std::to_string(k) + ".vtk";
       if (std::count(run.vtk_files.begin(), run.vtk_files.end(), path))
-        r.segment_fields.push_back({s.life_field_at[k], setup.cycle.vtk_at_s_mm[k], path});
+        r.segment_fields.push_back({s.life_field_at[k], setup.cycle.outputs.vtk_at_s_mm[k], path});
     }
     r.life_conditions = scene::segment_conditions(*r.cycle, *r.drive, s.temperature_C, run);
   });

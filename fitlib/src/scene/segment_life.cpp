@@ -21,8 +21,8 @@ segment::MeshKnobs life_mesh() {
 
 segment::CycleKnobs life_cycle(core::Fidelity fidelity) {
   segment::CycleKnobs c;
-  c.ends = segment::EndCondition::sheared;
-  if (fidelity == core::Fidelity::complete) c.steps_per_cycle = 120;
+  c.physics.ends = segment::EndCondition::sheared;
+  if (fidelity == core::Fidelity::complete) c.stepping.steps_per_cycle = 120;
   return c;
 }
 
@@ -45,7 +45,8 @@ std::vector<fatigue::PointHistory> segment_point_histories(const segment::CycleR
 
 double segment_run_work(const SegmentLifeSetup& setup) {
   const double elements = segment::build_mesh(setup.section, setup.mesh).element_count();
-  return elements * (setup.cycle.bend_steps + static_cast<double>(setup.cycle.cycles) * setup.cycle.steps_per_cycle);
+  const segment::CycleStepping& c = setup.cycle.stepping;
+  return elements * (c.bend_steps + static_cast<double>(c.cycles) * c.steps_per_cycle);
 }
 
 segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::DriveCase& drive,
@@ -70,7 +71,7 @@ segment::CycleResult segment_run(const belt::LoadCycle& cycle, const belt::Drive
   own.reserve(setup.element_materials.size());
   segment::CycleKnobs knobs = setup.cycle;
   for (const model::MaterialPointPtr& point : setup.element_materials)
-    knobs.element_laws.push_back(point ? &own.emplace_back(point) : nullptr);
+    knobs.physics.element_laws.push_back(point ? &own.emplace_back(point) : nullptr);
   return segment::run_cycle(setup.section, setup.mesh, setup.solver, {&bottom, &cushion}, d, knobs, setup.extra_points);
 }
 

@@ -144,11 +144,11 @@ std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
 
 namespace {
 
-void check_cycle_inputs(const CycleDrive& drive, const CycleKnobs& knobs) {
+void check_cycle_inputs(const CycleDrive& drive, const CycleStepping& stepping) {
   if (!drive.history) throw core::UsageError("segment cycle: a load history is required");
   if (!(drive.speed_mm_s > 0.0)) throw core::InputError("segment cycle: the belt speed must be > 0 (a belt at rest has no load cycle)");
-  if (knobs.cycles < 1) throw core::InputError("segment cycle: cycles must be ≥ 1");
-  const std::vector<double>& at_s = knobs.positions_mm;
+  if (stepping.cycles < 1) throw core::InputError("segment cycle: cycles must be ≥ 1");
+  const std::vector<double>& at_s = stepping.positions_mm;
   for (std::size_t k = 0; k < at_s.size(); ++k)
     if (!(at_s[k] > (k ? at_s[k - 1] : 0.0)) || !std::isfinite(at_s[k]))
       throw core::UsageError("segment cycle: positions_mm must be positive and increasing");
@@ -156,15 +156,17 @@ void check_cycle_inputs(const CycleDrive& drive, const CycleKnobs& knobs) {
 
 // The run's load levels: step 1's equal increments, then step 2's breakpoints (the cycles' planned
 // ones, or the given path positions), λ = τ / T.
-std::vector<double> load_schedule(const CycleKnobs& knobs, const belt::LoadHistory& h, double T, double half_length_mm) {
+std::vector<double> load_schedule(const CycleStepping& stepping, const belt::LoadHistory& h, double T,
+                                  double half_length_mm) {
   std::vector<double> schedule;
-  for (int i = 1; i <= knobs.bend_steps; ++i) schedule.push_back(static_cast<double>(i) / knobs.bend_steps / T);
-  if (!knobs.positions_mm.empty()) {
-    for (double s_mm : knobs.positions_mm) schedule.push_back(std::min(1.0, (1.0 + s_mm / h.length_mm()) / T));
+  for (int i = 1; i <= stepping.bend_steps; ++i) schedule.push_back(static_cast<double>(i) / stepping.bend_steps / T);
+  if (!stepping.positions_mm.empty()) {
+    for (double s_mm : stepping.positions_mm) schedule.push_back(std::min(1.0, (1.0 + s_mm / h.length_mm()) / T));
     return schedule;
   }
-  const std::vector<double> per_cycle = cycle_breakpoints(h, knobs.steps_per_cycle, knobs.change_weight, half_length_mm);
-  for (int c = 0; c < knobs.cycles; ++c)
+  const std::vector<double> per_cycle =
+      cycle_breakpoints(h, stepping.steps_per_cycle, stepping.change_weight, half_length_mm);
+  for (int c = 0; c < stepping.cycles; ++c)
     for (double b : per_cycle) {
       const double lambda = std::min(1.0, (1.0 + c + b) / T);
       if (schedule.empty() || lambda > schedule.back() + 1e-12) schedule.push_back(lambda);
@@ -193,7 +195,7 @@ detail::ElementSampling element_extents(const Mesh& m, const std::vector<double>
 }
 
 // The run's results beside the observers': counts, flags and the flank's shares.
-void summarise(const StaticSolution& final_state, const Mesh& m, const CycleKnobs& knobs, bool history,
+void summarise(const StaticSolution& final_state, const Mesh& m, const CyclePhysics& physics, bool history,
                bool sheared_ends, CycleResult& out) {
   out.increments = final_state.increments;
   out.newton_iterations = final_state.newton_iterations;
@@ -203,8 +205,8 @@ void summarise(const StaticSolution& final_state, const Mesh& m, const CycleKnob
   out.history = history;
   out.sheared_ends = sheared_ends;
   out.equations = final_state.equations;
-  out.flank_stiffness_N_mm4 = knobs.flank_stiffness_N_mm4;
-  out.flank_stick_N_mm4 = knobs.flank_stick_N_mm4;
+  out.flank_stiffness_N_mm4 = physics.flank_stiffness_N_mm4;
+  out.flank_stick_N_mm4 = physics.flank_stick_N_mm4;
   flank_shares(out);
 }
 
@@ -212,7 +214,7 @@ void summarise(const StaticSolution& final_state, const Mesh& m, const CycleKnob
 
 namespace {
 
-// CycleKnobs::element_laws checked against the mesh and the role laws (StaticProblem::element_laws).
+// CyclePhysics::element_laws checked against the mesh and the role laws (StaticProblem::element_laws).
 std::vector<const PlaneStrainLaw*> element_laws(const Mesh& m, const std::array<const PlaneStrainLaw*, 2>& laws,
                                                 const std::vector<const PlaneStrainLaw*>& given) {
   if (given.empty()) return given;
@@ -244,72 +246,117 @@ StaticSolution solve_over_cycle(const StaticProblem& p, const SolverKnobs& solve
 
 namespace {
 
+// The run's geometry and pseudo time: the straight and moulded meshes, each node's unstrained path
+// position, T (λ τ = T), the period, and the frame the problem and the observers read (the cord
+// curve at λ). Built in place and never copied: the frame points into it.
+struct CycleGeometry {
+  CycleGeometry(const CogSection& section, const MeshKnobs& mesh_knobs, const CycleDrive& drive, const CycleKnobs& knobs)
+      : h(*drive.history),
+        straight(build_mesh(section, mesh_knobs)),
+        K_m(knobs.physics.manufactured_radius_mm > 0.0 ? 1.0 / knobs.physics.manufactured_radius_mm : 0.0),
+        m(detail::wrapped(straight, K_m)),
+        reach(1.5 * straight.half_length_mm),
+        T(1.0 + (knobs.stepping.positions_mm.empty() ? knobs.stepping.cycles
+                                                     : knobs.stepping.positions_mm.back() / h.length_mm())),
+        period(h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s),
+        integral(h) {
+    for (const Eigen::Vector2d& X : straight.X) path_x.push_back(X.x());
+    const int n = kCurveIntervals;
+    frame = detail::CycleFrame{&m, &path_x, &h, T, period,
+                               [&h = h, &integral = integral, K_m = K_m, reach = reach, n, T = T](double lambda) {
+                                 return detail::cord_curve(lambda * T, h, integral, K_m, reach, n);
+                               }, std::nullopt, 0.0};
+  }
+  CycleGeometry(const CycleGeometry&) = delete;
+  CycleGeometry& operator=(const CycleGeometry&) = delete;
+
+  const belt::LoadHistory& h;
+  const Mesh straight;
+  const double K_m;
+  const Mesh m;
+  std::vector<double> path_x;
+  const double reach, T, period;
+  const detail::CurvatureIntegral integral;
+  detail::CycleFrame frame;
+};
+
+// The cord-curve problem of the run, before its loads: the end faces (radial, free, or sheared by
+// the long belt's profiles or the given ones, returned in warping and shear), the per-element laws,
+// the time, the temperature and the rubber's mass.
+StaticProblem cycle_problem(const CycleGeometry& g, const CogSection& section,
+                            const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                            const CyclePhysics& physics, CyclePhysics::EndProfile& warping,
+                            CyclePhysics::EndProfile& shear) {
+  warping = physics.end_warping_mm, shear = physics.end_shear_MPa;
+  if (physics.ends == EndCondition::sheared && !warping && !shear)
+    detail::long_belt_ends(section, g.straight, laws, drive, warping, shear);
+  const EndCondition ends = physics.ends == EndCondition::free ? EndCondition::free : EndCondition::radial;
+  StaticProblem p =
+      cord_curve_problem(g.m, g.path_x, laws, g.frame.curve_at, ends, detail::end_shift(g.straight, g.h, g.T, warping));
+  p.element_laws = element_laws(g.m, laws, physics.element_laws);
+  p.time_s = [T = g.T, period = g.period](double lambda) { return lambda * T * period; };
+  p.temperature_C = drive.temperature_C;
+  p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when PhysicsOptions::inertia is on
+  return p;
+}
+
+// The loads (segment/load.hpp), one line each: Report I's contact pressure, friction and radial
+// inertia (6.6–6.9), the deformation-limited flank (segment/flank.hpp), the end faces' shear; and
+// the equilibrium check's inputs that go with them. Returns the elements' path extents.
+detail::ElementSampling add_cycle_loads(StaticProblem& p, const CycleGeometry& g, const CycleDrive& drive,
+                                        const CyclePhysics& physics, Integration integration, int order,
+                                        const CyclePhysics::EndProfile& shear, detail::EquilibriumCheck::Inputs& check) {
+  const detail::ElementSampling sampling =
+      element_extents(g.m, g.path_x, order, physics.body_force_sampling_mm, check.area_mm2);
+  check.body = detail::contact_body_forces(sampling, drive, g.T, g.frame.curve_at);
+  p.loads.push_back(dead_body_force(g.m.element_count(), check.body));
+  check.along_belt = physics.flank_stick_N_mm4 > 0.0 || physics.flank_slide_floor_mm_s > 0.0;  // a tangential flank law
+  if (physics.flank_stiffness_N_mm4 > 0.0 || check.along_belt)
+    p.loads.push_back(flank_contact(g.m, g.path_x, integration, NeutralCurve::uniform(g.K_m, 0.0, g.reach),
+                                    g.frame.curve_at, physics.flank_stick_N_mm4 > 0.0, physics.flank_slide_floor_mm_s > 0.0,
+                                    detail::flank_levels(sampling, drive, physics, g.T, p.time_s)));
+  if (shear) check.nodal = detail::end_shear_forces(g.m.node_count(), g.straight, g.path_x, g.h, g.T, g.frame.curve_at, shear);
+  if (shear) p.loads.push_back(dead_nodal_force(check.nodal));
+  check.problem = &p, check.centre_x_mm = sampling.centre_x;
+  check.width_mm = drive.width_mm, check.integration = integration;
+  return sampling;
+}
+
 // Every increment of the run solved: composed of the cycle's parts (cycle_parts.hpp: reference,
 // cord curve, loads) and observers (cycle_observers.hpp), solved by solve_static over the load schedule.
 CycleResult solve_cycles(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
                          const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
                          const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
-  const belt::LoadHistory& h = *drive.history;
-  const Mesh straight = build_mesh(section, mesh_knobs);
-  const double K_m = knobs.manufactured_radius_mm > 0.0 ? 1.0 / knobs.manufactured_radius_mm : 0.0;
-  const Mesh m = detail::wrapped(straight, K_m);
-  std::vector<double> path_x;
-  for (const Eigen::Vector2d& X : straight.X) path_x.push_back(X.x());
-  const double reach = 1.5 * straight.half_length_mm;
-  const double T = 1.0 + (knobs.positions_mm.empty() ? knobs.cycles : knobs.positions_mm.back() / h.length_mm());
-  const int n = kCurveIntervals;
-  const detail::CurvatureIntegral integral(h);
-  const double period = h.period_s() > 0.0 ? h.period_s() : h.length_mm() / drive.speed_mm_s;
-  const detail::CycleFrame frame{&m, &path_x, &h, T, period, [&h, &integral, K_m, reach, n, T](double lambda) {
-                                   return detail::cord_curve(lambda * T, h, integral, K_m, reach, n);
-                                 }, std::nullopt, 0.0};
-  CycleKnobs::EndProfile warping = knobs.end_warping_mm, shear = knobs.end_shear_MPa;
-  if (knobs.ends == EndCondition::sheared && !warping && !shear)
-    detail::long_belt_ends(section, straight, laws, drive, warping, shear);
-  const EndCondition ends = knobs.ends == EndCondition::free ? EndCondition::free : EndCondition::radial;
-  StaticProblem p = cord_curve_problem(m, path_x, laws, frame.curve_at, ends, detail::end_shift(straight, h, T, warping));
-  p.element_laws = element_laws(m, laws, knobs.element_laws);
-  p.time_s = [T, period](double lambda) { return lambda * T * period; };
-  p.temperature_C = drive.temperature_C;
-  p.density_t_mm3 = drive.density_kg_m3 * 1e-12;  // the rubber's mass when PhysicsOptions::inertia is on
-
-  const int order = gauss_order(m, solver.physics.integration);
+  const CycleGeometry g(section, mesh_knobs, drive, knobs);
+  CyclePhysics::EndProfile warping, shear;
+  StaticProblem p = cycle_problem(g, section, laws, drive, knobs.physics, warping, shear);
+  const int order = gauss_order(g.m, solver.physics.integration);
   detail::EquilibriumCheck::Inputs check;
-  const detail::ElementSampling sampling = element_extents(m, path_x, order, knobs.body_force_sampling_mm, check.area_mm2);
-  // The loads (segment/load.hpp), one line each: Report I's contact pressure, friction and radial
-  // inertia (6.6–6.9), the deformation-limited flank (segment/flank.hpp), the end faces' shear.
-  check.body = detail::contact_body_forces(sampling, drive, T, frame.curve_at);
-  p.loads.push_back(dead_body_force(m.element_count(), check.body));
-  check.along_belt = knobs.flank_stick_N_mm4 > 0.0 || knobs.flank_slide_floor_mm_s > 0.0;  // a tangential flank law
-  if (knobs.flank_stiffness_N_mm4 > 0.0 || check.along_belt)
-    p.loads.push_back(flank_contact(m, path_x, solver.physics.integration, NeutralCurve::uniform(K_m, 0.0, reach),
-                                    frame.curve_at, knobs.flank_stick_N_mm4 > 0.0, knobs.flank_slide_floor_mm_s > 0.0,
-                                    detail::flank_levels(sampling, drive, knobs, T, p.time_s)));
-  if (shear) check.nodal = detail::end_shear_forces(m.node_count(), straight, path_x, h, T, frame.curve_at, shear);
-  if (shear) p.loads.push_back(dead_nodal_force(check.nodal));
+  const detail::ElementSampling sampling =
+      add_cycle_loads(p, g, drive, knobs.physics, solver.physics.integration, order, shear, check);
 
   CycleResult out;
-  out.cycle_time_s = period;
+  out.cycle_time_s = g.period;
   std::vector<NamedPoint> named = standard_points(section);
   named.insert(named.end(), extra_points.begin(), extra_points.end());
-  detail::ProgressReport progress(knobs.progress);
-  detail::PointMonitor points(frame, straight, K_m, named, order, out.points);
-  detail::FieldSnapshots fields(frame, knobs, out.vtk_files);
-  check.problem = &p, check.centre_x_mm = sampling.centre_x;
-  check.width_mm = drive.width_mm, check.integration = solver.physics.integration;
-  detail::CycleDissipation dissipation(frame, check.area_mm2, sampling.centre_x, section.cog_pitch_mm, drive.width_mm, out.dissipation_J_mm);
-  detail::EquilibriumCheck equilibrium(frame, std::move(check), out);
+  detail::ProgressReport progress(knobs.outputs.progress);
+  detail::PointMonitor points(g.frame, g.straight, g.K_m, named, order, out.points);
+  detail::FieldSnapshots fields(g.frame, knobs, out.vtk_files);
+  detail::CycleDissipation dissipation(g.frame, check.area_mm2, sampling.centre_x, section.cog_pitch_mm, drive.width_mm,
+                                       out.dissipation_J_mm);
+  detail::EquilibriumCheck equilibrium(g.frame, std::move(check), out);
   p.observers = {&progress, &points, &equilibrium, &dissipation};
-  if (!knobs.vtk_prefix.empty()) p.observers.insert(p.observers.begin() + 2, &fields);
+  if (!knobs.outputs.vtk_prefix.empty()) p.observers.insert(p.observers.begin() + 2, &fields);
   std::optional<detail::RegionScan> scan;
-  if (knobs.scan_design_regions)
-    p.observers.push_back(&scan.emplace(frame, straight, K_m, section, mesh_knobs, order, out.scanned));
+  if (knobs.outputs.scan_design_regions)
+    p.observers.push_back(&scan.emplace(g.frame, g.straight, g.K_m, section, mesh_knobs, order, out.scanned));
   std::optional<detail::ElementMeans> element_means;
-  if (knobs.record_elements) p.observers.push_back(&element_means.emplace(frame, straight, out.element_means));
+  if (knobs.outputs.record_elements) p.observers.push_back(&element_means.emplace(g.frame, g.straight, out.element_means));
 
-  out.final_state = solve_over_cycle(p, solver, load_schedule(knobs, h, T, straight.half_length_mm), progress, T, h);
+  out.final_state = solve_over_cycle(p, solver, load_schedule(knobs.stepping, g.h, g.T, g.straight.half_length_mm),
+                                     progress, g.T, g.h);
   const bool history = laws[0]->state_size() > 0 || laws[1]->state_size() > 0;
-  summarise(out.final_state, m, knobs, history, static_cast<bool>(warping) || static_cast<bool>(shear), out);
+  summarise(out.final_state, g.m, knobs.physics, history, static_cast<bool>(warping) || static_cast<bool>(shear), out);
   return out;
 }
 
@@ -319,13 +366,13 @@ CycleResult solve_cycles(const CogSection& section, const MeshKnobs& mesh_knobs,
 CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
                       const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
                       const CycleKnobs& knobs, const std::vector<NamedPoint>& extra_points) {
-  check_cycle_inputs(drive, knobs);
+  check_cycle_inputs(drive, knobs.stepping);
   if (!detail::repeats_first_cycle(laws, knobs, solver))
     return solve_cycles(section, mesh_knobs, solver, laws, drive, knobs, extra_points);
   CycleKnobs one = knobs;
-  one.cycles = 1;
+  one.stepping.cycles = 1;
   CycleResult out = solve_cycles(section, mesh_knobs, solver, laws, drive, one, extra_points);
-  detail::repeat_first_cycle(out, knobs.cycles, drive.history->length_mm());
+  detail::repeat_first_cycle(out, knobs.stepping.cycles, drive.history->length_mm());
   return out;
 }
 

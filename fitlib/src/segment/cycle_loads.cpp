@@ -39,7 +39,7 @@ std::vector<FaceWeight> face_weights(const Mesh& straight, const std::vector<int
 // friction and the changes of strain and curvature at the face's path position, each smoothed by
 // the shear lag (segment/end_faces.hpp); tabulated once over the cycle.
 void long_belt_ends(const CogSection& section, const Mesh& straight, const std::array<const PlaneStrainLaw*, 2>& laws,
-                    const CycleDrive& drive, CycleKnobs::EndProfile& warping, CycleKnobs::EndProfile& shear) {
+                    const CycleDrive& drive, CyclePhysics::EndProfile& warping, CyclePhysics::EndProfile& shear) {
   const double half = straight.half_length_mm;
   const std::array<LongBeltSection, 2> faces{LongBeltSection(section, -half, laws), LongBeltSection(section, half, laws)};
   const belt::LoadHistory& h = *drive.history;
@@ -69,7 +69,7 @@ void long_belt_ends(const CogSection& section, const Mesh& straight, const std::
 }
 
 // The sheared faces' warping as the constraints' shift along the cord tangent (none in step 1).
-EndShift end_shift(const Mesh& straight, const belt::LoadHistory& h, double T, const CycleKnobs::EndProfile& warping) {
+EndShift end_shift(const Mesh& straight, const belt::LoadHistory& h, double T, const CyclePhysics::EndProfile& warping) {
   if (!warping) return {};
   return [&straight, &h, T, warping](int node, double lambda) {
     const double tau = lambda * T;
@@ -82,7 +82,7 @@ EndShift end_shift(const Mesh& straight, const belt::LoadHistory& h, double T, c
 // The faces' shear traction as dead nodal forces along each end's radial line (none in step 1).
 std::function<void(double, std::vector<Eigen::Vector2d>&)> end_shear_forces(
     int nodes, const Mesh& straight, const std::vector<double>& path_x, const belt::LoadHistory& h, double T,
-    std::function<NeutralCurve(double)> curve_at, CycleKnobs::EndProfile shear) {
+    std::function<NeutralCurve(double)> curve_at, CyclePhysics::EndProfile shear) {
   const std::array<std::vector<FaceWeight>, 2> faces{face_weights(straight, straight.left_nodes),
                                                      face_weights(straight, straight.right_nodes)};
   const std::array<double, 2> end_x{path_x[straight.top_nodes.front()], path_x[straight.top_nodes.back()]};
@@ -131,10 +131,10 @@ std::function<void(double, std::vector<Eigen::Vector2d>&)> contact_body_forces(E
 // The sliding friction's direction: Report I's friction (l, r) averaged over the extent and the
 // sliding speed, at least the floor V_0.
 std::function<void(double, FlankLevels&)> flank_levels(ElementSampling sampling, const CycleDrive& drive,
-                                                       const CycleKnobs& knobs, double T, std::function<double(double)> time_s) {
+                                                       const CyclePhysics& physics, double T, std::function<double(double)> time_s) {
   const belt::LoadHistory& h = *drive.history;
-  const double k = knobs.flank_stiffness_N_mm4, k_t = knobs.flank_stick_N_mm4, mu = drive.friction;
-  const double V0 = knobs.flank_slide_floor_mm_s;
+  const double k = physics.flank_stiffness_N_mm4, k_t = physics.flank_stick_N_mm4, mu = drive.friction;
+  const double V0 = physics.flank_slide_floor_mm_s;
   const double area_factor = 2.0 / drive.width_mm / std::cos(drive.wedge_half_angle_rad);
   return [=, &h](double lambda, FlankLevels& levels) {
     const double tau = lambda * T;

@@ -162,13 +162,13 @@ void EquilibriumCheck::span_shares(IncrementLoads& q) {
 }
 
 FieldSnapshots::FieldSnapshots(const CycleFrame& frame, const CycleKnobs& knobs, std::vector<std::string>& files)
-    : frame_(frame), knobs_(knobs), written_(knobs.vtk_at_s_mm.size(), false), files_(files) {}
+    : frame_(frame), knobs_(knobs), written_(knobs.outputs.vtk_at_s_mm.size(), false), files_(files) {}
 
 void FieldSnapshots::converged(double lambda, const StaticSolution& s) {
   const double tau = frame_.tau(lambda);
-  const double s_last = (tau - 1.0 - (knobs_.cycles - 1)) * frame_.history->length_mm();  // within the last cycle
+  const double s_last = (tau - 1.0 - (knobs_.stepping.cycles - 1)) * frame_.history->length_mm();  // within the last cycle
   for (std::size_t k = 0; k < written_.size(); ++k) {
-    if (written_[k] || s_last < knobs_.vtk_at_s_mm[k]) continue;
+    if (written_[k] || s_last < knobs_.outputs.vtk_at_s_mm[k]) continue;
     VtkFields fields;
     fields.displacement_mm = s.u_mm;
     for (const auto& pts : s.points) {
@@ -179,7 +179,7 @@ void FieldSnapshots::converged(double lambda, const StaticSolution& s) {
       }
       fields.cell_stress_MPa.push_back(mean);
     }
-    const std::string path = knobs_.vtk_prefix + "-" + std::to_string(k) + ".vtk";
+    const std::string path = knobs_.outputs.vtk_prefix + "-" + std::to_string(k) + ".vtk";
     write_vtk(*frame_.mesh, path, fields);
     files_.push_back(path);
     written_[k] = true;

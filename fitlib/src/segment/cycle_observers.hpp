@@ -51,7 +51,7 @@ class PointMonitor : public IncrementObserver {
   std::vector<Eigen::Vector2d> surface_tangent_;  // per history: the moulded surface's (zero off the surface)
 };
 
-// The design regions' points (CycleKnobs::scan_design_regions): every integration point of the
+// The design regions' points (CycleOutputs::scan_design_regions): every integration point of the
 // bottom rubber between the central cogs, the gap's surface nodes, and the cushion's mid-depth below
 // each element centre of the central section; each point's stresses and strains in the cord
 // curve's local frame at its unstrained path position (an integration point's own, the others
@@ -74,7 +74,7 @@ class RegionScan : public IncrementObserver {
   std::vector<Eigen::Vector2d> surface_tangent_;  // per history: the moulded surface's (zero off the surface)
 };
 
-// Each element's mean over its integration points (CycleKnobs::record_elements): stresses and
+// Each element's mean over its integration points (CycleOutputs::record_elements): stresses and
 // logarithmic strains in the cord curve's local frame at the element centre's unstrained path position.
 class ElementMeans : public IncrementObserver {
  public:
@@ -122,7 +122,7 @@ class EquilibriumCheck : public IncrementObserver {
 };
 
 // Full-field stress (VTK, cell means) when the segment's middle first reaches each path position
-// of the last cycle (CycleKnobs::vtk_at_s_mm, vtk_prefix).
+// of the last cycle (CycleOutputs::vtk_at_s_mm, vtk_prefix; CycleStepping::cycles).
 class FieldSnapshots : public IncrementObserver {
  public:
   FieldSnapshots(const CycleFrame& frame, const CycleKnobs& knobs, std::vector<std::string>& files);
@@ -135,7 +135,7 @@ class FieldSnapshots : public IncrementObserver {
   std::vector<std::string>& files_;
 };
 
-// The share of the run done (CycleKnobs::progress) and the last converged λ (a failure's message).
+// The share of the run done (CycleOutputs::progress) and the last converged λ (a failure's message).
 class ProgressReport : public IncrementObserver {
  public:
   explicit ProgressReport(std::function<void(double done)> report) : report_(std::move(report)) {}

@@ -56,7 +56,7 @@ NeutralCurve cord_curve(double tau, const belt::LoadHistory& history, const Curv
                         double reach_mm, int n);
 
 // The mean of load(state) over element e's path extent with the segment's middle at s0: sampled
-// every `sampling_mm` (CycleKnobs::body_force_sampling_mm, the midpoint rule), or at the element's
+// every `sampling_mm` (CyclePhysics::body_force_sampling_mm, the midpoint rule), or at the element's
 // centre (0).
 struct ElementSampling {
   std::vector<double> centre_x;
@@ -85,13 +85,13 @@ LoadAt contact_body_forces(ElementSampling sampling, const CycleDrive& drive, do
 // friction and the changes of strain and curvature at the face's path position, each smoothed by
 // the shear lag (segment/end_faces.hpp); tabulated once over the cycle.
 void long_belt_ends(const CogSection& section, const Mesh& straight, const std::array<const PlaneStrainLaw*, 2>& laws,
-                    const CycleDrive& drive, CycleKnobs::EndProfile& warping, CycleKnobs::EndProfile& shear);
+                    const CycleDrive& drive, CyclePhysics::EndProfile& warping, CyclePhysics::EndProfile& shear);
 // The sheared faces' warping as the constraints' shift along the cord tangent (none in step 1).
 EndShift end_shift(const Mesh& straight, const belt::LoadHistory& history, double T,
-                   const CycleKnobs::EndProfile& warping);
+                   const CyclePhysics::EndProfile& warping);
 // The faces' shear traction as dead nodal forces along each end's radial line (none in step 1).
 LoadAt end_shear_forces(int nodes, const Mesh& straight, const std::vector<double>& path_x,
-                        const belt::LoadHistory& history, double T, CurveAt curve_at, CycleKnobs::EndProfile shear);
+                        const belt::LoadHistory& history, double T, CurveAt curve_at, CyclePhysics::EndProfile shear);
 
 // The flank's levels per element at λ (segment/flank.hpp): the radial k and the stick's k_t times
 // the share of the element's path extent in a sheave (p > 0), so they engage continuously as a
@@ -100,7 +100,7 @@ LoadAt end_shear_forces(int nodes, const Mesh& straight, const std::vector<doubl
 // The sliding friction's direction: Report I's friction (l, r) averaged over the extent and the
 // sliding speed, at least the floor V_0.
 std::function<void(double, FlankLevels&)> flank_levels(ElementSampling sampling, const CycleDrive& drive,
-                                                       const CycleKnobs& knobs, double T,
+                                                       const CyclePhysics& physics, double T,
                                                        std::function<double(double)> time_s);
 
 }  // namespace fitlib::segment::detail

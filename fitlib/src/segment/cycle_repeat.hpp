@@ -1,5 +1,5 @@
 #pragma once
-// A history-free run's later load cycles as copies of its first (CycleKnobs::repeat_history_free_cycle;
+// A history-free run's later load cycles as copies of its first (CycleStepping::repeat_history_free_cycle;
 // docs/segment.md "Cost (reference)").
 #include <array>
 

@@ -313,9 +313,9 @@ TEST(SceneLife, CompleteLevelWithoutACardForARoleIsRefusedNamingTheRole) {
 TEST(SceneLife, SegmentWorkIsElementsTimesNominalIncrements) {
   scene::SegmentLifeSetup setup;
   setup.section = scene::cog_section(scene::load_scene(kDrives + "ref-0500-light.toml"));
-  setup.cycle.cycles = 3;
+  setup.cycle.stepping.cycles = 3;
   EXPECT_EQ(scene::segment_run_work(setup), 192.0 * (4 + 3 * 60));
-  setup.cycle.cycles = 10000, setup.cycle.steps_per_cycle = 30, setup.cycle.bend_steps = 2;
+  setup.cycle.stepping.cycles = 10000, setup.cycle.stepping.steps_per_cycle = 30, setup.cycle.stepping.bend_steps = 2;
   EXPECT_EQ(scene::segment_run_work(setup), 192.0 * (2 + 10000.0 * 30));
 }
 
@@ -387,8 +387,8 @@ TEST(SceneLife, SegmentEquilibriumBeyondItsBoundMakesTheTableWarn) {
   const auto cycle = belt::compute_load_cycle(drive);
   scene::SegmentLifeSetup setup;
   setup.section = scene::cog_section(s);
-  setup.cycle.cycles = 1;
-  setup.cycle.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
+  setup.cycle.stepping.cycles = 1;
+  setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
   for (int k = 0; k < 2; ++k)  // Report I's isotropic rubber, E 20/8 MPa, ν 0.49
     setup.materials[k] = model::make_material_point(*model::make_model("elastic-iso", nlohmann::json::object()),
                                                     {k == 0 ? 20.0 : 8.0, 0.49});

@@ -60,9 +60,9 @@ struct Fixture {
     drive.speed_mm_s = 1000.0;
     mesh.fine_size_mm = 1.0, mesh.coarse_size_mm = 2.5, mesh.central_pitches = 1.0, mesh.end_pitches = 1.0;
     mesh.cushion_rows = 1;
-    knobs.cycles = 2;
-    knobs.steps_per_cycle = 24;
-    knobs.manufactured_radius_mm = 0.0;
+    knobs.stepping.cycles = 2;
+    knobs.stepping.steps_per_cycle = 24;
+    knobs.physics.manufactured_radius_mm = 0.0;
   }
   CycleResult run(const PlaneStrainLaw& bottom, const PlaneStrainLaw& cushion) const {
     return run_cycle(CogSection{}, mesh, solver, {&bottom, &cushion}, drive, knobs);
@@ -89,9 +89,9 @@ const CycleSample& at(const MonitoredHistory& h, int c, double s, double L = 400
 
 TEST(SegmentCycle, ElasticBeltFollowsTheCycleInEquilibriumAndRepeatsItself) {
   Fixture f;
-  f.knobs.repeat_history_free_cycle = false;  // both cycles solved: the repetition is the physics'
+  f.knobs.stepping.repeat_history_free_cycle = false;  // both cycles solved: the repetition is the physics'
   std::vector<double> progress;  // the share of the run done, after each converged increment
-  f.knobs.progress = [&](double done) { progress.push_back(done); };
+  f.knobs.outputs.progress = [&](double done) { progress.push_back(done); };
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult r = f.run(*bottom, *cushion);
   ASSERT_EQ(static_cast<int>(progress.size()), r.increments);
@@ -116,12 +116,12 @@ TEST(SegmentCycle, ElasticBeltFollowsTheCycleInEquilibriumAndRepeatsItself) {
 
 TEST(SegmentCycle, StraighteningTheMouldedCurvatureStressesTheBelt) {
   Fixture f;
-  f.knobs.cycles = 1;
-  f.knobs.steps_per_cycle = 4;
+  f.knobs.stepping.cycles = 1;
+  f.knobs.stepping.steps_per_cycle = 4;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
-  const double straight = point(f.run(*bottom, *cushion), "gap_bottom").samples[f.knobs.bend_steps - 1].s22_MPa;
-  f.knobs.manufactured_radius_mm = 40.0;
-  const double moulded = point(f.run(*bottom, *cushion), "gap_bottom").samples[f.knobs.bend_steps - 1].s22_MPa;
+  const double straight = point(f.run(*bottom, *cushion), "gap_bottom").samples[f.knobs.stepping.bend_steps - 1].s22_MPa;
+  f.knobs.physics.manufactured_radius_mm = 40.0;
+  const double moulded = point(f.run(*bottom, *cushion), "gap_bottom").samples[f.knobs.stepping.bend_steps - 1].s22_MPa;
   // Straightening opens the inside of the mould: extra tension at the gap bottom.
   EXPECT_GT(moulded - straight, 0.2);
   std::printf("gap s22 after step 1: straight mould %.4f, R 40 mm mould %.4f MPa\n", straight, moulded);
@@ -129,7 +129,7 @@ TEST(SegmentCycle, StraighteningTheMouldedCurvatureStressesTheBelt) {
 
 TEST(SegmentCycle, FrictionChangesTheShearInTheSlidingZone) {
   Fixture f;
-  f.knobs.cycles = 1;
+  f.knobs.stepping.cycles = 1;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult with = f.run(*bottom, *cushion);
   Fixture frictionless(synthetic_cycle(0.4, 40.0, 0.0));  // the load cycle's friction used is the segment's
@@ -164,7 +164,7 @@ TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
     std::vector<CycleResult> runs;
     for (const int threads : {1, 2, 3}) {
       Fixture f;
-      f.knobs.cycles = history ? 2 : 1;
+      f.knobs.stepping.cycles = history ? 2 : 1;
       f.solver.threads = threads;
       runs.push_back(history ? f.run(visco, visco) : f.run(*bottom, *cushion));
       EXPECT_EQ(runs.back().final_state.threads, threads);
@@ -206,7 +206,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
   const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
   auto run = [&](int iterations, double tolerance) {
     Fixture f;
-    f.knobs.cycles = 1;
+    f.knobs.stepping.cycles = 1;
     f.solver.newton.krylov_iterations = iterations, f.solver.newton.krylov_tolerance = tolerance;
     return f.run(visco, visco);
   };
@@ -232,7 +232,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
   }
   // Modified Newton keeps the LU for its later steps: no GMRES there, and the same solution.
   Fixture modified;
-  modified.knobs.cycles = 1;
+  modified.knobs.stepping.cycles = 1;
   modified.solver.newton.reuse_tangent = true;
   const CycleResult reused = modified.run(visco, visco);
   EXPECT_EQ(reused.final_state.krylov_iterations, 0);
@@ -245,8 +245,8 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
 
 TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
   Fixture f(synthetic_cycle());
-  f.knobs.cycles = 1;
-  f.knobs.manufactured_radius_mm = 0.8;  // tighter than the section is high: elements invert
+  f.knobs.stepping.cycles = 1;
+  f.knobs.physics.manufactured_radius_mm = 0.8;  // tighter than the section is high: elements invert
   f.solver.stepping.max_cuts = 2;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   try {
@@ -262,12 +262,12 @@ TEST(SegmentCycle, ImpossibleCurvatureExitsNamingTheIncrement) {
 
 TEST(SegmentCycle, WritesTheStressFieldAtChosenInstantsAndTheHistoriesWithoutNaN) {
   Fixture f;
-  f.knobs.cycles = 1;
-  f.knobs.steps_per_cycle = 12;
+  f.knobs.stepping.cycles = 1;
+  f.knobs.stepping.steps_per_cycle = 12;
   const std::string dir = ::testing::TempDir() + "/segment-cycle-" + std::to_string(::getpid());
   std::filesystem::create_directories(dir);
-  f.knobs.vtk_prefix = dir + "/field";
-  f.knobs.vtk_at_s_mm = {95.0, 205.0};  // entrance and exit transitions
+  f.knobs.outputs.vtk_prefix = dir + "/field";
+  f.knobs.outputs.vtk_at_s_mm = {95.0, 205.0};  // entrance and exit transitions
   const auto law = hencky(20.0, 0.49);
   const CycleResult r = f.run(*law, *law);
   ASSERT_EQ(r.vtk_files.size(), 2u);
@@ -288,8 +288,8 @@ TEST(SegmentCycle, WritesTheStressFieldAtChosenInstantsAndTheHistoriesWithoutNaN
 TEST(SegmentCycle, NearIncompressibleBeltRunsTheCycle) {
   // K/G = 1000: the step cuts do the work; stresses stay finite and close to ν = 0.49's.
   Fixture f;
-  f.knobs.cycles = 1;
-  f.knobs.steps_per_cycle = 12;
+  f.knobs.stepping.cycles = 1;
+  f.knobs.stepping.steps_per_cycle = 12;
   const auto b49 = hencky(20.0, 0.49), c49 = hencky(8.0, 0.49);
   const auto b4995 = hencky(20.0, 0.4995), c4995 = hencky(8.0, 0.4995);
   const CycleResult soft = f.run(*b49, *c49), hard = f.run(*b4995, *c4995);
@@ -316,7 +316,7 @@ struct SaysUnsymmetric final : PlaneStrainLaw {  // the same law, declared unsym
 
 TEST(SegmentCycle, SymmetricSolverAgreesWithLuAndAnalysesThePatternOnce) {
   Fixture f;
-  f.knobs.cycles = 1;
+  f.knobs.stepping.cycles = 1;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult ldlt = f.run(*bottom, *cushion);
   const CycleResult lu = f.run(SaysUnsymmetric(*bottom), SaysUnsymmetric(*cushion));
@@ -336,14 +336,14 @@ TEST(SegmentCycle, SymmetricSolverAgreesWithLuAndAnalysesThePatternOnce) {
 }
 
 // A history-free run solves the bend and one cycle and copies it to the later cycles
-// (CycleKnobs::repeat_history_free_cycle): against every cycle solved, the same samples' times and
+// (CycleStepping::repeat_history_free_cycle): against every cycle solved, the same samples' times and
 // path positions, stresses to the Newton tolerance, the same load totals, and half the increments.
 TEST(SegmentCycle, AHistoryFreeRunsCopiedCyclesEqualTheSolvedOnes) {
   Fixture f;
-  f.knobs.cycles = 3;
+  f.knobs.stepping.cycles = 3;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult copied = f.run(*bottom, *cushion);
-  f.knobs.repeat_history_free_cycle = false;
+  f.knobs.stepping.repeat_history_free_cycle = false;
   const CycleResult solved = f.run(*bottom, *cushion);
   EXPECT_LT(copied.increments, 0.5 * solved.increments);
   ASSERT_EQ(copied.loads.size(), solved.loads.size());
@@ -377,7 +377,7 @@ TEST(SegmentCycle, ZeroSpeedIsRefusedWithAReason) {
 // to the end faces (measured: docs/segment.md "Validation").
 TEST(SegmentCycle, CordLineReactionsAndContactLoadInEquilibriumAtEveryIncrement) {
   Fixture f;
-  f.knobs.cycles = 1;
+  f.knobs.stepping.cycles = 1;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult r = f.run(*bottom, *cushion);
   EXPECT_LT(r.equilibrium_error, 1e-6);
@@ -403,8 +403,8 @@ TEST(SegmentCycle, SmallCurvatureIsLinearAndLargeCurvatureRuns) {
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   auto swing = [&](double radius_mm, double* equilibrium) {
     Fixture f(synthetic_cycle(0.0, radius_mm));
-    f.knobs.cycles = 1;
-    f.knobs.steps_per_cycle = 16;
+    f.knobs.stepping.cycles = 1;
+    f.knobs.stepping.steps_per_cycle = 16;
     const CycleResult r = f.run(*bottom, *cushion);
     *equilibrium = r.equilibrium_error;
     const MonitoredHistory& gap = point(r, "gap_bottom");
@@ -423,7 +423,7 @@ TEST(SegmentCycle, SmallCurvatureIsLinearAndLargeCurvatureRuns) {
 // the transitions (segment's middle within 25 mm of the K ramps 90–100 and 200–210 mm).
 TEST(SegmentCycle, CushionShearPeaksAtTheEntranceAndExitTransitions) {
   Fixture f;
-  f.knobs.cycles = 1;
+  f.knobs.stepping.cycles = 1;
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult r = f.run(*bottom, *cushion);
   double spans = 0.0, entrance = 0.0, exit = 0.0;
@@ -445,9 +445,9 @@ TEST(SegmentCycle, TenthOfACycleStepsAgreeWithFineStepsOnTheArc) {
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   auto arc_stress = [&](int steps, double* equilibrium) {
     Fixture f(synthetic_cycle(0.0));
-    f.knobs.cycles = 1;
-    f.knobs.steps_per_cycle = steps;
-    f.knobs.change_weight = 0.0;  // equal steps: one increment is 1/steps of the cycle
+    f.knobs.stepping.cycles = 1;
+    f.knobs.stepping.steps_per_cycle = steps;
+    f.knobs.stepping.change_weight = 0.0;  // equal steps: one increment is 1/steps of the cycle
     const CycleResult r = f.run(*bottom, *cushion);
     *equilibrium = r.equilibrium_error;
     for (const auto& p : r.points)
@@ -497,14 +497,14 @@ TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
   const double L = 400.0, tiny = 1e-6 * L;
   for (int law = 0; law < 2; ++law) {
     Fixture f;
-    f.knobs.positions_mm = {30.0, 60.0, 80.0, 88.0, 92.0, 94.0, 95.0};
-    for (int k = 1; k <= 4; ++k) f.knobs.positions_mm.push_back(95.0 + k * tiny);
+    f.knobs.stepping.positions_mm = {30.0, 60.0, 80.0, 88.0, 92.0, 94.0, 95.0};
+    for (int k = 1; k <= 4; ++k) f.knobs.stepping.positions_mm.push_back(95.0 + k * tiny);
     const CycleResult r = law == 0 ? f.run(*bottom, *cushion) : f.run(visco, visco);
     EXPECT_EQ(r.cuts, 0);
     EXPECT_LT(r.equilibrium_error, 1e-6);
     for (const char* name : {"gap_bottom", "mid_cushion"}) {
       const std::vector<CycleSample>& q = point(r, name).samples;
-      ASSERT_EQ(q.size(), static_cast<std::size_t>(f.knobs.bend_steps) + f.knobs.positions_mm.size());
+      ASSERT_EQ(q.size(), static_cast<std::size_t>(f.knobs.stepping.bend_steps) + f.knobs.stepping.positions_mm.size());
       const std::size_t n = q.size();
       for (const CycleSample& c : q) ASSERT_TRUE(std::isfinite(c.s11_MPa + c.s22_MPa + c.s12_MPa + c.s33_MPa));
       EXPECT_NEAR(q[n - 1].s_mm - q[n - 5].s_mm, 4 * tiny, 1e-12);
@@ -522,7 +522,7 @@ TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
   // Tenths of the cycle (the 80 → 120 mm increment takes the whole entrance) against hundredths.
   auto wrap_stress = [&](double step_mm, const PlaneStrainLaw& b, const PlaneStrainLaw& c, int* increments) {
     Fixture f;
-    for (double s = step_mm; s <= 120.0 + 1e-9; s += step_mm) f.knobs.positions_mm.push_back(s);
+    for (double s = step_mm; s <= 120.0 + 1e-9; s += step_mm) f.knobs.stepping.positions_mm.push_back(s);
     const CycleResult r = f.run(b, c);
     *increments = r.increments;
     const CycleSample& q = point(r, "gap_bottom").samples.back();
@@ -557,8 +557,8 @@ TEST(SegmentCycle, CurvatureJumpPassingTheCordCurveMovesItContinuously) {
   const double L = 400.0, tiny = 1e-6 * L;
   const double ds = 1.5 * build_mesh(CogSection{}, f.mesh).half_length_mm / 24.0;
   const double crossing = 90.0 - 0.5 * ds;  // the first interval's middle (ahead of the segment's) meets the jump
-  f.knobs.positions_mm = {30.0, 60.0, 75.0, 80.0, crossing - 3 * tiny};
-  for (int k = -2; k <= 3; ++k) f.knobs.positions_mm.push_back(crossing + (k - 0.5) * tiny);
+  f.knobs.stepping.positions_mm = {30.0, 60.0, 75.0, 80.0, crossing - 3 * tiny};
+  for (int k = -2; k <= 3; ++k) f.knobs.stepping.positions_mm.push_back(crossing + (k - 0.5) * tiny);
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult r = f.run(*bottom, *cushion);
   const std::vector<CycleSample>& q = point(r, "gap_bottom").samples;
@@ -597,7 +597,7 @@ TEST(SegmentCycle, BodyForcesUseTheLoadCyclesFrictionUsedThroughTheDriverExitRam
   EXPECT_NEAR(b1.x(), -before.friction_used * a1 * std::sin(before.gamma_rad), 1e-12);
 }
 
-// Each element's contact body force is its mean over its path extent (CycleKnobs::
+// Each element's contact body force is its mean over its path extent (CyclePhysics::
 // body_force_sampling_mm): where the contact ends at once, the total force on the segment falls
 // smoothly as the end passes, instead of by one element's share whenever an element's centre
 // passes it (the gap bottom's exit hump showed those steps: docs/segment.md).
@@ -606,9 +606,9 @@ TEST(SegmentCycle, ContactForceLeavesTheElementsGraduallyWhereTheContactEnds) {
   c.samples[6].s_mm = 200.001, c.samples[6].t_s = 0.200001;  // p 0.8 MPa → 0 at 200 mm
   auto largest_step = [&c](double sampling_mm) {
     Fixture f(c);
-    f.knobs.body_force_sampling_mm = sampling_mm;
-    f.knobs.positions_mm = {50.0, 100.0, 150.0, 180.0, 190.0, 196.0};
-    for (int k = 0; k <= 80; ++k) f.knobs.positions_mm.push_back(198.0 + 0.05 * k);
+    f.knobs.physics.body_force_sampling_mm = sampling_mm;
+    f.knobs.stepping.positions_mm = {50.0, 100.0, 150.0, 180.0, 190.0, 196.0};
+    for (int k = 0; k <= 80; ++k) f.knobs.stepping.positions_mm.push_back(198.0 + 0.05 * k);
     const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
     const CycleResult r = f.run(*bottom, *cushion);
     double step = 0.0, total = 0.0;
@@ -627,21 +627,21 @@ TEST(SegmentCycle, ContactForceLeavesTheElementsGraduallyWhereTheContactEnds) {
   EXPECT_NEAR(mean_total / centre_total, 1.0, 0.05);
 }
 
-// Per-element laws (CycleKnobs::element_laws; docs/segment.md "One secant per element"): a law given
+// Per-element laws (CyclePhysics::element_laws; docs/segment.md "One secant per element"): a law given
 // to every bottom element replaces the role's law there and nowhere else, so a run with a soft role law
 // and the stiff law on each bottom element is bit-identical to the run with the stiff role law; each
-// element's recorded mean (CycleKnobs::record_elements) has the trace e11 + e22 = ln det F averaged
+// element's recorded mean (CycleOutputs::record_elements) has the trace e11 + e22 = ln det F averaged
 // over its integration points (the logarithmic strain's trace in any frame).
 TEST(SegmentCycle, ElementLawsReplaceTheRolesLawElementByElementAndTheElementMeansAreRecorded) {
   Fixture f;
-  f.knobs.cycles = 1;
-  f.knobs.record_elements = true;
+  f.knobs.stepping.cycles = 1;
+  f.knobs.outputs.record_elements = true;
   const auto stiff = hencky(20.0, 0.49), soft = hencky(5.0, 0.49), cushion = hencky(8.0, 0.49);
   const CycleResult role = f.run(*stiff, *cushion);
   ASSERT_EQ(static_cast<int>(role.element_means.size()), role.elements);
   const CycleResult soft_role = f.run(*soft, *cushion);
   for (const MonitoredHistory& e : role.element_means) {
-    f.knobs.element_laws.push_back(e.role == Role::bottom ? stiff.get() : nullptr);
+    f.knobs.physics.element_laws.push_back(e.role == Role::bottom ? stiff.get() : nullptr);
     ASSERT_EQ(e.samples.size(), static_cast<std::size_t>(role.increments));
   }
   const CycleResult element = f.run(*soft, *cushion);
@@ -663,6 +663,6 @@ TEST(SegmentCycle, ElementLawsReplaceTheRolesLawElementByElementAndTheElementMea
     const CycleSample& last = role.element_means[e].samples.back();
     ASSERT_NEAR(last.e11 + last.e22, trace, 1e-12) << e;
   }
-  f.knobs.element_laws.pop_back();  // one law short of the mesh
+  f.knobs.physics.element_laws.pop_back();  // one law short of the mesh
   EXPECT_THROW(f.run(*soft, *cushion), core::UsageError);
 }

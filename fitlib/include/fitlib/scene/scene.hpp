@@ -80,7 +80,7 @@ struct SegmentSpec {
   segment::MeshKnobs life_mesh = scene::life_mesh();
   bool life_mesh_changed = false;  // a mesh key was given
   // [segment] scan = true: the life's design points are the worst of the design regions' points
-  // beside the named ones (segment::CycleKnobs::scan_design_regions); false (the default until the
+  // beside the named ones (segment::CycleOutputs::scan_design_regions); false (the default until the
   // fatigue card's constants are read where they were fitted, docs/decisions.md): the named points.
   bool scan_design_regions = false;
   // The keys given that configure only `fitcli segment`'s static case (load, law, end condition,

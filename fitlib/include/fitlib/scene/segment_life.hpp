@@ -42,7 +42,7 @@ struct SegmentLifeSetup {
   segment::CycleKnobs cycle = life_cycle();
   std::array<model::MaterialPointPtr, 2> materials;  // by core::MaterialRole: bottom, cushion
   // Optional, per element of the mesh (empty: none; null: the role's): an element's own point
-  // (segment::CycleKnobs::element_laws), the elastic level's card read at that element's amplitude.
+  // (segment::CyclePhysics::element_laws), the elastic level's card read at that element's amplitude.
   std::vector<model::MaterialPointPtr> element_materials;
   std::vector<segment::NamedPoint> extra_points;
   double temperature_C = 20.0;

@@ -27,18 +27,36 @@ struct CycleDrive {                     // what the body forces need beyond the 
   double density_kg_m3 = 1200.0;        // ρ
   double speed_mm_s = 0.0;              // V (> 0)
   double temperature_C = 20.0;
-  double friction = 0.0;                // the drive's μ: the stick's available friction (CycleKnobs::flank_stick_N_mm4)
+  double friction = 0.0;                // the drive's μ: the stick's available friction (CyclePhysics::flank_stick_N_mm4)
 };
 
-struct CycleKnobs {
-  // Called after each converged increment with the share of the run done (0–1: the bend, then the
-  // cycles): a long run's progress.
-  std::function<void(double done)> progress;
+// The run's knobs split by concern (issue 32 item 3), as SolverKnobs is: where the increments go
+// (CycleStepping), what the cycle models beyond the laws and the drive (CyclePhysics), and what is
+// recorded or reported beside the named points (CycleOutputs). Each default is the life's unless
+// scene::life_cycle says otherwise.
+
+// Stepping over the load cycle: how many cycles, how many increments and where they are placed.
+struct CycleStepping {
   int cycles = 2;
   int steps_per_cycle = 60;             // increments per load cycle (placed where K and p change)
   int bend_steps = 4;                   // increments of step 1
-  double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
+  // Optional: step 2's increments end where the segment's middle reaches these path positions
+  // (mm from the start of cycle 1, increasing) instead of the planned ones, and the run stops at
+  // the last (a few increments at a transition, of any size; `cycles` is then unused).
+  std::vector<double> positions_mm;
+  // A run whose points and loads carry no history (no state in any law, no inertia, no tangential
+  // flank) starts every load cycle from the same state, so cycle 2 onwards repeat cycle 1 to the
+  // Newton tolerance: solve the bend and one cycle, and copy its samples and load totals to the
+  // later cycles, shifted by the period (docs/segment.md "Cost (reference)"; off: solve every cycle).
+  // The run's increment and iteration counts are then those solved.
+  bool repeat_history_free_cycle = true;
+};
+
+// The physics of the cycle: the mould, the contact body force's sampling, the flank laws, the end
+// faces and per-element laws.
+struct CyclePhysics {
+  double manufactured_radius_mm = 0.0;  // 0 = straight mould (no straightening stress)
   // Each element's contact body force is the mean of 6.6–6.9 over its path extent, sampled every
   // `body_force_sampling_mm` (0 = at its centre only): the force then moves continuously in time
   // when a pulley's exit passes, instead of switching an element at a time (docs/segment.md
@@ -70,10 +88,18 @@ struct CycleKnobs {
   // path position s; side 0 left, 1 right. The shear acts along the end's radial line.
   using EndProfile = std::function<double(int side, double depth_mm, double s_mm)>;
   EndProfile end_shear_MPa, end_warping_mm;
-  // Optional: step 2's increments end where the segment's middle reaches these path positions
-  // (mm from the start of cycle 1, increasing) instead of the planned ones, and the run stops at
-  // the last (a few increments at a transition, of any size; `cycles` is then unused).
-  std::vector<double> positions_mm;
+  // Optional, per element of build_mesh's mesh (empty: none): a law replacing laws[role] for that
+  // element (nullptr: the role's; StaticProblem::element_laws). Each must carry no history and give
+  // its role law's symmetric_tangent() (UsageError otherwise).
+  std::vector<const PlaneStrainLaw*> element_laws;
+};
+
+// What the run records or reports beside the named points' histories: progress, VTK fields, the
+// design regions' scan and the element means.
+struct CycleOutputs {
+  // Called after each converged increment with the share of the run done (0–1: the bend, then the
+  // cycles): a long run's progress.
+  std::function<void(double done)> progress;
   // Full-field stress (VTK, cell means, global x–y) when the segment's middle first reaches each
   // path position of the last cycle: <vtk_prefix>-<k>.vtk. Empty prefix: none.
   std::vector<double> vtk_at_s_mm;
@@ -84,21 +110,17 @@ struct CycleKnobs {
   // same width, and the cushion's mid-depth below each element centre of the central section,
   // recorded like the named points into CycleResult::scanned (off: the named points alone).
   bool scan_design_regions = false;
-  // Optional, per element of build_mesh's mesh (empty: none): a law replacing laws[role] for that
-  // element (nullptr: the role's; StaticProblem::element_laws). Each must carry no history and give
-  // its role law's symmetric_tangent() (UsageError otherwise).
-  std::vector<const PlaneStrainLaw*> element_laws;
   // Each element's mean over its integration points (stresses and logarithmic strains in the cord
   // curve's local frame at its centre's path position), recorded like a named point into
   // CycleResult::element_means (named "e<k>", at its centre): the strain each element reached, which the
   // elastic level reads its cards at (docs/segment.md "One secant per element").
   bool record_elements = false;
-  // A run whose points and loads carry no history (no state in any law, no inertia, no tangential
-  // flank) starts every load cycle from the same state, so cycle 2 onwards repeat cycle 1 to the
-  // Newton tolerance: solve the bend and one cycle, and copy its samples and load totals to the
-  // later cycles, shifted by the period (docs/segment.md "Cost (reference)"; off: solve every cycle).
-  // The run's increment and iteration counts are then those solved.
-  bool repeat_history_free_cycle = true;
+};
+
+struct CycleKnobs {
+  CycleStepping stepping;
+  CyclePhysics physics;
+  CycleOutputs outputs;
 };
 
 struct CycleSample {                    // a monitored point at the end of an increment
@@ -114,7 +136,7 @@ struct MonitoredHistory {
   // element's integration points, as `stress_at` does for the static cases.
   PointLocation at;
   Eigen::Vector2d X_mm = Eigen::Vector2d::Zero();
-  // A scanned integration point (CycleKnobs::scan_design_regions): its element's rule index and
+  // A scanned integration point (CycleOutputs::scan_design_regions): its element's rule index and
   // the point's own stresses, not interpolated (−1: a named point or a scanned surface node).
   int gauss_point = -1;
   std::vector<CycleSample> samples;
@@ -132,7 +154,7 @@ struct IncrementLoads {                // totals per mm of width at the end of a
   double left_end_longitudinal_N_mm = 0.0, rubber_section_N_mm = 0.0;
   double left_inertia_longitudinal_N_mm = 0.0;  // Σ m·a of the left half's nodes (PhysicsOptions::inertia)
   // Radial totals (along the cord curve's outward normal at each element's centre) of Report I's
-  // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CycleKnobs::flank_stiffness_N_mm4;
+  // dead contact load, Σ B_r dV, and of the flank foundation, Σ ∫ b·n dV (CyclePhysics::flank_stiffness_N_mm4;
   // both 0 when the foundation is off: they feed flank_shares only).
   double contact_radial_N_mm = 0.0, flank_radial_N_mm = 0.0;
   // The same along the cord tangent: Report I's dead 6.6–6.9 and the flank's (its stick; 0 without one).
@@ -158,8 +180,8 @@ struct EquilibriumBounds {
 
 struct CycleResult {
   std::vector<MonitoredHistory> points;
-  std::vector<MonitoredHistory> scanned;  // CycleKnobs::scan_design_regions, element by element
-  std::vector<MonitoredHistory> element_means;  // CycleKnobs::record_elements: one per element, in mesh order
+  std::vector<MonitoredHistory> scanned;  // CycleOutputs::scan_design_regions, element by element
+  std::vector<MonitoredHistory> element_means;  // CycleOutputs::record_elements: one per element, in mesh order
   double cycle_time_s = 0.0;
   // Built-in equilibrium check: the largest |Σ reactions + ∫ b dV| over all increments, relative
   // to Σ |nodal reactions| + Σ |element body forces| (at the Newton tolerance when all is right).
@@ -176,8 +198,8 @@ struct CycleResult {
   // radial load is at least half its largest: the ratio of largest magnitude (signed) and the mean
   // ratio (flank_shares; 0 without the foundation).
   double flank_radial_share = 0.0, flank_radial_mean_share = 0.0;
-  double flank_stiffness_N_mm4 = 0.0;  // the run's CycleKnobs::flank_stiffness_N_mm4
-  // The stick (CycleKnobs::flank_stick_N_mm4): its k_t, and its largest |Σ ∫ b·t dV| over the
+  double flank_stiffness_N_mm4 = 0.0;  // the run's CyclePhysics::flank_stiffness_N_mm4
+  // The stick (CyclePhysics::flank_stick_N_mm4): its k_t, and its largest |Σ ∫ b·t dV| over the
   // increments (along the cord tangent at each element's centre, N/mm) against the largest
   // |Σ B_l dV| of Report I's dead friction over the run (0 without the stick).
   double flank_stick_N_mm4 = 0.0, flank_stick_share = 0.0;
