@@ -38,8 +38,9 @@ void collect(const CLI::App& app, std::vector<Named>& inputs, std::vector<Named>
     for (const std::string& path : o->results()) {
       if (path.empty() || path == "-") continue;
       (in ? inputs : outputs).emplace_back(name, path);
-      if (out && name == "--out" && app.get_name() == "sweep")  // its unfinished rows and its lock
-        for (const char* suffix : {".partial", ".lock"}) outputs.emplace_back("--out's file", path + suffix);
+      if (out && name == "--out" && app.get_name() == "sweep")  // its unfinished rows and its lock, beside a link's target
+        for (const char* suffix : {".partial", ".lock"})
+          outputs.emplace_back("--out's file", fitlib::core::resolve_links(path) + suffix);
     }
   }
   for (const CLI::App* sub : app.get_subcommands()) collect(*sub, inputs, outputs);

@@ -375,3 +375,31 @@ TEST(Outputs, AnOutputThatIsAFifoIsWrittenInPlaceOrRefusedNeverReplaced) {
   EXPECT_FALSE(std::filesystem::exists(fifo + ".partial"));
   EXPECT_TRUE(std::filesystem::is_fifo(std::filesystem::symlink_status(fifo)));
 }
+
+// An --out that is a symbolic link to a regular file (issue 37): the rename replaced the link by a
+// regular file and left its target stale. Every subcommand writes through core's writer, so the
+// target gets the new bytes and the link stays a link; a link naming an input is still refused.
+TEST(Outputs, AnOutputThatIsALinkWritesItsTargetAndStaysALink) {
+  const std::string target = temp_file("link_target.csv"), link = temp_file("out_link.csv");
+  { std::ofstream(target) << "old bytes\n"; }
+  fs::create_symlink("link_target.csv", link);  // relative, as `ln -s` makes them
+  auto r = run_fitcli("eval --card " + kCard + " --frequency-hz 1,10 --out " + link + " --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_NE(slurp(target).find("frequency_Hz"), std::string::npos) << slurp(target);
+  const std::string card = copy_of(kCard, "linked_input_card.json"), card_link = temp_file("to_input.json");
+  fs::create_symlink(card, card_link);
+  r = run_fitcli("eval --card " + card + " --frequency-hz 1 --out " + card_link);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--out " + card_link + " is the file --card reads"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(card), slurp(kCard));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(card_link)));
+  // Two outputs through a dangling link and its target are one file too.
+  const std::string dangling = temp_file("dangling.json");
+  fs::create_symlink("lf_made.json", dangling);
+  r = run_fitcli("life-fit --observed " + source_path("datasets/life-tests/synthetic-beam.csv") + " --out " + dangling +
+                 " --peaks-out " + temp_file("lf_made.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("name one file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(temp_file("lf_made.json")));
+}
