@@ -403,3 +403,35 @@ TEST(Outputs, AnOutputThatIsALinkWritesItsTargetAndStaysALink) {
   EXPECT_NE(r.err.find("name one file"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(temp_file("lf_made.json")));
 }
+
+// An empty output path (issue 37): `--out ''` (an unset shell variable) wrote to stdout as if --out
+// were not given. Every option that names a file or folder refuses it: exit 2 naming the option,
+// before any work (nothing on stdout, no file made). (`--out=` is CLI11's "1 required TEXT missing".)
+TEST(Outputs, AnEmptyOutputPathIsRefusedNamingTheOption) {
+  const std::string scene = source_path("datasets/drives/ref-0500-light.toml");
+  const std::string observed = source_path("datasets/life-tests/synthetic-beam.csv");
+  const std::string fit = "fit --data " + kTable + " --model prony --terms 2 ";
+  struct Case {
+    std::string args, option;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"eval --card " + kCard + " --frequency-hz 1 --out ''", "--out"},
+           {"export --card " + kCard + " --format abaqus --out ''", "--out"},
+           {fit + "--out ''", "--out"},
+           {fit + "--out " + temp_file("empty_plot.json") + " --plot ''", "--plot"},
+           {fit + "--out " + temp_file("empty_shifts.json") + " --shifts-out ''", "--shifts-out"},
+           {"surface grid --card " + kCard + " --frequency-hz 1,10 --surface-out ''", "--surface-out"},
+           {"life-fit --observed " + observed + " --out " + temp_file("empty_lf.json") + " --peaks-out ''", "--peaks-out"},
+           {"segment --scene " + source_path("datasets/segment/bend-40mm.toml") + " --vtk ''", "--vtk"},
+           {"belt --scene " + scene + " --out-dir ''", "--out-dir"},
+           {"sweep --sweep " + kSweep + " --out '' --threads 1", "--out"},
+           {"eval --card '' --frequency-hz 1", "--card"},
+       }) {
+    const auto r = run_fitcli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.option + " '': an empty path names nothing"), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << c.args;
+  }
+  for (const char* made : {"empty_plot.json", "empty_shifts.json", "empty_lf.json"})
+    EXPECT_FALSE(fs::exists(temp_file(made))) << made;
+}
