@@ -387,6 +387,13 @@ TEST(Outputs, AnOutputThatIsALinkWritesItsTargetAndStaysALink) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
   EXPECT_NE(slurp(target).find("frequency_Hz"), std::string::npos) << slurp(target);
+  // A sweep too: its table replaces the target, its .partial and .lock (beside the target) are gone.
+  r = run_fitcli("sweep --sweep " + kSweep + " --out " + link + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_EQ(slurp(target).rfind("# fitlib sweep sha256=", 0), 0u) << slurp(target).substr(0, 200);
+  for (const char* suffix : {".partial", ".lock"})
+    EXPECT_FALSE(fs::exists(target + suffix) || fs::exists(fs::symlink_status(link + suffix))) << suffix;
   const std::string card = copy_of(kCard, "linked_input_card.json"), card_link = temp_file("to_input.json");
   fs::create_symlink(card, card_link);
   r = run_fitcli("eval --card " + card + " --frequency-hz 1 --out " + card_link);
