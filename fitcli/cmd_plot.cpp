@@ -306,7 +306,8 @@ bool figure_not_drawn() { return figure_failed(); }
 
 void write_png(const std::string& out, const std::function<std::string(const std::string& tmp)>& make_script) {
   claim_png("plot", out);  // callers claim it before the work; a library caller is checked here
-  const std::string tmp = out + ".tmp-" + std::to_string(getpid()) + ".png";
+  // Beside the file written: a link's target, whose folder check_output_path checked.
+  const std::string tmp = fitlib::core::resolve_links(out) + ".tmp-" + std::to_string(getpid()) + ".png";
   const std::string script = make_script(tmp);
   FILE* pipe = popen("gnuplot 1>&2", "w");
   if (!pipe) throw FigureError("plot: cannot start gnuplot");

@@ -34,12 +34,17 @@ void collect(const CLI::App& app, std::vector<Named>& inputs, std::vector<Named>
     if (o->get_lnames().empty()) continue;
     const std::string name = "--" + o->get_lnames().front();
     const bool in = input_options().count(name) > 0, out = output_options().count(name) > 0;
-    if (!in && !out) continue;
+    if (!in && !out && name != "--out-dir") continue;
     for (const std::string& path : o->results()) {
-      if (path.empty() || path == "-") continue;
+      // `--out ''` (an unset shell variable) wrote to stdout as if --out were not given.
+      if (path.empty() && o->count() > 0)
+        throw fitlib::core::UsageError(name + " '': an empty path names nothing; give a " +
+                                       (name == "--out-dir" ? "folder" : "file") + " name");
+      if (path.empty() || path == "-" || (!in && !out)) continue;
       (in ? inputs : outputs).emplace_back(name, path);
-      if (out && name == "--out" && app.get_name() == "sweep")  // its unfinished rows and its lock
-        for (const char* suffix : {".partial", ".lock"}) outputs.emplace_back("--out's file", path + suffix);
+      if (out && name == "--out" && app.get_name() == "sweep")  // its unfinished rows and its lock, beside a link's target
+        for (const char* suffix : {".partial", ".lock"})
+          outputs.emplace_back("--out's file", fitlib::core::resolve_links(path) + suffix);
     }
   }
   for (const CLI::App* sub : app.get_subcommands()) collect(*sub, inputs, outputs);

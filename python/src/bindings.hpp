@@ -23,8 +23,17 @@ nlohmann::json to_json(const py::handle& object);
 
 // A copy of `v` as a 1-D NumPy array.
 py::array_t<double> to_array(const std::vector<double>& v);
-// Any array-like of numbers (scalar, list, NumPy array) flattened to doubles.
-std::vector<double> to_vector(const py::handle& object);
+// Any array-like of numbers (scalar, list, NumPy array) flattened to doubles; TypeError naming
+// `argument` for None, text, bools or other objects (NumPy's float conversion made None a NaN:
+// card.eval(None) answered "nan Hz").
+std::vector<double> to_vector(const py::handle& object, const char* argument = nullptr);
+// `value` as a NumPy array of integer or floating dtype; TypeError naming `argument` otherwise.
+py::array numbers(const py::handle& value, const char* argument);
+// One number (int, float, NumPy scalar); TypeError naming `argument` for None or anything else.
+double number(const py::handle& value, const char* argument);
+// A temperature that may be left out: None is NaN, read by the library as the reference
+// temperature (the default of every entry point that takes one).
+double optional_temperature(const py::handle& value, const char* argument = "temperature_C");
 
 
 

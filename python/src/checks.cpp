@@ -19,4 +19,25 @@ void require_in(const char* argument, double value, double low, double high) {
                          core::format_number(high) + "], got " + core::format_number(value));
 }
 
+py::array numbers(const py::handle& value, const char* argument) {
+  if (!value.is_none() && !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value)) {
+    const auto a = py::array::ensure(py::module_::import("numpy").attr("asarray")(value));
+    const char kind = a ? a.dtype().kind() : 'O';
+    if (kind == 'i' || kind == 'u' || kind == 'f') return a;  // not 'b', 'U', 'O' (None inside a list)
+  }
+  throw py::type_error(std::string(argument ? argument : "the argument") +
+                       " must be a number or an array of numbers, got " + std::string(py::repr(value)));
+}
+
+double number(const py::handle& value, const char* argument) {
+  const py::array a = numbers(value, argument);
+  if (a.ndim() != 0)
+    throw py::type_error(std::string(argument) + " must be one number, got " + std::string(py::repr(value)));
+  return a.attr("item")().cast<double>();
+}
+
+double optional_temperature(const py::handle& value, const char* argument) {
+  return value.is_none() ? std::nan("") : number(value, argument);
+}
+
 }  // namespace fitlib::python

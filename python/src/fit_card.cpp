@@ -293,7 +293,7 @@ void bind_card(py::module_& m) {
              o.poisson_ratio = poisson_ratio, o.material_id = material_id, o.allow_inadmissible = allow_inadmissible;
              o.density_t_per_mm3 = density_t_per_mm3;
              if (!temperature_C.is_none()) {
-               o.temperature_C = temperature_C.cast<double>();
+               o.temperature_C = number(temperature_C, "temperature_C");
                require_in("temperature_C", o.temperature_C, -273.15, 1000.0);
                WindowGuard window(c, allow_extrapolation);  // the temperature alone, as fitcli export
                model::TestCondition at;

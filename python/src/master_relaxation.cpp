@@ -4,7 +4,6 @@
 // (docs/python.md).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "bindings.hpp"
 #include "fitlib/card/card.hpp"
@@ -19,8 +18,6 @@
 
 namespace fitlib::python {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // One column of a vector of rows as a NumPy array.
 template <typename Row, typename Field>
@@ -38,8 +35,10 @@ fit::VerticalShift vertical_shift(const std::string& name) {
   throw core::UsageError("vertical shift '" + name + "' (none, entropic or fitted)");
 }
 
-data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::object& log10_aT, double reference_C) {
-  const auto T = to_vector(temperatures_C), a = to_vector(log10_aT);
+data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::object& log10_aT,
+                                   const py::object& reference) {
+  const auto T = to_vector(temperatures_C, "temperature_C"), a = to_vector(log10_aT, "log10_aT");
+  const double reference_C = optional_temperature(reference, "reference_C");
   if (T.size() != a.size()) throw core::UsageError("temperatures and log10 a_T differ in length");
   for (std::size_t i = 0; i < T.size(); ++i) {
     require_in("temperature_C", T[i], -273.15, 1000.0);
@@ -58,7 +57,7 @@ data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::o
 void bind_shift_factors(py::module_& m) {
   using data::ShiftFactorTable;
   py::class_<ShiftFactorTable>(m, "ShiftFactorTable", "Shift factors T, log10 a_T (pyvisco's file, docs/data.md §3)")
-      .def(py::init(&shift_table), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C") = kNaN)
+      .def(py::init(&shift_table), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C") = py::none())
       .def_readonly("reference_C", &ShiftFactorTable::reference_C)
       .def_readonly("source_file", &ShiftFactorTable::source_file)
       .def_property_readonly("temperature_C", [](const ShiftFactorTable& t) {
@@ -68,7 +67,11 @@ void bind_shift_factors(py::module_& m) {
         return column_of(t.factors, [](const data::ShiftFactor& f) { return f.log10_aT; });
       })
       .def("__len__", [](const ShiftFactorTable& t) { return t.factors.size(); })
-      .def("interpolate", &data::interpolate_log10_aT, py::arg("temperature_C"), py::arg("tolerance_C") = 0.5,
+      .def("interpolate",
+           [](const ShiftFactorTable& t, const py::object& T, const py::object& tolerance) {
+             return data::interpolate_log10_aT(t, number(T, "temperature_C"), number(tolerance, "tolerance_C"));
+           },
+           py::arg("temperature_C"), py::arg("tolerance_C") = 0.5,
            "log10 a_T at T, linear between the nearest tabulated temperatures")
       .def("to_csv", &data::format_shift_factors, "pyvisco's text (T,log_aT / C,-)")
       .def("save", [](const ShiftFactorTable& t, const std::string& path) {
@@ -169,7 +172,7 @@ void bind_master_curve(py::module_& m) {
 // every number finite and in range (fit_wlf returned a dict of NaN for empty or mismatched input).
 std::pair<std::vector<double>, std::vector<double>> shift_points(const py::object& T, const py::object& a, double ref,
                                                                  int needed, const char* law) {
-  const auto table = shift_table(T, a, ref);
+  const auto table = shift_table(T, a, py::float_(ref));
   require_in("reference_C", ref, -273.15, 1000.0);
   if (table.factors.size() < static_cast<std::size_t>(needed))
     throw core::UsageError(std::string(law) + " shift law: needs at least " + std::to_string(needed) +
@@ -181,19 +184,22 @@ std::pair<std::vector<double>, std::vector<double>> shift_points(const py::objec
 
 void bind_shift_laws(py::module_& m) {
   m.def("fit_wlf",
-        [](const py::object& T, const py::object& a, double ref) {
+        [](const py::object& T, const py::object& a, const py::object& reference_C) {
+          const double ref = number(reference_C, "reference_C");
           const auto [t, s] = shift_points(T, a, ref, 3, "WLF");
           return wlf_dict(fit::fit_wlf(t, s, ref));
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "WLF law fitted to shifts: dict C1, C2_K, rms_decades (at least 3 shifts, as many T as log10 a_T)");
   m.def("fit_arrhenius",
-        [](const py::object& T, const py::object& a, double ref) {
+        [](const py::object& T, const py::object& a, const py::object& reference_C) {
+          const double ref = number(reference_C, "reference_C");
           const auto [t, s] = shift_points(T, a, ref, 2, "Arrhenius");
           return arrhenius_dict(fit::fit_arrhenius(t, s, ref));
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "Arrhenius law fitted to shifts: dict activation_energy_kJ_mol, rms_decades (at least 2 shifts)");
   m.def("fit_polynomial_shift",
-        [](const py::object& T, const py::object& a, double ref, int degree) {
+        [](const py::object& T, const py::object& a, const py::object& reference_C, int degree) {
+          const double ref = number(reference_C, "reference_C");
           require_in("degree", degree, 1, 6);  // fitcli --polynomial-degree
           const auto [t, s] = shift_points(T, a, ref, degree, "polynomial");
           const auto p = fit::fit_polynomial_shift(t, s, ref, degree);
@@ -202,7 +208,11 @@ void bind_shift_laws(py::module_& m) {
           return d;
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), py::arg("degree") = 3, "pyvisco's polynomial law: dict coefficients (C_1..C_degree), rms_decades (degree 1..6)");
-  m.def("given_log10_aT", &fit::given_log10_aT, py::arg("shifts"), py::arg("temperature_C"), py::arg("reference_C"), "log10 a_T of given shift factors at T, relative to reference_C");
+  m.def("given_log10_aT",
+        [](const data::ShiftFactorTable& shifts, const py::object& T, const py::object& reference_C) {
+          return fit::given_log10_aT(shifts, number(T, "temperature_C"), number(reference_C, "reference_C"));
+        },
+        py::arg("shifts"), py::arg("temperature_C"), py::arg("reference_C"), "log10 a_T of given shift factors at T, relative to reference_C");
   m.def("fit_master_curve",
         [](const std::shared_ptr<model::Model>& model, const data::DynamicTestTable& raw,
            const fit::MasterCurveOptions& curve_options, const fit::FitOptions& fit_options, bool refine) {
@@ -218,9 +228,10 @@ void bind_shift_laws(py::module_& m) {
         "Master curve, the model fitted to it, and optionally shifts and model refined together");
   m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"), "The fit's model with WLF fitted to the master curve's shifts, constants held");
   m.def("with_law_from_shifts",
-        [](const fit::FitResult& r, const py::object& T, const py::object& a, double ref, const std::string& law,
-           int degree) {
-          return fit::with_law_from_shifts(r, to_vector(T), to_vector(a), ref, model::parse_shift_law(law), degree);
+        [](const fit::FitResult& r, const py::object& T, const py::object& a, const py::object& reference_C,
+           const std::string& law, int degree) {
+          return fit::with_law_from_shifts(r, to_vector(T, "temperature_C"), to_vector(a, "log10_aT"),
+                                           number(reference_C, "reference_C"), model::parse_shift_law(law), degree);
         },
         py::arg("result"), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"),
         py::arg("law") = "wlf", py::arg("polynomial_degree") = 3,

@@ -30,9 +30,8 @@ py::array_t<double> to_array(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-std::vector<double> to_vector(const py::handle& object) {
-  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
-  if (!a) throw py::type_error("expected numbers or an array of numbers, got " + std::string(py::repr(object)));
+std::vector<double> to_vector(const py::handle& object, const char* argument) {
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(numbers(object, argument));
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
@@ -84,14 +83,11 @@ struct Broadcast {
 // max_points > 0: the work cap of an evaluation (issue 37 audit: card.eval over two broadcast
 // arrays of 10^4 values made 10^8 points and ran on); the cap of card_grid and fitcli surface grid,
 // checked on the broadcast shape before any column is made.
-Broadcast broadcast(const std::vector<py::object>& arguments, double max_points = 0.0) {
+using Named = std::vector<std::pair<const char*, py::object>>;  // argument name, value
+
+Broadcast broadcast(const Named& arguments, double max_points = 0.0) {
   py::list arrays;
-  for (const auto& a : arguments) {
-    auto array = py::array_t<double, py::array::forcecast>::ensure(a);
-    // ensure() gives a null handle for text ("abc"): appended, it was a SystemError
-    if (!array) throw py::type_error("expected numbers or an array of numbers, got " + std::string(py::repr(a)));
-    arrays.append(array);
-  }
+  for (const auto& [name, a] : arguments) arrays.append(numbers(a, name));  // None, "abc": TypeError naming it
   const py::list out = py::module_::import("numpy").attr("broadcast_arrays")(*arrays);
   Broadcast b;
   const auto first = out[0].cast<py::array>();
@@ -101,8 +97,8 @@ Broadcast broadcast(const std::vector<py::object>& arguments, double max_points 
                                " points (README, work caps; as card_grid); split the call",
                            "", 0, 0, "points");
   b.shape.assign(first.shape(), first.shape() + first.ndim());
-  for (const auto& a : out)
-    b.columns.push_back(to_vector(py::module_::import("numpy").attr("ascontiguousarray")(a)));
+  for (std::size_t k = 0; k < out.size(); ++k)
+    b.columns.push_back(to_vector(py::module_::import("numpy").attr("ascontiguousarray")(out[k]), arguments[k].first));
   return b;
 }
 
@@ -135,7 +131,8 @@ std::vector<double> checked_values(const model::Model& m, const py::object& p) {
 py::dict moduli_arrays(const model::Model& m, const std::vector<double>& p, const py::object& f,
                        const py::object& T, const py::object& amplitude, const std::string& mode,
                        const std::string& orientation, const ModuliAt& at) {
-  const auto b = broadcast({f, or_nan(T), amplitude}, surface::kMaxCardGridPoints);
+  const auto b = broadcast({{"frequency_Hz", f}, {"temperature_C", or_nan(T)}, {"strain_amplitude", amplitude}},
+                           surface::kMaxCardGridPoints);
   const std::size_t n = b.columns[0].size();
   std::vector<double> storage(n), loss(n), mean(n), tan_delta(n);
   model::TestCondition c;
@@ -168,7 +165,7 @@ namespace {
 template <typename Law>
 py::array_t<double> time_array(const model::Model& m, const py::object& t, const py::object& T,
                                const std::string& mode, const std::string& orientation, Law law) {
-  const auto b = broadcast({t, or_nan(T)}, surface::kMaxCardGridPoints);
+  const auto b = broadcast({{"time_s", t}, {"temperature_C", or_nan(T)}}, surface::kMaxCardGridPoints);
   model::TestCondition c;
   c.mode = mode_or_native(m, mode);
   c.orientation = orientation;
@@ -266,15 +263,14 @@ data::DynamicTestTable table_from_arrays(const py::object& f, const py::object& 
                                          const py::object& T, const py::object& amplitude,
                                          const py::object& mean_strain, const py::object& weight,
                                          const std::string& mode) {
-  std::vector<std::string> names{"frequency_Hz", "storage_MPa", "loss_MPa"};
-  std::vector<py::object> given{f, storage, loss};
-  const std::vector<std::pair<const char*, py::object>> optional{
+  Named given{{"frequency_Hz", f}, {"storage_MPa", storage}, {"loss_MPa", loss}};
+  const Named optional{
       {"temperature_C", T}, {"strain_amplitude", amplitude}, {"mean_strain", mean_strain}, {"weight", weight}};
   for (const auto& [name, value] : optional)
-    if (!value.is_none()) names.push_back(name), given.push_back(value);
+    if (!value.is_none()) given.emplace_back(name, value);
   const auto columns = broadcast(given).columns;
   std::string text = "mode";
-  for (const auto& name : names) text += "," + name;
+  for (const auto& named : given) text += std::string(",") + named.first;
   text += "\n";
   for (std::size_t i = 0; i < columns[0].size(); ++i) {
     text += mode;
@@ -371,14 +367,14 @@ void bind_model(py::module_& m) {
       .def_property_readonly("amplitude_dependent", &Model::amplitude_dependent)
       .def("damage_drivers",
            [](const Model& mo, const py::object& p, const std::string& mode, const std::string& orientation,
-              double strain_amplitude, double frequency_Hz, double temperature_C) {
+              double strain_amplitude, const py::object& frequency_Hz, const py::object& temperature_C) {
              model::TestCondition c;
              c.mode = mode_or_native(mo, mode), c.orientation = orientation, c.strain_amplitude = strain_amplitude;
-             c.frequency_Hz = frequency_Hz, c.temperature_C = temperature_C;
+             c.frequency_Hz = number(frequency_Hz, "frequency_Hz"), c.temperature_C = optional_temperature(temperature_C);
              return to_array(mo.damage_drivers(checked_values(mo, p).data(), c));
            },
            py::arg("p"), py::arg("mode") = "", py::arg("orientation") = "", py::arg("strain_amplitude") = 0.0,
-           py::arg("frequency_Hz") = 1.0, py::arg("temperature_C") = std::nan(""),
+           py::arg("frequency_Hz") = 1.0, py::arg("temperature_C") = py::none(),
            "The damage drivers a steady test reaches (empty for a model without damage)")
       .def("default_parameters", [](const Model& mo) { return to_array(mo.default_parameters()); })
       .def("temperature_law", [](const Model& mo, const py::object& p) {

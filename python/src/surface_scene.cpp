@@ -146,9 +146,9 @@ void bind_surface(py::module_& m) {
           surface::CardGridRequest r;
           r.mode = model::parse_test_mode(mode);
           r.orientation = orientation;
-          r.frequency_Hz = to_vector(f);
-          if (!T.is_none()) r.temperature_C = to_vector(T);
-          if (!amp.is_none()) r.strain_amplitude = to_vector(amp);
+          r.frequency_Hz = to_vector(f, "frequency_Hz");
+          if (!T.is_none()) r.temperature_C = to_vector(T, "temperature_C");
+          if (!amp.is_none()) r.strain_amplitude = to_vector(amp, "strain_amplitude");
           return surface::evaluate_card_grid(c, r);
         },
         py::arg("card"), py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(),
@@ -202,8 +202,10 @@ void bind_material_point(py::module_& m) {
       .def_property_readonly("state_size", &MaterialPoint::state_size)
       .def("initial_state", [](const MaterialPoint& p) { return to_array(p.initial_state()); })
       .def("update",
-           [](const MaterialPoint& p, const py::object& state, const model::Vector6& strain, double dt_s, double T) {
-             const auto s = to_vector(state);
+           [](const MaterialPoint& p, const py::object& state, const model::Vector6& strain, const py::object& dt,
+              const py::object& temperature_C) {
+             const auto s = to_vector(state, "state");
+             const double dt_s = number(dt, "dt_s"), T = optional_temperature(temperature_C);
              if (s.size() != p.state_size()) throw core::UsageError("state has the wrong size");
              // The C++ contract takes finite input from the FE code; here it comes from a user.
              if (!strain.allFinite()) throw core::UsageError("update: the strain is not finite");
@@ -215,36 +217,39 @@ void bind_material_point(py::module_& m) {
              const model::Vector6 sigma = p.update(s.data(), strain, dt_s, T, next.data(), &tangent);
              return py::make_tuple(sigma, to_array(next), tangent);
            },
-           py::arg("state"), py::arg("strain"), py::arg("dt_s"), py::arg("temperature_C") = std::nan(""),
+           py::arg("state"), py::arg("strain"), py::arg("dt_s"), py::arg("temperature_C") = py::none(),
            "(stress, next state, tangent) of one increment to the total strain")
       .def("complex_stiffness",
-           [](const MaterialPoint& p, double frequency_Hz, double T) {
+           [](const MaterialPoint& p, const py::object& f, const py::object& temperature_C) {
+             const double frequency_Hz = number(f, "frequency_Hz"), T = optional_temperature(temperature_C);
              model::require_steady_condition("complex_stiffness", frequency_Hz, T);
              return p.complex_stiffness(frequency_Hz, T);
            },
-           py::arg("frequency_Hz"), py::arg("temperature_C") = std::nan(""));
+           py::arg("frequency_Hz"), py::arg("temperature_C") = py::none());
 
   m.def("make_material_point",
         [](const std::shared_ptr<model::Model>& model, const py::object& values, const std::string& fidelity,
-           double frequency_Hz, double temperature_C, double bulk_modulus_MPa, const py::object& damage_driver_hold) {
+           const py::object& frequency_Hz, const py::object& temperature_C, double bulk_modulus_MPa,
+           const py::object& damage_driver_hold) {
           if (fidelity != "viscoelastic" && fidelity != "elastic")
             throw core::UsageError("fidelity must be viscoelastic or elastic, not '" + fidelity + "'");
           model::PointOptions o;
           o.fidelity = fidelity == "elastic" ? core::Fidelity::elastic
                                              : core::Fidelity::complete;
-          o.frequency_Hz = frequency_Hz, o.temperature_C = temperature_C, o.bulk_modulus_MPa = bulk_modulus_MPa;
+          o.frequency_Hz = number(frequency_Hz, "frequency_Hz"), o.temperature_C = optional_temperature(temperature_C);
+          o.bulk_modulus_MPa = bulk_modulus_MPa;
           if (!damage_driver_hold.is_none()) o.damage_driver_hold = to_vector(damage_driver_hold);
           return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values), o));
         },
         py::arg("model"), py::arg("values"), py::arg("fidelity") = "viscoelastic", py::arg("frequency_Hz") = 1.0,
-        py::arg("temperature_C") = std::nan(""), py::arg("bulk_modulus_MPa") = std::nan(""),
+        py::arg("temperature_C") = py::none(), py::arg("bulk_modulus_MPa") = std::nan(""),
         py::arg("damage_driver_hold") = py::none(),
         "damage_driver_hold: a damage model's drivers held beyond these (a card's fit.data_window.damage_driver, "
         "as the segment's complete level does); None = the damage law at every amplitude");
   m.def("drive",
         [](const MaterialPoint& p, const py::object& time_s, const py::sequence& components, const py::object& T) {
           model::DriveProgram program;
-          program.time_s = to_vector(time_s);
+          program.time_s = to_vector(time_s, "time_s");
           if (components.size() != 6) throw core::UsageError("drive needs 6 components (None = traction-free)");
           bool stress_controlled = false;
           for (int i = 0; i < 6; ++i) {
@@ -254,14 +259,15 @@ void bind_material_point(py::module_& m) {
           model::check_point_work(model::point_work(p.state_size(), static_cast<double>(program.time_s.size()),
                                                     stress_controlled),
                                   p.describe(), "len(time_s)");
-          if (!T.is_none()) program.temperature_C = to_vector(T);
+          if (!T.is_none()) program.temperature_C = to_vector(T, "temperature_C");
           return drive_dict(model::drive(p, program));
         },
         py::arg("point"), py::arg("time_s"), py::arg("components"), py::arg("temperature_C") = py::none(),
         "Each Voigt component None (σ = 0) or ('strain' | 'stress', values per time)");
   m.def("drive_test",
         [](const MaterialPoint& p, const std::string& mode, const std::string& orientation, double amplitude,
-           double mean_strain, double frequency_Hz, int cycles, int steps_per_cycle, double T) {
+           double mean_strain, const py::object& f, int cycles, int steps_per_cycle, const py::object& temperature_C) {
+          const double frequency_Hz = number(f, "frequency_Hz"), T = optional_temperature(temperature_C);
           // fitcli material-point's option ranges and work cap
           require_in("amplitude", amplitude, 0.0, 10.0);
           require_in("mean_strain", mean_strain, -10.0, 10.0);
@@ -281,7 +287,7 @@ void bind_material_point(py::module_& m) {
         },
         py::arg("point"), py::arg("mode") = "shear", py::arg("orientation") = "", py::arg("amplitude") = 0.01,
         py::arg("mean_strain") = 0.0, py::arg("frequency_Hz") = 1.0, py::arg("cycles") = 5,
-        py::arg("steps_per_cycle") = 200, py::arg("temperature_C") = std::nan(""),
+        py::arg("steps_per_cycle") = 200, py::arg("temperature_C") = py::none(),
         "fitcli material-point: ε(t) = mean − a cos 2πft in the test's program");
   m.def("fritzson_thesis_case",
         [](const card::Card& c, const std::string& id, int steps_per_cycle) {

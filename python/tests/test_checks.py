@@ -141,6 +141,51 @@ def test_text_for_a_number_is_a_type_error_not_a_system_error():
     raises(TypeError, lambda: card.model().moduli(card.values(), "abc"), "abc")
 
 
+def test_none_or_text_for_a_frequency_time_or_temperature_is_a_type_error_naming_it():
+    """card.eval(None) answered "nan Hz" (NumPy made None a NaN); every entry point that takes a
+    frequency, time or temperature raises TypeError naming the argument for None, text, a bool or a
+    list holding None. A temperature left out (None, the default) stays the reference."""
+    card = fitlib.load_card(CARD)
+    model, p = card.model(), card.values()
+    point = fitlib.make_material_point(model, p, bulk_modulus_MPa=2000.0)
+    shifts = fitlib.ShiftFactorTable([10, 20, 30], [1.0, 0.0, -1.0])
+    calls = {
+        "frequency_Hz": [lambda v: card.eval(v), lambda v: model.moduli(p, v), lambda v: fitlib.card_grid(card, v),
+                         lambda v: fitlib.Table(v, [1.0], [0.1]), lambda v: point.complex_stiffness(v),
+                         lambda v: fitlib.make_material_point(model, p, frequency_Hz=v, bulk_modulus_MPa=2000.0),
+                         lambda v: fitlib.drive_test(point, frequency_Hz=v, cycles=1, steps_per_cycle=20),
+                         lambda v: model.damage_drivers(p, frequency_Hz=v)],
+        "time_s": [lambda v: model.relaxation_modulus(p, v), lambda v: model.creep_compliance(p, v),
+                   lambda v: fitlib.drive(point, v, [("strain", [0.0])] + [None] * 5)],
+        "dt_s": [lambda v: point.update(point.initial_state(), np.zeros(6), v)],
+        "temperature_C": [lambda v: shifts.interpolate(v), lambda v: fitlib.ShiftFactorTable(v, [1.0, 0.0]),
+                          lambda v: fitlib.given_log10_aT(shifts, v, 20.0),
+                          lambda v: fitlib.fit_wlf(v, [2.0, 0.0, -1.5], 20.0)],
+        "reference_C": [lambda v: fitlib.fit_wlf([0, 20, 40], [2.0, 0.0, -1.5], v),
+                        lambda v: fitlib.fit_arrhenius([0, 20], [2.0, 0.0], v),
+                        lambda v: fitlib.given_log10_aT(shifts, 20.0, v)],
+    }
+    # Where a temperature may be left out, None is the reference; text, a bool, None in a list are not.
+    optional = [lambda v: card.eval(1.0, temperature_C=v), lambda v: model.moduli(p, 1.0, temperature_C=v),
+                lambda v: model.relaxation_modulus(p, 1.0, temperature_C=v), lambda v: fitlib.card_grid(card, 1.0, v),
+                lambda v: point.complex_stiffness(1.0, temperature_C=v), lambda v: card.export("abaqus", temperature_C=v),
+                lambda v: fitlib.drive_test(point, temperature_C=v, cycles=1, steps_per_cycle=20),
+                lambda v: fitlib.make_material_point(model, p, temperature_C=v, bulk_modulus_MPa=2000.0),
+                lambda v: fitlib.ShiftFactorTable([10, 20], [1.0, 0.0], reference_C=v)]
+    for argument, entries, bad_values in [(a, e, (None, "abc", True, [1.0, None])) for a, e in calls.items()] + [
+            ("temperature_C", optional[:-1], ("abc", True, [1.0, None])), ("reference_C", optional[-1:], ("abc", True))]:
+        for call in entries:
+            for bad in bad_values:
+                e = raises(TypeError, lambda: call(bad), argument + " must be")
+                assert "nan" not in str(e), e
+    # Left out, a temperature is the reference: None as before, the same numbers as no argument.
+    assert np.array_equal(card.eval(1.0, temperature_C=None)["storage_MPa"], card.eval(1.0)["storage_MPa"])
+    assert np.array_equal(point.complex_stiffness(1.0, temperature_C=None), point.complex_stiffness(1.0))
+    out = fitlib.drive_test(point, cycles=1, steps_per_cycle=20, temperature_C=None, frequency_Hz=np.float32(2))
+    assert np.all(np.isfinite(out["stress_MPa"]))
+    assert card.eval(np.int64(1))["storage_MPa"] == card.eval(1.0)["storage_MPa"]
+
+
 def test_tables_build_from_numpy_arrays_with_the_readers_checks():
     f = np.array([0.1, 1.0, 10.0])
     t = fitlib.Table(f, np.array([2.0, 2.5, 3.0]), np.array([0.2, 0.3, 0.4]), temperature_C=23.0)

@@ -375,3 +375,70 @@ TEST(Outputs, AnOutputThatIsAFifoIsWrittenInPlaceOrRefusedNeverReplaced) {
   EXPECT_FALSE(std::filesystem::exists(fifo + ".partial"));
   EXPECT_TRUE(std::filesystem::is_fifo(std::filesystem::symlink_status(fifo)));
 }
+
+// An --out that is a symbolic link to a regular file (issue 37): the rename replaced the link by a
+// regular file and left its target stale. Every subcommand writes through core's writer, so the
+// target gets the new bytes and the link stays a link; a link naming an input is still refused.
+TEST(Outputs, AnOutputThatIsALinkWritesItsTargetAndStaysALink) {
+  const std::string target = temp_file("link_target.csv"), link = temp_file("out_link.csv");
+  { std::ofstream(target) << "old bytes\n"; }
+  fs::create_symlink("link_target.csv", link);  // relative, as `ln -s` makes them
+  auto r = run_fitcli("eval --card " + kCard + " --frequency-hz 1,10 --out " + link + " --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_NE(slurp(target).find("frequency_Hz"), std::string::npos) << slurp(target);
+  // A sweep too: its table replaces the target, its .partial and .lock (beside the target) are gone.
+  r = run_fitcli("sweep --sweep " + kSweep + " --out " + link + " --threads 1 --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_EQ(slurp(target).rfind("# fitlib sweep sha256=", 0), 0u) << slurp(target).substr(0, 200);
+  for (const char* suffix : {".partial", ".lock"})
+    EXPECT_FALSE(fs::exists(target + suffix) || fs::exists(fs::symlink_status(link + suffix))) << suffix;
+  const std::string card = copy_of(kCard, "linked_input_card.json"), card_link = temp_file("to_input.json");
+  fs::create_symlink(card, card_link);
+  r = run_fitcli("eval --card " + card + " --frequency-hz 1 --out " + card_link);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--out " + card_link + " is the file --card reads"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(card), slurp(kCard));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(card_link)));
+  // Two outputs through a dangling link and its target are one file too.
+  const std::string dangling = temp_file("dangling.json");
+  fs::create_symlink("lf_made.json", dangling);
+  r = run_fitcli("life-fit --observed " + source_path("datasets/life-tests/synthetic-beam.csv") + " --out " + dangling +
+                 " --peaks-out " + temp_file("lf_made.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("name one file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(temp_file("lf_made.json")));
+}
+
+// An empty output path (issue 37): `--out ''` (an unset shell variable) wrote to stdout as if --out
+// were not given. Every option that names a file or folder refuses it: exit 2 naming the option,
+// before any work (nothing on stdout, no file made). (`--out=` is CLI11's "1 required TEXT missing".)
+TEST(Outputs, AnEmptyOutputPathIsRefusedNamingTheOption) {
+  const std::string scene = source_path("datasets/drives/ref-0500-light.toml");
+  const std::string observed = source_path("datasets/life-tests/synthetic-beam.csv");
+  const std::string fit = "fit --data " + kTable + " --model prony --terms 2 ";
+  struct Case {
+    std::string args, option;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"eval --card " + kCard + " --frequency-hz 1 --out ''", "--out"},
+           {"export --card " + kCard + " --format abaqus --out ''", "--out"},
+           {fit + "--out ''", "--out"},
+           {fit + "--out " + temp_file("empty_plot.json") + " --plot ''", "--plot"},
+           {fit + "--out " + temp_file("empty_shifts.json") + " --shifts-out ''", "--shifts-out"},
+           {"surface grid --card " + kCard + " --frequency-hz 1,10 --surface-out ''", "--surface-out"},
+           {"life-fit --observed " + observed + " --out " + temp_file("empty_lf.json") + " --peaks-out ''", "--peaks-out"},
+           {"segment --scene " + source_path("datasets/segment/bend-40mm.toml") + " --vtk ''", "--vtk"},
+           {"belt --scene " + scene + " --out-dir ''", "--out-dir"},
+           {"sweep --sweep " + kSweep + " --out '' --threads 1", "--out"},
+           {"eval --card '' --frequency-hz 1", "--card"},
+       }) {
+    const auto r = run_fitcli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.option + " '': an empty path names nothing"), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << c.args;
+  }
+  for (const char* made : {"empty_plot.json", "empty_shifts.json", "empty_lf.json"})
+    EXPECT_FALSE(fs::exists(temp_file(made))) << made;
+}

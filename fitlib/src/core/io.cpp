@@ -32,7 +32,24 @@ bool is_special_file(const std::string& path) {
   return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+std::string resolve_links(const std::string& path) {
+  namespace fs = std::filesystem;
+  fs::path p(path);
+  std::error_code ec;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    if (hops == 40) throw InputError("too many levels of symbolic links (a loop?)", path);  // the kernel's ELOOP
+    const fs::path target = fs::read_symlink(p, ec);
+    if (ec) throw InputError("cannot read the symbolic link (" + ec.message() + ")", path);
+    // Never normalised by text: "dir_link/../x" is the kernel's to resolve, through dir_link.
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return p.string();
+}
+
+void write_file_atomically(const std::string& link_or_file, const std::string& content) {
+  // A rename onto a symbolic link would replace the link by a regular file and leave its target
+  // stale: the target is what gets replaced, by a temporary beside it (a rename cannot cross folders).
+  const std::string path = resolve_links(link_or_file);
   if (is_special_file(path)) return write_in_place(path, content);
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   try {
@@ -50,11 +67,12 @@ void write_file_atomically(const std::string& path, const std::string& content) 
 void check_output_path(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  const fs::path p(path);
+  const fs::path p(resolve_links(path));  // the file written (write_file_atomically)
+  const std::string via = p.string() == path ? "" : " (the folder of its link's target " + p.string() + ")";
   if (fs::is_directory(p, ec)) throw InputError("output path is a folder", path);
   const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  if (!fs::is_directory(folder, ec)) throw InputError("output folder does not exist", path);
-  if (::access(folder.c_str(), W_OK) != 0) throw InputError("output folder is not writable", path);
+  if (!fs::is_directory(folder, ec)) throw InputError("output folder does not exist" + via, path);
+  if (::access(folder.c_str(), W_OK) != 0) throw InputError("output folder is not writable" + via, path);
 }
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -62,8 +80,9 @@ bool same_file(const std::string& a, const std::string& b) {
   if (a.empty() || b.empty() || a == "-" || b == "-") return false;
   std::error_code ec;
   if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
-  const fs::path ra = fs::weakly_canonical(fs::absolute(a, ec), ec);
-  const fs::path rb = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  // weakly_canonical leaves a dangling link at the end unresolved: resolve_links follows it.
+  const fs::path ra = fs::weakly_canonical(fs::absolute(resolve_links(a), ec), ec);
+  const fs::path rb = fs::weakly_canonical(fs::absolute(resolve_links(b), ec), ec);
   return !ec && ra == rb;
 }
 

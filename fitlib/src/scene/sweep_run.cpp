@@ -126,14 +126,17 @@ std::string sweep_table_head(const Sweep& sweep) {
 SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOptions& opt) {
   SweepRunResult result;
   const bool writer = ex.writes(), to_file = writer && !opt.out_path.empty();
-  const std::string head = head_text(sweep), partial = opt.out_path + ".partial";
+  // A symbolic link as the result file: its .partial and .lock go beside the target the result
+  // replaces (core::write_file_atomically), so two spellings of one file share one lock.
+  const std::string out_path = to_file ? core::resolve_links(opt.out_path) : opt.out_path;
+  const std::string head = head_text(sweep), partial = out_path + ".partial";
   std::size_t done = 0;
   std::unique_ptr<core::OutputLock> lock;
   if (to_file) {
-    core::check_output_path(opt.out_path);
-    refuse_special_output(opt.out_path);
-    refuse_output_on_input(sweep, opt.out_path);
-    lock = std::make_unique<core::OutputLock>(opt.out_path);
+    core::check_output_path(out_path);
+    refuse_special_output(out_path);
+    refuse_output_on_input(sweep, out_path);
+    lock = std::make_unique<core::OutputLock>(out_path);
     std::string kept = partial_head(head);
     if (std::filesystem::exists(partial)) done = read_partial(partial, sweep, head, result.table, kept);
     else result.table = head;
@@ -169,7 +172,7 @@ SweepRunResult run_sweep(const Sweep& sweep, SweepExecutor& ex, const SweepRunOp
   result.complete = true;
   if (to_file) {  // the table without the checksums, then the partial goes
     out.close();
-    core::write_file_atomically(opt.out_path, result.table);
+    core::write_file_atomically(out_path, result.table);
     std::filesystem::remove(partial);
   }
   return result;
