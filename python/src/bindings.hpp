@@ -10,6 +10,8 @@
 #include "fitlib/scene/results.hpp"
 #include <functional>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace fitlib::python {
@@ -34,6 +36,38 @@ double number(const py::handle& value, const char* argument);
 // A temperature that may be left out: None is NaN, read by the library as the reference
 // temperature (the default of every entry point that takes one).
 double optional_temperature(const py::handle& value, const char* argument = "temperature_C");
+
+// The value of an options field `name` set from Python: a number through `number`, any other type
+// without pybind11's conversions (None is not False, True is not 1); a TypeError naming the field
+// otherwise (def_readwrite's own listed the setter's signature, "(): incompatible function arguments").
+template <typename T>
+T field_value(const py::handle& value, const char* name) {
+  if constexpr (std::is_same_v<T, double>) {
+    return number(value, name);
+  } else {
+    py::detail::make_caster<T> caster;
+    py::object v = py::reinterpret_borrow<py::object>(value);
+    // NumPy integers as Python ints (without conversion an unsigned field refused np.int64(3))
+    if (std::is_integral_v<T> && !std::is_same_v<T, bool> && PyIndex_Check(value.ptr()))
+      v = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+    if (!v) throw py::error_already_set();
+    if ((std::is_same_v<T, bool> || !py::isinstance<py::bool_>(value)) && caster.load(v, false))
+      return py::detail::cast_op<T>(std::move(caster));
+    throw py::type_error(std::string(name) + " must be " + decltype(caster)::name.text + ", got " +
+                         std::string(py::repr(value)));
+  }
+}
+
+// A property `name` of an options class whose setter `set(o, value)` gets field_value's value.
+template <typename T, typename S, typename Get, typename Set>
+void def_field(py::class_<S>& c, const char* name, Get get, Set set) {
+  c.def_property(name, get, [name, set](S& o, const py::handle& v) { set(o, field_value<T>(v, name)); });
+}
+// def_readwrite with field_value's checks.
+template <typename S, typename T>
+void def_field(py::class_<S>& c, const char* name, T S::*member) {
+  def_field<T>(c, name, [member](const S& o) { return o.*member; }, [member](S& o, T v) { o.*member = std::move(v); });
+}
 
 
 

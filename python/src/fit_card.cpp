@@ -61,46 +61,47 @@ class WindowGuard {
 std::string method_name(fit::TermMethod m) { return m == fit::TermMethod::spectrum ? "spectrum" : "sweep"; }
 
 void bind_fit_options(py::module_& m) {
+  // Each field through def_field: a wrong type is a TypeError naming the field (issue 37).
   using fit::FitOptions;
-  py::class_<FitOptions>(m, "FitOptions", "Options of fitlib.fit (fit/fit.hpp); keyword arguments set fields")
-      .def(py::init(&from_keywords<FitOptions>))
-      .def_property("backend", [](const FitOptions& o) { return std::string(fit::to_string(o.backend)); },
-                    [](FitOptions& o, const std::string& s) { o.backend = fit::parse_backend(s); })
-      .def_property("residual", [](const FitOptions& o) { return std::string(fit::to_string(o.residual)); },
-                    [](FitOptions& o, const std::string& s) { o.residual = fit::parse_residual_kind(s); })
-      .def_readwrite("storage_weight", &FitOptions::storage_weight)
-      .def_readwrite("loss_weight", &FitOptions::loss_weight)
-      .def_readwrite("mean_weight", &FitOptions::mean_weight)
-      .def_readwrite("seed", &FitOptions::seed)
-      .def_readwrite("multistart", &FitOptions::multistart)
-      .def_readwrite("tolerance", &FitOptions::tolerance)
-      .def_readwrite("max_iterations", &FitOptions::max_iterations)
-      .def_readwrite("fixed", &FitOptions::fixed)
-      .def_readwrite("polish", &FitOptions::polish)
-      .def_readwrite("linear_start", &FitOptions::linear_start)
-      .def_readwrite("global_", &FitOptions::global)
-      .def_readwrite("schedule_path", &FitOptions::schedule_path)
-      .def_readwrite("tau_margin_decades", &FitOptions::tau_margin_decades)
-      .def_readwrite("modulus_ceiling", &FitOptions::modulus_ceiling)
-      .def_readwrite("relaxed_floor", &FitOptions::relaxed_floor);
+  py::class_<FitOptions> options(m, "FitOptions", "Options of fitlib.fit (fit/fit.hpp); keyword arguments set fields");
+  options.def(py::init(&from_keywords<FitOptions>));
+  def_field<std::string>(options, "backend", [](const FitOptions& o) { return std::string(fit::to_string(o.backend)); },
+                         [](FitOptions& o, const std::string& s) { o.backend = fit::parse_backend(s); });
+  def_field<std::string>(options, "residual", [](const FitOptions& o) { return std::string(fit::to_string(o.residual)); },
+                         [](FitOptions& o, const std::string& s) { o.residual = fit::parse_residual_kind(s); });
+  def_field(options, "storage_weight", &FitOptions::storage_weight);
+  def_field(options, "loss_weight", &FitOptions::loss_weight);
+  def_field(options, "mean_weight", &FitOptions::mean_weight);
+  def_field(options, "seed", &FitOptions::seed);
+  def_field(options, "multistart", &FitOptions::multistart);
+  def_field(options, "tolerance", &FitOptions::tolerance);
+  def_field(options, "max_iterations", &FitOptions::max_iterations);
+  def_field(options, "fixed", &FitOptions::fixed);
+  def_field(options, "polish", &FitOptions::polish);
+  def_field(options, "linear_start", &FitOptions::linear_start);
+  def_field(options, "global_", &FitOptions::global);
+  def_field(options, "schedule_path", &FitOptions::schedule_path);
+  def_field(options, "tau_margin_decades", &FitOptions::tau_margin_decades);
+  def_field(options, "modulus_ceiling", &FitOptions::modulus_ceiling);
+  def_field(options, "relaxed_floor", &FitOptions::relaxed_floor);
 
   using fit::TermOptions;
-  py::class_<TermOptions>(m, "TermOptions", "Options of fitlib.select_terms (fit/terms.hpp)")
-      .def(py::init(&from_keywords<TermOptions>))
-      .def_readwrite("min_terms", &TermOptions::min_terms)
-      .def_readwrite("max_terms", &TermOptions::max_terms)
-      .def_readwrite("solver_cap", &TermOptions::solver_cap)
-      .def_property("rule", [](const TermOptions& o) { return std::string(fit::to_string(o.rule)); },
-                    [](TermOptions& o, const std::string& s) { o.rule = fit::parse_term_rule(s); })
-      .def_readwrite("residual_ratio", &TermOptions::residual_ratio)
-      .def_property("method", [](const TermOptions& o) { return method_name(o.method); },
-                    [](TermOptions& o, const std::string& s) { o.method = fit::parse_term_method(s); })
-      .def_property("smoothness", [](const TermOptions& o) { return o.spectrum.lambda; },
-                    [](TermOptions& o, double v) { o.spectrum.lambda = v; })
-      .def_property("terms_per_decade", [](const TermOptions& o) { return o.spectrum.per_decade; },
-                    [](TermOptions& o, double v) { o.spectrum.per_decade = v; })
-      .def_property("spectrum_polish", [](const TermOptions& o) { return o.spectrum.polish; },
-                    [](TermOptions& o, bool v) { o.spectrum.polish = v; });
+  py::class_<TermOptions> term_options(m, "TermOptions", "Options of fitlib.select_terms (fit/terms.hpp)");
+  term_options.def(py::init(&from_keywords<TermOptions>));
+  def_field(term_options, "min_terms", &TermOptions::min_terms);
+  def_field(term_options, "max_terms", &TermOptions::max_terms);
+  def_field(term_options, "solver_cap", &TermOptions::solver_cap);
+  def_field<std::string>(term_options, "rule", [](const TermOptions& o) { return std::string(fit::to_string(o.rule)); },
+                         [](TermOptions& o, const std::string& s) { o.rule = fit::parse_term_rule(s); });
+  def_field(term_options, "residual_ratio", &TermOptions::residual_ratio);
+  def_field<std::string>(term_options, "method", [](const TermOptions& o) { return method_name(o.method); },
+                         [](TermOptions& o, const std::string& s) { o.method = fit::parse_term_method(s); });
+  def_field<double>(term_options, "smoothness", [](const TermOptions& o) { return o.spectrum.lambda; },
+                    [](TermOptions& o, double v) { o.spectrum.lambda = v; });
+  def_field<double>(term_options, "terms_per_decade", [](const TermOptions& o) { return o.spectrum.per_decade; },
+                    [](TermOptions& o, double v) { o.spectrum.per_decade = v; });
+  def_field<bool>(term_options, "spectrum_polish", [](const TermOptions& o) { return o.spectrum.polish; },
+                  [](TermOptions& o, bool v) { o.spectrum.polish = v; });
 
   m.attr("SPECTRUM_RESIDUAL") = fit::to_string(fit::kSpectrumResidual);
   m.attr("SPECTRUM_STORAGE_WEIGHT") = fit::kSpectrumStorageWeight;

@@ -103,27 +103,28 @@ py::dict isotherm_dict(const fit::IsothermShift& s) {
 
 void bind_master_options(py::module_& m) {
   using fit::MasterCurveOptions;
-  py::class_<MasterCurveOptions>(m, "MasterCurveOptions", "Options of build_master_curve (fit/master_curve.hpp)")
-      .def(py::init([](const py::kwargs& fields) {
-        MasterCurveOptions o;
-        py::object self = py::cast(o);
-        for (const auto& [key, value] : fields) self.attr(key) = value;
-        return self.cast<MasterCurveOptions>();
-      }))
-      .def_readwrite("reference_C", &MasterCurveOptions::reference_C)
-      .def_readwrite("loss_weight", &MasterCurveOptions::loss_weight)
-      .def_readwrite("max_pair_shift_decades", &MasterCurveOptions::max_pair_shift_decades)
-      .def_readwrite("monotone", &MasterCurveOptions::monotone)
-      .def_readwrite("extrapolation_points", &MasterCurveOptions::extrapolation_points)
-      .def_readwrite("taper_decades", &MasterCurveOptions::taper_decades)
-      .def_readwrite("same_temperature_C", &MasterCurveOptions::same_temperature_C)
-      .def_property("vertical",
-                    [](const MasterCurveOptions& o) {
-                      return std::string(o.vertical == fit::VerticalShift::none       ? "none"
-                                         : o.vertical == fit::VerticalShift::entropic ? "entropic"
-                                                                                      : "fitted");
-                    },
-                    [](MasterCurveOptions& o, const std::string& v) { o.vertical = vertical_shift(v); });
+  py::class_<MasterCurveOptions> options(m, "MasterCurveOptions", "Options of build_master_curve (fit/master_curve.hpp)");
+  options.def(py::init([](const py::kwargs& fields) {
+    MasterCurveOptions o;
+    py::object self = py::cast(o);
+    for (const auto& [key, value] : fields) self.attr(key) = value;
+    return self.cast<MasterCurveOptions>();
+  }));
+  // Each field through def_field: a wrong type is a TypeError naming the field (issue 37).
+  def_field(options, "reference_C", &MasterCurveOptions::reference_C);
+  def_field(options, "loss_weight", &MasterCurveOptions::loss_weight);
+  def_field(options, "max_pair_shift_decades", &MasterCurveOptions::max_pair_shift_decades);
+  def_field(options, "monotone", &MasterCurveOptions::monotone);
+  def_field(options, "extrapolation_points", &MasterCurveOptions::extrapolation_points);
+  def_field(options, "taper_decades", &MasterCurveOptions::taper_decades);
+  def_field(options, "same_temperature_C", &MasterCurveOptions::same_temperature_C);
+  def_field<std::string>(options, "vertical",
+                         [](const MasterCurveOptions& o) {
+                           return std::string(o.vertical == fit::VerticalShift::none       ? "none"
+                                              : o.vertical == fit::VerticalShift::entropic ? "entropic"
+                                                                                           : "fitted");
+                         },
+                         [](MasterCurveOptions& o, const std::string& v) { o.vertical = vertical_shift(v); });
 }
 
 void bind_master_curve(py::module_& m) {

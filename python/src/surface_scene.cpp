@@ -391,8 +391,9 @@ void bind_scene(py::module_& m) {
   m.def("write_scene_outputs", &scene::write_outputs, py::arg("scene"), py::arg("result"), py::arg("folder"),
         py::arg("record_timing") = false, "Writes the scene's outputs (load_history.csv, summary.json, ...) into a folder, as fitcli belt");
   m.def("accumulation_map",
-        [](const std::string& spectrum, double shear_stress_MPa, long cycles, int cycle_points, double omega_min,
-           double omega_max, int omega_points, double kappa, double strain_limit) {
+        [](const std::string& spectrum, double shear_stress_MPa, long cycles, int cycle_points, const py::object& w_min,
+           const py::object& w_max, int omega_points, double kappa, double strain_limit) {
+          const double omega_min = number(w_min, "omega_min"), omega_max = number(w_max, "omega_max");
           // fitcli accumulate's option ranges and work cap
           require_in("shear_stress_MPa", shear_stress_MPa, 1e-300, 1e100);
           require_in("cycles", static_cast<double>(cycles), 1, 1e12);
