@@ -155,6 +155,8 @@ def test_none_or_text_for_a_frequency_time_or_temperature_is_a_type_error_naming
                          lambda v: fitlib.make_material_point(model, p, frequency_Hz=v, bulk_modulus_MPa=2000.0),
                          lambda v: fitlib.drive_test(point, frequency_Hz=v, cycles=1, steps_per_cycle=20),
                          lambda v: model.damage_drivers(p, frequency_Hz=v)],
+        "omega_min": [lambda v: fitlib.accumulation_map("box", omega_min=v, omega_points=3, cycle_points=3)],
+        "omega_max": [lambda v: fitlib.accumulation_map("box", omega_max=v, omega_points=3, cycle_points=3)],
         "time_s": [lambda v: model.relaxation_modulus(p, v), lambda v: model.creep_compliance(p, v),
                    lambda v: fitlib.drive(point, v, [("strain", [0.0])] + [None] * 5)],
         "dt_s": [lambda v: point.update(point.initial_state(), np.zeros(6), v)],
@@ -184,6 +186,27 @@ def test_none_or_text_for_a_frequency_time_or_temperature_is_a_type_error_naming
     out = fitlib.drive_test(point, cycles=1, steps_per_cycle=20, temperature_C=None, frequency_Hz=np.float32(2))
     assert np.all(np.isfinite(out["stress_MPa"]))
     assert card.eval(np.int64(1))["storage_MPa"] == card.eval(1.0)["storage_MPa"]
+
+
+def test_a_wrong_type_for_an_options_field_is_a_type_error_naming_it():
+    """FitOptions(tolerance=None) raised pybind11's "(): incompatible function arguments" that named
+    no field, and polish=None or tolerance=True were taken as False and 1.0: every field of every
+    options class, set as a keyword or an attribute, raises TypeError naming it for a wrong type."""
+    bad_values = {float: (None, "abc", True, [1.0, None]), int: (None, "abc", True, 2.5),
+                  bool: (None, "abc", 1), str: (None, 1, True), list: (None, "abc", [1])}
+    for options in (fitlib.FitOptions, fitlib.TermOptions, fitlib.MasterCurveOptions):
+        fields = [n for n in dir(options()) if not n.startswith("_")]
+        assert len(fields) >= 8, fields
+        for field in fields:
+            for bad in bad_values[type(getattr(options(), field))]:
+                raises(TypeError, lambda: options(**{field: bad}), field + " must be")
+                raises(TypeError, lambda: setattr(options(), field, bad), field + " must be")
+    # NumPy scalars are numbers, integers and bools as before; the value is the one given.
+    o = fitlib.FitOptions(seed=np.uint64(7), multistart=np.int32(3), tolerance=np.float32(0.5),
+                          polish=np.bool_(False), fixed=["tau_1"], backend="ceres")
+    assert (o.seed, o.multistart, o.tolerance, o.polish, o.fixed, o.backend) == (7, 3, 0.5, False, ["tau_1"], "ceres")
+    assert fitlib.TermOptions(smoothness=2).smoothness == 2.0
+    assert math.isnan(fitlib.MasterCurveOptions(reference_C=float("nan")).reference_C)
 
 
 def test_tables_build_from_numpy_arrays_with_the_readers_checks():
