@@ -63,8 +63,8 @@ std::string method_name(fit::TermMethod m) { return m == fit::TermMethod::spectr
 void bind_fit_options(py::module_& m) {
   // Each field through def_field: a wrong type is a TypeError naming the field (issue 37).
   using fit::FitOptions;
-  py::class_<FitOptions> options(m, "FitOptions", "Options of fitlib.fit (fit/fit.hpp); keyword arguments set fields");
-  options.def(py::init(&from_keywords<FitOptions>));
+  auto options = py::class_<FitOptions>(m, "FitOptions", "Options of fitlib.fit (fit/fit.hpp); keyword arguments set fields")
+      .def(py::init(&from_keywords<FitOptions>));
   def_field<std::string>(options, "backend", [](const FitOptions& o) { return std::string(fit::to_string(o.backend)); },
                          [](FitOptions& o, const std::string& s) { o.backend = fit::parse_backend(s); });
   def_field<std::string>(options, "residual", [](const FitOptions& o) { return std::string(fit::to_string(o.residual)); },
@@ -86,8 +86,8 @@ void bind_fit_options(py::module_& m) {
   def_field(options, "relaxed_floor", &FitOptions::relaxed_floor);
 
   using fit::TermOptions;
-  py::class_<TermOptions> term_options(m, "TermOptions", "Options of fitlib.select_terms (fit/terms.hpp)");
-  term_options.def(py::init(&from_keywords<TermOptions>));
+  auto term_options = py::class_<TermOptions>(m, "TermOptions", "Options of fitlib.select_terms (fit/terms.hpp)")
+      .def(py::init(&from_keywords<TermOptions>));
   def_field(term_options, "min_terms", &TermOptions::min_terms);
   def_field(term_options, "max_terms", &TermOptions::max_terms);
   def_field(term_options, "solver_cap", &TermOptions::solver_cap);

@@ -103,13 +103,13 @@ py::dict isotherm_dict(const fit::IsothermShift& s) {
 
 void bind_master_options(py::module_& m) {
   using fit::MasterCurveOptions;
-  py::class_<MasterCurveOptions> options(m, "MasterCurveOptions", "Options of build_master_curve (fit/master_curve.hpp)");
-  options.def(py::init([](const py::kwargs& fields) {
-    MasterCurveOptions o;
-    py::object self = py::cast(o);
-    for (const auto& [key, value] : fields) self.attr(key) = value;
-    return self.cast<MasterCurveOptions>();
-  }));
+  auto options = py::class_<MasterCurveOptions>(m, "MasterCurveOptions", "Options of build_master_curve (fit/master_curve.hpp)")
+      .def(py::init([](const py::kwargs& fields) {
+        MasterCurveOptions o;
+        py::object self = py::cast(o);
+        for (const auto& [key, value] : fields) self.attr(key) = value;
+        return self.cast<MasterCurveOptions>();
+      }));
   // Each field through def_field: a wrong type is a TypeError naming the field (issue 37).
   def_field(options, "reference_C", &MasterCurveOptions::reference_C);
   def_field(options, "loss_weight", &MasterCurveOptions::loss_weight);
