@@ -37,9 +37,10 @@ double number(const py::handle& value, const char* argument);
 // temperature (the default of every entry point that takes one).
 double optional_temperature(const py::handle& value, const char* argument = "temperature_C");
 
-// The value of an options field `name` set from Python: a number through `number`, any other type
-// without pybind11's conversions (None is not False, True is not 1); a TypeError naming the field
-// otherwise (def_readwrite's own listed the setter's signature, "(): incompatible function arguments").
+// The value of an options field or an entry point's argument `name` from Python: a number through
+// `number`, any other type without pybind11's conversions (None is not False, True is not 1, 2.5 is
+// not an int); a TypeError naming it otherwise (pybind11's own, "incompatible function arguments",
+// listed the signature and named nothing).
 template <typename T>
 T field_value(const py::handle& value, const char* name) {
   if constexpr (std::is_same_v<T, double>) {

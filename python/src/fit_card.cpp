@@ -265,7 +265,8 @@ void bind_card(py::module_& m) {
       .def("save", [](const Card& c, const std::string& path) { card::save_card(path, c); }, py::arg("path"))
       .def("eval",
            [](const Card& c, const py::object& f, const py::object& T, const py::object& amplitude,
-              const std::string& mode, const std::string& orientation, double poisson_ratio, bool allow_extrapolation) {
+              const std::string& mode, const std::string& orientation, const py::object& nu, bool allow_extrapolation) {
+             const double poisson_ratio = number(nu, "poisson_ratio");
              require_in("poisson_ratio", poisson_ratio, 0.0, 0.4999999);
              const auto model = c.model();
              const auto values = c.values();
@@ -285,9 +286,11 @@ void bind_card(py::module_& m) {
            "card without a bulk modulus); beyond the card's data window an InputError unless allow_extrapolation "
            "(then a UserWarning)")
       .def("export",
-           [](const Card& c, const std::string& format, double poisson_ratio, int material_id, bool allow_inadmissible,
-              double density_t_per_mm3, const py::object& temperature_C, bool allow_extrapolation) {
+           [](const Card& c, const std::string& format, const py::object& nu, const py::object& id, bool allow_inadmissible,
+              const py::object& density, const py::object& temperature_C, bool allow_extrapolation) {
              card::ExportOptions o;
+             const double poisson_ratio = number(nu, "poisson_ratio"), density_t_per_mm3 = number(density, "density_t_per_mm3");
+             const int material_id = field_value<int>(id, "material_id");
              require_in("poisson_ratio", poisson_ratio, 0.0, 0.4999999);
              require_in("material_id", material_id, 1, 999999);  // fitcli export --material-id
              require_in("density_t_per_mm3", density_t_per_mm3, 0.0, 1e-6);

@@ -159,7 +159,11 @@ void bind_master_curve(py::module_& m) {
         py::arg("options") = fit::MasterCurveOptions{},
         "Free per-isotherm shifts of raw relaxation isotherms (fitcli fit --master-curve on time data); "
         "its master is empty: shift_relaxation_table(table, curve.shift_factors(), reference_C)");
-  m.def("master_curve_from_shift_factors", &fit::master_curve_from_shift_factors, py::arg("table"),
+  m.def("master_curve_from_shift_factors",
+        [](const data::DynamicTestTable& t, const data::ShiftFactorTable& shifts, const py::object& reference_C) {
+          return fit::master_curve_from_shift_factors(t, shifts, number(reference_C, "reference_C"));
+        },
+        py::arg("table"),
         py::arg("shifts"), py::arg("reference_C"), "Raw isotherms shifted by given factors (fitcli --shifts)");
   m.def("apply_shifts",
         [](MasterCurve curve, const data::DynamicTestTable& raw, const py::object& log10_aT) {
@@ -199,8 +203,9 @@ void bind_shift_laws(py::module_& m) {
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "Arrhenius law fitted to shifts: dict activation_energy_kJ_mol, rms_decades (at least 2 shifts)");
   m.def("fit_polynomial_shift",
-        [](const py::object& T, const py::object& a, const py::object& reference_C, int degree) {
+        [](const py::object& T, const py::object& a, const py::object& reference_C, const py::object& n) {
           const double ref = number(reference_C, "reference_C");
+          const int degree = field_value<int>(n, "degree");
           require_in("degree", degree, 1, 6);  // fitcli --polynomial-degree
           const auto [t, s] = shift_points(T, a, ref, degree, "polynomial");
           const auto p = fit::fit_polynomial_shift(t, s, ref, degree);
@@ -230,9 +235,10 @@ void bind_shift_laws(py::module_& m) {
   m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"), "The fit's model with WLF fitted to the master curve's shifts, constants held");
   m.def("with_law_from_shifts",
         [](const fit::FitResult& r, const py::object& T, const py::object& a, const py::object& reference_C,
-           const std::string& law, int degree) {
+           const std::string& law, const py::object& degree) {
           return fit::with_law_from_shifts(r, to_vector(T, "temperature_C"), to_vector(a, "log10_aT"),
-                                           number(reference_C, "reference_C"), model::parse_shift_law(law), degree);
+                                           number(reference_C, "reference_C"), model::parse_shift_law(law),
+                                           field_value<int>(degree, "polynomial_degree"));
         },
         py::arg("result"), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"),
         py::arg("law") = "wlf", py::arg("polynomial_degree") = 3,
@@ -270,7 +276,11 @@ void bind_relaxation(py::module_& m) {
       .def_readonly("source_sha256", &RelaxationTable::source_sha256);
   m.def("read_relaxation_table", &data::read_relaxation_table, py::arg("path"), "Reads pyvisco's relaxation table (t, E_relax; docs/data.md §4)");
   m.def("parse_relaxation_table", &data::parse_relaxation_table, py::arg("text"), py::arg("file_name") = "relaxation", "A relaxation table from pyvisco's text; file_name names it in errors");
-  m.def("shift_relaxation_table", &fit::shift_relaxation_table, py::arg("table"), py::arg("shifts"),
+  m.def("shift_relaxation_table",
+        [](const RelaxationTable& t, const data::ShiftFactorTable& shifts, const py::object& reference_C) {
+          return fit::shift_relaxation_table(t, shifts, number(reference_C, "reference_C"));
+        },
+        py::arg("table"), py::arg("shifts"),
         py::arg("reference_C"), "Rows at reduced time t / a_T (fitcli fit --shifts on relaxation data)");
   m.def("fit_relaxation",
         [](const std::shared_ptr<model::Model>& model, const RelaxationTable& t, const fit::FitOptions& o) {

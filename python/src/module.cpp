@@ -367,9 +367,10 @@ void bind_model(py::module_& m) {
       .def_property_readonly("amplitude_dependent", &Model::amplitude_dependent)
       .def("damage_drivers",
            [](const Model& mo, const py::object& p, const std::string& mode, const std::string& orientation,
-              double strain_amplitude, const py::object& frequency_Hz, const py::object& temperature_C) {
+              const py::object& strain_amplitude, const py::object& frequency_Hz, const py::object& temperature_C) {
              model::TestCondition c;
-             c.mode = mode_or_native(mo, mode), c.orientation = orientation, c.strain_amplitude = strain_amplitude;
+             c.mode = mode_or_native(mo, mode), c.orientation = orientation;
+             c.strain_amplitude = number(strain_amplitude, "strain_amplitude");
              c.frequency_Hz = number(frequency_Hz, "frequency_Hz"), c.temperature_C = optional_temperature(temperature_C);
              return to_array(mo.damage_drivers(checked_values(mo, p).data(), c));
            },

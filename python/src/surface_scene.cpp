@@ -115,11 +115,11 @@ void bind_surface(py::module_& m) {
         py::arg("document"), py::arg("source") = "surface", "A surface from its JSON document (a dict), validated as load_surface");
   m.def("fit_surface",
         [](const py::object& x, const py::object& y, const py::list& axes, const std::string& dependent_name,
-           const std::string& name, const std::string& missing, double level_tolerance, const py::object& constraints,
-           const std::string& dependent_transform) {
+           const std::string& name, const std::string& missing, const py::object& level_tolerance,
+           const py::object& constraints, const std::string& dependent_transform) {
           surface::FitOptions o;
           for (const auto& a : axes) o.axes.push_back(axis_spec(a));
-          o.dependent_name = dependent_name, o.name = name, o.level_tolerance = level_tolerance;
+          o.dependent_name = dependent_name, o.name = name, o.level_tolerance = number(level_tolerance, "level_tolerance");
           o.dependent_transform = surface::parse_transform(dependent_transform);
           // As fitcli: with user constraints the user takes charge of missing cells unless told.
           const char* remedy = constraints.is_none() ? "constrain" : "none";
@@ -229,7 +229,7 @@ void bind_material_point(py::module_& m) {
 
   m.def("make_material_point",
         [](const std::shared_ptr<model::Model>& model, const py::object& values, const std::string& fidelity,
-           const py::object& frequency_Hz, const py::object& temperature_C, double bulk_modulus_MPa,
+           const py::object& frequency_Hz, const py::object& temperature_C, const py::object& bulk_modulus_MPa,
            const py::object& damage_driver_hold) {
           if (fidelity != "viscoelastic" && fidelity != "elastic")
             throw core::UsageError("fidelity must be viscoelastic or elastic, not '" + fidelity + "'");
@@ -237,7 +237,7 @@ void bind_material_point(py::module_& m) {
           o.fidelity = fidelity == "elastic" ? core::Fidelity::elastic
                                              : core::Fidelity::complete;
           o.frequency_Hz = number(frequency_Hz, "frequency_Hz"), o.temperature_C = optional_temperature(temperature_C);
-          o.bulk_modulus_MPa = bulk_modulus_MPa;
+          o.bulk_modulus_MPa = number(bulk_modulus_MPa, "bulk_modulus_MPa");
           if (!damage_driver_hold.is_none()) o.damage_driver_hold = to_vector(damage_driver_hold);
           return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values), o));
         },
@@ -265,9 +265,12 @@ void bind_material_point(py::module_& m) {
         py::arg("point"), py::arg("time_s"), py::arg("components"), py::arg("temperature_C") = py::none(),
         "Each Voigt component None (σ = 0) or ('strain' | 'stress', values per time)");
   m.def("drive_test",
-        [](const MaterialPoint& p, const std::string& mode, const std::string& orientation, double amplitude,
-           double mean_strain, const py::object& f, int cycles, int steps_per_cycle, const py::object& temperature_C) {
+        [](const MaterialPoint& p, const std::string& mode, const std::string& orientation, const py::object& a,
+           const py::object& mean, const py::object& f, const py::object& n, const py::object& steps,
+           const py::object& temperature_C) {
           const double frequency_Hz = number(f, "frequency_Hz"), T = optional_temperature(temperature_C);
+          const double amplitude = number(a, "amplitude"), mean_strain = number(mean, "mean_strain");
+          const int cycles = field_value<int>(n, "cycles"), steps_per_cycle = field_value<int>(steps, "steps_per_cycle");
           // fitcli material-point's option ranges and work cap
           require_in("amplitude", amplitude, 0.0, 10.0);
           require_in("mean_strain", mean_strain, -10.0, 10.0);
@@ -290,7 +293,8 @@ void bind_material_point(py::module_& m) {
         py::arg("steps_per_cycle") = 200, py::arg("temperature_C") = py::none(),
         "fitcli material-point: ε(t) = mean − a cos 2πft in the test's program");
   m.def("fritzson_thesis_case",
-        [](const card::Card& c, const std::string& id, int steps_per_cycle) {
+        [](const card::Card& c, const std::string& id, const py::object& steps) {
+          const int steps_per_cycle = field_value<int>(steps, "steps_per_cycle");
           require_in("steps_per_cycle", steps_per_cycle, 4, 1e6);  // fitcli's range and work cap
           const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*c.model(), c.values());
           const auto& tc = model::fritzson::thesis_case(id);
@@ -391,9 +395,14 @@ void bind_scene(py::module_& m) {
   m.def("write_scene_outputs", &scene::write_outputs, py::arg("scene"), py::arg("result"), py::arg("folder"),
         py::arg("record_timing") = false, "Writes the scene's outputs (load_history.csv, summary.json, ...) into a folder, as fitcli belt");
   m.def("accumulation_map",
-        [](const std::string& spectrum, double shear_stress_MPa, long cycles, int cycle_points, const py::object& w_min,
-           const py::object& w_max, int omega_points, double kappa, double strain_limit) {
+        [](const std::string& spectrum, const py::object& stress, const py::object& n, const py::object& n_cycle,
+           const py::object& w_min, const py::object& w_max, const py::object& n_omega, const py::object& k,
+           const py::object& limit) {
           const double omega_min = number(w_min, "omega_min"), omega_max = number(w_max, "omega_max");
+          const double shear_stress_MPa = number(stress, "shear_stress_MPa"), kappa = number(k, "kappa");
+          const double strain_limit = number(limit, "strain_limit");
+          const long cycles = field_value<long>(n, "cycles");
+          const int cycle_points = field_value<int>(n_cycle, "cycle_points"), omega_points = field_value<int>(n_omega, "omega_points");
           // fitcli accumulate's option ranges and work cap
           require_in("shear_stress_MPa", shear_stress_MPa, 1e-300, 1e100);
           require_in("cycles", static_cast<double>(cycles), 1, 1e12);

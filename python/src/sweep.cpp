@@ -8,7 +8,8 @@ namespace fitlib::python {
 void bind_sweep(py::module_& m) {
   m.def(
       "sweep",
-      [](const std::string& path, int threads, const std::string& out, bool csv) {
+      [](const std::string& path, const py::object& n, const std::string& out, bool csv) {
+        const int threads = field_value<int>(n, "threads");
         require_in("threads", threads, 1, 1024);  // fitcli sweep --threads
         const auto sweep = scene::load_sweep(path);
         scene::ThreadExecutor executor(threads);

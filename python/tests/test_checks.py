@@ -209,6 +209,55 @@ def test_a_wrong_type_for_an_options_field_is_a_type_error_naming_it():
     assert math.isnan(fitlib.MasterCurveOptions(reference_C=float("nan")).reference_C)
 
 
+def test_a_wrong_type_for_a_number_or_an_integer_argument_is_a_type_error_naming_it():
+    """accumulation_map(kappa=None), drive_test(cycles=2.5), card.export(poisson_ratio="a") raised
+    pybind11's "incompatible function arguments" that named no argument, and a bool was taken as 1:
+    every plain number or integer argument raises TypeError naming it (an integer: not a float, not a bool)."""
+    card = fitlib.load_card(CARD)
+    model, p = card.model(), card.values()
+    point = fitlib.make_material_point(model, p, bulk_modulus_MPa=2000.0)
+    shifts = fitlib.ShiftFactorTable([10, 20, 30], [1.0, 0.0, -1.0])
+    relaxation = fitlib.read_relaxation_table(os.path.join(ROOT, "datasets", "materials", "pyvisco-time-raw.csv"))
+    result = fitlib.fit(model, fitlib.Table([0.1, 1.0, 10.0], [2.0, 2.5, 3.0], [0.2, 0.3, 0.4]))
+    accumulate = lambda **kw: fitlib.accumulation_map("box", **{"omega_points": 3, "cycle_points": 3, **kw})  # noqa: E731
+    drive = lambda **kw: fitlib.drive_test(point, **{"cycles": 1, "steps_per_cycle": 20, **kw})  # noqa: E731
+    numbers = {
+        "shear_stress_MPa": [lambda v: accumulate(shear_stress_MPa=v)], "kappa": [lambda v: accumulate(kappa=v)],
+        "strain_limit": [lambda v: accumulate(strain_limit=v)],
+        "amplitude": [lambda v: drive(amplitude=v)], "mean_strain": [lambda v: drive(mean_strain=v)],
+        "bulk_modulus_MPa": [lambda v: fitlib.make_material_point(model, p, bulk_modulus_MPa=v)],
+        "poisson_ratio": [lambda v: card.eval(1.0, poisson_ratio=v), lambda v: card.export("abaqus", poisson_ratio=v)],
+        "density_t_per_mm3": [lambda v: card.export("abaqus", density_t_per_mm3=v)],
+        "strain_amplitude": [lambda v: model.damage_drivers(p, strain_amplitude=v)],
+        "level_tolerance": [lambda v: fitlib.fit_surface(np.zeros((4, 2)), np.zeros(4), ["a", "b"], level_tolerance=v)],
+        "reference_C": [lambda v: fitlib.master_curve_from_shift_factors(fitlib.Table([1.0], [1.0], [0.1]), shifts, v),
+                        lambda v: fitlib.shift_relaxation_table(relaxation, shifts, v)],
+    }
+    integers = {
+        "cycles": [lambda v: accumulate(cycles=v), lambda v: drive(cycles=v)],
+        "cycle_points": [lambda v: accumulate(cycle_points=v)], "omega_points": [lambda v: accumulate(omega_points=v)],
+        "steps_per_cycle": [lambda v: drive(steps_per_cycle=v),
+                            lambda v: fitlib.fritzson_thesis_case(fitlib.load_card(FRITZSON), "7.1", steps_per_cycle=v)],
+        "material_id": [lambda v: card.export("ansys", material_id=v)],
+        "degree": [lambda v: fitlib.fit_polynomial_shift([0, 20, 40, 60], [2.0, 0.0, -1.5, -2.6], 20.0, degree=v)],
+        "polynomial_degree": [lambda v: fitlib.with_law_from_shifts(result, [0, 20, 40, 60], [2.0, 0.0, -1.5, -2.6],
+                                                                    20.0, law="polynomial", polynomial_degree=v)],
+        "terms": [lambda v: fitlib.fit_hyperelastic_card([], "ogden", terms=v)],
+        "multistart": [lambda v: fitlib.fit_hyperelastic_card([], "ogden", multistart=v)],
+        "seed": [lambda v: fitlib.fit_hyperelastic_card([], "ogden", seed=v)],
+        "threads": [lambda v: fitlib.sweep(SWEEP, threads=v)],
+    }
+    for arguments, bad_values in ((numbers, (None, "abc", True, [1.0, None])), (integers, (None, "abc", True, 2.5))):
+        for argument, entries in arguments.items():
+            for call in entries:
+                for bad in bad_values:
+                    raises(TypeError, lambda: call(bad), argument + " must be")
+    # NumPy scalars are numbers and integers as before.
+    out = drive(amplitude=np.float32(0.02), mean_strain=np.int64(0), cycles=np.int32(1), steps_per_cycle=np.uint16(20))
+    assert len(out["time_s"]) == 21 and np.all(np.isfinite(out["stress_MPa"]))
+    assert accumulate(cycles=np.int64(100), kappa=3)["cycles"] is not None
+
+
 def test_tables_build_from_numpy_arrays_with_the_readers_checks():
     f = np.array([0.1, 1.0, 10.0])
     t = fitlib.Table(f, np.array([2.0, 2.5, 3.0]), np.array([0.2, 0.3, 0.4]), temperature_C=23.0)
