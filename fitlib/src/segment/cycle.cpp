@@ -315,8 +315,10 @@ detail::ElementSampling add_cycle_loads(StaticProblem& p, const CycleGeometry& g
     p.loads.push_back(flank_contact(g.m, g.path_x, integration, NeutralCurve::uniform(g.K_m, 0.0, g.reach),
                                     g.frame.curve_at, physics.flank_stick_N_mm4 > 0.0, physics.flank_slide_floor_mm_s > 0.0,
                                     detail::flank_levels(sampling, drive, physics, g.T, p.time_s)));
-  if (shear) check.nodal = detail::end_shear_forces(g.m.node_count(), g.straight, g.path_x, g.h, g.T, g.frame.curve_at, shear);
-  if (shear) p.loads.push_back(dead_nodal_force(check.nodal));
+  if (shear) {
+    check.nodal = detail::end_shear_forces(g.m.node_count(), g.straight, g.path_x, g.h, g.T, g.frame.curve_at, shear);
+    p.loads.push_back(dead_nodal_force(check.nodal));
+  }
   check.problem = &p, check.centre_x_mm = sampling.centre_x;
   check.width_mm = drive.width_mm, check.integration = integration;
   return sampling;
