@@ -18,6 +18,7 @@ def fit_card(data, model, terms=4, *, format="native", mode="", temperature_law=
     method, an objective left at its defaults becomes the CLI's (relative, storage weight 80).
     Returns (card, result, selection); selection is None unless terms="auto". out: card file.
     """
+    _require_bool(bulk_modulus, "bulk_modulus")
     table = data if isinstance(data, Table) else read_table(data, format=format, mode=mode)
     model_options = {"temperature_law": temperature_law, "reference_C": reference_C}
     if temperature_law == "polynomial":
@@ -31,3 +32,12 @@ def fit_card(data, model, terms=4, *, format="native", mode="", temperature_law=
     if out:
         card.save(out)
     return card, result, selection
+
+
+def _require_bool(value, name):
+    """The extension's check of a bool argument (bindings.hpp, boolean): True or False, a NumPy bool
+    too; None, 0, 1 or any other object is a TypeError naming the argument (`if value:` read None
+    as False)."""
+    numpy_bool = type(value).__module__ == "numpy" and type(value).__name__ in ("bool_", "bool")
+    if value is not True and value is not False and not numpy_bool:
+        raise TypeError(f"{name} must be a bool (True or False), got {value!r}")

@@ -9,6 +9,7 @@
 #include "fitlib/model/model.hpp"
 #include "fitlib/scene/results.hpp"
 #include <functional>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -33,31 +34,49 @@ std::vector<double> to_vector(const py::handle& object, const char* argument = n
 py::array numbers(const py::handle& value, const char* argument);
 // One number (int, float, NumPy scalar); TypeError naming `argument` for None or anything else.
 double number(const py::handle& value, const char* argument);
-// A temperature that may be left out: None is NaN, read by the library as the reference
-// temperature (the default of every entry point that takes one).
-double optional_temperature(const py::handle& value, const char* argument = "temperature_C");
+
+// True or False (a NumPy bool too); TypeError naming `argument` for None, 0, 1 or any other object
+// (pybind11's conversion read None as False and any number or object with __bool__ as its truth).
+bool boolean(const py::handle& value, const char* argument);
 
 // The value of an options field or an entry point's argument `name` from Python: a number through
-// `number`, any other type without pybind11's conversions (None is not False, True is not 1, 2.5 is
-// not an int); a TypeError naming it otherwise (pybind11's own, "incompatible function arguments",
-// listed the signature and named nothing).
+// `number`, a bool through `boolean`, None or a number for std::optional<double>, any other type
+// without pybind11's conversions (True is not 1, 2.5 is not an int); a TypeError naming it otherwise
+// (pybind11's own, "incompatible function arguments", listed the signature and named nothing).
 template <typename T>
 T field_value(const py::handle& value, const char* name) {
   if constexpr (std::is_same_v<T, double>) {
     return number(value, name);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return boolean(value, name);
+  } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+    return value.is_none() ? std::nullopt : std::optional<double>(number(value, name));
   } else {
     py::detail::make_caster<T> caster;
     py::object v = py::reinterpret_borrow<py::object>(value);
     // NumPy integers as Python ints (without conversion an unsigned field refused np.int64(3))
-    if (std::is_integral_v<T> && !std::is_same_v<T, bool> && PyIndex_Check(value.ptr()))
+    if (std::is_integral_v<T> && PyIndex_Check(value.ptr()))
       v = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
     if (!v) throw py::error_already_set();
-    if ((std::is_same_v<T, bool> || !py::isinstance<py::bool_>(value)) && caster.load(v, false))
+    if (!py::isinstance<py::bool_>(value) && caster.load(v, false))
       return py::detail::cast_op<T>(std::move(caster));
     throw py::type_error(std::string(name) + " must be " + decltype(caster)::name.text + ", got " +
                          std::string(py::repr(value)));
   }
 }
+
+// An entry point's argument that its body checks by name with field_value (`get`): pybind11 hands
+// any object over (its own refusal named no argument, its conversion read None as False) and the
+// signature shows T's Python type (float, int, bool, Optional[float]), not `object`.
+template <typename T>
+struct Checked {
+  py::object object;
+  T get(const char* name) const { return field_value<T>(object, name); }
+};
+
+// A temperature that may be left out: None is NaN, read by the library as the reference
+// temperature (the default of every entry point that takes one).
+double optional_temperature(const Checked<std::optional<double>>& value, const char* argument = "temperature_C");
 
 // A property `name` of an options class whose setter `set(o, value)` gets field_value's value.
 template <typename T, typename S, typename Get, typename Set>
@@ -100,3 +119,15 @@ void bind_sweep(py::module_& m);
 void bind_hyperelastic(py::module_& m);       // hyperelastic.cpp
 
 }  // namespace fitlib::python
+
+namespace pybind11::detail {
+// Checked<T> takes every object (the body's check names the argument) and is named as T.
+template <typename T>
+struct type_caster<fitlib::python::Checked<T>> {
+  PYBIND11_TYPE_CASTER(fitlib::python::Checked<T>, make_caster<T>::name);
+  bool load(handle src, bool) {
+    value.object = reinterpret_borrow<object>(src);
+    return true;
+  }
+};
+}  // namespace pybind11::detail

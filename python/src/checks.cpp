@@ -36,8 +36,15 @@ double number(const py::handle& value, const char* argument) {
   return a.attr("item")().cast<double>();
 }
 
-double optional_temperature(const py::handle& value, const char* argument) {
-  return value.is_none() ? std::nan("") : number(value, argument);
+bool boolean(const py::handle& value, const char* argument) {
+  if (value.ptr() == Py_True || value.ptr() == Py_False) return value.ptr() == Py_True;
+  const std::string type = Py_TYPE(value.ptr())->tp_name;  // numpy.bool_ (numpy.bool from NumPy 2)
+  if (type == "numpy.bool_" || type == "numpy.bool") return PyObject_IsTrue(value.ptr()) == 1;
+  throw py::type_error(std::string(argument) + " must be a bool (True or False), got " + std::string(py::repr(value)));
+}
+
+double optional_temperature(const Checked<std::optional<double>>& value, const char* argument) {
+  return value.get(argument).value_or(std::nan(""));
 }
 
 }  // namespace fitlib::python

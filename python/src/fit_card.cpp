@@ -265,8 +265,10 @@ void bind_card(py::module_& m) {
       .def("save", [](const Card& c, const std::string& path) { card::save_card(path, c); }, py::arg("path"))
       .def("eval",
            [](const Card& c, const py::object& f, const py::object& T, const py::object& amplitude,
-              const std::string& mode, const std::string& orientation, const py::object& nu, bool allow_extrapolation) {
-             const double poisson_ratio = number(nu, "poisson_ratio");
+              const std::string& mode, const std::string& orientation, const Checked<double>& nu,
+              const Checked<bool>& allow) {
+             const double poisson_ratio = nu.get("poisson_ratio");
+             const bool allow_extrapolation = allow.get("allow_extrapolation");
              require_in("poisson_ratio", poisson_ratio, 0.0, 0.4999999);
              const auto model = c.model();
              const auto values = c.values();
@@ -286,18 +288,22 @@ void bind_card(py::module_& m) {
            "card without a bulk modulus); beyond the card's data window an InputError unless allow_extrapolation "
            "(then a UserWarning)")
       .def("export",
-           [](const Card& c, const std::string& format, const py::object& nu, const py::object& id, bool allow_inadmissible,
-              const py::object& density, const py::object& temperature_C, bool allow_extrapolation) {
+           [](const Card& c, const std::string& format, const Checked<double>& nu, const Checked<int>& id,
+              const Checked<bool>& inadmissible, const Checked<double>& density,
+              const Checked<std::optional<double>>& temperature_C, const Checked<bool>& allow) {
              card::ExportOptions o;
-             const double poisson_ratio = number(nu, "poisson_ratio"), density_t_per_mm3 = number(density, "density_t_per_mm3");
-             const int material_id = field_value<int>(id, "material_id");
+             const double poisson_ratio = nu.get("poisson_ratio"), density_t_per_mm3 = density.get("density_t_per_mm3");
+             const int material_id = id.get("material_id");
+             const bool allow_inadmissible = inadmissible.get("allow_inadmissible");
+             const bool allow_extrapolation = allow.get("allow_extrapolation");
+             const auto T = temperature_C.get("temperature_C");
              require_in("poisson_ratio", poisson_ratio, 0.0, 0.4999999);
              require_in("material_id", material_id, 1, 999999);  // fitcli export --material-id
              require_in("density_t_per_mm3", density_t_per_mm3, 0.0, 1e-6);
              o.poisson_ratio = poisson_ratio, o.material_id = material_id, o.allow_inadmissible = allow_inadmissible;
              o.density_t_per_mm3 = density_t_per_mm3;
-             if (!temperature_C.is_none()) {
-               o.temperature_C = number(temperature_C, "temperature_C");
+             if (T) {
+               o.temperature_C = *T;
                require_in("temperature_C", o.temperature_C, -273.15, 1000.0);
                WindowGuard window(c, allow_extrapolation);  // the temperature alone, as fitcli export
                model::TestCondition at;
@@ -320,8 +326,8 @@ void bind_card(py::module_& m) {
         py::arg("document"), py::arg("source") = "card", "A card from its JSON document (a dict), validated as load_card; source names it in errors");
   m.def("card_from_fit",
         [](const fit::FitResult& r, const fit::FitOptions& o, const data::DynamicTestTable& t, const std::string& name,
-           const std::string& command, bool record_timing) {
-          return card::card_from_fit(r, o, t, {name, command, record_timing});
+           const std::string& command, const Checked<bool>& record_timing) {
+          return card::card_from_fit(r, o, t, {name, command, record_timing.get("record_timing")});
         },
         py::arg("result"), py::arg("options"), py::arg("table"), py::arg("name"), py::arg("command") = "",
         py::arg("record_timing") = false, "The card of a fit: parameters with uncertainty, the fit's figures, data files and window");
@@ -334,14 +340,14 @@ void bind_fit_table_card(py::module_& m) {
   m.def("fit_table_card",
         [](const data::DynamicTestTable& table, const std::string& model, const std::string& terms,
            const py::object& model_options, const fit::FitOptions& options, const fit::TermOptions& term_options,
-           const std::string& name, const std::string& command, bool record_timing) {
+           const std::string& name, const std::string& command, const Checked<bool>& record_timing) {
           card::FitCardOptions o;
           o.model = model, o.terms = terms, o.model_options = to_json(model_options);
           o.fit = options, o.term = term_options, o.max_terms = term_options.solver_cap;
           const fit::FitOptions defaults;  // an objective left at its defaults is --terms auto's to choose
           o.objective_given = options.residual != defaults.residual || options.storage_weight != defaults.storage_weight ||
                               options.loss_weight != defaults.loss_weight;
-          o.provenance = {name, command, record_timing};
+          o.provenance = {name, command, record_timing.get("record_timing")};
           auto r = card::fit_card(table, o);
           return py::make_tuple(r.card, r.result, r.selection ? py::cast(*r.selection) : py::none());
         },

@@ -18,17 +18,20 @@ model::DeformationMode mode_of(const std::string& text) {
 void bind_hyperelastic(py::module_& m) {
   m.def(
       "fit_hyperelastic_card",
-      [](const std::vector<std::string>& paths, const std::string& model, const py::object& n, bool compressible,
-         const std::string& residual, const py::object& starts, const py::object& seed, const std::string& name) {
-        const int terms = field_value<int>(n, "terms"), multistart = field_value<int>(starts, "multistart");
+      [](const std::vector<std::string>& paths, const std::string& model, const Checked<int>& n,
+         const Checked<bool>& compressible, const std::string& residual, const Checked<int>& starts,
+         const Checked<std::uint64_t>& seed, const std::string& name) {
+        const int terms = n.get("terms"), multistart = starts.get("multistart");
+        const bool is_compressible = compressible.get("compressible");
+        const std::uint64_t fit_seed = seed.get("seed");
         std::vector<data::QuasiStaticTable> tables;
         for (const auto& p : paths) tables.push_back(data::read_quasi_static_table(p));
         card::HyperelasticCardOptions o;
         o.model = model;
-        o.model_options = {{"compressible", compressible}};
+        o.model_options = {{"compressible", is_compressible}};
         if (terms > 0) o.model_options["terms"] = terms;
         o.fit.residual = fit::parse_stress_residual(residual);
-        o.fit.multistart = multistart, o.fit.seed = field_value<std::uint64_t>(seed, "seed");
+        o.fit.multistart = multistart, o.fit.seed = fit_seed;
         o.name = name;
         const auto r = card::fit_hyperelastic_card(data::merge_quasi_static_tables(tables), o);
         return py::make_tuple(r.card, r.result.warnings);

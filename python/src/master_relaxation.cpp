@@ -36,7 +36,7 @@ fit::VerticalShift vertical_shift(const std::string& name) {
 }
 
 data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::object& log10_aT,
-                                   const py::object& reference) {
+                                   const Checked<std::optional<double>>& reference) {
   const auto T = to_vector(temperatures_C, "temperature_C"), a = to_vector(log10_aT, "log10_aT");
   const double reference_C = optional_temperature(reference, "reference_C");
   if (T.size() != a.size()) throw core::UsageError("temperatures and log10 a_T differ in length");
@@ -68,8 +68,8 @@ void bind_shift_factors(py::module_& m) {
       })
       .def("__len__", [](const ShiftFactorTable& t) { return t.factors.size(); })
       .def("interpolate",
-           [](const ShiftFactorTable& t, const py::object& T, const py::object& tolerance) {
-             return data::interpolate_log10_aT(t, number(T, "temperature_C"), number(tolerance, "tolerance_C"));
+           [](const ShiftFactorTable& t, const Checked<double>& T, const Checked<double>& tolerance) {
+             return data::interpolate_log10_aT(t, T.get("temperature_C"), tolerance.get("tolerance_C"));
            },
            py::arg("temperature_C"), py::arg("tolerance_C") = 0.5,
            "log10 a_T at T, linear between the nearest tabulated temperatures")
@@ -160,8 +160,8 @@ void bind_master_curve(py::module_& m) {
         "Free per-isotherm shifts of raw relaxation isotherms (fitcli fit --master-curve on time data); "
         "its master is empty: shift_relaxation_table(table, curve.shift_factors(), reference_C)");
   m.def("master_curve_from_shift_factors",
-        [](const data::DynamicTestTable& t, const data::ShiftFactorTable& shifts, const py::object& reference_C) {
-          return fit::master_curve_from_shift_factors(t, shifts, number(reference_C, "reference_C"));
+        [](const data::DynamicTestTable& t, const data::ShiftFactorTable& shifts, const Checked<double>& reference_C) {
+          return fit::master_curve_from_shift_factors(t, shifts, reference_C.get("reference_C"));
         },
         py::arg("table"),
         py::arg("shifts"), py::arg("reference_C"), "Raw isotherms shifted by given factors (fitcli --shifts)");
@@ -177,7 +177,7 @@ void bind_master_curve(py::module_& m) {
 // every number finite and in range (fit_wlf returned a dict of NaN for empty or mismatched input).
 std::pair<std::vector<double>, std::vector<double>> shift_points(const py::object& T, const py::object& a, double ref,
                                                                  int needed, const char* law) {
-  const auto table = shift_table(T, a, py::float_(ref));
+  const auto table = shift_table(T, a, {py::float_(ref)});
   require_in("reference_C", ref, -273.15, 1000.0);
   if (table.factors.size() < static_cast<std::size_t>(needed))
     throw core::UsageError(std::string(law) + " shift law: needs at least " + std::to_string(needed) +
@@ -189,23 +189,23 @@ std::pair<std::vector<double>, std::vector<double>> shift_points(const py::objec
 
 void bind_shift_laws(py::module_& m) {
   m.def("fit_wlf",
-        [](const py::object& T, const py::object& a, const py::object& reference_C) {
-          const double ref = number(reference_C, "reference_C");
+        [](const py::object& T, const py::object& a, const Checked<double>& reference_C) {
+          const double ref = reference_C.get("reference_C");
           const auto [t, s] = shift_points(T, a, ref, 3, "WLF");
           return wlf_dict(fit::fit_wlf(t, s, ref));
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "WLF law fitted to shifts: dict C1, C2_K, rms_decades (at least 3 shifts, as many T as log10 a_T)");
   m.def("fit_arrhenius",
-        [](const py::object& T, const py::object& a, const py::object& reference_C) {
-          const double ref = number(reference_C, "reference_C");
+        [](const py::object& T, const py::object& a, const Checked<double>& reference_C) {
+          const double ref = reference_C.get("reference_C");
           const auto [t, s] = shift_points(T, a, ref, 2, "Arrhenius");
           return arrhenius_dict(fit::fit_arrhenius(t, s, ref));
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "Arrhenius law fitted to shifts: dict activation_energy_kJ_mol, rms_decades (at least 2 shifts)");
   m.def("fit_polynomial_shift",
-        [](const py::object& T, const py::object& a, const py::object& reference_C, const py::object& n) {
-          const double ref = number(reference_C, "reference_C");
-          const int degree = field_value<int>(n, "degree");
+        [](const py::object& T, const py::object& a, const Checked<double>& reference_C, const Checked<int>& n) {
+          const double ref = reference_C.get("reference_C");
+          const int degree = n.get("degree");
           require_in("degree", degree, 1, 6);  // fitcli --polynomial-degree
           const auto [t, s] = shift_points(T, a, ref, degree, "polynomial");
           const auto p = fit::fit_polynomial_shift(t, s, ref, degree);
@@ -215,14 +215,15 @@ void bind_shift_laws(py::module_& m) {
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), py::arg("degree") = 3, "pyvisco's polynomial law: dict coefficients (C_1..C_degree), rms_decades (degree 1..6)");
   m.def("given_log10_aT",
-        [](const data::ShiftFactorTable& shifts, const py::object& T, const py::object& reference_C) {
-          return fit::given_log10_aT(shifts, number(T, "temperature_C"), number(reference_C, "reference_C"));
+        [](const data::ShiftFactorTable& shifts, const Checked<double>& T, const Checked<double>& reference_C) {
+          return fit::given_log10_aT(shifts, T.get("temperature_C"), reference_C.get("reference_C"));
         },
         py::arg("shifts"), py::arg("temperature_C"), py::arg("reference_C"), "log10 a_T of given shift factors at T, relative to reference_C");
   m.def("fit_master_curve",
         [](const std::shared_ptr<model::Model>& model, const data::DynamicTestTable& raw,
-           const fit::MasterCurveOptions& curve_options, const fit::FitOptions& fit_options, bool refine) {
-          auto r = fit::fit_master_curve(model, raw, curve_options, fit_options, refine);
+           const fit::MasterCurveOptions& curve_options, const fit::FitOptions& fit_options,
+           const Checked<bool>& refine) {
+          auto r = fit::fit_master_curve(model, raw, curve_options, fit_options, refine.get("refine_shifts"));
           py::dict d;
           d["curve"] = r.curve, d["master"] = r.master;
           d["joint"] = r.joint ? py::cast(*r.joint) : py::none();
@@ -234,11 +235,11 @@ void bind_shift_laws(py::module_& m) {
         "Master curve, the model fitted to it, and optionally shifts and model refined together");
   m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"), "The fit's model with WLF fitted to the master curve's shifts, constants held");
   m.def("with_law_from_shifts",
-        [](const fit::FitResult& r, const py::object& T, const py::object& a, const py::object& reference_C,
-           const std::string& law, const py::object& degree) {
+        [](const fit::FitResult& r, const py::object& T, const py::object& a, const Checked<double>& reference_C,
+           const std::string& law, const Checked<int>& degree) {
           return fit::with_law_from_shifts(r, to_vector(T, "temperature_C"), to_vector(a, "log10_aT"),
-                                           number(reference_C, "reference_C"), model::parse_shift_law(law),
-                                           field_value<int>(degree, "polynomial_degree"));
+                                           reference_C.get("reference_C"), model::parse_shift_law(law),
+                                           degree.get("polynomial_degree"));
         },
         py::arg("result"), py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"),
         py::arg("law") = "wlf", py::arg("polynomial_degree") = 3,
@@ -277,8 +278,8 @@ void bind_relaxation(py::module_& m) {
   m.def("read_relaxation_table", &data::read_relaxation_table, py::arg("path"), "Reads pyvisco's relaxation table (t, E_relax; docs/data.md §4)");
   m.def("parse_relaxation_table", &data::parse_relaxation_table, py::arg("text"), py::arg("file_name") = "relaxation", "A relaxation table from pyvisco's text; file_name names it in errors");
   m.def("shift_relaxation_table",
-        [](const RelaxationTable& t, const data::ShiftFactorTable& shifts, const py::object& reference_C) {
-          return fit::shift_relaxation_table(t, shifts, number(reference_C, "reference_C"));
+        [](const RelaxationTable& t, const data::ShiftFactorTable& shifts, const Checked<double>& reference_C) {
+          return fit::shift_relaxation_table(t, shifts, reference_C.get("reference_C"));
         },
         py::arg("table"), py::arg("shifts"),
         py::arg("reference_C"), "Rows at reduced time t / a_T (fitcli fit --shifts on relaxation data)");

@@ -236,9 +236,10 @@ data::DynamicTestTable read_one(const std::string& path, const std::string& form
 }
 
 data::DynamicTestTable read_table(const py::object& paths, const std::string& format,
-                                  const std::string& mode, bool skip_bad_rows,
-                                  bool allow_unknown_columns) {
-  const auto o = read_options(format, mode, skip_bad_rows, allow_unknown_columns);
+                                  const std::string& mode, const Checked<bool>& skip_bad_rows,
+                                  const Checked<bool>& allow_unknown_columns) {
+  const auto o = read_options(format, mode, skip_bad_rows.get("skip_bad_rows"),
+                              allow_unknown_columns.get("allow_unknown_columns"));
   const auto files = py::isinstance<py::str>(paths) ? std::vector<std::string>{paths.cast<std::string>()}
                                                     : paths.cast<std::vector<std::string>>();
   for (std::size_t i = 0; i < files.size(); ++i)  // as fitcli --data (fitcli/path_guard.cpp)
@@ -367,11 +368,12 @@ void bind_model(py::module_& m) {
       .def_property_readonly("amplitude_dependent", &Model::amplitude_dependent)
       .def("damage_drivers",
            [](const Model& mo, const py::object& p, const std::string& mode, const std::string& orientation,
-              const py::object& strain_amplitude, const py::object& frequency_Hz, const py::object& temperature_C) {
+              const Checked<double>& strain_amplitude, const Checked<double>& frequency_Hz,
+              const Checked<std::optional<double>>& temperature_C) {
              model::TestCondition c;
              c.mode = mode_or_native(mo, mode), c.orientation = orientation;
-             c.strain_amplitude = number(strain_amplitude, "strain_amplitude");
-             c.frequency_Hz = number(frequency_Hz, "frequency_Hz"), c.temperature_C = optional_temperature(temperature_C);
+             c.strain_amplitude = strain_amplitude.get("strain_amplitude");
+             c.frequency_Hz = frequency_Hz.get("frequency_Hz"), c.temperature_C = optional_temperature(temperature_C);
              return to_array(mo.damage_drivers(checked_values(mo, p).data(), c));
            },
            py::arg("p"), py::arg("mode") = "", py::arg("orientation") = "", py::arg("strain_amplitude") = 0.0,

@@ -92,27 +92,40 @@ py::dict segment_dict(const segment::StaticResult& r) {
 }
 
 // The scene's [segment] case, its load replaced where an argument is given.
-py::dict run_segment(scene::Scene s, const py::object& strain, const py::object& curvature, const py::object& pressure,
+py::dict run_segment(scene::Scene s, const Checked<std::optional<double>>& strain,
+                     const Checked<std::optional<double>>& curvature, const Checked<std::optional<double>>& pressure,
                      const std::string& vtk_path) {
+  // the arguments' types before the scene's (a wrong type is the call's mistake, whatever the scene)
+  const auto strain_given = strain.get("strain"), curvature_1_mm = curvature.get("curvature_1_mm");
+  const auto pressure_MPa = pressure.get("pressure_MPa");
   if (!s.segment) throw core::InputError("the scene has no [segment] table", s.path, 0, 0, "segment");
   // As fitcli segment --vtk: a file (not stdout), never the scene or a card it names (UsageError),
   // in a folder that exists and can be written (InputError, checked by run_segment_case before
   // the FE), written through a temporary and a rename.
   if (vtk_path == "-") throw core::UsageError("vtk_path needs a file (- would be stdout)");
   scene::refuse_outputs_on_inputs(s, {{"vtk_path", vtk_path}});
-  if (!strain.is_none()) s.segment->load.strain = strain.cast<double>();
-  if (!curvature.is_none()) s.segment->load.curvature_1_mm = curvature.cast<double>();
-  if (!pressure.is_none()) s.segment->load.pressure_MPa = pressure.cast<double>();
+  if (strain_given) s.segment->load.strain = *strain_given;
+  if (curvature_1_mm) s.segment->load.curvature_1_mm = *curvature_1_mm;
+  if (pressure_MPa) s.segment->load.pressure_MPa = *pressure_MPa;
   const auto c = scene::run_segment_case(s, vtk_path);
   py::dict d = segment_dict(c.result);
   d["summary"] = to_python(scene::segment_json(s, c));
   return d;
 }
 
+// A result whose life ran (life_json and life_text read it; of scene.run() without [outputs] life
+// they raised a raw "bad optional access").
+const scene::SceneResult& with_life(const scene::SceneResult& r) {
+  if (!r.life) throw core::UsageError("result: no life was computed (run the scene with run_life, or ask for [outputs] life)");
+  return r;
+}
+
 // fitcli life-fit: the card, its warnings, each mode's fit, and the cases with their observed and
 // predicted lives (arrays) under the fitted card.
-py::dict fit_life_constants(const std::string& observed, const std::string& start, bool fix_n, bool fix_b) {
-  const auto r = scene::fit_life_tests(core::read_file(observed), observed, start, {fix_n, fix_b});
+py::dict fit_life_constants(const std::string& observed, const std::string& start, const Checked<bool>& fix_n,
+                            const Checked<bool>& fix_b) {
+  const fatigue::HeldConstants held{fix_n.get("fix_n"), fix_b.get("fix_b")};
+  const auto r = scene::fit_life_tests(core::read_file(observed), observed, start, held);
   py::dict d;
   d["card"] = to_python(fatigue::card_to_json(r.fit.card));
   d["warnings"] = r.fit.warnings;
@@ -156,11 +169,13 @@ void bind_segment_life(py::module_& m) {
   m.def("run_life", [](const std::string& path) { return scene::run_life(scene::load_scene(path)); },
         py::arg("scene_path"), "fitcli life --scene PATH: the scene file read and run with the life asked for");
   m.def("life_json",
-        [](const scene::Scene& s, const scene::SceneResult& r, bool wall_times) {
-          return to_python(scene::life_json(s, r, wall_times));
+        [](const scene::Scene& s, const scene::SceneResult& r, const Checked<bool>& record_timing) {
+          const bool wall_times = record_timing.get("record_timing");
+          return to_python(scene::life_json(s, with_life(r), wall_times));
         },
         py::arg("scene"), py::arg("result"), py::arg("record_timing") = false, "The life.json document");
-  m.def("life_text", &scene::life_text, py::arg("scene"), py::arg("result"), "The table fitcli life prints");
+  m.def("life_text", [](const scene::Scene& s, const scene::SceneResult& r) { return scene::life_text(s, with_life(r)); },
+        py::arg("scene"), py::arg("result"), "The table fitcli life prints");
 }
 
 }  // namespace fitlib::python

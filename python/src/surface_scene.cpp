@@ -94,13 +94,15 @@ void bind_surface(py::module_& m) {
       .def("to_json", [](const Surface& s) { return to_python(surface::surface_to_json(s)); })
       .def("save", [](const Surface& s, const std::string& path) { surface::save_surface(path, s); }, py::arg("path"))
       .def("__call__",
-           [](const Surface& s, const py::object& x, bool allow) { return surface_values(s, as_points(s, x), allow); },
+           [](const Surface& s, const py::object& x, const Checked<bool>& allow) {
+             return surface_values(s, as_points(s, x), allow.get("allow_extrapolation"));
+           },
            py::arg("points"), py::arg("allow_extrapolation") = false,
            "Values at (N, n) points; InputError naming the axis outside its interval")
       .def("evaluate",
-           [](const Surface& s, const py::object& x, bool allow) {
+           [](const Surface& s, const py::object& x, const Checked<bool>& allow) {
              const RowMatrix p = as_points(s, x);
-             const auto e = s.evaluate(p.row(0).data(), allow);
+             const auto e = s.evaluate(p.row(0).data(), allow.get("allow_extrapolation"));
              return py::make_tuple(e.value, e.gradient, e.extrapolated);
            },
            py::arg("point"), py::arg("allow_extrapolation") = false, "(value, gradient, extrapolated) at one point")
@@ -115,11 +117,11 @@ void bind_surface(py::module_& m) {
         py::arg("document"), py::arg("source") = "surface", "A surface from its JSON document (a dict), validated as load_surface");
   m.def("fit_surface",
         [](const py::object& x, const py::object& y, const py::list& axes, const std::string& dependent_name,
-           const std::string& name, const std::string& missing, const py::object& level_tolerance,
+           const std::string& name, const std::string& missing, const Checked<double>& level_tolerance,
            const py::object& constraints, const std::string& dependent_transform) {
           surface::FitOptions o;
           for (const auto& a : axes) o.axes.push_back(axis_spec(a));
-          o.dependent_name = dependent_name, o.name = name, o.level_tolerance = number(level_tolerance, "level_tolerance");
+          o.dependent_name = dependent_name, o.name = name, o.level_tolerance = level_tolerance.get("level_tolerance");
           o.dependent_transform = surface::parse_transform(dependent_transform);
           // As fitcli: with user constraints the user takes charge of missing cells unless told.
           const char* remedy = constraints.is_none() ? "constrain" : "none";
@@ -202,10 +204,10 @@ void bind_material_point(py::module_& m) {
       .def_property_readonly("state_size", &MaterialPoint::state_size)
       .def("initial_state", [](const MaterialPoint& p) { return to_array(p.initial_state()); })
       .def("update",
-           [](const MaterialPoint& p, const py::object& state, const model::Vector6& strain, const py::object& dt,
-              const py::object& temperature_C) {
+           [](const MaterialPoint& p, const py::object& state, const model::Vector6& strain, const Checked<double>& dt,
+              const Checked<std::optional<double>>& temperature_C) {
              const auto s = to_vector(state, "state");
-             const double dt_s = number(dt, "dt_s"), T = optional_temperature(temperature_C);
+             const double dt_s = dt.get("dt_s"), T = optional_temperature(temperature_C);
              if (s.size() != p.state_size()) throw core::UsageError("state has the wrong size");
              // The C++ contract takes finite input from the FE code; here it comes from a user.
              if (!strain.allFinite()) throw core::UsageError("update: the strain is not finite");
@@ -220,8 +222,8 @@ void bind_material_point(py::module_& m) {
            py::arg("state"), py::arg("strain"), py::arg("dt_s"), py::arg("temperature_C") = py::none(),
            "(stress, next state, tangent) of one increment to the total strain")
       .def("complex_stiffness",
-           [](const MaterialPoint& p, const py::object& f, const py::object& temperature_C) {
-             const double frequency_Hz = number(f, "frequency_Hz"), T = optional_temperature(temperature_C);
+           [](const MaterialPoint& p, const Checked<double>& f, const Checked<std::optional<double>>& temperature_C) {
+             const double frequency_Hz = f.get("frequency_Hz"), T = optional_temperature(temperature_C);
              model::require_steady_condition("complex_stiffness", frequency_Hz, T);
              return p.complex_stiffness(frequency_Hz, T);
            },
@@ -229,15 +231,15 @@ void bind_material_point(py::module_& m) {
 
   m.def("make_material_point",
         [](const std::shared_ptr<model::Model>& model, const py::object& values, const std::string& fidelity,
-           const py::object& frequency_Hz, const py::object& temperature_C, const py::object& bulk_modulus_MPa,
-           const py::object& damage_driver_hold) {
+           const Checked<double>& frequency_Hz, const Checked<std::optional<double>>& temperature_C,
+           const Checked<double>& bulk_modulus_MPa, const py::object& damage_driver_hold) {
           if (fidelity != "viscoelastic" && fidelity != "elastic")
             throw core::UsageError("fidelity must be viscoelastic or elastic, not '" + fidelity + "'");
           model::PointOptions o;
           o.fidelity = fidelity == "elastic" ? core::Fidelity::elastic
                                              : core::Fidelity::complete;
-          o.frequency_Hz = number(frequency_Hz, "frequency_Hz"), o.temperature_C = optional_temperature(temperature_C);
-          o.bulk_modulus_MPa = number(bulk_modulus_MPa, "bulk_modulus_MPa");
+          o.frequency_Hz = frequency_Hz.get("frequency_Hz"), o.temperature_C = optional_temperature(temperature_C);
+          o.bulk_modulus_MPa = bulk_modulus_MPa.get("bulk_modulus_MPa");
           if (!damage_driver_hold.is_none()) o.damage_driver_hold = to_vector(damage_driver_hold);
           return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values), o));
         },
@@ -265,12 +267,12 @@ void bind_material_point(py::module_& m) {
         py::arg("point"), py::arg("time_s"), py::arg("components"), py::arg("temperature_C") = py::none(),
         "Each Voigt component None (σ = 0) or ('strain' | 'stress', values per time)");
   m.def("drive_test",
-        [](const MaterialPoint& p, const std::string& mode, const std::string& orientation, const py::object& a,
-           const py::object& mean, const py::object& f, const py::object& n, const py::object& steps,
-           const py::object& temperature_C) {
-          const double frequency_Hz = number(f, "frequency_Hz"), T = optional_temperature(temperature_C);
-          const double amplitude = number(a, "amplitude"), mean_strain = number(mean, "mean_strain");
-          const int cycles = field_value<int>(n, "cycles"), steps_per_cycle = field_value<int>(steps, "steps_per_cycle");
+        [](const MaterialPoint& p, const std::string& mode, const std::string& orientation, const Checked<double>& a,
+           const Checked<double>& mean, const Checked<double>& f, const Checked<int>& n, const Checked<int>& steps,
+           const Checked<std::optional<double>>& temperature_C) {
+          const double frequency_Hz = f.get("frequency_Hz"), T = optional_temperature(temperature_C);
+          const double amplitude = a.get("amplitude"), mean_strain = mean.get("mean_strain");
+          const int cycles = n.get("cycles"), steps_per_cycle = steps.get("steps_per_cycle");
           // fitcli material-point's option ranges and work cap
           require_in("amplitude", amplitude, 0.0, 10.0);
           require_in("mean_strain", mean_strain, -10.0, 10.0);
@@ -293,8 +295,8 @@ void bind_material_point(py::module_& m) {
         py::arg("steps_per_cycle") = 200, py::arg("temperature_C") = py::none(),
         "fitcli material-point: ε(t) = mean − a cos 2πft in the test's program");
   m.def("fritzson_thesis_case",
-        [](const card::Card& c, const std::string& id, const py::object& steps) {
-          const int steps_per_cycle = field_value<int>(steps, "steps_per_cycle");
+        [](const card::Card& c, const std::string& id, const Checked<int>& steps) {
+          const int steps_per_cycle = steps.get("steps_per_cycle");
           require_in("steps_per_cycle", steps_per_cycle, 4, 1e6);  // fitcli's range and work cap
           const model::fritzson::MaterialPoint point = model::fritzson::thesis_point(*c.model(), c.values());
           const auto& tc = model::fritzson::thesis_case(id);
@@ -392,17 +394,21 @@ void bind_scene(py::module_& m) {
   m.def("run_scene", [](const Scene& s) { return scene::run_scene(s); }, py::arg("scene"), "Runs the effects the scene asks for (fitcli belt): a SceneResult");
   m.def("scene_summary", [](const Scene& s, const SceneResult& r) { return to_python(scene::summary_json(s, r)); },
         py::arg("scene"), py::arg("result"), "The summary.json document of fitcli belt");
-  m.def("write_scene_outputs", &scene::write_outputs, py::arg("scene"), py::arg("result"), py::arg("folder"),
+  m.def("write_scene_outputs",
+        [](const Scene& s, const SceneResult& r, const std::string& folder, const Checked<bool>& record_timing) {
+          return scene::write_outputs(s, r, folder, record_timing.get("record_timing"));
+        },
+        py::arg("scene"), py::arg("result"), py::arg("folder"),
         py::arg("record_timing") = false, "Writes the scene's outputs (load_history.csv, summary.json, ...) into a folder, as fitcli belt");
   m.def("accumulation_map",
-        [](const std::string& spectrum, const py::object& stress, const py::object& n, const py::object& n_cycle,
-           const py::object& w_min, const py::object& w_max, const py::object& n_omega, const py::object& k,
-           const py::object& limit) {
-          const double omega_min = number(w_min, "omega_min"), omega_max = number(w_max, "omega_max");
-          const double shear_stress_MPa = number(stress, "shear_stress_MPa"), kappa = number(k, "kappa");
-          const double strain_limit = number(limit, "strain_limit");
-          const long cycles = field_value<long>(n, "cycles");
-          const int cycle_points = field_value<int>(n_cycle, "cycle_points"), omega_points = field_value<int>(n_omega, "omega_points");
+        [](const std::string& spectrum, const Checked<double>& stress, const Checked<long>& n,
+           const Checked<int>& n_cycle, const Checked<double>& w_min, const Checked<double>& w_max,
+           const Checked<int>& n_omega, const Checked<double>& k, const Checked<double>& limit) {
+          const double omega_min = w_min.get("omega_min"), omega_max = w_max.get("omega_max");
+          const double shear_stress_MPa = stress.get("shear_stress_MPa"), kappa = k.get("kappa");
+          const double strain_limit = limit.get("strain_limit");
+          const long cycles = n.get("cycles");
+          const int cycle_points = n_cycle.get("cycle_points"), omega_points = n_omega.get("omega_points");
           // fitcli accumulate's option ranges and work cap
           require_in("shear_stress_MPa", shear_stress_MPa, 1e-300, 1e100);
           require_in("cycles", static_cast<double>(cycles), 1, 1e12);

@@ -8,8 +8,9 @@ namespace fitlib::python {
 void bind_sweep(py::module_& m) {
   m.def(
       "sweep",
-      [](const std::string& path, const py::object& n, const std::string& out, bool csv) {
-        const int threads = field_value<int>(n, "threads");
+      [](const std::string& path, const Checked<int>& n, const std::string& out, const Checked<bool>& as_csv) {
+        const int threads = n.get("threads");
+        const bool csv = as_csv.get("csv");
         require_in("threads", threads, 1, 1024);  // fitcli sweep --threads
         const auto sweep = scene::load_sweep(path);
         scene::ThreadExecutor executor(threads);

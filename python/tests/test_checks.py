@@ -6,6 +6,7 @@ raise fitlib's typed error (InputError, UsageError: exit codes 3 and 2 of the CL
 every public name has a docstring; tables build from NumPy arrays with the reader's checks.
 Environment: PYTHONPATH = <build>/python, FITLIB_ROOT = the source tree.
 """
+import inspect
 import math
 import os
 import re
@@ -26,6 +27,7 @@ WINDOW_CARD = os.path.join(ROOT, "tests", "data", "bad", "card", "window_23_60.j
 FRITZSON = os.path.join(ROOT, "datasets", "cards", "material-2-true.json")
 SWEEP = os.path.join(ROOT, "tests", "data", "sweep", "small.toml")
 SEGMENT = os.path.join(ROOT, "datasets", "segment", "bend-40mm.toml")
+MINIMAL_SCENE = os.path.join(ROOT, "tests", "data", "scenes", "minimal.toml")
 WORK = os.path.join(tempfile.gettempdir(), f"fitlib-python-checks-{os.getpid()}")  # this process's own
 
 
@@ -191,16 +193,19 @@ def test_none_or_text_for_a_frequency_time_or_temperature_is_a_type_error_naming
 def test_a_wrong_type_for_an_options_field_is_a_type_error_naming_it():
     """FitOptions(tolerance=None) raised pybind11's "(): incompatible function arguments" that named
     no field, and polish=None or tolerance=True were taken as False and 1.0: every field of every
-    options class, set as a keyword or an attribute, raises TypeError naming it for a wrong type."""
+    options class, set as a keyword or an attribute, raises TypeError naming it for a wrong type (a
+    bool field in the words of a bool argument: "must be a bool (True or False), got None")."""
     bad_values = {float: (None, "abc", True, [1.0, None]), int: (None, "abc", True, 2.5),
                   bool: (None, "abc", 1), str: (None, 1, True), list: (None, "abc", [1])}
     for options in (fitlib.FitOptions, fitlib.TermOptions, fitlib.MasterCurveOptions):
         fields = [n for n in dir(options()) if not n.startswith("_")]
         assert len(fields) >= 8, fields
         for field in fields:
-            for bad in bad_values[type(getattr(options(), field))]:
-                raises(TypeError, lambda: options(**{field: bad}), field + " must be")
-                raises(TypeError, lambda: setattr(options(), field, bad), field + " must be")
+            kind = type(getattr(options(), field))
+            words = field + (" must be a bool (True or False), got " if kind is bool else " must be")
+            for bad in bad_values[kind]:
+                raises(TypeError, lambda: options(**{field: bad}), words)
+                raises(TypeError, lambda: setattr(options(), field, bad), words)
     # NumPy scalars are numbers, integers and bools as before; the value is the one given.
     o = fitlib.FitOptions(seed=np.uint64(7), multistart=np.int32(3), tolerance=np.float32(0.5),
                           polish=np.bool_(False), fixed=["tau_1"], backend="ceres")
@@ -256,6 +261,163 @@ def test_a_wrong_type_for_a_number_or_an_integer_argument_is_a_type_error_naming
     out = drive(amplitude=np.float32(0.02), mean_strain=np.int64(0), cycles=np.int32(1), steps_per_cycle=np.uint16(20))
     assert len(out["time_s"]) == 21 and np.all(np.isfinite(out["stress_MPa"]))
     assert accumulate(cycles=np.int64(100), kappa=3)["cycles"] is not None
+
+
+def arguments(text):
+    """[(name, type)] of a pybind11 signature's argument list "a: float = 1.0, b: List[str]": split at
+    the commas outside brackets and quotes (defaults are reprs: "<fitlib.FitOptions object at ...>")."""
+    parts, depth, quote, start = [], 0, None, 0
+    for i, c in enumerate(text):
+        if quote:
+            quote = None if c == quote else quote
+        elif c in "'\"":
+            quote = c
+        elif c in "[(<{":
+            depth += 1
+        elif c in "])>}":
+            depth -= 1
+        elif c == "," and depth == 0:
+            parts.append(text[start:i])
+            start = i + 1
+    parts.append(text[start:])
+    out = []
+    for part in (p.strip() for p in parts):
+        if ":" in part and not part.startswith("*"):
+            name, rest = part.split(":", 1)
+            out.append((name.strip(), rest.split(" = ")[0].strip()))
+    return [(name, kind) for name, kind in out if name != "self"]
+
+
+def signatures():
+    """(function, [(argument, type)]) of every signature pybind11 wrote into a public function's or
+    method's __doc__ (an overloaded function: one per overload); a method is named Class.method."""
+    out = []
+
+    def add(function, obj, short):
+        for line in (getattr(obj, "__doc__", None) or "").splitlines():
+            m = re.match(r"^\s*(?:\d+\. )?" + re.escape(short) + r"\((.*)\) -> ", line)
+            if m:
+                out.append((function, arguments(m.group(1))))
+
+    for name in sorted(n for n in dir(fitlib) if not n.startswith("_")):
+        obj = getattr(fitlib, name)
+        if isinstance(obj, type):
+            for attr, member in vars(obj).items():
+                if callable(member) and (not attr.startswith("_") or attr in ("__init__", "__call__")):
+                    add(f"{name}.{attr}", member, attr)
+        elif type(obj).__name__ == "builtin_function_or_method":
+            add(name, obj, name)
+    assert len(out) > 50, len(out)  # 98 in December 2026
+    return out
+
+
+def python_bool_arguments():
+    """(function, argument) of the package's own Python functions (fit_card) with a bool default."""
+    return {(name, p.name) for name, f in vars(fitlib).items() if inspect.isfunction(f) and not name.startswith("_")
+            for p in inspect.signature(f).parameters.values() if isinstance(p.default, bool)}
+
+
+def test_a_wrong_type_for_a_bool_argument_is_a_type_error_naming_it():
+    """card.eval(1e6, allow_extrapolation=None) was pybind11's False, read_table(..., skip_bad_rows=1)
+    its True: every bool argument of every public function (found from the signatures, so that a new
+    one must be listed here) raises TypeError naming it for None, 0, 1, text or a list; NumPy bools
+    are bools."""
+    card = fitlib.load_card(CARD)
+    model = card.model()
+    table = fitlib.Table([0.1, 1.0, 10.0], [2.0, 2.5, 3.0], [0.2, 0.3, 0.4])
+    result = fitlib.fit(model, table)
+    x = np.array([[a, b] for a in (0.0, 0.5, 1.0) for b in (1.0, 2.0, 3.0)])
+    surface = fitlib.fit_surface(x, x[:, 0] + x[:, 1], ["a", "b"])
+    scene = fitlib.load_scene(MINIMAL_SCENE)
+    run = scene.run()
+    missing = os.path.join(WORK, "no-such-file.csv")  # a check before the file is read
+    calls = {
+        ("Card.eval", "allow_extrapolation"): lambda v: card.eval(1.0, allow_extrapolation=v),
+        ("Card.export", "allow_inadmissible"): lambda v: card.export("abaqus", allow_inadmissible=v),
+        ("Card.export", "allow_extrapolation"): lambda v: card.export("abaqus", allow_extrapolation=v),
+        ("Surface.__call__", "allow_extrapolation"): lambda v: surface([0.5, 2.0], allow_extrapolation=v),
+        ("Surface.evaluate", "allow_extrapolation"): lambda v: surface.evaluate([0.5, 2.0], allow_extrapolation=v),
+        ("card_from_fit", "record_timing"): lambda v: fitlib.card_from_fit(result, fitlib.FitOptions(), table, "c",
+                                                                          record_timing=v),
+        ("fit_table_card", "record_timing"): lambda v: fitlib.fit_table_card(
+            table, "prony", "2", {}, fitlib.FitOptions(), fitlib.TermOptions(), "c", record_timing=v),
+        ("fit_card", "record_timing"): lambda v: fitlib.fit_card(table, "prony", 2, record_timing=v),
+        ("fit_card", "bulk_modulus"): lambda v: fitlib.fit_card(table, "prony", 2, bulk_modulus=v),
+        ("fit_hyperelastic_card", "compressible"): lambda v: fitlib.fit_hyperelastic_card([], "ogden", compressible=v),
+        ("fit_master_curve", "refine_shifts"): lambda v: fitlib.fit_master_curve(model, table, refine_shifts=v),
+        ("read_table", "skip_bad_rows"): lambda v: fitlib.read_table(missing, skip_bad_rows=v),
+        ("read_table", "allow_unknown_columns"): lambda v: fitlib.read_table(missing, allow_unknown_columns=v),
+        ("fit_life_constants", "fix_n"): lambda v: fitlib.fit_life_constants(missing, fix_n=v),
+        ("fit_life_constants", "fix_b"): lambda v: fitlib.fit_life_constants(missing, fix_b=v),
+        ("life_json", "record_timing"): lambda v: fitlib.life_json(scene, run, record_timing=v),
+        ("write_scene_outputs", "record_timing"): lambda v: fitlib.write_scene_outputs(
+            scene, run, os.path.join(WORK, "no-such-folder"), record_timing=v),
+        ("sweep", "csv"): lambda v: fitlib.sweep(os.path.join(WORK, "no-such-sweep.toml"), csv=v),
+    }
+    found = {(f, a) for f, args in signatures() for a, kind in args if "bool" in kind} | python_bool_arguments()
+    assert found == set(calls), f"not tested: {sorted(found - set(calls))}, not bool: {sorted(set(calls) - found)}"
+    for (function, argument), call in sorted(calls.items()):
+        for bad in (None, 0, 1, "yes", [True]):
+            raises(TypeError, lambda: call(bad), argument + " must be a bool (True or False), got " + repr(bad))
+    # NumPy bools are bools: the value is the one given
+    window = fitlib.load_card(WINDOW_CARD)
+    raises(fitlib.InputError, lambda: window.eval(1e6, allow_extrapolation=np.bool_(False)), "allow_extrapolation")
+    with warnings.catch_warnings(record=True):
+        warnings.simplefilter("always")
+        assert np.all(np.isfinite(window.eval(1e6, allow_extrapolation=np.bool_(True))["storage_MPa"]))
+    raises(fitlib.InputError, lambda: fitlib.read_table(missing, skip_bad_rows=np.bool_(False)), "no-such-file")
+
+
+def test_the_life_of_a_result_without_one_is_a_usage_error():
+    # life_json and life_text of scene.run() (no [outputs] life) raised a raw "bad optional access"
+    scene = fitlib.load_scene(MINIMAL_SCENE)
+    run = scene.run()
+    assert run.life is None
+    raises(fitlib.UsageError, lambda: fitlib.life_json(scene, run), "no life was computed")
+    raises(fitlib.UsageError, lambda: fitlib.life_text(scene, run), "no life was computed")
+
+
+def test_checked_arguments_show_their_python_type_in_the_signature():
+    """Since the checks took py::object, help(fitlib.drive_test) showed `amplitude: object`: a number, an
+    integer or a bool argument shows float, int, bool (Optional[float] where None is allowed); `object`
+    stays only where any object (a JSON document) or an array-like is taken, listed here."""
+    any_object = {
+        # JSON documents (dicts) and sequences of their own shape
+        ("card_from_json", "document"), ("surface_from_json", "document"), ("make_model", "options"),
+        ("select_terms", "model_options"), ("select_relaxation_terms", "model_options"),
+        ("fit_table_card", "model_options"), ("fit_surface", "constraints"), ("read_table", "paths"),
+    }
+    array_like = {
+        ("Card.eval", "frequency_Hz"), ("Card.eval", "temperature_C"), ("Card.eval", "strain_amplitude"),
+        ("Model.moduli", "p"), ("Model.moduli", "frequency_Hz"), ("Model.moduli", "temperature_C"),
+        ("Model.moduli", "strain_amplitude"), ("Model.relaxation_modulus", "p"), ("Model.relaxation_modulus", "time_s"),
+        ("Model.relaxation_modulus", "temperature_C"), ("Model.creep_compliance", "p"),
+        ("Model.creep_compliance", "time_s"), ("Model.creep_compliance", "temperature_C"),
+        ("Model.damage_drivers", "p"), ("Model.temperature_law", "arg0"),
+        ("Table.__init__", "frequency_Hz"), ("Table.__init__", "storage_MPa"), ("Table.__init__", "loss_MPa"),
+        ("Table.__init__", "temperature_C"), ("Table.__init__", "strain_amplitude"), ("Table.__init__", "mean_strain"),
+        ("Table.__init__", "weight"),
+        ("ShiftFactorTable.__init__", "temperature_C"), ("ShiftFactorTable.__init__", "log10_aT"),
+        ("fit", "start"), ("apply_shifts", "log10_aT"), ("measure_relaxation", "p"), ("nominal_stress", "stretch"),
+        ("fit_wlf", "temperature_C"), ("fit_wlf", "log10_aT"), ("fit_arrhenius", "temperature_C"),
+        ("fit_arrhenius", "log10_aT"), ("fit_polynomial_shift", "temperature_C"), ("fit_polynomial_shift", "log10_aT"),
+        ("with_law_from_shifts", "temperature_C"), ("with_law_from_shifts", "log10_aT"),
+        ("fit_surface", "x"), ("fit_surface", "y"), ("Surface.__call__", "points"), ("Surface.evaluate", "point"),
+        ("Surface.contains", "arg0"), ("card_grid", "frequency_Hz"), ("card_grid", "temperature_C"),
+        ("card_grid", "strain_amplitude"), ("MaterialPoint.update", "state"), ("make_material_point", "values"),
+        ("make_material_point", "damage_driver_hold"), ("drive", "time_s"), ("drive", "temperature_C"),
+    }
+    found = {(f, a) for f, args in signatures() for a, kind in args if kind == "object"}
+    assert found == any_object | array_like, (f"object, not listed: {sorted(found - any_object - array_like)}; "
+                                              f"listed, not object: {sorted((any_object | array_like) - found)}")
+    # The types of a few, as help() shows them.
+    doc = fitlib.drive_test.__doc__
+    for text in ("amplitude: float = 0.01", "cycles: int = 5", "steps_per_cycle: int = 200",
+                 "temperature_C: Optional[float] = None", "frequency_Hz: float = 1.0"):
+        assert text in doc, (text, doc)
+    assert "allow_extrapolation: bool = False" in fitlib.Card.eval.__doc__
+    assert "threads: int = 1" in fitlib.sweep.__doc__ and "csv: bool = False" in fitlib.sweep.__doc__
+    assert "reference_C: Optional[float] = None" in fitlib.ShiftFactorTable.__init__.__doc__
 
 
 def test_tables_build_from_numpy_arrays_with_the_readers_checks():
