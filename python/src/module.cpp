@@ -382,7 +382,7 @@ void bind_model(py::module_& m) {
       .def("default_parameters", [](const Model& mo) { return to_array(mo.default_parameters()); })
       .def("temperature_law", [](const Model& mo, const py::object& p) {
         return to_python(mo.temperature_law(checked_values(mo, p).data()));
-      })
+      }, py::arg("p"))
       .def("moduli",
            [](const Model& mo, const py::object& p, const py::object& f, const py::object& T,
               const py::object& amplitude, const std::string& mode, const std::string& orientation) {

@@ -109,7 +109,7 @@ void bind_surface(py::module_& m) {
       .def("contains", [](const Surface& s, const py::object& x) {
         const RowMatrix p = as_points(s, x);
         return s.contains(p.row(0).data());
-      });
+      }, py::arg("point"));
 
   m.def("load_surface", &surface::load_surface, py::arg("path"), "Reads and validates a surface JSON (docs/surface.md); InputError names the file and key");
   m.def("surface_from_json",

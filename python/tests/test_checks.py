@@ -217,7 +217,8 @@ def test_a_wrong_type_for_an_options_field_is_a_type_error_naming_it():
 def test_a_wrong_type_for_a_number_or_an_integer_argument_is_a_type_error_naming_it():
     """accumulation_map(kappa=None), drive_test(cycles=2.5), card.export(poisson_ratio="a") raised
     pybind11's "incompatible function arguments" that named no argument, and a bool was taken as 1:
-    every plain number or integer argument raises TypeError naming it (an integer: not a float, not a bool)."""
+    every plain number or integer argument raises TypeError naming it (an integer: not a float, not a bool).
+    segment_case's loads, which may be left out, raised a RuntimeError ("Unable to cast") for text."""
     card = fitlib.load_card(CARD)
     model, p = card.model(), card.values()
     point = fitlib.make_material_point(model, p, bulk_modulus_MPa=2000.0)
@@ -252,7 +253,11 @@ def test_a_wrong_type_for_a_number_or_an_integer_argument_is_a_type_error_naming
         "seed": [lambda v: fitlib.fit_hyperelastic_card([], "ogden", seed=v)],
         "threads": [lambda v: fitlib.sweep(SWEEP, threads=v)],
     }
-    for arguments, bad_values in ((numbers, (None, "abc", True, [1.0, None])), (integers, (None, "abc", True, 2.5))):
+    segment = fitlib.load_scene(SEGMENT)  # a load left out (None) is the scene's: checked before the FE
+    optional_numbers = {name: [lambda v, name=name: fitlib.segment_case(segment, **{name: v})]
+                        for name in ("strain", "curvature_1_mm", "pressure_MPa")}
+    for arguments, bad_values in ((numbers, (None, "abc", True, [1.0, None])), (integers, (None, "abc", True, 2.5)),
+                                  (optional_numbers, ("abc", True, [1.0, None]))):
         for argument, entries in arguments.items():
             for call in entries:
                 for bad in bad_values:
@@ -393,7 +398,7 @@ def test_checked_arguments_show_their_python_type_in_the_signature():
         ("Model.moduli", "strain_amplitude"), ("Model.relaxation_modulus", "p"), ("Model.relaxation_modulus", "time_s"),
         ("Model.relaxation_modulus", "temperature_C"), ("Model.creep_compliance", "p"),
         ("Model.creep_compliance", "time_s"), ("Model.creep_compliance", "temperature_C"),
-        ("Model.damage_drivers", "p"), ("Model.temperature_law", "arg0"),
+        ("Model.damage_drivers", "p"), ("Model.temperature_law", "p"),
         ("Table.__init__", "frequency_Hz"), ("Table.__init__", "storage_MPa"), ("Table.__init__", "loss_MPa"),
         ("Table.__init__", "temperature_C"), ("Table.__init__", "strain_amplitude"), ("Table.__init__", "mean_strain"),
         ("Table.__init__", "weight"),
@@ -403,7 +408,7 @@ def test_checked_arguments_show_their_python_type_in_the_signature():
         ("fit_arrhenius", "log10_aT"), ("fit_polynomial_shift", "temperature_C"), ("fit_polynomial_shift", "log10_aT"),
         ("with_law_from_shifts", "temperature_C"), ("with_law_from_shifts", "log10_aT"),
         ("fit_surface", "x"), ("fit_surface", "y"), ("Surface.__call__", "points"), ("Surface.evaluate", "point"),
-        ("Surface.contains", "arg0"), ("card_grid", "frequency_Hz"), ("card_grid", "temperature_C"),
+        ("Surface.contains", "point"), ("card_grid", "frequency_Hz"), ("card_grid", "temperature_C"),
         ("card_grid", "strain_amplitude"), ("MaterialPoint.update", "state"), ("make_material_point", "values"),
         ("make_material_point", "damage_driver_hold"), ("drive", "time_s"), ("drive", "temperature_C"),
     }
