@@ -65,14 +65,36 @@ T field_value(const py::handle& value, const char* name) {
   }
 }
 
-// An entry point's argument that its body checks by name with field_value (`get`): pybind11 hands
-// any object over (its own refusal named no argument, its conversion read None as False) and the
-// signature shows T's Python type (float, int, bool, Optional[float]), not `object`.
+// A tag: Checked<ArrayLike> is a number or an array of numbers (a list, a NumPy array) that the
+// body reads with `numbers` or `to_vector` and the argument's name.
+struct ArrayLike {};
+
+// The type a Checked<T> argument shows in its signature: T's own, or NumPy's name of an array-like.
+template <typename T>
+struct python_type {
+  static constexpr auto name = py::detail::make_caster<T>::name;
+};
+template <>
+struct python_type<ArrayLike> {
+  static constexpr auto name = py::detail::const_name("numpy.typing.ArrayLike");
+};
+template <>
+struct python_type<std::optional<ArrayLike>> {
+  static constexpr auto name = py::detail::const_name("Optional[numpy.typing.ArrayLike]");
+};
+
+// An entry point's argument that its body checks by name with field_value (`get`) or, an
+// array-like, with `numbers`: pybind11 hands any object over (its own refusal named no argument,
+// its conversion read None as False) and the signature shows the Python type (float, int, bool,
+// Optional[float], numpy.typing.ArrayLike), not `object`.
 template <typename T>
 struct Checked {
   py::object object;
   T get(const char* name) const { return field_value<T>(object, name); }
 };
+
+using Array = Checked<ArrayLike>;                         // a number or an array of numbers
+using OptionalArray = Checked<std::optional<ArrayLike>>;  // the same, or None
 
 // A temperature that may be left out: None is NaN, read by the library as the reference
 // temperature (the default of every entry point that takes one).
@@ -124,7 +146,7 @@ namespace pybind11::detail {
 // Checked<T> takes every object (the body's check names the argument) and is named as T.
 template <typename T>
 struct type_caster<fitlib::python::Checked<T>> {
-  PYBIND11_TYPE_CASTER(fitlib::python::Checked<T>, make_caster<T>::name);
+  PYBIND11_TYPE_CASTER(fitlib::python::Checked<T>, fitlib::python::python_type<T>::name);
   bool load(handle src, bool) {
     value.object = reinterpret_borrow<object>(src);
     return true;

@@ -175,9 +175,9 @@ void bind_fit_result(py::module_& m) {
 
   m.def("fit",
         [](const std::shared_ptr<model::Model>& model, const data::DynamicTestTable& table,
-           const FitOptions& options, const py::object& start) {
-          if (start.is_none()) return fit::fit(model, table, options);
-          const auto p = to_vector(start);
+           const FitOptions& options, const OptionalArray& start) {
+          if (start.object.is_none()) return fit::fit(model, table, options);
+          const auto p = to_vector(start.object, "start");
           return fit::fit(model, table, options, &p);
         },
         py::arg("model"), py::arg("table"), py::arg("options") = FitOptions{}, py::arg("start") = py::none(),
@@ -264,7 +264,7 @@ void bind_card(py::module_& m) {
            "The bytes save() writes")
       .def("save", [](const Card& c, const std::string& path) { card::save_card(path, c); }, py::arg("path"))
       .def("eval",
-           [](const Card& c, const py::object& f, const py::object& T, const py::object& amplitude,
+           [](const Card& c, const Array& f, const OptionalArray& T, const Array& amplitude,
               const std::string& mode, const std::string& orientation, const Checked<double>& nu,
               const Checked<bool>& allow) {
              const double poisson_ratio = nu.get("poisson_ratio");
@@ -273,7 +273,7 @@ void bind_card(py::module_& m) {
              const auto model = c.model();
              const auto values = c.values();
              WindowGuard window(c, allow_extrapolation);
-             auto out = moduli_arrays(*model, values, f, T, amplitude, mode, orientation,
+             auto out = moduli_arrays(*model, values, f.object, T.object, amplitude.object, mode, orientation,
                                       [&](const model::TestCondition& at) {
                                         window.check(at);
                                         return card::moduli_in_mode(*model, values, at, poisson_ratio);

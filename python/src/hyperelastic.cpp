@@ -41,13 +41,13 @@ void bind_hyperelastic(py::module_& m) {
       "fitcli fit on quasi-static tables: (card, warnings); terms 0 = the model's default");
   m.def(
       "nominal_stress",
-      [](const card::Card& c, const std::string& mode, const py::object& x) {
+      [](const card::Card& c, const std::string& mode, const Array& x) {
         const auto model = c.model();  // the law lives as long as its model
         const auto* law = model->hyperelastic();
         if (!law) throw core::UsageError("card '" + c.name + "' is not hyperelastic");
         const auto p = c.values();
         std::vector<double> out;
-        for (double v : to_vector(x)) out.push_back(law->nominal_stress(p.data(), mode_of(mode), v));
+        for (double v : to_vector(x.object, "stretch")) out.push_back(law->nominal_stress(p.data(), mode_of(mode), v));
         return to_array(out);
       },
       py::arg("card"), py::arg("mode"), py::arg("stretch"),

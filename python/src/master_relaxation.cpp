@@ -35,9 +35,9 @@ fit::VerticalShift vertical_shift(const std::string& name) {
   throw core::UsageError("vertical shift '" + name + "' (none, entropic or fitted)");
 }
 
-data::ShiftFactorTable shift_table(const py::object& temperatures_C, const py::object& log10_aT,
+data::ShiftFactorTable shift_table(const Array& temperatures_C, const Array& log10_aT,
                                    const Checked<std::optional<double>>& reference) {
-  const auto T = to_vector(temperatures_C, "temperature_C"), a = to_vector(log10_aT, "log10_aT");
+  const auto T = to_vector(temperatures_C.object, "temperature_C"), a = to_vector(log10_aT.object, "log10_aT");
   const double reference_C = optional_temperature(reference, "reference_C");
   if (T.size() != a.size()) throw core::UsageError("temperatures and log10 a_T differ in length");
   for (std::size_t i = 0; i < T.size(); ++i) {
@@ -166,8 +166,8 @@ void bind_master_curve(py::module_& m) {
         py::arg("table"),
         py::arg("shifts"), py::arg("reference_C"), "Raw isotherms shifted by given factors (fitcli --shifts)");
   m.def("apply_shifts",
-        [](MasterCurve curve, const data::DynamicTestTable& raw, const py::object& log10_aT) {
-          fit::apply_shifts(curve, raw, to_vector(log10_aT));
+        [](MasterCurve curve, const data::DynamicTestTable& raw, const Array& log10_aT) {
+          fit::apply_shifts(curve, raw, to_vector(log10_aT.object, "log10_aT"));
           return curve;
         },
         py::arg("curve"), py::arg("table"), py::arg("log10_aT"), "A copy of the curve with new shifts");
@@ -175,7 +175,7 @@ void bind_master_curve(py::module_& m) {
 
 // The shifts a law is fitted to: as many temperatures as log10 a_T, at least `needed` of them,
 // every number finite and in range (fit_wlf returned a dict of NaN for empty or mismatched input).
-std::pair<std::vector<double>, std::vector<double>> shift_points(const py::object& T, const py::object& a, double ref,
+std::pair<std::vector<double>, std::vector<double>> shift_points(const Array& T, const Array& a, double ref,
                                                                  int needed, const char* law) {
   const auto table = shift_table(T, a, {py::float_(ref)});
   require_in("reference_C", ref, -273.15, 1000.0);
@@ -189,21 +189,21 @@ std::pair<std::vector<double>, std::vector<double>> shift_points(const py::objec
 
 void bind_shift_laws(py::module_& m) {
   m.def("fit_wlf",
-        [](const py::object& T, const py::object& a, const Checked<double>& reference_C) {
+        [](const Array& T, const Array& a, const Checked<double>& reference_C) {
           const double ref = reference_C.get("reference_C");
           const auto [t, s] = shift_points(T, a, ref, 3, "WLF");
           return wlf_dict(fit::fit_wlf(t, s, ref));
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "WLF law fitted to shifts: dict C1, C2_K, rms_decades (at least 3 shifts, as many T as log10 a_T)");
   m.def("fit_arrhenius",
-        [](const py::object& T, const py::object& a, const Checked<double>& reference_C) {
+        [](const Array& T, const Array& a, const Checked<double>& reference_C) {
           const double ref = reference_C.get("reference_C");
           const auto [t, s] = shift_points(T, a, ref, 2, "Arrhenius");
           return arrhenius_dict(fit::fit_arrhenius(t, s, ref));
         },
         py::arg("temperature_C"), py::arg("log10_aT"), py::arg("reference_C"), "Arrhenius law fitted to shifts: dict activation_energy_kJ_mol, rms_decades (at least 2 shifts)");
   m.def("fit_polynomial_shift",
-        [](const py::object& T, const py::object& a, const Checked<double>& reference_C, const Checked<int>& n) {
+        [](const Array& T, const Array& a, const Checked<double>& reference_C, const Checked<int>& n) {
           const double ref = reference_C.get("reference_C");
           const int degree = n.get("degree");
           require_in("degree", degree, 1, 6);  // fitcli --polynomial-degree
@@ -235,9 +235,9 @@ void bind_shift_laws(py::module_& m) {
         "Master curve, the model fitted to it, and optionally shifts and model refined together");
   m.def("with_wlf_from_shifts", &fit::with_wlf_from_shifts, py::arg("result"), py::arg("curve"), "The fit's model with WLF fitted to the master curve's shifts, constants held");
   m.def("with_law_from_shifts",
-        [](const fit::FitResult& r, const py::object& T, const py::object& a, const Checked<double>& reference_C,
+        [](const fit::FitResult& r, const Array& T, const Array& a, const Checked<double>& reference_C,
            const std::string& law, const Checked<int>& degree) {
-          return fit::with_law_from_shifts(r, to_vector(T, "temperature_C"), to_vector(a, "log10_aT"),
+          return fit::with_law_from_shifts(r, to_vector(T.object, "temperature_C"), to_vector(a.object, "log10_aT"),
                                            reference_C.get("reference_C"), model::parse_shift_law(law),
                                            degree.get("polynomial_degree"));
         },
@@ -294,8 +294,8 @@ void bind_relaxation(py::module_& m) {
         py::arg("kind"), py::arg("model_options"), py::arg("table"), py::arg("options") = fit::FitOptions{},
         py::arg("terms") = fit::TermOptions{}, "fitcli fit --terms auto on relaxation data");
   m.def("measure_relaxation",
-        [](const std::shared_ptr<model::Model>& model, const py::object& p, const RelaxationTable& t) {
-          const auto r = fit::measure_relaxation(*model, to_vector(p), t);
+        [](const std::shared_ptr<model::Model>& model, const Array& p, const RelaxationTable& t) {
+          const auto r = fit::measure_relaxation(*model, to_vector(p.object, "p"), t);
           py::dict d;
           d["rms_log10"] = r.rms_log10, d["rms_relative"] = r.rms_relative;
           d["max_relative"] = r.max_relative, d["mean_relative"] = r.mean_relative;

@@ -116,8 +116,8 @@ model::TestMode mode_or_native(const model::Model& m, const std::string& mode) {
   return mode.empty() ? m.native_mode() : model::parse_test_mode(mode);
 }
 
-std::vector<double> checked_values(const model::Model& m, const py::object& p) {
-  auto v = to_vector(p);
+std::vector<double> checked_values(const model::Model& m, const Array& p) {
+  auto v = to_vector(p.object, "p");
   if (v.size() != m.size())
     throw core::UsageError(m.kind() + " has " + std::to_string(m.size()) + " parameters, got " +
                            std::to_string(v.size()));
@@ -181,10 +181,10 @@ py::array_t<double> time_array(const model::Model& m, const py::object& t, const
 
 // M(t) or J(t) of the model with parameters p: the law is the Model member function.
 template <double (model::Model::*Law)(const double*, const model::TestCondition&, double) const>
-py::array_t<double> time_law(const model::Model& m, const py::object& p, const py::object& t, const py::object& T,
+py::array_t<double> time_law(const model::Model& m, const Array& p, const Array& t, const OptionalArray& T,
                              const std::string& mode, const std::string& orientation) {
   const auto v = checked_values(m, p);
-  return time_array(m, t, T, mode, orientation,
+  return time_array(m, t.object, T.object, mode, orientation,
                     [&](const model::TestCondition& c, double t_s) { return (m.*Law)(v.data(), c, t_s); });
 }
 
@@ -260,13 +260,13 @@ data::DynamicTestTable read_table(const py::object& paths, const std::string& fo
 
 // A table from arrays: written as native CSV text and read back by the library's reader, so the
 // arrays meet every check a file does (finite numbers, positive frequencies, magnitudes ≤ 1e100).
-data::DynamicTestTable table_from_arrays(const py::object& f, const py::object& storage, const py::object& loss,
-                                         const py::object& T, const py::object& amplitude,
-                                         const py::object& mean_strain, const py::object& weight,
+data::DynamicTestTable table_from_arrays(const Array& f, const Array& storage, const Array& loss,
+                                         const OptionalArray& T, const OptionalArray& amplitude,
+                                         const OptionalArray& mean_strain, const OptionalArray& weight,
                                          const std::string& mode) {
-  Named given{{"frequency_Hz", f}, {"storage_MPa", storage}, {"loss_MPa", loss}};
-  const Named optional{
-      {"temperature_C", T}, {"strain_amplitude", amplitude}, {"mean_strain", mean_strain}, {"weight", weight}};
+  Named given{{"frequency_Hz", f.object}, {"storage_MPa", storage.object}, {"loss_MPa", loss.object}};
+  const Named optional{{"temperature_C", T.object}, {"strain_amplitude", amplitude.object},
+                       {"mean_strain", mean_strain.object}, {"weight", weight.object}};
   for (const auto& [name, value] : optional)
     if (!value.is_none()) given.emplace_back(name, value);
   const auto columns = broadcast(given).columns;
@@ -367,7 +367,7 @@ void bind_model(py::module_& m) {
       .def_property_readonly("native_mode", [](const Model& mo) { return std::string(model::to_string(mo.native_mode())); })
       .def_property_readonly("amplitude_dependent", &Model::amplitude_dependent)
       .def("damage_drivers",
-           [](const Model& mo, const py::object& p, const std::string& mode, const std::string& orientation,
+           [](const Model& mo, const Array& p, const std::string& mode, const std::string& orientation,
               const Checked<double>& strain_amplitude, const Checked<double>& frequency_Hz,
               const Checked<std::optional<double>>& temperature_C) {
              model::TestCondition c;
@@ -380,13 +380,13 @@ void bind_model(py::module_& m) {
            py::arg("frequency_Hz") = 1.0, py::arg("temperature_C") = py::none(),
            "The damage drivers a steady test reaches (empty for a model without damage)")
       .def("default_parameters", [](const Model& mo) { return to_array(mo.default_parameters()); })
-      .def("temperature_law", [](const Model& mo, const py::object& p) {
+      .def("temperature_law", [](const Model& mo, const Array& p) {
         return to_python(mo.temperature_law(checked_values(mo, p).data()));
       }, py::arg("p"))
       .def("moduli",
-           [](const Model& mo, const py::object& p, const py::object& f, const py::object& T,
-              const py::object& amplitude, const std::string& mode, const std::string& orientation) {
-             return moduli_arrays(mo, checked_values(mo, p), f, T, amplitude, mode, orientation);
+           [](const Model& mo, const Array& p, const Array& f, const OptionalArray& T, const Array& amplitude,
+              const std::string& mode, const std::string& orientation) {
+             return moduli_arrays(mo, checked_values(mo, p), f.object, T.object, amplitude.object, mode, orientation);
            },
            py::arg("p"), py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(),
            py::arg("strain_amplitude") = 0.0, py::arg("mode") = "", py::arg("orientation") = "",

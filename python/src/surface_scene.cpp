@@ -33,10 +33,10 @@ py::array_t<double> surface_values(const surface::Surface& s, const RowMatrix& x
   return to_array(out);
 }
 
-// Points as an (N, n) array; a 1-D array of n values is one point.
-RowMatrix as_points(const surface::Surface& s, const py::object& x) {
-  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(x);
-  if (!a) throw py::type_error("points must be numbers");
+// Points as an (N, n) array; a 1-D array of n values is one point. TypeError naming `argument`
+// for None, text or bools.
+RowMatrix as_points(const surface::Surface& s, const Array& x, const char* argument) {
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(numbers(x.object, argument));
   const auto n = static_cast<Eigen::Index>(s.dimension());
   const bool one_point = a.ndim() <= 1;
   if (a.ndim() > 2 || (one_point ? a.size() : a.shape(1)) != n || a.size() == 0)
@@ -94,20 +94,20 @@ void bind_surface(py::module_& m) {
       .def("to_json", [](const Surface& s) { return to_python(surface::surface_to_json(s)); })
       .def("save", [](const Surface& s, const std::string& path) { surface::save_surface(path, s); }, py::arg("path"))
       .def("__call__",
-           [](const Surface& s, const py::object& x, const Checked<bool>& allow) {
-             return surface_values(s, as_points(s, x), allow.get("allow_extrapolation"));
+           [](const Surface& s, const Array& x, const Checked<bool>& allow) {
+             return surface_values(s, as_points(s, x, "points"), allow.get("allow_extrapolation"));
            },
            py::arg("points"), py::arg("allow_extrapolation") = false,
            "Values at (N, n) points; InputError naming the axis outside its interval")
       .def("evaluate",
-           [](const Surface& s, const py::object& x, const Checked<bool>& allow) {
-             const RowMatrix p = as_points(s, x);
+           [](const Surface& s, const Array& x, const Checked<bool>& allow) {
+             const RowMatrix p = as_points(s, x, "point");
              const auto e = s.evaluate(p.row(0).data(), allow.get("allow_extrapolation"));
              return py::make_tuple(e.value, e.gradient, e.extrapolated);
            },
            py::arg("point"), py::arg("allow_extrapolation") = false, "(value, gradient, extrapolated) at one point")
-      .def("contains", [](const Surface& s, const py::object& x) {
-        const RowMatrix p = as_points(s, x);
+      .def("contains", [](const Surface& s, const Array& x) {
+        const RowMatrix p = as_points(s, x, "point");
         return s.contains(p.row(0).data());
       }, py::arg("point"));
 
@@ -143,14 +143,14 @@ void bind_surface(py::module_& m) {
         py::arg("path"), py::arg("x_columns"), py::arg("y_column"), "(x, y) columns of a CSV with a header");
 
   m.def("card_grid",
-        [](const card::Card& c, const py::object& f, const py::object& T, const py::object& amp, const std::string& mode,
-           const std::string& orientation) {
+        [](const card::Card& c, const Array& f, const OptionalArray& T, const OptionalArray& amp,
+           const std::string& mode, const std::string& orientation) {
           surface::CardGridRequest r;
           r.mode = model::parse_test_mode(mode);
           r.orientation = orientation;
-          r.frequency_Hz = to_vector(f, "frequency_Hz");
-          if (!T.is_none()) r.temperature_C = to_vector(T, "temperature_C");
-          if (!amp.is_none()) r.strain_amplitude = to_vector(amp, "strain_amplitude");
+          r.frequency_Hz = to_vector(f.object, "frequency_Hz");
+          if (!T.object.is_none()) r.temperature_C = to_vector(T.object, "temperature_C");
+          if (!amp.object.is_none()) r.strain_amplitude = to_vector(amp.object, "strain_amplitude");
           return surface::evaluate_card_grid(c, r);
         },
         py::arg("card"), py::arg("frequency_Hz"), py::arg("temperature_C") = py::none(),
@@ -204,9 +204,9 @@ void bind_material_point(py::module_& m) {
       .def_property_readonly("state_size", &MaterialPoint::state_size)
       .def("initial_state", [](const MaterialPoint& p) { return to_array(p.initial_state()); })
       .def("update",
-           [](const MaterialPoint& p, const py::object& state, const model::Vector6& strain, const Checked<double>& dt,
+           [](const MaterialPoint& p, const Array& state, const model::Vector6& strain, const Checked<double>& dt,
               const Checked<std::optional<double>>& temperature_C) {
-             const auto s = to_vector(state, "state");
+             const auto s = to_vector(state.object, "state");
              const double dt_s = dt.get("dt_s"), T = optional_temperature(temperature_C);
              if (s.size() != p.state_size()) throw core::UsageError("state has the wrong size");
              // The C++ contract takes finite input from the FE code; here it comes from a user.
@@ -230,9 +230,9 @@ void bind_material_point(py::module_& m) {
            py::arg("frequency_Hz"), py::arg("temperature_C") = py::none());
 
   m.def("make_material_point",
-        [](const std::shared_ptr<model::Model>& model, const py::object& values, const std::string& fidelity,
+        [](const std::shared_ptr<model::Model>& model, const Array& values, const std::string& fidelity,
            const Checked<double>& frequency_Hz, const Checked<std::optional<double>>& temperature_C,
-           const Checked<double>& bulk_modulus_MPa, const py::object& damage_driver_hold) {
+           const Checked<double>& bulk_modulus_MPa, const OptionalArray& damage_driver_hold) {
           if (fidelity != "viscoelastic" && fidelity != "elastic")
             throw core::UsageError("fidelity must be viscoelastic or elastic, not '" + fidelity + "'");
           model::PointOptions o;
@@ -240,8 +240,9 @@ void bind_material_point(py::module_& m) {
                                              : core::Fidelity::complete;
           o.frequency_Hz = frequency_Hz.get("frequency_Hz"), o.temperature_C = optional_temperature(temperature_C);
           o.bulk_modulus_MPa = bulk_modulus_MPa.get("bulk_modulus_MPa");
-          if (!damage_driver_hold.is_none()) o.damage_driver_hold = to_vector(damage_driver_hold);
-          return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values), o));
+          if (!damage_driver_hold.object.is_none())
+            o.damage_driver_hold = to_vector(damage_driver_hold.object, "damage_driver_hold");
+          return std::const_pointer_cast<MaterialPoint>(model::make_material_point(*model, to_vector(values.object, "values"), o));
         },
         py::arg("model"), py::arg("values"), py::arg("fidelity") = "viscoelastic", py::arg("frequency_Hz") = 1.0,
         py::arg("temperature_C") = py::none(), py::arg("bulk_modulus_MPa") = std::nan(""),
@@ -249,9 +250,9 @@ void bind_material_point(py::module_& m) {
         "damage_driver_hold: a damage model's drivers held beyond these (a card's fit.data_window.damage_driver, "
         "as the segment's complete level does); None = the damage law at every amplitude");
   m.def("drive",
-        [](const MaterialPoint& p, const py::object& time_s, const py::sequence& components, const py::object& T) {
+        [](const MaterialPoint& p, const Array& time_s, const py::sequence& components, const OptionalArray& T) {
           model::DriveProgram program;
-          program.time_s = to_vector(time_s, "time_s");
+          program.time_s = to_vector(time_s.object, "time_s");
           if (components.size() != 6) throw core::UsageError("drive needs 6 components (None = traction-free)");
           bool stress_controlled = false;
           for (int i = 0; i < 6; ++i) {
@@ -261,7 +262,7 @@ void bind_material_point(py::module_& m) {
           model::check_point_work(model::point_work(p.state_size(), static_cast<double>(program.time_s.size()),
                                                     stress_controlled),
                                   p.describe(), "len(time_s)");
-          if (!T.is_none()) program.temperature_C = to_vector(T, "temperature_C");
+          if (!T.object.is_none()) program.temperature_C = to_vector(T.object, "temperature_C");
           return drive_dict(model::drive(p, program));
         },
         py::arg("point"), py::arg("time_s"), py::arg("components"), py::arg("temperature_C") = py::none(),
