@@ -221,11 +221,12 @@ segment::CycleResult run_segment(const belt::LoadCycle& cycle, const belt::Drive
                                      : "; [life] diagnose_failure = true adds the evidence (the stiffness's lowest "
                                        "eigenvalues, a tangent check)";
     // The cause, at every level (docs/segment.md "The accelerated regime's fold"): a stability limit
-    // of the section under dead loads that scales with the rubber's shear modulus.
+    // of the section under dead loads that scales with the bottom rubber's shear modulus.
     const std::string cause =
         ". The load path folds: under Report I's dead contact loads the section has a stability limit "
-        "proportional to its rubber's shear modulus (the base accelerated drive at the complete level runs with "
-        "elastic cards of E 4 / 2 MPa and folds at 2 / 1 MPa, whatever the law), so it folds where the side "
+        "proportional to its rubber's shear modulus, the bottom rubber's (the cogs') above all (the base accelerated "
+        "drive at the complete level runs with elastic cards of E 8 / 1 MPa, bottom / cushion, and folds at 2 / 4 "
+        "MPa, whatever the law), so it folds where the side "
         "pressure is high (a small pulley, a heavy load) or the rubber soft (hot, or damaged: a card's damage law "
         "read far beyond its tests) (docs/segment.md \"The accelerated regime's fold\")" + evidence;
     if (fidelity != core::Fidelity::complete)
