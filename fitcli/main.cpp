@@ -1,4 +1,6 @@
 // fitcli: command-line front of fitlib (docs/cli.md).
+#include <malloc.h>
+
 #include <iostream>
 
 #include "commands.hpp"
@@ -10,7 +12,22 @@
 #include "suggest.hpp"
 #include "version_info.hpp"
 
+namespace {
+
+// glibc's malloc maps every block above 128 KiB afresh and gives freed memory back to the system,
+// so the fits' Jacobians and designs (≈ 0.2–0.3 MB on pyvisco's master) fault in new pages each
+// time; a page fault costs ≈ 10 µs on the shared VM. Kept in the heap instead: ≈ 3 ms less of the
+// 25 ms `fitcli fit --terms auto` budget, nothing computed differs (docs/fitting.md "Speed",
+// docs/decisions.md "fitcli: freed memory kept for reuse").
+void keep_freed_memory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (HEAP_MAX_SIZE / 2 on 64-bit)
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  keep_freed_memory();
   fitcli::guard_standard_streams();
   CLI::App app{"fitcli: fit material models to dynamic tests, write cards, run belt scenes (docs/cli.md)"};
   app.require_subcommand(1);
