@@ -23,5 +23,7 @@ for a in "$@"; do
   fi
   args+=("$a")
 done
-[[ ${#needed[@]} -gt 0 ]] && args+=(-Wl,--as-needed "${needed[@]}")
+# libgcc_s ahead of them: libunwind (glog's) defines _Unwind_* too, and exceptions must unwind
+# through the compiler's run-time as before, which binds the symbols of the library loaded first.
+[[ ${#needed[@]} -gt 0 ]] && args+=(-Wl,--as-needed -lgcc_s "${needed[@]}")
 exec "${args[@]}"
