@@ -2,9 +2,9 @@
 # Link launcher of fitcli (CMakeLists.txt, FITLIB_STATIC_DEPS): runs the link command it is given
 # with SuiteSparse, glog, gflags and freexl taken from their static archives where one sits beside
 # the shared library (Debian's -dev packages ship both). Every shared library a process loads costs
-# it the mapping, the relocations and their page faults: 13 fewer libraries took about 4 ms off
+# it the mapping, the relocations and their page faults: 13 fewer libraries took about 3 ms off
 # `fitcli fit --terms auto` (docs/fitting.md "Speed", docs/decisions.md "fitcli start-up: the
-# Ceres stack's libraries linked statically"). What the swapped libraries needed themselves
+# Ceres stack's libraries linked statically, ..."). What the swapped libraries needed themselves
 # (LAPACK, METIS, OpenMP, libunwind, ...) is added after them as shared libraries, only where the
 # archives use it (--as-needed). The archive's code is the shared library's: nothing computed differs.
 static_names=" libumfpack libamd libcamd libccolamd libcolamd libcholmod libspqr libsuitesparseconfig libcxsparse libglog libgflags libfreexl "

@@ -22,16 +22,17 @@ namespace {
 // time, and a page fault costs ≈ 10 µs on the shared VM. Freed memory is kept in the heap instead,
 // and its first 2 MiB are populated by one madvise call rather than by ≈ 470 faults (what `fit
 // --terms auto` on pyvisco's master touches beyond start-up). Nothing computed differs
-// (docs/fitting.md "Speed", docs/decisions.md "fitcli: freed memory kept, the heap populated at start").
+// (docs/fitting.md "Speed", docs/decisions.md "fitcli start-up: the Ceres stack's libraries linked
+// statically, freed memory kept, the heap populated at start").
 void keep_freed_memory() {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (HEAP_MAX_SIZE / 2 on 64-bit)
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
-  constexpr std::size_t kPopulated = 2 << 20, kPage = 4096;
+  constexpr std::size_t kPopulated = 2 << 20, kPage = 4096;  // bytes
   char* block = static_cast<char*>(std::malloc(kPopulated));  // from the heap's top, where it returns
   if (!block) return;
+#ifdef MADV_POPULATE_WRITE  // Linux ≥ 5.14 (an older kernel refuses it: the pages fault in as before)
   const auto at = reinterpret_cast<std::uintptr_t>(block);
   const std::uintptr_t lo = (at + kPage - 1) & ~(kPage - 1), hi = (at + kPopulated) & ~(kPage - 1);
-#ifdef MADV_POPULATE_WRITE  // Linux ≥ 5.14 (an older kernel refuses it: the pages fault in as before)
   madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE);
 #endif
   std::free(block);
