@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "baseline_args.hpp"
 #include "median_time.hpp"
 #include "fitlib/card/fit_card.hpp"
 #include "fitlib/core/io.hpp"
@@ -448,14 +449,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (only == "process") {  // bench_prony process [BASELINE_FITCLI] [runs=N]
-    std::string baseline;
-    int runs = 21;
-    for (int k = 2; k < argc; ++k) {
-      const std::string a = argv[k];
-      if (a.rfind("runs=", 0) == 0) runs = std::max(1, std::atoi(a.c_str() + 5));
-      else baseline = a;
-    }
-    process_table(baseline, runs);
+    const BaselineArgs a = baseline_args(argc, argv, 21);
+    process_table(a.baseline, a.runs);
     return 0;
   }
   if (only == "auto") {
