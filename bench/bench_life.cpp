@@ -86,6 +86,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "baseline_args.hpp"
 #include "drive_sweep.hpp"
 #include "life_calibration.hpp"
 #include "fitlib/card/card.hpp"
@@ -982,14 +983,8 @@ void cost_table(const std::string& baseline, int runs) {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "cost") {  // table 10 only: bench_life cost [BASELINE_FITCLI] [runs=N]
-    std::string baseline;
-    int runs = 3;
-    for (int k = 2; k < argc; ++k) {
-      const std::string a = argv[k];
-      if (a.rfind("runs=", 0) == 0) runs = std::max(1, std::atoi(a.c_str() + 5));
-      else baseline = a;
-    }
-    cost_table(baseline, runs);
+    const BaselineArgs a = baseline_args(argc, argv, 3);
+    cost_table(a.baseline, a.runs);
     return 0;
   }
   if (argc >= 6 && std::string(argv[1]) == "probe") {

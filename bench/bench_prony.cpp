@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
+#include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -14,8 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "baseline_args.hpp"
 #include "median_time.hpp"
 #include "fitlib/card/fit_card.hpp"
+#include "fitlib/core/io.hpp"
 #include "fitlib/core/rng.hpp"
 #include "fitlib/core/timer.hpp"
 #include "fitlib/core/units.hpp"
@@ -359,6 +365,78 @@ void law_tables() {
               sw.result.metrics.rms_log10_storage, sw.result.metrics.rms_log10_loss);
 }
 
+// `bench_prony process [BASELINE_FITCLI] [runs=N]`: the whole `fitcli fit --terms auto` process on
+// pyvisco's master as scripts/main.sh runs it, this build's fitcli (next to bench_prony) against a
+// baseline binary (e.g. main's before a change), the two alternating so both see the same machine;
+// best of N wall and CPU (user + sys of the child), their ratios, and whether the cards' bytes agree
+// (issue 35: auto <= 25 ms whole process on an idle machine).
+struct ProcessRun {
+  double wall_s = HUGE_VAL, cpu_s = HUGE_VAL;
+  std::string card;  // the bytes of the card it wrote
+  int failures = 0;
+};
+
+// One run of `binary fit <args>` (no shell; stdout and stderr to /dev/null), its card read back.
+void run_fit_process(const std::string& binary, const std::vector<std::string>& args, const std::string& card,
+                     ProcessRun& run) {
+  std::vector<char*> argv{const_cast<char*>(binary.c_str())};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  std::remove(card.c_str());
+  const core::Stopwatch w;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1), ::dup2(null, 2);
+    ::execv(binary.c_str(), argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  rusage u{};
+  const bool ok = pid > 0 && ::wait4(pid, &status, 0, &u) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  const double wall = w.seconds();
+  const double cpu = u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  if (!ok) {
+    ++run.failures;
+    return;
+  }
+  run.wall_s = std::min(run.wall_s, wall), run.cpu_s = std::min(run.cpu_s, cpu);
+  run.card = core::read_file(card);
+}
+
+void process_table(const std::string& baseline, int runs) {
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "fitcli";
+  const std::string card = "/tmp/fitlib-bench-prony-" + std::to_string(::getpid()) + ".json";
+  // The card records its command line: both binaries write the same path, so equal bytes mean equal cards.
+  const std::vector<std::string> args{"fit", "--data", kMaterials + "pyvisco-freq-master.csv", "--format", "pyvisco",
+                                      "--model", "prony", "--terms", "auto", "--reference-c", "-5", "--name",
+                                      "pyvisco-master", "--out", card, "-q"};
+  double load[3] = {0, 0, 0};
+  ::getloadavg(load, 3);
+  std::printf("## Whole process: `fitcli fit --terms auto` on pyvisco's master (as scripts/main.sh), best of %d, "
+              "alternating\n\nthis build: %s; baseline: %s; load average %.2f %.2f %.2f at the start\n\n",
+              runs, self.c_str(), baseline.empty() ? "none" : baseline.c_str(), load[0], load[1], load[2]);
+  ProcessRun mine, theirs;
+  for (int k = 0; k < runs; ++k) {
+    run_fit_process(self, args, card, mine);
+    if (!baseline.empty()) run_fit_process(baseline, args, card, theirs);
+  }
+  std::remove(card.c_str());
+  ::getloadavg(load, 3);
+  const auto sha = [](const ProcessRun& r) { return r.card.empty() ? std::string("-") : core::sha256_hex(r.card).substr(0, 16); };
+  std::printf("| binary | wall (best) | CPU (best) | failed runs | card sha256 |\n|---|---|---|---|---|\n");
+  std::printf("| this build | %.1f ms | %.1f ms | %d | %s |\n", 1e3 * mine.wall_s, 1e3 * mine.cpu_s, mine.failures,
+              sha(mine).c_str());
+  if (!baseline.empty()) {
+    std::printf("| baseline | %.1f ms | %.1f ms | %d | %s |\n", 1e3 * theirs.wall_s, 1e3 * theirs.cpu_s, theirs.failures,
+                sha(theirs).c_str());
+    std::printf("\nthis / baseline: wall x%.2f, CPU x%.2f; cards: %s\n", mine.wall_s / theirs.wall_s,
+                mine.cpu_s / theirs.cpu_s, mine.card == theirs.card ? "same bytes" : "DIFFER");
+  }
+  std::printf("target: <= 25 ms whole process on an idle machine (this build %s on wall); load average %.2f %.2f %.2f "
+              "at the end\n\n", mine.wall_s <= 0.025 ? "meets it" : "misses it", load[0], load[1], load[2]);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -368,6 +446,11 @@ int main(int argc, char** argv) {
   const std::string only = argc > 1 ? argv[1] : "";
   if (only == "fixed") {
     fixed_terms_table();
+    return 0;
+  }
+  if (only == "process") {  // bench_prony process [BASELINE_FITCLI] [runs=N]
+    const BaselineArgs a = baseline_args(argc, argv, 21);
+    process_table(a.baseline, a.runs);
     return 0;
   }
   if (only == "auto") {

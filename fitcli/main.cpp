@@ -1,4 +1,9 @@
 // fitcli: command-line front of fitlib (docs/cli.md).
+#include <malloc.h>
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <cstdlib>
 #include <iostream>
 
 #include "commands.hpp"
@@ -10,7 +15,33 @@
 #include "suggest.hpp"
 #include "version_info.hpp"
 
+namespace {
+
+// glibc's malloc maps every block above 128 KiB afresh and gives freed memory back to the system,
+// so the fits' Jacobians and designs (0.2–0.3 MB each on pyvisco's master) fault in new pages each
+// time, and a page fault costs ≈ 10 µs on the shared VM. Freed memory is kept in the heap instead,
+// and its first 2 MiB are populated by one madvise call rather than by ≈ 470 faults (what `fit
+// --terms auto` on pyvisco's master touches beyond start-up). Nothing computed differs
+// (docs/fitting.md "Speed", docs/decisions.md "fitcli start-up: the Ceres stack's libraries linked
+// statically, freed memory kept, the heap populated at start").
+void keep_freed_memory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (HEAP_MAX_SIZE / 2 on 64-bit)
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
+  constexpr std::size_t kPopulated = 2 << 20, kPage = 4096;  // bytes
+  char* block = static_cast<char*>(std::malloc(kPopulated));  // from the heap's top, where it returns
+  if (!block) return;
+#ifdef MADV_POPULATE_WRITE  // Linux ≥ 5.14 (an older kernel refuses it: the pages fault in as before)
+  const auto at = reinterpret_cast<std::uintptr_t>(block);
+  const std::uintptr_t lo = (at + kPage - 1) & ~(kPage - 1), hi = (at + kPopulated) & ~(kPage - 1);
+  madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE);
+#endif
+  std::free(block);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  keep_freed_memory();
   fitcli::guard_standard_streams();
   CLI::App app{"fitcli: fit material models to dynamic tests, write cards, run belt scenes (docs/cli.md)"};
   app.require_subcommand(1);
