@@ -29,6 +29,21 @@ LoadHistory::LoadHistory(const LoadCycle& cycle, const BeltSection& belt, double
                         temperature_C, q.friction_used, q.slide_mm_s});
 }
 
+LoadHistory LoadHistory::shifted(double s_mm) const {
+  LoadHistory out = *this;
+  const double s = std::fmod(std::fmod(s_mm, length_mm_) + length_mm_, length_mm_);
+  const double t = period_s_ > 0.0 ? s / length_mm_ * period_s_ : 0.0;
+  out.samples_.clear();
+  for (int pass = 0; pass < 2; ++pass)  // the samples from s on, then those before it a length on
+    for (LoadState q : samples_) {
+      if ((q.s_mm >= s) != (pass == 0)) continue;
+      q.s_mm += pass == 0 ? -s : length_mm_ - s;
+      q.t_s += pass == 0 ? -t : period_s_ - t;
+      out.samples_.push_back(q);
+    }
+  return out;
+}
+
 LoadState LoadHistory::at_position(double s_mm) const {
   double s = std::fmod(s_mm, length_mm_);
   if (s < 0.0) s += length_mm_;

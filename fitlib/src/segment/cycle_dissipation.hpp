@@ -30,7 +30,8 @@ class CycleDissipation : public IncrementObserver {
   }
 
   void converged(double lambda, const StaticSolution& s) override {
-    const double tau = frame_.tau(lambda), start = frame_.T - 1.0;  // the last cycle: τ ∈ [T − 1, T]
+    // The last cycle, τ ∈ [T − 1, T], after the bend (a run shorter than a cycle: cycle_split.hpp).
+    const double tau = frame_.tau(lambda), start = std::max(1.0, frame_.T - 1.0);
     if (!last_.empty() && tau > start) {
       const double share = std::min(1.0, (tau - start) / (tau - tau_));  // an increment across the start counts in part
       for (std::size_t e = 0; e < area_.size(); ++e) {

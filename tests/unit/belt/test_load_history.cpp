@@ -53,4 +53,21 @@ TEST(LoadHistory, IsPeriodicOverTheBeltLengthAndTheCycleTime) {
   EXPECT_THROW(LoadHistory(LoadCycle{}, belt, 20.0), fitlib::core::InputError);
 }
 
+// The history seen from another path origin: at every position (across the wrap and the jump at
+// 10 mm) the original's a shift further on, and the time counted from where the belt passes it.
+TEST(LoadHistory, ShiftedReadsTheOriginalFromTheNewOrigin) {
+  BeltSection belt;
+  belt.c_N = 1000.0;
+  const LoadHistory h(synthetic_cycle(), belt, 80.0);
+  for (double shift : {0.0, 7.5, 10.0, 25.0, 39.0}) {
+    const LoadHistory g = h.shifted(shift);
+    EXPECT_EQ(g.samples().size(), h.samples().size());
+    for (double x = -40.0; x <= 80.0; x += 0.37) {
+      EXPECT_NEAR(g.at_position(x).F_N, h.at_position(x + shift).F_N, 1e-9) << shift << " " << x;
+      EXPECT_NEAR(g.at_position(x).p_MPa, h.at_position(x + shift).p_MPa, 1e-12) << shift << " " << x;
+    }
+    EXPECT_NEAR(g.at_time(0.0).F_N, h.at_position(shift).F_N, 1e-9) << shift;
+  }
+}
+
 }  // namespace

@@ -364,6 +364,43 @@ TEST(SegmentCycle, AHistoryFreeRunsCopiedCyclesEqualTheSolvedOnes) {
   EXPECT_NEAR(copied.equilibrium_error, solved.equilibrium_error, 1e-9);
 }
 
+// The one cycle of a history-free run solved as two halves at once (CycleStepping::
+// split_history_free_cycle; segment/cycle_split.hpp): the second half starts from its own bend to the
+// state at a planned increment in the span after the pulley. Against the cycle in one piece: the same
+// samples (times and path positions), stresses and load totals to the Newton tolerance, the counts
+// one bend more; on one thread or two, the same bytes.
+TEST(SegmentCycle, AHistoryFreeCycleInTwoHalvesEqualsTheCycleInOnePiece) {
+  Fixture f;
+  const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
+  const CycleResult halves = f.run(*bottom, *cushion);
+  f.solver.threads = 1;
+  const CycleResult serial = f.run(*bottom, *cushion);
+  f.knobs.stepping.split_history_free_cycle = false;
+  const CycleResult whole = f.run(*bottom, *cushion);
+  EXPECT_EQ(halves.increments, whole.increments + f.knobs.stepping.bend_steps);
+  ASSERT_EQ(halves.loads.size(), whole.loads.size());
+  for (std::size_t i = 0; i < whole.loads.size(); ++i) {
+    EXPECT_NEAR(halves.loads[i].s_mm, whole.loads[i].s_mm, 1e-9) << i;
+    EXPECT_NEAR(halves.loads[i].t_s, whole.loads[i].t_s, 1e-12) << i;
+    EXPECT_NEAR((halves.loads[i].cord_reaction_N_mm - whole.loads[i].cord_reaction_N_mm).norm(), 0.0, 1e-7) << i;
+  }
+  ASSERT_EQ(halves.points.size(), whole.points.size());
+  for (std::size_t k = 0; k < whole.points.size(); ++k) {
+    const auto &a = halves.points[k].samples, &b = whole.points[k].samples, &c = serial.points[k].samples;
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_EQ(c.size(), b.size());
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      EXPECT_NEAR(a[i].t_s, b[i].t_s, 1e-12) << i;
+      EXPECT_NEAR(a[i].s_mm, b[i].s_mm, 1e-9) << i;
+      for (auto m : {&CycleSample::s11_MPa, &CycleSample::s22_MPa, &CycleSample::s12_MPa})
+        EXPECT_NEAR(a[i].*m, b[i].*m, 1e-7 * (1.0 + std::abs(b[i].*m))) << k << " " << i;
+      EXPECT_EQ(a[i].s22_MPa, c[i].s22_MPa) << i;
+      EXPECT_EQ(a[i].s12_MPa, c[i].s12_MPa) << i;
+    }
+  }
+  EXPECT_LE(halves.equilibrium_error, 1e-6);
+}
+
 TEST(SegmentCycle, ZeroSpeedIsRefusedWithAReason) {
   Fixture f;
   f.drive.speed_mm_s = 0.0;

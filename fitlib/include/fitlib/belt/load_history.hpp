@@ -36,6 +36,9 @@ class LoadHistory {
   LoadState at_position(double s_mm) const;
   // At time t (modulo the cycle time); core::UsageError when the belt does not move.
   LoadState at_time(double t_s) const;
+  // The same history with its path origin at s (its time origin where the belt passes s): the
+  // result's at_position(x) is this one's at_position(x + s), its samples the same, rotated.
+  LoadHistory shifted(double s_mm) const;
 
  private:
   std::vector<LoadState> samples_;

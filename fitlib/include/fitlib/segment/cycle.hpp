@@ -51,6 +51,11 @@ struct CycleStepping {
   // later cycles, shifted by the period (docs/segment.md "Cost (reference)"; off: solve every cycle).
   // The run's increment and iteration counts are then those solved.
   bool repeat_history_free_cycle = true;
+  // Such a run's one cycle solved as two halves at once, the second from its own bend to the state
+  // at a planned increment in a span (no state depends on the path to it), each half on one thread
+  // of the element loop (docs/segment.md "Cost (reference)"; off: in one piece). Lives within 10⁻⁹ of
+  // the cycle in one piece; the counts add the second half's bend.
+  bool split_history_free_cycle = true;
 };
 
 // The physics of the cycle: the mould, the contact body force's sampling, the flank laws, the end
