@@ -363,24 +363,6 @@ CycleResult solve_cycles(const CogSection& section, const MeshKnobs& mesh_knobs,
   return out;
 }
 
-// The one cycle of a history-free run in two halves where a planned increment lies in a span
-// (cycle_split.hpp), the long belt's end profiles tabulated once for both; else in one piece.
-CycleResult split_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, const SolverKnobs& solver,
-                        const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive, CycleKnobs one,
-                        const std::vector<NamedPoint>& extra_points) {
-  const Mesh straight = build_mesh(section, mesh_knobs);
-  const std::vector<double> breakpoints =
-      cycle_breakpoints(*drive.history, one.stepping.steps_per_cycle, one.stepping.change_weight, straight.half_length_mm);
-  const double share = detail::split_share(*drive.history, breakpoints, 1.5 * straight.half_length_mm);
-  CyclePhysics& physics = one.physics;
-  if (share > 0.0 && physics.ends == EndCondition::sheared && !physics.end_warping_mm && !physics.end_shear_MPa)
-    detail::long_belt_ends(section, straight, laws, drive, physics.end_warping_mm, physics.end_shear_MPa);
-  const detail::CycleSolve solve = [&](const CycleDrive& d, const CycleKnobs& k, const SolverKnobs& s) {
-    return solve_cycles(section, mesh_knobs, s, laws, d, k, extra_points);
-  };
-  return share > 0.0 ? detail::solve_split_cycle(solve, drive, one, solver, breakpoints, share) : solve(drive, one, solver);
-}
-
 }  // namespace
 
 // A run without history solves the bend and one cycle, copied to the later ones (cycle_repeat.hpp).
@@ -392,9 +374,12 @@ CycleResult run_cycle(const CogSection& section, const MeshKnobs& mesh_knobs, co
     return solve_cycles(section, mesh_knobs, solver, laws, drive, knobs, extra_points);
   CycleKnobs one = knobs;
   one.stepping.cycles = 1;
+  const detail::CycleSolve solve = [&](const CycleDrive& d, const CycleKnobs& k, const SolverKnobs& s) {
+    return solve_cycles(section, mesh_knobs, s, laws, d, k, extra_points);
+  };
   CycleResult out = knobs.stepping.split_history_free_cycle && knobs.outputs.vtk_prefix.empty()
-                        ? split_cycle(section, mesh_knobs, solver, laws, drive, one, extra_points)
-                        : solve_cycles(section, mesh_knobs, solver, laws, drive, one, extra_points);
+                        ? detail::solve_history_free_cycle(solve, section, mesh_knobs, laws, drive, one, solver)
+                        : solve(drive, one, solver);
   detail::repeat_first_cycle(out, knobs.stepping.cycles, drive.history->length_mm());
   return out;
 }

@@ -6,6 +6,7 @@
 #include <exception>
 #include <thread>
 
+#include "cycle_parts.hpp"
 #include "fitlib/core/error.hpp"
 
 namespace fitlib::segment::detail {
@@ -64,8 +65,11 @@ double split_share(const belt::LoadHistory& h, const std::vector<double>& breakp
   return best;
 }
 
-CycleResult solve_split_cycle(const CycleSolve& solve, const CycleDrive& drive, const CycleKnobs& one,
-                              const SolverKnobs& solver, const std::vector<double>& breakpoints, double share) {
+namespace {
+
+// The halves before and after `share` (of the cycle), each on one thread of the element loop.
+CycleResult solve_in_halves(const CycleSolve& solve, const CycleDrive& drive, const CycleKnobs& one,
+                            const SolverKnobs& solver, const std::vector<double>& breakpoints, double share) {
   const double L = drive.history->length_mm(), split_mm = share * L;
   CycleKnobs first = one, second = one;
   for (double b : breakpoints) (b <= share ? first.stepping.positions_mm : second.stepping.positions_mm).push_back(
@@ -107,6 +111,22 @@ CycleResult solve_split_cycle(const CycleSolve& solve, const CycleDrive& drive, 
   }
   const double split_s = share * a.cycle_time_s;
   return joined(std::move(a), std::move(b), split_mm, split_s);
+}
+
+}  // namespace
+
+CycleResult solve_history_free_cycle(const CycleSolve& solve, const CogSection& section, const MeshKnobs& mesh_knobs,
+                                     const std::array<const PlaneStrainLaw*, 2>& laws, const CycleDrive& drive,
+                                     CycleKnobs one, const SolverKnobs& solver) {
+  const Mesh straight = build_mesh(section, mesh_knobs);
+  const std::vector<double> breakpoints =
+      cycle_breakpoints(*drive.history, one.stepping.steps_per_cycle, one.stepping.change_weight, straight.half_length_mm);
+  const double share = split_share(*drive.history, breakpoints, 1.5 * straight.half_length_mm);
+  if (!(share > 0.0)) return solve(drive, one, solver);
+  CyclePhysics& physics = one.physics;
+  if (physics.ends == EndCondition::sheared && !physics.end_warping_mm && !physics.end_shear_MPa)
+    long_belt_ends(section, straight, laws, drive, physics.end_warping_mm, physics.end_shear_MPa);
+  return solve_in_halves(solve, drive, one, solver, breakpoints, share);
 }
 
 }  // namespace fitlib::segment::detail
