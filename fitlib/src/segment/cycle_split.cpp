@@ -72,8 +72,10 @@ CycleResult solve_in_halves(const CycleSolve& solve, const CycleDrive& drive, co
                             const SolverKnobs& solver, const std::vector<double>& breakpoints, double share) {
   const double L = drive.history->length_mm(), split_mm = share * L;
   CycleKnobs first = one, second = one;
-  for (double b : breakpoints) (b <= share ? first.stepping.positions_mm : second.stepping.positions_mm).push_back(
-                                   b <= share ? b * L : (b - share) * L);
+  for (double b : breakpoints) {
+    if (b <= share) first.stepping.positions_mm.push_back(b * L);
+    else second.stepping.positions_mm.push_back((b - share) * L);
+  }
   // The second half on the history seen from the split, its end profiles moved with it.
   const belt::LoadHistory from_split = drive.history->shifted(split_mm);
   CycleDrive second_drive = drive;
