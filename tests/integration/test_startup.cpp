@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -52,5 +53,23 @@ TEST(Startup, FitcliLoadsNoSuiteSparseGlogOrFreexlLibrary) {
   for (const char* lib : {"libcholmod", "libumfpack", "libamd", "libcxsparse", "libspqr", "libsuitesparseconfig",
                           "libglog", "libgflags", "libfreexl"})
     EXPECT_EQ(objects.find(lib), std::string::npos) << lib << " loaded:\n" << objects;
+}
+
+// LAPACK/BLAS/ATLAS, the compiler's Fortran, quad-precision and OpenMP run-times, toml++ (compiled
+// into fitcli) and libstdc++ come from archives too (docs/decisions.md "fitcli start-up: libstdc++,
+// toml++ and LAPACK in the executable"): none of their shared libraries is mapped, so the process
+// holds one C++ run-time, and an exception thrown inside toml++'s parser still reaches fitcli's
+// handler (a scene with a broken table header: exit 3 and the parser's own message).
+TEST(Startup, FitcliLoadsNoCxxRuntimeTomlOrLapackLibrary) {
+  const std::string objects = loader_output("LD_TRACE_LOADED_OBJECTS=1");
+  ASSERT_NE(objects.find("libc.so"), std::string::npos) << objects;
+  for (const char* lib : {"libstdc++", "libtomlplusplus", "liblapack", "libblas", "libatlas", "libf77blas",
+                          "libgfortran", "libquadmath", "libgomp"})
+    EXPECT_EQ(objects.find(lib), std::string::npos) << lib << " loaded:\n" << objects;
+  const std::string scene = temp_file("startup_broken_scene.toml");
+  std::ofstream(scene) << "[belt\nx = 1\n";
+  const CliResult r = run_fitcli("belt --scene " + scene + " --out-dir " + temp_file("startup_broken_scene_out"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("Error while parsing table header"), std::string::npos) << r.err;
 }
 #endif
