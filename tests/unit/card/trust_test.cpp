@@ -158,18 +158,6 @@ TEST(Trust, DefaultFitOfPyviscoMasterBeatsPyviscoAndAnsysOnEveryFigure) {
   }));
 }
 
-// The card the term economy does not build (docs/decisions.md "Term economy: a 20-term card that
-// beats pyvisco's 26 on every figure exists; not the default"): 20 terms, 7 of them 0.9 decade
-// apart over log10 τ ∈ [−1, 4.4] s (the steep flank of tan δ on the low-frequency side of its
-// peak, where a comb of 0.9 decade ripples less than tan δ's own slope, so the slope keeps its
-// sign), the other 13
-// evenly over the rest of the data's range (≈ 1.6 decades apart; there the ripple flips the
-// slope anyway). Moduli by NNLS at those times, then the 13 coarse times and every modulus
-// polished on the figures' own objective (log10 errors, E′ weight 600), the zone's times and
-// E∞ (the smooth spectrum's) held. It beats pyvisco's 26-term card on every figure of the
-// side-by-side test above. Not the default: the polish alone takes ≈ 150 Ceres iterations
-// (64–152 ms on a shared machine) and the card's tan δ is ≈ 30 % off the spectrum's (rms log10
-// 0.12); docs/fitting.md "Term economy".
 // The dense-zone card's start: 20 times (7 of them 0.9 decade apart from log10 τ = −1 s, the other
 // 13 evenly over the rest of the data's range), the moduli by NNLS at those times with E∞ the smooth
 // spectrum's, all held (the default objective's weights).
@@ -232,6 +220,18 @@ void expect_beats_pyvisco(const Figures& card) {
   EXPECT_LT(card.tan_delta_sign_changes, 31);
 }
 
+// The card the term economy does not build (docs/decisions.md "Term economy: a 20-term card that
+// beats pyvisco's 26 on every figure exists; not the default"): 20 terms, 7 of them 0.9 decade
+// apart over log10 τ ∈ [−1, 4.4] s (the steep flank of tan δ on the low-frequency side of its
+// peak, where a comb of 0.9 decade ripples less than tan δ's own slope, so the slope keeps its
+// sign), the other 13
+// evenly over the rest of the data's range (≈ 1.6 decades apart; there the ripple flips the
+// slope anyway). Moduli by NNLS at those times, then the 13 coarse times and every modulus
+// polished on the figures' own objective (log10 errors, E′ weight 600), the zone's times and
+// E∞ (the smooth spectrum's) held. It beats pyvisco's 26-term card on every figure of the
+// side-by-side test above. Not the default: the polish alone takes ≈ 150 Ceres iterations
+// (64–152 ms on a shared machine; 15–17 Newton steps with the exact Hessian, the next test) and the card's tan δ is ≈ 30 % off the spectrum's (rms log10
+// 0.12); docs/fitting.md "Term economy".
 TEST(Trust, TwentyTermsWithADenseZoneOnTanDeltasSteepFlankBeatPyviscoOnEveryFigure) {
   const DenseZoneStart z = dense_zone_start();
   fit::FitOptions polish = z.options;
@@ -265,8 +265,8 @@ TEST(Trust, ExactHessianPolishesTheDenseZoneCardInAFewNewtonSteps) {
     m.storage.push_back(row.storage_MPa);
     m.loss.push_back(row.loss_MPa);
   }
-  card::testing::PronyCard start{z.nnls.values[0], {z.nnls.values.begin() + 1, z.nnls.values.begin() + 21},
-                           {z.nnls.values.begin() + 21, z.nnls.values.end()}};
+  const auto& v = z.nnls.values;  // E_inf, E_1..E_20, tau_1..tau_20
+  const card::testing::PronyCard start{v[0], {v.begin() + 1, v.begin() + 21}, {v.begin() + 21, v.end()}};
   std::vector<int> coarse;
   for (int k = 0; k < 20; ++k)
     if (k < z.zone_first || k > z.zone_last) coarse.push_back(k);
