@@ -57,7 +57,8 @@
 // (CyclePhysics::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
 // the tangential flank's stick stiffness (CyclePhysics::flank_stick_N_mm4, N/mm⁴; 0 = off;
 // docs/segment.md "Tangential flank"); `vflank=V0`: the sliding friction's direction with this floor of
-// the sliding speed (CyclePhysics::flank_slide_floor_mm_s, mm/s; 0 = off); `branch=X`: the branch switch
+// the sliding speed (CyclePhysics::flank_slide_floor_mm_s, mm/s; 0 = off); `turn=K`: the friction turned by
+// the flank's layer of this k_t (CyclePhysics::flank_turn_N_mm4, N/mm⁴; 0 = off); `branch=X`: the branch switch
 // (SteppingOptions::branch_switch: the critical mode's amplitude as a share of the shortest element
 // side; 0 = off); `cycles=N`: load cycles (default 2); `loads=A:B`: print the load
 // cycle's samples over [A, B] mm of path (zone, p, γ, sliding speed, friction used); `field=PREFIX:MM[:MM…]`: the
