@@ -57,7 +57,8 @@
 // (CyclePhysics::flank_stiffness_N_mm4, N/mm⁴; 0 = off; docs/segment.md "Flank foundation"); `tflank=K`:
 // the tangential flank's stick stiffness (CyclePhysics::flank_stick_N_mm4, N/mm⁴; 0 = off;
 // docs/segment.md "Tangential flank"); `vflank=V0`: the sliding friction's direction with this floor of
-// the sliding speed (CyclePhysics::flank_slide_floor_mm_s, mm/s; 0 = off); `branch=X`: the branch switch
+// the sliding speed (CyclePhysics::flank_slide_floor_mm_s, mm/s; 0 = off); `turn=K`: the friction turned by
+// the flank's layer of this k_t (CyclePhysics::flank_turn_N_mm4, N/mm⁴; 0 = off); `branch=X`: the branch switch
 // (SteppingOptions::branch_switch: the critical mode's amplitude as a share of the shortest element
 // side; 0 = off); `cycles=N`: load cycles (default 2); `loads=A:B`: print the load
 // cycle's samples over [A, B] mm of path (zone, p, γ, sliding speed, friction used); `field=PREFIX:MM[:MM…]`: the
@@ -202,6 +203,7 @@ struct Probe {
   double flank = -1.0;                          // flank=K: CyclePhysics::flank_stiffness_N_mm4 (< 0: the setup's)
   double tflank = -1.0;                         // tflank=K: CyclePhysics::flank_stick_N_mm4 (< 0: the setup's)
   double vflank = -1.0;                         // vflank=V0: CyclePhysics::flank_slide_floor_mm_s (< 0: the setup's)
+  double turn = -1.0;                           // turn=K: CyclePhysics::flank_turn_N_mm4 (< 0: the setup's)
   double branch = 0.0;                          // branch=X: SteppingOptions::branch_switch (0: off)
   std::string field_prefix{};                   // field=PREFIX:MM[:MM…]
   std::vector<double> field_at_mm{};
@@ -344,6 +346,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.flank >= 0.0) setup.cycle.physics.flank_stiffness_N_mm4 = pr.flank;
   if (pr.tflank >= 0.0) setup.cycle.physics.flank_stick_N_mm4 = pr.tflank;
   if (pr.vflank >= 0.0) setup.cycle.physics.flank_slide_floor_mm_s = pr.vflank;
+  if (pr.turn >= 0.0) setup.cycle.physics.flank_turn_N_mm4 = pr.turn;
   setup.solver.stepping.branch_switch = pr.branch;
   if (pr.body_sampling_mm >= 0.0) setup.cycle.physics.body_force_sampling_mm = pr.body_sampling_mm;
   setup.cycle.physics.manufactured_radius_mm = drive.geometry.belt_length_mm / (2.0 * M_PI);
@@ -1025,6 +1028,7 @@ int main(int argc, char** argv) {
       if (a == "hold") p.hold = true;
       if (a.rfind("flank=", 0) == 0) p.flank = std::atof(a.c_str() + 6);
       if (a.rfind("tflank=", 0) == 0) p.tflank = std::atof(a.c_str() + 7);
+      if (a.rfind("turn=", 0) == 0) p.turn = std::atof(a.c_str() + 5);
       if (a.rfind("vflank=", 0) == 0) p.vflank = std::atof(a.c_str() + 7);
       if (a.rfind("branch=", 0) == 0) p.branch = std::atof(a.c_str() + 7);
       if (a.rfind("cycles=", 0) == 0) p.cycles = std::atoi(a.c_str() + 7);
@@ -1061,7 +1065,7 @@ int main(int argc, char** argv) {
     std::printf("flank foundation k %.4g N/mm^4: radial force against Report I's dead load (increments with >= half "
                 "its largest) largest %+.3g, mean %+.3g\n",
                 o.life.run.flank_stiffness_N_mm4, o.life.run.flank_radial_share, o.life.run.flank_radial_mean_share);
-    if (o.life.run.flank_stick_N_mm4 > 0.0 || p.vflank > 0.0)
+    if (o.life.run.flank_stick_N_mm4 > 0.0 || p.vflank > 0.0 || p.turn > 0.0)
       std::printf("flank along the belt (stick k_t %.4g N/mm^4, sliding floor %.4g mm/s): largest longitudinal force %.3g "
                   "of Report I's largest dead friction\n",
                   o.life.run.flank_stick_N_mm4, p.vflank, o.life.run.flank_stick_share);

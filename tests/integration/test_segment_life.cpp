@@ -541,6 +541,30 @@ TEST(SegmentLife, TangentialFlankLawsKeepTheLightDrivesElasticLivesAndBalance) {
   EXPECT_FALSE(b.run.final_state.symmetric_solver);  // the turn does not
 }
 
+// The friction turned by the flank's layer (CyclePhysics::flank_turn_N_mm4, docs/segment.md
+// "Tangential flank"; issue 33 item 2): at the stick's derived k_t it carries the accelerated drives'
+// fold (measured: 8 of the 13 held drives complete cycle 1 against 4), but on the light drive it
+// turns more than Report I's whole longitudinal friction (measured 1.21 of its largest) and moves
+// N2 95-fold: the rubber's shear relative to the cord, which the belt theory's sliding does not
+// contain, turns the friction that balances the cord's tension gradient. Hence off.
+TEST(SegmentLife, FrictionTurnedByTheFlanksLayerTakesOverReportIsLongitudinalFrictionOnTheLightDrive) {
+  const CardRun base = card_run("light", 2, core::Fidelity::elastic);
+  const scene::SegmentLife off = card_life(base);
+  CardRun turn = base;
+  const segment::ContractLaw bottom(base.setup.materials[0]);
+  turn.setup.cycle.physics.flank_turn_N_mm4 =
+      segment::flank_stick_stiffness_N_mm4(segment::axial_modulus_MPa(bottom) / 4.0, base.drive.belt.width_mm);
+  const scene::SegmentLife on = card_life(turn);
+  std::printf("light, elastic: turn k_t %.4g N/mm^4 N1 %.4g N2 %.4g along %.3g; off N1 %.4g N2 %.4g\n",
+              turn.setup.cycle.physics.flank_turn_N_mm4, on.report.modes[0].life_cycles, on.report.modes[1].life_cycles,
+              on.run.flank_stick_share, off.report.modes[0].life_cycles, off.report.modes[1].life_cycles);
+  EXPECT_LT(on.run.equilibrium_error, 1e-6);
+  EXPECT_FALSE(on.run.final_state.symmetric_solver);  // the turn moves the radial part too
+  EXPECT_GT(on.run.flank_stick_share, 0.8);           // the longitudinal friction taken over
+  EXPECT_NEAR(on.report.modes[0].life_cycles / off.report.modes[0].life_cycles, 1.0, 0.05);  // N1 barely
+  EXPECT_GT(on.report.modes[1].life_cycles / off.report.modes[1].life_cycles, 10.0);          // N2 far
+}
+
 // The Levenberg–Marquardt retake (NewtonOptions::levenberg): at the load cycle's transitions a full
 // Newton step of the cards' near-incompressible rubber (K 4000 MPa) overshoots; retaking it on the
 // shifted tangent instead of halving and cutting the increment removes the cuts of the medium

@@ -311,10 +311,11 @@ detail::ElementSampling add_cycle_loads(StaticProblem& p, const CycleGeometry& g
       element_extents(g.m, g.path_x, order, physics.body_force_sampling_mm, check.area_mm2);
   check.body = detail::contact_body_forces(sampling, drive, g.T, g.frame.curve_at);
   p.loads.push_back(dead_body_force(g.m.element_count(), check.body));
-  check.along_belt = physics.flank_stick_N_mm4 > 0.0 || physics.flank_slide_floor_mm_s > 0.0;  // a tangential flank law
+  check.along_belt = physics.flank_along_belt();  // a tangential flank law
   if (physics.flank_stiffness_N_mm4 > 0.0 || check.along_belt)
     p.loads.push_back(flank_contact(g.m, g.path_x, integration, NeutralCurve::uniform(g.K_m, 0.0, g.reach),
                                     g.frame.curve_at, physics.flank_stick_N_mm4 > 0.0, physics.flank_slide_floor_mm_s > 0.0,
+                                    physics.flank_turn_N_mm4 > 0.0,
                                     detail::flank_levels(sampling, drive, physics, g.T, p.time_s)));
   if (shear) {
     check.nodal = detail::end_shear_forces(g.m.node_count(), g.straight, g.path_x, g.h, g.T, g.frame.curve_at, shear);

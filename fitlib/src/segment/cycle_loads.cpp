@@ -134,12 +134,14 @@ std::function<void(double, FlankLevels&)> flank_levels(ElementSampling sampling,
                                                        const CyclePhysics& physics, double T, std::function<double(double)> time_s) {
   const belt::LoadHistory& h = *drive.history;
   const double k = physics.flank_stiffness_N_mm4, k_t = physics.flank_stick_N_mm4, mu = drive.friction;
-  const double V0 = physics.flank_slide_floor_mm_s;
+  const double V0 = physics.flank_slide_floor_mm_s, k_turn = physics.flank_turn_N_mm4;
   const double area_factor = 2.0 / drive.width_mm / std::cos(drive.wedge_half_angle_rad);
   return [=, &h](double lambda, FlankLevels& levels) {
     const double tau = lambda * T;
     const std::size_t n = sampling.centre_x.size();
-    for (auto* v : {&levels.radial_N_mm4, &levels.stick_N_mm4, &levels.stick_limit_N_mm3, &levels.slide_mm_s}) v->assign(n, 0.0);
+    for (auto* v : {&levels.radial_N_mm4, &levels.stick_N_mm4, &levels.stick_limit_N_mm3, &levels.slide_mm_s,
+                    &levels.turn_N_mm4})
+      v->assign(n, 0.0);
     levels.friction_lr_N_mm3.assign(n, Eigen::Vector2d::Zero());
     levels.time_s = time_s(lambda), levels.slide_floor_mm_s = V0;
     if (tau <= 1.0) return;
@@ -148,7 +150,8 @@ std::function<void(double, FlankLevels&)> flank_levels(ElementSampling sampling,
       const int el = static_cast<int>(e);
       const double share = sampling.mean(h, el, s0, 0.0, [](const belt::LoadState& q) { return q.p_MPa > 0.0 ? 1.0 : 0.0; });
       if (k > 0.0) levels.radial_N_mm4[e] = k * share;
-      if (V0 > 0.0 && share > 0.0) {
+      if (k_turn > 0.0) levels.turn_N_mm4[e] = k_turn * share;
+      if ((V0 > 0.0 || k_turn > 0.0) && share > 0.0) {
         levels.friction_lr_N_mm3[e] = sampling.mean(h, el, s0, Eigen::Vector2d(Eigen::Vector2d::Zero()), [&](const belt::LoadState& q) {
           const double F = q.p_MPa > 0.0 ? q.friction_used * q.p_MPa * area_factor : 0.0;  // 6.6–6.7's friction
           return Eigen::Vector2d(-F * std::sin(q.gamma_rad), -F * std::cos(q.gamma_rad));

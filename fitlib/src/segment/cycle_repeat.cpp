@@ -9,8 +9,8 @@ bool repeats_first_cycle(const std::array<const PlaneStrainLaw*, 2>& laws, const
                          const SolverKnobs& solver) {
   // (element_laws carry no state: run_cycle refuses one that does.)
   const bool stateless = laws[0]->state_size() == 0 && laws[1]->state_size() == 0;
-  const bool flank_along_belt = knobs.physics.flank_stick_N_mm4 > 0.0 || knobs.physics.flank_slide_floor_mm_s > 0.0;
-  return knobs.stepping.repeat_history_free_cycle && stateless && !solver.physics.inertia && !flank_along_belt &&
+  return knobs.stepping.repeat_history_free_cycle && stateless && !solver.physics.inertia &&
+         !knobs.physics.flank_along_belt() &&
          knobs.stepping.positions_mm.empty() && knobs.stepping.cycles >= 2;
 }
 

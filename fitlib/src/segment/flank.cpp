@@ -56,6 +56,21 @@ FlankSlidePoint flank_slide_point(const Eigen::Vector2d& u_dot, const Eigen::Vec
   return p;
 }
 
+FlankTurnPoint flank_turn_point(double dw, double layer, const Eigen::Vector2d& friction, double k_t, double slide_mm) {
+  FlankTurnPoint p;
+  const double F = friction.norm();
+  if (!(F > 0.0) || !(k_t > 0.0)) return p;
+  const double c = F / (F + k_t * std::max(slide_mm, 0.0));
+  p.layer_after_N_mm3 = c * (layer - k_t * dw);
+  const Eigen::Vector2d q = friction + Eigen::Vector2d(p.layer_after_N_mm3, 0.0);
+  const double Q = q.norm();
+  if (!(Q > 1e-12 * F)) return p;  // the layer cancels the friction along the belt: no direction
+  const Eigen::Vector2d n = q / Q;
+  p.b_lr_N_mm3 = F * n - friction;
+  p.db_dw_lr_N_mm4 = -c * k_t * F / Q * (Eigen::Vector2d(1.0, 0.0) - n.x() * n);
+  return p;
+}
+
 namespace {
 
 // The flank as a load acting at the integration points. It keeps per element and integration
@@ -66,12 +81,12 @@ class FlankContact final : public Load {
  public:
   FlankContact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
                const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at, bool stick,
-               bool slide, std::function<void(double, FlankLevels&)> levels);
+               bool slide, bool turn, std::function<void(double, FlankLevels&)> levels);
   void prepare(double lambda) override;
   bool acts_at_points() const override { return true; }
   bool at_point(int e, int g, const Eigen::Vector2d& x, Eigen::Vector2d& b, Eigen::Matrix2d& db) const override;
   void commit(const ConvergedLoads& state) override;
-  bool symmetric() const override { return !slide_; }  // the sliding friction turns with the motion
+  bool symmetric() const override { return !slide_ && !turn_; }  // the friction turns with the motion
 
  private:
   // The offsets start from the reference's on the curve at λ = 0 (no motion before the first commit).
@@ -82,14 +97,20 @@ class FlankContact final : public Load {
   bool radial(int e) const { return levels_.radial_N_mm4[e] > 0.0; }
   bool sticks(int e) const { return levels_.stick_N_mm4[e] > 0.0 && levels_.stick_limit_N_mm3[e] > 0.0; }
   bool slides(int e) const { return levels_.slide_mm_s[e] > 0.0 && dt_s_ > 0.0 && !levels_.friction_lr_N_mm3[e].isZero(0.0); }
+  bool turns(int e) const { return levels_.turn_N_mm4[e] > 0.0 && !levels_.friction_lr_N_mm3[e].isZero(0.0); }
+  FlankTurnPoint turn_at(std::size_t i, int e, const Eigen::Vector2d& x) const {
+    return flank_turn_point(offset(i, x) - committed_offset_[i], layer_[i], levels_.friction_lr_N_mm3[e],
+                            levels_.turn_N_mm4[e], levels_.slide_mm_s[e] * std::max(dt_s_, 0.0));
+  }
   double offset(std::size_t i, const Eigen::Vector2d& x) const { return tangent_[i].dot(x - cord_[i]); }
   Eigen::Vector2d normal(std::size_t i) const { return {-tangent_[i].y(), tangent_[i].x()}; }  // (sin φ, cos φ)
 
   int points_ = 0;  // per element
-  bool stick_ = false, slide_ = false, history_ = false;  // history: either; frames at every λ, offsets committed
+  bool stick_ = false, slide_ = false, turn_ = false, history_ = false;  // history: either; frames at every λ, offsets committed
   std::vector<double> path_x_, reference_depth_, slip_;
   std::vector<double> committed_offset_, next_offset_;  // along the cord from the column's cord point
   std::vector<double> next_slip_;
+  std::vector<double> layer_, next_layer_;  // the turn's layer force d per point (flank_turn_point)
   double committed_time_s_ = 0.0, next_time_s_ = 0.0, dt_s_ = 0.0;
   bool pending_ = false;  // committed into next_*, taken at the next prepare
   std::function<NeutralCurve(double)> curve_at_;
@@ -103,8 +124,8 @@ class FlankContact final : public Load {
 
 FlankContact::FlankContact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
                            const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at,
-                           bool stick, bool slide, std::function<void(double, FlankLevels&)> levels)
-    : stick_(stick), slide_(slide), history_(stick || slide), curve_at_(std::move(curve_at)),
+                           bool stick, bool slide, bool turn, std::function<void(double, FlankLevels&)> levels)
+    : stick_(stick), slide_(slide), turn_(turn), history_(stick || slide || turn), curve_at_(std::move(curve_at)),
       levels_at_(std::move(levels)) {
   const auto rule = detail::gauss_rule(gauss_order(m, integration));
   const int npe = m.nodes_per_element;
@@ -122,7 +143,8 @@ FlankContact::FlankContact(const Mesh& m, const std::vector<double>& path_x_mm, 
       reference.push_back(X);
     }
   const std::size_t elements = static_cast<std::size_t>(m.element_count());
-  for (auto* v : {&levels_.radial_N_mm4, &levels_.stick_N_mm4, &levels_.stick_limit_N_mm3, &levels_.slide_mm_s})
+  for (auto* v : {&levels_.radial_N_mm4, &levels_.stick_N_mm4, &levels_.stick_limit_N_mm3, &levels_.slide_mm_s,
+                  &levels_.turn_N_mm4})
     v->assign(elements, 0.0);
   levels_.friction_lr_N_mm3.assign(elements, Eigen::Vector2d::Zero());
   s_hint_.assign(path_x_.size(), 0.0);
@@ -140,11 +162,12 @@ void FlankContact::start_offsets(const std::vector<Eigen::Vector2d>& reference) 
     slip_.push_back(committed_offset_.back());
   }
   next_offset_ = committed_offset_, next_slip_ = slip_;
+  layer_.assign(n, 0.0), next_layer_ = layer_;
 }
 
 void FlankContact::prepare(double lambda) {
   if (pending_) {  // the commit takes effect at the next level (a snapshot at the committed one sees the step's force)
-    committed_offset_.swap(next_offset_), slip_.swap(next_slip_);
+    committed_offset_.swap(next_offset_), slip_.swap(next_slip_), layer_.swap(next_layer_);
     committed_time_s_ = next_time_s_, pending_ = false;
   }
   levels_at_(lambda, levels_);
@@ -172,7 +195,8 @@ void FlankContact::place_feet() {
 
 bool FlankContact::at_point(int e, int g, const Eigen::Vector2d& x, Eigen::Vector2d& b, Eigen::Matrix2d& db) const {
   const bool on_radial = radial(e), on_stick = stick_ && sticks(e), on_slide = slide_ && slides(e);
-  if (!on_radial && !on_stick && !on_slide) return false;
+  const bool on_turn = turn_ && turns(e);
+  if (!on_radial && !on_stick && !on_slide && !on_turn) return false;
   const std::size_t i = static_cast<std::size_t>(e) * points_ + g;
   if (on_radial) {
     const FlankFoundationPoint p = flank_foundation_point(curve_->coordinates(x.x(), x.y(), starts_, s_hint_[i]),
@@ -195,6 +219,13 @@ bool FlankContact::at_point(int e, int g, const Eigen::Vector2d& x, Eigen::Vecto
     b += Q * p.b_lr_N_mm3;
     db += Q * p.db_dv_lr.col(0) * tangent_[i].transpose() / dt_s_;  // ∂u̇/∂x = (tᵀ/Δt, 0): unsymmetric
   }
+  if (on_turn) {  // ∂w/∂x = tᵀ
+    Eigen::Matrix2d Q;
+    Q.col(0) = tangent_[i], Q.col(1) = normal(i);
+    const FlankTurnPoint p = turn_at(i, e, x);
+    b += Q * p.b_lr_N_mm3;
+    db += Q * p.db_dw_lr_N_mm4 * tangent_[i].transpose();
+  }
   return true;
 }
 
@@ -208,6 +239,7 @@ void FlankContact::commit(const ConvergedLoads& state) {
     next_slip_[i] = flank_stick_point(offset(i, x[i]), slip_[i], stick_ && sticks(e) ? levels_.stick_N_mm4[e] : 0.0,
                                       levels_.stick_limit_N_mm3[e])
                         .slip_after_mm;
+    next_layer_[i] = turn_ && turns(e) ? turn_at(i, e, x[i]).layer_after_N_mm3 : 0.0;
     pending_ = true;
   }
 }
@@ -216,15 +248,15 @@ void FlankContact::commit(const ConvergedLoads& state) {
 
 LoadPtr flank_contact(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
                       const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at, bool stick,
-                      bool slide, std::function<void(double, FlankLevels&)> levels) {
+                      bool slide, bool turn, std::function<void(double, FlankLevels&)> levels) {
   return std::make_shared<FlankContact>(m, path_x_mm, integration, reference_curve, std::move(curve_at), stick, slide,
-                                        std::move(levels));
+                                        turn, std::move(levels));
 }
 
 LoadPtr flank_foundation(const Mesh& m, const std::vector<double>& path_x_mm, Integration integration,
                          const NeutralCurve& reference_curve, std::function<NeutralCurve(double)> curve_at,
                          std::function<void(double, std::vector<double>&)> stiffness) {
-  return flank_contact(m, path_x_mm, integration, reference_curve, std::move(curve_at), false, false,
+  return flank_contact(m, path_x_mm, integration, reference_curve, std::move(curve_at), false, false, false,
                        [stiffness = std::move(stiffness)](double lambda, FlankLevels& levels) {
                          stiffness(lambda, levels.radial_N_mm4);
                        });

@@ -42,7 +42,7 @@ LoadPtr stick_contact(const Mesh& m, const NeutralCurve& curve, double k, double
   std::vector<double> path_x;
   for (const Eigen::Vector2d& X : m.X) path_x.push_back(X.x());
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
-  return flank_contact(m, path_x, Integration::reduced, line, [curve](double) { return curve; }, true, false,
+  return flank_contact(m, path_x, Integration::reduced, line, [curve](double) { return curve; }, true, false, false,
                        [&m, k, k_t, limit](double, FlankLevels& l) {
                          l.radial_N_mm4.assign(m.element_count(), k);
                          l.stick_N_mm4.assign(m.element_count(), k_t);
@@ -241,7 +241,7 @@ TEST(SegmentFlank, SlidingFrictionTurnsWithTheRelativeVelocityAndMatchesCentralD
   const NeutralCurve curve(3.0, {0.02, 0.035, 0.0}, {0.01, 0.012, 0.02, 0.015}, {0.02, 0.0, 0.03}, {0.01, 0.008, 0.0, 0.02});
   const NeutralCurve line = NeutralCurve::uniform(0.0, 0.0, 1.5 * m.half_length_mm);
   const LoadPtr f = flank_contact(m, path_x, Integration::reduced, line, [curve](double) { return curve; },
-                                                  true, true, [&](double, FlankLevels& l) {
+                                                  true, true, false, [&](double, FlankLevels& l) {
                                                     l.radial_N_mm4.assign(m.element_count(), 0.05);
                                                     l.stick_N_mm4.assign(m.element_count(), 0.3);
                                                     l.stick_limit_N_mm3.assign(m.element_count(), 0.1);
@@ -275,6 +275,50 @@ TEST(SegmentFlank, SlidingFrictionTurnsWithTheRelativeVelocityAndMatchesCentralD
   EXPECT_NEAR(stick.b_lr_N_mm3.x(), -F * 1e-4 / (std::sqrt(2.0) * 5.0), 1e-12 * F);
 }
 
+TEST(SegmentFlank, FrictionTurnedByTheFlanksLayerKeepsCoulombsMagnitudeAndMatchesCentralDifferences) {
+  // The return onto Coulomb's circle |f| = F: Report I's friction unchanged without motion, the
+  // magnitude kept, ∂b/∂w against central differences, the layer relaxed by the sliding.
+  const double F = 0.14, k_t = 0.3, h = 1e-7;
+  for (double gamma_deg : {180.0, 205.0, 241.9, 285.7, 354.0, 6.2}) {
+    const double g = gamma_deg * M_PI / 180.0;
+    const Eigen::Vector2d friction(-F * std::sin(g), -F * std::cos(g));
+    EXPECT_EQ(flank_turn_point(0.0, 0.0, friction, k_t, 0.01).b_lr_N_mm3.norm(), 0.0);
+    for (double dw : {0.02, -0.15, 0.4})
+      for (double layer : {0.0, 0.03, -0.05})
+        for (double slide : {0.0, 0.002}) {
+          const FlankTurnPoint p = flank_turn_point(dw, layer, friction, k_t, slide);
+          const double c = F / (F + k_t * slide);
+          EXPECT_NEAR(p.layer_after_N_mm3, c * (layer - k_t * dw), 1e-15);
+          EXPECT_NEAR((p.b_lr_N_mm3 + friction).norm(), F, 1e-14) << gamma_deg;  // Coulomb's magnitude, turned
+          const Eigen::Vector2d fd = (flank_turn_point(dw + h, layer, friction, k_t, slide).b_lr_N_mm3 -
+                                      flank_turn_point(dw - h, layer, friction, k_t, slide).b_lr_N_mm3) /
+                                     (2.0 * h);
+          EXPECT_LT((fd - p.db_dw_lr_N_mm4).norm(), 1e-7 * k_t) << gamma_deg << " " << dw << " " << layer;
+        }
+  }
+  // Radial sliding (γ = 180°): a small motion along the belt meets the stick's k_t (times c) — the
+  // friction turns against it, to first order Report I's radial part unchanged.
+  const Eigen::Vector2d radial(0.0, F);
+  const FlankTurnPoint small = flank_turn_point(1e-5, 0.0, radial, k_t, 0.0);
+  EXPECT_NEAR(small.b_lr_N_mm3.x(), -k_t * 1e-5, 1e-12 * k_t);
+  EXPECT_NEAR(small.db_dw_lr_N_mm4.x(), -k_t, 1e-6 * k_t);
+  // Sliding along the belt (γ = 90°): motion along it changes nothing while the friction keeps its
+  // direction (Coulomb: the slip goes on), either way.
+  const Eigen::Vector2d along(-F, 0.0);
+  EXPECT_EQ(flank_turn_point(0.2, 0.0, along, k_t, 0.0).b_lr_N_mm3.norm(), 0.0);
+  EXPECT_EQ(flank_turn_point(-0.2, 0.0, along, k_t, 0.0).b_lr_N_mm3.norm(), 0.0);
+  // A rigid-plastic limit: a stiff layer (k_t V Δt ≫ F) turns the friction by the velocity ratio
+  // u̇/V, as the sliding friction's direction law does for u̇ ≪ V (flank_slide_point, V0 → 0).
+  const double V = 30.0, dt = 1e-3, u_dot = 0.03, stiff = 1e5;
+  const FlankTurnPoint rigid = flank_turn_point(u_dot * dt, 0.0, radial, stiff, V * dt);
+  const FlankSlidePoint rate = flank_slide_point(Eigen::Vector2d(u_dot, 0.0), radial, V, 1e-9);
+  EXPECT_NEAR(rigid.b_lr_N_mm3.x(), rate.b_lr_N_mm3.x(), 1e-4 * std::abs(rate.b_lr_N_mm3.x()));
+  EXPECT_NEAR(rigid.b_lr_N_mm3.x(), -F * u_dot / V, 1e-3 * F * u_dot / V);
+  // No friction, or no layer: Report I's alone.
+  EXPECT_EQ(flank_turn_point(0.2, 0.1, Eigen::Vector2d::Zero(), k_t, 0.0).b_lr_N_mm3.norm(), 0.0);
+  EXPECT_EQ(flank_turn_point(0.2, 0.1, radial, 0.0, 0.0).b_lr_N_mm3.norm(), 0.0);
+}
+
 TEST(SegmentFlank, BlockUnderALoadAlongTheBeltCreepsAtTheCoulombVelocity) {
   // A block in radial sliding (γ = 0, speed V; Report I's friction −F radially and none along the
   // belt), held radially, under a load b0 along the belt: the friction turns until its component
@@ -298,7 +342,7 @@ TEST(SegmentFlank, BlockUnderALoadAlongTheBeltCreepsAtTheCoulombVelocity) {
     });
     p.time_s = [duration](double lambda) { return lambda * duration; };
     p.loads.push_back(dead_body_force(m.element_count(), [&m, load](double, std::vector<Eigen::Vector2d>& b) { b.assign(m.element_count(), Eigen::Vector2d(load, 0.0)); }));
-    p.loads.push_back(flank_contact(m, path_x, Integration::reduced, line, [line](double) { return line; }, false, true,
+    p.loads.push_back(flank_contact(m, path_x, Integration::reduced, line, [line](double) { return line; }, false, true, false,
                                       [&](double lambda, FlankLevels& l) {
                                         for (auto* v : {&l.radial_N_mm4, &l.stick_N_mm4, &l.stick_limit_N_mm3}) v->assign(m.element_count(), 0.0);
                                         l.slide_mm_s.assign(m.element_count(), V);

@@ -84,6 +84,15 @@ struct CyclePhysics {
   // velocity relative to its column's cord point, backward Euler over the increment (0: off,
   // Report I's dead friction).
   double flank_slide_floor_mm_s = 0.0;
+  // The friction turned by the flank's compliance (segment/flank.hpp, docs/segment.md "Tangential
+  // flank"): Coulomb's friction of Report I's magnitude, its direction turned by each point's motion
+  // along the cord relative to its column's cord point through an elastic layer of this k_t (N/mm⁴),
+  // the turn relaxed by the load cycle's sliding (0: off, Report I's dead friction).
+  double flank_turn_N_mm4 = 0.0;
+  // Whether a flank law acts along the belt (it then carries history: the offsets it commits).
+  bool flank_along_belt() const {
+    return flank_stick_N_mm4 > 0.0 || flank_slide_floor_mm_s > 0.0 || flank_turn_N_mm4 > 0.0;
+  }
   // The end faces: radial (planes on the cord's normals), free, or sheared: radial faces warped and
   // sheared like a long belt's sections (segment/end_faces.hpp; the life's default, scene::life_cycle).
   EndCondition ends = EndCondition::radial;

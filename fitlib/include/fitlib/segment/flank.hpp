@@ -78,12 +78,31 @@ struct FlankSlidePoint {
 FlankSlidePoint flank_slide_point(const Eigen::Vector2d& relative_velocity_lr_mm_s, const Eigen::Vector2d& friction_lr_N_mm3,
                                   double sliding_speed_mm_s, double floor_mm_s);
 
+// The friction turned by the flank's compliance (docs/segment.md "Tangential flank"): Coulomb's law
+// with the flank's elastic layer k_t in series (a return map onto Coulomb's circle). Report I's
+// friction f = −F ê (along the belt, radial; F = μ_used p 2/(B cos β)) is Coulomb's at full slip; a
+// point's motion Δw along the cord relative to its column's cord point strains the layer, which
+// turns the friction on the circle |f| = F:
+//     d = c (d_n − k_t Δw),   f' = F q / |q|,   q = f + (d, 0),   c = F / (F + k_t V Δt),
+// d the layer's force along the belt (N/mm³, per point, committed), relaxed by the load cycle's
+// sliding V Δt over the increment (the backward-Euler return onto the circle of the slip V Δt ê:
+// a Maxwell element of k_t and F/V, a stick where V = 0). Added to the dead −F ê: b = f' − f, exactly
+// 0 at d = 0. ∂b/∂w = −c k_t F/|q| (I − n nᵀ) (1, 0)ᵀ, n = q/|q|: unsymmetric (the turn moves the
+// radial part too). A turn along the sliding direction itself does not change f (Coulomb).
+struct FlankTurnPoint {
+  Eigen::Vector2d b_lr_N_mm3 = Eigen::Vector2d::Zero();   // along the belt, radial
+  Eigen::Vector2d db_dw_lr_N_mm4 = Eigen::Vector2d::Zero();
+  double layer_after_N_mm3 = 0.0;  // d, to commit
+};
+FlankTurnPoint flank_turn_point(double dw_mm, double layer_N_mm3, const Eigen::Vector2d& friction_lr_N_mm3,
+                                double k_t_N_mm4, double slide_mm);
+
 // Per element at λ: the radial foundation's k (N/mm⁴), the stick's k_t (N/mm⁴) and its limit (N/mm³),
 // Report I's dead friction −F ê (along the belt, radial; N/mm³) with the sliding speed V (mm/s,
 // floored) for the sliding friction's direction; 0: that part off there. `time_s`: the time at λ.
 // Sized to the elements by the caller.
 struct FlankLevels {
-  std::vector<double> radial_N_mm4, stick_N_mm4, stick_limit_N_mm3, slide_mm_s;
+  std::vector<double> radial_N_mm4, stick_N_mm4, stick_limit_N_mm3, slide_mm_s, turn_N_mm4;
   std::vector<Eigen::Vector2d> friction_lr_N_mm3;
   double slide_floor_mm_s = 0.0;  // V_0
   double time_s = 0.0;
@@ -96,7 +115,7 @@ struct FlankLevels {
 // the tangent unsymmetric); `levels(λ, levels)`: the per-element values at λ.
 LoadPtr flank_contact(const Mesh& reference, const std::vector<double>& path_x_mm, Integration integration,
                       const NeutralCurve& reference_curve, std::function<NeutralCurve(double lambda)> curve_at,
-                      bool stick, bool slide, std::function<void(double lambda, FlankLevels& levels)> levels);
+                      bool stick, bool slide, bool turn, std::function<void(double lambda, FlankLevels& levels)> levels);
 
 // The foundation over a mesh as a load acting at the integration points (segment/load.hpp).
 // `reference`: the solver's mesh; `path_x_mm`: each node's unstrained path position along the cord
