@@ -4,7 +4,7 @@
 # one sits beside the shared library (Debian's -dev packages ship both), and the compiler's run-times
 # those need (gfortran, quadmath, OpenMP) and libstdc++ from gcc's archives. Every shared library a
 # process loads costs it the mapping, the symbol relocations and their page faults: 13 fewer
-# libraries took about 3 ms off `fitcli fit --terms auto`, the next 9 about 4 ms more (docs/fitting.md
+# libraries took about 3 ms off `fitcli fit --terms auto`, the next 8 about 4 ms more (docs/fitting.md
 # "Speed", docs/decisions.md "fitcli start-up: the Ceres stack's libraries linked statically, ..." and
 # "fitcli start-up: libstdc++, toml++ and LAPACK in the executable"). What the swapped libraries
 # needed themselves (METIS, libunwind, ...) is added after them as shared libraries, only where the
