@@ -507,9 +507,13 @@ class LinearModel : public AutodiffModel<LinearModel<Kernel>> {
     const double omega = omega0 * a_T, g = g_T;
     const int N = terms();
     double re = p[0], im = 0.0, dre_domega = 0.0, dim_domega = 0.0;
-    J.setZero();
+    // Every entry is written below or here (no J.setZero() pass: it was a memset of the whole
+    // 3 x n block per data point, ≈ 3 % of `fitcli fit --terms auto`).
     J(0, 0) = g;
+    J(1, 0) = 0.0;
     J(2, 0) = g;
+    J.row(2).segment(1, 2 * N).setZero();
+    J.rightCols(J.cols() - 1 - 2 * N).setZero();
     for (int i = 0; i < N; ++i) {
       const double M = p[1 + i], tau = p[1 + N + i], w = omega * tau, d = 1.0 + w * w;
       re += M * w * w / d;
