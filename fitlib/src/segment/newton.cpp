@@ -165,7 +165,10 @@ NewtonOutcome Newton::solve(double lambda, const Eigen::VectorXd& q_start, bool 
 // The element loop at q: r_, and K_ when `tangent` (the predictor's coupling with `dq_p`).
 int Newton::assemble(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, bool tangent, NewtonOutcome* o) {
   ++o->assemblies;
-  return a_.run(q, lambda, dq_p, r_, tangent ? &K_ : nullptr, dq_p ? &coupling_ : nullptr);
+  a_.set_follows_step(dq_p == nullptr);  // the predictor's assembly is at the last converged q
+  const int bad = a_.run(q, lambda, dq_p, r_, tangent ? &K_ : nullptr, dq_p ? &coupling_ : nullptr);
+  a_.set_follows_step(false);
+  return bad;
 }
 
 // The unshifted tangent and the residual of the iterate a step is taken from (`valid`: they are

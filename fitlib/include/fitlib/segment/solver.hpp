@@ -58,6 +58,12 @@ struct NewtonOptions {
   // stay those of the exact solve (docs/segment.md §Solver).
   int krylov_iterations = 10;
   double krylov_tolerance = 1e-8;
+  // The tangent's pressure term at each point's pressure linearised over the last step (Newton on
+  // the mixed u–p form with p condensed per point), not at the new iterate's, whose κ det ΔF is
+  // spurious near incompressibility; the residual, and so the solution, unchanged. Not with F-bar.
+  // Complete level: the second correction no longer stagnates, −22 % iterations (docs/segment.md
+  // §"Cost (reference)", 2026-12-04).
+  bool linearised_pressure = true;
 };
 
 // Load stepping over λ from 0 to 1 (solver.cpp): the increments, their cuts and where each starts.
