@@ -99,7 +99,7 @@ class StaticRun {
         newton_(assembler_, pattern_, linear_, d_, knobs.newton, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     assembler_.set_diagonal(&newton_.diagonal());
-    assembler_.set_linearised_pressure(knobs.newton.linearised_pressure);
+    assembler_.set_linearised_pressure(knobs.newton.linearised_pressure && !knobs.newton.reuse_tangent);
     out_.equations = d_.equations;
     out_.threads = pool_.threads();
   }
