@@ -128,9 +128,7 @@ bool Newton::step(Attempt& at, double res) {
   at.energy_prev = std::abs(at.rhs.dot(at.dq));
   at.alpha = 1.0;
   move(at.q_prev, at.dq, 1.0);
-  // The rotation terms are no linear step: the pressure is not linearised over them.
-  rotated_step_ = at.predictor && rotation_.size() == q_.size();
-  if (rotated_step_) q_ += rotation_;
+  if (at.predictor && rotation_.size() == q_.size()) q_ += rotation_;
   at.predictor = false;
   at.fresh = !knobs_.reuse_tangent || slow;
   at.o.iterations++;
@@ -167,8 +165,7 @@ NewtonOutcome Newton::solve(double lambda, const Eigen::VectorXd& q_start, bool 
 // The element loop at q: r_, and K_ when `tangent` (the predictor's coupling with `dq_p`).
 int Newton::assemble(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, bool tangent, NewtonOutcome* o) {
   ++o->assemblies;
-  a_.set_follows_step(dq_p == nullptr && !rotated_step_);  // the predictor's assembly is at the last converged q
-  rotated_step_ = false;
+  a_.set_follows_step(dq_p == nullptr);  // the predictor's assembly is at the last converged q
   const int bad = a_.run(q, lambda, dq_p, r_, tangent ? &K_ : nullptr, dq_p ? &coupling_ : nullptr);
   a_.set_follows_step(false);
   return bad;

@@ -97,7 +97,6 @@ class Newton {
   Eigen::VectorXd& q_;
   Eigen::VectorXd q_last_, r_, coupling_, best_q_, rotation_;
   std::vector<int> diagonal_;  // per equation: the slot of K_ii in K's values
-  bool rotated_step_ = false;  // the last step was the predictor's with rotation terms
   bool kept_ = false;          // kept_K_ and kept_r_ are the last step's start (keep)
   std::vector<double> kept_K_;
   Eigen::VectorXd kept_r_;

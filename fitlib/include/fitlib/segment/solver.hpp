@@ -82,7 +82,10 @@ struct SteppingOptions {
   // Correct the linear predictor by the second-order part of each node's finite rotation with the
   // loading (PrescribedMotion::frame_turn, when the motion has a frame): a linearised rotation θ
   // strains a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
-  bool rotated_predictor = true;
+  // Off: with NewtonOptions::linearised_pressure the plain linear predictor needs fewer iterations
+  // (the R = 40 mm bend 24 against 32, the light drive's complete level 950 against 1025; docs/decisions.md
+  // "Segment: the tangent's pressure linearised over the last step").
+  bool rotated_predictor = false;
   // Branch switch (0: off): an increment that fails after its last cut, with the lowest eigenvalue
   // of K's symmetric part at its start ≤ 0 (the path has passed a bifurcation), is retaken from its
   // start moved by + and then − the critical mode, scaled so that its largest nodal displacement is
