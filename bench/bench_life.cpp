@@ -65,7 +65,8 @@
 // PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
 // default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
 // NewtonOptions::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
-// LU every time); `plainpressure`: NewtonOptions::linearised_pressure off; `linearpred`: SteppingOptions::rotated_predictor off. The probe also prints the main thread's CPU time (the critical path).
+// LU every time); `plainpressure`: NewtonOptions::linearised_pressure off; `linearpred`:
+// SteppingOptions::rotated_predictor off. The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>

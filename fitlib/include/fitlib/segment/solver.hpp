@@ -60,9 +60,9 @@ struct NewtonOptions {
   double krylov_tolerance = 1e-8;
   // The tangent's pressure term at each point's pressure linearised over the last step (Newton on
   // the mixed u–p form with p condensed per point), not at the new iterate's, whose κ det ΔF is
-  // spurious near incompressibility; the residual, and so the solution, unchanged. Not with F-bar.
-  // Complete level: the second correction no longer stagnates, −22 % iterations (docs/segment.md
-  // §"Cost (reference)", 2026-12-04).
+  // spurious near incompressibility; the residual, and so the solution, unchanged. Not with F-bar
+  // nor with reuse_tangent. Complete level: the second correction no longer stagnates, −29 to −35 %
+  // iterations (docs/segment.md §"Cost (reference)", 2026-12-04).
   bool linearised_pressure = true;
 };
 
