@@ -299,6 +299,7 @@ class StaticRun {
     out_.newton_iterations += attempt.iterations;
     out_.factorizations += attempt.factorizations;
     out_.assemblies += attempt.assemblies;
+    out_.residual_only_assemblies += attempt.residual_only;
   }
 
   // One increment to `target`: true (states committed) when Newton converged, else q restored.

@@ -96,6 +96,21 @@ TEST(SegmentElement, AnIncrementCostsOneElementLoopPerIterationAndOneToConverge)
   EXPECT_EQ(s.assemblies, s.newton_iterations + s.increments);
 }
 
+// The assembly predicted to show convergence is made without the tangent (Newton::predicted_converged):
+// on the R = 40 mm bend every increment's last assembly is one, none was predicted wrongly (no
+// assembly repeated with the tangent: one loop per iteration and one to converge), and the stresses
+// are the converged ones (the residual does not depend on the tangent).
+TEST(SegmentElement, TheAssemblyThatShowsConvergenceIsMadeWithoutTheTangent) {
+  StaticSetup setup;
+  setup.solver.stepping.steps = 4;
+  setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5;
+  const StaticResult bend = run_static_case(setup, {0.0, 1.0 / 40.0, 0.0});
+  std::printf("bend: %d increments, %d iterations, %d assemblies, %d without the tangent\n", bend.increments,
+              bend.newton_iterations, bend.assemblies, bend.residual_only_assemblies);
+  EXPECT_EQ(bend.residual_only_assemblies, bend.increments);
+  EXPECT_EQ(bend.assemblies, bend.newton_iterations + bend.increments);
+}
+
 // The graded mesh (docs/segment.md §Mesh: narrow columns at the gap, rows growing from the
 // profile) keeps the element exact: grading only moves nodes, the edges stay straight or on the profile.
 TEST(SegmentElement, GradedMeshPassesTheFiniteStrainPatchTestToRoundOff) {

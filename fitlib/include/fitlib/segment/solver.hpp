@@ -169,6 +169,8 @@ struct StaticSolution {
   // Element loops (residual, with the tangent where one is factorised), failed attempts and line
   // search included: the run's other cost beside the factorisations.
   int assemblies = 0;
+  // Of them, made without the tangent because they were predicted to show convergence (newton.hpp).
+  int residual_only_assemblies = 0;
   int branch_switches = 0;  // increments carried by SteppingOptions::branch_switch
   double final_residual = 0.0;
   int equations = 0;
