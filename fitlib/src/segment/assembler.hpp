@@ -42,7 +42,9 @@ class Assembler {
   void set_diagonal(const std::vector<int>* diagonal) { diagonal_ = diagonal; }
   // NewtonOptions::linearised_pressure: tangent assemblies keep each point's F, and one that
   // `follows_step` a step from the last takes the pressure term linearised over it (element.hpp).
-  void set_linearised_pressure(bool on) { last_F_.assign(on ? p_.mesh->element_count() * rule_.size() : 0, Eigen::Matrix2d::Identity()); }
+  void set_linearised_pressure(bool on) {
+    last_F_.assign(on ? p_.mesh->element_count() * rule_.size() : 0, Eigen::Matrix2d::Identity());
+  }
   void set_follows_step(bool follows) const { follows_step_ = follows; }
 
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }

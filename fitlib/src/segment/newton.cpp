@@ -36,7 +36,8 @@ NewtonOutcome Newton::iterate(double lambda, const Eigen::VectorXd& q_start, boo
     // re-evaluates them before q_ is accepted.)
     const bool states_elsewhere = at.restored;
     const bool skip_tangent = !at.restored && predicted_converged(at);
-    at.o.bad_element = at.restored ? -1 : assemble(q_, lambda, at.predictor ? &at.dq_p : nullptr, at.fresh && !skip_tangent, &at.o);
+    at.o.bad_element =
+        at.restored ? -1 : assemble(q_, lambda, at.predictor ? &at.dq_p : nullptr, at.fresh && !skip_tangent, &at.o);
     at.restored = false;
     double res = at.o.bad_element >= 0 ? kInfinity : free_norm(r_, d_, true);
     at.o.residual_only += skip_tangent;
