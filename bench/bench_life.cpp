@@ -66,7 +66,8 @@
 // PREFIX-k.vtk; `threads=N`: the element loop's threads (SolverKnobs::threads;
 // default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
 // NewtonOptions::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
-// LU every time). The probe also prints the main thread's CPU time (the critical path).
+// LU every time); `plainpressure`: NewtonOptions::linearised_pressure off; `linearpred`:
+// SteppingOptions::rotated_predictor off. The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -195,6 +196,8 @@ struct Probe {
   std::array<double, 2> loads{0.0, 0.0};        // loads=A:B: print the load cycle's samples over [A, B] mm first
   int threads = 0;                              // threads=N: SolverKnobs::threads (0: the default)
   int krylov = -1;                              // krylov=N: NewtonOptions::krylov_iterations (< 0: the default)
+  bool plain_pressure = false;                  // plainpressure: NewtonOptions::linearised_pressure off
+  bool linear_predictor = false;                // linearpred: SteppingOptions::rotated_predictor off
   double krylov_tolerance = -1.0;               // ktol=X: NewtonOptions::krylov_tolerance (< 0: the default)
   double body_sampling_mm = -1.0;               // bodyds=MM: CyclePhysics::body_force_sampling_mm (< 0: the default)
   bool inertia = false;                         // PhysicsOptions::inertia
@@ -341,6 +344,8 @@ Outcome run_probe(const Probe& pr) {
   setup.cycle.outputs.vtk_prefix = pr.field_prefix, setup.cycle.outputs.vtk_at_s_mm = pr.field_at_mm;
   setup.solver.threads = pr.threads;
   if (pr.krylov >= 0) setup.solver.newton.krylov_iterations = pr.krylov;
+  if (pr.plain_pressure) setup.solver.newton.linearised_pressure = false;
+  if (pr.linear_predictor) setup.solver.stepping.rotated_predictor = false;
   if (pr.krylov_tolerance > 0.0) setup.solver.newton.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.stepping.steps_per_cycle = pr.steps;
   if (pr.flank >= 0.0) setup.cycle.physics.flank_stiffness_N_mm4 = pr.flank;
@@ -1043,6 +1048,8 @@ int main(int argc, char** argv) {
       }
       if (a.rfind("threads=", 0) == 0) p.threads = std::atoi(a.c_str() + 8);
       if (a.rfind("krylov=", 0) == 0) p.krylov = std::atoi(a.c_str() + 7);
+      if (a == "plainpressure") p.plain_pressure = true;
+      if (a == "linearpred") p.linear_predictor = true;
       if (a.rfind("ktol=", 0) == 0) p.krylov_tolerance = std::atof(a.c_str() + 5);
       if (a.rfind("dense=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf:%lf", &p.dense[0], &p.dense[1], &p.dense[2]);
       if (a.rfind("loads=", 0) == 0) std::sscanf(a.c_str() + 6, "%lf:%lf", &p.loads[0], &p.loads[1]);

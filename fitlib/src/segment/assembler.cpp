@@ -175,8 +175,9 @@ void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, bool stat
   const int* nodes = m.elements[e].data();
   b.X.resize(npe), b.u.resize(npe);
   for (int a = 0; a < npe; ++a) b.X[a] = m.X[nodes[a]], b.u[a] = u_of(q, nodes[a]);
+  PressureMemory memory{last_F_.data() + e * rule_.size(), follows_step_};
   b.ok = element_response(b.X, b.u, law_of(e), rule_, step_of(e), b.f, tangent ? &b.K : nullptr,
-                                  states ? &b.states : nullptr, f_bar_);
+                          states ? &b.states : nullptr, f_bar_, tangent && !last_F_.empty() ? &memory : nullptr);
   if (b.ok) add_point_loads(e, b.X, b.u, b.f, tangent ? &b.K : nullptr);
   if (b.ok) to_local(nodes, npe, b.f, tangent ? &b.K : nullptr);
 }

@@ -40,6 +40,12 @@ class Assembler {
   void set_offsets(const std::vector<std::size_t>* offset) { offset_ = offset; }
   // Per equation, the slot of K_ii (LoadAssembly::add_node_stiffness).
   void set_diagonal(const std::vector<int>* diagonal) { diagonal_ = diagonal; }
+  // NewtonOptions::linearised_pressure: tangent assemblies keep each point's F, and one that
+  // `follows_step` a step from the last takes the pressure term linearised over it (element.hpp).
+  void set_linearised_pressure(bool on) {
+    last_F_.assign(on ? p_.mesh->element_count() * rule_.size() : 0, Eigen::Matrix2d::Identity());
+  }
+  void set_follows_step(bool follows) const { follows_step_ = follows; }
 
   Eigen::Vector2d u_of(const Eigen::VectorXd& q, int node) const { return d_.R[node] * q.segment<2>(2 * node); }
 
@@ -120,6 +126,8 @@ class Assembler {
   std::vector<double> shape_, volume_;  // point_weights(): N_a per point of the rule, dV per element and point
   mutable double prepared_at_ = std::numeric_limits<double>::quiet_NaN();  // the λ the loads were prepared at
   const std::vector<int>* diagonal_ = nullptr;
+  mutable std::vector<Eigen::Matrix2d> last_F_;  // per element and point (empty: linearised_pressure off)
+  mutable bool follows_step_ = false;
 };
 
 }  // namespace fitlib::segment::detail

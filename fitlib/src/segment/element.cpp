@@ -160,6 +160,22 @@ void add_volume_stiffness(const PointKinematics& k, const Eigen::Matrix4d& A, co
   K.noalias() += v * (0.5 * (dlnJbar - dlnJ)).transpose();
 }
 
+// Newton on the mixed form (u and a pressure p per point, p condensed out) has the displacement
+// form's residual and tangent except the tangent's pressure term, which it takes at the pressure
+// linearised over the last step, p̂ − κ det ΔF (in 2-D det(F_last + ΔF) = det F_last + cof F_last : ΔF
+// + det ΔF), instead of at the new iterate's p̂: near incompressibility κ det ΔF is a large spurious
+// pressure that turns the next step (docs/segment.md §"Cost (reference)", 2026-12-04). κ is the
+// tangent's own in-plane bulk stiffness cof:A:cof / (cof:cof)²; the pressure term is δp ∂cof/∂F, a
+// constant in 2-D. The residual is unchanged, so is the solution.
+Eigen::Matrix4d linearised_pressure_tangent(const Eigen::Matrix4d& A, const Eigen::Matrix2d& F, const Eigen::Matrix2d& F_last) {
+  const Eigen::Vector4d cof(F(1, 1), -F(1, 0), -F(0, 1), F(0, 0));  // J F⁻ᵀ, components 2i + J
+  const double kappa = cof.dot(A * cof) / (cof.squaredNorm() * cof.squaredNorm());
+  const double dp = -kappa * (F - F_last).determinant();
+  Eigen::Matrix4d out = A;
+  out(0, 3) += dp, out(3, 0) += dp, out(1, 2) -= dp, out(2, 1) -= dp;
+  return out;
+}
+
 PointResponse respond(const PlaneStrainLaw& law, const Eigen::Matrix2d& F, const ElementStep& step, std::size_t q,
                       bool tangent, bool& ok) {
   const std::size_t ns = law.state_size();
@@ -188,7 +204,8 @@ void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<Gau
 // F-bar, P is the law's at F̄ divided by α (the Cauchy stress of F̄ on the current volume).
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
                       const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
-                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar) {
+                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar,
+                      PressureMemory* memory) {
   const int n = static_cast<int>(X.size());
   f.setZero(2 * n);
   if (K) K->setZero(2 * n, 2 * n);
@@ -210,7 +227,12 @@ bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<E
     if (!ok) return false;
     const Eigen::Matrix2d P_eff = r.P / alpha;
     add_force(k, P_eff, n, f);
-    if (K) add_material_stiffness(k, r.A, n, *K);
+    if (K && memory && !f_bar) {
+      add_material_stiffness(k, memory->follows ? linearised_pressure_tangent(r.A, k.F, memory->F_last[q]) : r.A, n, *K);
+      memory->F_last[q] = k.F;
+    } else if (K) {
+      add_material_stiffness(k, r.A, n, *K);
+    }
     if (K && f_bar) add_volume_stiffness(k, r.A, P_eff, dlnJbar, dlnJ_du(k, n), n, *K);
     if (states) {
       Eigen::Vector2d Xg = Eigen::Vector2d::Zero();

@@ -45,9 +45,17 @@ struct ElementStep {
 // point is inverted (J ≤ 0) or the law returns a non-finite stress. `f_bar`: the law sees
 // F̄ = (J̄/J)^½ F, J̄ interpolated from the reduced points (docs/segment.md §Element choice); the
 // states then hold F̄, its Cauchy stress and the effective first Piola stress P(F̄)/α.
+// `memory` (NewtonOptions::linearised_pressure; not with F-bar): the tangent's pressure term at the
+// pressure linearised over the step from the last tangent assembly's F at each point (read when
+// `follows`, then overwritten).
+struct PressureMemory {
+  Eigen::Matrix2d* F_last = nullptr;  // one per point of the rule
+  bool follows = false;
+};
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
                       const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
-                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar = false);
+                      ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar = false,
+                      PressureMemory* memory = nullptr);
 
 // Internal force f_a = Σ P ∂N_a/∂X dV from given first Piola–Kirchhoff stresses at the points.
 void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,

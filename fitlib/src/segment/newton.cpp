@@ -19,6 +19,7 @@ struct Newton::Attempt {
   Eigen::VectorXd q_prev, dq, rhs;
   double res_prev = kInfinity, alpha = 1.0, energy_prev = 0.0, best = kInfinity, mu = 0.0;
   double retake_res = kInfinity, best_iterate_res = kInfinity;
+  double res_before = kInfinity;  // the residual at the start of the step before the last
   int since_best = 0;  // assemblies without a new lowest residual
   NewtonOutcome o;
 };
@@ -34,9 +35,16 @@ NewtonOutcome Newton::iterate(double lambda, const Eigen::VectorXd& q_start, boo
     // (A restored start leaves the point states at the rejected iterate's: giving up there
     // re-evaluates them before q_ is accepted.)
     const bool states_elsewhere = at.restored;
-    at.o.bad_element = at.restored ? -1 : assemble(q_, lambda, at.predictor ? &at.dq_p : nullptr, at.fresh, &at.o);
+    const bool skip_tangent = !at.restored && predicted_converged(at);
+    at.o.bad_element =
+        at.restored ? -1 : assemble(q_, lambda, at.predictor ? &at.dq_p : nullptr, at.fresh && !skip_tangent, &at.o);
     at.restored = false;
-    const double res = at.o.bad_element >= 0 ? kInfinity : free_norm(r_, d_, true);
+    double res = at.o.bad_element >= 0 ? kInfinity : free_norm(r_, d_, true);
+    at.o.residual_only += skip_tangent;
+    if (skip_tangent && !(res <= knobs_.tolerance * (free_norm(r_, d_, false) + 1.0))) {  // mispredicted: with K
+      at.o.bad_element = assemble(q_, lambda, nullptr, true, &at.o);
+      res = at.o.bad_element >= 0 ? kInfinity : free_norm(r_, d_, true);
+    }
     at.o.residual = res;
     const Rise rise = on_rise(at, res);
     if (rise == Rise::retry) continue;
@@ -58,6 +66,18 @@ NewtonOutcome Newton::iterate(double lambda, const Eigen::VectorXd& q_start, boo
   at.o.residual = at.o.bad_element >= 0 ? kInfinity : free_norm(r_, d_, true);
   at.o.converged = at.o.residual <= knobs_.stall_tolerance * (free_norm(r_, d_, false) + 1.0);
   return at.o;
+}
+
+// Whether the next assembly will show convergence, so needs no tangent: after two full, unshifted
+// Newton steps on fresh tangents that contracted, the quadratic rate r_next ≈ r² · (r / r_before²)
+// predicts a residual below kConvergedMargin of the tolerance. A wrong prediction costs the
+// assembly again with the tangent; the residual, and so every decision, is the same either way.
+bool Newton::predicted_converged(const Attempt& at) const {
+  if (at.predictor || !at.fresh || at.stale_step || at.shifted_retake || at.mu > 0.0 || at.alpha != 1.0) return false;
+  const double r = at.res_prev, before = at.res_before;
+  if (!(r < before) || !std::isfinite(before) || !(r > 0.0)) return false;
+  const double predicted = r * r * r / (before * before);
+  return predicted <= kConvergedMargin * knobs_.tolerance * (free_norm(r_, d_, false) + 1.0);
 }
 
 Newton::Rise Newton::on_rise(Attempt& at, double res) {
@@ -124,6 +144,7 @@ bool Newton::step(Attempt& at, double res) {
   const bool slow = at.stale_step && !(res <= kReuseContraction * at.res_prev);
   at.stale_step = !at.fresh;
   at.q_prev = at.predictor ? at.q_start : q_;  // the predictor step is taken whole
+  at.res_before = at.res_prev;
   at.res_prev = at.predictor ? kInfinity : res;
   at.energy_prev = std::abs(at.rhs.dot(at.dq));
   at.alpha = 1.0;
@@ -158,14 +179,17 @@ NewtonOutcome Newton::solve(double lambda, const Eigen::VectorXd& q_start, bool 
   q_ = q_last_;
   o = iterate(lambda, linear_start, false);
   o.iterations += extrapolation.iterations, o.factorizations += extrapolation.factorizations;
-  o.assemblies += extrapolation.assemblies;
+  o.assemblies += extrapolation.assemblies, o.residual_only += extrapolation.residual_only;
   return o;
 }
 
 // The element loop at q: r_, and K_ when `tangent` (the predictor's coupling with `dq_p`).
 int Newton::assemble(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, bool tangent, NewtonOutcome* o) {
   ++o->assemblies;
-  return a_.run(q, lambda, dq_p, r_, tangent ? &K_ : nullptr, dq_p ? &coupling_ : nullptr);
+  a_.set_follows_step(dq_p == nullptr);  // the predictor's assembly is at the last converged q
+  const int bad = a_.run(q, lambda, dq_p, r_, tangent ? &K_ : nullptr, dq_p ? &coupling_ : nullptr);
+  a_.set_follows_step(false);
+  return bad;
 }
 
 // The unshifted tangent and the residual of the iterate a step is taken from (`valid`: they are

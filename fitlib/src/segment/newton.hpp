@@ -26,7 +26,7 @@ namespace fitlib::segment::detail {
 
 struct NewtonOutcome {
   bool converged = false;
-  int iterations = 0, factorizations = 0, assemblies = 0, bad_element = -1;
+  int iterations = 0, factorizations = 0, assemblies = 0, residual_only = 0, bad_element = -1;
   double residual = std::numeric_limits<double>::infinity();
 };
 
@@ -42,6 +42,9 @@ class Newton {
   static constexpr double kReuseContraction = 0.25;
   // A shift scaled below this is dropped (the iteration is back in Newton's basin).
   static constexpr double kNegligibleShift = 1e-9;
+  // An assembly is made without the tangent when its residual is predicted below this share of the
+  // tolerance (predicted_converged).
+  static constexpr double kConvergedMargin = 1e-2;
 
   Newton(const Assembler& a, Pattern& K, LinearSolver& linear, const Dofs& d, const NewtonOptions& knobs,
          Eigen::VectorXd& q)
@@ -69,6 +72,8 @@ class Newton {
   enum class Rise { none, retry, stop };
 
   NewtonOutcome iterate(double lambda, const Eigen::VectorXd& q_start, bool extrapolated);
+  // Whether the next assembly is predicted to show convergence (no tangent needed; newton.cpp).
+  bool predicted_converged(const Attempt& at) const;
   // The step policy's answer to an iterate whose residual `res` made no progress (steps 1–4 above).
   Rise on_rise(Attempt& at, double res);
   // Gives up at this iterate (stalled, or no step to take): accepted at the loose tolerance.

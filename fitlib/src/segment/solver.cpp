@@ -99,6 +99,7 @@ class StaticRun {
         newton_(assembler_, pattern_, linear_, d_, knobs.newton, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
     assembler_.set_diagonal(&newton_.diagonal());
+    assembler_.set_linearised_pressure(knobs.newton.linearised_pressure && !knobs.newton.reuse_tangent);
     out_.equations = d_.equations;
     out_.threads = pool_.threads();
   }
@@ -298,6 +299,7 @@ class StaticRun {
     out_.newton_iterations += attempt.iterations;
     out_.factorizations += attempt.factorizations;
     out_.assemblies += attempt.assemblies;
+    out_.residual_only_assemblies += attempt.residual_only;
   }
 
   // One increment to `target`: true (states committed) when Newton converged, else q restored.

@@ -131,6 +131,7 @@ StaticResult run_static_case(const StaticSetup& setup, const StaticLoad& load, S
   r.equations = s.equations;
   r.increments = s.increments;
   r.newton_iterations = s.newton_iterations;
+  r.assemblies = s.assemblies, r.residual_only_assemblies = s.residual_only_assemblies;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (solution_out) *solution_out = s;
   if (mesh_out) *mesh_out = m;

@@ -96,6 +96,21 @@ TEST(SegmentElement, AnIncrementCostsOneElementLoopPerIterationAndOneToConverge)
   EXPECT_EQ(s.assemblies, s.newton_iterations + s.increments);
 }
 
+// The assembly predicted to show convergence is made without the tangent (Newton::predicted_converged):
+// on the R = 40 mm bend every increment's last assembly is one, none was predicted wrongly (no
+// assembly repeated with the tangent: one loop per iteration and one to converge), and the stresses
+// are the converged ones (the residual does not depend on the tangent).
+TEST(SegmentElement, TheAssemblyThatShowsConvergenceIsMadeWithoutTheTangent) {
+  StaticSetup setup;
+  setup.solver.stepping.steps = 4;
+  setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5;
+  const StaticResult bend = run_static_case(setup, {0.0, 1.0 / 40.0, 0.0});
+  std::printf("bend: %d increments, %d iterations, %d assemblies, %d without the tangent\n", bend.increments,
+              bend.newton_iterations, bend.assemblies, bend.residual_only_assemblies);
+  EXPECT_EQ(bend.residual_only_assemblies, bend.increments);
+  EXPECT_EQ(bend.assemblies, bend.newton_iterations + bend.increments);
+}
+
 // The graded mesh (docs/segment.md §Mesh: narrow columns at the gap, rows growing from the
 // profile) keeps the element exact: grading only moves nodes, the edges stay straight or on the profile.
 TEST(SegmentElement, GradedMeshPassesTheFiniteStrainPatchTestToRoundOff) {
@@ -229,6 +244,8 @@ TEST(SegmentElement, FbarTangentIsUnsymmetricAndTheSolverUsesLu) {
 // converged stresses are the same (the start changes, not the equations).
 TEST(SegmentElement, RotatedPredictorSavesIterationsAndKeepsTheSolution) {
   StaticSetup setup;
+  setup.solver.newton.linearised_pressure = false;  // the predictor's own effect (the pressure's: below)
+  setup.solver.stepping.rotated_predictor = true;
   setup.solver.stepping.steps = 4;
   setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5;
   const StaticLoad bend{0.0, 1.0 / 40.0, 0.0};
@@ -240,5 +257,27 @@ TEST(SegmentElement, RotatedPredictorSavesIterationsAndKeepsTheSolution) {
   for (std::size_t k = 0; k < rotated.stresses.size(); ++k) {
     EXPECT_NEAR(rotated.stresses[k].sigma22_MPa, linear.stresses[k].sigma22_MPa, 1e-7 * std::abs(linear.stresses[k].sigma22_MPa));
     EXPECT_NEAR(rotated.stresses[k].sigma12_MPa, linear.stresses[k].sigma12_MPa, 1e-7 * std::abs(linear.stresses[k].sigma22_MPa));
+  }
+}
+
+// The linearised pressure (NewtonOptions::linearised_pressure; docs/segment.md §"Cost (reference)"):
+// after a step the plain tangent's pressure term carries κ det ΔF, a spurious pressure of the
+// ν = 0.4995 rubber (κ/μ ≈ 10³) that turns the next step; at the pressure linearised over the step
+// Newton needs fewer than half the iterations on the same bend (from the linear predictor, against
+// the plain pressure from the rotated one), and the residual is the same, so are the converged stresses.
+TEST(SegmentElement, LinearisedPressureSavesIterationsAndKeepsTheSolution) {
+  StaticSetup setup;
+  setup.solver.stepping.steps = 4;
+  setup.mesh.fine_size_mm = 1.0, setup.mesh.coarse_size_mm = 2.5;
+  const StaticLoad bend{0.0, 1.0 / 40.0, 0.0};
+  const StaticResult linearised = run_static_case(setup, bend);  // the defaults: the linear predictor
+  setup.solver.newton.linearised_pressure = false;
+  setup.solver.stepping.rotated_predictor = true;  // the plain pressure's best predictor
+  const StaticResult plain = run_static_case(setup, bend);
+  std::printf("Newton iterations: linearised pressure %d, plain %d\n", linearised.newton_iterations, plain.newton_iterations);
+  EXPECT_LT(2 * linearised.newton_iterations, plain.newton_iterations);
+  for (std::size_t k = 0; k < plain.stresses.size(); ++k) {
+    EXPECT_NEAR(linearised.stresses[k].sigma22_MPa, plain.stresses[k].sigma22_MPa, 1e-7 * std::abs(plain.stresses[k].sigma22_MPa));
+    EXPECT_NEAR(linearised.stresses[k].sigma12_MPa, plain.stresses[k].sigma12_MPa, 1e-7 * std::abs(plain.stresses[k].sigma22_MPa));
   }
 }

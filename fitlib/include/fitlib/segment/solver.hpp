@@ -58,6 +58,12 @@ struct NewtonOptions {
   // stay those of the exact solve (docs/segment.md §Solver).
   int krylov_iterations = 10;
   double krylov_tolerance = 1e-8;
+  // The tangent's pressure term at each point's pressure linearised over the last step (Newton on
+  // the mixed u–p form with p condensed per point), not at the new iterate's, whose κ det ΔF is
+  // spurious near incompressibility; the residual, and so the solution, unchanged. Not with F-bar
+  // nor with reuse_tangent. Complete level: the second correction no longer stagnates, −29 to −35 %
+  // iterations (docs/segment.md §"Cost (reference)", 2026-12-04).
+  bool linearised_pressure = true;
 };
 
 // Load stepping over λ from 0 to 1 (solver.cpp): the increments, their cuts and where each starts.
@@ -76,7 +82,10 @@ struct SteppingOptions {
   // Correct the linear predictor by the second-order part of each node's finite rotation with the
   // loading (PrescribedMotion::frame_turn, when the motion has a frame): a linearised rotation θ
   // strains a near-incompressible rubber by θ²/2 (docs/segment.md §Solver, "Rotated predictor").
-  bool rotated_predictor = true;
+  // Off: with NewtonOptions::linearised_pressure the plain linear predictor needs fewer iterations
+  // (the R = 40 mm bend 24 against 32, the light drive's complete level 950 against 1025; docs/decisions.md
+  // "Segment: the tangent's pressure linearised over the last step").
+  bool rotated_predictor = false;
   // Branch switch (0: off): an increment that fails after its last cut, with the lowest eigenvalue
   // of K's symmetric part at its start ≤ 0 (the path has passed a bifurcation), is retaken from its
   // start moved by + and then − the critical mode, scaled so that its largest nodal displacement is
@@ -160,6 +169,8 @@ struct StaticSolution {
   // Element loops (residual, with the tangent where one is factorised), failed attempts and line
   // search included: the run's other cost beside the factorisations.
   int assemblies = 0;
+  // Of them, made without the tangent because they were predicted to show convergence (newton.hpp).
+  int residual_only_assemblies = 0;
   int branch_switches = 0;  // increments carried by SteppingOptions::branch_switch
   double final_residual = 0.0;
   int equations = 0;

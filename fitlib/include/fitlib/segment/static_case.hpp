@@ -71,6 +71,7 @@ struct StaticResult {
   double c_N_per_mm = 0.0;               // ∂N/∂ε at zero load, per mm of width (0 if not asked)
   double EI_Nmm2_per_mm = 0.0;           // ∂M/∂K at zero load, per mm of width
   int elements = 0, nodes = 0, equations = 0, increments = 0, newton_iterations = 0;
+  int assemblies = 0, residual_only_assemblies = 0;  // StaticSolution's
   double wall_s = 0.0;
 };
 
