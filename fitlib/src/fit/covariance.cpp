@@ -80,8 +80,8 @@ ScaledSpectrum scaled_spectrum(const RowMatrix& jac, int m, int nf) {
   } else {
     small = scaled;
   }
-  // Divide and conquer: as accurate as one-sided Jacobi, several times faster on the smooth
-  // spectrum's 50-odd terms (docs/fitting.md, "Whole process").
+  // Divide and conquer: the cards' numbers to rounding, and faster than one-sided Jacobi on the
+  // smooth spectrum's 50-odd terms (docs/decisions.md, "the covariance's SVD is ... BDCSVD").
   Eigen::BDCSVD<Eigen::MatrixXd> svd(small, Eigen::ComputeFullV);
   const Eigen::VectorXd sigma = svd.singularValues();
   out.v = svd.matrixV();
