@@ -67,7 +67,8 @@
 // default min(2, hardware); every table prints the count it ran with); `krylov=N`, `ktol=X`:
 // NewtonOptions::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
 // LU every time); `plainpressure`: NewtonOptions::linearised_pressure off; `linearpred`:
-// SteppingOptions::rotated_predictor off. The probe also prints the main thread's CPU time (the critical path).
+// SteppingOptions::rotated_predictor off; `keep=X`: NewtonOptions::keep_preconditioner_below (0: a
+// factorisation per tangent); `first=N`: CycleStepping::first_cycle_steps (0: as the others). The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -173,6 +174,8 @@ struct Probe {
   std::string load = "medium", fidelity = "elastic", mesh = "medium";
   int steps = 60;
   bool reuse = false, extrapolate = false, lagged = false;
+  double keep_below = -1.0;  // keep=X: NewtonOptions::keep_preconditioner_below (< 0: the default)
+  int first_steps = -1;      // first=N: CycleStepping::first_cycle_steps (< 0: the life's)
   std::string integration{};  // empty: scene::SegmentLifeSetup's default
   int stall = -1, cuts = segment::SolverKnobs{}.stepping.max_cuts;  // stall=N (< 0: the life's at the fidelity)
   int growth = -1;  // grow=N: SteppingOptions::growth_iterations (< 0: the life's at the fidelity)
@@ -331,6 +334,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.end_condition == "sheared") setup.cycle.physics.ends = segment::EndCondition::sheared;
   if (pr.end_condition == "radial") setup.cycle.physics.ends = segment::EndCondition::radial;
   setup.solver.newton.reuse_tangent = pr.reuse;
+  if (pr.keep_below >= 0.0) setup.solver.newton.keep_preconditioner_below = pr.keep_below;
   setup.solver.stepping.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.physics.integration = segment::integration_from_string(pr.integration);
   if (pr.stall >= 0) setup.solver.newton.stall_iterations = pr.stall;
@@ -348,6 +352,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.linear_predictor) setup.solver.stepping.rotated_predictor = false;
   if (pr.krylov_tolerance > 0.0) setup.solver.newton.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.stepping.steps_per_cycle = pr.steps;
+  if (pr.first_steps >= 0) setup.cycle.stepping.first_cycle_steps = pr.first_steps;
   if (pr.flank >= 0.0) setup.cycle.physics.flank_stiffness_N_mm4 = pr.flank;
   if (pr.tflank >= 0.0) setup.cycle.physics.flank_stick_N_mm4 = pr.tflank;
   if (pr.vflank >= 0.0) setup.cycle.physics.flank_slide_floor_mm_s = pr.vflank;
@@ -1000,6 +1005,8 @@ int main(int argc, char** argv) {
     for (int k = 6; k < argc; ++k) {
       const std::string a = argv[k];
       if (a == "reuse") p.reuse = true;
+      if (a.rfind("keep=", 0) == 0) p.keep_below = std::atof(a.c_str() + 5);
+      if (a.rfind("first=", 0) == 0) p.first_steps = std::atoi(a.c_str() + 6);
       if (a == "extrapolate") p.extrapolate = true;
       if (a == "full" || a == "fbar" || a == "reduced") p.integration = a;
       if (a == "lagged") p.lagged = true;

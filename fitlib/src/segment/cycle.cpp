@@ -167,8 +167,12 @@ std::vector<double> load_schedule(const CycleStepping& stepping, const belt::Loa
   }
   const std::vector<double> per_cycle =
       cycle_breakpoints(h, stepping.steps_per_cycle, stepping.change_weight, half_length_mm);
+  const std::vector<double> first_cycle =
+      stepping.cycles > 1 && stepping.first_cycle_steps > 0
+          ? cycle_breakpoints(h, stepping.first_cycle_steps, stepping.change_weight, half_length_mm)
+          : per_cycle;
   for (int c = 0; c < stepping.cycles; ++c)
-    for (double b : per_cycle) {
+    for (double b : c == 0 ? first_cycle : per_cycle) {
       const double lambda = std::min(1.0, (1.0 + c + b) / T);
       if (schedule.empty() || lambda > schedule.back() + 1e-12) schedule.push_back(lambda);
     }

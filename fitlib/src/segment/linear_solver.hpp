@@ -45,17 +45,18 @@ class LinearSolver {
   // The unsymmetric K x = b by GMRES (restarted never) preconditioned with the LDLᵀ of ½(K + Kᵀ):
   // true when the preconditioned residual fell below `tolerance` of its start within `iterations`.
   // The symmetric part's LDLᵀ costs a fraction of the LU, and the Fritzson point's tangent is
-  // nearly symmetric, so ~3 iterations do (docs/segment.md §Cost).
-  bool krylov_solve(const SparseMatrix& K, const Eigen::VectorXd& b, int iterations, double tolerance,
-                    Eigen::VectorXd& x) {
-    if (symmetric_ || iterations <= 0 || !factorize_symmetric_part(K)) return false;
-    Eigen::Index used = iterations;
-    double error = tolerance;
-    x.setZero(b.size());
-    // Eigen's GMRES (unsupported/IterativeSolvers) called directly: its class would copy K per solve.
-    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{&ldlt_}, used, Eigen::Index(iterations), error);
-    krylov_iterations_ += static_cast<int>(used);
-    const bool converged = stopped && error <= tolerance && x.allFinite();
+  // nearly symmetric, so ~3 iterations do (docs/segment.md §Cost). `kept`: GMRES first runs on the
+  // last factorisation (of an earlier tangent) and refactorises only when that does not converge:
+  // the preconditioner changes GMRES's path, not the solution it converges to (docs/segment.md
+  // §Solver, "Kept preconditioner"). `factorized`: whether this solve factorised.
+  bool krylov_solve(const SparseMatrix& K, const Eigen::VectorXd& b, int iterations, double tolerance, bool kept,
+                    Eigen::VectorXd& x, bool& factorized) {
+    factorized = false;
+    if (symmetric_ || iterations <= 0) return false;
+    if (kept && preconditioned_ && gmres(K, b, iterations, tolerance, x)) return true;
+    factorized = true;
+    preconditioned_ = factorize_symmetric_part(K);
+    const bool converged = preconditioned_ && gmres(K, b, iterations, tolerance, x);
     krylov_fallbacks_ += !converged;
     return converged;
   }
@@ -63,6 +64,16 @@ class LinearSolver {
   int krylov_fallbacks() const { return krylov_fallbacks_; }
 
  private:
+  // GMRES from x = 0 on the current preconditioner.
+  bool gmres(const SparseMatrix& K, const Eigen::VectorXd& b, int iterations, double tolerance, Eigen::VectorXd& x) {
+    Eigen::Index used = iterations;
+    double error = tolerance;
+    x.setZero(b.size());
+    // Eigen's GMRES (unsupported/IterativeSolvers) called directly: its class would copy K per solve.
+    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{&ldlt_}, used, Eigen::Index(iterations), error);
+    krylov_iterations_ += static_cast<int>(used);
+    return stopped && error <= tolerance && x.allFinite();
+  }
   struct SymmetricPart {  // the preconditioner: Eigen's concept needs only solve()
     const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>* ldlt;
     Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return ldlt->solve(b); }
@@ -89,6 +100,7 @@ class LinearSolver {
   }
 
   bool symmetric_, analysed_ = false;
+  bool preconditioned_ = false;  // ldlt_ holds a symmetric part's factorisation (krylov_solve)
   int analyses_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
   // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
   // reads K's upper triangle in place (no permuted copy per factorisation).

@@ -133,13 +133,18 @@ bool Newton::step(Attempt& at, double res) {
   for (int i = 0; i < r_.size(); ++i)
     if (d_.eq[i] >= 0) at.rhs(d_.eq[i]) = -r_(i);
   if (at.predictor) at.rhs -= coupling_;
-  at.o.factorizations += at.fresh;  // of K, or of its symmetric part for GMRES
   // (Modified Newton keeps a factorisation of K for its later steps: no GMRES then.)
   const int krylov = knobs_.reuse_tangent ? 0 : knobs_.krylov_iterations;
-  if (!(at.fresh && linear_.krylov_solve(K_.K, at.rhs, krylov, knobs_.krylov_tolerance, at.dq))) {
+  // Near convergence the tangent has moved little since the last factorisation (not across an
+  // increment's start nor a shifted step: there it moves most).
+  const bool kept = !at.predictor && at.mu == 0.0 && res <= knobs_.keep_preconditioner_below * (free_norm(r_, d_, false) + 1.0);
+  bool factorized = false;  // K, or its symmetric part for GMRES (counted once per tangent)
+  if (!(at.fresh && linear_.krylov_solve(K_.K, at.rhs, krylov, knobs_.krylov_tolerance, kept, at.dq, factorized))) {
     if (at.fresh && !linear_.factorize(K_.K)) return false;
+    factorized = factorized || at.fresh;
     at.dq = linear_.solve(at.rhs);
   }
+  at.o.factorizations += factorized;
   if (!at.dq.allFinite()) return false;
   const bool slow = at.stale_step && !(res <= kReuseContraction * at.res_prev);
   at.stale_step = !at.fresh;

@@ -39,6 +39,10 @@ struct CycleDrive {                     // what the body forces need beyond the 
 struct CycleStepping {
   int cycles = 2;
   int steps_per_cycle = 60;             // increments per load cycle (placed where K and p change)
+  // Increments of the first of several cycles (0: steps_per_cycle). The life reads the last cycle;
+  // the first only brings the points' memory to it, so its discretisation reaches the life through
+  // that state alone (docs/segment.md "Cost (reference)", "A coarser first cycle").
+  int first_cycle_steps = 0;
   int bend_steps = 4;                   // increments of step 1
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   // Optional: step 2's increments end where the segment's middle reaches these path positions

@@ -58,6 +58,12 @@ struct NewtonOptions {
   // stay those of the exact solve (docs/segment.md §Solver).
   int krylov_iterations = 10;
   double krylov_tolerance = 1e-8;
+  // GMRES at an iterate whose residual is below this share of the reaction scale (the `tolerance`'s
+  // scale) first runs on the preconditioner factorised for an earlier iterate of the increment, and
+  // refactorises only when that does not converge: Newton's iterations stay those of the exact solve,
+  // at fewer factorisations (0: a factorisation per tangent; docs/segment.md §Solver, "Kept
+  // preconditioner").
+  double keep_preconditioner_below = 1e-2;
   // The tangent's pressure term at each point's pressure linearised over the last step (Newton on
   // the mixed u–p form with p condensed per point), not at the new iterate's, whose κ det ΔF is
   // spurious near incompressibility; the residual, and so the solution, unchanged. Not with F-bar
