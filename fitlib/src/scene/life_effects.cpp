@@ -73,7 +73,7 @@ void check_segment_work(const Scene& s, const scene::SegmentLifeSetup& setup) {
   const double work = scene::segment_run_work(setup);
   if (work <= kMaxSegmentLifeWork) return;
   const auto& c = setup.cycle.stepping;
-  const double elements = work / (c.bend_steps + static_cast<double>(c.cycles) * c.steps_per_cycle);
+  const double elements = work / segment::planned_increments(c);
   const std::string mesh = s.segment && s.segment->life_mesh_changed
                                ? "the life's mesh with the [segment] mesh keys (fine_size_mm, coarse_size_mm, "
                                  "central_pitches, end_pitches, cushion_rows, gap_size_mm, column_growth, row_growth)"
@@ -567,7 +567,9 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     if (r.heat && r.heat->segment_runs > 0) r.heat->segment_hysteresis_W = *r.segment_hysteresis_W;
     strain_window_warnings(s, reached, r.segment_damage_held, r.warnings);
     r.segment_equilibrium = segment_equilibrium(run);
-    r.segment_run = SegmentRun{run.elements, setup.cycle.stepping.cycles, setup.cycle.stepping.steps_per_cycle,
+    const segment::CycleStepping& stepping = setup.cycle.stepping;
+    r.segment_run = SegmentRun{run.elements, stepping.cycles, stepping.steps_per_cycle,
+                               stepping.cycles > 1 && stepping.first_cycle_steps > 0 ? stepping.first_cycle_steps : stepping.steps_per_cycle,
                                run.increments, run.newton_iterations, run.cuts};
     for (std::string& w : r.segment_equilibrium->warnings()) r.warnings.push_back(std::move(w));
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it

@@ -143,6 +143,11 @@ std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
 
 }  // namespace
 
+int planned_increments(const CycleStepping& s) {
+  const bool own_first = s.cycles > 1 && s.first_cycle_steps > 0;
+  return s.bend_steps + (own_first ? s.first_cycle_steps + (s.cycles - 1) * s.steps_per_cycle : s.cycles * s.steps_per_cycle);
+}
+
 namespace {
 
 void check_cycle_inputs(const CycleDrive& drive, const CycleStepping& stepping) {

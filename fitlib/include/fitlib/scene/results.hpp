@@ -114,7 +114,9 @@ struct SegmentEquilibrium {
 // What the segment levels' stresses came from: the mesh's element count, the load cycles and their
 // planned steps, and the solver's work (life.json `segment_run`, docs/cli.md `life`).
 struct SegmentRun {
-  int elements = 0, cycles = 0, steps_per_cycle = 0, increments = 0, newton_iterations = 0, cuts = 0;
+  int elements = 0, cycles = 0, steps_per_cycle = 0;
+  int first_cycle_steps = 0;  // the first cycle's planned steps (segment::CycleStepping::first_cycle_steps)
+  int increments = 0, newton_iterations = 0, cuts = 0;
 };
 
 struct FieldFile {         // a full-field stress written by the segment run

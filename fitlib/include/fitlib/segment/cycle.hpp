@@ -238,6 +238,9 @@ void flank_shares(CycleResult& run);
 // carry history or its end faces are sheared.
 double span_cord_share_bound(const CycleResult& run);
 
+// The run's planned increments: the bend's, then each cycle's (the first's own count when set).
+int planned_increments(const CycleStepping& stepping);
+
 // The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
 // 1/L + w (|dK/ds|/TV(K) + |dp/ds|/TV(p)) — fine where curvature or pressure change — with each
 // change spread over ±reach_mm (the segment's half-length: it feels a change before its middle
