@@ -95,7 +95,9 @@ int Assembler::run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorX
   r.setZero(2 * m.node_count());
   if (K) std::fill(K->K.valuePtr(), K->K.valuePtr() + K->K.nonZeros(), 0.0);
   if (coupling) coupling->setZero(d_.equations);
-  if (states) states->assign(m.element_count(), {});
+  std::vector<std::vector<IntegrationPointStress>>& points = states ? *states : last_points_;
+  points.resize(m.element_count());
+  for (auto& element : points) element.clear();
   if (lambda != prepared_at_) {  // dead loads are functions of λ: evaluated once per λ, not per iteration
     for (Load* load : loads_) load->prepare(lambda);
     prepared_at_ = lambda;
@@ -103,14 +105,13 @@ int Assembler::run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorX
   // One thread: each element computed into one buffer and added at once (the same operations in
   // the same order as with the team, without a pass over all buffers: cache).
   const bool team = pool_.threads() > 1;
-  if (team) pool_.for_each(m.element_count(), [&](int e) { respond(q, e, K != nullptr, states != nullptr, buffers_[e]); });
+  if (team) pool_.for_each(m.element_count(), [&](int e) { respond(q, e, K != nullptr, buffers_[e]); });
   for (int e = 0; e < m.element_count(); ++e) {
     const ElementBuffer& b = team ? buffers_[e] : buffers_[0];
-    if (!team) respond(q, e, K != nullptr, states != nullptr, buffers_[0]);
+    if (!team) respond(q, e, K != nullptr, buffers_[0]);
     if (!b.ok) return e;
     scatter(m.elements[e], b.f, K ? &b.K : nullptr, dq_p, r, K, K ? &K->element_slots[e] : nullptr, coupling);
-    if (states)
-      for (const auto& s : b.states) (*states)[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
+    for (const auto& s : b.states) points[e].push_back({s.X_mm, s.cauchy_MPa, s.sigma33_MPa, s.piola_MPa, s.F});
   }
   Pass pass(*this, q, lambda, dq_p, r, K, coupling);
   for (const Load* load : loads_) load->add(pass);
@@ -169,7 +170,7 @@ void Assembler::commit(const Eigen::VectorXd& q, double lambda) const {
 
 // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
 // buffer and element e's trial states).
-void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, bool states, ElementBuffer& b) const {
+void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, ElementBuffer& b) const {
   const Mesh& m = *p_.mesh;
   const int npe = m.nodes_per_element;
   const int* nodes = m.elements[e].data();
@@ -177,7 +178,7 @@ void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, bool stat
   for (int a = 0; a < npe; ++a) b.X[a] = m.X[nodes[a]], b.u[a] = u_of(q, nodes[a]);
   PressureMemory memory{last_F_.data() + e * rule_.size(), follows_step_};
   b.ok = element_response(b.X, b.u, law_of(e), rule_, step_of(e), b.f, tangent ? &b.K : nullptr,
-                          states ? &b.states : nullptr, f_bar_, tangent && !last_F_.empty() ? &memory : nullptr);
+                          &b.states, f_bar_, tangent && !last_F_.empty() ? &memory : nullptr);
   if (b.ok) add_point_loads(e, b.X, b.u, b.f, tangent ? &b.K : nullptr);
   if (b.ok) to_local(nodes, npe, b.f, tangent ? &b.K : nullptr);
 }

@@ -65,6 +65,10 @@ class Assembler {
   int run(const Eigen::VectorXd& q, double lambda, const Eigen::VectorXd* dq_p, Eigen::VectorXd& r,
           Pattern* K, Eigen::VectorXd* coupling,
           std::vector<std::vector<IntegrationPointStress>>* states = nullptr) const;
+  // Each assembly keeps its points' stresses (per element; those of the elements before a failing
+  // one): the converged increment's are its last assembly's, at the converged q, so reading them
+  // here costs no element loop of its own.
+  const std::vector<std::vector<IntegrationPointStress>>& last_points() const { return last_points_; }
 
   // Per element, the point loads' ∫ b dV at q (global; empty without one), at the λ of the last
   // assembly.
@@ -82,7 +86,8 @@ class Assembler {
  private:
   // Element e's response at q into a buffer (runs on any of the pool's threads: writes only that
   // buffer and element e's trial states).
-  void respond(const Eigen::VectorXd& q, int e, bool tangent, bool states, ElementBuffer& b) const;
+  void respond(const Eigen::VectorXd& q, int e, bool tangent, ElementBuffer& b) const;
+  mutable std::vector<std::vector<IntegrationPointStress>> last_points_;
 
   // f and K from global components to the nodes' local bases (Rᵀf, R_aᵀ K_ab R_b); a node without
   // a constraint has R = I and is left as it is.

@@ -59,6 +59,9 @@ class Newton {
   const std::vector<int>& diagonal() const { return diagonal_; }
   // The iterate with the lowest residual of the last solve (empty before one).
   const Eigen::VectorXd& best_iterate() const { return best_q_; }
+  // The last assembly's residual (local components, all dofs): at the converged q after a solve
+  // that converged.
+  const Eigen::VectorXd& residual() const { return r_; }
 
   // From the converged q to load level λ; q_start holds the prescribed components at λ and the
   // free ones' start (`extrapolated`: the last increment's motion extrapolated, iterated on the

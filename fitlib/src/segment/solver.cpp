@@ -122,8 +122,7 @@ class StaticRun {
         out_.cuts++;
       }
     }
-    // After the swap, `trial` holds the states before the last increment.
-    snapshot(1.0, states_.trial, last_dt_, out_);
+    snapshot(out_);
     out_.pattern_analyses = linear_.analyses();
     out_.krylov_iterations = linear_.krylov_iterations();
     out_.krylov_fallbacks = linear_.krylov_fallbacks();
@@ -245,16 +244,16 @@ class StaticRun {
     return detail::critical_mode(pattern_.K);
   }
 
-  // Stresses, displacements and reactions at the converged q (states from `from` over dt).
-  void snapshot(double lambda, const std::vector<double>& from, double dt, StaticSolution& s) {
-    assembler_.set_step(from.data(), scratch_.data(), dt);
-    const int bad = assembler_.run(q_, lambda, nullptr, r_, nullptr, nullptr, &s.points);
-    if (bad >= 0) fail(out_.increments, lambda, bad, out_.final_residual, 0);
+  // Stresses, displacements and reactions at the converged q: the last assembly's, which was there
+  // (Newton's invariant; the trial states committed after it are its own).
+  void snapshot(StaticSolution& s) {
+    s.points = assembler_.last_points();
+    const Eigen::VectorXd& r = newton_.residual();
     s.u_mm.resize(nn_);
     s.reaction_N_mm.assign(nn_, Eigen::Vector2d::Zero());
     for (int a = 0; a < nn_; ++a) {
       s.u_mm[a] = assembler_.u_of(q_, a);
-      Eigen::Vector2d rl = r_.segment<2>(2 * a);
+      Eigen::Vector2d rl = r.segment<2>(2 * a);
       for (int k = 0; k < 2; ++k)
         if (d_.eq[2 * a + k] >= 0) rl(k) = 0.0;
       s.reaction_N_mm[a] = d_.R[a] * rl;
@@ -343,14 +342,13 @@ class StaticRun {
     }
     if (!p_.observers.empty()) {
       StaticSolution view;
-      snapshot(target, states_.committed, dt, view);
+      snapshot(view);
       view.increments = out_.increments + 1;
       for (IncrementObserver* observer : p_.observers) observer->converged(target, view);
     }
     states_.committed.swap(states_.trial);  // the last assembly was at the converged q
     assembler_.commit(q_, target);          // the loads' histories (prepared at target by that assembly)
     velocity_ = q_ - q_saved;
-    last_dt_ = dt;
     last_dlambda_ = target - lambda_;
     lambda_ = target;
     out_.increments++;
@@ -374,12 +372,12 @@ class StaticRun {
   LinearSolver linear_;
   Pattern pattern_;
   const int nn_;
-  Eigen::VectorXd q_, r_;
+  Eigen::VectorXd q_;
   Newton newton_;
   std::vector<std::array<double, 2>> values_;
   StaticSolution out_;
   NewtonOutcome last_;
-  double lambda_ = 0.0, max_step_ = 2.0, uncut_step_ = 2.0, last_dt_ = 0.0, last_dlambda_ = 0.0;
+  double lambda_ = 0.0, max_step_ = 2.0, uncut_step_ = 2.0, last_dlambda_ = 0.0;
   int cuts_in_row_ = 0;
   bool have_factor_ = false;
   Eigen::VectorXd velocity_;  // Δq of the last converged increment (local components)
