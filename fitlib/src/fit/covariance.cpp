@@ -1,6 +1,5 @@
 // Standard errors, 95 % intervals and identifiability from the Jacobian at the solution.
 #include <Eigen/QR>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <boost/algorithm/string/join.hpp>
 #include <boost/math/distributions/students_t.hpp>
@@ -9,13 +8,13 @@
 
 #include "admissible.hpp"
 #include "backends.hpp"
+#include "scaled_spectrum.hpp"
 #include "fitlib/core/error.hpp"
 
 namespace fitlib::fit::detail {
 
 namespace {
 
-constexpr double kRankTolerance = 1e-8;    // σ_i / σ_max below this: a null-space direction
 // A parameter with more than this weight in the null space moves along a direction the data do
 // not see: its interval would be conditional on the unseen coordinate (structural components
 // are O(0.01–1), numerical noise in exact null vectors O(1e-12)).
@@ -55,47 +54,6 @@ void record_solution(const Problem& problem, double cost, FitResult& result) {
   metrics.n_active = 0;
 }
 
-// Singular values and right vectors of the column-scaled Jacobian (scaling makes the rank test
-// and the condition number independent of units), with the rank.
-struct ScaledSpectrum {
-  Eigen::VectorXd norms;  // column norms of the Jacobian
-  Eigen::VectorXd sigma;  // nf values, zero-padded
-  Eigen::MatrixXd v;
-  int rank = 0;
-  double condition_number = 0.0;
-};
-
-ScaledSpectrum scaled_spectrum(const RowMatrix& jac, int m, int nf) {
-  ScaledSpectrum out;
-  out.norms.resize(nf);
-  for (int k = 0; k < nf; ++k) out.norms[k] = jac.col(k).norm();
-  Eigen::MatrixXd scaled(m, nf);
-  for (int k = 0; k < nf; ++k)
-    scaled.col(k) = out.norms[k] > 0.0 ? Eigen::VectorXd(jac.col(k) / out.norms[k]) : Eigen::VectorXd::Zero(m);
-  // SVD of the small triangular factor instead of the tall matrix.
-  Eigen::MatrixXd small;
-  if (m > nf) {
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(scaled);
-    small = qr.matrixQR().topRows(nf).triangularView<Eigen::Upper>();
-  } else {
-    small = scaled;
-  }
-  // Divide and conquer: the cards' numbers to rounding, and faster than one-sided Jacobi on the
-  // smooth spectrum's 50-odd terms (docs/decisions.md, "the covariance's SVD is ... BDCSVD").
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(small, Eigen::ComputeFullV);
-  const Eigen::VectorXd sigma = svd.singularValues();
-  out.v = svd.matrixV();
-  const double sigma_max = sigma.size() ? sigma[0] : 0.0;
-  out.sigma = Eigen::VectorXd::Zero(nf);
-  out.sigma.head(sigma.size()) = sigma;
-  for (int k = 0; k < nf; ++k)
-    if (sigma_max > 0.0 && out.sigma[k] > kRankTolerance * sigma_max) ++out.rank;
-  const double sigma_min = std::max(out.sigma[nf - 1], sigma_max * 1e-16);
-  out.condition_number = sigma_max > 0.0 ? sigma_max / sigma_min : 0.0;
-  return out;
-}
-
-
 // Names the parameters of every null-space direction and those without effect or with a share
 // in the null space; returns each free parameter's null-space share.
 Eigen::VectorXd report_null_space(const Problem& problem, const ScaledSpectrum& sp, FitResult& result) {
@@ -124,22 +82,6 @@ Eigen::VectorXd report_null_space(const Problem& problem, const ScaledSpectrum& 
   return null_share;
 }
 
-// Pseudo-inverse on the identifiable subspace: Cov_x = s² D⁻¹ V Σ⁻² Vᵀ D⁻¹.
-Eigen::MatrixXd covariance(const ScaledSpectrum& sp, double s2) {
-  const int nf = static_cast<int>(sp.norms.size());
-  Eigen::MatrixXd cov_scaled = Eigen::MatrixXd::Zero(nf, nf);
-  for (int d = 0; d < sp.rank; ++d) cov_scaled += sp.v.col(d) * sp.v.col(d).transpose() / (sp.sigma[d] * sp.sigma[d]);
-  Eigen::MatrixXd cov_x(nf, nf);
-  for (int a = 0; a < nf; ++a)
-    for (int b = 0; b < nf; ++b) {
-      const double da = sp.norms[a] > 0.0 ? 1.0 / sp.norms[a] : 0.0;
-      const double db = sp.norms[b] > 0.0 ? 1.0 / sp.norms[b] : 0.0;
-      cov_x(a, b) = s2 * da * db * cov_scaled(a, b);
-    }
-  return cov_x;
-}
-
-// The standard error and 95 % interval of free parameter k (index i), or the reason it has none.
 bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const Eigen::VectorXd& null_share,
                   const Eigen::MatrixXd& cov_x, double t, bool series_term, ParameterResult& pr) {
   const int i = problem.free()[k];
@@ -289,7 +231,7 @@ void assess(const Problem& problem, FitResult& result) {
   result.identifiability = Identifiability{};
   if (nf == 0 || !problem.options().uncertainty) return;
 
-  const ScaledSpectrum sp = scaled_spectrum(jac, m, nf);
+  const ScaledSpectrum sp = scaled_spectrum(jac);
   result.identifiability.rank = sp.rank;
   result.identifiability.condition_number = sp.condition_number;
   result.metrics.rank = sp.rank;
@@ -306,7 +248,7 @@ void assess(const Problem& problem, FitResult& result) {
     return;
   }
   const double t = boost::math::quantile(boost::math::students_t(dof), 0.975);
-  const Eigen::MatrixXd cov_x = covariance(sp, 2.0 * cost / dof);
+  const Eigen::MatrixXd cov_x = scaled_covariance(sp, 2.0 * cost / dof);
   std::vector<bool> usable(nf, false);
   const SeriesTerms series = series_terms(problem.specs());
   std::vector<bool> in_series(problem.num_parameters(), false);

@@ -12,6 +12,7 @@
 #include "fitlib/core/format.hpp"
 #include "fitlib/core/rng.hpp"
 #include "fitlib/model/time_series.hpp"
+#include "scaled_spectrum.hpp"
 
 namespace fitlib::fit {
 namespace {
@@ -210,23 +211,18 @@ void covariance(const model::Model& m, const Rows& rows, HyperelasticFitResult& 
     m.hyperelastic()->nominal_stress(r.values.data(), rows.rows[i].mode, rows.rows[i].x, g.data());
     for (int k = 0; k < n; ++k) J(i, k) = g[k] / rows.rows[i].scale;
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::VectorXd sv = svd.singularValues();
-  const double tol = 1e-10 * sv[0];
+  // The rank test on the column-scaled Jacobian, as the viscoelastic fits': units do not decide it.
+  const detail::ScaledSpectrum sp = detail::scaled_spectrum(J);
+  const bool full = sp.rank == n;
   const double s2 = 2.0 * r.cost / (nr - n);
   const double t = boost::math::quantile(boost::math::students_t(nr - n), 0.975);
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
-  bool full = true;
-  for (int k = 0; k < n; ++k) {
-    if (sv[k] <= tol) full = false;
-    else cov += svd.matrixV().col(k) * svd.matrixV().col(k).transpose() / (sv[k] * sv[k]);
-  }
+  const Eigen::MatrixXd cov = detail::scaled_covariance(sp, s2);
   for (int k = 0; k < n; ++k) {
     if (!full) {
       r.std_error_reason[k] = "not identifiable: the Jacobian is rank-deficient";
       continue;
     }
-    const double se = std::sqrt(s2 * cov(k, k));
+    const double se = std::sqrt(cov(k, k));
     r.std_error[k] = se, r.ci95_low[k] = r.values[k] - t * se, r.ci95_high[k] = r.values[k] + t * se;
   }
 }

@@ -1,0 +1,28 @@
+#pragma once
+// The parameter covariance of a least-squares fit from its Jacobian at the solution, shared by the
+// viscoelastic fits (covariance.cpp) and the hyperelastic ones (hyperelastic.cpp): the SVD of the
+// column-scaled Jacobian, so that the rank test and the condition number do not depend on the
+// parameters' units.
+#include <Eigen/Core>
+
+namespace fitlib::fit::detail {
+
+// σ_i / σ_max below this: a null-space direction.
+constexpr double kRankTolerance = 1e-8;
+
+struct ScaledSpectrum {
+  Eigen::VectorXd norms;  // column norms of the Jacobian
+  Eigen::VectorXd sigma;  // one value per column, zero-padded
+  Eigen::MatrixXd v;      // right singular vectors (scaled parameters)
+  int rank = 0;
+  double condition_number = 0.0;
+};
+
+// `jac`: m × n, any storage order (a copy is scaled).
+ScaledSpectrum scaled_spectrum(const Eigen::MatrixXd& jac);
+
+// The pseudo-inverse on the identifiable subspace: Cov_x = s² D⁻¹ V Σ⁻² Vᵀ D⁻¹ (D: the column norms;
+// a column without effect has zero variance and covariance).
+Eigen::MatrixXd scaled_covariance(const ScaledSpectrum& sp, double s2);
+
+}  // namespace fitlib::fit::detail
