@@ -68,7 +68,7 @@
 // NewtonOptions::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
 // LU every time); `plainpressure`: NewtonOptions::linearised_pressure off; `linearpred`:
 // SteppingOptions::rotated_predictor off; `keep=X`: NewtonOptions::keep_preconditioner_below (0: a
-// factorisation per tangent); `first=N`: CycleStepping::first_cycle_steps (0: as the others). The probe also prints the main thread's CPU time (the critical path).
+// factorisation per tangent); `first=N`: CycleStepping::conditioning_steps (0: as the last). The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -175,7 +175,7 @@ struct Probe {
   int steps = 60;
   bool reuse = false, extrapolate = false, lagged = false;
   double keep_below = -1.0;  // keep=X: NewtonOptions::keep_preconditioner_below (< 0: the default)
-  int first_steps = -1;      // first=N: CycleStepping::first_cycle_steps (< 0: the life's)
+  int first_steps = -1;      // first=N: CycleStepping::conditioning_steps (< 0: the life's)
   std::string integration{};  // empty: scene::SegmentLifeSetup's default
   int stall = -1, cuts = segment::SolverKnobs{}.stepping.max_cuts;  // stall=N (< 0: the life's at the fidelity)
   int growth = -1;  // grow=N: SteppingOptions::growth_iterations (< 0: the life's at the fidelity)
@@ -352,7 +352,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.linear_predictor) setup.solver.stepping.rotated_predictor = false;
   if (pr.krylov_tolerance > 0.0) setup.solver.newton.krylov_tolerance = pr.krylov_tolerance;
   setup.cycle.stepping.steps_per_cycle = pr.steps;
-  if (pr.first_steps >= 0) setup.cycle.stepping.first_cycle_steps = pr.first_steps;
+  if (pr.first_steps >= 0) setup.cycle.stepping.conditioning_steps = pr.first_steps;
   if (pr.flank >= 0.0) setup.cycle.physics.flank_stiffness_N_mm4 = pr.flank;
   if (pr.tflank >= 0.0) setup.cycle.physics.flank_stick_N_mm4 = pr.tflank;
   if (pr.vflank >= 0.0) setup.cycle.physics.flank_slide_floor_mm_s = pr.vflank;

@@ -387,15 +387,15 @@ TEST(LifeCli, CompleteLevelHoldsTheDamageAtTheTestedDriversAndPassesTheMediumDri
     const std::string mantissa = number.substr(0, number.find('e'));
     EXPECT_LE(std::count_if(mantissa.begin(), mantissa.end(), [](char c) { return std::isdigit(c) != 0; }), 2) << line;
     EXPECT_NE(r.out.find("beyond the tests: cushion read at "), std::string::npos) << r.out;
-    // What the stresses came from (the complete level: 120 planned steps per cycle, the first cycle's
-    // 60), in the JSON and the text.
+    // What the stresses came from (the complete level: 120 planned steps per cycle, 60 in the cycle
+    // before the last), in the JSON and the text.
     const auto& run = life["segment_run"];
     EXPECT_EQ(run["elements"], 192);
     EXPECT_EQ(run["cycles"], 2);
     EXPECT_EQ(run["steps_per_cycle"], 120);
-    EXPECT_EQ(run["first_cycle_steps"], 60);
+    EXPECT_EQ(run["conditioning_steps"], 60);
     EXPECT_GE(run["increments"].get<int>(), 4 + 60 + 120);
-    EXPECT_NE(r.out.find("2 load cycle(s) of 120 planned steps (the first of 60), "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 load cycle(s) of 120 planned steps (60 in each before the last), "), std::string::npos) << r.out;
     EXPECT_GT(run["newton_iterations"].get<int>(), run["increments"].get<int>());
     EXPECT_GE(run["cuts"].get<int>(), 0);
     for (const char* part : {"(bottom): its damage is held at the drivers its tests reached (fit.data_window.damage_driver "

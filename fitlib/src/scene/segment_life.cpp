@@ -22,9 +22,10 @@ segment::MeshKnobs life_mesh() {
 segment::CycleKnobs life_cycle(core::Fidelity fidelity) {
   segment::CycleKnobs c;
   c.physics.ends = segment::EndCondition::sheared;
-  // The complete level's first cycle at half the steps: it only brings the points' memory to the
-  // cycle the life reads (docs/decisions.md "Segment: the complete level's first cycle at 60 steps").
-  if (fidelity == core::Fidelity::complete) c.stepping.steps_per_cycle = 120, c.stepping.first_cycle_steps = 60;
+  // The complete level's cycles before the last at half the steps: they only bring the points'
+  // memory to the cycle the life reads (docs/decisions.md "Segment: the complete level's
+  // conditioning cycles at 60 steps").
+  if (fidelity == core::Fidelity::complete) c.stepping.steps_per_cycle = 120, c.stepping.conditioning_steps = 60;
   return c;
 }
 

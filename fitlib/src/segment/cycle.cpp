@@ -144,8 +144,8 @@ std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
 }  // namespace
 
 int planned_increments(const CycleStepping& s) {
-  const bool own_first = s.cycles > 1 && s.first_cycle_steps > 0;
-  return s.bend_steps + (own_first ? s.first_cycle_steps + (s.cycles - 1) * s.steps_per_cycle : s.cycles * s.steps_per_cycle);
+  const int before_last = s.conditioning_steps > 0 ? s.conditioning_steps : s.steps_per_cycle;
+  return s.bend_steps + (s.cycles - 1) * before_last + s.steps_per_cycle;
 }
 
 namespace {
@@ -172,12 +172,12 @@ std::vector<double> load_schedule(const CycleStepping& stepping, const belt::Loa
   }
   const std::vector<double> per_cycle =
       cycle_breakpoints(h, stepping.steps_per_cycle, stepping.change_weight, half_length_mm);
-  const std::vector<double> first_cycle =
-      stepping.cycles > 1 && stepping.first_cycle_steps > 0
-          ? cycle_breakpoints(h, stepping.first_cycle_steps, stepping.change_weight, half_length_mm)
+  const std::vector<double> conditioning =
+      stepping.conditioning_steps > 0
+          ? cycle_breakpoints(h, stepping.conditioning_steps, stepping.change_weight, half_length_mm)
           : per_cycle;
   for (int c = 0; c < stepping.cycles; ++c)
-    for (double b : c == 0 ? first_cycle : per_cycle) {
+    for (double b : c + 1 < stepping.cycles ? conditioning : per_cycle) {
       const double lambda = std::min(1.0, (1.0 + c + b) / T);
       if (schedule.empty() || lambda > schedule.back() + 1e-12) schedule.push_back(lambda);
     }

@@ -115,7 +115,7 @@ struct SegmentEquilibrium {
 // planned steps, and the solver's work (life.json `segment_run`, docs/cli.md `life`).
 struct SegmentRun {
   int elements = 0, cycles = 0, steps_per_cycle = 0;
-  int first_cycle_steps = 0;  // the first cycle's planned steps (segment::CycleStepping::first_cycle_steps)
+  int conditioning_steps = 0;  // planned steps of each cycle before the last (segment::CycleStepping)
   int increments = 0, newton_iterations = 0, cuts = 0;
 };
 

@@ -39,10 +39,11 @@ struct CycleDrive {                     // what the body forces need beyond the 
 struct CycleStepping {
   int cycles = 2;
   int steps_per_cycle = 60;             // increments per load cycle (placed where K and p change)
-  // Increments of the first of several cycles (0: steps_per_cycle). The life reads the last cycle;
-  // the first only brings the points' memory to it, so its discretisation reaches the life through
-  // that state alone (docs/segment.md "Cost (reference)", "A coarser first cycle").
-  int first_cycle_steps = 0;
+  // Increments of each cycle before the last (0: steps_per_cycle). The life reads the last cycle;
+  // the ones before only bring the points' memory to it, so their discretisation reaches the life
+  // through that state alone (docs/decisions.md "Segment: the complete level's conditioning cycles
+  // at 60 steps").
+  int conditioning_steps = 0;
   int bend_steps = 4;                   // increments of step 1
   double change_weight = 4.0;           // share of the steps placed by change of K and p vs uniform
   // Optional: step 2's increments end where the segment's middle reaches these path positions
@@ -238,7 +239,8 @@ void flank_shares(CycleResult& run);
 // carry history or its end faces are sheared.
 double span_cord_share_bound(const CycleResult& run);
 
-// The run's planned increments: the bend's, then each cycle's (the first's own count when set).
+// The run's planned increments: the bend's, then each cycle's (those before the last at
+// conditioning_steps when set).
 int planned_increments(const CycleStepping& stepping);
 
 // The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
