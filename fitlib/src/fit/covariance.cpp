@@ -82,6 +82,7 @@ Eigen::VectorXd report_null_space(const Problem& problem, const ScaledSpectrum& 
   return null_share;
 }
 
+// The standard error and 95 % interval of free parameter k (index i), or the reason it has none.
 bool set_interval(const Problem& problem, int k, const ScaledSpectrum& sp, const Eigen::VectorXd& null_share,
                   const Eigen::MatrixXd& cov_x, double t, bool series_term, ParameterResult& pr) {
   const int i = problem.free()[k];

@@ -227,7 +227,8 @@ json life_summary_json(const LifeResult& l, bool effective_stress_history = fals
   }
   if (const std::optional<SegmentRun>& w = l.segment_run)
     j["segment_run"] = {{"elements", w->elements}, {"cycles", w->cycles}, {"steps_per_cycle", w->steps_per_cycle},
-                        {"conditioning_steps", w->conditioning_steps}, {"increments", w->increments}, {"newton_iterations", w->newton_iterations}, {"cuts", w->cuts}};
+                        {"conditioning_steps", w->conditioning_steps}, {"increments", w->increments},
+                        {"newton_iterations", w->newton_iterations}, {"cuts", w->cuts}};
   if (!l.cards_read.empty()) {  // docs/fatigue.md §8 "The cards at the amplitude the segment drives them"
     json cards = json::array();
     for (const CardReading& c : l.cards_read) cards.push_back(card_reading_json(c));
@@ -306,10 +307,13 @@ std::string life_text(const Scene& s, const SceneResult& r) {
       << B::span_section_mismatch << ") over " << e.span_increments << " span increments\n"
       << std::defaultfloat << std::setprecision(static_cast<int>(precision));
     if (e.span_increments == 0) o << "note: no increment in a span, the span checks saw nothing\n";
-    if (const std::optional<SegmentRun>& w = l.segment_run)
+    if (const std::optional<SegmentRun>& w = l.segment_run) {
+      const std::string conditioning =
+          w->conditioning_steps != w->steps_per_cycle ? " (" + std::to_string(w->conditioning_steps) + " in each before the last)" : "";
       o << "segment run: " << w->elements << " elements, " << w->cycles << " load cycle(s) of " << w->steps_per_cycle
-        << " planned steps" << (w->conditioning_steps != w->steps_per_cycle ? " (" + std::to_string(w->conditioning_steps) + " in each before the last)" : "") << ", " << w->increments << " increments, " << w->newton_iterations << " Newton iterations, "
-        << w->cuts << " step cuts\n";
+        << " planned steps" << conditioning << ", " << w->increments << " increments, " << w->newton_iterations
+        << " Newton iterations, " << w->cuts << " step cuts\n";
+    }
     const bool default_mesh = !s.segment || !s.segment->life_mesh_changed;
     if (default_mesh && l.plan.fidelity == core::Fidelity::complete && l.damage_held)
       // docs/segment.md "Damage held beyond the tested amplitudes"
