@@ -8,13 +8,10 @@
 
 namespace fitlib::fit::detail {
 
-ScaledSpectrum scaled_spectrum(const Eigen::MatrixXd& jac) {
-  const int m = static_cast<int>(jac.rows()), nf = static_cast<int>(jac.cols());
+ScaledSpectrum spectrum_of_scaled(Eigen::MatrixXd scaled, Eigen::VectorXd norms) {
+  const int m = static_cast<int>(scaled.rows()), nf = static_cast<int>(scaled.cols());
   ScaledSpectrum out;
-  out.norms = jac.colwise().norm().transpose();
-  Eigen::MatrixXd scaled(m, nf);
-  for (int k = 0; k < nf; ++k)
-    scaled.col(k) = out.norms[k] > 0.0 ? Eigen::VectorXd(jac.col(k) / out.norms[k]) : Eigen::VectorXd::Zero(m);
+  out.norms = std::move(norms);
   // SVD of the small triangular factor instead of the tall matrix.
   Eigen::MatrixXd small;
   if (m > nf) {
