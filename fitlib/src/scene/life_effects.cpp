@@ -569,7 +569,7 @@ void segment_stresses(const Scene& s, SceneResult& r) {
     r.segment_equilibrium = segment_equilibrium(run);
     const segment::CycleStepping& stepping = setup.cycle.stepping;
     r.segment_run = SegmentRun{run.elements, stepping.cycles, stepping.steps_per_cycle,
-                               stepping.cycles > 1 && stepping.conditioning_steps > 0 ? stepping.conditioning_steps : stepping.steps_per_cycle,
+                               stepping.cycles > 1 ? segment::conditioning_increments(stepping) : stepping.steps_per_cycle,
                                run.increments, run.newton_iterations, run.cuts};
     for (std::string& w : r.segment_equilibrium->warnings()) r.warnings.push_back(std::move(w));
     for (std::size_t k = 0; k < s.life_field_at.size(); ++k) {  // <prefix>-<k>.vtk, when the run reached it

@@ -143,9 +143,12 @@ std::string where_in_cycle(double tau, const belt::LoadHistory& h) {
 
 }  // namespace
 
+int conditioning_increments(const CycleStepping& s) {
+  return s.conditioning_steps > 0 ? s.conditioning_steps : s.steps_per_cycle;
+}
+
 int planned_increments(const CycleStepping& s) {
-  const int before_last = s.conditioning_steps > 0 ? s.conditioning_steps : s.steps_per_cycle;
-  return s.bend_steps + (s.cycles - 1) * before_last + s.steps_per_cycle;
+  return s.bend_steps + (s.cycles - 1) * conditioning_increments(s) + s.steps_per_cycle;
 }
 
 namespace {
@@ -173,9 +176,7 @@ std::vector<double> load_schedule(const CycleStepping& stepping, const belt::Loa
   const std::vector<double> per_cycle =
       cycle_breakpoints(h, stepping.steps_per_cycle, stepping.change_weight, half_length_mm);
   const std::vector<double> conditioning =
-      stepping.conditioning_steps > 0
-          ? cycle_breakpoints(h, stepping.conditioning_steps, stepping.change_weight, half_length_mm)
-          : per_cycle;
+      cycle_breakpoints(h, conditioning_increments(stepping), stepping.change_weight, half_length_mm);
   for (int c = 0; c < stepping.cycles; ++c)
     for (double b : c + 1 < stepping.cycles ? conditioning : per_cycle) {
       const double lambda = std::min(1.0, (1.0 + c + b) / T);

@@ -85,6 +85,25 @@ const CycleSample& at(const MonitoredHistory& h, int c, double s, double L = 400
   return *best;
 }
 
+// The point law with history these tests run: a two-term shear Prony with a bulk modulus.
+const ContractLaw& prony_point() {
+  static const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
+  static const ContractLaw law(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  return law;
+}
+
+// Every monitored stress of `r` equal to `ref`'s within `tolerance` × (1 + |σ22| + |σ11|) MPa.
+void expect_same_stresses(const CycleResult& r, const CycleResult& ref, double tolerance) {
+  for (std::size_t p = 0; p < ref.points.size(); ++p)
+    for (std::size_t q = 0; q < ref.points[p].samples.size(); ++q) {
+      const CycleSample &a = r.points[p].samples[q], &b = ref.points[p].samples[q];
+      const double scale = tolerance * (1.0 + std::abs(b.s22_MPa) + std::abs(b.s11_MPa));
+      ASSERT_NEAR(a.s11_MPa, b.s11_MPa, scale) << ref.points[p].point.name << " " << q;
+      ASSERT_NEAR(a.s22_MPa, b.s22_MPa, scale) << ref.points[p].point.name << " " << q;
+      ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << ref.points[p].point.name << " " << q;
+    }
+}
+
 }  // namespace
 
 TEST(SegmentCycle, ElasticBeltFollowsTheCycleInEquilibriumAndRepeatsItself) {
@@ -143,8 +162,7 @@ TEST(SegmentCycle, FrictionChangesTheShearInTheSlidingZone) {
 
 TEST(SegmentCycle, ViscoelasticBeltDiffersBetweenCycleOneAndTwo) {
   Fixture f;
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw law(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const ContractLaw& law = prony_point();
   const CycleResult r = f.run(law, law);
   const MonitoredHistory& gap = point(r, "gap_bottom");
   double largest = 0.0;
@@ -157,8 +175,7 @@ TEST(SegmentCycle, ViscoelasticBeltDiffersBetweenCycleOneAndTwo) {
 // and cuts, and every monitored stress, displacement and point state equal to the last bit — for a
 // point law with history (UMFPACK's LU, states carried between increments) and an elastic one (LDLᵀ).
 TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const ContractLaw& visco = prony_point();
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
   for (const bool history : {true, false}) {
     std::vector<CycleResult> runs;
@@ -202,8 +219,7 @@ TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
 // iteration at an unreachable tolerance falls back to the LU on every tangent, with the LU's result;
 // modified Newton (reuse_tangent) factorises with the LU as before.
 TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterations) {
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const ContractLaw& visco = prony_point();
   auto run = [&](int iterations, double tolerance) {
     Fixture f;
     f.knobs.stepping.cycles = 1;
@@ -221,14 +237,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
     EXPECT_EQ(r->increments, lu.increments);
     EXPECT_EQ(r->newton_iterations, lu.newton_iterations);
     EXPECT_EQ(r->cuts, lu.cuts);
-    for (std::size_t p = 0; p < lu.points.size(); ++p)
-      for (std::size_t q = 0; q < lu.points[p].samples.size(); ++q) {
-        const CycleSample &a = r->points[p].samples[q], &b = lu.points[p].samples[q];
-        const double scale = 1e-8 * (1.0 + std::abs(b.s22_MPa) + std::abs(b.s11_MPa));
-        ASSERT_NEAR(a.s11_MPa, b.s11_MPa, scale) << lu.points[p].point.name << " " << q;
-        ASSERT_NEAR(a.s22_MPa, b.s22_MPa, scale) << lu.points[p].point.name << " " << q;
-        ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << lu.points[p].point.name << " " << q;
-      }
+    expect_same_stresses(*r, lu, 1e-8);
   }
   // Modified Newton keeps the LU for its later steps: no GMRES there, and the same solution.
   Fixture modified;
@@ -247,8 +256,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
 // keep_preconditioner_below) takes Newton through the same increments and iterations as a
 // factorisation per tangent, to stresses equal within 10⁻⁸ of their scale, with fewer factorisations.
 TEST(SegmentCycle, NearConvergenceGmresKeepsTheLastPreconditionerAndNewtonsIterations) {
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const ContractLaw& visco = prony_point();
   auto run = [&](double keep_below) {
     Fixture f;
     f.knobs.stepping.cycles = 1;
@@ -262,14 +270,7 @@ TEST(SegmentCycle, NearConvergenceGmresKeepsTheLastPreconditionerAndNewtonsItera
   EXPECT_EQ(kept.increments, fresh.increments);
   EXPECT_EQ(kept.newton_iterations, fresh.newton_iterations);
   EXPECT_EQ(kept.cuts, fresh.cuts);
-  for (std::size_t p = 0; p < fresh.points.size(); ++p)
-    for (std::size_t q = 0; q < fresh.points[p].samples.size(); ++q) {
-      const CycleSample &a = kept.points[p].samples[q], &b = fresh.points[p].samples[q];
-      const double scale = 1e-8 * (1.0 + std::abs(b.s22_MPa) + std::abs(b.s11_MPa));
-      ASSERT_NEAR(a.s11_MPa, b.s11_MPa, scale) << fresh.points[p].point.name << " " << q;
-      ASSERT_NEAR(a.s22_MPa, b.s22_MPa, scale) << fresh.points[p].point.name << " " << q;
-      ASSERT_NEAR(a.s12_MPa, b.s12_MPa, scale) << fresh.points[p].point.name << " " << q;
-    }
+  expect_same_stresses(kept, fresh, 1e-8);
   std::printf("prony cycle: %d Newton iterations either way; %d factorisations and %d GMRES iterations kept, %d and %d fresh\n",
               kept.newton_iterations, kept.factorizations, kept.final_state.krylov_iterations, fresh.factorizations,
               fresh.final_state.krylov_iterations);
@@ -280,8 +281,7 @@ TEST(SegmentCycle, NearConvergenceGmresKeepsTheLastPreconditionerAndNewtonsItera
 // path positions, its stresses moved only through the points' memory (a Prony point relaxing over
 // the cycle: within 1 % of the largest stress).
 TEST(SegmentCycle, CoarserConditioningCyclesOnlyBringTheMemoryToTheCycleTheLifeReads) {
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const ContractLaw& visco = prony_point();
   auto run = [&](int first) {
     Fixture f;
     f.knobs.stepping.cycles = 3;
@@ -596,8 +596,7 @@ TEST(SegmentCycle, BreakpointsRiseToTheCyclesEndForAnyStepCount) {
 
 TEST(SegmentCycle, StepsFromAMillionthToATenthOfTheCycle) {
   const auto bottom = hencky(20.0, 0.49), cushion = hencky(8.0, 0.49);
-  const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
-  const ContractLaw visco(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
+  const ContractLaw& visco = prony_point();
   const double L = 400.0, tiny = 1e-6 * L;
   for (int law = 0; law < 2; ++law) {
     Fixture f;

@@ -239,8 +239,9 @@ void flank_shares(CycleResult& run);
 // carry history or its end faces are sheared.
 double span_cord_share_bound(const CycleResult& run);
 
-// The run's planned increments: the bend's, then each cycle's (those before the last at
-// conditioning_steps when set).
+// The planned increments of each cycle before the last (conditioning_steps, else steps_per_cycle).
+int conditioning_increments(const CycleStepping& stepping);
+// The run's planned increments: the bend's, then each cycle's.
 int planned_increments(const CycleStepping& stepping);
 
 // The increments' τ of step 2 over one cycle: `steps` breakpoints at equal shares of the measure
