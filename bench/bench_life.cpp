@@ -68,7 +68,8 @@
 // NewtonOptions::krylov_iterations and krylov_tolerance (GMRES on unsymmetric tangents; krylov=0: the
 // LU every time); `plainpressure`: NewtonOptions::linearised_pressure off; `linearpred`:
 // SteppingOptions::rotated_predictor off; `keep=X`: NewtonOptions::keep_preconditioner_below (0: a
-// factorisation per tangent); `first=N`: CycleStepping::conditioning_steps (0: as the last). The probe also prints the main thread's CPU time (the critical path).
+// factorisation per tangent); `first=N`: CycleStepping::conditioning_steps (0: as the last); `split=0|1`:
+// NewtonOptions::split_factorisation. The probe also prints the main thread's CPU time (the critical path).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -175,6 +176,7 @@ struct Probe {
   int steps = 60;
   bool reuse = false, extrapolate = false, lagged = false;
   double keep_below = -1.0;  // keep=X: NewtonOptions::keep_preconditioner_below (< 0: the default)
+  int split = -1;            // split=0|1: NewtonOptions::split_factorisation (< 0: the default)
   int first_steps = -1;      // first=N: CycleStepping::conditioning_steps (< 0: the life's)
   std::string integration{};  // empty: scene::SegmentLifeSetup's default
   int stall = -1, cuts = segment::SolverKnobs{}.stepping.max_cuts;  // stall=N (< 0: the life's at the fidelity)
@@ -335,6 +337,7 @@ Outcome run_probe(const Probe& pr) {
   if (pr.end_condition == "radial") setup.cycle.physics.ends = segment::EndCondition::radial;
   setup.solver.newton.reuse_tangent = pr.reuse;
   if (pr.keep_below >= 0.0) setup.solver.newton.keep_preconditioner_below = pr.keep_below;
+  if (pr.split >= 0) setup.solver.newton.split_factorisation = pr.split != 0;
   setup.solver.stepping.extrapolate_start = pr.extrapolate;
   if (!pr.integration.empty()) setup.solver.physics.integration = segment::integration_from_string(pr.integration);
   if (pr.stall >= 0) setup.solver.newton.stall_iterations = pr.stall;
@@ -1006,6 +1009,7 @@ int main(int argc, char** argv) {
       const std::string a = argv[k];
       if (a == "reuse") p.reuse = true;
       if (a.rfind("keep=", 0) == 0) p.keep_below = std::atof(a.c_str() + 5);
+      if (a.rfind("split=", 0) == 0) p.split = std::atoi(a.c_str() + 6);
       if (a.rfind("first=", 0) == 0) p.first_steps = std::atoi(a.c_str() + 6);
       if (a == "extrapolate") p.extrapolate = true;
       if (a == "full" || a == "fbar" || a == "reduced") p.integration = a;

@@ -140,6 +140,17 @@ void fibre_shear_part(const double* part, const PartFactors<T>& f, const Maxwell
   }
 }
 
+// ∂s/∂e of one deviatoric part over a step whose damage driver the strain does not move (so h and
+// g are constants): the elastic term's mean and dynamic moduli, e^o moving with e by osc_slope, and
+// the five Maxwell elements' step gains, as the three parts above differentiate them.
+template <typename T>
+double part_step_modulus(const double* part, const PartFactors<T>& f, const MaxwellStep& m, double osc_slope) {
+  double gains = 0.0;
+  for (double g : m.gain) gains += g;
+  return scalar_part(f.h1 * f.g1) * 2.0 * (part[kMean] + part[kDynamic] * osc_slope) +
+         scalar_part(f.h2 * f.g2) * (2.0 * part[kViscous]) * gains;
+}
+
 // The rest of state_{n+1}: time, strain, ∫e and the damage drivers of the parts in use.
 template <typename T, typename Out>
 void record_step(const T* strain, const T* integral, const T* amplitude, const T* osc, int parts,
@@ -195,7 +206,7 @@ void MaterialPoint::hold_damage_beyond(const std::vector<double>& ceiling) {
 
 template <typename T, typename In, typename Out>
 void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
-                                double temperature_C, Out& next, T* stress) const {
+                                double temperature_C, Out& next, T* stress, double* step_moduli) const {
   if (!(dt >= 0.0) || !std::isfinite(dt))
     throw core::UsageError("fritzson material point: the time step must be finite and ≥ 0");
   const double* p = p_.data();
@@ -225,17 +236,18 @@ void MaterialPoint::update_impl(const In& state, const T* strain, double dt,
   auto factors = [&](const double* part, const T& driver) {
     return part_factors(part_as<T>(part).data(), driver, temperature_C, reference_C_);
   };
+  // e^o = e − ∫e/t moves with e by osc_slope (running_mean's rule: ∫e gains dt·e, or ½dt·e).
+  const double osc_slope = t_next > 0.0 ? 1.0 - (scheme_ == Scheme::exponential ? 0.5 : 1.0) * dt / t_next : 0.0;
   T s[6];
-  const double* part = p + kPartI;
-  isotropic_part(part, factors(part, driver[0]), maxwell_step(part, dt, scheme_), k, state,
-                 next, s);
-  if (anisotropic_) {
-    part = p + kPartA1;
-    fibre_uniaxial_part(part, factors(part, driver[1]), maxwell_step(part, dt, scheme_), k,
-                        state, next, s);
-    part = p + kPartA2;
-    fibre_shear_part(part, factors(part, driver[2]), maxwell_step(part, dt, scheme_), k, state,
-                     next, s);
+  constexpr int kOffsets[3] = {kPartI, kPartA1, kPartA2};
+  for (int j = 0; j < parts; ++j) {
+    const double* part = p + kOffsets[j];
+    const PartFactors<T> f = factors(part, driver[j]);
+    const MaxwellStep m = maxwell_step(part, dt, scheme_);
+    if (j == 0) isotropic_part(part, f, m, k, state, next, s);
+    else if (j == 1) fibre_uniaxial_part(part, f, m, k, state, next, s);
+    else fibre_shear_part(part, f, m, k, state, next, s);
+    if (step_moduli) step_moduli[j] = part_step_modulus(part, f, m, osc_slope);
   }
 
   for (int i = 0; i < 3; ++i) stress[i] = pressure + s[i];
@@ -261,18 +273,45 @@ Vector6 MaterialPoint::update_any(const In& state, const Vector6& strain, double
   return stress;
 }
 
+bool MaterialPoint::fixed_driver_tangent(const double* state_n, const double* state_next, const double* step_moduli,
+                                         Matrix6& tangent) const {
+  const FlatState<const double> in(state_n), out(state_next);
+  const int parts = anisotropic_ ? 3 : 1;
+  if (damage_update_ != DamageUpdate::lagged)
+    for (int j = 0; j < parts; ++j)
+      if (out.driver_oscillating[j] > in.driver_amplitude[j] && !(out.driver_amplitude[j] > driver_ceiling_[j]))
+        return false;  // e^a_{n+1} grows with the strain, below its hold
+  // σ_i = K tr ε + a_I e_i (e = dev ε, e_12 = γ12/2); A1 spreads a_A1 e_3 as (−½, −½, 1); A2 acts on
+  // γ23, γ13 only, outside the in-plane columns.
+  const double K = p_[kK], a_I = step_moduli[0], a_A1 = anisotropic_ ? step_moduli[1] : 0.0;
+  tangent.setZero();
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 3; ++i) tangent(i, j) = K + a_I * ((i == j ? 1.0 : 0.0) - 1.0 / 3.0);
+    tangent(0, j) += a_A1 / 6.0;
+    tangent(1, j) += a_A1 / 6.0;
+    tangent(2, j) -= a_A1 / 3.0;
+  }
+  tangent(5, 5) = 0.5 * a_I;
+  return true;
+}
+
 Vector6 update_flat_in_plane(const MaterialPoint& point, const double* state, const Vector6& strain, double dt_s,
                              double temperature_C, double* next, Matrix6& tangent) {
+  // Where no damage driver moves with the strain the stress is affine in it: its value in double
+  // and the tangent in closed form (the Jet's derivative, without the Jet's arithmetic).
+  const FlatState<const double> in(state);
+  FlatState<double> out(next);
+  Vector6 stress;
+  double step_moduli[3];
+  point.update_impl<double>(in, strain.data(), dt_s, temperature_C, out, stress.data(), step_moduli);
+  if (point.fixed_driver_tangent(state, next, step_moduli, tangent)) return stress;
   // Each derivative is its own lane of the Jet's arithmetic: columns 0, 1, 5 are update_flat's.
   using Jet4 = ceres::Jet<double, 4>;  // four lanes, the last unseeded: two SSE packets (three lanes vectorise not at all)
   constexpr int kSeeds[3] = {0, 1, 5};
   Jet4 strain_jet[6], stress_jet[6];
   for (int i = 0; i < 6; ++i) strain_jet[i] = Jet4(strain[i]);
   for (int k = 0; k < 3; ++k) strain_jet[kSeeds[k]].v[k] = 1.0;
-  const FlatState<const double> in(state);
-  FlatState<double> out(next);
   point.update_impl<Jet4>(in, strain_jet, dt_s, temperature_C, out, stress_jet);
-  Vector6 stress;
   tangent.setZero();
   for (int i = 0; i < 6; ++i) {
     stress[i] = stress_jet[i].a;

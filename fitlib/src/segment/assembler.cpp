@@ -79,7 +79,8 @@ bool Assembler::element_at(const Eigen::VectorXd& q, int e, ElementVector& f, El
   const Mesh& m = *p_.mesh;
   std::vector<Eigen::Vector2d> X, u;
   for (int a = 0; a < m.nodes_per_element; ++a) X.push_back(m.X[m.elements[e][a]]), u.push_back(u_of(q, m.elements[e][a]));
-  const bool ok = element_response(X, u, law_of(e), rule_, step_of(e), f, Ke, states, f_bar_);
+  const bool ok = element_response(X, u, law_of(e), rule_, step_of(e), f, Ke, states, f_bar_, nullptr,
+                                   reference_.data() + e * rule_.size());
   if (ok) add_point_loads(e, X, u, f, Ke);
   return ok;
 }
@@ -178,7 +179,8 @@ void Assembler::respond(const Eigen::VectorXd& q, int e, bool tangent, ElementBu
   for (int a = 0; a < npe; ++a) b.X[a] = m.X[nodes[a]], b.u[a] = u_of(q, nodes[a]);
   PressureMemory memory{last_F_.data() + e * rule_.size(), follows_step_};
   b.ok = element_response(b.X, b.u, law_of(e), rule_, step_of(e), b.f, tangent ? &b.K : nullptr,
-                          &b.states, f_bar_, tangent && !last_F_.empty() ? &memory : nullptr);
+                          &b.states, f_bar_, tangent && !last_F_.empty() ? &memory : nullptr,
+                          reference_.data() + e * rule_.size());
   if (b.ok) add_point_loads(e, b.X, b.u, b.f, tangent ? &b.K : nullptr);
   if (b.ok) to_local(nodes, npe, b.f, tangent ? &b.K : nullptr);
 }
@@ -207,8 +209,13 @@ void Assembler::point_weights() {
     shape(npe, g.xi, g.eta, N, dxi, deta);
     shape_.insert(shape_.end(), N, N + npe);
   }
-  for (int e = 0; e < m.element_count(); ++e)
-    for (const auto& g : rule_) volume_.push_back(reference_jacobian(m, e, g.xi, g.eta) * g.weight);
+  std::vector<Eigen::Vector2d> X(npe);
+  for (int e = 0; e < m.element_count(); ++e) {
+    for (int a = 0; a < npe; ++a) X[a] = m.X[m.elements[e][a]];
+    const std::vector<ReferencePoint> points = reference_points(X, rule_);
+    reference_.insert(reference_.end(), points.begin(), points.end());
+    for (std::size_t g = 0; g < rule_.size(); ++g) volume_.push_back(reference_jacobian(m, e, rule_[g].xi, rule_[g].eta) * rule_[g].weight);
+  }
 }
 
 // The point loads at element e's points (global components): −∫ N_a b dV into the force,

@@ -95,8 +95,8 @@ class Assembler {
 
   class Pass;  // one assembly's LoadAssembly (assembler.cpp)
 
-  // The shape functions at the rule's points and each point's reference volume dV (the body
-  // forces' and the point loads' weights; the shape functions are the same in every element).
+  // The shape functions at the rule's points, each element's reference points (∂N/∂X, dV: the
+  // reference does not move) and their volumes dV (the body forces' and the point loads' weights).
   void point_weights();
 
   // The point loads at element e's points (global components): −∫ N_a b dV into the force,
@@ -129,6 +129,7 @@ class Assembler {
   double dt_s_ = 0.0;
   std::vector<Load*> loads_, point_loads_;  // all, and those acting at the integration points
   std::vector<double> shape_, volume_;  // point_weights(): N_a per point of the rule, dV per element and point
+  std::vector<detail::ReferencePoint> reference_;  // point_weights(): per element, its rule's points
   mutable double prepared_at_ = std::numeric_limits<double>::quiet_NaN();  // the λ the loads were prepared at
   const std::vector<int>* diagonal_ = nullptr;
   mutable std::vector<Eigen::Matrix2d> last_F_;  // per element and point (empty: linearised_pressure off)

@@ -85,6 +85,7 @@ CycleResult solve_in_halves(const CycleSolve& solve, const CycleDrive& drive, co
   second.outputs.progress = nullptr;
   SolverKnobs one_thread = solver;
   one_thread.threads = 1;
+  one_thread.newton.split_factorisation = false;  // each half has its core already: one LDLᵀ each
   CycleResult a, b;
   std::exception_ptr failed;
   auto second_half = [&] {

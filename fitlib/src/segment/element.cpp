@@ -1,5 +1,6 @@
 #include "element.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -76,9 +77,19 @@ struct PointKinematics {
   Eigen::Matrix2d F;
 };
 
+// ∂N/∂X, N and dV from the element's cached reference point, or computed when there is none.
+bool reference_of(const std::vector<Eigen::Vector2d>& X, const GaussPoint& g, const ReferencePoint* cached,
+                  PointKinematics& k) {
+  if (!cached) return reference_gradients(X, g, k.N, k.G, k.dV);
+  std::copy(cached->N, cached->N + 8, k.N);
+  k.G = cached->G;
+  k.dV = cached->dV;
+  return cached->ok;
+}
+
 bool point_kinematics(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
-                      const GaussPoint& g, PointKinematics& k) {
-  if (!reference_gradients(X, g, k.N, k.G, k.dV)) return false;
+                      const GaussPoint& g, PointKinematics& k, const ReferencePoint* cached = nullptr) {
+  if (!reference_of(X, g, cached, k)) return false;
   k.F.setIdentity();
   for (std::size_t a = 0; a < X.size(); ++a) k.F += u[a] * k.G.row(static_cast<int>(a));
   k.J = k.F.determinant();
@@ -191,6 +202,17 @@ PointResponse respond(const PlaneStrainLaw& law, const Eigen::Matrix2d& F, const
 }
 }  // namespace
 
+std::vector<ReferencePoint> reference_points(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule) {
+  std::vector<ReferencePoint> out(rule.size());
+  for (std::size_t q = 0; q < rule.size(); ++q) {
+    ReferencePoint& r = out[q];
+    std::fill(r.N, r.N + 8, 0.0);
+    r.G.setZero();
+    r.ok = reference_gradients(X, rule[q], r.N, r.G, r.dV);
+  }
+  return out;
+}
+
 void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,
                     const std::vector<Eigen::Matrix2d>& piola, ElementVector& f) {
   const int n = static_cast<int>(X.size());
@@ -205,7 +227,7 @@ void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<Gau
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
                       const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
                       ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar,
-                      PressureMemory* memory) {
+                      PressureMemory* memory, const ReferencePoint* reference) {
   const int n = static_cast<int>(X.size());
   f.setZero(2 * n);
   if (K) K->setZero(2 * n, 2 * n);
@@ -215,7 +237,7 @@ bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<E
   PointKinematics k;
   ElementVector dlnJbar;
   for (std::size_t q = 0; q < rule.size(); ++q) {
-    if (!point_kinematics(X, u, rule[q], k)) return false;
+    if (!point_kinematics(X, u, rule[q], k, reference ? reference + q : nullptr)) return false;
     double alpha = 1.0, Jbar = k.J;
     if (f_bar) {
       if (!interpolated_volume(volume, rule[q].xi, rule[q].eta, Jbar, dlnJbar)) return false;

@@ -41,13 +41,25 @@ struct ElementStep {
   double temperature_C = 0.0;
 };
 
+// A rule point's shape functions N, ∂N/∂X and reference volume dV in one element (the reference
+// configuration does not move, so an assembler computes them once per mesh); ok = false where the
+// element's map is inverted there.
+struct ReferencePoint {
+  double N[8];
+  Eigen::Matrix<double, 8, 2> G;
+  double dV = 0.0;
+  bool ok = false;
+};
+std::vector<ReferencePoint> reference_points(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule);
+
 // Internal force and tangent of one element; false (with nothing written) when an integration
 // point is inverted (J ≤ 0) or the law returns a non-finite stress. `f_bar`: the law sees
 // F̄ = (J̄/J)^½ F, J̄ interpolated from the reduced points (docs/segment.md §Element choice); the
 // states then hold F̄, its Cauchy stress and the effective first Piola stress P(F̄)/α.
 // `memory` (NewtonOptions::linearised_pressure; not with F-bar): the tangent's pressure term at the
 // pressure linearised over the step from the last tangent assembly's F at each point (read when
-// `follows`, then overwritten).
+// `follows`, then overwritten). `reference`: this element's rule points (reference_points), else
+// computed here.
 struct PressureMemory {
   Eigen::Matrix2d* F_last = nullptr;  // one per point of the rule
   bool follows = false;
@@ -55,7 +67,7 @@ struct PressureMemory {
 bool element_response(const std::vector<Eigen::Vector2d>& X, const std::vector<Eigen::Vector2d>& u,
                       const PlaneStrainLaw& law, const std::vector<GaussPoint>& rule, const ElementStep& step,
                       ElementVector& f, ElementMatrix* K, std::vector<ElementState>* states, bool f_bar = false,
-                      PressureMemory* memory = nullptr);
+                      PressureMemory* memory = nullptr, const ReferencePoint* reference = nullptr);
 
 // Internal force f_a = Σ P ∂N_a/∂X dV from given first Piola–Kirchhoff stresses at the points.
 void internal_force(const std::vector<Eigen::Vector2d>& X, const std::vector<GaussPoint>& rule,

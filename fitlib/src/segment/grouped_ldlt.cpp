@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <amd.h>
+#include <camd.h>
 
 #include "fitlib/core/error.hpp"
 
@@ -20,11 +21,11 @@ bool same_column_pattern(const SparseMatrix& K, int a, int b) {
 
 }  // namespace
 
-std::vector<int> grouped_amd_order(const SparseMatrix& K) {
+std::vector<int> grouped_amd_order(const SparseMatrix& K, const std::vector<int>& last) {
   const int n = static_cast<int>(K.cols());
   std::vector<int> group(n), first;  // group of each equation, first equation of each group
   for (int j = 0; j < n; ++j) {
-    if (j == 0 || !same_column_pattern(K, j, j - 1)) first.push_back(j);
+    if (j == 0 || !same_column_pattern(K, j, j - 1) || (!last.empty() && last[j] != last[j - 1])) first.push_back(j);
     group[j] = static_cast<int>(first.size()) - 1;
   }
   const int groups = static_cast<int>(first.size());
@@ -35,10 +36,20 @@ std::vector<int> grouped_amd_order(const SparseMatrix& K) {
         quotient_inner.push_back(group[it.index()]);  // rows ascend, so a group's rows are consecutive
     quotient_outer.push_back(static_cast<int>(quotient_inner.size()));
   }
-  double control[AMD_CONTROL], info[AMD_INFO];
-  amd_defaults(control);
-  if (amd_order(groups, quotient_outer.data(), quotient_inner.data(), group_order.data(), control, info) != AMD_OK)
-    throw core::NumericalError("segment: AMD ordering of the tangent's pattern failed");
+  bool ordered = false;
+  if (last.empty()) {
+    double control[AMD_CONTROL], info[AMD_INFO];
+    amd_defaults(control);
+    ordered = amd_order(groups, quotient_outer.data(), quotient_inner.data(), group_order.data(), control, info) == AMD_OK;
+  } else {  // CAMD: the groups marked `last` after the others, each set ordered knowing the other
+    std::vector<int> constraint(groups);
+    for (int g = 0; g < groups; ++g) constraint[g] = last[first[g]] ? 1 : 0;
+    double control[CAMD_CONTROL], info[CAMD_INFO];
+    camd_defaults(control);
+    ordered = camd_order(groups, quotient_outer.data(), quotient_inner.data(), group_order.data(), control, info,
+                         constraint.data()) == CAMD_OK;
+  }
+  if (!ordered) throw core::NumericalError("segment: AMD ordering of the tangent's pattern failed");
   std::vector<int> order;
   for (int p = 0; p < groups; ++p) {
     const int g = group_order[p];

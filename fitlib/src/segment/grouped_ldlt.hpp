@@ -11,7 +11,9 @@
 
 namespace fitlib::segment::detail {
 
-// Equation at each position of the elimination order.
-std::vector<int> grouped_amd_order(const Eigen::SparseMatrix<double>& K);
+// Equation at each position of the elimination order. `last` (optional, per equation, 0 or 1): the
+// equations marked 1 come after the others, and the others' order minimises the fill with them
+// (SuiteSparse's CAMD; SplitLdlt's halves with their separator).
+std::vector<int> grouped_amd_order(const Eigen::SparseMatrix<double>& K, const std::vector<int>& last = {});
 
 }  // namespace fitlib::segment::detail

@@ -8,6 +8,8 @@
 #include <Eigen/UmfPackSupport>
 #include <unsupported/Eigen/IterativeSolvers>
 
+#include "split_ldlt.hpp"
+
 namespace fitlib::segment::detail {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
@@ -20,26 +22,27 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 // when that does not converge (docs/segment.md §Solver, "Unsymmetric tangents").
 class LinearSolver {
  public:
-  explicit LinearSolver(bool symmetric) : symmetric_(symmetric) {
+  // `pool` (optional): the LDLᵀ in two halves at once on its threads (split_ldlt.hpp) where the
+  // pattern splits; `split` false or no pool: one LDLᵀ.
+  explicit LinearSolver(bool symmetric, WorkerPool* pool = nullptr, bool split = false)
+      : symmetric_(symmetric), pool_(split ? pool : nullptr) {
     lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;  // no iterative refinement: Newton corrects
   }
   bool factorize(const SparseMatrix& K) {
     if (!analysed_) {  // once per run: the pattern is fixed (build_pattern)
-      if (symmetric_) ldlt_.analyzePattern(K);
+      if (symmetric_) analyze_ldlt(K);
       else lu_.analyzePattern(K);
       analysed_ = true, ++analyses_;
     }
-    if (symmetric_) {
-      ldlt_.factorize(K);
-      return ldlt_.info() == Eigen::Success;
-    }
+    if (symmetric_) return factorize_ldlt(K);
     lu_.factorize(K);
     return lu_.info() == Eigen::Success;
   }
   int analyses() const { return analyses_; }
   bool symmetric() const { return symmetric_; }
+  bool split() const { return split_; }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
-    if (symmetric_) return ldlt_.solve(b);
+    if (symmetric_) return solve_ldlt(b);
     return lu_.solve(b);
   }
   // The unsymmetric K x = b by GMRES (restarted never) preconditioned with the LDLᵀ of ½(K + Kᵀ):
@@ -70,14 +73,25 @@ class LinearSolver {
     double error = tolerance;
     x.setZero(b.size());
     // Eigen's GMRES (unsupported/IterativeSolvers) called directly: its class would copy K per solve.
-    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{&ldlt_}, used, Eigen::Index(iterations), error);
+    const bool stopped = Eigen::internal::gmres(K, b, x, SymmetricPart{this}, used, Eigen::Index(iterations), error);
     krylov_iterations_ += static_cast<int>(used);
     return stopped && error <= tolerance && x.allFinite();
   }
   struct SymmetricPart {  // the preconditioner: Eigen's concept needs only solve()
-    const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>* ldlt;
-    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return ldlt->solve(b); }
+    const LinearSolver* solver;
+    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return solver->solve_ldlt(b); }
   };
+  // The symmetric matrix's LDLᵀ: in two halves at once where the pattern splits, else one.
+  void analyze_ldlt(const SparseMatrix& A) {
+    split_ = pool_ && split_ldlt_.analyze(A);  // on one thread too: the bytes do not depend on the count
+    if (!split_) ldlt_.analyzePattern(A);
+  }
+  bool factorize_ldlt(const SparseMatrix& A) {
+    if (split_) return split_ldlt_.factorize(A, *pool_);
+    ldlt_.factorize(A);
+    return ldlt_.info() == Eigen::Success;
+  }
+  Eigen::VectorXd solve_ldlt(const Eigen::VectorXd& b) const { return split_ ? split_ldlt_.solve(b, *pool_) : ldlt_.solve(b); }
   // ½(K + Kᵀ) into sym_ (K's pattern is symmetric) and its LDLᵀ (K's numbering is the grouped AMD
   // order, StaticRun).
   bool factorize_symmetric_part(const SparseMatrix& K) {
@@ -89,17 +103,19 @@ class LinearSolver {
           const int* end = K.innerIndexPtr() + K.outerIndexPtr()[it.row() + 1];
           transpose_.push_back(static_cast<int>(std::lower_bound(column, end, j) - K.innerIndexPtr()));
         }
-      ldlt_.analyzePattern(sym_);
+      analyze_ldlt(sym_);
       ++analyses_;
     }
     const double* v = K.valuePtr();
     double* w = sym_.valuePtr();
     for (std::size_t k = 0; k < transpose_.size(); ++k) w[k] = 0.5 * (v[k] + v[transpose_[k]]);
-    ldlt_.factorize(sym_);
-    return ldlt_.info() == Eigen::Success;
+    return factorize_ldlt(sym_);
   }
 
   bool symmetric_, analysed_ = false;
+  WorkerPool* pool_ = nullptr;
+  bool split_ = false;  // the LDLᵀ is split_ldlt_'s (analyze_ldlt)
+  SplitLdlt split_ldlt_;
   bool preconditioned_ = false;  // ldlt_ holds a symmetric part's factorisation (krylov_solve)
   int analyses_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
   // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation

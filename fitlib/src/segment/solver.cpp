@@ -94,7 +94,7 @@ class StaticRun {
         assembler_(p, d_, gauss_order(m_, knobs.physics.integration), knobs.physics.integration == Integration::fbar, pool_,
                    loads_of(p, inertia_.get())),
         states_(initial_states(p, assembler_.points_per_element())), scratch_(states_.committed.size()),
-        linear_(symmetric_problem(p, knobs)),
+        linear_(symmetric_problem(p, knobs), &pool_, knobs.newton.split_factorisation),
         pattern_(linear_.symmetric() || knobs.newton.krylov_iterations > 0 ? ordered_pattern(m_, d_) : build_pattern(m_, d_)), nn_(m_.node_count()), q_(Eigen::VectorXd::Zero(2 * nn_)),
         newton_(assembler_, pattern_, linear_, d_, knobs.newton, q_), values_(p.constraints.size()) {
     assembler_.set_offsets(&states_.offset);
@@ -127,6 +127,7 @@ class StaticRun {
     out_.krylov_iterations = linear_.krylov_iterations();
     out_.krylov_fallbacks = linear_.krylov_fallbacks();
     out_.symmetric_solver = linear_.symmetric();
+    out_.split_factorisation = linear_.split();
     out_.state = states_.committed;
     out_.state_offset = states_.offset;
     return out_;

@@ -5,10 +5,6 @@
 
 namespace fitlib::segment::detail {
 
-namespace {
-constexpr int kChunk = 4;  // indices per take: the elements cost alike, a few per take balance well
-}
-
 WorkerPool::WorkerPool(int threads) {
   for (int t = 1; t < threads; ++t) helpers_.emplace_back([this] { helper_loop(); });
 }
@@ -23,8 +19,8 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::take_chunks(Loop& loop) {
-  for (int begin = loop.next.fetch_add(kChunk); begin < loop.count; begin = loop.next.fetch_add(kChunk)) {
-    const int end = std::min(loop.count, begin + kChunk);
+  for (int begin = loop.next.fetch_add(loop.chunk); begin < loop.count; begin = loop.next.fetch_add(loop.chunk)) {
+    const int end = std::min(loop.count, begin + loop.chunk);
     try {
       for (int i = begin; i < end; ++i) (*loop.body)(i);
     } catch (...) {
@@ -63,13 +59,13 @@ void WorkerPool::spin_for_next(int seen) const {
     std::this_thread::yield();
 }
 
-void WorkerPool::for_each(int count, const std::function<void(int)>& body) {
-  if (helpers_.empty() || count <= kChunk) {  // no synchronisation where there is nothing to share
+void WorkerPool::for_each(int count, const std::function<void(int)>& body, int chunk) {
+  if (helpers_.empty() || count <= chunk) {  // no synchronisation where there is nothing to share
     for (int i = 0; i < count; ++i) body(i);
     return;
   }
   auto loop = std::make_shared<Loop>();
-  loop->body = &body, loop->count = count;
+  loop->body = &body, loop->count = count, loop->chunk = chunk;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     loop_ = loop;
@@ -78,6 +74,11 @@ void WorkerPool::for_each(int count, const std::function<void(int)>& body) {
   }
   wake_.notify_all();
   take_chunks(*loop);
+  // The helpers' last chunks usually end within microseconds: wait for them spinning, as they wait for
+  // the next loop, before sleeping (a sleeping caller wakes tens of microseconds late).
+  const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(kSpinMicroseconds);
+  while (loop->done.load(std::memory_order_acquire) < count && std::chrono::steady_clock::now() < until)
+    std::this_thread::yield();
   std::unique_lock<std::mutex> lock(mutex_);
   finished_.wait(lock, [&] { return loop->done.load() == count; });
   if (loop->error) std::rethrow_exception(loop->error);

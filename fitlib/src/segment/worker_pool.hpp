@@ -24,14 +24,16 @@ class WorkerPool {
   WorkerPool& operator=(const WorkerPool&) = delete;
 
   int threads() const { return static_cast<int>(helpers_.size()) + 1; }
-  // body(i) for every i in [0, count), across the team; returns when all have run. The first
+  // body(i) for every i in [0, count), across the team, `chunk` indices per take (the elements: a
+  // few, as they cost alike; 1 for a few large tasks); returns when all have run. The first
   // exception a body throws is rethrown here, after the loop.
-  void for_each(int count, const std::function<void(int)>& body);
+  static constexpr int kElementChunk = 4;
+  void for_each(int count, const std::function<void(int)>& body, int chunk = kElementChunk);
 
  private:
   struct Loop {  // one for_each; shared, so a helper waking after it has ended finds it done
     const std::function<void(int)>* body = nullptr;
-    int count = 0;
+    int count = 0, chunk = kElementChunk;
     std::atomic<int> next{0}, done{0};
     std::exception_ptr error;
   };

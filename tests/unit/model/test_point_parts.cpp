@@ -271,3 +271,57 @@ TEST(PointParts, FritzsonImplicitDamageKinksWhereTheDriverStandsStillAndTheLagge
     }
   }
 }
+
+TEST(PointParts, FritzsonClosedFormInPlaneTangentIsTheJetsWhereNoDriverMoves) {
+  // The segment's in-plane tangent (columns ε11, ε22, γ12) in closed form where no damage driver moves
+  // with the strain, against the six-lane Jet of update_flat. A plane-strain history of growing
+  // amplitude drives the drivers up (the closed form must decline: false) and then, at half the
+  // amplitude, keeps them still (it must answer, equal to the Jet's); held drivers answer while they
+  // grow beyond the hold; lagged ones always. Every variant: anisotropic and isotropic, both schemes.
+  const auto p1 = fritzson_material1();
+  std::vector<double> iso(p1.begin(), p1.begin() + 14);
+  for (const bool anisotropic : {true, false})
+    for (const auto scheme : {fritzson::Scheme::backward_euler, fritzson::Scheme::exponential})
+      for (const auto update : {fritzson::DamageUpdate::implicit, fritzson::DamageUpdate::lagged})
+        for (const bool held : {false, true}) {
+          fritzson::MaterialPoint point(anisotropic ? p1 : iso, anisotropic, 23.0, scheme, update);
+          if (held) point.hold_damage_beyond(std::vector<double>(anisotropic ? 3 : 1, 0.004));
+          std::vector<double> x(fritzson::kFlatStateSize, 0.0), x_next(x.size());
+          int answered = 0, declined = 0;
+          for (int n = 0; n < 120; ++n) {
+            const double amplitude = n < 60 ? 0.0004 * n : 0.012;
+            Vector6 e = Vector6::Zero();
+            e[0] = amplitude * std::sin(0.3 * n), e[1] = -0.8 * amplitude * std::sin(0.3 * n + 0.2);
+            e[5] = 1.5 * amplitude * std::cos(0.3 * n);
+            const double dt = n ? 0.004 : 0.0;
+            Matrix6 jet, closed;
+            const Vector6 s = point.update_flat(x.data(), e, dt, 60.0, x_next.data(), &jet);
+            // The value path with its step moduli: the Jet's values to round-off (the two differ in
+            // the last bits where the compiler fuses the double path's multiply-adds).
+            std::vector<double> x_value(x.size());
+            const fritzson::FlatState<const double> in(x.data());
+            fritzson::FlatState<double> out(x_value.data());
+            Vector6 s_value;
+            double moduli[3];
+            point.update_impl<double>(in, e.data(), dt, 60.0, out, s_value.data(), moduli);
+            for (std::size_t i = 0; i < x.size(); ++i)
+              ASSERT_NEAR(x_value[i], x_next[i], 1e-10 * std::abs(x_next[i]) + 1e-20) << "step " << n << " state " << i;
+            for (int i = 0; i < 6; ++i) ASSERT_NEAR(s_value[i], s[i], 1e-12 * s.cwiseAbs().maxCoeff()) << "step " << n;
+            if (point.fixed_driver_tangent(x.data(), x_next.data(), moduli, closed)) {
+              ++answered;
+              const double size = jet.cwiseAbs().maxCoeff();
+              for (int c : {0, 1, 5})
+                ASSERT_LT((closed.col(c) - jet.col(c)).cwiseAbs().maxCoeff(), 1e-12 * size)
+                    << "step " << n << " column " << c << (anisotropic ? " aniso" : " iso") << (held ? " held" : "");
+            } else {
+              ++declined;
+            }
+            ASSERT_TRUE(s.allFinite());
+            x.swap(x_next);
+          }
+          const bool always = update == fritzson::DamageUpdate::lagged;
+          EXPECT_GT(answered, 20);
+          if (always) EXPECT_EQ(declined, 0);
+          else EXPECT_GT(declined, 0) << "the drivers grew over the first 60 steps";
+        }
+}

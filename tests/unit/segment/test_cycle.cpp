@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <unistd.h>
 #include <string>
@@ -90,6 +91,14 @@ const ContractLaw& prony_point() {
   static const model::ModelPtr prony = model::make_model("prony", {{"mode", "shear"}, {"bulk_modulus", true}, {"terms", 2}});
   static const ContractLaw law(model::make_material_point(*prony, {2.0, 3.0, 2.0, 0.05, 0.5, 2000.0}));
   return law;
+}
+
+// One cycle of the Prony point on the default fixture, with the Newton options `set` changes.
+CycleResult prony_cycle(const std::function<void(NewtonOptions&)>& set) {
+  Fixture f;
+  f.knobs.stepping.cycles = 1;
+  set(f.solver.newton);
+  return f.run(prony_point(), prony_point());
 }
 
 // Every monitored stress of `r` equal to `ref`'s within `tolerance` × (1 + |σ22| + |σ11|) MPa.
@@ -219,12 +228,8 @@ TEST(SegmentCycle, ThreadCountLeavesEveryResultBitIdentical) {
 // iteration at an unreachable tolerance falls back to the LU on every tangent, with the LU's result;
 // modified Newton (reuse_tangent) factorises with the LU as before.
 TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterations) {
-  const ContractLaw& visco = prony_point();
-  auto run = [&](int iterations, double tolerance) {
-    Fixture f;
-    f.knobs.stepping.cycles = 1;
-    f.solver.newton.krylov_iterations = iterations, f.solver.newton.krylov_tolerance = tolerance;
-    return f.run(visco, visco);
+  auto run = [](int iterations, double tolerance) {
+    return prony_cycle([&](NewtonOptions& n) { n.krylov_iterations = iterations, n.krylov_tolerance = tolerance; });
   };
   const CycleResult lu = run(0, 1e-8), gmres = run(SolverKnobs{}.newton.krylov_iterations, SolverKnobs{}.newton.krylov_tolerance),
                     fallback = run(1, 1e-300);
@@ -240,10 +245,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
     expect_same_stresses(*r, lu, 1e-8);
   }
   // Modified Newton keeps the LU for its later steps: no GMRES there, and the same solution.
-  Fixture modified;
-  modified.knobs.stepping.cycles = 1;
-  modified.solver.newton.reuse_tangent = true;
-  const CycleResult reused = modified.run(visco, visco);
+  const CycleResult reused = prony_cycle([](NewtonOptions& n) { n.reuse_tangent = true; });
   EXPECT_EQ(reused.final_state.krylov_iterations, 0);
   const CycleSample &a = point(reused, "gap_bottom").samples.back(), &b = point(lu, "gap_bottom").samples.back();
   EXPECT_NEAR(a.s22_MPa, b.s22_MPa, 1e-6 * (1.0 + std::abs(b.s22_MPa)));
@@ -256,13 +258,7 @@ TEST(SegmentCycle, UnsymmetricTangentByGmresOnItsSymmetricPartKeepsNewtonsIterat
 // keep_preconditioner_below) takes Newton through the same increments and iterations as a
 // factorisation per tangent, to stresses equal within 10⁻⁸ of their scale, with fewer factorisations.
 TEST(SegmentCycle, NearConvergenceGmresKeepsTheLastPreconditionerAndNewtonsIterations) {
-  const ContractLaw& visco = prony_point();
-  auto run = [&](double keep_below) {
-    Fixture f;
-    f.knobs.stepping.cycles = 1;
-    f.solver.newton.keep_preconditioner_below = keep_below;
-    return f.run(visco, visco);
-  };
+  auto run = [](double keep_below) { return prony_cycle([&](NewtonOptions& n) { n.keep_preconditioner_below = keep_below; }); };
   const CycleResult fresh = run(0.0), kept = run(SolverKnobs{}.newton.keep_preconditioner_below);
   EXPECT_EQ(fresh.factorizations, fresh.newton_iterations);
   EXPECT_LT(kept.factorizations, fresh.factorizations);
@@ -274,6 +270,21 @@ TEST(SegmentCycle, NearConvergenceGmresKeepsTheLastPreconditionerAndNewtonsItera
   std::printf("prony cycle: %d Newton iterations either way; %d factorisations and %d GMRES iterations kept, %d and %d fresh\n",
               kept.newton_iterations, kept.factorizations, kept.final_state.krylov_iterations, fresh.factorizations,
               fresh.final_state.krylov_iterations);
+}
+
+// The LDLᵀ in two halves at once (split_factorisation, on by default) changes the rounding of each
+// solve, not Newton's path: the same increments, iterations, factorisations and cuts as one LDLᵀ,
+// the stresses to round-off.
+TEST(SegmentCycle, SplitFactorisationKeepsNewtonsPathAndTheStresses) {
+  auto run = [](bool split) { return prony_cycle([&](NewtonOptions& n) { n.split_factorisation = split; }); };
+  const CycleResult one = run(false), split = run(true);
+  EXPECT_FALSE(one.final_state.split_factorisation);
+  EXPECT_TRUE(split.final_state.split_factorisation);
+  EXPECT_EQ(split.increments, one.increments);
+  EXPECT_EQ(split.newton_iterations, one.newton_iterations);
+  EXPECT_EQ(split.factorizations, one.factorizations);
+  EXPECT_EQ(split.cuts, one.cuts);
+  expect_same_stresses(split, one, 1e-9);
 }
 
 // Cycles before the last at their own, coarser count (conditioning_steps): the bend, that many

@@ -127,10 +127,19 @@ class MaterialPoint {
   // The driver the stress reads for an amplitude e^a of part j (0 I, 1 A1, 2 A2): e^a, or its hold.
   double held_driver(int j, double amplitude) const { return std::min(amplitude, driver_ceiling_[j]); }
 
+  // The tangent's in-plane columns (0, 1, 5) of the step state_n → state_next (FlatState layout, as
+  // update_impl wrote it with its step_moduli) in closed form, when no damage driver moves with the
+  // strain (lagged, not growing, or beyond its hold): then the stress is affine in the strain. False
+  // otherwise.
+  bool fixed_driver_tangent(const double* state_n, const double* state_next, const double* step_moduli,
+                            Matrix6& tangent) const;
+
   // The update in any scalar type T (double, or a Jet for the tangent) on any state type.
+  // `step_moduli` (optional, one per part): ∂s/∂e of each part at its step's damage factors, the
+  // tangent where no driver moves (fixed_driver_tangent).
   template <typename T, typename In, typename Out>
   void update_impl(const In& state, const T* strain, double dt_s, double temperature_C,
-                   Out& next, T* stress) const;
+                   Out& next, T* stress, double* step_moduli = nullptr) const;
 
  private:
   template <typename In, typename Out>

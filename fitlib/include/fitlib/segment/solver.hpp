@@ -70,6 +70,11 @@ struct NewtonOptions {
   // nor with reuse_tangent. Complete level: the second correction no longer stagnates, −29 to −35 %
   // iterations (docs/segment.md §"Cost (reference)", 2026-12-04).
   bool linearised_pressure = true;
+  // The LDLᵀ (of the tangent, or of its symmetric part for GMRES) in two halves at once, one on each
+  // of the element loop's threads, the separator's Schur complement dense between (one level of
+  // nested dissection; the same arithmetic on any thread count). Off: one LDLᵀ on the lead thread
+  // (docs/segment.md §Solver, "Split LDLᵀ").
+  bool split_factorisation = true;
 };
 
 // Load stepping over λ from 0 to 1 (solver.cpp): the increments, their cuts and where each starts.
@@ -182,6 +187,7 @@ struct StaticSolution {
   int equations = 0;
   int pattern_analyses = 0;       // symbolic analyses of the tangent's sparsity (1 per run; 2 when GMRES fell back to the LU)
   bool symmetric_solver = false;  // LDLᵀ (every law's tangent symmetric, no follower load) or LU
+  bool split_factorisation = false;  // the LDLᵀ ran in two halves (NewtonOptions::split_factorisation)
   // PhysicsOptions::inertia: per node, its inertia force m·a (global, N/mm; in the residual as
   // internal − external + inertia, so Σ reactions + external − Σ m·a = 0); empty without inertia.
   std::vector<Eigen::Vector2d> inertia_N_mm;
