@@ -157,12 +157,16 @@ void scaling_table(const fit::FitOptions& o);
 // grid, free times from a merged denser NNLS only where they pay) against pyvisco's fixed-τ fit of
 // N terms (its recorded 5000 x 20 figure, scaled by points x terms: a lower bound of its time) and
 // against the path before (free times from the grid), at 200, 1000 and 5000 points over 14 decades.
-void fixed_terms_table() {
+// `rows`: "PxN" names (e.g. "200x15") of the rows to run, all when empty; `runs` > 0 times each row
+// that many times (a profile's loop), else 7 (3 at 5000 points).
+void fixed_terms_table(const std::vector<std::string>& rows = {}, int runs_given = 0) {
   std::printf("## --terms N (card::fit_card, as fitcli fit) vs pyvisco's fixed-tau fit, in-process\n");
   std::printf("| points | N | fitlib --terms N, wall | CPU | path | pyvisco | ratio (CPU) | rms log10 E' / E'' | free times from the grid (before), CPU | before / now |\n|---|---|---|---|---|---|---|---|---|---|\n");
   double worst = 1e300;
   for (int points : {200, 1000, 5000})
     for (int n : {15, 20, 30}) {
+      const std::string name = std::to_string(points) + "x" + std::to_string(n);
+      if (!rows.empty() && std::find(rows.begin(), rows.end(), name) == rows.end()) continue;
       const auto truth_model = model::make_model("prony", {{"terms", n}});
       const auto table = synthetic(*truth_model, truth(n), points, 0.01, 11 + points + n);
       card::FitCardOptions o;
@@ -170,7 +174,7 @@ void fixed_terms_table() {
       o.terms = std::to_string(n);
       o.model_options = {{"temperature_law", "none"}, {"reference_C", 23.0}};
       card::FitCardResult r;
-      const int runs = points >= 5000 ? 3 : 7;
+      const int runs = runs_given > 0 ? runs_given : points >= 5000 ? 3 : 7;
       const double clock = std::clock();
       const double t = median_time(runs, [&] { r = card::fit_card(table, o); });
       const double cpu = (std::clock() - clock) / CLOCKS_PER_SEC / runs;
@@ -444,8 +448,15 @@ int main(int argc, char** argv) {
   std::printf("# bench_prony: Prony fitting speed and accuracy\n\n");
   // `bench_prony fixed` or `bench_prony auto`: that table alone (each with its own baseline).
   const std::string only = argc > 1 ? argv[1] : "";
-  if (only == "fixed") {
-    fixed_terms_table();
+  if (only == "fixed") {  // bench_prony fixed [PxN ...] [runs=K]: those rows only, K runs each
+    std::vector<std::string> rows;
+    int runs = 0;
+    for (int k = 2; k < argc; ++k) {
+      const std::string a = argv[k];
+      if (a.rfind("runs=", 0) == 0) runs = std::max(1, std::atoi(a.c_str() + 5));
+      else rows.push_back(a);
+    }
+    fixed_terms_table(rows, runs);
     return 0;
   }
   if (only == "process") {  // bench_prony process [BASELINE_FITCLI] [runs=N]

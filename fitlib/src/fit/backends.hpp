@@ -39,6 +39,13 @@ int apply_linear_solution(Problem& problem, const LinearDesign& design, const Ei
 // Levenberg–Marquardt (dense QR, one thread) on the free parameters in fitted coordinates.
 StageOutcome run_ceres(Problem& problem, int max_iterations);
 
+// Levenberg–Marquardt on the normal equations (levenberg_marquardt.cpp): Ceres's damping (Jacobi
+// scaling, the scaled diagonal clamped to [1e-6, 1e32], the same radius updates) and stopping rules
+// (the options' function tolerance, here on two trials in a row; parameter tolerance 1e-10,
+// gradient 1e-14); parameters on an active bound held there; one Jacobian and one JᵀJ per accepted
+// step, one or two Cholesky factorisations of the n × n damped system per trial.
+StageOutcome run_levenberg_marquardt(Problem& problem, int max_iterations);
+
 // Multistart LN_BOBYQA from the current point and `starts − 1` seeded points (scaled to O(1)
 // in fitted coordinates); keeps the best. Budget per start: max(4·max_iterations, 10·(n + 1))
 // evaluations.

@@ -164,9 +164,16 @@ void revive_zero_moduli(Problem& problem, FitResult& result) {
                             " zero moduli restarted at 1e-3 x the mean modulus for the free stage");
 }
 
+// The local descent the options name (FitOptions::descent).
+StageOutcome local_descent(Problem& problem, int max_iterations) {
+  return problem.options().descent == LocalDescent::normal_equations
+             ? detail::run_levenberg_marquardt(problem, max_iterations)
+             : detail::run_ceres(problem, max_iterations);
+}
+
 StageOutcome ceres_stage(Problem& problem, FitResult& result) {
   problem.set_free(movable(problem, all_free(problem)));
-  StageOutcome out = detail::run_ceres(problem, problem.options().max_iterations);
+  StageOutcome out = local_descent(problem, problem.options().max_iterations);
   note(result, "", out);
   return out;
 }
@@ -331,7 +338,7 @@ void repolish(Problem& problem, FitResult& result, bool linear_only) {
   const std::vector<double> before = problem.natural();
   // A re-polish starts next to a solution: a capped budget (the merge check judges the result).
   const detail::StageOutcome out =
-      detail::run_ceres(problem, std::min(problem.options().max_iterations, kRepolishIterations));
+      local_descent(problem, std::min(problem.options().max_iterations, kRepolishIterations));
   if (!out.usable || !std::isfinite(problem.cost(problem.natural()))) problem.natural() = before;
   note(result, "re-polish ", out);
 }
@@ -468,7 +475,8 @@ BackendRun run_backend(Problem& problem, FitResult& result, const FitOptions& op
       run.last_stage_set = true;
       break;
     case Backend::automatic:
-      run.used = has_free_linear(problem) ? "nnls+ceres" : "ceres";
+      run.used = options.descent == LocalDescent::normal_equations ? "lm" : "ceres";
+      if (has_free_linear(problem)) run.used = "nnls+" + run.used;
       linear_start(problem, result);
       if (options.global) {
         nlopt_stage(problem, result, options.multistart, options.max_iterations);

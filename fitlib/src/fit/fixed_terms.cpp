@@ -100,6 +100,7 @@ std::optional<FitResult> fit_fixed_terms(const std::function<model::ModelPtr(int
   polish.max_iterations = std::min(options.max_iterations, fixed.polish_iterations);
   polish.tolerance = std::max(options.tolerance, fixed.polish_tolerance);
   polish.linear_start = false;  // the start's moduli are the NNLS solution at its times already
+  polish.descent = LocalDescent::normal_equations;
   FitResult free = fit(m, table, polish, &start);
   const bool keep_free = free.metrics.cost <= (1.0 - fixed.polish_gain) * grid.metrics.cost;
   const double grid_cost = grid.metrics.cost;

@@ -15,6 +15,10 @@ enum class Backend { automatic, nnls, ceres, nlopt, staged };
 // log10 of storage/loss (default), errors relative to each modulus, or errors of E′ and E″
 // relative to the row's |E*| (how FE vendors weigh a complex-modulus fit).
 enum class ResidualKind { log10, relative, complex };
+// The local descent of the automatic and ceres backends (and of the re-polishes after term merges):
+// Ceres's Levenberg–Marquardt (dense QR of the augmented Jacobian per step), or fitlib's own on the
+// normal equations JᵀJ (fit/levenberg_marquardt.cpp), cheaper per step on small dense problems.
+enum class LocalDescent { ceres, normal_equations };
 
 Backend parse_backend(const std::string& text);      // "auto|nnls|ceres|nlopt|staged"
 const char* to_string(Backend backend);
@@ -57,6 +61,9 @@ struct FitOptions {
   // false: the values, metrics and verdict only, without covariance, intervals, band or the merges
   // of unidentifiable terms (the term economy's trial fits, whose figures alone are compared).
   bool uncertainty = true;
+  // Which local descent the automatic and ceres backends run (fit_fixed_terms's polish: normal
+  // equations; docs/fitting.md "Fixed term counts").
+  LocalDescent descent = LocalDescent::ceres;
 };
 
 // The window a fit's series terms were held in (card "fit.admissible"; export checks it).
