@@ -1,6 +1,7 @@
 #pragma once
-// The segment's sparse linear solves (solver.cpp's Newton): LDLᵀ, UMFPACK's LU, and GMRES on the
-// unsymmetric tangent preconditioned with its symmetric part's LDLᵀ.
+// The segment's sparse linear solves (solver.cpp's Newton): LDLᵀ (whole or in two halves at once,
+// split_ldlt.hpp), UMFPACK's LU, and GMRES on the unsymmetric tangent preconditioned with its
+// symmetric part's LDLᵀ.
 #include <algorithm>
 #include <vector>
 
@@ -116,7 +117,7 @@ class LinearSolver {
   WorkerPool* pool_ = nullptr;
   bool split_ = false;  // the LDLᵀ is split_ldlt_'s (analyze_ldlt)
   SplitLdlt split_ldlt_;
-  bool preconditioned_ = false;  // ldlt_ holds a symmetric part's factorisation (krylov_solve)
+  bool preconditioned_ = false;  // the LDLᵀ holds a symmetric part's factorisation (krylov_solve)
   int analyses_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
   // The equations are numbered in the node groups' AMD order (ordered_pattern), so the factorisation
   // reads K's upper triangle in place (no permuted copy per factorisation).
